@@ -1,0 +1,55 @@
+//! Errors of the analysis crate.
+
+use std::path::{Path, PathBuf};
+
+use stickslip_solver::SolverError;
+
+/// Everything that can go wrong in analysis, tables and reports.
+#[derive(Debug, thiserror::Error)]
+pub enum AnalysisError {
+    /// A file could not be read or written.
+    #[error("{}", path.display())]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// A pipeline file was refused.
+    #[error("{}", path.display())]
+    Pipeline {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        source: SolverError,
+    },
+    /// The solver failed.
+    #[error(transparent)]
+    Solver(#[from] SolverError),
+    /// Polars failed to build, read or write a table.
+    #[error("table {what}")]
+    Table {
+        /// Which table.
+        what: String,
+        /// The cause.
+        source: polars::error::PolarsError,
+    },
+}
+
+impl AnalysisError {
+    /// An I/O error on `path`.
+    pub fn io(path: &Path, source: std::io::Error) -> Self {
+        AnalysisError::Io {
+            path: path.to_path_buf(),
+            source,
+        }
+    }
+
+    /// A polars error while handling table `what`.
+    pub fn table(what: impl Into<String>, source: polars::error::PolarsError) -> Self {
+        AnalysisError::Table {
+            what: what.into(),
+            source,
+        }
+    }
+}

@@ -1,0 +1,91 @@
+//! Errors of the solver: refused scenes, numerical failures, cancelled runs.
+
+use std::fmt;
+
+/// One refused value of a scene: which field, what it was, what is allowed.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FieldError {
+    /// Dotted path of the field in the scene file, e.g. `material.poisson`.
+    pub field: String,
+    /// The value as given.
+    pub value: String,
+    /// What would be accepted, e.g. `0 < poisson < 0.5`.
+    pub allowed: String,
+}
+
+impl fmt::Display for FieldError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{} = {} is not allowed: {}",
+            self.field, self.value, self.allowed
+        )
+    }
+}
+
+/// Everything that can go wrong in the solver.
+#[derive(Debug, thiserror::Error)]
+pub enum SolverError {
+    /// The scene has values that cannot be run; nothing was run.
+    #[error("invalid scene:\n{}", .0.iter().map(|e| format!("  - {e}")).collect::<Vec<_>>().join("\n"))]
+    InvalidScene(Vec<FieldError>),
+    /// The file is not valid TOML, has an unknown key, or a value of the wrong type.
+    #[error("{}", .0.trim_end())]
+    Syntax(String),
+    /// The requested time step is above the critical step of the lattice actually built.
+    #[error(
+        "time step {dt_s:.6e} s is above the critical step {critical_s:.6e} s of this lattice \
+         (seed {seed}: stiffest bar and lightest node included); use time.dt_fraction ≤ 1 or a \
+         smaller time.dt_s"
+    )]
+    TimeStepAboveCritical {
+        /// Requested step.
+        dt_s: f64,
+        /// Critical step `2/ω_max`.
+        critical_s: f64,
+        /// Seed of the random field.
+        seed: u64,
+    },
+    /// The run went numerically unstable and was stopped.
+    #[error(
+        "run went unstable at step {step} (t = {time_s:.6e} s, {stage}): {what} at {node} \
+         (LDEM {ldem}); Δt = {dt_s:.4e} s is {fraction:.3} of the critical step"
+    )]
+    Unstable {
+        /// Global step index at which the blow-up was detected.
+        step: u64,
+        /// Time since the start of the stage, in seconds.
+        time_s: f64,
+        /// Loading stage name.
+        stage: &'static str,
+        /// What was detected (non-finite value, speed above bound …).
+        what: String,
+        /// Node position (m).
+        node: String,
+        /// LDEM number of the node.
+        ldem: u64,
+        /// Time step used.
+        dt_s: f64,
+        /// Time step over the critical one.
+        fraction: f64,
+    },
+    /// The self-weight stage did not reach static equilibrium within its time limit.
+    #[error(
+        "self-weight stage did not settle within {max_s} s (out-of-balance force ratio {residual:.3e} > \
+         tolerance {tolerance:.1e}); raise self_weight.damping_per_s or self_weight.max_duration_s"
+    )]
+    NotSettled {
+        /// The stage's time limit.
+        max_s: f64,
+        /// Residual ratio reached.
+        residual: f64,
+        /// Requested tolerance.
+        tolerance: f64,
+    },
+    /// A numerical procedure found no answer.
+    #[error("numerical failure: {0}")]
+    Numerical(String),
+    /// The caller asked the run to stop.
+    #[error("run cancelled")]
+    Cancelled,
+}

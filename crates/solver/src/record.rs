@@ -1,0 +1,254 @@
+//! Recorders: only the channels a scene asks for, at its interval, as plain arrays.
+
+use crate::scene::{ControlChannel, InterfaceQuantity, RecordPlan};
+use crate::stepper::Stepper;
+
+/// A recorded scalar channel (the name carries the unit).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Channel {
+    /// τ = −ΣF_x/A (Pa), positive when the base resists the push.
+    ShearStress,
+    /// σ = ΣN/A (Pa).
+    NormalStress,
+    /// δ, mean x-displacement of the contact nodes (m).
+    MeanSlip,
+    /// Mean x-velocity of the contact nodes (m/s).
+    MeanSlipRate,
+    /// Max x-velocity of the contact nodes (m/s).
+    MaxSlipRate,
+    /// Sliding contact nodes (count).
+    SlippingNodes,
+    /// Lifted contact nodes (count).
+    LiftedNodes,
+    /// Total driver reaction in x (N).
+    DriverForce,
+    /// Imposed driver displacement (m).
+    DriverDisplacement,
+    /// Kinetic energy (J).
+    Kinetic,
+    /// Strain energy (J).
+    Elastic,
+    /// Dissipated by damping since the start (J).
+    DampingDissipated,
+    /// Dissipated by friction since the start (J).
+    FrictionDissipated,
+    /// Lost in landings since the start (J).
+    ImpactDissipated,
+    /// Work of gravity and body forces since the start (J).
+    BodyWork,
+    /// Work of the drivers since the start (J).
+    DriverWork,
+    /// Body plus driver work (J).
+    ExternalWork,
+    /// External work minus stored and dissipated energy (J); zero up to round-off.
+    EnergyResidual,
+}
+
+impl Channel {
+    /// Column name with unit.
+    pub fn name(self) -> &'static str {
+        match self {
+            Channel::ShearStress => "shear_stress_pa",
+            Channel::NormalStress => "normal_stress_pa",
+            Channel::MeanSlip => "mean_slip_m",
+            Channel::MeanSlipRate => "mean_slip_rate_m_s",
+            Channel::MaxSlipRate => "max_slip_rate_m_s",
+            Channel::SlippingNodes => "slipping_nodes",
+            Channel::LiftedNodes => "lifted_nodes",
+            Channel::DriverForce => "driver_force_n",
+            Channel::DriverDisplacement => "driver_displacement_m",
+            Channel::Kinetic => "kinetic_energy_j",
+            Channel::Elastic => "elastic_energy_j",
+            Channel::DampingDissipated => "damping_dissipated_j",
+            Channel::FrictionDissipated => "friction_dissipated_j",
+            Channel::ImpactDissipated => "impact_dissipated_j",
+            Channel::BodyWork => "body_work_j",
+            Channel::DriverWork => "driver_work_j",
+            Channel::ExternalWork => "external_work_j",
+            Channel::EnergyResidual => "energy_residual_j",
+        }
+    }
+
+    /// Whether the channel counts nodes (an integer).
+    pub fn is_count(self) -> bool {
+        matches!(self, Channel::SlippingNodes | Channel::LiftedNodes)
+    }
+
+    /// The energy channels, in order.
+    pub const ENERGY: [Channel; 9] = [
+        Channel::Kinetic,
+        Channel::Elastic,
+        Channel::DampingDissipated,
+        Channel::FrictionDissipated,
+        Channel::ImpactDissipated,
+        Channel::BodyWork,
+        Channel::DriverWork,
+        Channel::ExternalWork,
+        Channel::EnergyResidual,
+    ];
+
+    /// Channels of the plan, in a fixed order.
+    pub fn of_plan(plan: &RecordPlan) -> Vec<Channel> {
+        let mut out = Vec::new();
+        for q in InterfaceQuantity::ALL {
+            if !plan.has(q) {
+                continue;
+            }
+            out.extend_from_slice(match q {
+                InterfaceQuantity::ShearStress => &[Channel::ShearStress][..],
+                InterfaceQuantity::NormalStress => &[Channel::NormalStress],
+                InterfaceQuantity::MeanSlip => &[Channel::MeanSlip],
+                InterfaceQuantity::SlipRate => &[Channel::MeanSlipRate, Channel::MaxSlipRate],
+                InterfaceQuantity::SlippingNodes => &[Channel::SlippingNodes],
+                InterfaceQuantity::LiftedNodes => &[Channel::LiftedNodes],
+                InterfaceQuantity::Driver => &[Channel::DriverForce, Channel::DriverDisplacement],
+            });
+        }
+        if plan.energy {
+            out.extend_from_slice(&Channel::ENERGY);
+        }
+        out
+    }
+}
+
+/// The recorded series of one run.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Records {
+    /// Time since the start of the shear stage (s); negative in the self-weight stage.
+    pub time_s: Vec<f64>,
+    /// Scalar channels, each as long as `time_s`.
+    pub channels: Vec<(Channel, Vec<f64>)>,
+    /// Control-node channels, each as long as `time_s`.
+    pub control: Vec<(ControlChannel, Vec<f64>)>,
+}
+
+impl Records {
+    /// Values of a scalar channel, if recorded.
+    pub fn get(&self, ch: Channel) -> Option<&[f64]> {
+        self.channels
+            .iter()
+            .find(|(c, _)| *c == ch)
+            .map(|(_, v)| v.as_slice())
+    }
+
+    /// Values of a control channel, if recorded.
+    pub fn control(&self, ch: ControlChannel) -> Option<&[f64]> {
+        self.control
+            .iter()
+            .find(|(c, _)| *c == ch)
+            .map(|(_, v)| v.as_slice())
+    }
+
+    /// Number of samples.
+    pub fn len(&self) -> usize {
+        self.time_s.len()
+    }
+
+    /// Whether nothing was recorded.
+    pub fn is_empty(&self) -> bool {
+        self.time_s.is_empty()
+    }
+}
+
+/// Collects the channels of one lane.
+pub(crate) struct Recorder {
+    pub(crate) records: Records,
+    /// Step index of each sample (converted to time at the end).
+    pub(crate) steps: Vec<u64>,
+    control_nodes: Vec<usize>,
+    area: f64,
+}
+
+impl Recorder {
+    pub(crate) fn new(plan: &RecordPlan, model: &crate::model::Model, capacity: usize) -> Self {
+        let channels = Channel::of_plan(plan)
+            .into_iter()
+            .map(|c| (c, Vec::with_capacity(capacity)))
+            .collect();
+        let control = plan
+            .control
+            .iter()
+            .map(|&c| (c, Vec::with_capacity(capacity)))
+            .collect();
+        Recorder {
+            records: Records {
+                time_s: Vec::with_capacity(capacity),
+                channels,
+                control,
+            },
+            steps: Vec::with_capacity(capacity),
+            control_nodes: plan
+                .control
+                .iter()
+                .map(|c| model.internal(c.node))
+                .collect(),
+            area: model.lattice().contact_area(),
+        }
+    }
+
+    /// Records lane `l` of the stepper's viewed time, step index `step`.
+    pub(crate) fn sample<const L: usize>(&mut self, s: &Stepper<'_, L>, l: usize, step: u64) {
+        self.steps.push(step);
+        let needs_interface = self
+            .records
+            .channels
+            .iter()
+            .any(|(c, _)| !Channel::ENERGY.contains(c));
+        let face = if needs_interface {
+            s.interface(l)
+        } else {
+            Default::default()
+        };
+        let energy = if self
+            .records
+            .channels
+            .iter()
+            .any(|(c, _)| Channel::ENERGY.contains(c))
+        {
+            Some(s.energy(l))
+        } else {
+            None
+        };
+        for (ch, values) in &mut self.records.channels {
+            let e = || energy.expect("energy computed when an energy channel is recorded");
+            values.push(match ch {
+                Channel::ShearStress => -face.friction_x / self.area,
+                Channel::NormalStress => face.normal / self.area,
+                Channel::MeanSlip => face.mean_slip,
+                Channel::MeanSlipRate => face.mean_slip_rate,
+                Channel::MaxSlipRate => face.max_slip_rate,
+                Channel::SlippingNodes => face.slipping as f64,
+                Channel::LiftedNodes => face.lifted as f64,
+                Channel::DriverForce => s.driver_force(l),
+                Channel::DriverDisplacement => s.driver_target(l),
+                Channel::Kinetic => e().kinetic,
+                Channel::Elastic => e().elastic,
+                Channel::DampingDissipated => e().damping,
+                Channel::FrictionDissipated => e().friction,
+                Channel::ImpactDissipated => e().impact,
+                Channel::BodyWork => e().body_work,
+                Channel::DriverWork => e().driver_work,
+                Channel::ExternalWork => e().external_work(),
+                Channel::EnergyResidual => e().residual(),
+            });
+        }
+        for ((ch, values), &node) in self.records.control.iter_mut().zip(&self.control_nodes) {
+            let v = match ch.quantity {
+                crate::scene::Kinematic::Displacement => s.displacement(node, l),
+                crate::scene::Kinematic::Velocity => s.velocity(node, l),
+                crate::scene::Kinematic::Acceleration => s.acceleration(node, l),
+            };
+            values.push(v[ch.component.axis()]);
+        }
+    }
+
+    /// Finishes: times from step indices, with `origin` the step index of shear time zero.
+    pub(crate) fn finish(mut self, origin: u64, dt: f64) -> Records {
+        self.records.time_s = self
+            .steps
+            .iter()
+            .map(|&s| (s as f64 - origin as f64) * dt)
+            .collect();
+        self.records
+    }
+}

@@ -1,0 +1,322 @@
+//! Running a scene: per-seed random fields and critical steps, the self-weight stage until
+//! equilibrium, the shear stage with its driver, recording, stability checks.
+
+use std::ops::ControlFlow;
+
+use crate::critical::{CriticalStep, critical_time_step};
+use crate::error::SolverError;
+use crate::model::Model;
+use crate::record::{Recorder, Records};
+use crate::scene::TimeStep;
+use crate::stepper::{LaneSetup, Stepper};
+
+/// Steps between two blow-up checks.
+const BLOWUP_CHECK_EVERY: u64 = 16;
+/// Steps between two equilibrium checks in the self-weight stage.
+const SETTLE_CHECK_EVERY: u64 = 8;
+/// Steps between two progress reports.
+const PROGRESS_EVERY: u64 = 512;
+
+/// Options that are not part of the physics.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct RunOptions {
+    /// Run even if a fixed `time.dt_s` is above the critical step (only to test that the
+    /// blow-up is caught; a normal run refuses it).
+    pub allow_unstable_time_step: bool,
+}
+
+/// What one seed's run produced.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunOutput {
+    /// Seed of the random fields.
+    pub seed: u64,
+    /// Time step used (s).
+    pub dt_s: f64,
+    /// Critical step of this seed's lattice (s).
+    pub critical: CriticalStep,
+    /// Duration of the self-weight stage (s).
+    pub settle_time_s: f64,
+    /// Steps of the self-weight stage.
+    pub settle_steps: u64,
+    /// Steps of the shear stage.
+    pub shear_steps: u64,
+    /// Recorded series.
+    pub records: Records,
+}
+
+impl RunOutput {
+    /// All steps.
+    pub fn steps(&self) -> u64 {
+        self.settle_steps + self.shear_steps
+    }
+}
+
+enum Stage {
+    Settling {
+        max_steps: u64,
+    },
+    Shearing {
+        origin: u64,
+        steps: u64,
+        stride: u64,
+    },
+    Done {
+        origin: u64,
+    },
+    Failed(SolverError),
+}
+
+/// Runs one seed. `progress` receives the fraction done (0..1) now and then and may stop the
+/// run by returning `ControlFlow::Break(())`.
+pub fn run_seed(
+    model: &Model,
+    seed: u64,
+    options: RunOptions,
+    progress: &mut dyn FnMut(f64) -> ControlFlow<()>,
+) -> Result<RunOutput, SolverError> {
+    let [out] = run_lanes::<1>(model, [seed], options, progress);
+    out
+}
+
+fn prepare(
+    model: &Model,
+    seed: u64,
+    options: RunOptions,
+) -> Result<(LaneSetup, CriticalStep), SolverError> {
+    let stiffness = model.bar_stiffness(seed)?;
+    let friction = model.friction_factors(seed)?;
+    let critical = critical_time_step(model, &stiffness)?;
+    let dt_s = match model.scene().time_step {
+        TimeStep::Fraction(f) => f * critical.dt_s,
+        TimeStep::Fixed(dt) => {
+            if dt > critical.dt_s && !options.allow_unstable_time_step {
+                return Err(SolverError::TimeStepAboveCritical {
+                    dt_s: dt,
+                    critical_s: critical.dt_s,
+                    seed,
+                });
+            }
+            dt
+        }
+    };
+    Ok((
+        LaneSetup {
+            dt_s,
+            stiffness,
+            friction,
+        },
+        critical,
+    ))
+}
+
+/// Runs `L` seeds side by side through the same model (lane `l` gives the same numbers as
+/// [`run_seed`] of `seeds[l]`). A lane that fails does not stop the others.
+pub fn run_lanes<const L: usize>(
+    model: &Model,
+    seeds: [u64; L],
+    options: RunOptions,
+    progress: &mut dyn FnMut(f64) -> ControlFlow<()>,
+) -> [Result<RunOutput, SolverError>; L] {
+    let scene = model.scene();
+    let prepared = seeds.map(|seed| prepare(model, seed, options));
+    // Failed lanes still occupy a lane: give them a harmless set-up and park them.
+    let fallback = prepared
+        .iter()
+        .find_map(|p| p.as_ref().ok().map(|(s, _)| s.clone()));
+    let Some(fallback) = fallback else {
+        return prepared.map(|p| p.map(|_| unreachable!("every lane failed")));
+    };
+    let setups = prepared.each_ref().map(|p| {
+        p.as_ref()
+            .map(|(s, _)| s.clone())
+            .unwrap_or_else(|_| fallback.clone())
+    });
+    let mut stepper = Stepper::<L>::new(model, &setups);
+    stepper.set_track_energy(scene.record.energy);
+    let sw = scene.self_weight;
+    let mut stages: [Stage; L] = std::array::from_fn(|l| {
+        let dt = setups[l].dt_s;
+        let max_steps = (sw.max_duration_s / dt).ceil() as u64;
+        Stage::Settling { max_steps }
+    });
+    let mut criticals = [None; L];
+    let mut recorders: [Option<Recorder>; L] = std::array::from_fn(|_| None);
+    let mut settle_steps = [0u64; L];
+    let weight_norm: f64 = model.mass().iter().map(|m| m * m).sum::<f64>().sqrt() * sw.gravity_m_s2;
+    for (l, p) in prepared.into_iter().enumerate() {
+        match p {
+            Ok((setup, critical)) => {
+                criticals[l] = Some(critical);
+                let dt = setup.dt_s;
+                let stride = scene
+                    .record
+                    .interval_s
+                    .map_or(1, |iv| ((iv / dt).round() as u64).max(1));
+                let shear_steps = (scene.shear.duration_s / dt).ceil() as u64;
+                let capacity = (shear_steps / stride) as usize + 2;
+                recorders[l] = Some(Recorder::new(&scene.record, model, capacity));
+                stepper.set_damping(l, sw.damping_per_s);
+                stepper.set_body_acceleration(l, [0.0, 0.0, -sw.gravity_m_s2]);
+            }
+            Err(e) => {
+                stepper.park(l);
+                stages[l] = Stage::Failed(e);
+            }
+        }
+    }
+    // No gravity: nothing to settle.
+    if sw.gravity_m_s2 == 0.0 {
+        for l in 0..L {
+            if matches!(stages[l], Stage::Settling { .. }) {
+                stages[l] = start_shear(&mut stepper, l, model);
+            }
+        }
+    }
+
+    loop {
+        let active = stages
+            .iter()
+            .any(|s| matches!(s, Stage::Settling { .. } | Stage::Shearing { .. }));
+        if !active {
+            break;
+        }
+        // Driver targets for the step about to compute u_{S+1}.
+        let next = stepper.steps() + 1;
+        for l in 0..L {
+            if let Stage::Shearing { origin, .. } = stages[l] {
+                let t = (next - origin) as f64 * stepper.dt(l);
+                stepper.set_driver_target(l, scene.shear.driver_displacement(t));
+            }
+        }
+        stepper.step();
+        let view = stepper.steps() - 1;
+        for l in 0..L {
+            if !matches!(stages[l], Stage::Settling { .. } | Stage::Shearing { .. }) {
+                continue;
+            }
+            if view % BLOWUP_CHECK_EVERY == 0
+                && let Some(b) = stepper.check_blowup(l)
+            {
+                let (origin, stage_name) = match stages[l] {
+                    Stage::Shearing { origin, .. } => (origin, "shear stage"),
+                    _ => (0, "self-weight stage"),
+                };
+                let id = model.canonical(b.node);
+                let p = model.lattice().position(id);
+                let dt = stepper.dt(l);
+                let crit = criticals[l].map_or(f64::NAN, |c| c.dt_s);
+                stages[l] = Stage::Failed(SolverError::Unstable {
+                    step: view,
+                    time_s: (view as f64 - origin as f64) * dt,
+                    stage: stage_name,
+                    what: b.what,
+                    node: format!("({:.4}, {:.4}, {:.4}) m", p[0], p[1], p[2]),
+                    ldem: id.ldem(),
+                    dt_s: dt,
+                    fraction: dt / crit,
+                });
+                stepper.park(l);
+                continue;
+            }
+            match stages[l] {
+                Stage::Settling { max_steps } => {
+                    if scene.record.settling
+                        && let Some(r) = recorders[l].as_mut()
+                    {
+                        r.sample(&stepper, l, view);
+                    }
+                    if view % SETTLE_CHECK_EVERY == 0 && view > 0 {
+                        let ratio = stepper.out_of_balance(l) / weight_norm;
+                        if ratio < sw.settle_tolerance {
+                            settle_steps[l] = stepper.steps();
+                            stages[l] = start_shear(&mut stepper, l, model);
+                        } else if view >= max_steps {
+                            stages[l] = Stage::Failed(SolverError::NotSettled {
+                                max_s: sw.max_duration_s,
+                                residual: ratio,
+                                tolerance: sw.settle_tolerance,
+                            });
+                            stepper.park(l);
+                        }
+                    }
+                }
+                Stage::Shearing {
+                    origin,
+                    steps,
+                    stride,
+                } => {
+                    let j = view - origin;
+                    if j % stride == 0 || j >= steps {
+                        recorders[l]
+                            .as_mut()
+                            .expect("recorder of a running lane")
+                            .sample(&stepper, l, view);
+                    }
+                    if j >= steps {
+                        stages[l] = Stage::Done { origin };
+                    }
+                }
+                _ => {}
+            }
+        }
+        if stepper.steps() % PROGRESS_EVERY == 0 {
+            let fraction = stages
+                .iter()
+                .map(|s| match s {
+                    Stage::Settling { .. } => 0.0,
+                    Stage::Shearing { origin, steps, .. } => {
+                        ((stepper.steps() - origin) as f64 / *steps as f64).min(1.0)
+                    }
+                    Stage::Done { .. } | Stage::Failed(_) => 1.0,
+                })
+                .sum::<f64>()
+                / L as f64;
+            if progress(fraction).is_break() {
+                for (l, s) in stages.iter_mut().enumerate() {
+                    if matches!(s, Stage::Settling { .. } | Stage::Shearing { .. }) {
+                        *s = Stage::Failed(SolverError::Cancelled);
+                        stepper.park(l);
+                    }
+                }
+            }
+        }
+    }
+
+    let mut stages = stages.map(Some);
+    std::array::from_fn(|l| match stages[l].take().expect("each stage taken once") {
+        Stage::Done { origin } => {
+            let dt = stepper.dt(l);
+            let recorder = recorders[l].take().expect("recorder of a finished lane");
+            let shear_steps = recorder.steps.last().map_or(0, |&s| s - origin);
+            Ok(RunOutput {
+                seed: seeds[l],
+                dt_s: dt,
+                critical: criticals[l].expect("critical step of a finished lane"),
+                settle_time_s: settle_steps[l] as f64 * dt,
+                settle_steps: settle_steps[l],
+                shear_steps,
+                records: recorder.finish(origin, dt),
+            })
+        }
+        Stage::Failed(e) => Err(e),
+        Stage::Settling { .. } | Stage::Shearing { .. } => {
+            unreachable!("loop ends when no lane is running")
+        }
+    })
+}
+
+fn start_shear<const L: usize>(stepper: &mut Stepper<'_, L>, l: usize, model: &Model) -> Stage {
+    let scene = model.scene();
+    stepper.set_damping(l, scene.shear.damping_per_s);
+    stepper.start_drivers(l);
+    let dt = stepper.dt(l);
+    let stride = scene
+        .record
+        .interval_s
+        .map_or(1, |iv| ((iv / dt).round() as u64).max(1));
+    Stage::Shearing {
+        origin: stepper.steps(),
+        steps: (scene.shear.duration_s / dt).ceil() as u64,
+        stride,
+    }
+}
