@@ -11,6 +11,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use stickslip_analysis::Pipeline;
 use stickslip_analysis::tables::{control_frame, series_frame, write_parquet_atomic};
 use stickslip_solver::critical::critical_time_step;
+use stickslip_solver::statics::uniaxial_moduli;
 use stickslip_solver::{Model, RunOptions, run_seed};
 
 /// Earthquake stick-slip with the Lattice Discrete Element Method.
@@ -176,6 +177,24 @@ fn check(path: &Path, seed: u64) -> Result<()> {
         crit.iterations,
         scene.paper_time_step_bound()
     );
+    for axis in [0, 2] {
+        let m = uniaxial_moduli(&model, &k, axis)?;
+        let name = |a: usize| ["x", "y", "z"][a];
+        let others: Vec<usize> = (0..3).filter(|&a| a != axis).collect();
+        println!(
+            "  effective stiffness along {} (static solve, uniaxial stress): E = {:.4e} Pa ({:.3} of E), \
+             ν_{}{} = {:.3}, ν_{}{} = {:.3}",
+            name(axis),
+            m.young_pa,
+            m.young_pa / scene.young_pa,
+            name(axis),
+            name(others[0]),
+            m.poisson[0],
+            name(axis),
+            name(others[1]),
+            m.poisson[1]
+        );
+    }
     println!(
         "  drivers: {}",
         scene

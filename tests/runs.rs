@@ -1,0 +1,176 @@
+//! Whole runs: reproducibility, the random field, refusals and blow-ups, invalid files.
+
+use std::ops::ControlFlow;
+
+use stickslip_analysis::Pipeline;
+use stickslip_solver::critical::critical_time_step;
+use stickslip_solver::{Model, RunOptions, Scene, SolverError, run_lanes, run_seed};
+use stickslip_support::{repo_path, scene_with};
+
+fn go(_: f64) -> ControlFlow<()> {
+    ControlFlow::Continue(())
+}
+
+/// The paper scene, shortened to keep the test fast.
+fn short_paper(duration_s: f64) -> Scene {
+    let mut file = stickslip_solver::SceneFile::default();
+    let pipeline = Pipeline::load(&repo_path("pipelines/paper.toml")).unwrap();
+    file.clone_from(&pipeline.scene.file);
+    file.shear.duration_s = duration_s;
+    Scene::try_from(file).unwrap()
+}
+
+#[test]
+fn same_seed_gives_bit_identical_series_on_any_thread_and_in_any_batch() {
+    let model = Model::new(short_paper(0.03));
+    let a = run_seed(&model, 123, RunOptions::default(), &mut go).unwrap();
+    let b = run_seed(&model, 123, RunOptions::default(), &mut go).unwrap();
+    assert_eq!(a, b, "two runs of seed 123 differ");
+    // Two seeds on two threads at once, against the same seeds one after the other.
+    let (c, d) = std::thread::scope(|s| {
+        let h1 = s.spawn(|| run_seed(&model, 123, RunOptions::default(), &mut go).unwrap());
+        let h2 = s.spawn(|| run_seed(&model, 200, RunOptions::default(), &mut go).unwrap());
+        (h1.join().unwrap(), h2.join().unwrap())
+    });
+    assert_eq!(a, c, "seed 123 on a second thread differs");
+    let e = run_seed(&model, 200, RunOptions::default(), &mut go).unwrap();
+    assert_eq!(d, e, "seed 200 on a second thread differs");
+    assert_ne!(a.records, e.records, "different seeds must differ");
+    // Four seeds advanced side by side in one stepper give each seed's own numbers.
+    let seeds = [123, 200, 7, 31];
+    let batch = run_lanes::<4>(&model, seeds, RunOptions::default(), &mut go);
+    for (seed, out) in seeds.iter().zip(batch) {
+        let alone = run_seed(&model, *seed, RunOptions::default(), &mut go).unwrap();
+        assert_eq!(
+            out.unwrap(),
+            alone,
+            "seed {seed} in a batch of 4 differs from its own run"
+        );
+    }
+}
+
+#[test]
+fn weibull_field_has_mean_one_and_the_cv_asked_over_a_large_lattice() {
+    for cv in [0.05, 0.2] {
+        let model = Model::new(scene_with(|f| {
+            f.block.nx = 40;
+            f.block.ny = 20;
+            f.block.nz = 20;
+            f.material.young_cv = cv;
+        }));
+        let k = model.bar_stiffness(99).unwrap();
+        let phi: Vec<f64> = k
+            .iter()
+            .zip(model.nominal_stiffness())
+            .map(|(a, b)| a / b)
+            .collect();
+        let n = phi.len() as f64;
+        let mean = phi.iter().sum::<f64>() / n;
+        let sd = (phi.iter().map(|p| (p - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt();
+        println!(
+            "CV {cv}: {} bars, mean {mean:.5}, CV {:.5}",
+            phi.len(),
+            sd / mean
+        );
+        assert!((mean - 1.0).abs() < 0.01, "mean {mean}");
+        assert!(
+            (sd / mean / cv - 1.0).abs() < 0.01,
+            "CV {} for {cv}",
+            sd / mean
+        );
+    }
+    // CV = 0 draws nothing: the stiffness is the nominal one exactly.
+    let model = Model::new(scene_with(|f| f.material.young_cv = 0.0));
+    assert_eq!(model.bar_stiffness(5).unwrap(), model.nominal_stiffness());
+}
+
+#[test]
+fn time_step_above_critical_is_refused_before_running() {
+    let model = Model::new(scene_with(|f| f.time.dt_s = Some(1e-4)));
+    let err = run_seed(&model, 1, RunOptions::default(), &mut go).unwrap_err();
+    assert!(
+        matches!(err, SolverError::TimeStepAboveCritical { .. }),
+        "{err}"
+    );
+    let msg = err.to_string();
+    assert!(
+        msg.contains("1.000000e-4 s is above the critical step"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn a_run_forced_past_the_critical_step_is_stopped_with_when_and_where() {
+    let probe = Model::new(scene_with(|_| {}));
+    let crit = critical_time_step(&probe, &probe.bar_stiffness(3).unwrap())
+        .unwrap()
+        .dt_s;
+    let model = Model::new(scene_with(|f| f.time.dt_s = Some(1.02 * crit)));
+    let options = RunOptions {
+        allow_unstable_time_step: true,
+    };
+    let err = run_seed(&model, 3, options, &mut go).unwrap_err();
+    let msg = err.to_string();
+    println!("{msg}");
+    match err {
+        SolverError::Unstable { step, fraction, .. } => {
+            assert!(step > 0 && step < 100_000);
+            assert!((fraction - 1.02).abs() < 1e-9);
+        }
+        other => panic!("expected a blow-up, got {other}"),
+    }
+    assert!(
+        msg.contains("went unstable at step") && msg.contains("self-weight stage"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn every_invalid_pipeline_is_refused_with_its_expected_message() {
+    let dir = repo_path("pipelines/invalid");
+    let mut checked = 0;
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_none_or(|e| e != "toml") {
+            continue;
+        }
+        let text = std::fs::read_to_string(&path).unwrap();
+        let expected: Vec<&str> = text
+            .lines()
+            .filter_map(|l| l.strip_prefix("# expect: "))
+            .collect();
+        assert!(
+            !expected.is_empty(),
+            "{}: no '# expect:' line",
+            path.display()
+        );
+        let err = match Pipeline::load(&path) {
+            Ok(_) => panic!("{} was accepted", path.display()),
+            Err(e) => format!(
+                "{e}: {}",
+                std::error::Error::source(&e)
+                    .map(|s| s.to_string())
+                    .unwrap_or_default()
+            ),
+        };
+        for want in expected {
+            assert!(
+                err.contains(want),
+                "{}: message lacks {want:?}:\n{err}",
+                path.display()
+            );
+        }
+        checked += 1;
+    }
+    assert!(checked >= 20, "only {checked} invalid files");
+}
+
+#[test]
+fn shipped_pipelines_are_valid() {
+    for entry in std::fs::read_dir(repo_path("pipelines")).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "toml") {
+            Pipeline::load(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        }
+    }
+}
