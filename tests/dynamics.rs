@@ -16,18 +16,12 @@ fn go(_: f64) -> ControlFlow<()> {
 fn lane(model: &Model, fraction: f64) -> LaneSetup {
     let k = model.nominal_stiffness().to_vec();
     let crit = critical_time_step(model, &k).unwrap();
-    LaneSetup {
-        dt_s: fraction * crit.dt_s,
-        stiffness: k,
-        friction: vec![1.0; model.contact().len()],
-    }
+    LaneSetup { dt_s: fraction * crit.dt_s, stiffness: k, friction: vec![1.0; model.contact().len()] }
 }
 
 /// Time of the maximum of `u` by a parabola through the largest sample and its neighbours.
 fn peak_time(u: &[f64], dt: f64) -> f64 {
-    let i = (1..u.len() - 1)
-        .max_by(|&a, &b| u[a].total_cmp(&u[b]))
-        .unwrap();
+    let i = (1..u.len() - 1).max_by(|&a, &b| u[a].total_cmp(&u[b])).unwrap();
     let (a, b, c) = (u[i - 1], u[i], u[i + 1]);
     (i as f64 + 0.5 * (a - c) / (a - 2.0 * b + c)) * dt
 }
@@ -44,22 +38,10 @@ fn smooth_p_wave_travels_at_sqrt_c11_over_rho() {
         f.self_weight.gravity_m_s2 = 0.0;
         f.shear.driver_at_m = vec![[0.0, 0.1, 0.1]];
         f.boundary = vec![
-            BoundarySection {
-                face: Face::YMin,
-                fix: vec![Component::Y],
-            },
-            BoundarySection {
-                face: Face::YMax,
-                fix: vec![Component::Y],
-            },
-            BoundarySection {
-                face: Face::ZMin,
-                fix: vec![Component::Z],
-            },
-            BoundarySection {
-                face: Face::ZMax,
-                fix: vec![Component::Z],
-            },
+            BoundarySection { face: Face::YMin, fix: vec![Component::Y] },
+            BoundarySection { face: Face::YMax, fix: vec![Component::Y] },
+            BoundarySection { face: Face::ZMin, fix: vec![Component::Z] },
+            BoundarySection { face: Face::ZMax, fix: vec![Component::Z] },
         ];
     });
     let (c11, _, _) = lattice_elastic_constants(scene.young_pa, scene.poisson);
@@ -72,16 +54,12 @@ fn smooth_p_wave_travels_at_sqrt_c11_over_rho() {
     // Right-going Gaussian pulse u_x = A·exp(−((x − x0 − c·t)/w)²), given at t = −Δt and t = 0.
     let (amp, x0, w) = (1e-6, 60.0 * lc, 12.0 * lc);
     let pulse = move |x: f64, t: f64| amp * (-((x - x0 - cp * t) / w).powi(2)).exp();
-    s.initialize(0, |p| {
-        ([pulse(p[0], -dt), 0.0, 0.0], [pulse(p[0], 0.0), 0.0, 0.0])
-    });
+    s.initialize(0, |p| ([pulse(p[0], -dt), 0.0, 0.0], [pulse(p[0], 0.0), 0.0, 0.0]));
     let stations = [120.0 * lc, 220.0 * lc];
-    let ids: Vec<usize> = stations
-        .iter()
-        .map(|&x| model.internal(model.lattice().node_at([x, lc, lc]).unwrap()))
-        .collect();
+    let ids: Vec<usize> =
+        stations.iter().map(|&x| model.internal(model.lattice().node_at([x, lc, lc]).unwrap())).collect();
     let steps = ((stations[1] - x0 + 4.0 * w) / cp / dt) as usize;
-    let mut hist = vec![Vec::with_capacity(steps); 2];
+    let mut hist: [Vec<f64>; 2] = [Vec::with_capacity(steps), Vec::with_capacity(steps)];
     for _ in 0..steps {
         s.step();
         for (h, &i) in hist.iter_mut().zip(&ids) {
@@ -90,10 +68,7 @@ fn smooth_p_wave_travels_at_sqrt_c11_over_rho() {
     }
     let (t1, t2) = (peak_time(&hist[0], dt), peak_time(&hist[1], dt));
     let speed = (stations[1] - stations[0]) / (t2 - t1);
-    println!(
-        "P wave: measured {speed:.1} m/s, √(C11/ρ) = {cp:.1} m/s, ratio {:.5}",
-        speed / cp
-    );
+    println!("P wave: measured {speed:.1} m/s, √(C11/ρ) = {cp:.1} m/s, ratio {:.5}", speed / cp);
     assert!((speed / cp - 1.0).abs() < 0.02, "speed {speed} vs {cp}");
 }
 
@@ -155,11 +130,7 @@ fn push_block(mu: f64) -> (f64, f64, f64) {
     }
     let onset = onset.expect("the block never slid") / (mu * weight);
     let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
-    assert!(
-        global.len() > 500,
-        "too short a sliding phase: {}",
-        global.len()
-    );
+    assert!(global.len() > 500, "too short a sliding phase: {}", global.len());
     (onset, mean(&global), mean(&local))
 }
 
@@ -171,14 +142,8 @@ fn block_pushed_by_a_rising_force_slides_at_mu_w_and_rubs_at_mu_w() {
     let (onset, global, local) = push_block(0.1);
     println!("μ = 0.1: onset at {onset:.5} μW; sliding friction {global:.5} μW, {local:.5} μΣN");
     assert!((onset - 1.0).abs() < 0.01, "onset at {onset} μW");
-    assert!(
-        (global - 1.0).abs() < 0.01,
-        "friction while sliding {global} μW"
-    );
-    assert!(
-        (local - 1.0).abs() < 0.01,
-        "friction while sliding {local} μΣN"
-    );
+    assert!((global - 1.0).abs() < 0.01, "friction while sliding {global} μW");
+    assert!((local - 1.0).abs() < 0.01, "friction while sliding {local} μΣN");
 }
 
 fn paper_scene() -> Scene {
@@ -197,11 +162,7 @@ fn energy_balance_closes_over_the_paper_scene() {
     let res = r.get(Channel::EnergyResidual).unwrap();
     let fric = r.get(Channel::FrictionDissipated).unwrap();
     let damp = r.get(Channel::DampingDissipated).unwrap();
-    let worst = res
-        .iter()
-        .zip(ext)
-        .map(|(r, e)| (r / e).abs())
-        .fold(0.0, f64::max);
+    let worst = res.iter().zip(ext).map(|(r, e)| (r / e).abs()).fold(0.0, f64::max);
     let last = r.len() - 1;
     println!(
         "external work {:.4e} J; friction {:.3e} J, damping {:.3e} J, kinetic {:.3e} J, elastic {:.3e} J; worst |residual|/work {worst:.2e}",
@@ -211,9 +172,6 @@ fn energy_balance_closes_over_the_paper_scene() {
         r.get(Channel::Kinetic).unwrap()[last],
         r.get(Channel::Elastic).unwrap()[last]
     );
-    assert!(
-        fric[last] > 0.0 && damp[last] > 0.0,
-        "the run must slip and damp"
-    );
+    assert!(fric[last] > 0.0 && damp[last] > 0.0, "the run must slip and damp");
     assert!(worst < 0.01, "energy balance off by {worst}");
 }

@@ -41,11 +41,7 @@ fn same_seed_gives_bit_identical_series_on_any_thread_and_in_any_batch() {
     let batch = run_lanes::<4>(&model, seeds, RunOptions::default(), &mut go);
     for (seed, out) in seeds.iter().zip(batch) {
         let alone = run_seed(&model, *seed, RunOptions::default(), &mut go).unwrap();
-        assert_eq!(
-            out.unwrap(),
-            alone,
-            "seed {seed} in a batch of 4 differs from its own run"
-        );
+        assert_eq!(out.unwrap(), alone, "seed {seed} in a batch of 4 differs from its own run");
     }
 }
 
@@ -59,25 +55,13 @@ fn weibull_field_has_mean_one_and_the_cv_asked_over_a_large_lattice() {
             f.material.young_cv = cv;
         }));
         let k = model.bar_stiffness(99).unwrap();
-        let phi: Vec<f64> = k
-            .iter()
-            .zip(model.nominal_stiffness())
-            .map(|(a, b)| a / b)
-            .collect();
+        let phi: Vec<f64> = k.iter().zip(model.nominal_stiffness()).map(|(a, b)| a / b).collect();
         let n = phi.len() as f64;
         let mean = phi.iter().sum::<f64>() / n;
         let sd = (phi.iter().map(|p| (p - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt();
-        println!(
-            "CV {cv}: {} bars, mean {mean:.5}, CV {:.5}",
-            phi.len(),
-            sd / mean
-        );
+        println!("CV {cv}: {} bars, mean {mean:.5}, CV {:.5}", phi.len(), sd / mean);
         assert!((mean - 1.0).abs() < 0.01, "mean {mean}");
-        assert!(
-            (sd / mean / cv - 1.0).abs() < 0.01,
-            "CV {} for {cv}",
-            sd / mean
-        );
+        assert!((sd / mean / cv - 1.0).abs() < 0.01, "CV {} for {cv}", sd / mean);
     }
     // CV = 0 draws nothing: the stiffness is the nominal one exactly.
     let model = Model::new(scene_with(|f| f.material.young_cv = 0.0));
@@ -88,27 +72,17 @@ fn weibull_field_has_mean_one_and_the_cv_asked_over_a_large_lattice() {
 fn time_step_above_critical_is_refused_before_running() {
     let model = Model::new(scene_with(|f| f.time.dt_s = Some(1e-4)));
     let err = run_seed(&model, 1, RunOptions::default(), &mut go).unwrap_err();
-    assert!(
-        matches!(err, SolverError::TimeStepAboveCritical { .. }),
-        "{err}"
-    );
+    assert!(matches!(err, SolverError::TimeStepAboveCritical { .. }), "{err}");
     let msg = err.to_string();
-    assert!(
-        msg.contains("1.000000e-4 s is above the critical step"),
-        "{msg}"
-    );
+    assert!(msg.contains("1.000000e-4 s is above the critical step"), "{msg}");
 }
 
 #[test]
 fn a_run_forced_past_the_critical_step_is_stopped_with_when_and_where() {
     let probe = Model::new(scene_with(|_| {}));
-    let crit = critical_time_step(&probe, &probe.bar_stiffness(3).unwrap())
-        .unwrap()
-        .dt_s;
+    let crit = critical_time_step(&probe, &probe.bar_stiffness(3).unwrap()).unwrap().dt_s;
     let model = Model::new(scene_with(|f| f.time.dt_s = Some(1.02 * crit)));
-    let options = RunOptions {
-        allow_unstable_time_step: true,
-    };
+    let options = RunOptions { allow_unstable_time_step: true };
     let err = run_seed(&model, 3, options, &mut go).unwrap_err();
     let msg = err.to_string();
     println!("{msg}");
@@ -119,10 +93,7 @@ fn a_run_forced_past_the_critical_step_is_stopped_with_when_and_where() {
         }
         other => panic!("expected a blow-up, got {other}"),
     }
-    assert!(
-        msg.contains("went unstable at step") && msg.contains("self-weight stage"),
-        "{msg}"
-    );
+    assert!(msg.contains("went unstable at step") && msg.contains("self-weight stage"), "{msg}");
 }
 
 #[test]
@@ -135,30 +106,14 @@ fn every_invalid_pipeline_is_refused_with_its_expected_message() {
             continue;
         }
         let text = std::fs::read_to_string(&path).unwrap();
-        let expected: Vec<&str> = text
-            .lines()
-            .filter_map(|l| l.strip_prefix("# expect: "))
-            .collect();
-        assert!(
-            !expected.is_empty(),
-            "{}: no '# expect:' line",
-            path.display()
-        );
+        let expected: Vec<&str> = text.lines().filter_map(|l| l.strip_prefix("# expect: ")).collect();
+        assert!(!expected.is_empty(), "{}: no '# expect:' line", path.display());
         let err = match Pipeline::load(&path) {
             Ok(_) => panic!("{} was accepted", path.display()),
-            Err(e) => format!(
-                "{e}: {}",
-                std::error::Error::source(&e)
-                    .map(|s| s.to_string())
-                    .unwrap_or_default()
-            ),
+            Err(e) => format!("{e}: {}", std::error::Error::source(&e).map(|s| s.to_string()).unwrap_or_default()),
         };
         for want in expected {
-            assert!(
-                err.contains(want),
-                "{}: message lacks {want:?}:\n{err}",
-                path.display()
-            );
+            assert!(err.contains(want), "{}: message lacks {want:?}:\n{err}", path.display());
         }
         checked += 1;
     }

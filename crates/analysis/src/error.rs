@@ -21,11 +21,11 @@ pub enum AnalysisError {
         /// The file.
         path: PathBuf,
         /// Why.
-        source: SolverError,
+        source: Box<SolverError>,
     },
     /// The solver failed.
     #[error(transparent)]
-    Solver(#[from] SolverError),
+    Solver(Box<SolverError>),
     /// Polars failed to build, read or write a table.
     #[error("table {what}")]
     Table {
@@ -36,20 +36,20 @@ pub enum AnalysisError {
     },
 }
 
+impl From<SolverError> for AnalysisError {
+    fn from(e: SolverError) -> Self {
+        AnalysisError::Solver(Box::new(e))
+    }
+}
+
 impl AnalysisError {
     /// An I/O error on `path`.
     pub fn io(path: &Path, source: std::io::Error) -> Self {
-        AnalysisError::Io {
-            path: path.to_path_buf(),
-            source,
-        }
+        AnalysisError::Io { path: path.to_path_buf(), source }
     }
 
     /// A polars error while handling table `what`.
     pub fn table(what: impl Into<String>, source: polars::error::PolarsError) -> Self {
-        AnalysisError::Table {
-            what: what.into(),
-            source,
-        }
+        AnalysisError::Table { what: what.into(), source }
     }
 }

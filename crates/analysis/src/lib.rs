@@ -2,6 +2,7 @@
 #![deny(missing_docs)]
 
 pub mod error;
+pub mod events;
 pub mod pipeline;
 pub mod tables;
 

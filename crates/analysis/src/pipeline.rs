@@ -8,8 +8,8 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 use stickslip_solver::scene::{
-    BlockSection, BoundarySection, FrictionSection, MaterialSection, RecordSection,
-    SelfWeightSection, ShearSection, TimeSection,
+    BlockSection, BoundarySection, FrictionSection, MaterialSection, RecordSection, SelfWeightSection, ShearSection,
+    TimeSection,
 };
 use stickslip_solver::{FieldError, Scene, SceneFile, SolverError};
 
@@ -98,51 +98,29 @@ pub struct Pipeline {
 }
 
 fn refuse(field: &str, value: impl ToString, allowed: &str) -> FieldError {
-    FieldError {
-        field: field.into(),
-        value: value.to_string(),
-        allowed: allowed.into(),
-    }
+    FieldError { field: field.into(), value: value.to_string(), allowed: allowed.into() }
 }
 
 impl Pipeline {
     /// Reads and validates a pipeline file.
     pub fn load(path: &Path) -> Result<Pipeline, AnalysisError> {
         let text = std::fs::read_to_string(path).map_err(|e| AnalysisError::io(path, e))?;
-        let stem = path
-            .file_stem()
-            .and_then(|s| s.to_str())
-            .unwrap_or("pipeline")
-            .to_string();
-        let mut p = Pipeline::from_toml(&text, &stem).map_err(|e| AnalysisError::Pipeline {
-            path: path.to_path_buf(),
-            source: e,
-        })?;
+        let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("pipeline").to_string();
+        let mut p = Pipeline::from_toml(&text, &stem)
+            .map_err(|e| AnalysisError::Pipeline { path: path.to_path_buf(), source: Box::new(e) })?;
         p.source = Some(path.to_path_buf());
         Ok(p)
     }
 
     /// Parses and validates pipeline TOML; `default_name` is used when the file has no `name`.
     pub fn from_toml(text: &str, default_name: &str) -> Result<Pipeline, SolverError> {
-        let file: PipelineFile =
-            toml::from_str(text).map_err(|e| SolverError::Syntax(e.to_string()))?;
+        let file: PipelineFile = toml::from_str(text).map_err(|e| SolverError::Syntax(e.to_string()))?;
         let mut errors = Vec::new();
         if file.version != PIPELINE_VERSION {
-            errors.push(refuse(
-                "version",
-                file.version,
-                "1 (the pipeline format this stickslip reads)",
-            ));
+            errors.push(refuse("version", file.version, "1 (the pipeline format this stickslip reads)"));
         }
-        let name = file
-            .name
-            .clone()
-            .unwrap_or_else(|| default_name.to_string());
-        if name.is_empty()
-            || !name
-                .chars()
-                .all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_')
-        {
+        let name = file.name.clone().unwrap_or_else(|| default_name.to_string());
+        if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_') {
             errors.push(refuse(
                 "name",
                 format!("{name:?}"),
@@ -193,14 +171,7 @@ impl Pipeline {
         }
         let scene = scene.expect("no errors means a scene");
         let scene_hash = hash_scene(&scene.file);
-        Ok(Pipeline {
-            name,
-            description: file.description,
-            seeds,
-            scene,
-            scene_hash,
-            source: None,
-        })
+        Ok(Pipeline { name, description: file.description, seeds, scene, scene_hash, source: None })
     }
 }
 
@@ -222,11 +193,8 @@ mod tests {
 
     #[test]
     fn seeds_from_list_and_range_without_duplicates() {
-        let p = Pipeline::from_toml(
-            "version = 1\n[seeds]\nlist = [5, 7]\nrange = { first = 6, count = 3 }\n",
-            "t",
-        )
-        .unwrap();
+        let p = Pipeline::from_toml("version = 1\n[seeds]\nlist = [5, 7]\nrange = { first = 6, count = 3 }\n", "t")
+            .unwrap();
         assert_eq!(p.seeds, vec![5, 7, 6, 8]);
         assert_eq!(p.name, "t");
     }
@@ -242,9 +210,7 @@ mod tests {
 
     #[test]
     fn wrong_version_and_name_are_refused() {
-        let e = Pipeline::from_toml("version = 2\nname = \"a b\"\n", "x")
-            .unwrap_err()
-            .to_string();
+        let e = Pipeline::from_toml("version = 2\nname = \"a b\"\n", "x").unwrap_err().to_string();
         assert!(e.contains("version = 2"), "{e}");
         assert!(e.contains("name = \"a b\""), "{e}");
     }

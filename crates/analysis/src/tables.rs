@@ -19,16 +19,11 @@ use crate::error::AnalysisError;
 /// The series table of one seed.
 pub fn series_frame(seed: u64, records: &Records) -> Result<DataFrame, AnalysisError> {
     let n = records.len();
-    let mut cols: Vec<Column> = vec![
-        Column::new("seed".into(), vec![seed; n]),
-        Column::new("time_s".into(), records.time_s.clone()),
-    ];
+    let mut cols: Vec<Column> =
+        vec![Column::new("seed".into(), vec![seed; n]), Column::new("time_s".into(), records.time_s.clone())];
     for (ch, values) in &records.channels {
         if ch.is_count() {
-            cols.push(Column::new(
-                ch.name().into(),
-                values.iter().map(|&v| v as u32).collect::<Vec<u32>>(),
-            ));
+            cols.push(Column::new(ch.name().into(), values.iter().map(|&v| v as u32).collect::<Vec<u32>>()));
         } else {
             cols.push(Column::new(ch.name().into(), values.clone()));
         }
@@ -39,18 +34,10 @@ pub fn series_frame(seed: u64, records: &Records) -> Result<DataFrame, AnalysisE
 /// The control-node table of one seed (empty frame with the schema when nothing was recorded).
 pub fn control_frame(seed: u64, records: &Records) -> Result<DataFrame, AnalysisError> {
     let n = records.len();
-    let mut pairs: Vec<(u64, Component)> = records
-        .control
-        .iter()
-        .map(|(c, _)| (c.node.ldem(), c.component))
-        .collect();
+    let mut pairs: Vec<(u64, Component)> = records.control.iter().map(|(c, _)| (c.node.ldem(), c.component)).collect();
     pairs.sort();
     pairs.dedup();
-    let quantities = [
-        Kinematic::Displacement,
-        Kinematic::Velocity,
-        Kinematic::Acceleration,
-    ];
+    let quantities = [Kinematic::Displacement, Kinematic::Velocity, Kinematic::Acceleration];
     let rows = pairs.len() * n;
     let mut seed_col = Vec::with_capacity(rows);
     let mut node_col = Vec::with_capacity(rows);
@@ -63,10 +50,8 @@ pub fn control_frame(seed: u64, records: &Records) -> Result<DataFrame, Analysis
         comp_col.extend(std::iter::repeat_n(comp.name(), n));
         time_col.extend_from_slice(&records.time_s);
         for (q, out) in quantities.iter().zip(values.iter_mut()) {
-            let found = records
-                .control
-                .iter()
-                .find(|(c, _)| c.node.ldem() == node && c.component == comp && c.quantity == *q);
+            let found =
+                records.control.iter().find(|(c, _)| c.node.ldem() == node && c.component == comp && c.quantity == *q);
             match found {
                 Some((_, v)) => out.extend(v.iter().map(|&x| Some(x))),
                 None => out.extend(std::iter::repeat_n(None, n)),
@@ -123,7 +108,5 @@ fn temp_path(path: &Path) -> PathBuf {
 /// Reads a Parquet file eagerly.
 pub fn read_parquet(path: &Path) -> Result<DataFrame, AnalysisError> {
     let file = File::open(path).map_err(|e| AnalysisError::io(path, e))?;
-    ParquetReader::new(file)
-        .finish()
-        .map_err(|e| AnalysisError::table(path.display().to_string(), e))
+    ParquetReader::new(file).finish().map_err(|e| AnalysisError::table(path.display().to_string(), e))
 }

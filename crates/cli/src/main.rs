@@ -51,12 +51,7 @@ enum Command {
 fn main() {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Run {
-            pipeline,
-            seed,
-            out,
-            quiet,
-        } => run(&pipeline, seed, out, quiet),
+        Command::Run { pipeline, seed, out, quiet } => run(&pipeline, seed, out, quiet),
         Command::Check { pipeline, seed } => check(&pipeline, seed),
     };
     if let Err(e) = result {
@@ -71,22 +66,16 @@ fn progress_bar(quiet: bool, len: u64) -> ProgressBar {
     }
     let pb = ProgressBar::new(len);
     pb.set_style(
-        ProgressStyle::with_template(
-            "{spinner} {msg} [{bar:40}] {percent:>3}% ({elapsed} / ETA {eta})",
-        )
-        .expect("valid template")
-        .progress_chars("=> "),
+        ProgressStyle::with_template("{spinner} {msg} [{bar:40}] {percent:>3}% ({elapsed} / ETA {eta})")
+            .expect("valid template")
+            .progress_chars("=> "),
     );
     pb
 }
 
 fn run(path: &Path, seed: u64, out: Option<PathBuf>, quiet: bool) -> Result<()> {
     let pipeline = Pipeline::load(path)?;
-    let out = out.unwrap_or_else(|| {
-        PathBuf::from("reports")
-            .join(&pipeline.name)
-            .join(format!("seed-{seed}"))
-    });
+    let out = out.unwrap_or_else(|| PathBuf::from("reports").join(&pipeline.name).join(format!("seed-{seed}")));
     let model = Model::new(pipeline.scene.clone());
     let pb = progress_bar(quiet, 1000);
     pb.set_message(format!("{} seed {seed}", pipeline.name));
@@ -133,22 +122,11 @@ fn check(path: &Path, seed: u64) -> Result<()> {
     let k = model.bar_stiffness(seed)?;
     let crit = critical_time_step(&model, &k)?;
     let e = lattice.extent();
-    println!(
-        "pipeline {} ({}), scene hash {}",
-        pipeline.name,
-        path.display(),
-        pipeline.scene_hash
-    );
+    println!("pipeline {} ({}), scene hash {}", pipeline.name, path.display(), pipeline.scene_hash);
     println!(
         "  seeds: {} ({}…)",
         pipeline.seeds.len(),
-        pipeline
-            .seeds
-            .iter()
-            .take(5)
-            .map(|s| s.to_string())
-            .collect::<Vec<_>>()
-            .join(", ")
+        pipeline.seeds.iter().take(5).map(|s| s.to_string()).collect::<Vec<_>>().join(", ")
     );
     println!(
         "  block {}×{}×{} modules of Lc = {} m ({} × {} × {} m): {} nodes, {} bars, {} contact nodes, mass {:.3} kg",

@@ -56,10 +56,7 @@ pub fn critical_time_step(model: &Model, k: &[f64]) -> Result<CriticalStep, Solv
     let gershgorin = gershgorin_bound(model, k);
 
     let mut rng = ChaCha8Rng::seed_from_u64(0x5eed_c417);
-    let mut q: Vec<f64> = (0..dof)
-        .map(|_| StandardUniform.sample(&mut rng))
-        .map(|u: f64| u - 0.5)
-        .collect();
+    let mut q: Vec<f64> = (0..dof).map(|_| StandardUniform.sample(&mut rng)).map(|u: f64| u - 0.5).collect();
     normalize(&mut q);
     let mut q_prev = vec![0.0; dof];
     let mut w = vec![0.0; dof];
@@ -125,17 +122,12 @@ fn top_ritz(alphas: &[f64], betas: &[f64]) -> (f64, f64) {
         }
     });
     let eig = SymmetricEigen::new(t);
-    let (imax, theta) =
-        eig.eigenvalues
-            .iter()
-            .copied()
-            .enumerate()
-            .fold(
-                (0, f64::NEG_INFINITY),
-                |acc, (i, v)| {
-                    if v > acc.1 { (i, v) } else { acc }
-                },
-            );
+    let (imax, theta) = eig
+        .eigenvalues
+        .iter()
+        .copied()
+        .enumerate()
+        .fold((0, f64::NEG_INFINITY), |acc, (i, v)| if v > acc.1 { (i, v) } else { acc });
     let s_last = eig.eigenvectors[(m - 1, imax)];
     (theta, (betas[m - 1] * s_last).abs())
 }
@@ -153,9 +145,7 @@ pub fn gershgorin_bound(model: &Model, k: &[f64]) -> f64 {
                 let scale_self = inv_sqrt_m[a] * inv_sqrt_m[a];
                 let scale_other = inv_sqrt_m[a] * inv_sqrt_m[b];
                 match g.direction {
-                    Direction::Axis(ax) => {
-                        rows[ax as usize * n + a] += kb * (scale_self + scale_other)
-                    }
+                    Direction::Axis(ax) => rows[ax as usize * n + a] += kb * (scale_self + scale_other),
                     Direction::Diagonal { .. } => {
                         for c in 0..3 {
                             rows[c * n + a] += 3.0 * kb * (scale_self + scale_other);
@@ -198,21 +188,12 @@ mod tests {
                 a[(row, col)] = -f.c[row / n][row % n][0] * inv_sqrt_m[row % n];
             }
         }
-        SymmetricEigen::new(a)
-            .eigenvalues
-            .iter()
-            .copied()
-            .fold(f64::NEG_INFINITY, f64::max)
+        SymmetricEigen::new(a).eigenvalues.iter().copied().fold(f64::NEG_INFINITY, f64::max)
     }
 
     #[test]
     fn lanczos_bound_matches_dense_eigensolve_and_spec_ratios() {
-        for (nu, cv, seed) in [
-            (0.2, 0.0, 1),
-            (0.25, 0.0, 1),
-            (0.2, 0.05, 123),
-            (0.2, 0.2, 7),
-        ] {
+        for (nu, cv, seed) in [(0.2, 0.0, 1), (0.25, 0.0, 1), (0.2, 0.05, 123), (0.2, 0.2, 7)] {
             let mut file = SceneFile::default();
             file.material.poisson = nu;
             file.material.young_cv = cv;
@@ -221,28 +202,16 @@ mod tests {
             let dense = dense_max_eigenvalue(&model, &k);
             let crit = critical_time_step(&model, &k).unwrap();
             let lanczos = crit.omega_max * crit.omega_max;
-            assert!(
-                lanczos >= dense * (1.0 - 1e-12),
-                "ν {nu} cv {cv}: bound {lanczos} below {dense}"
-            );
-            assert!(
-                lanczos <= dense * (1.0 + 1e-6),
-                "ν {nu} cv {cv}: bound {lanczos} loose vs {dense}"
-            );
+            assert!(lanczos >= dense * (1.0 - 1e-12), "ν {nu} cv {cv}: bound {lanczos} below {dense}");
+            assert!(lanczos <= dense * (1.0 + 1e-6), "ν {nu} cv {cv}: bound {lanczos} loose vs {dense}");
             let paper = model.scene().paper_time_step_bound();
             let ratio = paper / crit.dt_s;
             // SPEC §2: Eq. 5 is ≈ 9% below the true limit at ν = 0.2 and ≈ 1% above it at 0.25.
             if cv == 0.0 && nu == 0.2 {
-                assert!(
-                    (ratio - 0.91).abs() < 0.02,
-                    "ν = 0.2: Eq.5 / true = {ratio}"
-                );
+                assert!((ratio - 0.91).abs() < 0.02, "ν = 0.2: Eq.5 / true = {ratio}");
             }
             if cv == 0.0 && nu == 0.25 {
-                assert!(
-                    (ratio - 1.01).abs() < 0.02,
-                    "ν = 0.25: Eq.5 / true = {ratio}"
-                );
+                assert!((ratio - 1.01).abs() < 0.02, "ν = 0.25: Eq.5 / true = {ratio}");
             }
         }
     }

@@ -15,11 +15,7 @@ pub struct FieldError {
 
 impl fmt::Display for FieldError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "{} = {} is not allowed: {}",
-            self.field, self.value, self.allowed
-        )
+        write!(f, "{} = {} is not allowed: {}", self.field, self.value, self.allowed)
     }
 }
 

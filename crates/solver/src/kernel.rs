@@ -29,9 +29,7 @@ pub struct Field<const L: usize> {
 impl<const L: usize> Field<L> {
     /// A zero field over `n` nodes.
     pub fn zeros(n: usize) -> Self {
-        Field {
-            c: [vec![[0.0; L]; n], vec![[0.0; L]; n], vec![[0.0; L]; n]],
-        }
+        Field { c: [vec![[0.0; L]; n], vec![[0.0; L]; n], vec![[0.0; L]; n]] }
     }
 
     /// Number of nodes.
@@ -72,22 +70,10 @@ pub fn bar_forces<const L: usize>(
                 let a = a as usize;
                 axial(e, kk, &u.c[a], &mut f.c[a]);
             }
-            Direction::Diagonal {
-                neg_x: false,
-                neg_y: false,
-            } => diagonal::<L, false, false>(e, kk, u, f),
-            Direction::Diagonal {
-                neg_x: false,
-                neg_y: true,
-            } => diagonal::<L, false, true>(e, kk, u, f),
-            Direction::Diagonal {
-                neg_x: true,
-                neg_y: false,
-            } => diagonal::<L, true, false>(e, kk, u, f),
-            Direction::Diagonal {
-                neg_x: true,
-                neg_y: true,
-            } => diagonal::<L, true, true>(e, kk, u, f),
+            Direction::Diagonal { neg_x: false, neg_y: false } => diagonal::<L, false, false>(e, kk, u, f),
+            Direction::Diagonal { neg_x: false, neg_y: true } => diagonal::<L, false, true>(e, kk, u, f),
+            Direction::Diagonal { neg_x: true, neg_y: false } => diagonal::<L, true, false>(e, kk, u, f),
+            Direction::Diagonal { neg_x: true, neg_y: true } => diagonal::<L, true, true>(e, kk, u, f),
         }
     }
 }
@@ -128,9 +114,7 @@ fn diagonal<const L: usize, const NX: bool, const NY: bool>(
         let (i, j) = (e[0] as usize, e[1] as usize);
         let mut t = [0.0; L];
         for l in 0..L {
-            let s = sign::<NX>(ux[j][l] - ux[i][l])
-                + sign::<NY>(uy[j][l] - uy[i][l])
-                + (uz[j][l] - uz[i][l]);
+            let s = sign::<NX>(ux[j][l] - ux[i][l]) + sign::<NY>(uy[j][l] - uy[i][l]) + (uz[j][l] - uz[i][l]);
             t[l] = kb[l] * s;
         }
         for l in 0..L {
@@ -169,10 +153,7 @@ pub fn strain_energy<const L: usize>(
                 }
             }
             Direction::Diagonal { neg_x, neg_y } => {
-                let (sx, sy) = (
-                    if neg_x { -1.0 } else { 1.0 },
-                    if neg_y { -1.0 } else { 1.0 },
-                );
+                let (sx, sy) = (if neg_x { -1.0 } else { 1.0 }, if neg_y { -1.0 } else { 1.0 });
                 let proj = |u: &Field<L>, i: usize, j: usize| {
                     sx * (u.c[0][j][l] - u.c[0][i][l])
                         + sy * (u.c[1][j][l] - u.c[1][i][l])

@@ -52,10 +52,7 @@ pub struct Dims {
 impl Dims {
     /// New dimensions (every count must be at least 1).
     pub fn new(nx: usize, ny: usize, nz: usize) -> Self {
-        assert!(
-            nx >= 1 && ny >= 1 && nz >= 1,
-            "a lattice needs at least one module per axis"
-        );
+        assert!(nx >= 1 && ny >= 1 && nz >= 1, "a lattice needs at least one module per axis");
         Dims { nx, ny, nz }
     }
 
@@ -178,10 +175,7 @@ pub struct Lattice {
 impl Lattice {
     /// Builds the lattice of `dims` modules of side `lc_m` metres.
     pub fn new(dims: Dims, lc_m: f64) -> Self {
-        assert!(
-            lc_m > 0.0 && lc_m.is_finite(),
-            "module side must be positive"
-        );
+        assert!(lc_m > 0.0 && lc_m.is_finite(), "module side must be positive");
         let Dims { nx, ny, nz } = dims;
         let mut kinds = Vec::with_capacity(dims.node_count());
         for k in 0..=nz {
@@ -198,12 +192,7 @@ impl Lattice {
                 }
             }
         }
-        let mut lattice = Lattice {
-            dims,
-            lc: lc_m,
-            kinds,
-            bars: Vec::with_capacity(dims.bar_count()),
-        };
+        let mut lattice = Lattice { dims, lc: lc_m, kinds, bars: Vec::with_capacity(dims.bar_count()) };
         lattice.build_bars();
         debug_assert_eq!(lattice.bars.len(), dims.bar_count());
         lattice
@@ -224,9 +213,7 @@ impl Lattice {
                         let mut c1 = c;
                         c1[a] += 1;
                         // Outer planes the bar lies in: those perpendicular to the other two axes.
-                        let planes = (0..3)
-                            .filter(|&b| b != a && (c[b] == 0 || c[b] == n[b]))
-                            .count() as i32;
+                        let planes = (0..3).filter(|&b| b != a && (c[b] == 0 || c[b] == n[b])).count() as i32;
                         self.bars.push(Bar {
                             ends: [self.corner(c), self.corner(c1)],
                             family: BarFamily::Edge,
@@ -255,10 +242,7 @@ impl Lattice {
                                 self.bars.push(Bar {
                                     ends,
                                     family: BarFamily::Diagonal,
-                                    direction: Direction::Diagonal {
-                                        neg_x: !sx,
-                                        neg_y: !sy,
-                                    },
+                                    direction: Direction::Diagonal { neg_x: !sx, neg_y: !sy },
                                     surface_factor: 1.0,
                                 });
                             }
@@ -317,11 +301,7 @@ impl Lattice {
 
     /// Block extent in metres `(nx·Lc, ny·Lc, nz·Lc)`.
     pub fn extent(&self) -> [f64; 3] {
-        [
-            self.dims.nx as f64 * self.lc,
-            self.dims.ny as f64 * self.lc,
-            self.dims.nz as f64 * self.lc,
-        ]
+        [self.dims.nx as f64 * self.lc, self.dims.ny as f64 * self.lc, self.dims.nz as f64 * self.lc]
     }
 
     /// Id of the corner-lattice node `(i, j, k)`.

@@ -74,10 +74,7 @@ impl UnitWeibull {
             }
         }
         let shape = (0.5 * (lo + hi)).exp();
-        Ok(UnitWeibull {
-            shape,
-            mean_divisor: ln_gamma(1.0 + 1.0 / shape).exp(),
-        })
+        Ok(UnitWeibull { shape, mean_divisor: ln_gamma(1.0 + 1.0 / shape).exp() })
     }
 
     /// `Φ = [−ln(1−U)]^(1/γ) / Γ(1+1/γ)` for `U` in (0, 1) (paper Eq. 11). Uses the pure-Rust
@@ -90,23 +87,14 @@ impl UnitWeibull {
 
 /// Draws `n` Weibull factors of mean 1 and coefficient of variation `cv` from stream `stream` of
 /// `seed` (ChaCha8, portable). CV = 0 draws nothing and returns `None` (homogeneous).
-pub fn weibull_factors(
-    cv: f64,
-    seed: u64,
-    stream: u64,
-    n: usize,
-) -> Result<Option<Vec<f64>>, SolverError> {
+pub fn weibull_factors(cv: f64, seed: u64, stream: u64, n: usize) -> Result<Option<Vec<f64>>, SolverError> {
     if cv == 0.0 {
         return Ok(None);
     }
     let dist = UnitWeibull::from_cv(cv)?;
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     rng.set_stream(stream);
-    Ok(Some(
-        (0..n)
-            .map(|_| dist.factor(Open01.sample(&mut rng)))
-            .collect(),
-    ))
+    Ok(Some((0..n).map(|_| dist.factor(Open01.sample(&mut rng))).collect()))
 }
 
 #[cfg(test)]
@@ -132,18 +120,10 @@ mod tests {
     #[test]
     fn zero_cv_draws_nothing_and_same_seed_repeats() {
         assert!(weibull_factors(0.0, 1, STREAM_YOUNG, 10).unwrap().is_none());
-        let a = weibull_factors(0.05, 123, STREAM_YOUNG, 100)
-            .unwrap()
-            .unwrap();
-        let b = weibull_factors(0.05, 123, STREAM_YOUNG, 100)
-            .unwrap()
-            .unwrap();
-        let c = weibull_factors(0.05, 200, STREAM_YOUNG, 100)
-            .unwrap()
-            .unwrap();
-        let d = weibull_factors(0.05, 123, STREAM_FRICTION, 100)
-            .unwrap()
-            .unwrap();
+        let a = weibull_factors(0.05, 123, STREAM_YOUNG, 100).unwrap().unwrap();
+        let b = weibull_factors(0.05, 123, STREAM_YOUNG, 100).unwrap().unwrap();
+        let c = weibull_factors(0.05, 200, STREAM_YOUNG, 100).unwrap().unwrap();
+        let d = weibull_factors(0.05, 123, STREAM_FRICTION, 100).unwrap().unwrap();
         assert_eq!(a, b);
         assert_ne!(a, c);
         assert_ne!(a, d);

@@ -62,10 +62,7 @@ impl Model {
             to_internal[id.index()] = i as u32;
         }
         let rho_lc3 = scene.density_kg_m3 * scene.lc_m.powi(3);
-        let mass: Vec<f64> = to_canonical
-            .iter()
-            .map(|&id| lattice.mass_fraction(id) * rho_lc3)
-            .collect();
+        let mass: Vec<f64> = to_canonical.iter().map(|&id| lattice.mass_fraction(id) * rho_lc3).collect();
         let inv_mass = mass.iter().map(|m| 1.0 / m).collect();
 
         // Bars: internal ends, grouped by direction, sorted inside groups.
@@ -83,11 +80,7 @@ impl Model {
         for (i, (d, _, _)) in order.iter().enumerate() {
             match groups.last_mut() {
                 Some(g) if g.direction == *d => g.end = i + 1,
-                _ => groups.push(BarGroup {
-                    direction: *d,
-                    start: i,
-                    end: i + 1,
-                }),
+                _ => groups.push(BarGroup { direction: *d, start: i, end: i + 1 }),
             }
         }
         let ends = order.iter().map(|&(_, e, _)| e).collect();
@@ -98,29 +91,12 @@ impl Model {
                 let bar = &lattice.bars()[b as usize];
                 let ea = axial_stiffness(bar.family, scene.young_pa, scene.poisson, scene.lc_m);
                 let k = bar.surface_factor * ea / (bar.length_factor() * scene.lc_m);
-                if bar.family == BarFamily::Diagonal {
-                    k / 3.0
-                } else {
-                    k
-                }
+                if bar.family == BarFamily::Diagonal { k / 3.0 } else { k }
             })
             .collect();
-        let contact = lattice
-            .contact_nodes()
-            .iter()
-            .map(|id| to_internal[id.index()])
-            .collect();
-        let drivers = scene
-            .shear
-            .drivers
-            .iter()
-            .map(|id| to_internal[id.index()])
-            .collect();
-        let fixed = scene
-            .fixed
-            .iter()
-            .map(|(id, m)| (to_internal[id.index()], *m))
-            .collect();
+        let contact = lattice.contact_nodes().iter().map(|id| to_internal[id.index()]).collect();
+        let drivers = scene.shear.drivers.iter().map(|id| to_internal[id.index()]).collect();
+        let fixed = scene.fixed.iter().map(|(id, m)| (to_internal[id.index()], *m)).collect();
         Model {
             scene,
             lattice,
@@ -222,9 +198,7 @@ impl Model {
     /// canonical bar order from the seed's E stream (none drawn when CV = 0).
     pub fn bar_stiffness(&self, seed: u64) -> Result<Vec<f64>, SolverError> {
         let mut k = self.nominal_k.clone();
-        if let Some(phi) =
-            weibull_factors(self.scene.young_cv, seed, STREAM_YOUNG, self.bar_count())?
-        {
+        if let Some(phi) = weibull_factors(self.scene.young_cv, seed, STREAM_YOUNG, self.bar_count())? {
             for (kb, &canon) in k.iter_mut().zip(&self.bar_canonical) {
                 *kb *= phi[canon as usize];
             }
@@ -237,9 +211,6 @@ impl Model {
     /// all ones when its CV is 0.
     pub fn friction_factors(&self, seed: u64) -> Result<Vec<f64>, SolverError> {
         let n = self.contact.len();
-        Ok(
-            weibull_factors(self.scene.friction.mu_cv, seed, STREAM_FRICTION, n)?
-                .unwrap_or_else(|| vec![1.0; n]),
-        )
+        Ok(weibull_factors(self.scene.friction.mu_cv, seed, STREAM_FRICTION, n)?.unwrap_or_else(|| vec![1.0; n]))
     }
 }

@@ -125,18 +125,12 @@ pub struct Records {
 impl Records {
     /// Values of a scalar channel, if recorded.
     pub fn get(&self, ch: Channel) -> Option<&[f64]> {
-        self.channels
-            .iter()
-            .find(|(c, _)| *c == ch)
-            .map(|(_, v)| v.as_slice())
+        self.channels.iter().find(|(c, _)| *c == ch).map(|(_, v)| v.as_slice())
     }
 
     /// Values of a control channel, if recorded.
     pub fn control(&self, ch: ControlChannel) -> Option<&[f64]> {
-        self.control
-            .iter()
-            .find(|(c, _)| *c == ch)
-            .map(|(_, v)| v.as_slice())
+        self.control.iter().find(|(c, _)| *c == ch).map(|(_, v)| v.as_slice())
     }
 
     /// Number of samples.
@@ -161,27 +155,12 @@ pub(crate) struct Recorder {
 
 impl Recorder {
     pub(crate) fn new(plan: &RecordPlan, model: &crate::model::Model, capacity: usize) -> Self {
-        let channels = Channel::of_plan(plan)
-            .into_iter()
-            .map(|c| (c, Vec::with_capacity(capacity)))
-            .collect();
-        let control = plan
-            .control
-            .iter()
-            .map(|&c| (c, Vec::with_capacity(capacity)))
-            .collect();
+        let channels = Channel::of_plan(plan).into_iter().map(|c| (c, Vec::with_capacity(capacity))).collect();
+        let control = plan.control.iter().map(|&c| (c, Vec::with_capacity(capacity))).collect();
         Recorder {
-            records: Records {
-                time_s: Vec::with_capacity(capacity),
-                channels,
-                control,
-            },
+            records: Records { time_s: Vec::with_capacity(capacity), channels, control },
             steps: Vec::with_capacity(capacity),
-            control_nodes: plan
-                .control
-                .iter()
-                .map(|c| model.internal(c.node))
-                .collect(),
+            control_nodes: plan.control.iter().map(|c| model.internal(c.node)).collect(),
             area: model.lattice().contact_area(),
         }
     }
@@ -189,22 +168,9 @@ impl Recorder {
     /// Records lane `l` of the stepper's viewed time, step index `step`.
     pub(crate) fn sample<const L: usize>(&mut self, s: &Stepper<'_, L>, l: usize, step: u64) {
         self.steps.push(step);
-        let needs_interface = self
-            .records
-            .channels
-            .iter()
-            .any(|(c, _)| !Channel::ENERGY.contains(c));
-        let face = if needs_interface {
-            s.interface(l)
-        } else {
-            Default::default()
-        };
-        let energy = if self
-            .records
-            .channels
-            .iter()
-            .any(|(c, _)| Channel::ENERGY.contains(c))
-        {
+        let needs_interface = self.records.channels.iter().any(|(c, _)| !Channel::ENERGY.contains(c));
+        let face = if needs_interface { s.interface(l) } else { Default::default() };
+        let energy = if self.records.channels.iter().any(|(c, _)| Channel::ENERGY.contains(c)) {
             Some(s.energy(l))
         } else {
             None
@@ -244,11 +210,7 @@ impl Recorder {
 
     /// Finishes: times from step indices, with `origin` the step index of shear time zero.
     pub(crate) fn finish(mut self, origin: u64, dt: f64) -> Records {
-        self.records.time_s = self
-            .steps
-            .iter()
-            .map(|&s| (s as f64 - origin as f64) * dt)
-            .collect();
+        self.records.time_s = self.steps.iter().map(|&s| (s as f64 - origin as f64) * dt).collect();
         self.records
     }
 }

@@ -52,17 +52,9 @@ impl RunOutput {
 }
 
 enum Stage {
-    Settling {
-        max_steps: u64,
-    },
-    Shearing {
-        origin: u64,
-        steps: u64,
-        stride: u64,
-    },
-    Done {
-        origin: u64,
-    },
+    Settling { max_steps: u64 },
+    Shearing { origin: u64, steps: u64, stride: u64 },
+    Done { origin: u64 },
     Failed(SolverError),
 }
 
@@ -78,35 +70,25 @@ pub fn run_seed(
     out
 }
 
-fn prepare(
-    model: &Model,
-    seed: u64,
-    options: RunOptions,
-) -> Result<(LaneSetup, CriticalStep), SolverError> {
+fn prepare(model: &Model, seed: u64, options: RunOptions) -> Result<(LaneSetup, CriticalStep), SolverError> {
     let stiffness = model.bar_stiffness(seed)?;
     let friction = model.friction_factors(seed)?;
     let critical = critical_time_step(model, &stiffness)?;
-    let dt_s = match model.scene().time_step {
+    let mut dt_s = match model.scene().time_step {
         TimeStep::Fraction(f) => f * critical.dt_s,
         TimeStep::Fixed(dt) => {
             if dt > critical.dt_s && !options.allow_unstable_time_step {
-                return Err(SolverError::TimeStepAboveCritical {
-                    dt_s: dt,
-                    critical_s: critical.dt_s,
-                    seed,
-                });
+                return Err(SolverError::TimeStepAboveCritical { dt_s: dt, critical_s: critical.dt_s, seed });
             }
             dt
         }
     };
-    Ok((
-        LaneSetup {
-            dt_s,
-            stiffness,
-            friction,
-        },
-        critical,
-    ))
+    // A recording interval is a whole number of steps: lower Δt (never raise it) to fit.
+    if let Some(interval) = model.scene().record.interval_s {
+        let k = (interval / dt_s * (1.0 - 1e-12)).ceil().max(1.0);
+        dt_s = interval / k;
+    }
+    Ok((LaneSetup { dt_s, stiffness, friction }, critical))
 }
 
 /// Runs `L` seeds side by side through the same model (lane `l` gives the same numbers as
@@ -120,17 +102,11 @@ pub fn run_lanes<const L: usize>(
     let scene = model.scene();
     let prepared = seeds.map(|seed| prepare(model, seed, options));
     // Failed lanes still occupy a lane: give them a harmless set-up and park them.
-    let fallback = prepared
-        .iter()
-        .find_map(|p| p.as_ref().ok().map(|(s, _)| s.clone()));
+    let fallback = prepared.iter().find_map(|p| p.as_ref().ok().map(|(s, _)| s.clone()));
     let Some(fallback) = fallback else {
         return prepared.map(|p| p.map(|_| unreachable!("every lane failed")));
     };
-    let setups = prepared.each_ref().map(|p| {
-        p.as_ref()
-            .map(|(s, _)| s.clone())
-            .unwrap_or_else(|_| fallback.clone())
-    });
+    let setups = prepared.each_ref().map(|p| p.as_ref().map(|(s, _)| s.clone()).unwrap_or_else(|_| fallback.clone()));
     let mut stepper = Stepper::<L>::new(model, &setups);
     stepper.set_track_energy(scene.record.energy);
     let sw = scene.self_weight;
@@ -148,11 +124,8 @@ pub fn run_lanes<const L: usize>(
             Ok((setup, critical)) => {
                 criticals[l] = Some(critical);
                 let dt = setup.dt_s;
-                let stride = scene
-                    .record
-                    .interval_s
-                    .map_or(1, |iv| ((iv / dt).round() as u64).max(1));
-                let shear_steps = (scene.shear.duration_s / dt).ceil() as u64;
+                let stride = stride(scene.record.interval_s, dt);
+                let shear_steps = whole_steps(scene.shear.duration_s, dt);
                 let capacity = (shear_steps / stride) as usize + 2;
                 recorders[l] = Some(Recorder::new(&scene.record, model, capacity));
                 stepper.set_damping(l, sw.damping_per_s);
@@ -174,9 +147,7 @@ pub fn run_lanes<const L: usize>(
     }
 
     loop {
-        let active = stages
-            .iter()
-            .any(|s| matches!(s, Stage::Settling { .. } | Stage::Shearing { .. }));
+        let active = stages.iter().any(|s| matches!(s, Stage::Settling { .. } | Stage::Shearing { .. }));
         if !active {
             break;
         }
@@ -194,7 +165,7 @@ pub fn run_lanes<const L: usize>(
             if !matches!(stages[l], Stage::Settling { .. } | Stage::Shearing { .. }) {
                 continue;
             }
-            if view % BLOWUP_CHECK_EVERY == 0
+            if view.is_multiple_of(BLOWUP_CHECK_EVERY)
                 && let Some(b) = stepper.check_blowup(l)
             {
                 let (origin, stage_name) = match stages[l] {
@@ -225,7 +196,7 @@ pub fn run_lanes<const L: usize>(
                     {
                         r.sample(&stepper, l, view);
                     }
-                    if view % SETTLE_CHECK_EVERY == 0 && view > 0 {
+                    if view.is_multiple_of(SETTLE_CHECK_EVERY) && view > 0 {
                         let ratio = stepper.out_of_balance(l) / weight_norm;
                         if ratio < sw.settle_tolerance {
                             settle_steps[l] = stepper.steps();
@@ -240,17 +211,10 @@ pub fn run_lanes<const L: usize>(
                         }
                     }
                 }
-                Stage::Shearing {
-                    origin,
-                    steps,
-                    stride,
-                } => {
+                Stage::Shearing { origin, steps, stride } => {
                     let j = view - origin;
-                    if j % stride == 0 || j >= steps {
-                        recorders[l]
-                            .as_mut()
-                            .expect("recorder of a running lane")
-                            .sample(&stepper, l, view);
+                    if j.is_multiple_of(stride) || j >= steps {
+                        recorders[l].as_mut().expect("recorder of a running lane").sample(&stepper, l, view);
                     }
                     if j >= steps {
                         stages[l] = Stage::Done { origin };
@@ -259,7 +223,7 @@ pub fn run_lanes<const L: usize>(
                 _ => {}
             }
         }
-        if stepper.steps() % PROGRESS_EVERY == 0 {
+        if stepper.steps().is_multiple_of(PROGRESS_EVERY) {
             let fraction = stages
                 .iter()
                 .map(|s| match s {
@@ -310,13 +274,16 @@ fn start_shear<const L: usize>(stepper: &mut Stepper<'_, L>, l: usize, model: &M
     stepper.set_damping(l, scene.shear.damping_per_s);
     stepper.start_drivers(l);
     let dt = stepper.dt(l);
-    let stride = scene
-        .record
-        .interval_s
-        .map_or(1, |iv| ((iv / dt).round() as u64).max(1));
-    Stage::Shearing {
-        origin: stepper.steps(),
-        steps: (scene.shear.duration_s / dt).ceil() as u64,
-        stride,
-    }
+    let stride = stride(scene.record.interval_s, dt);
+    Stage::Shearing { origin: stepper.steps(), steps: whole_steps(scene.shear.duration_s, dt), stride }
+}
+
+/// Steps between two samples (Δt was fitted to the interval in `prepare`).
+fn stride(interval_s: Option<f64>, dt: f64) -> u64 {
+    interval_s.map_or(1, |iv| ((iv / dt).round() as u64).max(1))
+}
+
+/// Steps to cover `duration` (rounded up, ignoring round-off of a duration that is a multiple).
+fn whole_steps(duration: f64, dt: f64) -> u64 {
+    (duration / dt * (1.0 - 1e-12)).ceil() as u64
 }

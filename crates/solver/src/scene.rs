@@ -27,12 +27,7 @@ pub struct BlockSection {
 
 impl Default for BlockSection {
     fn default() -> Self {
-        BlockSection {
-            nx: 10,
-            ny: 1,
-            nz: 5,
-            lc_m: 0.1,
-        }
+        BlockSection { nx: 10, ny: 1, nz: 5, lc_m: 0.1 }
     }
 }
 
@@ -52,12 +47,7 @@ pub struct MaterialSection {
 
 impl Default for MaterialSection {
     fn default() -> Self {
-        MaterialSection {
-            young_pa: 2.0e10,
-            density_kg_m3: 2400.0,
-            poisson: 0.2,
-            young_cv: 0.05,
-        }
+        MaterialSection { young_pa: 2.0e10, density_kg_m3: 2400.0, poisson: 0.2, young_cv: 0.05 }
     }
 }
 
@@ -79,12 +69,7 @@ pub struct FrictionSection {
 
 impl Default for FrictionSection {
     fn default() -> Self {
-        FrictionSection {
-            mu_static: 5.0,
-            mu_dynamic: None,
-            slip_weakening_m: 0.0,
-            mu_cv: 0.0,
-        }
+        FrictionSection { mu_static: 5.0, mu_dynamic: None, slip_weakening_m: 0.0, mu_cv: 0.0 }
     }
 }
 
@@ -105,23 +90,18 @@ pub struct TimeSection {
 pub struct SelfWeightSection {
     /// Gravity in m/s² (acts in −z in both stages). Default 9.81.
     pub gravity_m_s2: f64,
-    /// Mass-proportional damping D in 1/s during settling. Default 2.0e4.
+    /// Mass-proportional damping D in 1/s during settling. Default 2500.
     pub damping_per_s: f64,
     /// Equilibrium is reached when ‖out-of-balance force‖ / ‖weight‖ falls below this.
     /// Default 1e-6.
     pub settle_tolerance: f64,
-    /// Give up (error) if not settled after this long, in seconds. Default 0.05.
+    /// Give up (error) if not settled after this long, in seconds. Default 0.1.
     pub max_duration_s: f64,
 }
 
 impl Default for SelfWeightSection {
     fn default() -> Self {
-        SelfWeightSection {
-            gravity_m_s2: 9.81,
-            damping_per_s: 2.0e4,
-            settle_tolerance: 1e-6,
-            max_duration_s: 0.05,
-        }
+        SelfWeightSection { gravity_m_s2: 9.81, damping_per_s: 2500.0, settle_tolerance: 1e-6, max_duration_s: 0.1 }
     }
 }
 
@@ -129,14 +109,14 @@ impl Default for SelfWeightSection {
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields, default)]
 pub struct ShearSection {
-    /// Mass-proportional damping D in 1/s during shearing. Default 100.
+    /// Mass-proportional damping D in 1/s during shearing. Default 400.
     pub damping_per_s: f64,
     /// Final driver velocity u̇f in m/s (+x). Default 1.1e-4.
     pub velocity_m_s: f64,
     /// Rise time t0 of Eq. 12 in seconds (velocity reaches 63% of u̇f at t0); 0 = step.
     /// Default 0.002.
     pub rise_time_s: f64,
-    /// Duration of the shear stage in seconds. Default 0.15.
+    /// Duration of the shear stage in seconds. Default 0.32.
     pub duration_s: f64,
     /// Driven nodes by LDEM number.
     pub driver_nodes: Vec<i64>,
@@ -148,10 +128,10 @@ pub struct ShearSection {
 impl Default for ShearSection {
     fn default() -> Self {
         ShearSection {
-            damping_per_s: 100.0,
+            damping_per_s: 400.0,
             velocity_m_s: 1.1e-4,
             rise_time_s: 0.002,
-            duration_s: 0.15,
+            duration_s: 0.32,
             driver_nodes: Vec::new(),
             driver_at_m: Vec::new(),
         }
@@ -300,8 +280,8 @@ fn default_components() -> Vec<Component> {
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields, default)]
 pub struct RecordSection {
-    /// Sampling interval in seconds (rounded to a whole number of steps, at least one);
-    /// omitted = every step.
+    /// Sampling interval in seconds; Δt is lowered (never raised) to make it a whole number of
+    /// steps. Omitted = every step.
     pub interval_s: Option<f64>,
     /// Interface quantities. Default: all of them.
     pub interface: Vec<InterfaceQuantity>,
@@ -405,11 +385,7 @@ impl Shear {
             return 0.0;
         }
         let t0 = self.rise_time_s;
-        if t0 == 0.0 {
-            self.velocity_m_s * t
-        } else {
-            self.velocity_m_s * (t + t0 * (-t / t0).exp_m1())
-        }
+        if t0 == 0.0 { self.velocity_m_s * t } else { self.velocity_m_s * (t + t0 * (-t / t0).exp_m1()) }
     }
 }
 
@@ -485,32 +461,13 @@ pub(crate) struct Checker {
 }
 
 impl Checker {
-    pub(crate) fn push(
-        &mut self,
-        field: impl Into<String>,
-        value: impl ToString,
-        allowed: impl Into<String>,
-    ) {
-        self.errors.push(FieldError {
-            field: field.into(),
-            value: value.to_string(),
-            allowed: allowed.into(),
-        });
+    pub(crate) fn push(&mut self, field: impl Into<String>, value: impl ToString, allowed: impl Into<String>) {
+        self.errors.push(FieldError { field: field.into(), value: value.to_string(), allowed: allowed.into() });
     }
 
     /// Accepts finite `v` with `lo (<|≤) v (<|≤) hi`.
-    pub(crate) fn range(
-        &mut self,
-        field: &str,
-        v: f64,
-        lo: f64,
-        lo_open: bool,
-        hi: f64,
-        hi_open: bool,
-    ) -> bool {
-        let ok = v.is_finite()
-            && if lo_open { v > lo } else { v >= lo }
-            && if hi_open { v < hi } else { v <= hi };
+    pub(crate) fn range(&mut self, field: &str, v: f64, lo: f64, lo_open: bool, hi: f64, hi_open: bool) -> bool {
+        let ok = v.is_finite() && if lo_open { v > lo } else { v >= lo } && if hi_open { v < hi } else { v <= hi };
         if !ok {
             let name = field.rsplit('.').next().unwrap_or(field);
             let lo_s = if lo_open { "<" } else { "≤" };
@@ -534,11 +491,7 @@ impl Checker {
     }
 
     pub(crate) fn finish(self) -> Result<(), SolverError> {
-        if self.errors.is_empty() {
-            Ok(())
-        } else {
-            Err(SolverError::InvalidScene(self.errors))
-        }
+        if self.errors.is_empty() { Ok(()) } else { Err(SolverError::InvalidScene(self.errors)) }
     }
 }
 
@@ -546,14 +499,10 @@ impl Checker {
 pub const MAX_NODES: u64 = 1 << 31;
 
 fn check_count(ck: &mut Checker, field: &str, v: i64) -> Option<usize> {
-    if v >= 1 && v <= 1_000_000 {
+    if (1..=1_000_000).contains(&v) {
         Some(v as usize)
     } else {
-        ck.push(
-            field,
-            v,
-            "an integer, 1 ≤ count ≤ 1000000 (a block needs at least one module per axis)",
-        );
+        ck.push(field, v, "an integer, 1 ≤ count ≤ 1000000 (a block needs at least one module per axis)");
         None
     }
 }
@@ -584,21 +533,14 @@ fn resolve_nodes(
             None => ck.push(
                 format!("{ldem_field}[{i}]"),
                 n,
-                format!(
-                    "an LDEM node number, 1 ≤ n ≤ {} for this block",
-                    lattice.node_count()
-                ),
+                format!("an LDEM node number, 1 ≤ n ≤ {} for this block", lattice.node_count()),
             ),
         }
     }
     for (i, p) in at_m.iter().enumerate() {
         match lattice.node_at(*p) {
             Some(id) => out.push(id),
-            None => ck.push(
-                format!("{at_field}[{i}]"),
-                format!("{p:?} m"),
-                describe_block(lattice),
-            ),
+            None => ck.push(format!("{at_field}[{i}]"), format!("{p:?} m"), describe_block(lattice)),
         }
     }
     out
@@ -623,24 +565,13 @@ impl TryFrom<SceneFile> for Scene {
         ck.non_negative("friction.mu_static", f.mu_static);
         let mu_dynamic = f.mu_dynamic.unwrap_or(f.mu_static);
         if f.mu_dynamic.is_some() && f.mu_static.is_finite() {
-            ck.range(
-                "friction.mu_dynamic",
-                mu_dynamic,
-                0.0,
-                false,
-                f.mu_static.max(0.0),
-                false,
-            );
+            ck.range("friction.mu_dynamic", mu_dynamic, 0.0, false, f.mu_static.max(0.0), false);
         }
         ck.non_negative("friction.slip_weakening_m", f.slip_weakening_m);
         ck.range("friction.mu_cv", f.mu_cv, 0.0, false, 1.0, false);
         let time_step = match (file.time.dt_fraction, file.time.dt_s) {
             (Some(_), Some(_)) => {
-                ck.push(
-                    "time",
-                    "both dt_fraction and dt_s",
-                    "one of time.dt_fraction or time.dt_s",
-                );
+                ck.push("time", "both dt_fraction and dt_s", "one of time.dt_fraction or time.dt_s");
                 TimeStep::Fraction(0.5)
             }
             (None, Some(dt)) => {
@@ -656,33 +587,16 @@ impl TryFrom<SceneFile> for Scene {
         let s = &file.self_weight;
         ck.non_negative("self_weight.gravity_m_s2", s.gravity_m_s2);
         ck.non_negative("self_weight.damping_per_s", s.damping_per_s);
-        ck.range(
-            "self_weight.settle_tolerance",
-            s.settle_tolerance,
-            0.0,
-            true,
-            1.0,
-            true,
-        );
+        ck.range("self_weight.settle_tolerance", s.settle_tolerance, 0.0, true, 1.0, true);
         ck.positive("self_weight.max_duration_s", s.max_duration_s);
         let sh = &file.shear;
         ck.non_negative("shear.damping_per_s", sh.damping_per_s);
         ck.non_negative("shear.rise_time_s", sh.rise_time_s);
         ck.positive("shear.duration_s", sh.duration_s);
-        if ck.non_negative("shear.velocity_m_s", sh.velocity_m_s)
-            && m.young_pa > 0.0
-            && m.density_kg_m3 > 0.0
-        {
+        if ck.non_negative("shear.velocity_m_s", sh.velocity_m_s) && m.young_pa > 0.0 && m.density_kg_m3 > 0.0 {
             // A driver faster than a fraction of the wave speed is outside the model's reach.
             let cp_bound = 0.01 * (m.young_pa / m.density_kg_m3).sqrt();
-            ck.range(
-                "shear.velocity_m_s",
-                sh.velocity_m_s,
-                0.0,
-                false,
-                cp_bound,
-                false,
-            );
+            ck.range("shear.velocity_m_s", sh.velocity_m_s, 0.0, false, cp_bound, false);
         }
         if let Some(dt) = file.record.interval_s {
             ck.positive("record.interval_s", dt);
@@ -694,11 +608,7 @@ impl TryFrom<SceneFile> for Scene {
         let dims = Dims::new(nx, ny, nz);
         let nodes = dims.node_count() as u64;
         if nodes > MAX_NODES {
-            ck.push(
-                "block",
-                format!("{nx}×{ny}×{nz} modules ({nodes} nodes)"),
-                format!("at most {MAX_NODES} nodes"),
-            );
+            ck.push("block", format!("{nx}×{ny}×{nz} modules ({nodes} nodes)"), format!("at most {MAX_NODES} nodes"));
         }
         if !(b.lc_m > 0.0 && b.lc_m.is_finite()) || nodes > MAX_NODES {
             return Err(ck.finish().expect_err("an error was recorded"));
@@ -710,13 +620,8 @@ impl TryFrom<SceneFile> for Scene {
             } else {
                 (&sh.driver_nodes, sh.driver_at_m.clone())
             };
-        let mut drivers = resolve_nodes(
-            &mut ck,
-            &lattice,
-            ("shear.driver_nodes", "shear.driver_at_m"),
-            driver_ldem,
-            &driver_at,
-        );
+        let mut drivers =
+            resolve_nodes(&mut ck, &lattice, ("shear.driver_nodes", "shear.driver_at_m"), driver_ldem, &driver_at);
         drivers.sort();
         drivers.dedup();
         for d in &drivers {
@@ -731,11 +636,7 @@ impl TryFrom<SceneFile> for Scene {
         let mut fixed: Vec<(NodeId, [bool; 3])> = Vec::new();
         for (i, bnd) in file.boundary.iter().enumerate() {
             if bnd.fix.is_empty() {
-                ck.push(
-                    format!("boundary[{i}].fix"),
-                    "[]",
-                    "at least one of \"x\", \"y\", \"z\"",
-                );
+                ck.push(format!("boundary[{i}].fix"), "[]", "at least one of \"x\", \"y\", \"z\"");
             }
             let (axis, at_max) = match bnd.face {
                 Face::XMin => (0, false),
@@ -768,11 +669,7 @@ impl TryFrom<SceneFile> for Scene {
             if let Ok(i) = merged.binary_search_by_key(d, |(id, _)| *id)
                 && merged[i].1[0]
             {
-                ck.push(
-                    "shear.driver",
-                    format!("LDEM {}", d.ldem()),
-                    "a node whose x is not held by a [[boundary]]",
-                );
+                ck.push("shear.driver", format!("LDEM {}", d.ldem()), "a node whose x is not held by a [[boundary]]");
             }
         }
         let mut control = Vec::new();
@@ -793,22 +690,14 @@ impl TryFrom<SceneFile> for Scene {
                 );
             }
             if c.components.is_empty() {
-                ck.push(
-                    format!("{field}components"),
-                    "[]",
-                    "at least one of \"x\", \"y\", \"z\"",
-                );
+                ck.push(format!("{field}components"), "[]", "at least one of \"x\", \"y\", \"z\"");
             }
             let names = (format!("{field}nodes"), format!("{field}at_m"));
             let nodes = resolve_nodes(&mut ck, &lattice, (&names.0, &names.1), &c.nodes, &c.at_m);
             for node in nodes {
                 for &quantity in &c.quantities {
                     for &component in &c.components {
-                        control.push(ControlChannel {
-                            node,
-                            quantity,
-                            component,
-                        });
+                        control.push(ControlChannel { node, quantity, component });
                     }
                 }
             }
@@ -861,8 +750,7 @@ impl TryFrom<SceneFile> for Scene {
 impl Scene {
     /// Parses and validates a scene from TOML text.
     pub fn from_toml(text: &str) -> Result<Scene, SolverError> {
-        let file: SceneFile =
-            toml::from_str(text).map_err(|e| SolverError::Syntax(e.to_string()))?;
+        let file: SceneFile = toml::from_str(text).map_err(|e| SolverError::Syntax(e.to_string()))?;
         Scene::try_from(file)
     }
 
@@ -902,17 +790,13 @@ mod tests {
 
     #[test]
     fn refusals_name_field_value_and_range() {
-        let err = Scene::from_toml("[material]\npoisson = 0.5\nyoung_pa = -1.0")
-            .unwrap_err()
-            .to_string();
+        let err = Scene::from_toml("[material]\npoisson = 0.5\nyoung_pa = -1.0").unwrap_err().to_string();
         assert!(err.contains("material.poisson = 0.5"), "{err}");
         assert!(err.contains("0 < poisson < 0.5"), "{err}");
         assert!(err.contains("material.young_pa = -1"), "{err}");
         let err = Scene::from_toml("[block]\nnx = 0").unwrap_err().to_string();
         assert!(err.contains("block.nx = 0"), "{err}");
-        let err = Scene::from_toml("[shear]\ndriver_at_m = [[5.0, 0.0, 0.2]]")
-            .unwrap_err()
-            .to_string();
+        let err = Scene::from_toml("[shear]\ndriver_at_m = [[5.0, 0.0, 0.2]]").unwrap_err().to_string();
         assert!(err.contains("shear.driver_at_m[0]"), "{err}");
     }
 

@@ -58,14 +58,7 @@ pub fn solve_static(
     };
     let diag = stiffness_diagonal(model.groups(), model.ends(), &k1, n, 0);
     let dot = |a: &Field<1>, b: &Field<1>| -> f64 {
-        (0..3)
-            .map(|c| {
-                (0..n)
-                    .filter(|&i| free[c][i])
-                    .map(|i| a.c[c][i][0] * b.c[c][i][0])
-                    .sum::<f64>()
-            })
-            .sum()
+        (0..3).map(|c| (0..n).filter(|&i| free[c][i]).map(|i| a.c[c][i][0] * b.c[c][i][0]).sum::<f64>()).sum()
     };
     let mut ku = Field::<1>::zeros(n);
     apply(&u, &mut ku);
@@ -92,11 +85,7 @@ pub fn solve_static(
     let precondition = |r: &Field<1>, z: &mut Field<1>| {
         for c in 0..3 {
             for i in 0..n {
-                z.c[c][i][0] = if free[c][i] && diag.c[c][i][0] > 0.0 {
-                    r.c[c][i][0] / diag.c[c][i][0]
-                } else {
-                    0.0
-                };
+                z.c[c][i][0] = if free[c][i] && diag.c[c][i][0] > 0.0 { r.c[c][i][0] / diag.c[c][i][0] } else { 0.0 };
             }
         }
     };
@@ -138,11 +127,7 @@ pub fn solve_static(
         rz = rz_new;
         for c in 0..3 {
             for i in 0..n {
-                p.c[c][i][0] = if free[c][i] {
-                    z.c[c][i][0] + beta * p.c[c][i][0]
-                } else {
-                    0.0
-                };
+                p.c[c][i][0] = if free[c][i] { z.c[c][i][0] + beta * p.c[c][i][0] } else { 0.0 };
             }
         }
     }
@@ -153,12 +138,7 @@ pub fn solve_static(
             reactions.c[c][i][0] -= loads.c[c][i][0];
         }
     }
-    Ok(StaticSolution {
-        u,
-        reactions,
-        iterations,
-        relative_residual: rel,
-    })
+    Ok(StaticSolution { u, reactions, iterations, relative_residual: rel })
 }
 
 /// Effective moduli of a finite block under uniaxial stress, from a static solve.
@@ -177,11 +157,7 @@ pub struct EffectiveModuli {
 /// of 1e-4; E from the reaction on that face over the face area, ν from the mean displacement of
 /// the two free lateral faces. It measures how stiff the built block really is (a finite block
 /// is softer than the continuum it models: SPEC §1).
-pub fn uniaxial_moduli(
-    model: &Model,
-    k: &[f64],
-    axis: usize,
-) -> Result<EffectiveModuli, SolverError> {
+pub fn uniaxial_moduli(model: &Model, k: &[f64], axis: usize) -> Result<EffectiveModuli, SolverError> {
     let lattice = model.lattice();
     let dims = lattice.dims();
     let n = [dims.nx, dims.ny, dims.nz];
@@ -192,19 +168,11 @@ pub fn uniaxial_moduli(
         let h = lattice.half_units(model.canonical(i));
         for a in 0..3 {
             if h[a] == 0 {
-                prescribed.push(Prescribed {
-                    node: i,
-                    axis: a,
-                    value: 0.0,
-                });
+                prescribed.push(Prescribed { node: i, axis: a, value: 0.0 });
             }
         }
         if h[axis] == 2 * n[axis] {
-            prescribed.push(Prescribed {
-                node: i,
-                axis,
-                value: strain * ext[axis],
-            });
+            prescribed.push(Prescribed { node: i, axis, value: strain * ext[axis] });
         }
     }
     let loads = Field::<1>::zeros(model.node_count());

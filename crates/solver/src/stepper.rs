@@ -61,8 +61,7 @@ impl Energy {
 
     /// External work minus everything stored and dissipated (zero up to round-off).
     pub fn residual(&self) -> f64 {
-        self.external_work()
-            - (self.kinetic + self.elastic + self.damping + self.friction + self.impact)
+        self.external_work() - (self.kinetic + self.elastic + self.damping + self.friction + self.impact)
     }
 }
 
@@ -136,11 +135,7 @@ impl<'m, const L: usize> Stepper<'m, L> {
         let mut k = vec![[0.0; L]; nb];
         for (l, lane) in lanes.iter().enumerate() {
             assert_eq!(lane.stiffness.len(), nb, "one stiffness per bar");
-            assert_eq!(
-                lane.friction.len(),
-                nc,
-                "one friction factor per contact node"
-            );
+            assert_eq!(lane.friction.len(), nc, "one friction factor per contact node");
             for (kb, &v) in k.iter_mut().zip(&lane.stiffness) {
                 kb[l] = v;
             }
@@ -305,12 +300,7 @@ impl<'m, const L: usize> Stepper<'m, L> {
         let (cf, c2, cp) = (self.cf, self.c2, self.cp);
         for c in 0..3 {
             let body = self.body[c];
-            let (f, u, up, out) = (
-                &self.force.c[c],
-                &self.cur.c[c],
-                &self.prev.c[c],
-                &mut self.older.c[c],
-            );
+            let (f, u, up, out) = (&self.force.c[c], &self.cur.c[c], &self.prev.c[c], &mut self.older.c[c]);
             for i in 0..inv_mass.len() {
                 let im = inv_mass[i];
                 let (fi, ui, upi) = (f[i], u[i], up[i]);
@@ -343,8 +333,7 @@ impl<'m, const L: usize> Stepper<'m, L> {
                     continue;
                 }
                 let target = self.driver_base[d][l] + self.driver_target[l];
-                self.driver_reaction[d][l] =
-                    (target - self.older.c[0][p][l]) * mass[p] / self.cf[l];
+                self.driver_reaction[d][l] = (target - self.older.c[0][p][l]) * mass[p] / self.cf[l];
                 self.older.c[0][p][l] = target;
             }
         }
@@ -354,11 +343,7 @@ impl<'m, const L: usize> Stepper<'m, L> {
     #[inline]
     fn kinetic_mu(&self, ci: usize, l: usize) -> f64 {
         let (ms, md) = (self.mu_s[ci][l], self.mu_d[ci][l]);
-        if self.dc == 0.0 {
-            md
-        } else {
-            ms - (ms - md) * (self.slip_path[ci][l] / self.dc).min(1.0)
-        }
+        if self.dc == 0.0 { md } else { ms - (ms - md) * (self.slip_path[ci][l] / self.dc).min(1.0) }
     }
 
     fn apply_contact(&mut self) {
@@ -384,11 +369,7 @@ impl<'m, const L: usize> Stepper<'m, L> {
                 let (rx, ry) = ((xn - xt) * g, (yn - yt) * g);
                 let need = (rx * rx + ry * ry).sqrt();
                 let mu_k = self.kinetic_mu(ci, l);
-                let limit = if self.slipping[ci][l] {
-                    mu_k
-                } else {
-                    self.mu_s[ci][l]
-                } * normal;
+                let limit = if self.slipping[ci][l] { mu_k } else { self.mu_s[ci][l] } * normal;
                 if need <= limit {
                     self.older.c[0][p][l] = xn;
                     self.older.c[1][p][l] = yn;
@@ -440,17 +421,15 @@ impl<'m, const L: usize> Stepper<'m, L> {
             for l in 0..L {
                 let d2 = |c: usize| self.older.c[c][p][l] - self.prev.c[c][p][l];
                 let e = &mut self.acc[l];
-                e.friction -=
-                    0.5 * (self.reaction[0][ci][l] * d2(0) + self.reaction[1][ci][l] * d2(1));
+                e.friction -= 0.5 * (self.reaction[0][ci][l] * d2(0) + self.reaction[1][ci][l] * d2(1));
                 e.impact -= 0.5 * self.reaction[2][ci][l] * d2(2);
             }
         }
         for (d, &node) in self.model.drivers().iter().enumerate() {
             let p = node as usize;
             for l in 0..L {
-                self.acc[l].driver_work += 0.5
-                    * self.driver_reaction[d][l]
-                    * (self.older.c[0][p][l] - self.prev.c[0][p][l]);
+                self.acc[l].driver_work +=
+                    0.5 * self.driver_reaction[d][l] * (self.older.c[0][p][l] - self.prev.c[0][p][l]);
             }
         }
     }
@@ -470,11 +449,7 @@ impl<'m, const L: usize> Stepper<'m, L> {
     /// Acceleration of internal node `i`, lane `l`, at the viewed time (m/s²).
     pub fn acceleration(&self, i: usize, l: usize) -> [f64; 3] {
         let h = 1.0 / (self.dt[l] * self.dt[l]);
-        let (a, b, c) = (
-            self.cur.get(i, l),
-            self.prev.get(i, l),
-            self.older.get(i, l),
-        );
+        let (a, b, c) = (self.cur.get(i, l), self.prev.get(i, l), self.older.get(i, l));
         [0, 1, 2].map(|k| (a[k] - 2.0 * b[k] + c[k]) * h)
     }
 
@@ -487,10 +462,7 @@ impl<'m, const L: usize> Stepper<'m, L> {
     pub fn interface(&self, l: usize) -> Interface {
         let contact = self.model.contact();
         let h = 0.5 / self.dt[l];
-        let mut s = Interface {
-            max_slip_rate: f64::NEG_INFINITY,
-            ..Interface::default()
-        };
+        let mut s = Interface { max_slip_rate: f64::NEG_INFINITY, ..Interface::default() };
         for (ci, &node) in contact.iter().enumerate() {
             let p = node as usize;
             s.friction_x += self.reaction[0][ci][l];
@@ -546,8 +518,7 @@ impl<'m, const L: usize> Stepper<'m, L> {
         for c in 0..3 {
             let (a, b, o) = (&self.cur.c[c], &self.prev.c[c], &self.older.c[c]);
             for i in 0..mass.len() {
-                let r =
-                    mass[i] * ((a[i][l] - 2.0 * b[i][l] + o[i][l]) * ha + (a[i][l] - o[i][l]) * hv);
+                let r = mass[i] * ((a[i][l] - 2.0 * b[i][l] + o[i][l]) * ha + (a[i][l] - o[i][l]) * hv);
                 sum += r * r;
             }
         }
@@ -563,10 +534,7 @@ impl<'m, const L: usize> Stepper<'m, L> {
             for i in 0..a.len() {
                 let (x, y) = (a[i][l], b[i][l]);
                 if !x.is_finite() {
-                    return Some(Blowup {
-                        node: i,
-                        what: format!("non-finite {} displacement", ["x", "y", "z"][c]),
-                    });
+                    return Some(Blowup { node: i, what: format!("non-finite {} displacement", ["x", "y", "z"][c]) });
                 }
                 let jump = (x - y).abs();
                 if jump > bound {

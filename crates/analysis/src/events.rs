@@ -1,0 +1,325 @@
+//! Stick-slip events and sub-events from the interface series (SPEC §7).
+//!
+//! The detector works on two signals smoothed by a centred moving average of `smoothing_s`
+//! (vibrations of lifted nodes and of the stress field are much faster than a slip burst):
+//! - the slip rate `V̄` (mean x-velocity of the contact nodes), which is the time derivative of
+//!   the mean slip δ, so its moving average is `[δ(t + w/2) − δ(t − w/2)]/w`;
+//! - the shear stress `τ̄`.
+//!
+//! A **sub-event** starts when `V̄` rises above `v_on_m_s` and ends when it has stayed below
+//! `v_off_m_s` for `quiet_s` (hysteresis: `v_off < v_on`); its end is the first instant of that
+//! quiet spell. Sub-events whose gap is shorter than `merge_gap_s` form one **event**. An event's
+//! stress drop is `τ̄` at its start minus the minimum of `τ̄` inside it; events with a drop below
+//! `min_drop_pa` are dropped from the catalogue (slip bursts without a stress drop). Events whose
+//! drop is at least `main_fraction` of the largest drop of the run are **main shocks**, labelled
+//! S1, S2, … in time order; every other event is a foreshock of the next main shock or an
+//! aftershock of the previous one, whichever is nearer in time.
+
+use serde::{Deserialize, Serialize};
+use stickslip_solver::scene::{ControlChannel, Kinematic};
+use stickslip_solver::{Channel, Records};
+
+/// `[events]`: detector thresholds (pipeline section).
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields, default)]
+pub struct EventParams {
+    /// Smoothing window of `V` and `τ` in seconds. Default 1e-3.
+    pub smoothing_s: f64,
+    /// A sub-event starts when the smoothed slip rate exceeds this (m/s). Default 2e-4.
+    pub v_on_m_s: f64,
+    /// … and ends when it stays below this (m/s) for `quiet_s`. Default 5e-5.
+    pub v_off_m_s: f64,
+    /// Quiet time that ends a sub-event (s). Default 0.5e-3.
+    pub quiet_s: f64,
+    /// Sub-events closer than this form one event (s). Default 3e-3.
+    pub merge_gap_s: f64,
+    /// Events with a smaller stress drop are not catalogued (Pa). Default 500.
+    pub min_drop_pa: f64,
+    /// Main shocks have a drop of at least this fraction of the largest. Default 0.5.
+    pub main_fraction: f64,
+}
+
+impl Default for EventParams {
+    fn default() -> Self {
+        EventParams {
+            smoothing_s: 1e-3,
+            v_on_m_s: 2e-4,
+            v_off_m_s: 5e-5,
+            quiet_s: 0.5e-3,
+            merge_gap_s: 3e-3,
+            min_drop_pa: 500.0,
+            main_fraction: 0.5,
+        }
+    }
+}
+
+/// What an event is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EventKind {
+    /// Main shock `S<k>` (k from 1).
+    Main(u32),
+    /// Foreshock of `S<k>`.
+    Foreshock(u32),
+    /// Aftershock of `S<k>`.
+    Aftershock(u32),
+    /// No main shock in the run.
+    Minor,
+}
+
+impl EventKind {
+    /// `"main"`, `"foreshock"`, `"aftershock"`, `"minor"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            EventKind::Main(_) => "main",
+            EventKind::Foreshock(_) => "foreshock",
+            EventKind::Aftershock(_) => "aftershock",
+            EventKind::Minor => "minor",
+        }
+    }
+
+    /// Label of the main shock it belongs to (`S2` for the main shock S2 and its fore- and
+    /// aftershocks), empty for a minor event.
+    pub fn label(self) -> String {
+        match self {
+            EventKind::Main(k) | EventKind::Foreshock(k) | EventKind::Aftershock(k) => format!("S{k}"),
+            EventKind::Minor => String::new(),
+        }
+    }
+}
+
+/// Measures of one burst of slip (an event or a sub-event).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Burst {
+    /// Start (s, shear-stage time).
+    pub start_s: f64,
+    /// End (s).
+    pub end_s: f64,
+    /// `τ̄(start) − min τ̄` inside (Pa).
+    pub stress_drop_pa: f64,
+    /// Time of that minimum (s): `drop_end_s − start_s` is the time the stress takes to fall.
+    pub drop_end_s: f64,
+    /// `δ̄(end) − δ̄(start)` (m).
+    pub slip_m: f64,
+    /// Peak smoothed slip rate (m/s).
+    pub peak_slip_rate_m_s: f64,
+    /// Peak number of sliding contact nodes (raw samples).
+    pub peak_slipping_nodes: u32,
+    /// That count's share of the contact area (m²).
+    pub rupture_area_m2: f64,
+    /// Peak |acceleration| (m/s², raw samples) per recorded control acceleration channel.
+    pub peak_acceleration: Vec<(ControlChannel, f64)>,
+    /// First and one-past-last sample index.
+    pub samples: (usize, usize),
+}
+
+impl Burst {
+    /// `end − start` (s).
+    pub fn duration_s(&self) -> f64 {
+        self.end_s - self.start_s
+    }
+
+    /// Time the stress takes to fall, `drop_end − start` (s).
+    pub fn drop_time_s(&self) -> f64 {
+        self.drop_end_s - self.start_s
+    }
+}
+
+/// One stick-slip event.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Event {
+    /// Main shock, fore- or aftershock.
+    pub kind: EventKind,
+    /// Its measures.
+    pub burst: Burst,
+    /// Sub-events (their indices in [`Catalogue::sub_events`]).
+    pub sub_events: std::ops::Range<usize>,
+    /// For a main shock, time since the start of the previous main shock (s).
+    pub recurrence_s: Option<f64>,
+}
+
+/// All events of one run.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Catalogue {
+    /// Events in time order.
+    pub events: Vec<Event>,
+    /// Sub-events in time order.
+    pub sub_events: Vec<Burst>,
+}
+
+impl Catalogue {
+    /// Main shocks in order (S1, S2, …).
+    pub fn main_shocks(&self) -> impl Iterator<Item = &Event> {
+        self.events.iter().filter(|e| matches!(e.kind, EventKind::Main(_)))
+    }
+}
+
+/// Why detection could not run.
+#[derive(Debug, thiserror::Error)]
+#[error("event detection needs the channel {0}: add it to record.interface")]
+pub struct MissingChannel(pub &'static str);
+
+/// Centred moving average over `w` samples (shrinking at the ends).
+pub fn moving_average(x: &[f64], w: usize) -> Vec<f64> {
+    let n = x.len();
+    if w <= 1 || n == 0 {
+        return x.to_vec();
+    }
+    let mut prefix = Vec::with_capacity(n + 1);
+    prefix.push(0.0);
+    for v in x {
+        prefix.push(prefix.last().unwrap() + v);
+    }
+    let half = w / 2;
+    (0..n)
+        .map(|i| {
+            let lo = i.saturating_sub(half);
+            let hi = (i + w - half).min(n);
+            (prefix[hi] - prefix[lo]) / (hi - lo) as f64
+        })
+        .collect()
+}
+
+/// Detects the events of one run. `contact_nodes` and `contact_area_m2` convert the slipping
+/// count into a rupture area.
+pub fn detect(
+    records: &Records,
+    contact_nodes: usize,
+    contact_area_m2: f64,
+    params: &EventParams,
+) -> Result<Catalogue, MissingChannel> {
+    let n = records.len();
+    let tau = records.get(Channel::ShearStress).ok_or(MissingChannel("shear_stress"))?;
+    let slip = records.get(Channel::MeanSlip).ok_or(MissingChannel("mean_slip"))?;
+    let rate = records.get(Channel::MeanSlipRate).ok_or(MissingChannel("slip_rate"))?;
+    let slipping = records.get(Channel::SlippingNodes);
+    if n < 3 {
+        return Ok(Catalogue::default());
+    }
+    let t = &records.time_s;
+    let dt = (t[n - 1] - t[0]) / (n - 1) as f64;
+    let w = ((params.smoothing_s / dt).round() as usize).max(1);
+    let v = moving_average(rate, w);
+    let tau_s = moving_average(tau, w);
+    let quiet = ((params.quiet_s / dt).round() as usize).max(1);
+    let accel: Vec<(ControlChannel, &[f64])> = records
+        .control
+        .iter()
+        .filter(|(c, _)| c.quantity == Kinematic::Acceleration)
+        .map(|(c, v)| (*c, v.as_slice()))
+        .collect();
+    let measure = |a: usize, b: usize| -> Burst {
+        let (imin, min_tau) = tau_s[a..b]
+            .iter()
+            .copied()
+            .enumerate()
+            .fold((0, f64::INFINITY), |m, (i, v)| if v < m.1 { (i, v) } else { m });
+        let peak_nodes = slipping.map_or(0.0, |s| s[a..b].iter().copied().fold(0.0, f64::max));
+        Burst {
+            start_s: t[a],
+            end_s: t[b - 1],
+            stress_drop_pa: tau_s[a] - min_tau,
+            drop_end_s: t[a + imin],
+            slip_m: slip[b - 1] - slip[a],
+            peak_slip_rate_m_s: v[a..b].iter().copied().fold(f64::NEG_INFINITY, f64::max),
+            peak_slipping_nodes: peak_nodes as u32,
+            rupture_area_m2: peak_nodes / contact_nodes as f64 * contact_area_m2,
+            peak_acceleration: accel
+                .iter()
+                .map(|(c, x)| (*c, x[a..b].iter().fold(0.0f64, |m, v| m.max(v.abs()))))
+                .collect(),
+            samples: (a, b),
+        }
+    };
+    // Sub-events: hysteresis on the smoothed slip rate.
+    let mut spans: Vec<(usize, usize)> = Vec::new();
+    let mut i = 0;
+    while i < n {
+        if v[i] > params.v_on_m_s {
+            let start = i;
+            let mut below = 0;
+            let mut j = i + 1;
+            while j < n {
+                if v[j] < params.v_off_m_s {
+                    below += 1;
+                    if below >= quiet {
+                        break;
+                    }
+                } else {
+                    below = 0;
+                }
+                j += 1;
+            }
+            // End at the first sample of the quiet spell (or the end of the record).
+            let end = if j < n { j + 1 - below } else { n };
+            spans.push((start, end.max(start + 1)));
+            i = end.max(start + 1);
+        } else {
+            i += 1;
+        }
+    }
+    // Events: merge sub-events separated by less than the merge gap.
+    let gap = params.merge_gap_s;
+    let mut groups: Vec<(usize, usize)> = Vec::new(); // ranges of sub-event indices
+    for (k, &(a, _)) in spans.iter().enumerate() {
+        match groups.last_mut() {
+            Some(g) if t[a] - t[spans[g.1 - 1].1 - 1] < gap => g.1 = k + 1,
+            _ => groups.push((k, k + 1)),
+        }
+    }
+    let mut catalogue = Catalogue::default();
+    for (k0, k1) in groups {
+        let (a, b) = (spans[k0].0, spans[k1 - 1].1);
+        let burst = measure(a, b);
+        if burst.stress_drop_pa < params.min_drop_pa {
+            continue;
+        }
+        let first = catalogue.sub_events.len();
+        catalogue.sub_events.extend(spans[k0..k1].iter().map(|&(a, b)| measure(a, b)));
+        catalogue.events.push(Event {
+            kind: EventKind::Minor,
+            burst,
+            sub_events: first..catalogue.sub_events.len(),
+            recurrence_s: None,
+        });
+    }
+    classify(&mut catalogue.events, params.main_fraction);
+    Ok(catalogue)
+}
+
+/// Labels main shocks, fore- and aftershocks, and recurrences.
+fn classify(events: &mut [Event], main_fraction: f64) {
+    let largest = events.iter().map(|e| e.burst.stress_drop_pa).fold(0.0, f64::max);
+    if largest <= 0.0 {
+        return;
+    }
+    let mains: Vec<usize> =
+        (0..events.len()).filter(|&i| events[i].burst.stress_drop_pa >= main_fraction * largest).collect();
+    let mut previous_start: Option<f64> = None;
+    for (k, &i) in mains.iter().enumerate() {
+        events[i].kind = EventKind::Main(k as u32 + 1);
+        events[i].recurrence_s = previous_start.map(|s| events[i].burst.start_s - s);
+        previous_start = Some(events[i].burst.start_s);
+    }
+    for i in 0..events.len() {
+        if matches!(events[i].kind, EventKind::Main(_)) {
+            continue;
+        }
+        let before = mains.iter().rposition(|&m| m < i);
+        let after = mains.iter().position(|&m| m > i);
+        let e = &events[i].burst;
+        events[i].kind = match (before, after) {
+            (Some(b), Some(a)) => {
+                let gap_before = e.start_s - events[mains[b]].burst.end_s;
+                let gap_after = events[mains[a]].burst.start_s - e.end_s;
+                if gap_before <= gap_after {
+                    EventKind::Aftershock(b as u32 + 1)
+                } else {
+                    EventKind::Foreshock(a as u32 + 1)
+                }
+            }
+            (Some(b), None) => EventKind::Aftershock(b as u32 + 1),
+            (None, Some(a)) => EventKind::Foreshock(a as u32 + 1),
+            (None, None) => EventKind::Minor,
+        };
+    }
+}

@@ -1,0 +1,97 @@
+//! The `stickslip` binary end to end: outputs read back with polars, errors and exit codes.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use polars::prelude::*;
+
+fn stickslip(args: &[&str], cwd: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_stickslip")).args(args).current_dir(cwd).output().expect("run stickslip")
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("stickslip-cli-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+const SMALL: &str = r#"
+version = 1
+name = "small"
+[block]
+nx = 4
+ny = 1
+nz = 2
+[shear]
+duration_s = 0.01
+driver_at_m = [[0.0, 0.0, 0.1]]
+[record]
+interval_s = 1e-4
+energy = true
+[[record.control]]
+nodes = [12]
+quantities = ["displacement", "acceleration"]
+components = ["x", "z"]
+"#;
+
+fn read(path: &Path) -> DataFrame {
+    ParquetReader::new(std::fs::File::open(path).unwrap()).finish().unwrap()
+}
+
+#[test]
+fn run_writes_series_and_control_tables_that_read_back() {
+    let dir = scratch("run");
+    std::fs::write(dir.join("small.toml"), SMALL).unwrap();
+    let out = stickslip(&["run", "small.toml", "--seed", "7", "--out", "out"], &dir);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(stdout.starts_with("seed 7: ") && stdout.contains("steps/s"), "{stdout}");
+    let series = read(&dir.join("out/series.parquet"));
+    // 0.01 s every 1e-4 s: 101 samples (t = 0 and the end included).
+    assert_eq!(series.height(), 101);
+    for col in
+        ["seed", "time_s", "shear_stress_pa", "normal_stress_pa", "mean_slip_m", "slipping_nodes", "kinetic_energy_j"]
+    {
+        assert!(series.column(col).is_ok(), "series lacks {col}");
+    }
+    assert_eq!(series.column("slipping_nodes").unwrap().dtype(), &DataType::UInt32);
+    let sigma = series.column("normal_stress_pa").unwrap().f64().unwrap().mean().unwrap();
+    let expected = 2400.0 * 9.81 * 0.2; // ρ·g·h
+    assert!((sigma / expected - 1.0).abs() < 0.01, "mean σ {sigma} vs ρgh {expected}");
+    let control = read(&dir.join("out/control.parquet"));
+    assert_eq!(control.height(), 2 * 101, "one node × two components × 101 samples");
+    let acc = control.column("acceleration_m_s2").unwrap();
+    assert_eq!(acc.null_count(), 0);
+    let vel = control.column("velocity_m_s").unwrap();
+    assert_eq!(vel.null_count(), control.height(), "velocity was not asked for");
+}
+
+#[test]
+fn default_output_folder_is_under_reports() {
+    let dir = scratch("default-out");
+    std::fs::write(dir.join("small.toml"), SMALL).unwrap();
+    let out = stickslip(&["run", "small.toml", "--seed", "3", "--quiet"], &dir);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(dir.join("reports/small/seed-3/series.parquet").exists());
+}
+
+#[test]
+fn bad_arguments_and_bad_files_fail_with_a_clear_message() {
+    let dir = scratch("errors");
+    let out = stickslip(&["run", "x.toml"], &dir);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--seed"));
+    let out = stickslip(&["run", "missing.toml", "--seed", "1"], &dir);
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("missing.toml") && err.contains("No such file"), "{err}");
+    std::fs::write(dir.join("bad.toml"), "version = 1\n[material]\npoisson = 0.7\n").unwrap();
+    let out = stickslip(&["run", "bad.toml", "--seed", "1"], &dir);
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("material.poisson = 0.7") && err.contains("0 < poisson < 0.5"), "{err}");
+    assert!(!dir.join("reports").exists(), "nothing may be written for a refused file");
+    let out = stickslip(&["frobnicate"], &dir);
+    assert_eq!(out.status.code(), Some(2));
+}
