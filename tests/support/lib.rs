@@ -28,3 +28,53 @@ pub fn scratch_dir(name: &str) -> PathBuf {
     std::fs::create_dir_all(&dir).expect("create scratch dir");
     dir
 }
+
+/// Every file under `dir` (recursively), as paths relative to `dir`, sorted.
+pub fn files_under(dir: &std::path::Path) -> Vec<PathBuf> {
+    fn walk(base: &std::path::Path, dir: &std::path::Path, out: &mut Vec<PathBuf>) {
+        for entry in std::fs::read_dir(dir).into_iter().flatten().flatten() {
+            let p = entry.path();
+            if p.is_dir() {
+                walk(base, &p, out);
+            } else {
+                out.push(p.strip_prefix(base).unwrap().to_path_buf());
+            }
+        }
+    }
+    let mut out = Vec::new();
+    walk(dir, dir, &mut out);
+    out.sort();
+    out
+}
+
+/// Every Parquet file under `dir` (recursively), as paths relative to `dir`, sorted.
+pub fn parquet_files(dir: &std::path::Path) -> Vec<PathBuf> {
+    files_under(dir).into_iter().filter(|p| p.extension().is_some_and(|e| e == "parquet")).collect()
+}
+
+/// Reads a Parquet file.
+pub fn read_table(path: &std::path::Path) -> polars::prelude::DataFrame {
+    use polars::prelude::*;
+    ParquetReader::new(std::fs::File::open(path).unwrap_or_else(|e| panic!("{}: {e}", path.display())))
+        .finish()
+        .unwrap()
+}
+
+/// Asserts that two output folders hold the same Parquet files with equal contents, ignoring
+/// the columns in `ignore` (e.g. wall times).
+pub fn assert_same_tables(a: &std::path::Path, b: &std::path::Path, ignore: &[&str]) {
+    let files = parquet_files(a);
+    assert!(!files.is_empty(), "no tables in {}", a.display());
+    assert_eq!(files, parquet_files(b), "different table files in {} and {}", a.display(), b.display());
+    for f in &files {
+        let mut x = read_table(&a.join(f));
+        let mut y = read_table(&b.join(f));
+        for col in ignore {
+            if x.column(col).is_ok() {
+                x = x.drop(col).unwrap();
+                y = y.drop(col).unwrap();
+            }
+        }
+        assert!(x.equals_missing(&y), "{} differs:\n{x}\n{y}", f.display());
+    }
+}

@@ -26,6 +26,44 @@ pub enum AnalysisError {
     /// The solver failed.
     #[error(transparent)]
     Solver(Box<SolverError>),
+    /// A file of ours could not be understood.
+    #[error("{}: {what}", path.display())]
+    Corrupt {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong.
+        what: String,
+    },
+    /// The output folder holds results of another pipeline.
+    #[error(
+        "{} holds results of another pipeline (hash {found}; this pipeline's is {expected}); nothing was run. \
+         Use --fresh to discard them, or --out to write elsewhere",
+        out.display()
+    )]
+    OtherPipeline {
+        /// The folder.
+        out: PathBuf,
+        /// Hash found there.
+        found: String,
+        /// Hash of the pipeline asked for.
+        expected: String,
+    },
+    /// The run was interrupted; finished seeds are kept.
+    #[error(
+        "interrupted: {done} of {total} seeds are finished in {}; run the same command again to resume",
+        out.display()
+    )]
+    Interrupted {
+        /// Seeds finished.
+        done: usize,
+        /// Seeds asked.
+        total: usize,
+        /// The folder.
+        out: PathBuf,
+    },
+    /// Something could not be set up.
+    #[error("{0}")]
+    Setup(String),
     /// Polars failed to build, read or write a table.
     #[error("table {what}")]
     Table {

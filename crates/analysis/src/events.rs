@@ -323,3 +323,114 @@ fn classify(events: &mut [Event], main_fraction: f64) {
         };
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use stickslip_solver::Channel;
+
+    const DT: f64 = 1e-5;
+
+    /// A synthetic run: τ rises at 300 Pa/ms and falls linearly through each burst of slip
+    /// rate; `bursts` are (first sample, one past last, slip rate, stress drop), at least two
+    /// samples long.
+    fn synthetic(n: usize, bursts: &[(usize, usize, f64, f64)]) -> Records {
+        let mut v = vec![0.0; n];
+        let mut tau = vec![0.0; n];
+        let mut delta = vec![0.0; n];
+        let mut level = 0.0;
+        for i in 0..n {
+            match bursts.iter().find(|b| i >= b.0 && i < b.1) {
+                // Inside a burst τ falls linearly from its level at the first sample to the
+                // level minus the drop at the last one.
+                Some(&(a, b, rate, drop)) => {
+                    v[i] = rate;
+                    if i > a {
+                        level -= drop / (b - a - 1) as f64;
+                    }
+                }
+                // Flat for 100 samples after a burst (so sub-events of one event are not
+                // separated by reloading), rising otherwise.
+                None if !bursts.iter().any(|b| i >= b.1 && i < b.1 + 100) => level += 300.0e3 * DT,
+                None => {}
+            }
+            tau[i] = level;
+            delta[i] = if i == 0 { 0.0 } else { delta[i - 1] + v[i] * DT };
+        }
+        Records {
+            time_s: (0..n).map(|i| i as f64 * DT).collect(),
+            channels: vec![
+                (Channel::ShearStress, tau),
+                (Channel::MeanSlip, delta),
+                (Channel::MeanSlipRate, v),
+                (Channel::SlippingNodes, vec![1.0; n]),
+            ],
+            control: vec![],
+        }
+    }
+
+    #[test]
+    fn synthetic_events_and_sub_events_are_found_exactly() {
+        let bursts = [
+            // S1: two sub-events 0.5 ms apart, 8 kPa in all.
+            (2000, 2100, 1e-3, 4000.0),
+            (2150, 2250, 1e-3, 4000.0),
+            // Foreshock of S2 (1 kPa).
+            (6000, 6050, 5e-4, 1000.0),
+            // S2: one sub-event with a dip of the slip rate shorter than the quiet time.
+            (7000, 7080, 1e-3, 3500.0),
+            (7080, 7100, 1e-6, 0.0),
+            (7100, 7200, 1e-3, 3500.0),
+            // Aftershock of S2, 4 ms after it.
+            (7600, 7650, 5e-4, 1000.0),
+            // S3: three sub-events.
+            (12000, 12050, 1e-3, 2000.0),
+            (12100, 12150, 1e-3, 2000.0),
+            (12200, 12300, 1e-3, 2000.0),
+            // Slip without a stress drop: not an event.
+            (15000, 15050, 1e-3, 0.0),
+        ];
+        let rec = synthetic(20000, &bursts);
+        let params = EventParams { smoothing_s: DT, ..EventParams::default() };
+        let cat = detect(&rec, 22, 0.1, &params).unwrap();
+        let kinds: Vec<EventKind> = cat.events.iter().map(|e| e.kind).collect();
+        assert_eq!(
+            kinds,
+            vec![
+                EventKind::Main(1),
+                EventKind::Foreshock(2),
+                EventKind::Main(2),
+                EventKind::Aftershock(2),
+                EventKind::Main(3)
+            ]
+        );
+        let subs: Vec<usize> = cat.events.iter().map(|e| e.sub_events.len()).collect();
+        assert_eq!(subs, vec![2, 1, 1, 1, 3]);
+        assert_eq!(cat.sub_events.len(), 8);
+        // Starts at the first sample of each burst, ends at the first sample after it.
+        let expected = [(2000, 2250), (6000, 6050), (7000, 7200), (7600, 7650), (12000, 12300)];
+        for (e, (a, b)) in cat.events.iter().zip(expected) {
+            assert!((e.burst.start_s - a as f64 * DT).abs() <= DT * 1.0001, "start {} vs {a}", e.burst.start_s / DT);
+            assert!((e.burst.end_s - b as f64 * DT).abs() <= DT * 1.0001, "end {} vs {b}", e.burst.end_s / DT);
+        }
+        let sub_starts: Vec<usize> = cat.sub_events.iter().map(|s| (s.start_s / DT).round() as usize).collect();
+        assert_eq!(sub_starts, vec![2000, 2150, 6000, 7000, 7600, 12000, 12100, 12200]);
+        let drops: Vec<f64> = cat.events.iter().map(|e| e.burst.stress_drop_pa).collect();
+        for (d, want) in drops.iter().zip([8000.0, 1000.0, 7000.0, 1000.0, 6000.0]) {
+            assert!((d - want).abs() < 1e-6 * want, "drop {d} vs {want}");
+        }
+        let s2 = &cat.events[2];
+        assert!((s2.recurrence_s.unwrap() - 0.05).abs() < 1e-12);
+        // 180 samples at 1 mm/s and 20 at 1 µm/s, within one sample.
+        let slip = (180.0 * 1e-3 + 20.0 * 1e-6) * DT;
+        assert!((s2.burst.slip_m - slip).abs() <= 1e-3 * DT * 1.0001, "slip {} vs {slip}", s2.burst.slip_m);
+        assert!(cat.events[0].recurrence_s.is_none() && cat.events[1].recurrence_s.is_none());
+    }
+
+    #[test]
+    fn no_main_shocks_without_events() {
+        let rec = synthetic(3000, &[]);
+        let cat = detect(&rec, 22, 0.1, &EventParams::default()).unwrap();
+        assert!(cat.events.is_empty() && cat.sub_events.is_empty());
+    }
+}

@@ -1,9 +1,14 @@
 //! stickslip analysis: pipelines, tables (Parquet), and everything done with finished runs.
 #![deny(missing_docs)]
 
+pub mod catalogue;
+pub mod ensemble;
 pub mod error;
 pub mod events;
 pub mod pipeline;
+pub mod similarity;
+pub mod stats;
+pub mod summary;
 pub mod tables;
 
 pub use error::AnalysisError;

@@ -14,6 +14,8 @@ use stickslip_solver::scene::{
 use stickslip_solver::{FieldError, Scene, SceneFile, SolverError};
 
 use crate::error::AnalysisError;
+use crate::events::EventParams;
+use crate::similarity::SimilarityParams;
 
 /// The pipeline-file version this build reads.
 pub const PIPELINE_VERSION: i64 = 1;
@@ -78,6 +80,21 @@ pub struct PipelineFile {
     /// Scene `[record]`.
     #[serde(default)]
     pub record: RecordSection,
+    /// `[events]`: event detection thresholds.
+    #[serde(default)]
+    pub events: EventParams,
+    /// `[similarity]`: the prototype fault.
+    #[serde(default)]
+    pub similarity: SimilarityParams,
+}
+
+/// Everything that determines one seed's results, hashed to tell results of a changed pipeline
+/// apart (seeds, name and description are not part of it: adding seeds keeps finished ones).
+#[derive(Serialize)]
+struct Hashed<'a> {
+    scene: &'a SceneFile,
+    events: &'a EventParams,
+    similarity: &'a SimilarityParams,
 }
 
 /// A validated pipeline.
@@ -91,8 +108,13 @@ pub struct Pipeline {
     pub seeds: Vec<u64>,
     /// The scene.
     pub scene: Scene,
-    /// Hash of everything that determines a seed's results (the scene), as 16 hex digits.
-    pub scene_hash: String,
+    /// Event detection.
+    pub events: EventParams,
+    /// Similarity scaling.
+    pub similarity: SimilarityParams,
+    /// Hash of everything that determines a seed's results (scene, events, similarity), as 16
+    /// hex digits.
+    pub hash: String,
     /// Where it was read from.
     pub source: Option<PathBuf>,
 }
@@ -158,6 +180,8 @@ impl Pipeline {
             boundary: file.boundary.clone(),
             record: file.record.clone(),
         };
+        check_events(&file.events, &mut errors);
+        check_similarity(&file.similarity, &mut errors);
         let scene = match Scene::try_from(scene_file) {
             Ok(s) => Some(s),
             Err(SolverError::InvalidScene(mut e)) => {
@@ -170,15 +194,53 @@ impl Pipeline {
             return Err(SolverError::InvalidScene(errors));
         }
         let scene = scene.expect("no errors means a scene");
-        let scene_hash = hash_scene(&scene.file);
-        Ok(Pipeline { name, description: file.description, seeds, scene, scene_hash, source: None })
+        let hash = hash_toml(&Hashed { scene: &scene.file, events: &file.events, similarity: &file.similarity });
+        Ok(Pipeline {
+            name,
+            description: file.description,
+            seeds,
+            scene,
+            events: file.events,
+            similarity: file.similarity,
+            hash,
+            source: None,
+        })
     }
 }
 
-/// FNV-1a (64 bit) of the canonical TOML of the scene: equal for files that differ only in
+fn positive(errors: &mut Vec<FieldError>, field: &str, v: f64) {
+    if !(v > 0.0 && v.is_finite()) {
+        errors.push(refuse(field, v, &format!("0 < {} (finite)", field.rsplit('.').next().unwrap_or(field))));
+    }
+}
+
+fn check_events(e: &EventParams, errors: &mut Vec<FieldError>) {
+    positive(errors, "events.smoothing_s", e.smoothing_s);
+    positive(errors, "events.v_on_m_s", e.v_on_m_s);
+    positive(errors, "events.quiet_s", e.quiet_s);
+    if !(e.v_off_m_s > 0.0 && e.v_off_m_s < e.v_on_m_s) {
+        errors.push(refuse("events.v_off_m_s", e.v_off_m_s, "0 < v_off_m_s < v_on_m_s (hysteresis)"));
+    }
+    if !(e.merge_gap_s >= 0.0 && e.merge_gap_s.is_finite()) {
+        errors.push(refuse("events.merge_gap_s", e.merge_gap_s, "0 ≤ merge_gap_s (finite)"));
+    }
+    if !(e.min_drop_pa >= 0.0 && e.min_drop_pa.is_finite()) {
+        errors.push(refuse("events.min_drop_pa", e.min_drop_pa, "0 ≤ min_drop_pa (finite)"));
+    }
+    if !(e.main_fraction > 0.0 && e.main_fraction <= 1.0) {
+        errors.push(refuse("events.main_fraction", e.main_fraction, "0 < main_fraction ≤ 1"));
+    }
+}
+
+fn check_similarity(s: &SimilarityParams, errors: &mut Vec<FieldError>) {
+    positive(errors, "similarity.prototype_length_m", s.prototype_length_m);
+    positive(errors, "similarity.prototype_rate_m_s", s.prototype_rate_m_s);
+}
+
+/// FNV-1a (64 bit) of the canonical TOML of `value`: equal for files that differ only in
 /// layout, comments or defaults written out, different as soon as a value changes.
-pub fn hash_scene(scene: &SceneFile) -> String {
-    let canonical = toml::to_string(scene).expect("a scene serialises");
+fn hash_toml<T: Serialize>(value: &T) -> String {
+    let canonical = toml::to_string(value).expect("pipeline sections serialise");
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
     for b in canonical.bytes() {
         h ^= u64::from(b);
@@ -204,8 +266,12 @@ mod tests {
         let a = Pipeline::from_toml("version = 1\n[material]\nyoung_cv = 0.05\n", "a").unwrap();
         let b = Pipeline::from_toml("version = 1 # same\n", "b").unwrap();
         let c = Pipeline::from_toml("version = 1\n[material]\nyoung_cv = 0.06\n", "c").unwrap();
-        assert_eq!(a.scene_hash, b.scene_hash);
-        assert_ne!(a.scene_hash, c.scene_hash);
+        assert_eq!(a.hash, b.hash);
+        assert_ne!(a.hash, c.hash);
+        let d = Pipeline::from_toml("version = 1\n[seeds]\nlist = [1, 2]\n", "d").unwrap();
+        assert_eq!(a.hash, d.hash, "the seed list is not part of the hash");
+        let e = Pipeline::from_toml("version = 1\n[events]\nmin_drop_pa = 100.0\n", "e").unwrap();
+        assert_ne!(a.hash, e.hash, "event thresholds are");
     }
 
     #[test]

@@ -110,3 +110,73 @@ pub fn read_parquet(path: &Path) -> Result<DataFrame, AnalysisError> {
     let file = File::open(path).map_err(|e| AnalysisError::io(path, e))?;
     ParquetReader::new(file).finish().map_err(|e| AnalysisError::table(path.display().to_string(), e))
 }
+
+/// Builds a frame column by column.
+pub(crate) struct Frame {
+    height: usize,
+    cols: Vec<Column>,
+}
+
+impl Frame {
+    pub(crate) fn new(height: usize) -> Self {
+        Frame { height, cols: Vec::new() }
+    }
+
+    pub(crate) fn f64(mut self, name: &str, v: Vec<f64>) -> Self {
+        self.cols.push(Column::new(name.into(), v));
+        self
+    }
+
+    pub(crate) fn opt_f64(mut self, name: &str, v: Vec<Option<f64>>) -> Self {
+        self.cols.push(Column::new(name.into(), v));
+        self
+    }
+
+    pub(crate) fn u32(mut self, name: &str, v: Vec<u32>) -> Self {
+        self.cols.push(Column::new(name.into(), v));
+        self
+    }
+
+    pub(crate) fn u64(mut self, name: &str, v: Vec<u64>) -> Self {
+        self.cols.push(Column::new(name.into(), v));
+        self
+    }
+
+    pub(crate) fn str(mut self, name: &str, v: Vec<String>) -> Self {
+        self.cols.push(Column::new(name.into(), v));
+        self
+    }
+
+    pub(crate) fn finish(self, what: &str) -> Result<DataFrame, AnalysisError> {
+        DataFrame::new(self.height, self.cols).map_err(|e| AnalysisError::table(what, e))
+    }
+}
+
+/// Lazily scans every Parquet file matching `glob` (e.g. `dir/*.parquet`) and collects them,
+/// or `None` when no file matches.
+pub fn scan_glob(glob: &Path) -> Result<Option<DataFrame>, AnalysisError> {
+    let pattern = glob.display().to_string();
+    let dir = glob.parent().unwrap_or(Path::new("."));
+    let any = std::fs::read_dir(dir)
+        .map(|mut d| d.any(|e| e.is_ok_and(|e| e.path().extension().is_some_and(|x| x == "parquet"))))
+        .unwrap_or(false);
+    if !any {
+        return Ok(None);
+    }
+    let lf = LazyFrame::scan_parquet(PlRefPath::new(&pattern), ScanArgsParquet::default())
+        .map_err(|e| AnalysisError::table(&pattern, e))?;
+    lf.collect().map(Some).map_err(|e| AnalysisError::table(&pattern, e))
+}
+
+/// Schema, row count and the first `rows` rows of a Parquet file or glob, as text.
+pub fn describe(path: &Path, rows: usize) -> Result<String, AnalysisError> {
+    let is_glob = path.to_string_lossy().contains('*');
+    let df = if is_glob {
+        scan_glob(path)?.ok_or_else(|| AnalysisError::Setup(format!("no file matches {}", path.display())))?
+    } else {
+        read_parquet(path)?
+    };
+    let head = df.head(Some(rows));
+    let schema: Vec<String> = df.schema().iter().map(|(n, t)| format!("  {n}: {t}")).collect();
+    Ok(format!("{}: {} rows × {} columns\n{}\n{head}", path.display(), df.height(), df.width(), schema.join("\n")))
+}

@@ -8,7 +8,15 @@ use std::time::Instant;
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use stickslip_analysis::Pipeline;
+use stickslip_analysis::ensemble::{EnsembleOptions, run_ensemble};
+use stickslip_analysis::similarity::{
+    ModelEvent, SECONDS_PER_YEAR, SimilarityParams, moment_magnitude, riera_magnitude, scale,
+};
+use stickslip_analysis::summary::digest;
 use stickslip_analysis::tables::{control_frame, series_frame, write_parquet_atomic};
 use stickslip_solver::critical::critical_time_step;
 use stickslip_solver::statics::uniaxial_moduli;
@@ -38,6 +46,37 @@ enum Command {
         #[arg(long, short)]
         quiet: bool,
     },
+    /// Run a pipeline's seeds in parallel and write every table (resumable).
+    Pipeline {
+        /// Pipeline files (TOML), e.g. pipelines/paper.toml.
+        #[arg(required = true)]
+        pipelines: Vec<PathBuf>,
+        /// Output folder [default: reports/<pipeline name>]; only with one pipeline.
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Seeds to run instead of the pipeline's, e.g. "1,5,10-20".
+        #[arg(long)]
+        seeds: Option<String>,
+        /// Worker threads [default: one per core].
+        #[arg(long, default_value_t = 0)]
+        threads: usize,
+        /// Discard results of a different pipeline found in the output folder.
+        #[arg(long)]
+        fresh: bool,
+        /// No progress bar.
+        #[arg(long, short)]
+        quiet: bool,
+    },
+    /// Scale a model event to a prototype fault (SPEC §9) and print the numbers.
+    Similarity(SimilarityArgs),
+    /// Print the schema and first rows of a Parquet table (or every part matching a glob).
+    Show {
+        /// A Parquet file, or a glob such as 'reports/paper/tables/events/*.parquet'.
+        table: PathBuf,
+        /// Rows to print.
+        #[arg(long, default_value_t = 10)]
+        rows: usize,
+    },
     /// Check a pipeline file and print the scene it builds (nothing is run).
     Check {
         /// Pipeline file (TOML).
@@ -48,10 +87,44 @@ enum Command {
     },
 }
 
+/// Inputs of `stickslip similarity`.
+#[derive(clap::Args, Debug)]
+struct SimilarityArgs {
+    /// Mean stress drop Δσ of the event (Pa).
+    #[arg(long)]
+    stress_drop_pa: f64,
+    /// Model fault length L_m (m).
+    #[arg(long, default_value_t = 1.0)]
+    model_length_m: f64,
+    /// Model rupture area A_m (m²).
+    #[arg(long, default_value_t = 0.1)]
+    model_area_m2: f64,
+    /// Prototype fault length L_p (m).
+    #[arg(long, default_value_t = 1.0e4)]
+    prototype_length_m: f64,
+    /// Event duration at model scale (s).
+    #[arg(long)]
+    duration_s: Option<f64>,
+    /// Recurrence at model scale (s).
+    #[arg(long)]
+    recurrence_s: Option<f64>,
+    /// Model loading rate u̇_m (m/s).
+    #[arg(long, default_value_t = 1.1e-4)]
+    model_rate_m_s: f64,
+    /// Prototype loading rate u̇_p (m/s) [default: 1 cm/yr].
+    #[arg(long, default_value_t = 3.17e-10)]
+    prototype_rate_m_s: f64,
+}
+
 fn main() {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Run { pipeline, seed, out, quiet } => run(&pipeline, seed, out, quiet),
+        Command::Pipeline { pipelines, out, seeds, threads, fresh, quiet } => {
+            ensemble(&pipelines, out, seeds.as_deref(), threads, fresh, quiet)
+        }
+        Command::Similarity(args) => similarity(&args),
+        Command::Show { table, rows } => show(&table, rows),
         Command::Check { pipeline, seed } => check(&pipeline, seed),
     };
     if let Err(e) = result {
@@ -122,7 +195,7 @@ fn check(path: &Path, seed: u64) -> Result<()> {
     let k = model.bar_stiffness(seed)?;
     let crit = critical_time_step(&model, &k)?;
     let e = lattice.extent();
-    println!("pipeline {} ({}), scene hash {}", pipeline.name, path.display(), pipeline.scene_hash);
+    println!("pipeline {} ({}), scene hash {}", pipeline.name, path.display(), pipeline.hash);
     println!(
         "  seeds: {} ({}…)",
         pipeline.seeds.len(),
@@ -183,5 +256,141 @@ fn check(path: &Path, seed: u64) -> Result<()> {
             .collect::<Vec<_>>()
             .join("; ")
     );
+    Ok(())
+}
+
+/// Parses "1,5,10-20" into seeds.
+fn parse_seeds(text: &str) -> Result<Vec<u64>> {
+    let mut seeds = Vec::new();
+    for part in text.split(',').map(str::trim).filter(|p| !p.is_empty()) {
+        if let Some((a, b)) = part.split_once('-') {
+            let (a, b): (u64, u64) = (
+                a.trim().parse().with_context(|| format!("--seeds: {a:?} is not a seed"))?,
+                b.trim().parse().with_context(|| format!("--seeds: {b:?} is not a seed"))?,
+            );
+            anyhow::ensure!(a <= b, "--seeds: range {part} runs backwards");
+            seeds.extend(a..=b);
+        } else {
+            seeds.push(part.parse().with_context(|| format!("--seeds: {part:?} is not a seed"))?);
+        }
+    }
+    anyhow::ensure!(!seeds.is_empty(), "--seeds: no seed given");
+    seeds.dedup();
+    Ok(seeds)
+}
+
+fn ensemble(
+    paths: &[PathBuf],
+    out: Option<PathBuf>,
+    seeds: Option<&str>,
+    threads: usize,
+    fresh: bool,
+    quiet: bool,
+) -> Result<()> {
+    anyhow::ensure!(out.is_none() || paths.len() == 1, "--out needs exactly one pipeline");
+    // Validate every file before running any.
+    let pipelines = paths.iter().map(|p| Pipeline::load(p)).collect::<Result<Vec<_>, _>>()?;
+    let cancel = Arc::new(AtomicBool::new(false));
+    {
+        let cancel = cancel.clone();
+        ctrlc::set_handler(move || {
+            if cancel.swap(true, Ordering::SeqCst) {
+                std::process::exit(130);
+            }
+            eprintln!("\ninterrupt: finishing the seeds being written (Ctrl-C again to stop at once)");
+        })
+        .context("installing the Ctrl-C handler")?;
+    }
+    for pipeline in &pipelines {
+        let seeds = match seeds {
+            Some(s) => parse_seeds(s)?,
+            None => pipeline.seeds.clone(),
+        };
+        let out = out.clone().unwrap_or_else(|| PathBuf::from("reports").join(&pipeline.name));
+        let pb = progress_bar(quiet, seeds.len() as u64);
+        pb.set_style(
+            ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} seeds ({elapsed}, ETA {eta})")
+                .expect("valid template")
+                .progress_chars("=> "),
+        );
+        pb.set_message(pipeline.name.clone());
+        let options = EnsembleOptions { out: out.clone(), threads, seeds, fresh };
+        let report = run_ensemble(pipeline, &options, &|done, _| pb.set_position(done as u64), &cancel);
+        pb.finish_and_clear();
+        let report = report?;
+        println!(
+            "{}: {} seeds ({} run now, {} already done, {} failed) in {:.1} s → {}",
+            pipeline.name,
+            report.ran + report.skipped,
+            report.ran,
+            report.skipped,
+            report.failed.len(),
+            report.wall_time_s,
+            report.out.join("tables").display()
+        );
+        for (seed, msg) in report.failed.iter().take(5) {
+            println!("  seed {seed} failed: {msg}");
+        }
+        println!("{}", digest(&out)?);
+    }
+    Ok(())
+}
+
+fn similarity(a: &SimilarityArgs) -> Result<()> {
+    for (name, v) in [
+        ("--stress-drop-pa", a.stress_drop_pa),
+        ("--model-length-m", a.model_length_m),
+        ("--model-area-m2", a.model_area_m2),
+        ("--prototype-length-m", a.prototype_length_m),
+        ("--model-rate-m-s", a.model_rate_m_s),
+        ("--prototype-rate-m-s", a.prototype_rate_m_s),
+    ] {
+        anyhow::ensure!(v > 0.0 && v.is_finite(), "{name} = {v}: must be positive");
+    }
+    let params = SimilarityParams {
+        prototype_length_m: a.prototype_length_m,
+        prototype_rate_m_s: a.prototype_rate_m_s,
+        ..SimilarityParams::default()
+    };
+    let e = ModelEvent {
+        stress_drop_pa: a.stress_drop_pa,
+        model_length_m: a.model_length_m,
+        model_area_m2: a.model_area_m2,
+        duration_s: a.duration_s,
+        recurrence_s: a.recurrence_s,
+        model_rate_m_s: a.model_rate_m_s,
+    };
+    let s = scale(&e, &params);
+    let row = |k: &str, v: String| println!("  {k:<44} {v}");
+    println!("similarity (SPEC §9): λ = L_p/L_m");
+    row("λ", format!("{:.6e}", s.lambda));
+    row("prototype rupture area A_p = λ²·A_m", format!("{:.4e} m²", s.prototype_area_m2));
+    if let Some(d) = s.prototype_duration_s {
+        row("prototype duration λ·t_m", format!("{d:.4} s"));
+    }
+    if let Some(r) = s.prototype_recurrence_s {
+        row("prototype recurrence Δt_m·λ·u̇_m/u̇_p", format!("{r:.4e} s = {:.3} years", r / SECONDS_PER_YEAR));
+    }
+    row("M0, paper's Eq. 15 (Δσ·L_p·A_p·λ)", format!("{:.4e} dyne·cm", s.m0_paper_dyne_cm));
+    row("  Riera M, interplate (X = 0)", format!("{:.3}", riera_magnitude(s.m0_paper_dyne_cm, false)));
+    row("  Riera M, intraplate (X = 1)", format!("{:.3}", riera_magnitude(s.m0_paper_dyne_cm, true)));
+    row("  Mw (Hanks & Kanamori)", format!("{:.3}", moment_magnitude(s.m0_paper_dyne_cm)));
+    row("M0, consistent (Δσ·L_p·A_p)", format!("{:.4e} dyne·cm", s.m0_consistent_dyne_cm));
+    row("  Riera M, interplate (X = 0)", format!("{:.3}", riera_magnitude(s.m0_consistent_dyne_cm, false)));
+    row("  Riera M, intraplate (X = 1)", format!("{:.3}", riera_magnitude(s.m0_consistent_dyne_cm, true)));
+    row("  Mw (Hanks & Kanamori)", format!("{:.3}", moment_magnitude(s.m0_consistent_dyne_cm)));
+    Ok(())
+}
+
+fn show(path: &Path, rows: usize) -> Result<()> {
+    // SAFETY: set before any other thread exists (polars reads these when formatting).
+    unsafe {
+        std::env::set_var("POLARS_FMT_MAX_ROWS", rows.to_string());
+        std::env::set_var("POLARS_FMT_MAX_COLS", "60");
+        std::env::set_var("POLARS_FMT_STR_LEN", "40");
+        std::env::set_var("POLARS_TABLE_WIDTH", "400");
+    }
+    let text = stickslip_analysis::tables::describe(path, rows)?;
+    println!("{text}");
     Ok(())
 }

@@ -95,3 +95,37 @@ fn bad_arguments_and_bad_files_fail_with_a_clear_message() {
     let out = stickslip(&["frobnicate"], &dir);
     assert_eq!(out.status.code(), Some(2));
 }
+
+#[test]
+fn similarity_calculator_prints_the_papers_numbers() {
+    let dir = scratch("similarity");
+    let out = stickslip(
+        &[
+            "similarity",
+            "--stress-drop-pa",
+            "7600",
+            "--model-length-m",
+            "1",
+            "--model-area-m2",
+            "0.1",
+            "--prototype-length-m",
+            "10000",
+            "--duration-s",
+            "0.0021",
+            "--recurrence-s",
+            "0.0258",
+        ],
+        &dir,
+    );
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    let snapshot = include_str!("snapshots/similarity_paper_s2.txt");
+    assert_eq!(text, snapshot, "output changed; if on purpose, update tests/snapshots/similarity_paper_s2.txt");
+    // The figures SPEC §9 pins: 7.6e25 dyne·cm, M = 6.778, 7.6e21, 21 s, 2.83 years.
+    for want in ["7.6000e25 dyne·cm", "6.778", "7.6000e21 dyne·cm", "21.0000 s", "2.837 years"] {
+        assert!(text.contains(want), "missing {want}:\n{text}");
+    }
+    let bad = stickslip(&["similarity", "--stress-drop-pa=-5"], &dir);
+    assert_eq!(bad.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("--stress-drop-pa = -5: must be positive"));
+}

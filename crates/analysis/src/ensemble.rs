@@ -1,0 +1,318 @@
+//! Ensembles: many seeds in parallel, each analysed and written as it finishes; resumable.
+//!
+//! Output folder layout (`<out>` is `reports/<pipeline name>` by default):
+//! ```text
+//! <out>/manifest.toml            pipeline name and hash of the results in this folder
+//! <out>/pipeline.toml            copy of the pipeline file
+//! <out>/tables/<table>/seed-<seed>.parquet   one part per seed: runs, series, control, events,
+//!                                            sub_events, similarity
+//! <out>/tables/<table>.parquet   runs, events, sub_events, similarity gathered over all seeds
+//! <out>/tables/summary.parquet   statistics across seeds
+//! ```
+//! Seeds run in parallel on a rayon pool, each owning its own solver state; finished seeds go
+//! through a bounded channel to the writing thread, so only a few series are in memory at once
+//! (and polars is never called from inside the rayon pool). Every part is written atomically
+//! (temporary file, then rename) and a seed's `runs` part is written last: a seed counts as
+//! finished when that part exists. A rerun skips finished seeds and runs the rest; a folder that
+//! holds results of a pipeline with another hash is refused (or discarded with `fresh`).
+
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc;
+use std::time::Instant;
+
+use polars::prelude::*;
+use rayon::prelude::*;
+use stickslip_solver::{Model, RunOptions, RunOutput, SolverError, run_seed};
+
+use crate::catalogue::{
+    RunFacts, RunRow, acceleration_channels, events_frame, runs_frame, similarity_frame, sub_events_frame,
+};
+use crate::error::AnalysisError;
+use crate::events::{Catalogue, detect};
+use crate::pipeline::Pipeline;
+use crate::summary::summary_frame;
+use crate::tables::{control_frame, scan_glob, series_frame, write_parquet_atomic, write_text_atomic};
+
+/// Per-seed tables, in the order they are written (`runs` last marks the seed finished).
+pub const SEED_TABLES: [&str; 6] = ["series", "control", "events", "sub_events", "similarity", "runs"];
+/// Tables gathered over all seeds into one file each.
+pub const GATHERED_TABLES: [&str; 4] = ["runs", "events", "sub_events", "similarity"];
+
+/// How to run an ensemble.
+#[derive(Clone, Debug)]
+pub struct EnsembleOptions {
+    /// Output folder.
+    pub out: PathBuf,
+    /// Worker threads (0: one per core).
+    pub threads: usize,
+    /// Seeds to run (usually the pipeline's).
+    pub seeds: Vec<u64>,
+    /// Discard results of another pipeline found in `out` instead of refusing.
+    pub fresh: bool,
+}
+
+/// What an ensemble did.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EnsembleReport {
+    /// Seeds run now.
+    pub ran: usize,
+    /// Seeds found finished and skipped.
+    pub skipped: usize,
+    /// Seeds that failed, with their message (run now or before).
+    pub failed: Vec<(u64, String)>,
+    /// Wall time (s).
+    pub wall_time_s: f64,
+    /// Output folder.
+    pub out: PathBuf,
+}
+
+/// Path of a seed's part of `table`.
+pub fn part_path(out: &Path, table: &str, seed: u64) -> PathBuf {
+    out.join("tables").join(table).join(format!("seed-{seed:010}.parquet"))
+}
+
+/// Glob of the parts of `table`.
+pub fn part_glob(out: &Path, table: &str) -> PathBuf {
+    out.join("tables").join(table).join("*.parquet")
+}
+
+/// Whether `seed` has finished in `out`.
+pub fn is_finished(out: &Path, seed: u64) -> bool {
+    part_path(out, "runs", seed).exists()
+}
+
+/// Reads the hash recorded in `<out>/manifest.toml`, if any.
+pub fn manifest_hash(out: &Path) -> Result<Option<String>, AnalysisError> {
+    let path = out.join("manifest.toml");
+    if !path.exists() {
+        return Ok(None);
+    }
+    let text = std::fs::read_to_string(&path).map_err(|e| AnalysisError::io(&path, e))?;
+    let table: toml::Table =
+        toml::from_str(&text).map_err(|e| AnalysisError::Corrupt { path: path.clone(), what: e.to_string() })?;
+    Ok(table.get("pipeline_hash").and_then(|v| v.as_str()).map(str::to_string))
+}
+
+/// Claims `out` for `pipeline`: refuses (or, with `fresh`, clears) results of another pipeline,
+/// then writes the manifest and a copy of the pipeline file.
+pub fn prepare_output(out: &Path, pipeline: &Pipeline, fresh: bool) -> Result<(), AnalysisError> {
+    if let Some(found) = manifest_hash(out)?
+        && found != pipeline.hash
+    {
+        if !fresh {
+            return Err(AnalysisError::OtherPipeline {
+                out: out.to_path_buf(),
+                found,
+                expected: pipeline.hash.clone(),
+            });
+        }
+        let tables = out.join("tables");
+        if tables.exists() {
+            std::fs::remove_dir_all(&tables).map_err(|e| AnalysisError::io(&tables, e))?;
+        }
+    }
+    let manifest = format!(
+        "# Written by stickslip {}: every table in this folder comes from this pipeline.\nname = {:?}\npipeline_hash = {:?}\n",
+        env!("CARGO_PKG_VERSION"),
+        pipeline.name,
+        pipeline.hash
+    );
+    write_text_atomic(&out.join("manifest.toml"), &manifest)?;
+    if let Some(src) = &pipeline.source {
+        let text = std::fs::read_to_string(src).map_err(|e| AnalysisError::io(src, e))?;
+        write_text_atomic(&out.join("pipeline.toml"), &text)?;
+    }
+    Ok(())
+}
+
+/// One seed, simulated and analysed.
+struct SeedResult {
+    seed: u64,
+    outcome: Result<(RunOutput, Catalogue), SolverError>,
+    wall_time_s: f64,
+}
+
+fn simulate(model: &Model, pipeline: &Pipeline, seed: u64, cancel: &AtomicBool) -> SeedResult {
+    let start = Instant::now();
+    let mut check = |_: f64| {
+        if cancel.load(Ordering::Relaxed) {
+            std::ops::ControlFlow::Break(())
+        } else {
+            std::ops::ControlFlow::Continue(())
+        }
+    };
+    let outcome = run_seed(model, seed, RunOptions::default(), &mut check).and_then(|out| {
+        let cat = detect(&out.records, model.contact().len(), model.lattice().contact_area(), &pipeline.events)
+            .map_err(|e| SolverError::Numerical(e.to_string()))?;
+        Ok((out, cat))
+    });
+    SeedResult { seed, outcome, wall_time_s: start.elapsed().as_secs_f64() }
+}
+
+fn write_seed(out: &Path, pipeline: &Pipeline, model: &Model, r: SeedResult) -> Result<Option<String>, AnalysisError> {
+    let channels = acceleration_channels(model);
+    let (row, failure) = match &r.outcome {
+        Ok((run, cat)) => {
+            let mut frames = [
+                ("series", series_frame(r.seed, &run.records)?),
+                ("control", control_frame(r.seed, &run.records)?),
+                ("events", events_frame(r.seed, cat, &channels)?),
+                ("sub_events", sub_events_frame(r.seed, cat, &channels)?),
+                ("similarity", similarity_frame(r.seed, cat, pipeline)?),
+            ];
+            for (table, df) in &mut frames {
+                write_parquet_atomic(df, &part_path(out, table, r.seed))?;
+            }
+            (RunRow { seed: r.seed, outcome: Ok(RunFacts::of(run, cat)), wall_time_s: r.wall_time_s }, None)
+        }
+        Err(e) => {
+            let msg = e.to_string();
+            (RunRow { seed: r.seed, outcome: Err(msg.clone()), wall_time_s: r.wall_time_s }, Some(msg))
+        }
+    };
+    write_parquet_atomic(&mut runs_frame(&[row], &pipeline.hash)?, &part_path(out, "runs", r.seed))?;
+    Ok(failure)
+}
+
+/// Runs the seeds of `options` that have not finished in `options.out`, then gathers the tables
+/// and the statistics. `on_seed(done, total)` is called after each seed is written; setting
+/// `cancel` stops the running seeds (finished ones are kept) and returns
+/// [`AnalysisError::Interrupted`].
+pub fn run_ensemble(
+    pipeline: &Pipeline,
+    options: &EnsembleOptions,
+    on_seed: &(dyn Fn(usize, usize) + Sync),
+    cancel: &AtomicBool,
+) -> Result<EnsembleReport, AnalysisError> {
+    let start = Instant::now();
+    let out = &options.out;
+    prepare_output(out, pipeline, options.fresh)?;
+    let pending: Vec<u64> = options.seeds.iter().copied().filter(|&s| !is_finished(out, s)).collect();
+    remove_stale_temporaries(out, &pending)?;
+    let skipped = options.seeds.len() - pending.len();
+    let total = options.seeds.len();
+    on_seed(skipped, total);
+    let model = Model::new(pipeline.scene.clone());
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(options.threads)
+        .build()
+        .map_err(|e| AnalysisError::Setup(format!("thread pool: {e}")))?;
+    let (tx, rx) = mpsc::sync_channel::<SeedResult>(2 * pool.current_num_threads());
+    let mut failed = Vec::new();
+    let mut done = skipped;
+    let mut ran = 0;
+    let mut write_error = None;
+    std::thread::scope(|scope| {
+        let model = &model;
+        let pending = &pending;
+        scope.spawn(move || {
+            pool.install(|| {
+                pending.par_iter().for_each_with(tx, |tx, &seed| {
+                    if cancel.load(Ordering::Relaxed) {
+                        return;
+                    }
+                    let _ = tx.send(simulate(model, pipeline, seed, cancel));
+                });
+            });
+        });
+        for r in rx {
+            if write_error.is_some() || matches!(r.outcome, Err(SolverError::Cancelled)) {
+                continue;
+            }
+            let seed = r.seed;
+            match write_seed(out, pipeline, model, r) {
+                Ok(failure) => {
+                    if let Some(msg) = failure {
+                        failed.push((seed, msg));
+                    }
+                    done += 1;
+                    ran += 1;
+                    on_seed(done, total);
+                }
+                Err(e) => {
+                    cancel.store(true, Ordering::Relaxed);
+                    write_error = Some(e);
+                }
+            }
+        }
+    });
+    if let Some(e) = write_error {
+        return Err(e);
+    }
+    if cancel.load(Ordering::Relaxed) {
+        return Err(AnalysisError::Interrupted { done, total, out: out.clone() });
+    }
+    gather(out, &options.seeds)?;
+    let runs = scan_glob(&out.join("tables").join("runs.parquet"))?;
+    if let Some(runs) = runs {
+        failed = failed_seeds(&runs)?;
+    }
+    Ok(EnsembleReport { ran, skipped, failed, wall_time_s: start.elapsed().as_secs_f64(), out: out.clone() })
+}
+
+fn failed_seeds(runs: &DataFrame) -> Result<Vec<(u64, String)>, AnalysisError> {
+    let t = |e| AnalysisError::table("runs", e);
+    let seeds = runs.column("seed").map_err(t)?.u64().map_err(t)?.clone();
+    let status = runs.column("status").map_err(t)?.str().map_err(t)?.clone();
+    let msg = runs.column("message").map_err(t)?.str().map_err(t)?.clone();
+    Ok((0..runs.height())
+        .filter(|&i| status.get(i) == Some("failed"))
+        .map(|i| (seeds.get(i).unwrap_or(0), msg.get(i).unwrap_or("").to_string()))
+        .collect())
+}
+
+/// Gathers the per-seed parts of the small tables (restricted to `seeds`, sorted by seed) into
+/// one file each, and writes the statistics across seeds.
+pub fn gather(out: &Path, seeds: &[u64]) -> Result<(), AnalysisError> {
+    let keep: std::collections::HashSet<u64> = seeds.iter().copied().collect();
+    let mut gathered = Vec::new();
+    for table in GATHERED_TABLES {
+        let glob = part_glob(out, table);
+        let Some(df) = scan_glob(&glob)? else {
+            continue;
+        };
+        let mut sort_by = vec!["seed"];
+        if table != "runs" {
+            sort_by.push("event");
+        }
+        if table == "sub_events" {
+            sort_by.push("sub_event");
+        }
+        let t = |e| AnalysisError::table(table, e);
+        let mask: BooleanChunked = df
+            .column("seed")
+            .map_err(t)?
+            .u64()
+            .map_err(t)?
+            .iter()
+            .map(|s| s.is_some_and(|s| keep.contains(&s)))
+            .collect();
+        let mut df = df.filter(&mask).map_err(t)?.sort(sort_by, SortMultipleOptions::default()).map_err(t)?;
+        write_parquet_atomic(&mut df, &out.join("tables").join(format!("{table}.parquet")))?;
+        gathered.push((table, df));
+    }
+    let get = |name: &str| gathered.iter().find(|(t, _)| *t == name).map(|(_, d)| d);
+    if let (Some(runs), Some(events), Some(similarity)) = (get("runs"), get("events"), get("similarity")) {
+        let mut summary = summary_frame(runs, events, similarity)?;
+        write_parquet_atomic(&mut summary, &out.join("tables").join("summary.parquet"))?;
+    }
+    Ok(())
+}
+
+/// Removes the hidden temporary files a killed writer left for `seeds` (only those: another
+/// process may be writing other seeds into the same folder).
+fn remove_stale_temporaries(out: &Path, seeds: &[u64]) -> Result<(), AnalysisError> {
+    let prefixes: std::collections::HashSet<String> = seeds.iter().map(|s| format!(".seed-{s:010}.parquet.")).collect();
+    for table in SEED_TABLES {
+        let dir = out.join("tables").join(table);
+        let Ok(entries) = std::fs::read_dir(&dir) else { continue };
+        for file in entries.flatten() {
+            let name = file.file_name().to_string_lossy().into_owned();
+            if name.ends_with(".tmp") && name.rfind(".parquet.").is_some_and(|i| prefixes.contains(&name[..i + 9])) {
+                std::fs::remove_file(file.path()).map_err(|e| AnalysisError::io(&file.path(), e))?;
+            }
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,116 @@
+//! Ensembles: determinism across thread counts, tables read back lazily, main shocks labelled,
+//! a changed pipeline refused.
+
+use std::path::Path;
+use std::sync::atomic::AtomicBool;
+
+use polars::prelude::*;
+use stickslip_analysis::Pipeline;
+use stickslip_analysis::ensemble::{EnsembleOptions, run_ensemble};
+use stickslip_support::{assert_same_tables, read_table, repo_path, scratch_dir};
+
+/// The paper pipeline cut to `seeds` seeds and `duration` seconds, sampled every 50 µs.
+fn short_paper(seeds: u64, duration: f64) -> String {
+    let text = std::fs::read_to_string(repo_path("pipelines/paper.toml")).unwrap();
+    let mut doc: toml::Table = toml::from_str(&text).unwrap();
+    doc.insert("name".into(), "short".into());
+    let mut s = toml::Table::new();
+    s.insert("range".into(), toml::Value::Table(toml::toml! { first = 1 count = 0 }));
+    s["range"].as_table_mut().unwrap().insert("count".into(), (seeds as i64).into());
+    doc.insert("seeds".into(), s.into());
+    doc["shear"].as_table_mut().unwrap().insert("duration_s".into(), duration.into());
+    doc["record"].as_table_mut().unwrap().insert("interval_s".into(), 5e-5.into());
+    toml::to_string(&doc).unwrap()
+}
+
+fn pipeline(dir: &Path, text: &str) -> Pipeline {
+    let path = dir.join("short.toml");
+    std::fs::write(&path, text).unwrap();
+    Pipeline::load(&path).unwrap()
+}
+
+fn run(p: &Pipeline, out: &Path, threads: usize) {
+    let options = EnsembleOptions { out: out.to_path_buf(), threads, seeds: p.seeds.clone(), fresh: false };
+    let report = run_ensemble(p, &options, &|_, _| {}, &AtomicBool::new(false)).unwrap();
+    assert_eq!(report.ran, p.seeds.len());
+    assert!(report.failed.is_empty(), "{:?}", report.failed);
+}
+
+fn scan(glob: &Path) -> DataFrame {
+    LazyFrame::scan_parquet(PlRefPath::new(glob.display().to_string()), ScanArgsParquet::default())
+        .unwrap()
+        .collect()
+        .unwrap()
+}
+
+#[test]
+fn tables_do_not_depend_on_the_thread_count_and_read_back_lazily() {
+    let dir = scratch_dir("ensemble-threads");
+    let p = pipeline(&dir, &short_paper(16, 0.12));
+    run(&p, &dir.join("one"), 1);
+    run(&p, &dir.join("two"), 2);
+    assert_same_tables(&dir.join("one"), &dir.join("two"), &["wall_time_s"]);
+
+    // Every per-seed table reads back lazily over all seeds with a glob.
+    let tables = dir.join("one/tables");
+    let runs = scan(&tables.join("runs/*.parquet"));
+    assert_eq!(runs.height(), 16);
+    let steps: u64 = runs.column("steps").unwrap().u64().unwrap().sum().unwrap();
+    assert!(steps > 16 * 10_000);
+    // 0.12 s every 50 µs: 2401 samples per seed.
+    assert_eq!(scan(&tables.join("series/*.parquet")).height(), 16 * 2401);
+    assert_eq!(scan(&tables.join("control/*.parquet")).height(), 16 * 2401 * 2, "node 36, x and z");
+    let events = scan(&tables.join("events/*.parquet"));
+    let n_events: u32 = runs.column("events").unwrap().u32().unwrap().sum().unwrap();
+    assert_eq!(events.height(), n_events as usize);
+    assert_eq!(read_table(&tables.join("events.parquet")).height(), n_events as usize);
+    assert_eq!(scan(&tables.join("similarity/*.parquet")).height(), n_events as usize);
+    let subs: u32 = events.column("sub_events").unwrap().u32().unwrap().sum().unwrap();
+    assert_eq!(scan(&tables.join("sub_events/*.parquet")).height(), subs as usize);
+    let summary = read_table(&tables.join("summary.parquet"));
+    assert!(summary.height() > 10);
+}
+
+#[test]
+fn paper_pipeline_main_shocks_are_found_and_labelled_in_time_order() {
+    let dir = scratch_dir("ensemble-paper");
+    let p = Pipeline::load(&repo_path("pipelines/paper.toml")).unwrap();
+    run(&p, &dir.join("out"), 2);
+    let events = read_table(&dir.join("out/tables/events.parquet"));
+    for &seed in &p.seeds {
+        let mask = events.column("seed").unwrap().u64().unwrap().equal(seed);
+        let e = events.filter(&mask).unwrap();
+        let kind = e.column("kind").unwrap().str().unwrap().clone();
+        let label = e.column("label").unwrap().str().unwrap().clone();
+        let start = e.column("start_s").unwrap().f64().unwrap().clone();
+        let mains: Vec<(String, f64)> = (0..e.height())
+            .filter(|&i| kind.get(i) == Some("main"))
+            .map(|i| (label.get(i).unwrap().to_string(), start.get(i).unwrap()))
+            .collect();
+        println!("seed {seed}: {mains:?}");
+        assert!(mains.len() >= 2, "seed {seed}: {} main shocks", mains.len());
+        for (k, (l, _)) in mains.iter().enumerate() {
+            assert_eq!(l, &format!("S{}", k + 1));
+        }
+        assert!(mains.windows(2).all(|w| w[0].1 < w[1].1), "labels in time order");
+    }
+}
+
+#[test]
+fn a_changed_pipeline_is_refused_and_fresh_starts_over() {
+    let dir = scratch_dir("ensemble-changed");
+    let p = pipeline(&dir, &short_paper(2, 0.02));
+    run(&p, &dir.join("out"), 2);
+    let changed = pipeline(&dir, &short_paper(2, 0.02).replace("young_cv = 0.05", "young_cv = 0.06"));
+    assert_ne!(p.hash, changed.hash);
+    let mut options = EnsembleOptions { out: dir.join("out"), threads: 2, seeds: changed.seeds.clone(), fresh: false };
+    let err = run_ensemble(&changed, &options, &|_, _| {}, &AtomicBool::new(false)).unwrap_err().to_string();
+    assert!(err.contains("holds results of another pipeline") && err.contains("--fresh"), "{err}");
+    options.fresh = true;
+    let report = run_ensemble(&changed, &options, &|_, _| {}, &AtomicBool::new(false)).unwrap();
+    assert_eq!((report.ran, report.skipped), (2, 0));
+    // The same pipeline again: nothing to run.
+    options.fresh = false;
+    let report = run_ensemble(&changed, &options, &|_, _| {}, &AtomicBool::new(false)).unwrap();
+    assert_eq!((report.ran, report.skipped), (0, 2));
+}
