@@ -59,7 +59,15 @@ fn tables_do_not_depend_on_the_thread_count_and_read_back_lazily() {
     assert!(steps > 16 * 10_000);
     // 0.12 s every 50 µs: 2401 samples per seed.
     assert_eq!(scan(&tables.join("series/*.parquet")).height(), 16 * 2401);
-    assert_eq!(scan(&tables.join("control/*.parquet")).height(), 16 * 2401 * 2, "node 36, x and z");
+    let mut pairs: Vec<_> = p.scene.record.control.iter().map(|c| (c.node, c.component)).collect();
+    pairs.sort();
+    pairs.dedup();
+    assert_eq!(scan(&tables.join("control/*.parquet")).height(), 16 * 2401 * pairs.len());
+    // Spectra of node 36 (x, z) at two scales, three dampings, 100 periods.
+    assert_eq!(scan(&tables.join("spectra/*.parquet")).height(), 16 * 2 * 2 * 3 * 100);
+    assert_eq!(read_table(&tables.join("psa_stats.parquet")).height(), 2 * 2 * 3 * 100);
+    assert_eq!(scan(&tables.join("accelerograms/*.parquet")).height(), 16 * 2 * 2 * 2401);
+    assert_eq!(std::fs::read_dir(dir.join("one/at2")).unwrap().count(), 16 * 2 * 2);
     let events = scan(&tables.join("events/*.parquet"));
     let n_events: u32 = runs.column("events").unwrap().u32().unwrap().sum().unwrap();
     assert_eq!(events.height(), n_events as usize);

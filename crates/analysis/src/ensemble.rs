@@ -31,13 +31,32 @@ use crate::catalogue::{
 use crate::error::AnalysisError;
 use crate::events::{Catalogue, detect};
 use crate::pipeline::Pipeline;
+use crate::spectra;
+use crate::spectra::records::at2_text;
+use crate::spectra::stage::{PlanCache, SeedSpectra, at2_name};
+use crate::spectra::tables::{
+    accelerograms_frame, attenuation_fit_frame, attenuation_frame, fourier_frame, intensity_frame, psa_stats_frame,
+    spectra_frame,
+};
 use crate::summary::summary_frame;
 use crate::tables::{control_frame, scan_glob, series_frame, write_parquet_atomic, write_text_atomic};
 
 /// Per-seed tables, in the order they are written (`runs` last marks the seed finished).
-pub const SEED_TABLES: [&str; 6] = ["series", "control", "events", "sub_events", "similarity", "runs"];
+pub const SEED_TABLES: [&str; 11] = [
+    "series",
+    "control",
+    "events",
+    "sub_events",
+    "similarity",
+    "spectra",
+    "fourier",
+    "intensity",
+    "accelerograms",
+    "attenuation",
+    "runs",
+];
 /// Tables gathered over all seeds into one file each.
-pub const GATHERED_TABLES: [&str; 4] = ["runs", "events", "sub_events", "similarity"];
+pub const GATHERED_TABLES: [&str; 6] = ["runs", "events", "sub_events", "similarity", "intensity", "attenuation"];
 
 /// How to run an ensemble.
 #[derive(Clone, Debug)]
@@ -129,11 +148,11 @@ pub fn prepare_output(out: &Path, pipeline: &Pipeline, fresh: bool) -> Result<()
 /// One seed, simulated and analysed.
 struct SeedResult {
     seed: u64,
-    outcome: Result<(RunOutput, Catalogue), SolverError>,
+    outcome: Result<(RunOutput, Catalogue, Option<SeedSpectra>), SolverError>,
     wall_time_s: f64,
 }
 
-fn simulate(model: &Model, pipeline: &Pipeline, seed: u64, cancel: &AtomicBool) -> SeedResult {
+fn simulate(model: &Model, pipeline: &Pipeline, seed: u64, cancel: &AtomicBool, plans: &PlanCache) -> SeedResult {
     let start = Instant::now();
     let mut check = |_: f64| {
         if cancel.load(Ordering::Relaxed) {
@@ -145,7 +164,11 @@ fn simulate(model: &Model, pipeline: &Pipeline, seed: u64, cancel: &AtomicBool) 
     let outcome = run_seed(model, seed, RunOptions::default(), &mut check).and_then(|out| {
         let cat = detect(&out.records, model.contact().len(), model.lattice().contact_area(), &pipeline.events)
             .map_err(|e| SolverError::Numerical(e.to_string()))?;
-        Ok((out, cat))
+        let spectra = pipeline
+            .spectra
+            .as_ref()
+            .map(|p| spectra::stage::compute(&out.records, &cat, model, p, pipeline.events.smoothing_s, plans));
+        Ok((out, cat, spectra))
     });
     SeedResult { seed, outcome, wall_time_s: start.elapsed().as_secs_f64() }
 }
@@ -153,14 +176,27 @@ fn simulate(model: &Model, pipeline: &Pipeline, seed: u64, cancel: &AtomicBool) 
 fn write_seed(out: &Path, pipeline: &Pipeline, model: &Model, r: SeedResult) -> Result<Option<String>, AnalysisError> {
     let channels = acceleration_channels(model);
     let (row, failure) = match &r.outcome {
-        Ok((run, cat)) => {
-            let mut frames = [
+        Ok((run, cat, spectra)) => {
+            let mut frames = vec![
                 ("series", series_frame(r.seed, &run.records)?),
                 ("control", control_frame(r.seed, &run.records)?),
                 ("events", events_frame(r.seed, cat, &channels)?),
                 ("sub_events", sub_events_frame(r.seed, cat, &channels)?),
                 ("similarity", similarity_frame(r.seed, cat, pipeline)?),
             ];
+            if let (Some(s), Some(params)) = (spectra, &pipeline.spectra) {
+                let lambda = pipeline.similarity.prototype_length_m / model.lattice().extent()[0];
+                frames.push(("spectra", spectra_frame(r.seed, s, &params.periods(), &params.dampings, lambda)?));
+                frames.push(("fourier", fourier_frame(r.seed, s)?));
+                frames.push(("intensity", intensity_frame(r.seed, s, lambda)?));
+                frames.push(("accelerograms", accelerograms_frame(r.seed, s, lambda)?));
+                if params.attenuation {
+                    frames.push(("attenuation", attenuation_frame(r.seed, s, model.lattice())?));
+                }
+                if params.at2 {
+                    write_at2(out, pipeline, r.seed, s, lambda)?;
+                }
+            }
             for (table, df) in &mut frames {
                 write_parquet_atomic(df, &part_path(out, table, r.seed))?;
             }
@@ -194,6 +230,7 @@ pub fn run_ensemble(
     let total = options.seeds.len();
     on_seed(skipped, total);
     let model = Model::new(pipeline.scene.clone());
+    let plans = PlanCache::default();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(options.threads)
         .build()
@@ -206,13 +243,14 @@ pub fn run_ensemble(
     std::thread::scope(|scope| {
         let model = &model;
         let pending = &pending;
+        let plans = &plans;
         scope.spawn(move || {
             pool.install(|| {
                 pending.par_iter().for_each_with(tx, |tx, &seed| {
                     if cancel.load(Ordering::Relaxed) {
                         return;
                     }
-                    let _ = tx.send(simulate(model, pipeline, seed, cancel));
+                    let _ = tx.send(simulate(model, pipeline, seed, cancel, plans));
                 });
             });
         });
@@ -272,13 +310,13 @@ pub fn gather(out: &Path, seeds: &[u64]) -> Result<(), AnalysisError> {
         let Some(df) = scan_glob(&glob)? else {
             continue;
         };
-        let mut sort_by = vec!["seed"];
-        if table != "runs" {
-            sort_by.push("event");
-        }
-        if table == "sub_events" {
-            sort_by.push("sub_event");
-        }
+        let sort_by: Vec<&str> = match table {
+            "runs" => vec!["seed"],
+            "sub_events" => vec!["seed", "event", "sub_event"],
+            "intensity" => vec!["seed", "node", "component", "scale"],
+            "attenuation" => vec!["seed", "event", "node"],
+            _ => vec!["seed", "event"],
+        };
         let t = |e| AnalysisError::table(table, e);
         let mask: BooleanChunked = df
             .column("seed")
@@ -291,6 +329,20 @@ pub fn gather(out: &Path, seeds: &[u64]) -> Result<(), AnalysisError> {
         let mut df = df.filter(&mask).map_err(t)?.sort(sort_by, SortMultipleOptions::default()).map_err(t)?;
         write_parquet_atomic(&mut df, &out.join("tables").join(format!("{table}.parquet")))?;
         gathered.push((table, df));
+    }
+    if let Some(spectra) = scan_glob(&part_glob(out, "spectra"))? {
+        let keep_rows: BooleanChunked = spectra
+            .column("seed")
+            .and_then(|c| c.u64().cloned())
+            .map_err(|e| AnalysisError::table("spectra", e))?
+            .iter()
+            .map(|s| s.is_some_and(|s| keep.contains(&s)))
+            .collect();
+        let spectra = spectra.filter(&keep_rows).map_err(|e| AnalysisError::table("spectra", e))?;
+        write_parquet_atomic(&mut psa_stats_frame(&spectra)?, &out.join("tables").join("psa_stats.parquet"))?;
+    }
+    if let Some((_, att)) = gathered.iter().find(|(t, _)| *t == "attenuation") {
+        write_parquet_atomic(&mut attenuation_fit_frame(att)?, &out.join("tables").join("attenuation_fit.parquet"))?;
     }
     let get = |name: &str| gathered.iter().find(|(t, _)| *t == name).map(|(_, d)| d);
     if let (Some(runs), Some(events), Some(similarity)) = (get("runs"), get("events"), get("similarity")) {
@@ -312,6 +364,42 @@ fn remove_stale_temporaries(out: &Path, seeds: &[u64]) -> Result<(), AnalysisErr
             if name.ends_with(".tmp") && name.rfind(".parquet.").is_some_and(|i| prefixes.contains(&name[..i + 9])) {
                 std::fs::remove_file(file.path()).map_err(|e| AnalysisError::io(&file.path(), e))?;
             }
+        }
+    }
+    // AT2 files: `.<pipeline>_seed<seed>_….AT2.<pid>.tmp`.
+    if let Ok(entries) = std::fs::read_dir(out.join("at2")) {
+        let seeds: std::collections::HashSet<u64> = seeds.iter().copied().collect();
+        for file in entries.flatten() {
+            let name = file.file_name().to_string_lossy().into_owned();
+            let seed = name.split("_seed").nth(1).and_then(|r| r.split('_').next()).and_then(|s| s.parse().ok());
+            if name.starts_with('.') && name.ends_with(".tmp") && seed.is_some_and(|s| seeds.contains(&s)) {
+                std::fs::remove_file(file.path()).map_err(|e| AnalysisError::io(&file.path(), e))?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Writes the AT2 files of one seed (model and prototype scale) under `<out>/at2/`, then an
+/// empty marker part so a resumed run knows they are complete.
+fn write_at2(out: &Path, pipeline: &Pipeline, seed: u64, s: &SeedSpectra, lambda: f64) -> Result<(), AnalysisError> {
+    let dir = out.join("at2");
+    for c in &s.channels {
+        for (scale, l) in [("model", 1.0), ("prototype", lambda)] {
+            let name = at2_name(&pipeline.name, seed, c.channel.node, c.channel.component, scale);
+            let p = c.position;
+            let description = format!(
+                "stickslip pipeline {}, seed {seed}, node {} at ({}, {}, {}) m, component {}, {scale} scale \
+                 (lambda = {l}: time x{l}, acceleration /{l}); acceleration in g",
+                pipeline.name,
+                c.channel.node.ldem(),
+                p[0],
+                p[1],
+                p[2],
+                c.channel.component.name()
+            );
+            let accel: Vec<f64> = c.accel.iter().map(|a| a / l).collect();
+            write_text_atomic(&dir.join(name), &at2_text(&accel, c.dt * l, &description))?;
         }
     }
     Ok(())

@@ -366,6 +366,7 @@ mod tests {
                 (Channel::SlippingNodes, vec![1.0; n]),
             ],
             control: vec![],
+            onsets: vec![],
         }
     }
 

@@ -7,6 +7,7 @@ pub mod error;
 pub mod events;
 pub mod pipeline;
 pub mod similarity;
+pub mod spectra;
 pub mod stats;
 pub mod summary;
 pub mod tables;

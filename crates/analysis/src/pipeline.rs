@@ -16,6 +16,7 @@ use stickslip_solver::{FieldError, Scene, SceneFile, SolverError};
 use crate::error::AnalysisError;
 use crate::events::EventParams;
 use crate::similarity::SimilarityParams;
+use crate::spectra::stage::SpectraParams;
 
 /// The pipeline-file version this build reads.
 pub const PIPELINE_VERSION: i64 = 1;
@@ -86,6 +87,8 @@ pub struct PipelineFile {
     /// `[similarity]`: the prototype fault.
     #[serde(default)]
     pub similarity: SimilarityParams,
+    /// `[spectra]`: the spectra stage; absent = skipped.
+    pub spectra: Option<SpectraParams>,
 }
 
 /// Everything that determines one seed's results, hashed to tell results of a changed pipeline
@@ -95,6 +98,7 @@ struct Hashed<'a> {
     scene: &'a SceneFile,
     events: &'a EventParams,
     similarity: &'a SimilarityParams,
+    spectra: &'a Option<SpectraParams>,
 }
 
 /// A validated pipeline.
@@ -112,6 +116,8 @@ pub struct Pipeline {
     pub events: EventParams,
     /// Similarity scaling.
     pub similarity: SimilarityParams,
+    /// Spectra stage, if asked.
+    pub spectra: Option<SpectraParams>,
     /// Hash of everything that determines a seed's results (scene, events, similarity), as 16
     /// hex digits.
     pub hash: String,
@@ -194,7 +200,18 @@ impl Pipeline {
             return Err(SolverError::InvalidScene(errors));
         }
         let scene = scene.expect("no errors means a scene");
-        let hash = hash_toml(&Hashed { scene: &scene.file, events: &file.events, similarity: &file.similarity });
+        if let Some(sp) = &file.spectra {
+            sp.check(&scene, &mut errors);
+            if !errors.is_empty() {
+                return Err(SolverError::InvalidScene(errors));
+            }
+        }
+        let hash = hash_toml(&Hashed {
+            scene: &scene.file,
+            events: &file.events,
+            similarity: &file.similarity,
+            spectra: &file.spectra,
+        });
         Ok(Pipeline {
             name,
             description: file.description,
@@ -202,6 +219,7 @@ impl Pipeline {
             scene,
             events: file.events,
             similarity: file.similarity,
+            spectra: file.spectra,
             hash,
             source: None,
         })

@@ -69,6 +69,9 @@ enum Command {
     },
     /// Scale a model event to a prototype fault (SPEC §9) and print the numbers.
     Similarity(SimilarityArgs),
+    /// Response spectra, Fourier spectrum and intensity measures of an accelerogram file (PEER
+    /// .AT2, or CSV with time and acceleration columns).
+    Spectra(SpectraArgs),
     /// Print the schema and first rows of a Parquet table (or every part matching a glob).
     Show {
         /// A Parquet file, or a glob such as 'reports/paper/tables/events/*.parquet'.
@@ -85,6 +88,50 @@ enum Command {
         #[arg(long, default_value_t = 123)]
         seed: u64,
     },
+}
+
+/// Units of a CSV accelerogram.
+#[derive(clap::ValueEnum, Clone, Copy, Debug)]
+enum CsvUnits {
+    /// Standard gravity (9.80665 m/s²).
+    G,
+    /// m/s².
+    #[value(name = "m/s2")]
+    MS2,
+    /// cm/s² (gal).
+    #[value(name = "cm/s2")]
+    CmS2,
+}
+
+/// Inputs of `stickslip spectra`.
+#[derive(clap::Args, Debug)]
+struct SpectraArgs {
+    /// The record: a PEER .AT2 file, or a CSV file (time in s, then acceleration).
+    record: PathBuf,
+    /// Units of the acceleration column of a CSV file.
+    #[arg(long, value_enum, default_value = "m/s2")]
+    units: CsvUnits,
+    /// Damping ratios, comma separated.
+    #[arg(long, value_delimiter = ',', default_value = "0.05")]
+    dampings: Vec<f64>,
+    /// Shortest period (s) [default: 2·Δt of the record].
+    #[arg(long)]
+    period_min_s: Option<f64>,
+    /// Longest period (s) [default: half the record's duration].
+    #[arg(long)]
+    period_max_s: Option<f64>,
+    /// Number of log-spaced periods.
+    #[arg(long, default_value_t = 100)]
+    period_count: usize,
+    /// Read the samples band-limited (FFT resampled) instead of as straight lines.
+    #[arg(long)]
+    band_limited: bool,
+    /// Remove a least-squares line from the velocity before integrating to displacement.
+    #[arg(long)]
+    baseline: bool,
+    /// Output folder [default: reports/records/<file name>].
+    #[arg(long)]
+    out: Option<PathBuf>,
 }
 
 /// Inputs of `stickslip similarity`.
@@ -125,6 +172,7 @@ fn main() {
         }
         Command::Similarity(args) => similarity(&args),
         Command::Show { table, rows } => show(&table, rows),
+        Command::Spectra(args) => record_spectra(&args),
         Command::Check { pipeline, seed } => check(&pipeline, seed),
     };
     if let Err(e) = result {
@@ -392,5 +440,53 @@ fn show(path: &Path, rows: usize) -> Result<()> {
     }
     let text = stickslip_analysis::tables::describe(path, rows)?;
     println!("{text}");
+    Ok(())
+}
+
+fn record_spectra(a: &SpectraArgs) -> Result<()> {
+    use stickslip_analysis::spectra::fourier::Window;
+    use stickslip_analysis::spectra::intensity::Baseline;
+    use stickslip_analysis::spectra::records::{AccelUnit, read_record};
+    use stickslip_analysis::spectra::response::{Reading, log_periods};
+    use stickslip_analysis::spectra::tables::record_tables;
+    let unit = match a.units {
+        CsvUnits::G => AccelUnit::G,
+        CsvUnits::MS2 => AccelUnit::MetrePerSecond2,
+        CsvUnits::CmS2 => AccelUnit::CentimetrePerSecond2,
+    };
+    let record = read_record(&a.record, unit)?;
+    let duration = record.dt * (record.accel.len().saturating_sub(1)) as f64;
+    let tmin = a.period_min_s.unwrap_or(2.0 * record.dt);
+    let tmax = a.period_max_s.unwrap_or(0.5 * duration);
+    anyhow::ensure!(tmin > 0.0 && tmax > tmin, "periods: need 0 < --period-min-s ({tmin}) < --period-max-s ({tmax})");
+    anyhow::ensure!(a.period_count >= 1, "--period-count must be at least 1");
+    for d in &a.dampings {
+        anyhow::ensure!((0.0..1.0).contains(d), "--dampings: {d} is not in [0, 1)");
+    }
+    let periods = log_periods(tmin, tmax, a.period_count);
+    let reading = if a.band_limited { Reading::BandLimited } else { Reading::Linear };
+    let baseline = if a.baseline { Baseline::Linear } else { Baseline::None };
+    let [mut spectra, mut fourier, mut intensity] =
+        record_tables(&record, &periods, &a.dampings, reading, baseline, Window::Rectangular)?;
+    let stem = a.record.file_stem().and_then(|s| s.to_str()).unwrap_or("record").to_string();
+    let out = a.out.clone().unwrap_or_else(|| PathBuf::from("reports").join("records").join(&stem));
+    for (name, df) in [("spectra", &mut spectra), ("fourier", &mut fourier), ("intensity", &mut intensity)] {
+        write_parquet_atomic(df, &out.join(format!("{name}.parquet")))?;
+    }
+    println!(
+        "{}: {} samples every {:.6e} s ({:.4} s){}",
+        a.record.display(),
+        record.accel.len(),
+        record.dt,
+        duration,
+        if record.description.is_empty() { String::new() } else { format!(" — {}", record.description) }
+    );
+    println!("{}", stickslip_analysis::tables::describe(&out.join("intensity.parquet"), 1)?);
+    println!(
+        "spectra ({} periods from {tmin:.4e} s to {tmax:.4e} s, dampings {:?}) → {}",
+        periods.len(),
+        a.dampings,
+        out.display()
+    );
     Ok(())
 }

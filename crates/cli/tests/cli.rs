@@ -129,3 +129,25 @@ fn similarity_calculator_prints_the_papers_numbers() {
     assert_eq!(bad.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&bad.stderr).contains("--stress-drop-pa = -5: must be positive"));
 }
+
+#[test]
+fn spectra_of_an_outside_record_in_csv() {
+    let dir = scratch("record");
+    let mut csv = String::from("time_s,acc_gal\n");
+    for i in 0..=2000 {
+        let t = i as f64 * 0.005;
+        csv.push_str(&format!("{t},{}\n", 150.0 * (2.0 * std::f64::consts::PI * t / 0.5).sin()));
+    }
+    std::fs::write(dir.join("rec.csv"), csv).unwrap();
+    let out = stickslip(&["spectra", "rec.csv", "--units", "cm/s2", "--dampings", "0.02,0.05", "--out", "o"], &dir);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let intensity = read(&dir.join("o/intensity.parquet"));
+    let pga = intensity.column("pga_m_s2").unwrap().f64().unwrap().get(0).unwrap();
+    assert!((pga - 1.5).abs() < 1e-9, "PGA {pga} m/s² for 150 gal");
+    let spectra = read(&dir.join("o/spectra.parquet"));
+    assert_eq!(spectra.height(), 200);
+    assert!(dir.join("o/fourier.parquet").exists());
+    let bad = stickslip(&["spectra", "rec.csv", "--units", "furlongs"], &dir);
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("possible values"));
+}

@@ -1,5 +1,6 @@
 //! Recorders: only the channels a scene asks for, at its interval, as plain arrays.
 
+use crate::lattice::NodeId;
 use crate::scene::{ControlChannel, InterfaceQuantity, RecordPlan};
 use crate::stepper::Stepper;
 
@@ -120,6 +121,8 @@ pub struct Records {
     pub channels: Vec<(Channel, Vec<f64>)>,
     /// Control-node channels, each as long as `time_s`.
     pub control: Vec<(ControlChannel, Vec<f64>)>,
+    /// Sustained slip onsets `(time_s, contact node)`, in time order (if recorded).
+    pub onsets: Vec<(f64, NodeId)>,
 }
 
 impl Records {
@@ -149,6 +152,8 @@ pub(crate) struct Recorder {
     pub(crate) records: Records,
     /// Step index of each sample (converted to time at the end).
     pub(crate) steps: Vec<u64>,
+    /// Step of each slip onset and its node.
+    pub(crate) onset_steps: Vec<(u64, NodeId)>,
     control_nodes: Vec<usize>,
     area: f64,
 }
@@ -158,7 +163,8 @@ impl Recorder {
         let channels = Channel::of_plan(plan).into_iter().map(|c| (c, Vec::with_capacity(capacity))).collect();
         let control = plan.control.iter().map(|&c| (c, Vec::with_capacity(capacity))).collect();
         Recorder {
-            records: Records { time_s: Vec::with_capacity(capacity), channels, control },
+            records: Records { time_s: Vec::with_capacity(capacity), channels, control, onsets: Vec::new() },
+            onset_steps: Vec::new(),
             steps: Vec::with_capacity(capacity),
             control_nodes: plan.control.iter().map(|c| model.internal(c.node)).collect(),
             area: model.lattice().contact_area(),
@@ -211,6 +217,7 @@ impl Recorder {
     /// Finishes: times from step indices, with `origin` the step index of shear time zero.
     pub(crate) fn finish(mut self, origin: u64, dt: f64) -> Records {
         self.records.time_s = self.steps.iter().map(|&s| (s as f64 - origin as f64) * dt).collect();
+        self.records.onsets = self.onset_steps.iter().map(|&(s, n)| ((s as f64 - origin as f64) * dt, n)).collect();
         self.records
     }
 }

@@ -109,6 +109,7 @@ pub fn run_lanes<const L: usize>(
     let setups = prepared.each_ref().map(|p| p.as_ref().map(|(s, _)| s.clone()).unwrap_or_else(|_| fallback.clone()));
     let mut stepper = Stepper::<L>::new(model, &setups);
     stepper.set_track_energy(scene.record.energy);
+    stepper.set_track_onsets(scene.record.slip_onsets);
     let sw = scene.self_weight;
     let mut stages: [Stage; L] = std::array::from_fn(|l| {
         let dt = setups[l].dt_s;
@@ -188,6 +189,21 @@ pub fn run_lanes<const L: usize>(
                 });
                 stepper.park(l);
                 continue;
+            }
+            if scene.record.slip_onsets {
+                let from = match stages[l] {
+                    Stage::Shearing { origin, .. } => Some(origin),
+                    Stage::Settling { .. } if scene.record.settling => Some(0),
+                    _ => None,
+                };
+                let contact = model.contact();
+                for (step, ci) in stepper.drain_onsets(l) {
+                    if let (Some(from), Some(r)) = (from, recorders[l].as_mut())
+                        && step >= from
+                    {
+                        r.onset_steps.push((step, model.canonical(contact[ci as usize] as usize)));
+                    }
+                }
             }
             match stages[l] {
                 Stage::Settling { max_steps } => {

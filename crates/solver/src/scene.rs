@@ -260,12 +260,47 @@ pub struct ControlSection {
     /// Nodes by position in metres.
     #[serde(default)]
     pub at_m: Vec<[f64; 3]>,
+    /// A named set of nodes, added to the lists.
+    #[serde(default)]
+    pub set: Option<NodeSet>,
     /// Quantities. Default `["acceleration"]`.
     #[serde(default = "default_quantities")]
     pub quantities: Vec<Kinematic>,
     /// Components. Default `["x", "y", "z"]`.
     #[serde(default = "default_components")]
     pub components: Vec<Component>,
+}
+
+/// Named sets of control nodes (corner nodes only).
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum NodeSet {
+    /// The line of top-face nodes at y = 0 (along x).
+    TopLine,
+    /// Every node of the top face.
+    Top,
+    /// Every corner node on the outer surface.
+    Surface,
+}
+
+impl NodeSet {
+    /// The nodes of the set in `lattice`, canonical order.
+    pub fn nodes(self, lattice: &Lattice) -> Vec<NodeId> {
+        let top = 2 * lattice.dims().nz;
+        (0..lattice.node_count() as u32)
+            .map(NodeId)
+            .filter(|&id| {
+                let h = lattice.half_units(id);
+                let corner = matches!(lattice.kind(id), crate::lattice::NodeKind::Corner(_));
+                corner
+                    && match self {
+                        NodeSet::TopLine => h[2] == top && h[1] == 0,
+                        NodeSet::Top => h[2] == top,
+                        NodeSet::Surface => lattice.on_surface(id),
+                    }
+            })
+            .collect()
+    }
 }
 
 fn default_quantities() -> Vec<Kinematic> {
@@ -290,6 +325,9 @@ pub struct RecordSection {
     pub energy: bool,
     /// Also record the self-weight stage (at negative times). Default false.
     pub settling: bool,
+    /// Record when each contact node starts to slide for good (10 steps in a row): the
+    /// hypocentre of an event is its first such onset. Default false.
+    pub slip_onsets: bool,
     /// Control nodes.
     pub control: Vec<ControlSection>,
 }
@@ -301,6 +339,7 @@ impl Default for RecordSection {
             interface: InterfaceQuantity::ALL.to_vec(),
             energy: false,
             settling: false,
+            slip_onsets: false,
             control: Vec::new(),
         }
     }
@@ -411,6 +450,8 @@ pub struct RecordPlan {
     pub energy: bool,
     /// Record the settling stage too.
     pub settling: bool,
+    /// Record sustained slip onsets.
+    pub slip_onsets: bool,
     /// Control channels, sorted and unique.
     pub control: Vec<ControlChannel>,
 }
@@ -675,11 +716,11 @@ impl TryFrom<SceneFile> for Scene {
         let mut control = Vec::new();
         for (i, c) in file.record.control.iter().enumerate() {
             let field = format!("record.control[{i}].");
-            if c.nodes.is_empty() && c.at_m.is_empty() {
+            if c.nodes.is_empty() && c.at_m.is_empty() && c.set.is_none() {
                 ck.push(
                     format!("{field}nodes"),
                     "[]",
-                    "at least one node (nodes = [LDEM numbers] or at_m = [[x, y, z]])",
+                    "at least one node (nodes = [LDEM numbers], at_m = [[x, y, z]] or set = \"top_line\" | \"top\" | \"surface\")",
                 );
             }
             if c.quantities.is_empty() {
@@ -693,7 +734,10 @@ impl TryFrom<SceneFile> for Scene {
                 ck.push(format!("{field}components"), "[]", "at least one of \"x\", \"y\", \"z\"");
             }
             let names = (format!("{field}nodes"), format!("{field}at_m"));
-            let nodes = resolve_nodes(&mut ck, &lattice, (&names.0, &names.1), &c.nodes, &c.at_m);
+            let mut nodes = resolve_nodes(&mut ck, &lattice, (&names.0, &names.1), &c.nodes, &c.at_m);
+            if let Some(set) = c.set {
+                nodes.extend(set.nodes(&lattice));
+            }
             for node in nodes {
                 for &quantity in &c.quantities {
                     for &component in &c.components {
@@ -740,6 +784,7 @@ impl TryFrom<SceneFile> for Scene {
                 interface,
                 energy: file.record.energy,
                 settling: file.record.settling,
+                slip_onsets: file.record.slip_onsets,
                 control,
             },
             file,

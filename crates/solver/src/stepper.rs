@@ -23,6 +23,9 @@
 use crate::kernel::{Field, Lanes, bar_forces, strain_energy};
 use crate::model::Model;
 
+/// Steps a contact node must slide in a row for its slip to count as an onset.
+pub const SUSTAINED_SLIP_STEPS: u32 = 10;
+
 /// Per-lane set-up of a stepper.
 #[derive(Clone, Debug)]
 pub struct LaneSetup {
@@ -114,6 +117,11 @@ pub struct Stepper<'m, const L: usize> {
     mu_d: Vec<Lanes<L>>,
     dc: f64,
     slipping: Vec<[bool; L]>,
+    /// Consecutive steps each contact node has been sliding.
+    slip_run: Vec<[u32; L]>,
+    /// Sustained slip onsets `(step, contact index)` per lane since the last drain.
+    onsets: [Vec<(u64, u32)>; L],
+    track_onsets: bool,
     slip_path: Vec<Lanes<L>>,
     /// Contact reactions: friction x, friction y, normal.
     reaction: [Vec<Lanes<L>>; 3],
@@ -167,6 +175,9 @@ impl<'m, const L: usize> Stepper<'m, L> {
             mu_d,
             dc: f.slip_weakening_m,
             slipping: vec![[false; L]; nc],
+            slip_run: vec![[0; L]; nc],
+            onsets: std::array::from_fn(|_| Vec::new()),
+            track_onsets: false,
             slip_path: vec![[0.0; L]; nc],
             reaction: [vec![[0.0; L]; nc], vec![[0.0; L]; nc], vec![[0.0; L]; nc]],
             driver_on: [false; L],
@@ -243,6 +254,18 @@ impl<'m, const L: usize> Stepper<'m, L> {
     /// drivers were when started.
     pub fn set_driver_target(&mut self, l: usize, target: f64) {
         self.driver_target[l] = target;
+    }
+
+    /// Turns on (or off) the recording of sustained slip onsets (see [`Stepper::drain_onsets`]).
+    pub fn set_track_onsets(&mut self, on: bool) {
+        self.track_onsets = on;
+    }
+
+    /// Takes the sustained slip onsets of lane `l` recorded since the last call: `(step,
+    /// contact index)`, the step being the first of a run of [`SUSTAINED_SLIP_STEPS`] sliding
+    /// steps (shorter flickers of a node at its strength are not onsets).
+    pub fn drain_onsets(&mut self, l: usize) -> std::vec::Drain<'_, (u64, u32)> {
+        self.onsets[l].drain(..)
     }
 
     /// Turns on (or off) the per-step energy accounting (one extra pass over the nodes).
@@ -360,6 +383,7 @@ impl<'m, const L: usize> Stepper<'m, L> {
                     self.reaction[2][ci][l] = 0.0;
                     self.slipping[ci][l] = false;
                     self.slip_path[ci][l] = 0.0;
+                    self.slip_run[ci][l] = 0;
                     continue;
                 }
                 let normal = -zt * g;
@@ -390,6 +414,15 @@ impl<'m, const L: usize> Stepper<'m, L> {
                     self.slip_path[ci][l] += (sx * sx + sy * sy).sqrt();
                 }
                 self.reaction[2][ci][l] = normal;
+                let run = &mut self.slip_run[ci][l];
+                if self.slipping[ci][l] {
+                    *run += 1;
+                    if self.track_onsets && *run == SUSTAINED_SLIP_STEPS {
+                        self.onsets[l].push((self.steps + 1 - u64::from(SUSTAINED_SLIP_STEPS), ci as u32));
+                    }
+                } else {
+                    *run = 0;
+                }
             }
         }
     }
