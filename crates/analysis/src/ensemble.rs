@@ -84,6 +84,10 @@ pub struct EnsembleReport {
     pub wall_time_s: f64,
     /// Output folder.
     pub out: PathBuf,
+    /// The report, if the pipeline asked for one.
+    pub report: Option<crate::report::ReportSummary>,
+    /// Wall time of the report stage (s).
+    pub report_time_s: f64,
 }
 
 /// Path of a seed's part of `table`.
@@ -286,7 +290,21 @@ pub fn run_ensemble(
     if let Some(runs) = runs {
         failed = failed_seeds(&runs)?;
     }
-    Ok(EnsembleReport { ran, skipped, failed, wall_time_s: start.elapsed().as_secs_f64(), out: out.clone() })
+    let report_start = Instant::now();
+    let report = if pipeline.report.enabled {
+        Some(crate::report::write_report(out, pipeline, &pipeline.report)?)
+    } else {
+        None
+    };
+    Ok(EnsembleReport {
+        ran,
+        skipped,
+        failed,
+        wall_time_s: start.elapsed().as_secs_f64(),
+        out: out.clone(),
+        report,
+        report_time_s: report_start.elapsed().as_secs_f64(),
+    })
 }
 
 fn failed_seeds(runs: &DataFrame) -> Result<Vec<(u64, String)>, AnalysisError> {

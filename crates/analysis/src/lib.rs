@@ -6,6 +6,7 @@ pub mod ensemble;
 pub mod error;
 pub mod events;
 pub mod pipeline;
+pub mod report;
 pub mod similarity;
 pub mod spectra;
 pub mod stats;

@@ -15,6 +15,7 @@ use stickslip_solver::{FieldError, Scene, SceneFile, SolverError};
 
 use crate::error::AnalysisError;
 use crate::events::EventParams;
+use crate::report::ReportParams;
 use crate::similarity::SimilarityParams;
 use crate::spectra::stage::SpectraParams;
 
@@ -89,6 +90,9 @@ pub struct PipelineFile {
     pub similarity: SimilarityParams,
     /// `[spectra]`: the spectra stage; absent = skipped.
     pub spectra: Option<SpectraParams>,
+    /// `[report]`: figures and page (not part of the hash: it does not change any table).
+    #[serde(default)]
+    pub report: ReportParams,
 }
 
 /// Everything that determines one seed's results, hashed to tell results of a changed pipeline
@@ -118,6 +122,8 @@ pub struct Pipeline {
     pub similarity: SimilarityParams,
     /// Spectra stage, if asked.
     pub spectra: Option<SpectraParams>,
+    /// Report stage.
+    pub report: ReportParams,
     /// Hash of everything that determines a seed's results (scene, events, similarity), as 16
     /// hex digits.
     pub hash: String,
@@ -220,6 +226,7 @@ impl Pipeline {
             events: file.events,
             similarity: file.similarity,
             spectra: file.spectra,
+            report: file.report,
             hash,
             source: None,
         })

@@ -380,6 +380,19 @@ fn ensemble(
             println!("  seed {seed} failed: {msg}");
         }
         println!("{}", digest(&out)?);
+        if let Some(r) = &report.report {
+            println!(
+                "report: {} figures in {:.1} s → {}{}",
+                r.figures.len(),
+                report.report_time_s,
+                r.index.display(),
+                if r.skipped.is_empty() {
+                    String::new()
+                } else {
+                    format!(" ({} skipped for lack of data)", r.skipped.len())
+                }
+            );
+        }
     }
     Ok(())
 }

@@ -151,3 +151,34 @@ fn spectra_of_an_outside_record_in_csv() {
     assert_eq!(bad.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&bad.stderr).contains("possible values"));
 }
+
+#[test]
+fn figures_render_the_same_without_any_system_font() {
+    // fontconfig pointed at an empty configuration: no system font can be found, and the
+    // figures must come out byte for byte the same (the text uses the bundled DejaVu Sans).
+    let dir = scratch("fonts");
+    std::fs::write(dir.join("small.toml"), SMALL).unwrap();
+    std::fs::create_dir_all(dir.join("empty")).unwrap();
+    std::fs::write(
+        dir.join("fonts.conf"),
+        "<?xml version=\"1.0\"?>\n<!DOCTYPE fontconfig SYSTEM \"fonts.dtd\">\n<fontconfig></fontconfig>\n",
+    )
+    .unwrap();
+    let run = |out: &str, no_fonts: bool| {
+        let mut c = Command::new(env!("CARGO_BIN_EXE_stickslip"));
+        c.args(["pipeline", "small.toml", "--quiet", "--out", out]).current_dir(&dir);
+        if no_fonts {
+            c.env("FONTCONFIG_FILE", dir.join("fonts.conf"))
+                .env("FONTCONFIG_PATH", dir.join("empty"))
+                .env("XDG_DATA_HOME", dir.join("empty"))
+                .env("XDG_DATA_DIRS", dir.join("empty"));
+        }
+        let o = c.output().unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    };
+    run("with", false);
+    run("without", true);
+    let a = std::fs::read(dir.join("with/figures/shear_stress.png")).unwrap();
+    let b = std::fs::read(dir.join("without/figures/shear_stress.png")).unwrap();
+    assert_eq!(a, b, "figures differ without system fonts");
+}

@@ -1,0 +1,681 @@
+//! The figures of the report, each from the tables on disk.
+
+use std::path::Path;
+
+use plotters::chart::SeriesLabelPosition;
+use plotters::style::{BLACK, RGBColor};
+
+use super::charts::{self, Band, HLine, Line, Marker, Panel, Points};
+use super::plot::{WIDTH, colour, decimate};
+use super::{Data, col_f64, col_str, col_u64, has};
+use crate::error::AnalysisError;
+use crate::spectra::intensity::G;
+use crate::tables::scan_glob;
+
+/// What drawing a figure gave.
+pub(crate) enum Outcome {
+    /// Drawn, with its heading and caption.
+    Drawn { title: String, caption: String },
+    /// Not drawn, and why.
+    Skipped(String),
+}
+
+type Draw = fn(&Data, &Path) -> Result<Outcome, AnalysisError>;
+
+/// Every figure, in page order.
+pub(crate) const ALL: [(&str, Draw); 13] = [
+    ("shear_stress.png", shear_stress),
+    ("normal_stress.png", normal_stress),
+    ("mean_slip.png", mean_slip),
+    ("acceleration_s2.png", acceleration_s2),
+    ("acceleration_run.png", acceleration_run),
+    ("response_spectra_z.png", spectra_z),
+    ("response_spectra_x.png", spectra_x),
+    ("fourier.png", fourier),
+    ("stress_drop_vs_duration.png", drop_vs_duration),
+    ("recurrence.png", recurrence),
+    ("magnitude.png", magnitude),
+    ("attenuation.png", attenuation),
+    ("energy.png", energy),
+];
+
+fn seeds_text(seeds: &[u64]) -> String {
+    let s: Vec<String> = seeds.iter().map(|s| s.to_string()).collect();
+    match s.len() {
+        0 => "no seed".into(),
+        1 => format!("seed {}", s[0]),
+        _ => format!("seeds {}", s.join(", ")),
+    }
+}
+
+/// A time history: (times, values).
+type Trace = (Vec<f64>, Vec<f64>);
+
+/// (time, values) of a series column for one seed, if recorded.
+fn series(d: &Data, seed: u64, column: &str) -> Result<Option<Trace>, AnalysisError> {
+    let Some(df) = d.part("series", seed)? else { return Ok(None) };
+    if !has(&df, column) {
+        return Ok(None);
+    }
+    Ok(Some((col_f64(&df, "time_s")?, col_f64(&df, column)?)))
+}
+
+/// The node and component the accelerogram figures show: the first spectra node (or control
+/// node recording acceleration), component z if recorded.
+fn accelerogram_channel(d: &Data) -> Option<(u64, &'static str)> {
+    let control = &d.pipeline.scene.record.control;
+    let wanted = |c: &&stickslip_solver::scene::ControlChannel| {
+        d.pipeline
+            .spectra
+            .as_ref()
+            .map_or(c.quantity == stickslip_solver::scene::Kinematic::Acceleration, |s| s.wants(c))
+    };
+    let node = control.iter().find(wanted)?.node;
+    let comps: Vec<_> = control.iter().filter(wanted).filter(|c| c.node == node).map(|c| c.component).collect();
+    let comp = if comps.iter().any(|c| c.name() == "z") { "z" } else { comps.first()?.name() };
+    Some((node.ldem(), comp))
+}
+
+/// (time, acceleration) of a control channel for one seed.
+fn control(d: &Data, seed: u64, node: u64, comp: &str) -> Result<Option<Trace>, AnalysisError> {
+    let Some(df) = d.part("control", seed)? else { return Ok(None) };
+    let nodes = col_u64(&df, "node")?;
+    let comps = col_str(&df, "component")?;
+    let t = col_f64(&df, "time_s")?;
+    let a = col_f64(&df, "acceleration_m_s2")?;
+    let idx: Vec<usize> = (0..df.height()).filter(|&i| nodes[i] == node && comps[i] == comp).collect();
+    if idx.is_empty() {
+        return Ok(None);
+    }
+    Ok(Some((idx.iter().map(|&i| t[i]).collect(), idx.iter().map(|&i| a[i]).collect())))
+}
+
+/// Main shocks of one seed: (label, start time).
+fn main_shocks(d: &Data, seed: u64) -> Result<Vec<(String, f64)>, AnalysisError> {
+    let Some(ev) = &d.events else { return Ok(vec![]) };
+    let seeds = col_u64(ev, "seed")?;
+    let kind = col_str(ev, "kind")?;
+    let label = col_str(ev, "label")?;
+    let start = col_f64(ev, "start_s")?;
+    Ok((0..ev.height())
+        .filter(|&i| seeds[i] == seed && kind[i] == "main")
+        .map(|i| (label[i].clone(), start[i]))
+        .collect())
+}
+
+fn value_at(t: &[f64], y: &[f64], at: f64) -> f64 {
+    let i = t.partition_point(|&x| x < at).min(t.len().saturating_sub(1));
+    y[i]
+}
+
+fn shear_stress(d: &Data, path: &Path) -> Result<Outcome, AnalysisError> {
+    let (mut lines, mut markers) = (Vec::new(), Vec::new());
+    for (k, &seed) in d.seeds.iter().enumerate() {
+        let Some((t, tau)) = series(d, seed, "shear_stress_pa")? else { continue };
+        let kpa: Vec<f64> = tau.iter().map(|v| v / 1e3).collect();
+        for (label, start) in main_shocks(d, seed)? {
+            markers.push(Marker { at: (start, value_at(&t, &kpa, start)), text: label, colour: colour(k) });
+        }
+        lines.push(Line::new(format!("seed {seed}"), decimate(&t, &kpa, WIDTH as usize), k));
+    }
+    if lines.is_empty() {
+        return Ok(Outcome::Skipped("no shear stress recorded".into()));
+    }
+    charts::linear(
+        path,
+        "Shear stress on the base (paper Fig. 3)",
+        "time since the start of shearing (s)",
+        "τ (kPa)",
+        &lines,
+        &markers,
+        &[],
+        SeriesLabelPosition::LowerRight,
+    )?;
+    Ok(Outcome::Drawn {
+        title: "Shear stress τ(t)".into(),
+        caption: format!(
+            "Mean shear stress on the base, τ = −ΣF_x/A, for {}. Triangles mark the start of the main shocks S1, S2, … \
+             found by the event detector (stress drops of at least half the largest); the smaller drops between them are \
+             fore- and aftershocks.",
+            seeds_text(&d.seeds)
+        ),
+    })
+}
+
+fn normal_stress(d: &Data, path: &Path) -> Result<Outcome, AnalysisError> {
+    let Some(&seed) = d.seeds.first() else { return Ok(Outcome::Skipped("no successful seed".into())) };
+    let Some((t, sigma)) = series(d, seed, "normal_stress_pa")? else {
+        return Ok(Outcome::Skipped("normal stress not recorded".into()));
+    };
+    let scene = &d.pipeline.scene;
+    let lattice = scene.lattice();
+    let weight = scene.density_kg_m3 * lattice.volume() * scene.self_weight.gravity_m_s2 / lattice.contact_area() / 1e3;
+    let kpa: Vec<f64> = sigma.iter().map(|v| v / 1e3).collect();
+    let swing = |x: &[f64]| x.iter().map(|v| (v - weight).abs() / weight).fold(0.0, f64::max);
+    let dt = if t.len() > 1 { (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64 } else { 1.0 };
+    let averaged = crate::events::moving_average(&kpa, ((1e-3 / dt).round() as usize).max(1));
+    let (raw_swing, avg_swing) = (swing(&kpa), swing(&averaged));
+    charts::linear(
+        path,
+        &format!("Normal stress on the base, seed {seed} (paper Fig. 4)"),
+        "time since the start of shearing (s)",
+        "σ (kPa)",
+        &[Line::new(format!("seed {seed}"), decimate(&t, &kpa, WIDTH as usize), 0)],
+        &[],
+        &[HLine { y: weight, text: format!("self-weight ρgh = {weight:.2} kPa"), colour: BLACK }],
+        SeriesLabelPosition::UpperLeft,
+    )?;
+    Ok(Outcome::Drawn {
+        title: "Normal stress σ(t)".into(),
+        caption: format!(
+            "Mean normal stress ΣN/A on the base for seed {seed}, with the self-weight level. During the drops it swings \
+             by up to {:.0}% of the self-weight averaged over 1 ms ({:.0}% in single samples; the paper reports up to \
+             30%), as nodes lift off and land.",
+            100.0 * avg_swing,
+            100.0 * raw_swing
+        ),
+    })
+}
+
+fn mean_slip(d: &Data, path: &Path) -> Result<Outcome, AnalysisError> {
+    let mut lines = Vec::new();
+    for (k, &seed) in d.seeds.iter().enumerate() {
+        let Some((t, delta)) = series(d, seed, "mean_slip_m")? else { continue };
+        let um: Vec<f64> = delta.iter().map(|v| v * 1e6).collect();
+        lines.push(Line::new(format!("seed {seed}"), decimate(&t, &um, WIDTH as usize), k));
+    }
+    if lines.is_empty() {
+        return Ok(Outcome::Skipped("mean slip not recorded".into()));
+    }
+    charts::linear(
+        path,
+        "Mean displacement of the contact surface (paper Fig. 5)",
+        "time since the start of shearing (s)",
+        "δ (µm)",
+        &lines,
+        &[],
+        &[],
+        SeriesLabelPosition::LowerRight,
+    )?;
+    Ok(Outcome::Drawn {
+        title: "Mean contact displacement δ(t)".into(),
+        caption: format!(
+            "Mean x-displacement of the contact nodes for {}: the block moves in jumps at the stress drops and stands \
+             still in between.",
+            seeds_text(&d.seeds)
+        ),
+    })
+}
+
+fn acceleration_s2(d: &Data, path: &Path) -> Result<Outcome, AnalysisError> {
+    let Some((node, comp)) = accelerogram_channel(d) else {
+        return Ok(Outcome::Skipped("no control node records acceleration".into()));
+    };
+    let mut panels = Vec::new();
+    for (k, &seed) in d.seeds.iter().enumerate() {
+        let Some(&(_, s2)) = main_shocks(d, seed)?.iter().find(|(l, _)| l == "S2") else { continue };
+        let Some((t, a)) = control(d, seed, node, comp)? else { continue };
+        let (from, to) = (s2 - 0.005, s2 + 0.025);
+        let pts: Vec<(f64, f64)> =
+            t.iter().zip(&a).filter(|(x, _)| **x >= from && **x <= to).map(|(x, y)| ((x - s2) * 1e3, *y)).collect();
+        panels.push(Line::new(format!("seed {seed}"), pts, k));
+    }
+    if panels.is_empty() {
+        return Ok(Outcome::Skipped("no seed has a main shock S2".into()));
+    }
+    charts::stacked(
+        path,
+        &format!("Acceleration of node {node} ({comp}) around S2 (paper Fig. 6)"),
+        "time from the start of S2 (ms)",
+        "a (m/s²)",
+        &panels,
+    )?;
+    Ok(Outcome::Drawn {
+        title: format!("Node {node} acceleration around S2"),
+        caption: format!(
+            "Artificial accelerograms: the {comp} acceleration of control node {node} from 5 ms before to 25 ms after the \
+             start of each seed's main shock S2 (model scale; at prototype scale times ×λ and accelerations ÷λ). Each seed \
+             gives a different record."
+        ),
+    })
+}
+
+fn acceleration_run(d: &Data, path: &Path) -> Result<Outcome, AnalysisError> {
+    let Some((node, comp)) = accelerogram_channel(d) else {
+        return Ok(Outcome::Skipped("no control node records acceleration".into()));
+    };
+    let mut panels = Vec::new();
+    for (k, &seed) in d.seeds.iter().enumerate() {
+        let Some((t, a)) = control(d, seed, node, comp)? else { continue };
+        panels.push(Line::new(format!("seed {seed}"), decimate(&t, &a, WIDTH as usize), k));
+    }
+    if panels.is_empty() {
+        return Ok(Outcome::Skipped("no accelerogram recorded".into()));
+    }
+    charts::stacked(
+        path,
+        &format!("Acceleration of node {node} ({comp}) over the whole run (paper Fig. 7)"),
+        "time since the start of shearing (s)",
+        "a (m/s²)",
+        &panels,
+    )?;
+    Ok(Outcome::Drawn {
+        title: format!("Node {node} acceleration, whole run"),
+        caption: format!(
+            "The {comp} acceleration of control node {node} through all the main shocks, one panel per seed (model scale)."
+        ),
+    })
+}
+
+fn spectra_z(d: &Data, path: &Path) -> Result<Outcome, AnalysisError> {
+    spectra(d, path, "z")
+}
+
+fn spectra_x(d: &Data, path: &Path) -> Result<Outcome, AnalysisError> {
+    spectra(d, path, "x")
+}
+
+/// PSA at 5% (or the nearest damping), model and prototype scale: every seed thin, the mean and
+/// the 5–95% band bold.
+fn spectra(d: &Data, path: &Path, comp: &str) -> Result<Outcome, AnalysisError> {
+    let (Some(stats), Some((node, _))) = (&d.psa_stats, accelerogram_channel(d)) else {
+        return Ok(Outcome::Skipped("no spectra stage".into()));
+    };
+    let st_node = col_u64(stats, "node")?;
+    let st_comp = col_str(stats, "component")?;
+    let st_scale = col_str(stats, "scale")?;
+    let st_damp = col_f64(stats, "damping")?;
+    let damping = st_damp.iter().copied().min_by(|a, b| (a - 0.05).abs().total_cmp(&(b - 0.05).abs())).unwrap_or(0.05);
+    if !(0..stats.height()).any(|i| st_node[i] == node && st_comp[i] == comp) {
+        return Ok(Outcome::Skipped(format!("no {comp} spectra of node {node}")));
+    }
+    let period = col_f64(stats, "period_s")?;
+    let (mean, p5, p95) = (col_f64(stats, "mean_m_s2")?, col_f64(stats, "p5_m_s2")?, col_f64(stats, "p95_m_s2")?);
+    let all = scan_glob(&crate::ensemble::part_glob(d.out, "spectra"))?;
+    let mut panels = Vec::new();
+    let mut count = 0;
+    for (scale, unit_note) in [("model", "model scale"), ("prototype", "prototype scale (λ)")] {
+        let rows: Vec<usize> = (0..stats.height())
+            .filter(|&i| st_node[i] == node && st_comp[i] == comp && st_scale[i] == scale && st_damp[i] == damping)
+            .collect();
+        let mut lines = Vec::new();
+        if let Some(df) = &all {
+            let (sd, sn, sc, ss, dd) = (
+                col_u64(df, "seed")?,
+                col_u64(df, "node")?,
+                col_str(df, "component")?,
+                col_str(df, "scale")?,
+                col_f64(df, "damping")?,
+            );
+            let (per, psa) = (col_f64(df, "period_s")?, col_f64(df, "psa_m_s2")?);
+            let mut seeds: Vec<u64> = sd.clone();
+            seeds.sort();
+            seeds.dedup();
+            count = seeds.len();
+            for s in seeds {
+                let pts: Vec<(f64, f64)> = (0..df.height())
+                    .filter(|&i| sd[i] == s && sn[i] == node && sc[i] == comp && ss[i] == scale && dd[i] == damping)
+                    .map(|i| (per[i], psa[i]))
+                    .collect();
+                lines.push(Line {
+                    label: String::new(),
+                    points: pts,
+                    colour: RGBColor(150, 150, 150),
+                    width: 1,
+                    alpha: 0.5,
+                });
+            }
+        }
+        if let Some(l) = lines.first_mut() {
+            l.label = "each seed".into();
+        }
+        lines.push(Line {
+            label: "mean".into(),
+            points: rows.iter().map(|&i| (period[i], mean[i])).collect(),
+            colour: colour(1),
+            width: 4,
+            alpha: 1.0,
+        });
+        let band = Band {
+            points: rows.iter().map(|&i| (period[i], p5[i], p95[i])).collect(),
+            colour: colour(0),
+            label: "5–95%".into(),
+        };
+        panels.push(Panel {
+            title: format!("PSA, {unit_note}"),
+            x_desc: "period (s)".into(),
+            y_desc: "PSA (m/s²)".into(),
+            lines,
+            bands: vec![band],
+        });
+    }
+    charts::loglog_panels(path, &panels)?;
+    Ok(Outcome::Drawn {
+        title: format!("Response spectra, node {node} ({comp})"),
+        caption: format!(
+            "Pseudo-spectral acceleration at {:.0}% damping of the {comp} accelerogram of node {node}: every seed thin \
+             ({count} seeds), the mean and the 5–95% band across seeds bold. Left at model scale, right at prototype scale \
+             (periods ×λ, PSA ÷λ). Exact for the straight-line reading of the samples (Nigam–Jennings).",
+            100.0 * damping
+        ),
+    })
+}
+
+fn fourier(d: &Data, path: &Path) -> Result<Outcome, AnalysisError> {
+    let Some((node, comp)) = accelerogram_channel(d) else {
+        return Ok(Outcome::Skipped("no accelerogram".into()));
+    };
+    let mut lines = Vec::new();
+    for (k, &seed) in d.seeds.iter().enumerate() {
+        let Some(df) = d.part("fourier", seed)? else { continue };
+        let (n, c) = (col_u64(&df, "node")?, col_str(&df, "component")?);
+        let (f, a) = (col_f64(&df, "frequency_hz")?, col_f64(&df, "amplitude_m_s")?);
+        let idx: Vec<usize> = (0..df.height()).filter(|&i| n[i] == node && c[i] == comp && f[i] > 0.0).collect();
+        // Log-spaced thinning: keep the maximum per 1/200 decade.
+        let mut pts: Vec<(f64, f64)> = Vec::new();
+        let mut bucket = i64::MIN;
+        for &i in &idx {
+            let b = (f[i].log10() * 200.0).floor() as i64;
+            match pts.last_mut() {
+                Some(p) if b == bucket => {
+                    if a[i] > p.1 {
+                        *p = (f[i], a[i]);
+                    }
+                }
+                _ => {
+                    pts.push((f[i], a[i]));
+                    bucket = b;
+                }
+            }
+        }
+        let mut l = Line::new(format!("seed {seed}"), pts, k);
+        l.width = 1;
+        lines.push(l);
+    }
+    if lines.is_empty() {
+        return Ok(Outcome::Skipped("no Fourier spectra".into()));
+    }
+    charts::loglog_panels(
+        path,
+        &[Panel {
+            title: format!("Fourier amplitude of node {node} ({comp}), model scale"),
+            x_desc: "frequency (Hz)".into(),
+            y_desc: "|X|·Δt (m/s)".into(),
+            lines,
+            bands: vec![],
+        }],
+    )?;
+    Ok(Outcome::Drawn {
+        title: format!("Fourier spectra, node {node} ({comp})"),
+        caption: format!(
+            "Fourier amplitude |X(f)|·Δt of the {comp} accelerogram of node {node} for {} (whole record, zero-padded \
+             to a power of two, no window; the largest value per 1/200 decade is drawn). At prototype scale the \
+             frequencies are divided by λ, the amplitudes unchanged.",
+            seeds_text(&d.seeds)
+        ),
+    })
+}
+
+fn rank_of(label: &str) -> Option<u32> {
+    label.strip_prefix('S')?.parse().ok()
+}
+
+fn drop_vs_duration(d: &Data, path: &Path) -> Result<Outcome, AnalysisError> {
+    let Some(ev) = &d.events else { return Ok(Outcome::Skipped("no events".into())) };
+    if ev.height() == 0 {
+        return Ok(Outcome::Skipped("no events".into()));
+    }
+    let kind = col_str(ev, "kind")?;
+    let label = col_str(ev, "label")?;
+    let (dur, drop) = (col_f64(ev, "duration_s")?, col_f64(ev, "stress_drop_pa")?);
+    let mut groups = vec![Points {
+        label: "fore- and aftershocks".into(),
+        points: (0..ev.height()).filter(|&i| kind[i] != "main").map(|i| (dur[i] * 1e3, drop[i] / 1e3)).collect(),
+        colour: RGBColor(150, 150, 150),
+        size: 4,
+    }];
+    let max_rank =
+        (0..ev.height()).filter(|&i| kind[i] == "main").filter_map(|i| rank_of(&label[i])).max().unwrap_or(0);
+    for r in 1..=max_rank {
+        groups.push(Points {
+            label: format!("S{r}"),
+            points: (0..ev.height())
+                .filter(|&i| kind[i] == "main" && rank_of(&label[i]) == Some(r))
+                .map(|i| (dur[i] * 1e3, drop[i] / 1e3))
+                .collect(),
+            colour: colour(r as usize - 1),
+            size: 6,
+        });
+    }
+    charts::scatter(
+        path,
+        "Stress drop against duration, all events",
+        "duration (ms)",
+        "stress drop (kPa)",
+        &groups,
+        &[],
+        &[],
+        None,
+        SeriesLabelPosition::LowerRight,
+    )?;
+    Ok(Outcome::Drawn {
+        title: "Event catalogue: stress drop vs duration".into(),
+        caption: format!(
+            "Every event of every seed ({} events): main shocks coloured by rank, fore- and aftershocks grey. Duration is \
+             the slip burst (smoothed mean slip rate above the detector's thresholds); the stress drop is measured on the \
+             1-ms-averaged τ.",
+            ev.height()
+        ),
+    })
+}
+
+/// Deterministic jitter in [−0.15, 0.15] from an index.
+fn jitter(i: usize) -> f64 {
+    ((i as f64 * 0.618_033_988_75).fract() - 0.5) * 0.3
+}
+
+fn rank_ticks(v: &f64) -> String {
+    let r = v.round();
+    if (v - r).abs() < 1e-6 && r >= 1.0 { format!("S{}", r as i64) } else { String::new() }
+}
+
+fn recurrence(d: &Data, path: &Path) -> Result<Outcome, AnalysisError> {
+    let Some(ev) = &d.events else { return Ok(Outcome::Skipped("no events".into())) };
+    let kind = col_str(ev, "kind")?;
+    let label = col_str(ev, "label")?;
+    let rec = col_f64(ev, "recurrence_s")?;
+    let pts: Vec<(u32, f64)> = (0..ev.height())
+        .filter(|&i| kind[i] == "main" && rec[i].is_finite())
+        .filter_map(|i| Some((rank_of(&label[i])?, rec[i] * 1e3)))
+        .collect();
+    if pts.is_empty() {
+        return Ok(Outcome::Skipped("fewer than two main shocks in every seed".into()));
+    }
+    let max_rank = pts.iter().map(|p| p.0).max().unwrap_or(2);
+    let groups = vec![Points {
+        label: "one main shock".into(),
+        points: pts.iter().enumerate().map(|(i, (r, v))| (*r as f64 + jitter(i), *v)).collect(),
+        colour: colour(0),
+        size: 5,
+    }];
+    let means: Vec<(f64, f64)> = (2..=max_rank)
+        .filter_map(|r| {
+            let v: Vec<f64> = pts.iter().filter(|p| p.0 == r).map(|p| p.1).collect();
+            (!v.is_empty()).then(|| (r as f64, v.iter().sum::<f64>() / v.len() as f64))
+        })
+        .collect();
+    let lines = [Line { label: "mean across seeds".into(), points: means, colour: colour(1), width: 3, alpha: 1.0 }];
+    let paper = [HLine { y: 25.8, text: "paper: S1→S2 25.8 ms".into(), colour: BLACK }];
+    charts::scatter(
+        path,
+        "Recurrence between main shocks",
+        "main shock",
+        "time since the previous main shock (ms)",
+        &groups,
+        &lines,
+        &paper,
+        Some(&rank_ticks),
+        SeriesLabelPosition::UpperRight,
+    )?;
+    Ok(Outcome::Drawn {
+        title: "Recurrence of the main shocks".into(),
+        caption: "Time from the start of the previous main shock, per main shock across seeds (points jittered \
+                  sideways), the mean per rank, and the paper's S1→S2 recurrence."
+            .into(),
+    })
+}
+
+fn magnitude(d: &Data, path: &Path) -> Result<Outcome, AnalysisError> {
+    let Some(sim) = &d.similarity else { return Ok(Outcome::Skipped("no similarity table".into())) };
+    let kind = col_str(sim, "kind")?;
+    let label = col_str(sim, "label")?;
+    let (m, mw) = (col_f64(sim, "m_riera_paper_interplate")?, col_f64(sim, "mw_consistent")?);
+    let idx: Vec<(usize, u32)> =
+        (0..sim.height()).filter(|&i| kind[i] == "main").filter_map(|i| Some((i, rank_of(&label[i])?))).collect();
+    if idx.is_empty() {
+        return Ok(Outcome::Skipped("no main shocks".into()));
+    }
+    let lambda = col_f64(sim, "lambda")?.first().copied().unwrap_or(f64::NAN);
+    let groups = vec![
+        Points {
+            label: "Riera M, paper's M0 (Eq. 15)".into(),
+            points: idx.iter().enumerate().map(|(k, (i, r))| (*r as f64 + jitter(k), m[*i])).collect(),
+            colour: colour(0),
+            size: 5,
+        },
+        Points {
+            label: "Mw, consistent M0".into(),
+            points: idx.iter().enumerate().map(|(k, (i, r))| (*r as f64 + jitter(k), mw[*i])).collect(),
+            colour: colour(2),
+            size: 5,
+        },
+    ];
+    let paper = [HLine { y: 6.77, text: "paper: M = 6.77 (S2)".into(), colour: BLACK }];
+    charts::scatter(
+        path,
+        &format!("Magnitude of the main shocks at prototype scale (λ = {lambda:.0})"),
+        "main shock",
+        "magnitude",
+        &groups,
+        &[],
+        &paper,
+        Some(&rank_ticks),
+        SeriesLabelPosition::MiddleRight,
+    )?;
+    Ok(Outcome::Drawn {
+        title: "Magnitude per main shock".into(),
+        caption: "Riera et al.'s magnitude from the paper's seismic moment (Eq. 15, with its extra factor λ) and the \
+                  moment magnitude Mw from the dimensionally consistent moment Δσ·L_p·A_p, for every main shock of every \
+                  seed, against the paper's M = 6.77 for S2."
+            .into(),
+    })
+}
+
+fn attenuation(d: &Data, path: &Path) -> Result<Outcome, AnalysisError> {
+    let Some(att) = &d.attenuation else { return Ok(Outcome::Skipped("no attenuation stage".into())) };
+    if att.height() == 0 {
+        return Ok(Outcome::Skipped("no main shock with a hypocentre".into()));
+    }
+    let label = col_str(att, "label")?;
+    let (dist, pga) = (col_f64(att, "distance_m")?, col_f64(att, "pga_m_s2")?);
+    let ok = |i: usize| dist[i] > 0.0 && pga[i] > 0.0;
+    let max_rank = label.iter().filter_map(|l| rank_of(l)).max().unwrap_or(0);
+    let groups: Vec<Points> = (1..=max_rank)
+        .map(|r| Points {
+            label: format!("S{r}"),
+            points: (0..att.height())
+                .filter(|&i| ok(i) && rank_of(&label[i]) == Some(r))
+                .map(|i| (dist[i].log10(), pga[i].log10()))
+                .collect(),
+            colour: colour(r as usize - 1),
+            size: 5,
+        })
+        .collect();
+    let mut lines = Vec::new();
+    let mut fit_text = String::from("no fit");
+    if let Some(fit) = &d.attenuation_fit {
+        let (g, m) = (col_str(fit, "group")?, col_str(fit, "measure")?);
+        let (a, b, r2) = (col_f64(fit, "intercept")?, col_f64(fit, "slope")?, col_f64(fit, "r2")?);
+        if let Some(i) = (0..fit.height()).find(|&i| g[i] == "main" && m[i] == "pga_m_s2") {
+            let xs: Vec<f64> = (0..att.height()).filter(|&i| ok(i)).map(|i| dist[i].log10()).collect();
+            let (x0, x1) = xs.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| (lo.min(x), hi.max(x)));
+            lines.push(Line {
+                label: format!("fit: log PGA = {:.2} {:+.2}·log R (r² = {:.2})", a[i], b[i], r2[i]),
+                points: vec![(x0, a[i] + b[i] * x0), (x1, a[i] + b[i] * x1)],
+                colour: BLACK,
+                width: 3,
+                alpha: 1.0,
+            });
+            fit_text = format!("log10 PGA = {:.3} {:+.3}·log10 R, r² = {:.2}", a[i], b[i], r2[i]);
+        }
+    }
+    charts::scatter(
+        path,
+        "Peak acceleration against distance from the hypocentre",
+        "log10 distance (m)",
+        "log10 PGA (m/s²)",
+        &groups,
+        &lines,
+        &[],
+        None,
+        SeriesLabelPosition::UpperLeft,
+    )?;
+    Ok(Outcome::Drawn {
+        title: "Attenuation of peak acceleration".into(),
+        caption: format!(
+            "Peak magnitude of the recorded acceleration of every control node during every main shock, against its \
+             distance from the shock's hypocentre (the first contact node to slide for good), all seeds, model scale; \
+             least-squares line over all main shocks: {fit_text}. The block is 1 m long, so these are near-field \
+             distances; g = {G} m/s²."
+        ),
+    })
+}
+
+fn energy(d: &Data, path: &Path) -> Result<Outcome, AnalysisError> {
+    let Some(&seed) = d.seeds.first() else { return Ok(Outcome::Skipped("no successful seed".into())) };
+    let Some(df) = d.part("series", seed)? else { return Ok(Outcome::Skipped("no series".into())) };
+    if !has(&df, "external_work_j") {
+        return Ok(Outcome::Skipped("energy not recorded (record.energy = false)".into()));
+    }
+    let t = col_f64(&df, "time_s")?;
+    let terms = [
+        ("external work", "external_work_j"),
+        ("friction dissipated", "friction_dissipated_j"),
+        ("damping dissipated", "damping_dissipated_j"),
+        ("elastic", "elastic_energy_j"),
+        ("kinetic", "kinetic_energy_j"),
+        ("lost in landings", "impact_dissipated_j"),
+        ("balance residual", "energy_residual_j"),
+    ];
+    let mut lines = Vec::new();
+    let mut residual = 0.0f64;
+    let mut work = 0.0f64;
+    for (k, (name, col)) in terms.iter().enumerate() {
+        let v: Vec<f64> = col_f64(&df, col)?.iter().map(|x| x * 1e3).collect();
+        if *col == "energy_residual_j" {
+            residual = v.iter().fold(0.0, |m, x| m.max(x.abs()));
+        }
+        if *col == "external_work_j" {
+            work = v.last().copied().unwrap_or(0.0);
+        }
+        lines.push(Line::new(*name, decimate(&t, &v, WIDTH as usize), k));
+    }
+    charts::linear(
+        path,
+        &format!("Energy balance, seed {seed}"),
+        "time since the start of shearing (s)",
+        "energy since the start of the run (mJ)",
+        &lines,
+        &[],
+        &[],
+        SeriesLabelPosition::UpperLeft,
+    )?;
+    Ok(Outcome::Drawn {
+        title: "Energy terms".into(),
+        caption: format!(
+            "Cumulative work of gravity and the driver against what is stored (elastic, kinetic) and dissipated \
+             (damping, friction, landings) for seed {seed}, counted from the start of the self-weight stage. The largest \
+             |residual| is {residual:.2e} mJ against {work:.3} mJ of external work: the balance closes to round-off."
+        ),
+    })
+}
