@@ -30,7 +30,8 @@ fn pipeline(dir: &Path, text: &str) -> Pipeline {
 }
 
 fn run(p: &Pipeline, out: &Path, threads: usize) {
-    let options = EnsembleOptions { out: out.to_path_buf(), threads, seeds: p.seeds.clone(), fresh: false };
+    let options =
+        EnsembleOptions { out: out.to_path_buf(), threads, seeds: p.seeds.clone(), fresh: false, finish: true };
     let report = run_ensemble(p, &options, &|_, _| {}, &AtomicBool::new(false)).unwrap();
     assert_eq!(report.ran, p.seeds.len());
     assert!(report.failed.is_empty(), "{:?}", report.failed);
@@ -111,7 +112,8 @@ fn a_changed_pipeline_is_refused_and_fresh_starts_over() {
     run(&p, &dir.join("out"), 2);
     let changed = pipeline(&dir, &short_paper(2, 0.02).replace("young_cv = 0.05", "young_cv = 0.06"));
     assert_ne!(p.hash, changed.hash);
-    let mut options = EnsembleOptions { out: dir.join("out"), threads: 2, seeds: changed.seeds.clone(), fresh: false };
+    let mut options =
+        EnsembleOptions { out: dir.join("out"), threads: 2, seeds: changed.seeds.clone(), fresh: false, finish: true };
     let err = run_ensemble(&changed, &options, &|_, _| {}, &AtomicBool::new(false)).unwrap_err().to_string();
     assert!(err.contains("holds results of another pipeline") && err.contains("--fresh"), "{err}");
     options.fresh = true;
@@ -121,4 +123,50 @@ fn a_changed_pipeline_is_refused_and_fresh_starts_over() {
     options.fresh = false;
     let report = run_ensemble(&changed, &options, &|_, _| {}, &AtomicBool::new(false)).unwrap();
     assert_eq!((report.ran, report.skipped), (0, 2));
+}
+
+#[test]
+fn shards_in_any_order_merge_to_the_plain_ensemble() {
+    use stickslip_analysis::ensemble::shard;
+    use stickslip_analysis::merge::merge;
+    let dir = scratch_dir("ensemble-shards");
+    let p = pipeline(&dir, &short_paper(10, 0.06));
+    std::fs::copy(dir.join("short.toml"), dir.join("copy.toml")).unwrap();
+    run(&p, &dir.join("plain"), 2);
+    let n = 4;
+    for (out, order) in [("forward", (1..=n).collect::<Vec<_>>()), ("reverse", (1..=n).rev().collect())] {
+        for k in order {
+            let options = EnsembleOptions {
+                out: dir.join(out),
+                threads: 1,
+                seeds: shard(&p.seeds, k, n),
+                fresh: false,
+                finish: false,
+            };
+            run_ensemble(&p, &options, &|_, _| {}, &AtomicBool::new(false)).unwrap();
+        }
+        // A shard run twice (e.g. a requeued array task) changes nothing.
+        let again = EnsembleOptions {
+            out: dir.join(out),
+            threads: 2,
+            seeds: shard(&p.seeds, 2, n),
+            fresh: false,
+            finish: false,
+        };
+        assert_eq!(run_ensemble(&p, &again, &|_, _| {}, &AtomicBool::new(false)).unwrap().ran, 0);
+        let merged = merge(&dir.join(out), None, Some(n)).unwrap();
+        assert_eq!(merged.seeds, 10);
+        assert_same_tables(&dir.join("plain"), &dir.join(out), &["wall_time_s"]);
+    }
+    // An incomplete set of shards is refused, naming the missing shard.
+    let options = EnsembleOptions {
+        out: dir.join("partial"),
+        threads: 2,
+        seeds: shard(&p.seeds, 1, n),
+        fresh: false,
+        finish: false,
+    };
+    run_ensemble(&p, &options, &|_, _| {}, &AtomicBool::new(false)).unwrap();
+    let err = merge(&dir.join("partial"), None, Some(n)).unwrap_err().to_string();
+    assert!(err.contains("seeds missing") && err.contains("shards 2, 3, 4 of 4 incomplete"), "{err}");
 }

@@ -12,7 +12,8 @@ use stickslip_support::{repo_path, scratch_dir};
 fn run(dir: &Path, text: &str) -> stickslip_analysis::ensemble::EnsembleReport {
     std::fs::write(dir.join("p.toml"), text).unwrap();
     let p = Pipeline::load(&dir.join("p.toml")).unwrap();
-    let options = EnsembleOptions { out: dir.join("out"), threads: 2, seeds: p.seeds.clone(), fresh: false };
+    let options =
+        EnsembleOptions { out: dir.join("out"), threads: 2, seeds: p.seeds.clone(), fresh: false, finish: true };
     run_ensemble(&p, &options, &|_, _| {}, &AtomicBool::new(false)).unwrap()
 }
 

@@ -176,7 +176,7 @@ mod pipeline_outputs {
         std::fs::write(dir.join("p.toml"), &text).unwrap();
         let p = Pipeline::load(&dir.join("p.toml")).unwrap();
         let out = dir.join("out");
-        let options = EnsembleOptions { out: out.clone(), threads: 1, seeds: vec![123], fresh: false };
+        let options = EnsembleOptions { out: out.clone(), threads: 1, seeds: vec![123], fresh: false, finish: true };
         run_ensemble(&p, &options, &|_, _| {}, &AtomicBool::new(false)).unwrap();
         let acc = read_table(&out.join("tables/accelerograms/seed-0000000123.parquet"));
         let spectra = read_table(&out.join("tables/spectra/seed-0000000123.parquet"));

@@ -69,6 +69,17 @@ pub struct EnsembleOptions {
     pub seeds: Vec<u64>,
     /// Discard results of another pipeline found in `out` instead of refusing.
     pub fresh: bool,
+    /// Gather the tables, the statistics and the report at the end (false for one shard of a
+    /// larger ensemble: `merge` does it once every shard is in).
+    pub finish: bool,
+}
+
+/// The `k`-th (1-based) of `n` disjoint, contiguous slices of `seeds`, in their order: seeds
+/// `⌊(k−1)·len/n⌋ … ⌊k·len/n⌋ − 1`. Every seed is in exactly one slice whatever `n`.
+pub fn shard(seeds: &[u64], k: usize, n: usize) -> Vec<u64> {
+    assert!(n >= 1 && (1..=n).contains(&k), "shard {k}/{n}");
+    let len = seeds.len();
+    seeds[(k - 1) * len / n..k * len / n].to_vec()
 }
 
 /// What an ensemble did.
@@ -284,6 +295,17 @@ pub fn run_ensemble(
     }
     if cancel.load(Ordering::Relaxed) {
         return Err(AnalysisError::Interrupted { done, total, out: out.clone() });
+    }
+    if !options.finish {
+        return Ok(EnsembleReport {
+            ran,
+            skipped,
+            failed,
+            wall_time_s: start.elapsed().as_secs_f64(),
+            out: out.clone(),
+            report: None,
+            report_time_s: 0.0,
+        });
     }
     gather(out, &options.seeds)?;
     let runs = scan_glob(&out.join("tables").join("runs.parquet"))?;

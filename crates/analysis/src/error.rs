@@ -61,6 +61,14 @@ pub enum AnalysisError {
         /// The folder.
         out: PathBuf,
     },
+    /// A merge found seeds missing or from another pipeline.
+    #[error("{}: cannot merge: {why}", out.display())]
+    Incomplete {
+        /// The folder.
+        out: PathBuf,
+        /// What is missing or mismatched.
+        why: String,
+    },
     /// Something could not be set up.
     #[error("{0}")]
     Setup(String),

@@ -2,9 +2,11 @@
 #![deny(missing_docs)]
 
 pub mod catalogue;
+pub mod compare;
 pub mod ensemble;
 pub mod error;
 pub mod events;
+pub mod merge;
 pub mod pipeline;
 pub mod report;
 pub mod similarity;

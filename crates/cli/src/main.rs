@@ -63,9 +63,32 @@ enum Command {
         /// Discard results of a different pipeline found in the output folder.
         #[arg(long)]
         fresh: bool,
+        /// Run only the K-th of N disjoint slices of the seeds (K from 1), e.g. "3/8", for a job
+        /// array; the tables and report are gathered by `stickslip merge`.
+        #[arg(long, value_parser = parse_shard)]
+        shard: Option<(usize, usize)>,
         /// No progress bar.
         #[arg(long, short)]
         quiet: bool,
+    },
+    /// Check that every shard of an ensemble is in an output folder and gather its tables,
+    /// statistics and report.
+    Merge {
+        /// The shared output folder of the shards.
+        out: PathBuf,
+        /// Pipeline file [default: <out>/pipeline.toml, written by the shards].
+        #[arg(long)]
+        pipeline: Option<PathBuf>,
+        /// Number of shards, to name the incomplete ones.
+        #[arg(long)]
+        shards: Option<usize>,
+    },
+    /// Compare the tables of two output folders (wall times ignored); exit 1 if they differ.
+    Compare {
+        /// First folder.
+        a: PathBuf,
+        /// Second folder.
+        b: PathBuf,
     },
     /// Scale a model event to a prototype fault (SPEC §9) and print the numbers.
     Similarity(SimilarityArgs),
@@ -164,12 +187,21 @@ struct SimilarityArgs {
 }
 
 fn main() {
+    // Output piped into `head` and the like: end quietly when the reader goes away, as Unix
+    // tools do, instead of panicking on a broken pipe.
+    #[cfg(unix)]
+    // SAFETY: restoring the default disposition of SIGPIPE before any thread starts.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Run { pipeline, seed, out, quiet } => run(&pipeline, seed, out, quiet),
-        Command::Pipeline { pipelines, out, seeds, threads, fresh, quiet } => {
-            ensemble(&pipelines, out, seeds.as_deref(), threads, fresh, quiet)
+        Command::Pipeline { pipelines, out, seeds, threads, fresh, shard, quiet } => {
+            ensemble(&pipelines, out, seeds.as_deref(), threads, fresh, shard, quiet)
         }
+        Command::Merge { out, pipeline, shards } => merge(&out, pipeline.as_deref(), shards),
+        Command::Compare { a, b } => compare(&a, &b),
         Command::Similarity(args) => similarity(&args),
         Command::Show { table, rows } => show(&table, rows),
         Command::Spectra(args) => record_spectra(&args),
@@ -308,6 +340,18 @@ fn check(path: &Path, seed: u64) -> Result<()> {
 }
 
 /// Parses "1,5,10-20" into seeds.
+fn parse_shard(text: &str) -> Result<(usize, usize), String> {
+    let (k, n) = text.split_once('/').ok_or_else(|| format!("{text:?}: expected K/N, e.g. 3/8"))?;
+    let (k, n): (usize, usize) = (
+        k.trim().parse().map_err(|_| format!("{k:?} is not a shard number"))?,
+        n.trim().parse().map_err(|_| format!("{n:?} is not a shard count"))?,
+    );
+    if n == 0 || k == 0 || k > n {
+        return Err(format!("{text}: need 1 ≤ K ≤ N"));
+    }
+    Ok((k, n))
+}
+
 fn parse_seeds(text: &str) -> Result<Vec<u64>> {
     let mut seeds = Vec::new();
     for part in text.split(',').map(str::trim).filter(|p| !p.is_empty()) {
@@ -333,9 +377,14 @@ fn ensemble(
     seeds: Option<&str>,
     threads: usize,
     fresh: bool,
+    shard: Option<(usize, usize)>,
     quiet: bool,
 ) -> Result<()> {
     anyhow::ensure!(out.is_none() || paths.len() == 1, "--out needs exactly one pipeline");
+    anyhow::ensure!(
+        !(fresh && shard.is_some()),
+        "--fresh with --shard would discard the other shards' results: clear the folder by hand"
+    );
     // Validate every file before running any.
     let pipelines = paths.iter().map(|p| Pipeline::load(p)).collect::<Result<Vec<_>, _>>()?;
     let cancel = Arc::new(AtomicBool::new(false));
@@ -350,10 +399,13 @@ fn ensemble(
         .context("installing the Ctrl-C handler")?;
     }
     for pipeline in &pipelines {
-        let seeds = match seeds {
+        let mut seeds = match seeds {
             Some(s) => parse_seeds(s)?,
             None => pipeline.seeds.clone(),
         };
+        if let Some((k, n)) = shard {
+            seeds = stickslip_analysis::ensemble::shard(&seeds, k, n);
+        }
         let out = out.clone().unwrap_or_else(|| PathBuf::from("reports").join(&pipeline.name));
         let pb = progress_bar(quiet, seeds.len() as u64);
         pb.set_style(
@@ -362,13 +414,14 @@ fn ensemble(
                 .progress_chars("=> "),
         );
         pb.set_message(pipeline.name.clone());
-        let options = EnsembleOptions { out: out.clone(), threads, seeds, fresh };
+        let options = EnsembleOptions { out: out.clone(), threads, seeds, fresh, finish: shard.is_none() };
         let report = run_ensemble(pipeline, &options, &|done, _| pb.set_position(done as u64), &cancel);
         pb.finish_and_clear();
         let report = report?;
         println!(
-            "{}: {} seeds ({} run now, {} already done, {} failed) in {:.1} s → {}",
+            "{}{}: {} seeds ({} run now, {} already done, {} failed) in {:.1} s → {}",
             pipeline.name,
+            shard.map_or(String::new(), |(k, n)| format!(" shard {k}/{n}")),
             report.ran + report.skipped,
             report.ran,
             report.skipped,
@@ -378,6 +431,10 @@ fn ensemble(
         );
         for (seed, msg) in report.failed.iter().take(5) {
             println!("  seed {seed} failed: {msg}");
+        }
+        if shard.is_some() {
+            println!("  merge the shards with: stickslip merge {}", out.display());
+            continue;
         }
         println!("{}", digest(&out)?);
         if let Some(r) = &report.report {
@@ -502,4 +559,32 @@ fn record_spectra(a: &SpectraArgs) -> Result<()> {
         out.display()
     );
     Ok(())
+}
+
+fn merge(out: &Path, pipeline: Option<&Path>, shards: Option<usize>) -> Result<()> {
+    let r = stickslip_analysis::merge::merge(out, pipeline, shards)?;
+    println!(
+        "merged {} seeds ({} failed) in {:.1} s → {}",
+        r.seeds,
+        r.failed,
+        r.wall_time_s,
+        out.join("tables").display()
+    );
+    println!("{}", digest(out)?);
+    if let Some(rep) = &r.report {
+        println!("report: {} figures → {}", rep.figures.len(), rep.index.display());
+    }
+    Ok(())
+}
+
+fn compare(a: &Path, b: &Path) -> Result<()> {
+    let diffs = stickslip_analysis::compare::compare_tables(a, b, &["wall_time_s"])?;
+    if diffs.is_empty() {
+        println!("{} and {} hold the same tables (wall times aside)", a.display(), b.display());
+        return Ok(());
+    }
+    for d in &diffs {
+        println!("{d}");
+    }
+    anyhow::bail!("{} differences between {} and {}", diffs.len(), a.display(), b.display())
 }
