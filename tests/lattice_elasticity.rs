@@ -81,7 +81,7 @@ fn affine_strain_leaves_every_complete_node_in_equilibrium() {
     let u = affine(&model, eps);
     let k: Vec<[f64; 1]> = model.nominal_stiffness().iter().map(|&v| [v]).collect();
     let mut f = Field::<1>::zeros(model.node_count());
-    bar_forces(model.groups(), model.ends(), &k, &u, &mut f);
+    bar_forces(model.layout(), &k, &u, &mut f);
     let scale = model.nominal_stiffness().iter().fold(0.0f64, |m, v| m.max(*v)) * 2e-4 * model.lattice().lc();
     let dims = model.lattice().dims();
     let n = [dims.nx, dims.ny, dims.nz];

@@ -82,7 +82,7 @@ fn a_run_forced_past_the_critical_step_is_stopped_with_when_and_where() {
     let probe = Model::new(scene_with(|_| {}));
     let crit = critical_time_step(&probe, &probe.bar_stiffness(3).unwrap()).unwrap().dt_s;
     let model = Model::new(scene_with(|f| f.time.dt_s = Some(1.02 * crit)));
-    let options = RunOptions { allow_unstable_time_step: true };
+    let options = RunOptions { allow_unstable_time_step: true, ..RunOptions::default() };
     let err = run_seed(&model, 3, options, &mut go).unwrap_err();
     let msg = err.to_string();
     println!("{msg}");
@@ -128,4 +128,32 @@ fn shipped_pipelines_are_valid() {
             Pipeline::load(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         }
     }
+}
+
+#[test]
+fn the_parallel_step_of_a_large_lattice_gives_the_serial_numbers() {
+    use stickslip_solver::stepper::{LaneSetup, Stepper};
+    let model = Model::new(scene_with(|f| {
+        (f.block.nx, f.block.ny, f.block.nz) = (40, 20, 10);
+        f.shear.driver_at_m = vec![[0.0, 0.0, 0.1]];
+    }));
+    assert!(model.layout().segments().len() > 1, "a lattice this large is cut into slabs");
+    let k = model.bar_stiffness(9).unwrap();
+    let dt = 0.5 * critical_time_step(&model, &k).unwrap().dt_s;
+    let lane = LaneSetup { dt_s: dt, stiffness: k, friction: model.friction_factors(9).unwrap() };
+    let run = |parallel: bool| {
+        let mut s = Stepper::<1>::new(&model, std::slice::from_ref(&lane).try_into().unwrap());
+        s.set_damping(0, 2500.0);
+        s.set_body_acceleration(0, [0.0, 0.0, -9.81]);
+        s.set_parallel(parallel);
+        for _ in 0..60 {
+            s.step();
+        }
+        s.newest().clone()
+    };
+    let serial = run(false);
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
+    let parallel = pool.install(|| run(true));
+    assert!(serial.c[2].iter().any(|v| v[0] != 0.0));
+    assert_eq!(serial, parallel, "the parallel step must give the serial numbers bit for bit");
 }

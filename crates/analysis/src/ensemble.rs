@@ -23,7 +23,7 @@ use std::time::Instant;
 
 use polars::prelude::*;
 use rayon::prelude::*;
-use stickslip_solver::{Model, RunOptions, RunOutput, SolverError, run_seed};
+use stickslip_solver::{BATCH, Model, RunOptions, RunOutput, SolverError, run_batched};
 
 use crate::catalogue::{
     RunFacts, RunRow, acceleration_channels, events_frame, runs_frame, similarity_frame, sub_events_frame,
@@ -167,7 +167,16 @@ struct SeedResult {
     wall_time_s: f64,
 }
 
-fn simulate(model: &Model, pipeline: &Pipeline, seed: u64, cancel: &AtomicBool, plans: &PlanCache) -> SeedResult {
+/// Simulates a batch of seeds side by side (see [`run_batched`]) and analyses each; a seed's
+/// wall time is its share of the batch's.
+fn simulate(
+    model: &Model,
+    pipeline: &Pipeline,
+    seeds: &[u64],
+    options: RunOptions,
+    cancel: &AtomicBool,
+    plans: &PlanCache,
+) -> Vec<SeedResult> {
     let start = Instant::now();
     let mut check = |_: f64| {
         if cancel.load(Ordering::Relaxed) {
@@ -176,16 +185,25 @@ fn simulate(model: &Model, pipeline: &Pipeline, seed: u64, cancel: &AtomicBool, 
             std::ops::ControlFlow::Continue(())
         }
     };
-    let outcome = run_seed(model, seed, RunOptions::default(), &mut check).and_then(|out| {
-        let cat = detect(&out.records, model.contact().len(), model.lattice().contact_area(), &pipeline.events)
-            .map_err(|e| SolverError::Numerical(e.to_string()))?;
-        let spectra = pipeline
-            .spectra
-            .as_ref()
-            .map(|p| spectra::stage::compute(&out.records, &cat, model, p, pipeline.events.smoothing_s, plans));
-        Ok((out, cat, spectra))
-    });
-    SeedResult { seed, outcome, wall_time_s: start.elapsed().as_secs_f64() }
+    let runs = run_batched(model, seeds, options, &mut check);
+    let share = start.elapsed().as_secs_f64() / seeds.len() as f64;
+    seeds
+        .iter()
+        .zip(runs)
+        .map(|(&seed, run)| {
+            let start = Instant::now();
+            let outcome = run.and_then(|out| {
+                let cat = detect(&out.records, model.contact().len(), model.lattice().contact_area(), &pipeline.events)
+                    .map_err(|e| SolverError::Numerical(e.to_string()))?;
+                let spectra = pipeline
+                    .spectra
+                    .as_ref()
+                    .map(|p| spectra::stage::compute(&out.records, &cat, model, p, pipeline.events.smoothing_s, plans));
+                Ok((out, cat, spectra))
+            });
+            SeedResult { seed, outcome, wall_time_s: share + start.elapsed().as_secs_f64() }
+        })
+        .collect()
 }
 
 fn write_seed(out: &Path, pipeline: &Pipeline, model: &Model, r: SeedResult) -> Result<Option<String>, AnalysisError> {
@@ -259,13 +277,30 @@ pub fn run_ensemble(
         let model = &model;
         let pending = &pending;
         let plans = &plans;
+        // Batches of seeds share each pass over the lattice (lanes); a scene too large for
+        // that, with fewer seeds than threads, splits each step over the threads instead.
+        let threads = pool.current_num_threads();
+        let per_thread = pending.len().div_ceil(threads.max(1));
+        let batch = if per_thread >= BATCH {
+            BATCH
+        } else if per_thread >= 4 {
+            4
+        } else {
+            1
+        };
+        let options = RunOptions {
+            parallel_step: pending.len() < threads && model.layout().segments().len() > 1,
+            ..RunOptions::default()
+        };
         scope.spawn(move || {
             pool.install(|| {
-                pending.par_iter().for_each_with(tx, |tx, &seed| {
+                pending.par_chunks(batch).for_each_with(tx, |tx, chunk| {
                     if cancel.load(Ordering::Relaxed) {
                         return;
                     }
-                    let _ = tx.send(simulate(model, pipeline, seed, cancel, plans));
+                    for r in simulate(model, pipeline, chunk, options, cancel, plans) {
+                        let _ = tx.send(r);
+                    }
                 });
             });
         });

@@ -46,7 +46,7 @@ pub fn critical_time_step(model: &Model, k: &[f64]) -> Result<CriticalStep, Solv
             }
         }
         f.fill_zero();
-        bar_forces(model.groups(), model.ends(), &k1, &x, &mut f);
+        bar_forces(model.layout(), &k1, &x, &mut f);
         for c in 0..3 {
             for i in 0..n {
                 y[c * n + i] = -f.c[c][i][0] * inv_sqrt_m[i];
@@ -137,7 +137,7 @@ pub fn gershgorin_bound(model: &Model, k: &[f64]) -> f64 {
     let n = model.node_count();
     let inv_sqrt_m: Vec<f64> = model.inv_mass().iter().map(|v| v.sqrt()).collect();
     let mut rows = vec![0.0; 3 * n];
-    for g in model.groups() {
+    for g in model.layout().groups() {
         for (e, &kb) in model.ends()[g.start..g.end].iter().zip(&k[g.start..g.end]) {
             let (i, j) = (e[0] as usize, e[1] as usize);
             // Block k·s⊗s (axial: one entry; diagonal: stored k/3, |s_c s_d| = 1).
@@ -183,7 +183,7 @@ mod tests {
             let mut x = Field::<1>::zeros(n);
             x.c[col / n][col % n][0] = inv_sqrt_m[col % n];
             let mut f = Field::<1>::zeros(n);
-            bar_forces(model.groups(), model.ends(), &k1, &x, &mut f);
+            bar_forces(model.layout(), &k1, &x, &mut f);
             for row in 0..dof {
                 a[(row, col)] = -f.c[row / n][row % n][0] * inv_sqrt_m[row % n];
             }

@@ -11,10 +11,18 @@
 //!
 //! Every array is `[f64; L]` per node or bar: lane `l` is an independent seed. All lanes run the
 //! same arithmetic in the same order, so lane `l` of a batch is bit-identical to a run of that
-//! seed alone (`L = 1`).
+//! seed alone (`L = 1`). The kernels are compiled three times — baseline x86-64, AVX2 and AVX-512
+//! — and the widest the CPU has is picked at run time; Rust never fuses a multiply and an add on
+//! its own, so all three give the same bits.
+//!
+//! Large lattices are cut into slabs along z (see [`BarLayout`]); the bars inside one slab, then
+//! those across every other slab boundary, then the rest, touch disjoint nodes, so each phase can
+//! run its segments on several threads. The serial path walks the same segments in the same
+//! order, so the forces are bit-identical whatever the thread count.
+
+use rayon::prelude::*;
 
 use crate::lattice::Direction;
-use crate::model::BarGroup;
 
 /// One `f64` per lane.
 pub type Lanes<const L: usize> = [f64; L];
@@ -55,76 +63,251 @@ impl<const L: usize> Field<L> {
     }
 }
 
-/// Adds the internal bar forces `−K·u` to `f`.
-pub fn bar_forces<const L: usize>(
-    groups: &[BarGroup],
-    ends: &[[u32; 2]],
-    k: &[Lanes<L>],
-    u: &Field<L>,
-    f: &mut Field<L>,
-) {
-    for g in groups {
-        let (e, kk) = (&ends[g.start..g.end], &k[g.start..g.end]);
-        match g.direction {
-            Direction::Axis(a) => {
-                let a = a as usize;
-                axial(e, kk, &u.c[a], &mut f.c[a]);
+/// A run of bars sharing one direction class, `bars[start..end]` in kernel order.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BarGroup {
+    /// Direction class.
+    pub direction: Direction,
+    /// First bar.
+    pub start: usize,
+    /// One past the last bar.
+    pub end: usize,
+}
+
+/// A set of bars whose end nodes no other segment of the same phase touches.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Segment {
+    /// Segments of phase 0 run together, then those of phase 1, then phase 2.
+    pub phase: u8,
+    /// Its direction groups.
+    pub groups: Vec<BarGroup>,
+}
+
+/// The bars in kernel order, checked once: every end is a node below `nodes`, every group is
+/// inside the bar list, and segments of one phase touch disjoint nodes.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BarLayout {
+    segments: Vec<Segment>,
+    ends: Vec<[u32; 2]>,
+    nodes: usize,
+}
+
+impl BarLayout {
+    /// Builds and checks a layout. Panics on an end or group out of range, or on two segments of
+    /// one phase sharing a node (a programming error, not an input error).
+    pub fn new(segments: Vec<Segment>, ends: Vec<[u32; 2]>, nodes: usize) -> Self {
+        assert!(ends.iter().all(|e| (e[0] as usize) < nodes && (e[1] as usize) < nodes), "bar end out of range");
+        for s in &segments {
+            assert!(s.groups.iter().all(|g| g.start <= g.end && g.end <= ends.len()), "group out of range");
+        }
+        for phase in 0..3u8 {
+            let mut owner = vec![usize::MAX; nodes];
+            for (k, s) in segments.iter().enumerate().filter(|(_, s)| s.phase == phase) {
+                for g in &s.groups {
+                    for e in &ends[g.start..g.end] {
+                        for &n in e {
+                            let o = &mut owner[n as usize];
+                            assert!(
+                                *o == usize::MAX || *o == k,
+                                "segments {k} and {o} of phase {phase} share node {n}"
+                            );
+                            *o = k;
+                        }
+                    }
+                }
             }
-            Direction::Diagonal { neg_x: false, neg_y: false } => diagonal::<L, false, false>(e, kk, u, f),
-            Direction::Diagonal { neg_x: false, neg_y: true } => diagonal::<L, false, true>(e, kk, u, f),
-            Direction::Diagonal { neg_x: true, neg_y: false } => diagonal::<L, true, false>(e, kk, u, f),
-            Direction::Diagonal { neg_x: true, neg_y: true } => diagonal::<L, true, true>(e, kk, u, f),
+        }
+        BarLayout { segments, ends, nodes }
+    }
+
+    /// Segments in serial order.
+    pub fn segments(&self) -> &[Segment] {
+        &self.segments
+    }
+
+    /// Bar end nodes (internal indices), kernel order.
+    pub fn ends(&self) -> &[[u32; 2]] {
+        &self.ends
+    }
+
+    /// Number of nodes.
+    pub fn nodes(&self) -> usize {
+        self.nodes
+    }
+
+    /// Every group of every segment, in serial order.
+    pub fn groups(&self) -> impl Iterator<Item = &BarGroup> {
+        self.segments.iter().flat_map(|s| s.groups.iter())
+    }
+
+    fn check<const L: usize>(&self, k: &[Lanes<L>], u: &Field<L>, f: &Field<L>) {
+        assert_eq!(k.len(), self.ends.len(), "one stiffness per bar");
+        for c in 0..3 {
+            assert!(u.c[c].len() == self.nodes && f.c[c].len() == self.nodes, "fields over the layout's nodes");
         }
     }
 }
 
-#[inline(always)]
-fn axial<const L: usize>(ends: &[[u32; 2]], k: &[Lanes<L>], u: &[Lanes<L>], f: &mut [Lanes<L>]) {
-    for (e, kb) in ends.iter().zip(k) {
-        let (i, j) = (e[0] as usize, e[1] as usize);
-        let (ui, uj) = (u[i], u[j]);
-        let mut t = [0.0; L];
-        for l in 0..L {
-            t[l] = kb[l] * (uj[l] - ui[l]);
-        }
-        for l in 0..L {
-            f[i][l] += t[l];
-        }
-        for l in 0..L {
-            f[j][l] -= t[l];
-        }
+/// Raw view of the force field shared by the threads of one phase.
+#[derive(Clone, Copy)]
+struct ForcePtr<const L: usize>([*mut Lanes<L>; 3]);
+
+// SAFETY: the segments run together write disjoint nodes (checked by `BarLayout::new`).
+unsafe impl<const L: usize> Send for ForcePtr<L> {}
+unsafe impl<const L: usize> Sync for ForcePtr<L> {}
+
+/// Adds the internal bar forces `−K·u` to `f`, on the calling thread.
+pub fn bar_forces<const L: usize>(layout: &BarLayout, k: &[Lanes<L>], u: &Field<L>, f: &mut Field<L>) {
+    layout.check(k, u, f);
+    let fp = ForcePtr(f.c.each_mut().map(|c| c.as_mut_ptr()));
+    for s in &layout.segments {
+        // SAFETY: checked layout, one thread.
+        unsafe { segment_dispatch(s, &layout.ends, k, u, fp) };
     }
 }
 
-#[inline(always)]
-fn sign<const NEG: bool>(v: f64) -> f64 {
-    if NEG { -v } else { v }
+/// As [`bar_forces`], running the segments of each phase on the current rayon pool. The result
+/// is bit-identical to [`bar_forces`]: every node receives its contributions in the same order.
+pub fn bar_forces_parallel<const L: usize>(layout: &BarLayout, k: &[Lanes<L>], u: &Field<L>, f: &mut Field<L>) {
+    layout.check(k, u, f);
+    let fp = ForcePtr(f.c.each_mut().map(|c| c.as_mut_ptr()));
+    for phase in 0..3u8 {
+        let segs: Vec<&Segment> = layout.segments.iter().filter(|s| s.phase == phase).collect();
+        segs.par_iter().for_each(|s| {
+            // SAFETY: checked layout; segments of one phase write disjoint nodes.
+            unsafe { segment_dispatch(s, &layout.ends, k, u, fp) }
+        });
+    }
 }
 
-#[inline(always)]
-fn diagonal<const L: usize, const NX: bool, const NY: bool>(
+/// Runs one segment with the widest vector instructions the CPU has.
+///
+/// # Safety
+/// `layout.check` passed for these arrays, and no other thread writes the segment's nodes.
+unsafe fn segment_dispatch<const L: usize>(
+    s: &Segment,
     ends: &[[u32; 2]],
     k: &[Lanes<L>],
     u: &Field<L>,
-    f: &mut Field<L>,
+    f: ForcePtr<L>,
 ) {
-    let [ux, uy, uz] = &u.c;
-    let [fx, fy, fz] = &mut f.c;
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::is_x86_feature_detected!("avx512f") {
+            // SAFETY: the CPU has AVX-512F; the caller's contract holds.
+            return unsafe { segment_avx512(s, ends, k, u, f) };
+        }
+        if std::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2; the caller's contract holds.
+            return unsafe { segment_avx2(s, ends, k, u, f) };
+        }
+    }
+    // SAFETY: the caller's contract.
+    unsafe { segment_forces(s, ends, k, u, f) }
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+unsafe fn segment_avx512<const L: usize>(s: &Segment, ends: &[[u32; 2]], k: &[Lanes<L>], u: &Field<L>, f: ForcePtr<L>) {
+    // SAFETY: forwarded contract.
+    unsafe { segment_forces(s, ends, k, u, f) }
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn segment_avx2<const L: usize>(s: &Segment, ends: &[[u32; 2]], k: &[Lanes<L>], u: &Field<L>, f: ForcePtr<L>) {
+    // SAFETY: forwarded contract.
+    unsafe { segment_forces(s, ends, k, u, f) }
+}
+
+#[inline(always)]
+unsafe fn segment_forces<const L: usize>(s: &Segment, ends: &[[u32; 2]], k: &[Lanes<L>], u: &Field<L>, f: ForcePtr<L>) {
+    for g in &s.groups {
+        let (e, kk) = (&ends[g.start..g.end], &k[g.start..g.end]);
+        // SAFETY (all arms): ends are below the node count of u and f (checked layout).
+        unsafe {
+            match g.direction {
+                Direction::Axis(a) => {
+                    let a = a as usize;
+                    axial(e, kk, u.c[a].as_ptr(), f.0[a]);
+                }
+                Direction::Diagonal { neg_x: false, neg_y: false } => diagonal::<L, false, false>(e, kk, u, f),
+                Direction::Diagonal { neg_x: false, neg_y: true } => diagonal::<L, false, true>(e, kk, u, f),
+                Direction::Diagonal { neg_x: true, neg_y: false } => diagonal::<L, true, false>(e, kk, u, f),
+                Direction::Diagonal { neg_x: true, neg_y: true } => diagonal::<L, true, true>(e, kk, u, f),
+            }
+        }
+    }
+}
+
+#[inline(always)]
+unsafe fn axial<const L: usize>(ends: &[[u32; 2]], k: &[Lanes<L>], u: *const Lanes<L>, f: *mut Lanes<L>) {
     for (e, kb) in ends.iter().zip(k) {
         let (i, j) = (e[0] as usize, e[1] as usize);
-        let mut t = [0.0; L];
-        for l in 0..L {
-            let s = sign::<NX>(ux[j][l] - ux[i][l]) + sign::<NY>(uy[j][l] - uy[i][l]) + (uz[j][l] - uz[i][l]);
-            t[l] = kb[l] * s;
+        // SAFETY: i, j are node indices below the arrays' length (checked layout).
+        unsafe {
+            let (ui, uj) = (*u.add(i), *u.add(j));
+            let mut t = [0.0; L];
+            for l in 0..L {
+                t[l] = kb[l] * (uj[l] - ui[l]);
+            }
+            let fi = &mut *f.add(i);
+            for l in 0..L {
+                fi[l] += t[l];
+            }
+            let fj = &mut *f.add(j);
+            for l in 0..L {
+                fj[l] -= t[l];
+            }
         }
-        for l in 0..L {
-            let (tx, ty) = (sign::<NX>(t[l]), sign::<NY>(t[l]));
-            fx[i][l] += tx;
-            fx[j][l] -= tx;
-            fy[i][l] += ty;
-            fy[j][l] -= ty;
-            fz[i][l] += t[l];
-            fz[j][l] -= t[l];
+    }
+}
+
+#[inline(always)]
+fn add_lanes<const L: usize>(a: &mut Lanes<L>, b: &Lanes<L>) {
+    for l in 0..L {
+        a[l] += b[l];
+    }
+}
+
+#[inline(always)]
+fn sub_lanes<const L: usize>(a: &mut Lanes<L>, b: &Lanes<L>) {
+    for l in 0..L {
+        a[l] -= b[l];
+    }
+}
+
+#[inline(always)]
+unsafe fn diagonal<const L: usize, const NX: bool, const NY: bool>(
+    ends: &[[u32; 2]],
+    k: &[Lanes<L>],
+    u: &Field<L>,
+    f: ForcePtr<L>,
+) {
+    // Multiplying by ±1 is exact, so this is the same arithmetic as negating.
+    let sx = if NX { -1.0 } else { 1.0 };
+    let sy = if NY { -1.0 } else { 1.0 };
+    let (ux, uy, uz) = (u.c[0].as_ptr(), u.c[1].as_ptr(), u.c[2].as_ptr());
+    let [fx, fy, fz] = f.0;
+    for (e, kb) in ends.iter().zip(k) {
+        let (i, j) = (e[0] as usize, e[1] as usize);
+        // SAFETY: i, j are node indices below the arrays' length (checked layout), and i ≠ j.
+        unsafe {
+            let (xi, xj, yi, yj, zi, zj) =
+                (&*ux.add(i), &*ux.add(j), &*uy.add(i), &*uy.add(j), &*uz.add(i), &*uz.add(j));
+            let mut t = [0.0; L];
+            for l in 0..L {
+                t[l] = kb[l] * (sx * (xj[l] - xi[l]) + sy * (yj[l] - yi[l]) + (zj[l] - zi[l]));
+            }
+            // One array per loop: the compiler cannot tell the force arrays apart, so loops
+            // that write only one of them are the ones it can turn into vector operations.
+            let (tx, ty) = (t.map(|v| sx * v), t.map(|v| sy * v));
+            add_lanes(&mut *fx.add(i), &tx);
+            add_lanes(&mut *fy.add(i), &ty);
+            add_lanes(&mut *fz.add(i), &t);
+            sub_lanes(&mut *fx.add(j), &tx);
+            sub_lanes(&mut *fy.add(j), &ty);
+            sub_lanes(&mut *fz.add(j), &t);
         }
     }
 }
@@ -132,16 +315,10 @@ fn diagonal<const L: usize, const NX: bool, const NY: bool>(
 /// `½ Σ_b k_b·e_b(a)·e_b(b)` for lane `l`: the strain energy `½aᵀKb` (J). With `a = b` it is the
 /// strain energy of one state; with `a = uₙ`, `b = uₙ₊₁` it is the energy the central-difference
 /// scheme conserves exactly.
-pub fn strain_energy<const L: usize>(
-    groups: &[BarGroup],
-    ends: &[[u32; 2]],
-    k: &[Lanes<L>],
-    a: &Field<L>,
-    b: &Field<L>,
-    l: usize,
-) -> f64 {
+pub fn strain_energy<const L: usize>(layout: &BarLayout, k: &[Lanes<L>], a: &Field<L>, b: &Field<L>, l: usize) -> f64 {
+    let ends = layout.ends();
     let mut total = 0.0;
-    for g in groups {
+    for g in layout.groups() {
         let range = g.start..g.end;
         let mut sum = 0.0;
         match g.direction {
@@ -171,15 +348,10 @@ pub fn strain_energy<const L: usize>(
 }
 
 /// Diagonal of the stiffness matrix per node and component, for one lane of `k`.
-pub fn stiffness_diagonal<const L: usize>(
-    groups: &[BarGroup],
-    ends: &[[u32; 2]],
-    k: &[Lanes<L>],
-    n: usize,
-    l: usize,
-) -> Field<1> {
-    let mut d = Field::<1>::zeros(n);
-    for g in groups {
+pub fn stiffness_diagonal<const L: usize>(layout: &BarLayout, k: &[Lanes<L>], l: usize) -> Field<1> {
+    let mut d = Field::<1>::zeros(layout.nodes());
+    let ends = layout.ends();
+    for g in layout.groups() {
         for (e, kb) in ends[g.start..g.end].iter().zip(&k[g.start..g.end]) {
             for &node in e {
                 match g.direction {
@@ -194,4 +366,20 @@ pub fn stiffness_diagonal<const L: usize>(
         }
     }
     d
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    #[should_panic(expected = "share node")]
+    fn a_layout_with_overlapping_segments_is_refused() {
+        let g = |s, e| BarGroup { direction: Direction::Axis(0), start: s, end: e };
+        let _ = BarLayout::new(
+            vec![Segment { phase: 0, groups: vec![g(0, 1)] }, Segment { phase: 0, groups: vec![g(1, 2)] }],
+            vec![[0, 1], [1, 2]],
+            3,
+        );
+    }
 }

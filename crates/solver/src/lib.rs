@@ -30,5 +30,5 @@ pub use error::{FieldError, SolverError};
 pub use lattice::{Dims, Lattice, NodeId};
 pub use model::Model;
 pub use record::{Channel, Records};
-pub use run::{RunOptions, RunOutput, run_lanes, run_seed};
+pub use run::{BATCH, RunOptions, RunOutput, run_batched, run_lanes, run_seed};
 pub use scene::{Scene, SceneFile};

@@ -5,26 +5,31 @@
 //! random factors ([`Model::bar_stiffness`], [`Model::friction_factors`]).
 
 use crate::error::SolverError;
+use crate::kernel::{BarGroup, BarLayout, Segment};
 use crate::lattice::{BarFamily, Direction, Lattice, NodeId};
 use crate::material::{STREAM_FRICTION, STREAM_YOUNG, axial_stiffness, weibull_factors};
 use crate::scene::Scene;
 
-/// A run of bars sharing one direction class, `bars[start..end]` in internal order.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct BarGroup {
-    /// Direction class.
-    pub direction: Direction,
-    /// First bar (internal index).
-    pub start: usize,
-    /// One past the last bar.
-    pub end: usize,
-}
+/// Where a bar goes in kernel order: (segment (phase, index), cache block, direction, internal
+/// ends, canonical index).
+type BarKey = ((u8, usize), (usize, usize), Direction, [u32; 2], u32);
+
+/// Lattices with at least this many bars are cut into z-slabs (see [`BarLayout`]).
+pub const SLAB_MIN_BARS: usize = 100_000;
+/// Number of z-slabs of a large lattice (at most one per module layer).
+pub const SLABS: usize = 8;
+/// Lattices with at least this many nodes have their bars ordered in cache blocks.
+pub const BLOCK_MIN_NODES: usize = 4096;
+/// Target number of nodes of one cache block (one module layer, a band of y).
+pub const BLOCK_NODES: usize = 2048;
 
 /// The scene built into flat arrays, in the stepper's internal node and bar order.
 ///
 /// Internal node order: by `z`, then `y`, then `x` of the position (centre nodes fall between
-/// the corner layers), so bars join nodes that are close in memory. Internal bar order: grouped by
-/// direction class (seven groups), sorted by end nodes inside a group.
+/// the corner layers), so bars join nodes that are close in memory. Internal bar order: by
+/// segment (one for a small lattice; for one with [`SLAB_MIN_BARS`] bars or more, the bars
+/// inside each of [`SLABS`] z-slabs, then those across every other slab boundary, then the
+/// rest), then by direction class, then by end nodes.
 #[derive(Clone, Debug)]
 pub struct Model {
     scene: Scene,
@@ -35,8 +40,7 @@ pub struct Model {
     to_internal: Vec<u32>,
     mass: Vec<f64>,
     inv_mass: Vec<f64>,
-    groups: Vec<BarGroup>,
-    ends: Vec<[u32; 2]>,
+    layout: BarLayout,
     /// internal bar → canonical bar index.
     bar_canonical: Vec<u32>,
     /// Kernel stiffness of each internal bar for a homogeneous field: `EA/L` (surface reduction
@@ -65,26 +69,59 @@ impl Model {
         let mass: Vec<f64> = to_canonical.iter().map(|&id| lattice.mass_fraction(id) * rho_lc3).collect();
         let inv_mass = mass.iter().map(|m| 1.0 / m).collect();
 
-        // Bars: internal ends, grouped by direction, sorted inside groups.
-        let mut order: Vec<(Direction, [u32; 2], u32)> = lattice
+        // Bars: internal ends, by segment, then direction, then ends.
+        let dims = lattice.dims();
+        let slabs = if lattice.bars().len() >= SLAB_MIN_BARS { SLABS.min(dims.nz) } else { 1 };
+        // z-slab of a node: bands of (2nz+1)/slabs ≥ 2 half-units, so a bar (which spans at most
+        // two half-units in z) joins at most two neighbouring slabs.
+        let slab = |id: NodeId| lattice.half_units(id)[2] * slabs / (2 * dims.nz + 1);
+        let segment_of = |bar: &crate::lattice::Bar| -> (u8, usize) {
+            let (a, b) = (slab(bar.ends[0]), slab(bar.ends[1]));
+            if a == b {
+                (0, a)
+            } else {
+                let low = a.min(b);
+                (1 + (low % 2) as u8, low)
+            }
+        };
+        // Cache blocks (lattices of BLOCK_MIN_NODES nodes or more): all the bars whose first node
+        // lies in one module layer and one band of y, so the seven direction groups of a block
+        // reuse its node data from cache instead of sweeping the whole lattice seven times.
+        let band = if n >= BLOCK_MIN_NODES { (BLOCK_NODES / (2 * dims.nx + 1)).max(1) } else { usize::MAX };
+        let block_of = |bar: &crate::lattice::Bar| -> (usize, usize) {
+            if band == usize::MAX {
+                return (0, 0);
+            }
+            let h = lattice.half_units(bar.ends[0]);
+            (h[2] / 2, h[1] / (2 * band))
+        };
+        let mut order: Vec<BarKey> = lattice
             .bars()
             .iter()
             .enumerate()
             .map(|(b, bar)| {
                 let e = bar.ends.map(|id| to_internal[id.index()]);
-                (bar.direction, e, b as u32)
+                (segment_of(bar), block_of(bar), bar.direction, e, b as u32)
             })
             .collect();
-        order.sort_by_key(|&(d, e, _)| (d, e[0].min(e[1]), e[0].max(e[1])));
-        let mut groups: Vec<BarGroup> = Vec::new();
-        for (i, (d, _, _)) in order.iter().enumerate() {
+        order.sort_by_key(|&(seg, block, d, e, _)| (seg, block, d, e[0].min(e[1]), e[0].max(e[1])));
+        let mut segments: Vec<((u8, usize), Segment)> = Vec::new();
+        let mut last_block = None;
+        for (i, (seg, block, d, _, _)) in order.iter().enumerate() {
+            if segments.last().is_none_or(|(s, _)| s != seg) {
+                segments.push((*seg, Segment { phase: seg.0, groups: Vec::new() }));
+                last_block = None;
+            }
+            let groups = &mut segments.last_mut().expect("just pushed").1.groups;
             match groups.last_mut() {
-                Some(g) if g.direction == *d => g.end = i + 1,
+                Some(g) if g.direction == *d && last_block == Some(*block) => g.end = i + 1,
                 _ => groups.push(BarGroup { direction: *d, start: i, end: i + 1 }),
             }
+            last_block = Some(*block);
         }
-        let ends = order.iter().map(|&(_, e, _)| e).collect();
-        let bar_canonical: Vec<u32> = order.iter().map(|&(_, _, b)| b).collect();
+        let ends = order.iter().map(|&(_, _, _, e, _)| e).collect();
+        let layout = BarLayout::new(segments.into_iter().map(|(_, s)| s).collect(), ends, n);
+        let bar_canonical: Vec<u32> = order.iter().map(|&(_, _, _, _, b)| b).collect();
         let nominal_k = bar_canonical
             .iter()
             .map(|&b| {
@@ -104,8 +141,7 @@ impl Model {
             to_internal,
             mass,
             inv_mass,
-            groups,
-            ends,
+            layout,
             bar_canonical,
             nominal_k,
             contact,
@@ -131,7 +167,7 @@ impl Model {
 
     /// Number of bars.
     pub fn bar_count(&self) -> usize {
-        self.ends.len()
+        self.layout.ends().len()
     }
 
     /// Internal index of a canonical node.
@@ -159,14 +195,14 @@ impl Model {
         self.mass.iter().sum()
     }
 
-    /// Bar groups (direction classes) in internal bar order.
-    pub fn groups(&self) -> &[BarGroup] {
-        &self.groups
+    /// The bars in kernel order, with their segments and direction groups.
+    pub fn layout(&self) -> &BarLayout {
+        &self.layout
     }
 
     /// Bar end nodes (internal indices), internal bar order.
     pub fn ends(&self) -> &[[u32; 2]] {
-        &self.ends
+        self.layout.ends()
     }
 
     /// Canonical index of each internal bar.

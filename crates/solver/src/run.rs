@@ -23,6 +23,41 @@ pub struct RunOptions {
     /// Run even if a fixed `time.dt_s` is above the critical step (only to test that the
     /// blow-up is caught; a normal run refuses it).
     pub allow_unstable_time_step: bool,
+    /// Split each step over the threads of the current rayon pool (large lattices only: a
+    /// lattice cut into slabs, see [`crate::kernel::BarLayout`]); the numbers are the same.
+    pub parallel_step: bool,
+}
+
+/// Seeds advanced side by side in one batch (the widest lane count, eight `f64` = one AVX-512
+/// register per node component).
+pub const BATCH: usize = 8;
+
+/// Runs `seeds` in batches of [`BATCH`], then 4, then one at a time for the rest: every seed
+/// gives the same numbers as [`run_seed`] (lanes are independent), several seeds share each
+/// pass over the lattice. Results are in the order of `seeds`.
+pub fn run_batched(
+    model: &Model,
+    seeds: &[u64],
+    options: RunOptions,
+    progress: &mut dyn FnMut(f64) -> ControlFlow<()>,
+) -> Vec<Result<RunOutput, SolverError>> {
+    let mut out = Vec::with_capacity(seeds.len());
+    let mut rest = seeds;
+    while !rest.is_empty() {
+        if rest.len() >= BATCH {
+            let chunk: [u64; BATCH] = rest[..BATCH].try_into().expect("length checked");
+            out.extend(run_lanes::<BATCH>(model, chunk, options, progress));
+            rest = &rest[BATCH..];
+        } else if rest.len() >= 4 {
+            let chunk: [u64; 4] = rest[..4].try_into().expect("length checked");
+            out.extend(run_lanes::<4>(model, chunk, options, progress));
+            rest = &rest[4..];
+        } else {
+            out.extend(run_lanes::<1>(model, [rest[0]], options, progress));
+            rest = &rest[1..];
+        }
+    }
+    out
 }
 
 /// What one seed's run produced.
@@ -109,6 +144,7 @@ pub fn run_lanes<const L: usize>(
     let setups = prepared.each_ref().map(|p| p.as_ref().map(|(s, _)| s.clone()).unwrap_or_else(|_| fallback.clone()));
     let mut stepper = Stepper::<L>::new(model, &setups);
     stepper.set_track_energy(scene.record.energy);
+    stepper.set_parallel(options.parallel_step);
     stepper.set_track_onsets(scene.record.slip_onsets);
     let sw = scene.self_weight;
     let mut stages: [Stage; L] = std::array::from_fn(|l| {

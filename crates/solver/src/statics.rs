@@ -49,14 +49,14 @@ pub fn solve_static(
     }
     let apply = |x: &Field<1>, y: &mut Field<1>| {
         y.fill_zero();
-        bar_forces(model.groups(), model.ends(), &k1, x, y);
+        bar_forces(model.layout(), &k1, x, y);
         for comp in &mut y.c {
             for v in comp.iter_mut() {
                 v[0] = -v[0];
             }
         }
     };
-    let diag = stiffness_diagonal(model.groups(), model.ends(), &k1, n, 0);
+    let diag = stiffness_diagonal(model.layout(), &k1, 0);
     let dot = |a: &Field<1>, b: &Field<1>| -> f64 {
         (0..3).map(|c| (0..n).filter(|&i| free[c][i]).map(|i| a.c[c][i][0] * b.c[c][i][0]).sum::<f64>()).sum()
     };

@@ -20,7 +20,9 @@
 //! reactions `Rₙ`, kinetic energy `½m|uₙ₊₁ − uₙ|²/Δt²` and strain energy `½uₙᵀKuₙ₊₁` (the pair
 //! the scheme conserves exactly, so the recorded energy balance closes to round-off).
 
-use crate::kernel::{Field, Lanes, bar_forces, strain_energy};
+use rayon::prelude::*;
+
+use crate::kernel::{Field, Lanes, bar_forces, bar_forces_parallel, strain_energy};
 use crate::model::Model;
 
 /// Steps a contact node must slide in a row for its slip to count as an onset.
@@ -130,6 +132,7 @@ pub struct Stepper<'m, const L: usize> {
     driver_base: Vec<Lanes<L>>,
     driver_reaction: Vec<Lanes<L>>,
     track_energy: bool,
+    parallel: bool,
     acc: [Energy; L],
     steps: u64,
 }
@@ -185,6 +188,7 @@ impl<'m, const L: usize> Stepper<'m, L> {
             driver_base: vec![[0.0; L]; nd],
             driver_reaction: vec![[0.0; L]; nd],
             track_energy: false,
+            parallel: false,
             acc: [Energy::default(); L],
             steps: 0,
         };
@@ -256,6 +260,12 @@ impl<'m, const L: usize> Stepper<'m, L> {
         self.driver_target[l] = target;
     }
 
+    /// Splits each step over the current rayon pool (the numbers do not change: see
+    /// [`crate::kernel::bar_forces_parallel`]). Worth it for large lattices only.
+    pub fn set_parallel(&mut self, on: bool) {
+        self.parallel = on;
+    }
+
     /// Turns on (or off) the recording of sustained slip onsets (see [`Stepper::drain_onsets`]).
     pub fn set_track_onsets(&mut self, on: bool) {
         self.track_onsets = on;
@@ -303,8 +313,12 @@ impl<'m, const L: usize> Stepper<'m, L> {
     /// Advances every lane by one step.
     pub fn step(&mut self) {
         let m = self.model;
-        self.force.fill_zero();
-        bar_forces(m.groups(), m.ends(), &self.k, &self.cur, &mut self.force);
+        // The force field is zero here: `integrate_trial` clears it as it consumes it.
+        if self.parallel {
+            bar_forces_parallel(m.layout(), &self.k, &self.cur, &mut self.force);
+        } else {
+            bar_forces(m.layout(), &self.k, &self.cur, &mut self.force);
+        }
         self.integrate_trial();
         self.apply_fixed();
         self.apply_drivers();
@@ -318,20 +332,25 @@ impl<'m, const L: usize> Stepper<'m, L> {
         self.steps += 1;
     }
 
+    /// Trial update of every node (into `older`), clearing the force field for the next step.
     fn integrate_trial(&mut self) {
         let inv_mass = self.model.inv_mass();
-        let (cf, c2, cp) = (self.cf, self.c2, self.cp);
+        let coef = Coefficients { cf: self.cf, c2: self.c2, cp: self.cp };
         for c in 0..3 {
             let body = self.body[c];
-            let (f, u, up, out) = (&self.force.c[c], &self.cur.c[c], &self.prev.c[c], &mut self.older.c[c]);
-            for i in 0..inv_mass.len() {
-                let im = inv_mass[i];
-                let (fi, ui, upi) = (f[i], u[i], up[i]);
-                let mut o = [0.0; L];
-                for l in 0..L {
-                    o[l] = cf[l] * (fi[l] * im + body[l]) + c2[l] * ui[l] - cp[l] * upi[l];
-                }
-                out[i] = o;
+            let (f, u, up, out) = (&mut self.force.c[c], &self.cur.c[c], &self.prev.c[c], &mut self.older.c[c]);
+            if self.parallel {
+                // Nodes are independent here: chunks of them on the pool, the same arithmetic.
+                const CHUNK: usize = 4096;
+                inv_mass
+                    .par_chunks(CHUNK)
+                    .zip(f.par_chunks_mut(CHUNK))
+                    .zip(u.par_chunks(CHUNK))
+                    .zip(up.par_chunks(CHUNK))
+                    .zip(out.par_chunks_mut(CHUNK))
+                    .for_each(|((((im, f), u), up), out)| integrate_dispatch(im, &coef, body, f, u, up, out));
+            } else {
+                integrate_dispatch(inv_mass, &coef, body, f, u, up, out);
             }
         }
     }
@@ -362,66 +381,37 @@ impl<'m, const L: usize> Stepper<'m, L> {
         }
     }
 
-    /// Kinetic friction coefficient of contact node `ci`, lane `l`, after its slip so far.
-    #[inline]
-    fn kinetic_mu(&self, ci: usize, l: usize) -> f64 {
-        let (ms, md) = (self.mu_s[ci][l], self.mu_d[ci][l]);
-        if self.dc == 0.0 { md } else { ms - (ms - md) * (self.slip_path[ci][l] / self.dc).min(1.0) }
-    }
-
+    /// Contact of every base node, all lanes at once without branches (each lane takes the
+    /// stick, slide or lifted result by selection; the arithmetic of a lane is the same whatever
+    /// its neighbours do).
     fn apply_contact(&mut self) {
-        let mass = self.model.mass();
-        for (ci, &node) in self.model.contact().iter().enumerate() {
-            let p = node as usize;
-            for l in 0..L {
-                let g = mass[p] / self.cf[l];
-                let zt = self.older.c[2][p][l];
-                if !(zt < 0.0) {
-                    // Lifted (or held by a roller): no reaction, no friction.
-                    self.reaction[0][ci][l] = 0.0;
-                    self.reaction[1][ci][l] = 0.0;
-                    self.reaction[2][ci][l] = 0.0;
-                    self.slipping[ci][l] = false;
-                    self.slip_path[ci][l] = 0.0;
-                    self.slip_run[ci][l] = 0;
-                    continue;
-                }
-                let normal = -zt * g;
-                self.older.c[2][p][l] = 0.0;
-                let (xt, yt) = (self.older.c[0][p][l], self.older.c[1][p][l]);
-                let (xn, yn) = (self.cur.c[0][p][l], self.cur.c[1][p][l]);
-                let (rx, ry) = ((xn - xt) * g, (yn - yt) * g);
-                let need = (rx * rx + ry * ry).sqrt();
-                let mu_k = self.kinetic_mu(ci, l);
-                let limit = if self.slipping[ci][l] { mu_k } else { self.mu_s[ci][l] } * normal;
-                if need <= limit {
-                    self.older.c[0][p][l] = xn;
-                    self.older.c[1][p][l] = yn;
-                    self.reaction[0][ci][l] = rx;
-                    self.reaction[1][ci][l] = ry;
-                    self.slipping[ci][l] = false;
-                    self.slip_path[ci][l] = 0.0;
-                } else {
-                    let scale = mu_k * normal / need;
-                    let (fx, fy) = (rx * scale, ry * scale);
-                    let (x1, y1) = (xt + fx / g, yt + fy / g);
-                    self.older.c[0][p][l] = x1;
-                    self.older.c[1][p][l] = y1;
-                    self.reaction[0][ci][l] = fx;
-                    self.reaction[1][ci][l] = fy;
-                    self.slipping[ci][l] = true;
-                    let (sx, sy) = (x1 - xn, y1 - yn);
-                    self.slip_path[ci][l] += (sx * sx + sy * sy).sqrt();
-                }
-                self.reaction[2][ci][l] = normal;
-                let run = &mut self.slip_run[ci][l];
-                if self.slipping[ci][l] {
-                    *run += 1;
-                    if self.track_onsets && *run == SUSTAINED_SLIP_STEPS {
-                        self.onsets[l].push((self.steps + 1 - u64::from(SUSTAINED_SLIP_STEPS), ci as u32));
+        let [ox, oy, oz] = &mut self.older.c;
+        let mut c = ContactArrays {
+            mass: self.model.mass(),
+            nodes: self.model.contact(),
+            cf: &self.cf,
+            mu_s: &self.mu_s,
+            mu_d: &self.mu_d,
+            dc: self.dc,
+            older: [ox, oy, oz],
+            cur: [&self.cur.c[0], &self.cur.c[1]],
+            slipping: &mut self.slipping,
+            slip_path: &mut self.slip_path,
+            reaction: &mut self.reaction,
+        };
+        contact_dispatch(&mut c);
+        if self.track_onsets {
+            for ci in 0..self.slipping.len() {
+                for l in 0..L {
+                    let run = &mut self.slip_run[ci][l];
+                    if self.slipping[ci][l] {
+                        *run += 1;
+                        if *run == SUSTAINED_SLIP_STEPS {
+                            self.onsets[l].push((self.steps + 1 - u64::from(SUSTAINED_SLIP_STEPS), ci as u32));
+                        }
+                    } else {
+                        *run = 0;
                     }
-                } else {
-                    *run = 0;
                 }
             }
         }
@@ -537,7 +527,7 @@ impl<'m, const L: usize> Stepper<'m, L> {
             }
         }
         e.kinetic = 0.5 * ke / (self.dt[l] * self.dt[l]);
-        e.elastic = strain_energy(m.groups(), m.ends(), &self.k, &self.prev, &self.cur, l);
+        e.elastic = strain_energy(m.layout(), &self.k, &self.prev, &self.cur, l);
         e
     }
 
@@ -582,5 +572,199 @@ impl<'m, const L: usize> Stepper<'m, L> {
             }
         }
         None
+    }
+}
+
+/// Per-lane coefficients of the trial update `u⁺ = cf·(f/m + b) + c2·u − cp·u⁻`.
+struct Coefficients<const L: usize> {
+    cf: Lanes<L>,
+    c2: Lanes<L>,
+    cp: Lanes<L>,
+}
+
+/// The trial update of one component over every node, with the widest vector instructions the
+/// CPU has; clears `f` as it reads it.
+fn integrate_dispatch<const L: usize>(
+    inv_mass: &[f64],
+    k: &Coefficients<L>,
+    body: Lanes<L>,
+    f: &mut [Lanes<L>],
+    u: &[Lanes<L>],
+    up: &[Lanes<L>],
+    out: &mut [Lanes<L>],
+) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::is_x86_feature_detected!("avx512f") {
+            // SAFETY: the CPU has AVX-512F.
+            return unsafe { integrate_avx512(inv_mass, k, body, f, u, up, out) };
+        }
+        if std::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2.
+            return unsafe { integrate_avx2(inv_mass, k, body, f, u, up, out) };
+        }
+    }
+    integrate(inv_mass, k, body, f, u, up, out)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+unsafe fn integrate_avx512<const L: usize>(
+    inv_mass: &[f64],
+    k: &Coefficients<L>,
+    body: Lanes<L>,
+    f: &mut [Lanes<L>],
+    u: &[Lanes<L>],
+    up: &[Lanes<L>],
+    out: &mut [Lanes<L>],
+) {
+    integrate(inv_mass, k, body, f, u, up, out)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn integrate_avx2<const L: usize>(
+    inv_mass: &[f64],
+    k: &Coefficients<L>,
+    body: Lanes<L>,
+    f: &mut [Lanes<L>],
+    u: &[Lanes<L>],
+    up: &[Lanes<L>],
+    out: &mut [Lanes<L>],
+) {
+    integrate(inv_mass, k, body, f, u, up, out)
+}
+
+#[inline(always)]
+fn integrate<const L: usize>(
+    inv_mass: &[f64],
+    k: &Coefficients<L>,
+    body: Lanes<L>,
+    f: &mut [Lanes<L>],
+    u: &[Lanes<L>],
+    up: &[Lanes<L>],
+    out: &mut [Lanes<L>],
+) {
+    let n = inv_mass.len();
+    let (f, u, up, out) = (&mut f[..n], &u[..n], &up[..n], &mut out[..n]);
+    for i in 0..n {
+        let im = inv_mass[i];
+        let (fi, ui, upi) = (f[i], u[i], up[i]);
+        let mut o = [0.0; L];
+        for l in 0..L {
+            o[l] = k.cf[l] * (fi[l] * im + body[l]) + k.c2[l] * ui[l] - k.cp[l] * upi[l];
+        }
+        out[i] = o;
+        f[i] = [0.0; L];
+    }
+}
+
+/// What the contact update reads and writes.
+struct ContactArrays<'a, const L: usize> {
+    mass: &'a [f64],
+    nodes: &'a [u32],
+    cf: &'a Lanes<L>,
+    mu_s: &'a [Lanes<L>],
+    mu_d: &'a [Lanes<L>],
+    dc: f64,
+    older: [&'a mut Vec<Lanes<L>>; 3],
+    cur: [&'a Vec<Lanes<L>>; 2],
+    slipping: &'a mut [[bool; L]],
+    slip_path: &'a mut [Lanes<L>],
+    reaction: &'a mut [Vec<Lanes<L>>; 3],
+}
+
+fn contact_dispatch<const L: usize>(c: &mut ContactArrays<'_, L>) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::is_x86_feature_detected!("avx512f") {
+            // SAFETY: the CPU has AVX-512F.
+            return unsafe { contact_avx512(c) };
+        }
+        if std::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2.
+            return unsafe { contact_avx2(c) };
+        }
+    }
+    contact(c)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+unsafe fn contact_avx512<const L: usize>(c: &mut ContactArrays<'_, L>) {
+    contact(c)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn contact_avx2<const L: usize>(c: &mut ContactArrays<'_, L>) {
+    contact(c)
+}
+
+#[inline(always)]
+fn contact<const L: usize>(c: &mut ContactArrays<'_, L>) {
+    let dc = c.dc;
+    for (ci, &node) in c.nodes.iter().enumerate() {
+        let p = node as usize;
+        let m = c.mass[p];
+        let (xt, yt, zt) = (c.older[0][p], c.older[1][p], c.older[2][p]);
+        let (xn, yn) = (c.cur[0][p], c.cur[1][p]);
+        let (slipping, path) = (c.slipping[ci], c.slip_path[ci]);
+        let (mu_s, mu_d) = (c.mu_s[ci], c.mu_d[ci]);
+        let (mut ox, mut oy, mut oz) = ([0.0; L], [0.0; L], [0.0; L]);
+        let (mut rxo, mut ryo, mut no) = ([0.0; L], [0.0; L], [0.0; L]);
+        let (mut slip_o, mut path_o) = ([false; L], [0.0; L]);
+        for l in 0..L {
+            let g = m / c.cf[l];
+            let touching = zt[l] < 0.0;
+            let normal = -zt[l] * g;
+            let (rx, ry) = ((xn[l] - xt[l]) * g, (yn[l] - yt[l]) * g);
+            let need = (rx * rx + ry * ry).sqrt();
+            let (ms, md) = (mu_s[l], mu_d[l]);
+            let mu_k = if dc == 0.0 { md } else { ms - (ms - md) * (path[l] / dc).min(1.0) };
+            let limit = if slipping[l] { mu_k } else { ms } * normal;
+            let stick = need <= limit;
+            // Sliding: friction μ_k·N against the trial motion (unused when sticking).
+            let scale = mu_k * normal / need;
+            let (fx, fy) = (rx * scale, ry * scale);
+            let (x1, y1) = (xt[l] + fx / g, yt[l] + fy / g);
+            let (sx, sy) = (x1 - xn[l], y1 - yn[l]);
+            let slides = touching && !stick;
+            ox[l] = if !touching {
+                xt[l]
+            } else if stick {
+                xn[l]
+            } else {
+                x1
+            };
+            oy[l] = if !touching {
+                yt[l]
+            } else if stick {
+                yn[l]
+            } else {
+                y1
+            };
+            oz[l] = if touching { 0.0 } else { zt[l] };
+            rxo[l] = if !touching {
+                0.0
+            } else if stick {
+                rx
+            } else {
+                fx
+            };
+            ryo[l] = if !touching {
+                0.0
+            } else if stick {
+                ry
+            } else {
+                fy
+            };
+            no[l] = if touching { normal } else { 0.0 };
+            slip_o[l] = slides;
+            path_o[l] = if slides { path[l] + (sx * sx + sy * sy).sqrt() } else { 0.0 };
+        }
+        (c.older[0][p], c.older[1][p], c.older[2][p]) = (ox, oy, oz);
+        (c.reaction[0][ci], c.reaction[1][ci], c.reaction[2][ci]) = (rxo, ryo, no);
+        (c.slipping[ci], c.slip_path[ci]) = (slip_o, path_o);
     }
 }
