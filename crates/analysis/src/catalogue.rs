@@ -170,6 +170,10 @@ pub struct RunFacts {
     pub settle_steps: u64,
     /// Self-weight duration (s).
     pub settle_time_s: f64,
+    /// `"dynamic"` or `"static"`.
+    pub settled_by: &'static str,
+    /// Shear steps skipped by the quasi-static skip-ahead.
+    pub skipped_steps: u64,
     /// Shear-stage duration simulated (s).
     pub simulated_time_s: f64,
     /// Δt (s).
@@ -189,6 +193,8 @@ impl RunFacts {
             steps: out.steps(),
             settle_steps: out.settle_steps,
             settle_time_s: out.settle_time_s,
+            settled_by: out.settled_by.name(),
+            skipped_steps: out.skip.skipped_steps,
             simulated_time_s: out.records.time_s.last().copied().unwrap_or(0.0),
             dt_s: out.dt_s,
             critical_dt_s: out.critical.dt_s,
@@ -213,6 +219,8 @@ pub fn runs_frame(rows: &[RunRow], pipeline_hash: &str) -> Result<DataFrame, Ana
         .u64("steps", count(&|f| f.steps))
         .u64("settle_steps", count(&|f| f.settle_steps))
         .f64("settle_time_s", fact(&|f| f.settle_time_s))
+        .str("settled_by", rows.iter().map(|r| r.outcome.as_ref().map_or("", |f| f.settled_by).to_string()).collect())
+        .u64("skipped_steps", count(&|f| f.skipped_steps))
         .f64("simulated_time_s", fact(&|f| f.simulated_time_s))
         .f64("wall_time_s", rows.iter().map(|r| r.wall_time_s).collect())
         .f64("dt_s", fact(&|f| f.dt_s))

@@ -196,7 +196,13 @@ pub fn detect(
         return Ok(Catalogue::default());
     }
     let t = &records.time_s;
-    let dt = (t[n - 1] - t[0]) / (n - 1) as f64;
+    // The sampling interval: the median spacing (a run with skip-ahead may sample quiet phases
+    // more sparsely).
+    let dt = {
+        let mut gaps: Vec<f64> = t.windows(2).map(|w| w[1] - w[0]).collect();
+        let mid = gaps.len() / 2;
+        *gaps.select_nth_unstable_by(mid, f64::total_cmp).1
+    };
     let w = ((params.smoothing_s / dt).round() as usize).max(1);
     let v = moving_average(rate, w);
     let tau_s = moving_average(tau, w);
@@ -367,6 +373,7 @@ mod tests {
             ],
             control: vec![],
             onsets: vec![],
+            skips: vec![],
         }
     }
 

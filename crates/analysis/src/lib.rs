@@ -1,6 +1,7 @@
 //! stickslip analysis: pipelines, tables (Parquet), and everything done with finished runs.
 #![deny(missing_docs)]
 
+pub mod bench;
 pub mod catalogue;
 pub mod compare;
 pub mod ensemble;

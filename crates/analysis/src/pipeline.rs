@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 use stickslip_solver::scene::{
     BlockSection, BoundarySection, FrictionSection, MaterialSection, RecordSection, SelfWeightSection, ShearSection,
-    TimeSection,
+    SkipAheadSection, TimeSection,
 };
 use stickslip_solver::{FieldError, Scene, SceneFile, SolverError};
 
@@ -82,6 +82,9 @@ pub struct PipelineFile {
     /// Scene `[record]`.
     #[serde(default)]
     pub record: RecordSection,
+    /// Scene `[skip_ahead]`.
+    #[serde(default)]
+    pub skip_ahead: SkipAheadSection,
     /// `[events]`: event detection thresholds.
     #[serde(default)]
     pub events: EventParams,
@@ -191,6 +194,7 @@ impl Pipeline {
             shear: file.shear.clone(),
             boundary: file.boundary.clone(),
             record: file.record.clone(),
+            skip_ahead: file.skip_ahead.clone(),
         };
         check_events(&file.events, &mut errors);
         check_similarity(&file.similarity, &mut errors);

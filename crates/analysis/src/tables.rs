@@ -70,6 +70,24 @@ pub fn control_frame(seed: u64, records: &Records) -> Result<DataFrame, Analysis
     DataFrame::new(rows, cols).map_err(|e| AnalysisError::table("control", e))
 }
 
+/// The skip log of one seed (one row per quasi-static jump): `seed` u64, `from_s`, `to_s` f64
+/// (shear-stage times), `steps` u64 (not integrated), `next` str (`slide`, `lift`, `land`,
+/// `end`: the transition predicted just after `to_s`), `node` u32 (its LDEM number, null for
+/// `end`).
+pub fn skips_frame(seed: u64, records: &Records) -> Result<DataFrame, AnalysisError> {
+    let s = &records.skips;
+    let n = s.len();
+    let cols = vec![
+        Column::new("seed".into(), vec![seed; n]),
+        Column::new("from_s".into(), s.iter().map(|k| k.from_s).collect::<Vec<_>>()),
+        Column::new("to_s".into(), s.iter().map(|k| k.to_s).collect::<Vec<_>>()),
+        Column::new("steps".into(), s.iter().map(|k| k.steps).collect::<Vec<_>>()),
+        Column::new("next".into(), s.iter().map(|k| k.next.kind()).collect::<Vec<_>>()),
+        Column::new("node".into(), s.iter().map(|k| k.next.node().map(|id| id.ldem() as u32)).collect::<Vec<_>>()),
+    ];
+    DataFrame::new(n, cols).map_err(|e| AnalysisError::table("skips", e))
+}
+
 /// Writes `df` to `path` atomically: a hidden temporary file in the same folder, then a rename,
 /// so a reader (or a resumed run) never sees a half-written table.
 pub fn write_parquet_atomic(df: &mut DataFrame, path: &Path) -> Result<(), AnalysisError> {

@@ -12,13 +12,20 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use stickslip_analysis::Pipeline;
+use stickslip_analysis::bench::accuracy::{
+    AccuracyPlan, accuracy_figure, accuracy_frame, observed_order, run_accuracy,
+};
+use stickslip_analysis::bench::skip::{
+    SkipBench, compare_skip, jumps_frame as skip_jumps_frame, runs_frame as skip_runs_frame,
+};
 use stickslip_analysis::ensemble::{EnsembleOptions, run_ensemble};
 use stickslip_analysis::similarity::{
     ModelEvent, SECONDS_PER_YEAR, SimilarityParams, moment_magnitude, riera_magnitude, scale,
 };
 use stickslip_analysis::summary::digest;
-use stickslip_analysis::tables::{control_frame, series_frame, write_parquet_atomic};
+use stickslip_analysis::tables::{control_frame, series_frame, skips_frame, write_parquet_atomic};
 use stickslip_solver::critical::critical_time_step;
+use stickslip_solver::scene::SettleMethod;
 use stickslip_solver::statics::uniaxial_moduli;
 use stickslip_solver::{Model, RunOptions, run_seed};
 
@@ -103,6 +110,9 @@ enum Command {
         #[arg(long, default_value_t = 10)]
         rows: usize,
     },
+    /// Benchmarks of the solver against itself (tables and figures under reports/bench/).
+    #[command(subcommand)]
+    Bench(BenchCommand),
     /// Check a pipeline file and print the scene it builds (nothing is run).
     Check {
         /// Pipeline file (TOML).
@@ -110,6 +120,46 @@ enum Command {
         /// Seed used for the critical step of the random lattice.
         #[arg(long, default_value_t = 123)]
         seed: u64,
+    },
+}
+
+#[derive(Subcommand, Debug)]
+enum BenchCommand {
+    /// Run time against error: the pipeline's scene over Δt fractions and lattice refinements
+    /// of the same block, each against the finest run.
+    Accuracy {
+        /// Pipeline file (TOML).
+        pipeline: PathBuf,
+        /// Δt fractions of the critical step.
+        #[arg(long, value_delimiter = ',', default_value = "0.9,0.5,0.25,0.1")]
+        fractions: Vec<f64>,
+        /// Lattice refinements (modules per side multiplied, Lc divided).
+        #[arg(long, value_delimiter = ',', default_value = "1,2,4")]
+        refinements: Vec<u32>,
+        /// Shear duration (s) [default: the pipeline's].
+        #[arg(long)]
+        duration_s: Option<f64>,
+        /// Output folder [default: reports/bench/<pipeline name>].
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Quasi-static skip-ahead against full integration: whole runs, and each of the first
+    /// jumps against integrating through it from the same state.
+    Skip {
+        /// Pipeline file (TOML).
+        pipeline: PathBuf,
+        /// Seeds [default: the pipeline's], e.g. "1,5,10-20".
+        #[arg(long)]
+        seeds: Option<String>,
+        /// Jumps checked one by one per seed.
+        #[arg(long, default_value_t = 4)]
+        jumps: usize,
+        /// How long the compared runs go on after a jump (s).
+        #[arg(long, default_value_t = 0.05)]
+        window_s: f64,
+        /// Output folder [default: reports/bench/<pipeline name>].
+        #[arg(long)]
+        out: Option<PathBuf>,
     },
 }
 
@@ -206,6 +256,12 @@ fn main() {
         Command::Show { table, rows } => show(&table, rows),
         Command::Spectra(args) => record_spectra(&args),
         Command::Check { pipeline, seed } => check(&pipeline, seed),
+        Command::Bench(BenchCommand::Accuracy { pipeline, fractions, refinements, duration_s, out }) => {
+            bench_accuracy(&pipeline, fractions, refinements, duration_s, out)
+        }
+        Command::Bench(BenchCommand::Skip { pipeline, seeds, jumps, window_s, out }) => {
+            bench_skip(&pipeline, seeds.as_deref(), jumps, window_s, out)
+        }
     };
     if let Err(e) = result {
         eprintln!("error: {e:#}");
@@ -250,20 +306,40 @@ fn run(path: &Path, seed: u64, out: Option<PathBuf>, quiet: bool) -> Result<()> 
         write_parquet_atomic(&mut control, &control_path)?;
         written.push(control_path.display().to_string());
     }
+    if !output.records.skips.is_empty() {
+        let mut skips = skips_frame(seed, &output.records)?;
+        let skips_path = out.join("skips.parquet");
+        write_parquet_atomic(&mut skips, &skips_path)?;
+        written.push(skips_path.display().to_string());
+    }
     let steps = output.steps();
+    let integrated = output.integrated_steps();
+    let settle = match output.settled_by {
+        SettleMethod::Static => "settled statically".to_string(),
+        SettleMethod::Dynamic => format!("settle {}", output.settle_steps),
+    };
     println!(
-        "seed {seed}: {steps} steps (settle {} + shear {}) of Δt = {:.4e} s ({:.2} of critical {:.4e} s) in {wall:.2} s \
+        "seed {seed}: {steps} steps ({settle} + shear {}) of Δt = {:.4e} s ({:.2} of critical {:.4e} s) in {wall:.2} s \
          ({:.3e} steps/s, {:.3e} bar-updates/s); {} samples → {}",
-        output.settle_steps,
         output.shear_steps,
         output.dt_s,
         output.dt_s / output.critical.dt_s,
         output.critical.dt_s,
-        steps as f64 / wall,
-        steps as f64 * model.bar_count() as f64 / wall,
+        integrated as f64 / wall,
+        integrated as f64 * model.bar_count() as f64 / wall,
         output.records.len(),
         written.join(", "),
     );
+    if let Some(note) = &output.settle_note {
+        println!("  static settle not used ({note}): settled dynamically");
+    }
+    let sk = output.skip;
+    if pipeline.scene.skip_ahead.enabled {
+        println!(
+            "  skip-ahead: {} of {} shear steps skipped in {} jumps ({} quasi-static motions, {} CG iterations)",
+            sk.skipped_steps, output.shear_steps, sk.jumps, sk.solves, sk.cg_iterations
+        );
+    }
     Ok(())
 }
 
@@ -350,6 +426,126 @@ fn parse_shard(text: &str) -> Result<(usize, usize), String> {
         return Err(format!("{text}: need 1 ≤ K ≤ N"));
     }
     Ok((k, n))
+}
+
+fn bench_out(pipeline: &Pipeline, out: Option<PathBuf>) -> PathBuf {
+    out.unwrap_or_else(|| PathBuf::from("reports").join("bench").join(&pipeline.name))
+}
+
+fn bench_accuracy(
+    path: &Path,
+    fractions: Vec<f64>,
+    refinements: Vec<u32>,
+    duration_s: Option<f64>,
+    out: Option<PathBuf>,
+) -> Result<()> {
+    let pipeline = Pipeline::load(path)?;
+    anyhow::ensure!(
+        fractions.iter().all(|f| *f > 0.0 && *f <= 1.0),
+        "--fractions: each must be in (0, 1] (fractions of the critical step)"
+    );
+    anyhow::ensure!(refinements.iter().all(|r| (1..=16).contains(r)), "--refinements: each must be 1 ≤ r ≤ 16");
+    if let Some(d) = duration_s {
+        anyhow::ensure!(d > 0.0 && d.is_finite(), "--duration-s must be a positive number of seconds");
+    }
+    let out = bench_out(&pipeline, out);
+    let plan = AccuracyPlan { fractions, refinements, duration_s, seed: pipeline.seeds[0] };
+    let rows = run_accuracy(&pipeline.scene, &pipeline.events, &plan, &mut |m| eprintln!("{m}"))?;
+    let table = out.join("accuracy.parquet");
+    write_parquet_atomic(&mut accuracy_frame(&rows)?, &table)?;
+    let figure = out.join("accuracy.png");
+    accuracy_figure(&rows, &figure)?;
+    println!(
+        "{:>10} {:>8} {:>10} {:>9} {:>12} {:>12} {:>12} {:>12} {:>12}",
+        "lattice", "Δt/crit", "steps", "wall s", "linear τ", "loading τ", "S1 τ", "S1 drop", "E1 onset"
+    );
+    for r in &rows {
+        println!(
+            "{:>10} {:>8} {:>10} {:>9.2} {:>12.3e} {:>12.3e} {:>12.3e} {:>12.3e} {:>12.3e}",
+            format!("{}×{}×{}", r.dims[0], r.dims[1], r.dims[2]),
+            r.dt_fraction,
+            r.steps,
+            r.wall_s,
+            r.errors[0],
+            r.errors[1],
+            r.errors[2],
+            r.errors[5],
+            r.errors[4]
+        );
+    }
+    for &r in &plan.refinements {
+        let shown = |p: Option<f64>| p.map_or("n/a".to_string(), |p| format!("{p:.2}"));
+        let order = |k: usize| shown(observed_order(&rows, r, |x| x.errors[k]));
+        println!(
+            "refinement {r}: observed order in Δt — τ while linear {} (against its own smallest Δt: {}), \
+             before the first event {}, around S1 {}",
+            order(0),
+            shown(observed_order(&rows, r, |x| x.linear_tau_error_dt)),
+            order(1),
+            order(2)
+        );
+    }
+    if let Some(r) = rows.first() {
+        println!(
+            "(the reference run is linear until t = {:.4} s: no base node slides, lifts or lands before)",
+            r.linear_until_s
+        );
+    }
+    println!("→ {}, {}", table.display(), figure.display());
+    Ok(())
+}
+
+fn bench_skip(path: &Path, seeds: Option<&str>, jumps: usize, window_s: f64, out: Option<PathBuf>) -> Result<()> {
+    let pipeline = Pipeline::load(path)?;
+    anyhow::ensure!(window_s > 0.0 && window_s.is_finite(), "--window-s must be a positive number of seconds");
+    let seeds = match seeds {
+        Some(s) => parse_seeds(s)?,
+        None => pipeline.seeds.clone(),
+    };
+    let out = bench_out(&pipeline, out);
+    let bench = SkipBench { jumps_per_seed: jumps, window_s };
+    let (runs, checks) = compare_skip(&pipeline.scene, &pipeline.events, &seeds, bench, &mut |m| eprintln!("{m}"))?;
+    let runs_path = out.join("skip_runs.parquet");
+    write_parquet_atomic(&mut skip_runs_frame(&runs)?, &runs_path)?;
+    let jumps_path = out.join("skip_jumps.parquet");
+    write_parquet_atomic(&mut skip_jumps_frame(&checks)?, &jumps_path)?;
+    let (full, skip): (f64, f64) = runs.iter().fold((0.0, 0.0), |a, r| (a.0 + r.full_wall_s, a.1 + r.skip_wall_s));
+    let (skipped, steps): (u64, u64) = runs.iter().fold((0, 0), |a, r| (a.0 + r.skipped_steps, a.1 + r.shear_steps));
+    println!(
+        "{} seeds: full integration {full:.2} s, with skip-ahead {skip:.2} s ({:.2}×); {:.1}% of {} shear steps skipped in {} jumps",
+        runs.len(),
+        full / skip,
+        100.0 * skipped as f64 / steps.max(1) as f64,
+        steps,
+        runs.iter().map(|r| r.jumps).sum::<u64>()
+    );
+    for r in &runs {
+        println!(
+            "  seed {}: main shocks full/skip/perturbed {}/{}/{}, mean main drop {:.0}/{:.0}/{:.0} Pa",
+            r.seed,
+            r.main_shocks[0],
+            r.main_shocks[1],
+            r.main_shocks[2],
+            r.mean_drop_pa[0],
+            r.mean_drop_pa[1],
+            r.mean_drop_pa[2]
+        );
+    }
+    let max = |f: &dyn Fn(&stickslip_analysis::bench::skip::JumpCheck) -> f64| {
+        checks.iter().map(f).filter(|v| v.is_finite()).fold(f64::NAN, f64::max)
+    };
+    println!(
+        "{} jumps checked one by one: onset error ≤ {:.2e} of the recurrence (perturbed run {:.2e}), first-event drop error ≤ {:.2e} (perturbed run {:.2e}); events after the jump agree in {}/{}",
+        checks.len(),
+        max(&|c| c.onset_error(1)),
+        max(&|c| c.onset_error(2)),
+        max(&|c| c.drop_error(1)),
+        max(&|c| c.drop_error(2)),
+        checks.iter().filter(|c| c.same_events()).count(),
+        checks.len()
+    );
+    println!("→ {}, {}", runs_path.display(), jumps_path.display());
+    Ok(())
 }
 
 fn parse_seeds(text: &str) -> Result<Vec<u64>> {

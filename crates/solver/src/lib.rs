@@ -9,6 +9,7 @@
 //! - [`model`]: a scene built into flat arrays in the stepper's order, shared by all seeds;
 //! - [`kernel`], [`stepper`]: the per-bar kernels and the explicit step, `L` seeds side by side;
 //! - [`critical`], [`statics`]: the critical time step and static solves;
+//! - [`quasistatic`]: the static self-weight start and the skip-ahead through quiet phases;
 //! - [`record`], [`run`]: recorders and the two loading stages.
 //!
 //! The solver does no file I/O: it hands back plain arrays ([`record::Records`]).
@@ -20,6 +21,7 @@ pub mod kernel;
 pub mod lattice;
 pub mod material;
 pub mod model;
+pub mod quasistatic;
 pub mod record;
 pub mod run;
 pub mod scene;
@@ -30,5 +32,5 @@ pub use error::{FieldError, SolverError};
 pub use lattice::{Dims, Lattice, NodeId};
 pub use model::Model;
 pub use record::{Channel, Records};
-pub use run::{BATCH, RunOptions, RunOutput, run_batched, run_lanes, run_seed};
+pub use run::{BATCH, Perturbation, RunOptions, RunOutput, run_batched, run_lanes, run_seed};
 pub use scene::{Scene, SceneFile};

@@ -1,8 +1,55 @@
 //! Recorders: only the channels a scene asks for, at its interval, as plain arrays.
 
 use crate::lattice::NodeId;
-use crate::scene::{ControlChannel, InterfaceQuantity, RecordPlan};
-use crate::stepper::Stepper;
+use crate::scene::{ControlChannel, InterfaceQuantity, Kinematic, RecordPlan};
+use crate::stepper::{Energy, Interface, Stepper};
+
+/// What a recorder reads at one viewed time: a lane of a stepper, or a quasi-static motion
+/// the run skips through.
+pub(crate) trait Observed {
+    /// Interface resultants.
+    fn interface(&self) -> Interface;
+    /// Total driver reaction in x (N).
+    fn driver_force(&self) -> f64;
+    /// Driver displacement (m).
+    fn driver_target(&self) -> f64;
+    /// Energy terms.
+    fn energy(&self) -> Energy;
+    /// Displacement, velocity or acceleration of internal node `node`.
+    fn kinematic(&self, node: usize, q: Kinematic) -> [f64; 3];
+}
+
+/// Lane `l` of a stepper at its viewed time.
+pub(crate) struct LaneView<'s, 'm, const L: usize> {
+    pub(crate) stepper: &'s Stepper<'m, L>,
+    pub(crate) lane: usize,
+}
+
+impl<const L: usize> Observed for LaneView<'_, '_, L> {
+    fn interface(&self) -> Interface {
+        self.stepper.interface(self.lane)
+    }
+
+    fn driver_force(&self) -> f64 {
+        self.stepper.driver_force(self.lane)
+    }
+
+    fn driver_target(&self) -> f64 {
+        self.stepper.driver_target(self.lane)
+    }
+
+    fn energy(&self) -> Energy {
+        self.stepper.energy(self.lane)
+    }
+
+    fn kinematic(&self, node: usize, q: Kinematic) -> [f64; 3] {
+        match q {
+            Kinematic::Displacement => self.stepper.displacement(node, self.lane),
+            Kinematic::Velocity => self.stepper.velocity(node, self.lane),
+            Kinematic::Acceleration => self.stepper.acceleration(node, self.lane),
+        }
+    }
+}
 
 /// A recorded scalar channel (the name carries the unit).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -123,6 +170,55 @@ pub struct Records {
     pub control: Vec<(ControlChannel, Vec<f64>)>,
     /// Sustained slip onsets `(time_s, contact node)`, in time order (if recorded).
     pub onsets: Vec<(f64, NodeId)>,
+    /// Quasi-static skips of the shear stage (with `[skip_ahead]` on), in time order.
+    pub skips: Vec<Skip>,
+}
+
+/// What ends a quasi-static skip: the transition predicted next.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Transition {
+    /// A sticking base node reaches its static friction strength.
+    Slide(NodeId),
+    /// A base node's normal reaction reaches zero.
+    Lift(NodeId),
+    /// A lifted base node comes down onto the base.
+    Land(NodeId),
+    /// Nothing before the end of the shear stage.
+    End,
+}
+
+impl Transition {
+    /// `"slide"`, `"lift"`, `"land"` or `"end"`.
+    pub fn kind(self) -> &'static str {
+        match self {
+            Transition::Slide(_) => "slide",
+            Transition::Lift(_) => "lift",
+            Transition::Land(_) => "land",
+            Transition::End => "end",
+        }
+    }
+
+    /// The base node concerned, if any.
+    pub fn node(self) -> Option<NodeId> {
+        match self {
+            Transition::Slide(n) | Transition::Lift(n) | Transition::Land(n) => Some(n),
+            Transition::End => None,
+        }
+    }
+}
+
+/// One jump of the quasi-static skip-ahead: the run went from `from_s` to `to_s` (times of the
+/// shear stage) without integrating, along the exact quasi-static motion.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Skip {
+    /// Start (s).
+    pub from_s: f64,
+    /// End (s): explicit integration resumes here.
+    pub to_s: f64,
+    /// Steps not integrated.
+    pub steps: u64,
+    /// The predicted transition, `margin_steps` after `to_s`.
+    pub next: Transition,
 }
 
 impl Records {
@@ -154,6 +250,8 @@ pub(crate) struct Recorder {
     pub(crate) steps: Vec<u64>,
     /// Step of each slip onset and its node.
     pub(crate) onset_steps: Vec<(u64, NodeId)>,
+    /// Skips as `(from step, to step, next transition)`.
+    pub(crate) skip_steps: Vec<(u64, u64, Transition)>,
     control_nodes: Vec<usize>,
     area: f64,
 }
@@ -163,8 +261,15 @@ impl Recorder {
         let channels = Channel::of_plan(plan).into_iter().map(|c| (c, Vec::with_capacity(capacity))).collect();
         let control = plan.control.iter().map(|&c| (c, Vec::with_capacity(capacity))).collect();
         Recorder {
-            records: Records { time_s: Vec::with_capacity(capacity), channels, control, onsets: Vec::new() },
+            records: Records {
+                time_s: Vec::with_capacity(capacity),
+                channels,
+                control,
+                onsets: Vec::new(),
+                skips: Vec::new(),
+            },
             onset_steps: Vec::new(),
+            skip_steps: Vec::new(),
             steps: Vec::with_capacity(capacity),
             control_nodes: plan.control.iter().map(|c| model.internal(c.node)).collect(),
             area: model.lattice().contact_area(),
@@ -173,11 +278,16 @@ impl Recorder {
 
     /// Records lane `l` of the stepper's viewed time, step index `step`.
     pub(crate) fn sample<const L: usize>(&mut self, s: &Stepper<'_, L>, l: usize, step: u64) {
+        self.sample_view(&LaneView { stepper: s, lane: l }, step);
+    }
+
+    /// Records what `s` shows, step index `step`.
+    pub(crate) fn sample_view(&mut self, s: &impl Observed, step: u64) {
         self.steps.push(step);
         let needs_interface = self.records.channels.iter().any(|(c, _)| !Channel::ENERGY.contains(c));
-        let face = if needs_interface { s.interface(l) } else { Default::default() };
+        let face = if needs_interface { s.interface() } else { Default::default() };
         let energy = if self.records.channels.iter().any(|(c, _)| Channel::ENERGY.contains(c)) {
-            Some(s.energy(l))
+            Some(s.energy())
         } else {
             None
         };
@@ -191,8 +301,8 @@ impl Recorder {
                 Channel::MaxSlipRate => face.max_slip_rate,
                 Channel::SlippingNodes => face.slipping as f64,
                 Channel::LiftedNodes => face.lifted as f64,
-                Channel::DriverForce => s.driver_force(l),
-                Channel::DriverDisplacement => s.driver_target(l),
+                Channel::DriverForce => s.driver_force(),
+                Channel::DriverDisplacement => s.driver_target(),
                 Channel::Kinetic => e().kinetic,
                 Channel::Elastic => e().elastic,
                 Channel::DampingDissipated => e().damping,
@@ -205,12 +315,7 @@ impl Recorder {
             });
         }
         for ((ch, values), &node) in self.records.control.iter_mut().zip(&self.control_nodes) {
-            let v = match ch.quantity {
-                crate::scene::Kinematic::Displacement => s.displacement(node, l),
-                crate::scene::Kinematic::Velocity => s.velocity(node, l),
-                crate::scene::Kinematic::Acceleration => s.acceleration(node, l),
-            };
-            values.push(v[ch.component.axis()]);
+            values.push(s.kinematic(node, ch.quantity)[ch.component.axis()]);
         }
     }
 
@@ -218,6 +323,12 @@ impl Recorder {
     pub(crate) fn finish(mut self, origin: u64, dt: f64) -> Records {
         self.records.time_s = self.steps.iter().map(|&s| (s as f64 - origin as f64) * dt).collect();
         self.records.onsets = self.onset_steps.iter().map(|&(s, n)| ((s as f64 - origin as f64) * dt, n)).collect();
+        let t = |s: u64| (s as f64 - origin as f64) * dt;
+        self.records.skips = self
+            .skip_steps
+            .iter()
+            .map(|&(from, to, next)| Skip { from_s: t(from), to_s: t(to), steps: to - from, next })
+            .collect();
         self.records
     }
 }

@@ -6,8 +6,9 @@ use std::ops::ControlFlow;
 use crate::critical::{CriticalStep, critical_time_step};
 use crate::error::SolverError;
 use crate::model::Model;
+use crate::quasistatic::{SKIP_CHECK_EVERY, ShearClock, SkipStats, Skipper, settle_statically};
 use crate::record::{Recorder, Records};
-use crate::scene::TimeStep;
+use crate::scene::{SettleMethod, TimeStep};
 use crate::stepper::{LaneSetup, Stepper};
 
 /// Steps between two blow-up checks.
@@ -26,6 +27,21 @@ pub struct RunOptions {
     /// Split each step over the threads of the current rayon pool (large lattices only: a
     /// lattice cut into slabs, see [`crate::kernel::BarLayout`]); the numbers are the same.
     pub parallel_step: bool,
+    /// With `[skip_ahead]` on, stop skipping after this many jumps (to compare a jump with
+    /// integrating through it from the same state).
+    pub max_jumps: Option<u64>,
+    /// Scale the displacement state by `1 + relative` at shear time `at_s` (the first step at
+    /// or after it): a perturbation for sensitivity studies.
+    pub perturb: Option<Perturbation>,
+}
+
+/// A relative perturbation of the displacement state at one instant of the shear stage.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Perturbation {
+    /// Shear-stage time (s).
+    pub at_s: f64,
+    /// Relative change of every displacement.
+    pub relative: f64,
 }
 
 /// Seeds advanced side by side in one batch (the widest lane count, eight `f64` = one AVX-512
@@ -34,7 +50,8 @@ pub const BATCH: usize = 8;
 
 /// Runs `seeds` in batches of [`BATCH`], then 4, then one at a time for the rest: every seed
 /// gives the same numbers as [`run_seed`] (lanes are independent), several seeds share each
-/// pass over the lattice. Results are in the order of `seeds`.
+/// pass over the lattice. Results are in the order of `seeds`. With `[skip_ahead]` on, every
+/// seed runs alone (a jump moves the whole stepper in time).
 pub fn run_batched(
     model: &Model,
     seeds: &[u64],
@@ -43,8 +60,12 @@ pub fn run_batched(
 ) -> Vec<Result<RunOutput, SolverError>> {
     let mut out = Vec::with_capacity(seeds.len());
     let mut rest = seeds;
+    let single = model.scene().skip_ahead.enabled;
     while !rest.is_empty() {
-        if rest.len() >= BATCH {
+        if single {
+            out.extend(run_lanes::<1>(model, [rest[0]], options, progress));
+            rest = &rest[1..];
+        } else if rest.len() >= BATCH {
             let chunk: [u64; BATCH] = rest[..BATCH].try_into().expect("length checked");
             out.extend(run_lanes::<BATCH>(model, chunk, options, progress));
             rest = &rest[BATCH..];
@@ -73,16 +94,27 @@ pub struct RunOutput {
     pub settle_time_s: f64,
     /// Steps of the self-weight stage.
     pub settle_steps: u64,
-    /// Steps of the shear stage.
+    /// Steps of the shear stage (integrated or skipped).
     pub shear_steps: u64,
+    /// How the self-weight stage reached equilibrium.
+    pub settled_by: SettleMethod,
+    /// Why a static settle asked for was not used (the run settled dynamically instead).
+    pub settle_note: Option<String>,
+    /// What the quasi-static skip-ahead did (zeros when off).
+    pub skip: SkipStats,
     /// Recorded series.
     pub records: Records,
 }
 
 impl RunOutput {
-    /// All steps.
+    /// All steps, integrated or skipped.
     pub fn steps(&self) -> u64 {
         self.settle_steps + self.shear_steps
+    }
+
+    /// Steps actually integrated.
+    pub fn integrated_steps(&self) -> u64 {
+        self.steps() - self.skip.skipped_steps
     }
 }
 
@@ -127,7 +159,8 @@ fn prepare(model: &Model, seed: u64, options: RunOptions) -> Result<(LaneSetup, 
 }
 
 /// Runs `L` seeds side by side through the same model (lane `l` gives the same numbers as
-/// [`run_seed`] of `seeds[l]`). A lane that fails does not stop the others.
+/// [`run_seed`] of `seeds[l]`). A lane that fails does not stop the others. The quasi-static
+/// skip-ahead works with `L = 1` only; wider batches integrate every step.
 pub fn run_lanes<const L: usize>(
     model: &Model,
     seeds: [u64; L],
@@ -155,6 +188,9 @@ pub fn run_lanes<const L: usize>(
     let mut criticals = [None; L];
     let mut recorders: [Option<Recorder>; L] = std::array::from_fn(|_| None);
     let mut settle_steps = [0u64; L];
+    let mut settled_by = [SettleMethod::Dynamic; L];
+    let mut settle_notes: [Option<String>; L] = std::array::from_fn(|_| None);
+    let mut skippers: [Option<Skipper>; L] = std::array::from_fn(|_| None);
     let weight_norm: f64 = model.mass().iter().map(|m| m * m).sum::<f64>().sqrt() * sw.gravity_m_s2;
     for (l, p) in prepared.into_iter().enumerate() {
         match p {
@@ -163,10 +199,26 @@ pub fn run_lanes<const L: usize>(
                 let dt = setup.dt_s;
                 let stride = stride(scene.record.interval_s, dt);
                 let shear_steps = whole_steps(scene.shear.duration_s, dt);
-                let capacity = (shear_steps / stride) as usize + 2;
+                // Reserve for the whole stage, up to a million samples (long runs grow as they go).
+                let capacity = (shear_steps / stride).min(1 << 20) as usize + 2;
                 recorders[l] = Some(Recorder::new(&scene.record, model, capacity));
                 stepper.set_damping(l, sw.damping_per_s);
                 stepper.set_body_acceleration(l, [0.0, 0.0, -sw.gravity_m_s2]);
+                if scene.skip_ahead.enabled && L == 1 {
+                    skippers[l] = Some(Skipper::new(model, setup.stiffness.clone(), &setup.friction));
+                    stepper.set_track_slid(true);
+                }
+                if sw.method == SettleMethod::Static && sw.gravity_m_s2 > 0.0 {
+                    match settle_statically(model, &setup.stiffness, &setup.friction, sw.gravity_m_s2) {
+                        Ok(Ok(st)) => {
+                            start_at_rest(&mut stepper, l, model, &st.u, &st.reactions);
+                            settled_by[l] = SettleMethod::Static;
+                            stages[l] = start_shear(&mut stepper, l, model);
+                        }
+                        Ok(Err(why)) => settle_notes[l] = Some(why),
+                        Err(e) => settle_notes[l] = Some(e.to_string()),
+                    }
+                }
             }
             Err(e) => {
                 stepper.park(l);
@@ -265,11 +317,30 @@ pub fn run_lanes<const L: usize>(
                 }
                 Stage::Shearing { origin, steps, stride } => {
                     let j = view - origin;
+                    if let Some(p) = options.perturb
+                        && j == (p.at_s / stepper.dt(l)).ceil().max(0.0) as u64
+                    {
+                        stepper.scale_state(l, 1.0 + p.relative);
+                    }
+                    let recorder = recorders[l].as_mut().expect("recorder of a running lane");
                     if j.is_multiple_of(stride) || j >= steps {
-                        recorders[l].as_mut().expect("recorder of a running lane").sample(&stepper, l, view);
+                        recorder.sample(&stepper, l, view);
                     }
                     if j >= steps {
                         stages[l] = Stage::Done { origin };
+                    } else if let Some(skipper) = skippers[l].as_mut()
+                        && j.is_multiple_of(SKIP_CHECK_EVERY)
+                        && options.max_jumps.is_none_or(|m| skipper.stats.jumps < m)
+                    {
+                        let skip_stride = scene.skip_ahead.record_interval_s.map_or(stride, |iv| {
+                            let interval = scene.record.interval_s.unwrap_or(iv);
+                            stride * ((iv / interval).round() as u64).max(1)
+                        });
+                        let clock = ShearClock { origin, end: origin + steps, stride: skip_stride };
+                        if let Err(e) = skipper.look(&mut stepper, l, &clock, recorder) {
+                            stages[l] = Stage::Failed(e);
+                            stepper.park(l);
+                        }
                     }
                 }
                 _ => {}
@@ -311,6 +382,9 @@ pub fn run_lanes<const L: usize>(
                 settle_time_s: settle_steps[l] as f64 * dt,
                 settle_steps: settle_steps[l],
                 shear_steps,
+                settled_by: settled_by[l],
+                settle_note: settle_notes[l].take(),
+                skip: skippers[l].as_ref().map_or_else(SkipStats::default, |s| s.stats),
                 records: recorder.finish(origin, dt),
             })
         }
@@ -319,6 +393,32 @@ pub fn run_lanes<const L: usize>(
             unreachable!("loop ends when no lane is running")
         }
     })
+}
+
+/// Puts lane `l` at rest in a static equilibrium `u` (every base node sticking, or lifted where
+/// its normal reaction is zero) as if the loads had been applied slowly: gravity's work so far
+/// is `½·f·u`, the strain energy.
+fn start_at_rest<const L: usize>(
+    stepper: &mut Stepper<'_, L>,
+    l: usize,
+    model: &Model,
+    u: &crate::kernel::Field<1>,
+    reactions: &crate::kernel::Field<1>,
+) {
+    let contact = model.contact();
+    let steps = stepper.steps();
+    stepper.set_state(
+        l,
+        steps,
+        |_, i, c| u.c[c][i][0],
+        |ci| [0, 1, 2].map(|c| reactions.c[c][contact[ci] as usize][0]),
+        |_| 0.0,
+        0.0,
+    );
+    let b = stepper.body_acceleration(l);
+    let mass = model.mass();
+    let work: f64 = (0..model.node_count()).map(|i| (0..3).map(|c| mass[i] * b[c] * u.c[c][i][0]).sum::<f64>()).sum();
+    stepper.energy_accumulators(l).body_work = 0.5 * work;
 }
 
 fn start_shear<const L: usize>(stepper: &mut Stepper<'_, L>, l: usize, model: &Model) -> Stage {

@@ -84,12 +84,37 @@ pub struct TimeSection {
     pub dt_s: Option<f64>,
 }
 
+/// How the self-weight stage reaches equilibrium.
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum SettleMethod {
+    /// Heavy damping until the out-of-balance force is small (the paper's way).
+    #[default]
+    Dynamic,
+    /// Solve `K·u = weight` directly with every base node held where it stands (conjugate
+    /// gradients); falls back to `dynamic` when that equilibrium is not admissible (a base node
+    /// would pull on the base or its friction would not hold it).
+    Static,
+}
+
+impl SettleMethod {
+    /// Name as written in scene files.
+    pub fn name(self) -> &'static str {
+        match self {
+            SettleMethod::Dynamic => "dynamic",
+            SettleMethod::Static => "static",
+        }
+    }
+}
+
 /// `[self_weight]`: stage 1, gravity with heavy damping until static equilibrium.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields, default)]
 pub struct SelfWeightSection {
     /// Gravity in m/s² (acts in −z in both stages). Default 9.81.
     pub gravity_m_s2: f64,
+    /// `"dynamic"` (damped settling, default) or `"static"` (direct solve).
+    pub method: SettleMethod,
     /// Mass-proportional damping D in 1/s during settling. Default 2500.
     pub damping_per_s: f64,
     /// Equilibrium is reached when ‖out-of-balance force‖ / ‖weight‖ falls below this.
@@ -101,7 +126,13 @@ pub struct SelfWeightSection {
 
 impl Default for SelfWeightSection {
     fn default() -> Self {
-        SelfWeightSection { gravity_m_s2: 9.81, damping_per_s: 2500.0, settle_tolerance: 1e-6, max_duration_s: 0.1 }
+        SelfWeightSection {
+            gravity_m_s2: 9.81,
+            method: SettleMethod::Dynamic,
+            damping_per_s: 2500.0,
+            settle_tolerance: 1e-6,
+            max_duration_s: 0.1,
+        }
     }
 }
 
@@ -135,6 +166,35 @@ impl Default for ShearSection {
             driver_nodes: Vec::new(),
             driver_at_m: Vec::new(),
         }
+    }
+}
+
+/// `[skip_ahead]`: quasi-static skip-ahead through the interseismic phase of the shear stage.
+///
+/// While every base node sticks or is lifted and the motion left by the last event has died
+/// down, the block follows the driver as a linear elastic body; the run jumps to shortly before
+/// the driver displacement at which the next base node reaches its sliding strength, lifts or
+/// lands, and integrates explicitly from there. Runs one seed per stepper (no seed batching).
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields, default)]
+pub struct SkipAheadSection {
+    /// Turn skip-ahead on. Default false.
+    pub enabled: bool,
+    /// How far the state may be from the quasi-static one when jumping: the largest change
+    /// the leftover motion makes to any base node's margin to its next transition, as a
+    /// fraction of that margin (so the next onset time moves by about this fraction of the
+    /// time left to it). Default 1e-3.
+    pub tolerance: f64,
+    /// Explicit steps kept before each predicted transition. Default 20.
+    pub margin_steps: i64,
+    /// Sampling interval (s) while skipping, a multiple of `record.interval_s` (rounded to
+    /// one): long quiet phases need few samples. Omitted = `record.interval_s`.
+    pub record_interval_s: Option<f64>,
+}
+
+impl Default for SkipAheadSection {
+    fn default() -> Self {
+        SkipAheadSection { enabled: false, tolerance: 1e-3, margin_steps: 20, record_interval_s: None }
     }
 }
 
@@ -365,6 +425,8 @@ pub struct SceneFile {
     pub boundary: Vec<BoundarySection>,
     /// `[record]`.
     pub record: RecordSection,
+    /// `[skip_ahead]`.
+    pub skip_ahead: SkipAheadSection,
 }
 
 /// How Δt is chosen.
@@ -394,12 +456,27 @@ pub struct FrictionLaw {
 pub struct SelfWeight {
     /// g (m/s²).
     pub gravity_m_s2: f64,
+    /// Dynamic settling or a direct solve.
+    pub method: SettleMethod,
     /// D (1/s).
     pub damping_per_s: f64,
     /// Out-of-balance ratio at which the block counts as settled.
     pub settle_tolerance: f64,
     /// Time limit (s).
     pub max_duration_s: f64,
+}
+
+/// Quasi-static skip-ahead (see [`SkipAheadSection`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SkipAhead {
+    /// On or off.
+    pub enabled: bool,
+    /// Relative tolerance on the leftover motion.
+    pub tolerance: f64,
+    /// Explicit steps kept before a predicted transition.
+    pub margin_steps: u64,
+    /// Sampling interval while skipping (s), if coarser than the record interval.
+    pub record_interval_s: Option<f64>,
 }
 
 /// Stage 2.
@@ -425,6 +502,16 @@ impl Shear {
         }
         let t0 = self.rise_time_s;
         if t0 == 0.0 { self.velocity_m_s * t } else { self.velocity_m_s * (t + t0 * (-t / t0).exp_m1()) }
+    }
+
+    /// Driver velocity (m/s) at time `t` of the shear stage, the derivative of
+    /// [`Shear::driver_displacement`].
+    pub fn driver_velocity(&self, t: f64) -> f64 {
+        if t <= 0.0 {
+            return 0.0;
+        }
+        let t0 = self.rise_time_s;
+        if t0 == 0.0 { self.velocity_m_s } else { -self.velocity_m_s * (-t / t0).exp_m1() }
     }
 }
 
@@ -493,6 +580,8 @@ pub struct Scene {
     pub fixed: Vec<(NodeId, [bool; 3])>,
     /// Recording.
     pub record: RecordPlan,
+    /// Quasi-static skip-ahead.
+    pub skip_ahead: SkipAhead,
 }
 
 /// Collects every refused field of a scene.
@@ -642,6 +731,25 @@ impl TryFrom<SceneFile> for Scene {
         if let Some(dt) = file.record.interval_s {
             ck.positive("record.interval_s", dt);
         }
+        let sk = &file.skip_ahead;
+        ck.range("skip_ahead.tolerance", sk.tolerance, 0.0, true, 0.5, false);
+        if !(1..=1_000_000).contains(&sk.margin_steps) {
+            ck.push("skip_ahead.margin_steps", sk.margin_steps, "an integer, 1 ≤ margin_steps ≤ 1000000");
+        }
+        if let Some(iv) = sk.record_interval_s {
+            match file.record.interval_s {
+                Some(base) if base > 0.0 => {
+                    ck.range("skip_ahead.record_interval_s", iv, base, false, f64::INFINITY, true);
+                }
+                _ => {
+                    ck.push(
+                        "skip_ahead.record_interval_s",
+                        iv,
+                        "only with record.interval_s set (a multiple of it, ≥ record.interval_s)",
+                    );
+                }
+            }
+        }
         // Everything below needs the lattice.
         let (Some(nx), Some(ny), Some(nz)) = (nx, ny, nz) else {
             return Err(ck.finish().expect_err("the counts were refused"));
@@ -767,6 +875,7 @@ impl TryFrom<SceneFile> for Scene {
             time_step,
             self_weight: SelfWeight {
                 gravity_m_s2: s.gravity_m_s2,
+                method: s.method,
                 damping_per_s: s.damping_per_s,
                 settle_tolerance: s.settle_tolerance,
                 max_duration_s: s.max_duration_s,
@@ -786,6 +895,12 @@ impl TryFrom<SceneFile> for Scene {
                 settling: file.record.settling,
                 slip_onsets: file.record.slip_onsets,
                 control,
+            },
+            skip_ahead: SkipAhead {
+                enabled: sk.enabled,
+                tolerance: sk.tolerance,
+                margin_steps: sk.margin_steps.max(1) as u64,
+                record_interval_s: sk.record_interval_s,
             },
             file,
         })

@@ -124,6 +124,9 @@ pub struct Stepper<'m, const L: usize> {
     /// Sustained slip onsets `(step, contact index)` per lane since the last drain.
     onsets: [Vec<(u64, u32)>; L],
     track_onsets: bool,
+    /// Whether each contact node slid in any step since the last [`Stepper::take_slid`].
+    slid: Vec<[bool; L]>,
+    track_slid: bool,
     slip_path: Vec<Lanes<L>>,
     /// Contact reactions: friction x, friction y, normal.
     reaction: [Vec<Lanes<L>>; 3],
@@ -181,6 +184,8 @@ impl<'m, const L: usize> Stepper<'m, L> {
             slip_run: vec![[0; L]; nc],
             onsets: std::array::from_fn(|_| Vec::new()),
             track_onsets: false,
+            slid: vec![[false; L]; nc],
+            track_slid: false,
             slip_path: vec![[0.0; L]; nc],
             reaction: [vec![[0.0; L]; nc], vec![[0.0; L]; nc], vec![[0.0; L]; nc]],
             driver_on: [false; L],
@@ -278,6 +283,17 @@ impl<'m, const L: usize> Stepper<'m, L> {
         self.onsets[l].drain(..)
     }
 
+    /// Turns on (or off) the tracking of which contact nodes slid between two calls of
+    /// [`Stepper::take_slid`].
+    pub(crate) fn set_track_slid(&mut self, on: bool) {
+        self.track_slid = on;
+    }
+
+    /// Which contact nodes of lane `l` slid since the last call (clears the record).
+    pub(crate) fn take_slid(&mut self, l: usize) -> Vec<bool> {
+        self.slid.iter_mut().map(|s| std::mem::replace(&mut s[l], false)).collect()
+    }
+
     /// Turns on (or off) the per-step energy accounting (one extra pass over the nodes).
     pub fn set_track_energy(&mut self, on: bool) {
         self.track_energy = on;
@@ -294,6 +310,103 @@ impl<'m, const L: usize> Stepper<'m, L> {
                 self.cur.c[c][i][l] = now[c];
             }
         }
+    }
+
+    /// Replaces the state of lane `l` by a known motion, as if `steps` steps had been committed:
+    /// displacements `u(k, node, component)` at the viewed step `steps − 1` and its neighbours
+    /// (`k` = −1, 0, +1 relative to it), the contact reactions `[friction x, friction y, normal]`
+    /// and driver reactions at the viewed time, every base node sticking (or lifted, where its
+    /// normal reaction is zero). Changing `steps` moves time for every lane: single-lane
+    /// steppers only.
+    pub(crate) fn set_state(
+        &mut self,
+        l: usize,
+        steps: u64,
+        u: impl Fn(i64, usize, usize) -> f64,
+        contact_reaction: impl Fn(usize) -> [f64; 3],
+        driver_reaction: impl Fn(usize) -> f64,
+        driver_target: f64,
+    ) {
+        assert!(L == 1 || steps == self.steps, "only a single-lane stepper can move in time");
+        for (k, field) in [(-1i64, &mut self.older), (0, &mut self.prev), (1, &mut self.cur)] {
+            for (c, comp) in field.c.iter_mut().enumerate() {
+                for (i, v) in comp.iter_mut().enumerate() {
+                    v[l] = u(k, i, c);
+                }
+            }
+        }
+        for ci in 0..self.slipping.len() {
+            let r = contact_reaction(ci);
+            for c in 0..3 {
+                self.reaction[c][ci][l] = r[c];
+            }
+            self.slipping[ci][l] = false;
+            self.slip_run[ci][l] = 0;
+            self.slip_path[ci][l] = 0.0;
+            self.slid[ci][l] = false;
+        }
+        for d in 0..self.driver_reaction.len() {
+            self.driver_reaction[d][l] = driver_reaction(d);
+        }
+        self.driver_target[l] = driver_target;
+        self.steps = steps;
+    }
+
+    /// Multiplies every displacement of lane `l` (the three time levels) by `factor`.
+    pub fn scale_state(&mut self, l: usize, factor: f64) {
+        for field in [&mut self.older, &mut self.prev, &mut self.cur] {
+            for comp in &mut field.c {
+                for v in comp.iter_mut() {
+                    v[l] *= factor;
+                }
+            }
+        }
+    }
+
+    /// The cumulative energy terms of lane `l` (work and dissipation; kinetic and elastic
+    /// energy are state, see [`Stepper::energy`]).
+    pub(crate) fn energy_accumulators(&mut self, l: usize) -> &mut Energy {
+        &mut self.acc[l]
+    }
+
+    /// Whether energy is being tracked.
+    pub(crate) fn tracks_energy(&self) -> bool {
+        self.track_energy
+    }
+
+    /// Base nodes of lane `l` sliding in the last step.
+    pub fn slipping_count(&self, l: usize) -> usize {
+        self.slipping.iter().filter(|s| s[l]).count()
+    }
+
+    /// Whether contact node `ci` of lane `l` slid in the last step.
+    pub(crate) fn is_slipping(&self, ci: usize, l: usize) -> bool {
+        self.slipping[ci][l]
+    }
+
+    /// Reaction `[friction x, friction y, normal]` of contact node `ci`, lane `l`, at the viewed
+    /// time (N).
+    pub(crate) fn contact_reaction(&self, ci: usize, l: usize) -> [f64; 3] {
+        [self.reaction[0][ci][l], self.reaction[1][ci][l], self.reaction[2][ci][l]]
+    }
+
+    /// Where driver `d` of lane `l` was when the drivers started (m, x).
+    pub(crate) fn driver_base(&self, d: usize, l: usize) -> f64 {
+        self.driver_base[d][l]
+    }
+
+    /// Kinetic energy of lane `l` at the viewed time (J), one pass over the nodes.
+    pub fn kinetic_energy(&self, l: usize) -> f64 {
+        let mass = self.model.mass();
+        let mut ke = 0.0;
+        for c in 0..3 {
+            let (a, b) = (&self.cur.c[c], &self.prev.c[c]);
+            for i in 0..mass.len() {
+                let v = a[i][l] - b[i][l];
+                ke += mass[i] * v * v;
+            }
+        }
+        0.5 * ke / (self.dt[l] * self.dt[l])
     }
 
     /// Zeroes the whole state of lane `l` and stops it from doing anything (used when a lane has
@@ -400,6 +513,13 @@ impl<'m, const L: usize> Stepper<'m, L> {
             reaction: &mut self.reaction,
         };
         contact_dispatch(&mut c);
+        if self.track_slid {
+            for (any, now) in self.slid.iter_mut().zip(&self.slipping) {
+                for l in 0..L {
+                    any[l] |= now[l];
+                }
+            }
+        }
         if self.track_onsets {
             for ci in 0..self.slipping.len() {
                 for l in 0..L {
@@ -517,16 +637,7 @@ impl<'m, const L: usize> Stepper<'m, L> {
     pub fn energy(&self, l: usize) -> Energy {
         let m = self.model;
         let mut e = self.acc[l];
-        let mut ke = 0.0;
-        let mass = m.mass();
-        for c in 0..3 {
-            let (a, b) = (&self.cur.c[c], &self.prev.c[c]);
-            for i in 0..mass.len() {
-                let v = a[i][l] - b[i][l];
-                ke += mass[i] * v * v;
-            }
-        }
-        e.kinetic = 0.5 * ke / (self.dt[l] * self.dt[l]);
+        e.kinetic = self.kinetic_energy(l);
         e.elastic = strain_energy(m.layout(), &self.k, &self.prev, &self.cur, l);
         e
     }

@@ -4,7 +4,7 @@
 //! Written to `<out>/figures/*.png` and `<out>/index.html` after the tables are gathered. Every
 //! figure reads the tables on disk; a figure whose data is absent is skipped, not drawn empty.
 
-mod charts;
+pub(crate) mod charts;
 mod figures;
 mod html;
 pub mod plot;
