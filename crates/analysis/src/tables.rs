@@ -140,12 +140,20 @@ impl Frame {
         Frame { height, cols: Vec::new() }
     }
 
+    /// A float column; NaN (a value that does not exist, e.g. the recurrence of a first
+    /// event) is written as null, so no table ever holds a NaN.
     pub(crate) fn f64(mut self, name: &str, v: Vec<f64>) -> Self {
-        self.cols.push(Column::new(name.into(), v));
+        if v.iter().any(|x| x.is_nan()) {
+            let v: Vec<Option<f64>> = v.into_iter().map(|x| (!x.is_nan()).then_some(x)).collect();
+            self.cols.push(Column::new(name.into(), v));
+        } else {
+            self.cols.push(Column::new(name.into(), v));
+        }
         self
     }
 
     pub(crate) fn opt_f64(mut self, name: &str, v: Vec<Option<f64>>) -> Self {
+        let v: Vec<Option<f64>> = v.into_iter().map(|x| x.filter(|x| !x.is_nan())).collect();
         self.cols.push(Column::new(name.into(), v));
         self
     }

@@ -412,6 +412,27 @@ fn check(path: &Path, seed: u64) -> Result<()> {
             .collect::<Vec<_>>()
             .join("; ")
     );
+    let sw = &scene.self_weight;
+    println!(
+        "  self-weight: {}",
+        match sw.method {
+            SettleMethod::Static =>
+                "solved statically (falls back to damped settling if friction cannot hold it)".into(),
+            SettleMethod::Dynamic => format!(
+                "damped settling, D = {} 1/s, until out-of-balance/weight < {:e}",
+                sw.damping_per_s, sw.settle_tolerance
+            ),
+        }
+    );
+    let sk = &scene.skip_ahead;
+    if sk.enabled {
+        println!(
+            "  skip-ahead: on (tolerance {:e}, {} explicit steps before each transition{})",
+            sk.tolerance,
+            sk.margin_steps,
+            sk.record_interval_s.map_or(String::new(), |iv| format!(", one sample per {iv} s while skipping"))
+        );
+    }
     Ok(())
 }
 

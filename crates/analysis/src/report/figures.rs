@@ -121,6 +121,10 @@ fn shear_stress(d: &Data, path: &Path) -> Result<Outcome, AnalysisError> {
     if lines.is_empty() {
         return Ok(Outcome::Skipped("no shear stress recorded".into()));
     }
+    // Dozens of labels overlap: beyond that, triangles only.
+    if markers.len() > 24 {
+        markers.iter_mut().for_each(|m| m.text.clear());
+    }
     charts::linear(
         path,
         "Shear stress on the base (paper Fig. 3)",
