@@ -151,7 +151,7 @@ enum BenchCommand {
         /// Seeds [default: the pipeline's], e.g. "1,5,10-20".
         #[arg(long)]
         seeds: Option<String>,
-        /// Jumps checked one by one per seed.
+        /// Jumps checked one by one per seed (those followed by an event first).
         #[arg(long, default_value_t = 4)]
         jumps: usize,
         /// How long the compared runs go on after a jump (s).
@@ -555,13 +555,16 @@ fn bench_skip(path: &Path, seeds: Option<&str>, jumps: usize, window_s: f64, out
     let max = |f: &dyn Fn(&stickslip_analysis::bench::skip::JumpCheck) -> f64| {
         checks.iter().map(f).filter(|v| v.is_finite()).fold(f64::NAN, f64::max)
     };
+    let shown = |v: f64| if v.is_nan() { "n/a".to_string() } else { format!("{v:.2e}") };
+    let with_events = checks.iter().filter(|c| c.event[0].is_some() && c.event[1].is_some()).count();
     println!(
-        "{} jumps checked one by one: onset error ≤ {:.2e} of the recurrence (perturbed run {:.2e}), first-event drop error ≤ {:.2e} (perturbed run {:.2e}); events after the jump agree in {}/{}",
+        "{} jumps checked one by one: onset error ≤ {} of the recurrence (run perturbed by 1e-9: {}); \
+         {with_events} followed by an event: drop error ≤ {} (perturbed run {}); event or none alike in {}/{}",
         checks.len(),
-        max(&|c| c.onset_error(1)),
-        max(&|c| c.onset_error(2)),
-        max(&|c| c.drop_error(1)),
-        max(&|c| c.drop_error(2)),
+        shown(max(&|c| c.onset_error(1))),
+        shown(max(&|c| c.onset_error(2))),
+        shown(max(&|c| c.drop_error(1))),
+        shown(max(&|c| c.drop_error(2))),
         checks.iter().filter(|c| c.same_events()).count(),
         checks.len()
     );

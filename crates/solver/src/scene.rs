@@ -183,7 +183,7 @@ pub struct SkipAheadSection {
     /// How far the state may be from the quasi-static one when jumping: the largest change
     /// the leftover motion makes to any base node's margin to its next transition, as a
     /// fraction of that margin (so the next onset time moves by about this fraction of the
-    /// time left to it). Default 1e-3.
+    /// time left to it). Default 1e-4.
     pub tolerance: f64,
     /// Explicit steps kept before each predicted transition. Default 20.
     pub margin_steps: i64,
@@ -194,7 +194,7 @@ pub struct SkipAheadSection {
 
 impl Default for SkipAheadSection {
     fn default() -> Self {
-        SkipAheadSection { enabled: false, tolerance: 1e-3, margin_steps: 20, record_interval_s: None }
+        SkipAheadSection { enabled: false, tolerance: 1e-4, margin_steps: 20, record_interval_s: None }
     }
 }
 

@@ -378,6 +378,8 @@ pub fn accuracy_figure(rows: &[AccuracyRow], path: &Path) -> Result<(), Analysis
             y_desc: "normalised L2 error".into(),
             lines,
             bands: vec![],
+            legend_at: plotters::prelude::SeriesLabelPosition::LowerLeft,
+            dots: true,
         }
     };
     loglog_panels(

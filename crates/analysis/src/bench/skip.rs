@@ -103,7 +103,8 @@ pub const PERTURBATION: f64 = 1e-9;
 /// Settings of the comparison.
 #[derive(Clone, Copy, Debug)]
 pub struct SkipBench {
-    /// Jumps checked per seed (the first ones).
+    /// Jumps checked per seed: those followed by an event within the window first, then the
+    /// others in time order.
     pub jumps_per_seed: usize,
     /// How long after a jump's end the compared runs go on (s).
     pub window_s: f64,
@@ -190,8 +191,19 @@ pub fn compare_skip(
             mean_drop_pa: cats.each_ref().map(mean_main_drop),
             recurrence_s,
         });
-        for (k, jump) in skip.records.skips.iter().take(bench.jumps_per_seed).enumerate() {
-            progress(&format!("seed {seed}: jump {} of {}", k + 1, skip.records.skips.len().min(bench.jumps_per_seed)));
+        // The jumps that end just before an event first (where an error would show most), then
+        // the others in time order.
+        let skips = &skip.records.skips;
+        let leads_to_event = |j: &Skip| {
+            cats[1].events.iter().any(|e| e.burst.start_s >= j.to_s && e.burst.start_s <= j.to_s + bench.window_s)
+        };
+        let mut order: Vec<usize> = (0..skips.len()).filter(|&k| leads_to_event(&skips[k])).collect();
+        order.extend((0..skips.len()).filter(|&k| !leads_to_event(&skips[k])));
+        order.truncate(bench.jumps_per_seed);
+        order.sort_unstable();
+        for (n, &k) in order.iter().enumerate() {
+            let jump = &skips[k];
+            progress(&format!("seed {seed}: jump {} ({} of {} checked)", k + 1, n + 1, order.len()));
             let until = (jump.to_s + bench.window_s).min(scene.shear.duration_s);
             let model = with(true, false, Some(until))?;
             let side = |jumps: u64, perturb: bool| -> Result<AfterJump, AnalysisError> {

@@ -166,6 +166,10 @@ pub struct Panel {
     pub lines: Vec<Line>,
     /// Shaded bands.
     pub bands: Vec<Band>,
+    /// Where the legend goes.
+    pub legend_at: SeriesLabelPosition,
+    /// Mark each point of the bold lines with a dot.
+    pub dots: bool,
 }
 
 /// Draws a log-log panel into `area`.
@@ -175,7 +179,7 @@ fn loglog_into(
     panel: &Panel,
     caption_size: u32,
 ) -> Result<(), AnalysisError> {
-    let Panel { title, x_desc, y_desc, lines, bands } = panel;
+    let Panel { title, x_desc, y_desc, lines, bands, legend_at, dots } = panel;
     let (x0, x1) = log_range(lines.iter().flat_map(|l| l.points.iter().map(|p| p.0)));
     let (y0, y1) = log_range(
         lines
@@ -236,11 +240,17 @@ fn loglog_into(
             s.label(l.label.clone())
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], c.stroke_width(3)));
         }
+        if *dots {
+            let c = l.colour;
+            chart
+                .draw_series(l.points.iter().filter(|p| p.0 > 0.0 && p.1 > 0.0).map(|&p| Circle::new(p, 5, c.filled())))
+                .map_err(|e| err(name)(e.to_string()))?;
+        }
     }
     if legend {
         chart
             .configure_series_labels()
-            .position(SeriesLabelPosition::LowerLeft)
+            .position(legend_at.clone())
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK.mix(0.5))
             .label_font((FONT, TICK))

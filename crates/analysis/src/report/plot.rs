@@ -97,7 +97,8 @@ pub fn padded_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     (lo - pad, hi + pad)
 }
 
-/// Range of the positive finite values for a log axis, padded by a factor 1.3.
+/// Range of the positive finite values for a log axis, padded by a factor 1.3 and widened down
+/// to a power of ten when it holds none (a log axis is labelled at powers of ten).
 pub fn log_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     let (lo, hi) = values
         .filter(|v| v.is_finite() && *v > 0.0)
@@ -105,7 +106,9 @@ pub fn log_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     if !lo.is_finite() {
         return (0.1, 1.0);
     }
-    (lo / 1.3, hi * 1.3)
+    let (lo, hi) = (lo / 1.3, hi * 1.3);
+    let decade = 10f64.powf(hi.log10().floor());
+    (if decade >= lo { lo } else { decade * 0.9 }, hi)
 }
 
 /// A white canvas of the standard size at `path`.
