@@ -4,7 +4,7 @@
 use std::ops::ControlFlow;
 
 use stickslip_solver::record::Transition;
-use stickslip_solver::scene::{Component, ControlSection, InterfaceQuantity, Kinematic, NodeSet, SettleMethod};
+use stickslip_solver::scene::{Component, ControlSection, Kinematic, NodeSet, SettleMethod};
 use stickslip_solver::{Channel, Model, RunOptions, RunOutput, Scene, SceneFile, run_seed};
 use stickslip_support::scene_with;
 
@@ -79,15 +79,6 @@ fn slow_file() -> SceneFile {
     f.friction.mu_dynamic = Some(4.5);
     f.shear.velocity_m_s = 1.1e-6;
     f.record.interval_s = Some(1e-4);
-    f.record.interface = vec![
-        InterfaceQuantity::ShearStress,
-        InterfaceQuantity::NormalStress,
-        InterfaceQuantity::MeanSlip,
-        InterfaceQuantity::SlipRate,
-        InterfaceQuantity::SlippingNodes,
-        InterfaceQuantity::LiftedNodes,
-        InterfaceQuantity::Driver,
-    ];
     f.record.energy = true;
     f.record.slip_onsets = true;
     f.skip_ahead.enabled = true;
