@@ -19,6 +19,12 @@
 //! those across every other slab boundary, then the rest, touch disjoint nodes, so each phase can
 //! run its segments on several threads. The serial path walks the same segments in the same
 //! order, so the forces are bit-identical whatever the thread count.
+//!
+//! [`bar_forces_finishing`] walks the same groups in the same order and, after each group, hands
+//! over the nodes no later group touches: their forces are complete, so the caller can integrate
+//! them while their data is still in cache instead of sweeping every node array once more.
+
+use std::ops::Range;
 
 use rayon::prelude::*;
 
@@ -90,6 +96,11 @@ pub struct BarLayout {
     segments: Vec<Segment>,
     ends: Vec<[u32; 2]>,
     nodes: usize,
+    /// Runs of nodes whose last bar is in group `g` (serial order) are
+    /// `finished[finished_at[g]..finished_at[g + 1]]`; the extra last slot holds the nodes no bar
+    /// touches.
+    finished: Vec<Range<usize>>,
+    finished_at: Vec<usize>,
 }
 
 impl BarLayout {
@@ -117,7 +128,14 @@ impl BarLayout {
                 }
             }
         }
-        BarLayout { segments, ends, nodes }
+        let (finished, finished_at) = finishing_order(&segments, &ends, nodes);
+        BarLayout { segments, ends, nodes, finished, finished_at }
+    }
+
+    /// Runs of nodes whose forces are complete once group `slot` (serial order over every
+    /// segment) has run; slot `groups().count()` holds the nodes no bar touches.
+    pub fn finished_after(&self, slot: usize) -> &[Range<usize>] {
+        &self.finished[self.finished_at[slot]..self.finished_at[slot + 1]]
     }
 
     /// Segments in serial order.
@@ -146,6 +164,35 @@ impl BarLayout {
             assert!(u.c[c].len() == self.nodes && f.c[c].len() == self.nodes, "fields over the layout's nodes");
         }
     }
+}
+
+/// For every group in serial order (and one slot after them for untouched nodes), the runs of
+/// nodes whose last bar is in that group, in increasing node order.
+fn finishing_order(segments: &[Segment], ends: &[[u32; 2]], nodes: usize) -> (Vec<Range<usize>>, Vec<usize>) {
+    let groups: Vec<&BarGroup> = segments.iter().flat_map(|s| s.groups.iter()).collect();
+    let mut last = vec![groups.len(); nodes];
+    for (slot, g) in groups.iter().enumerate() {
+        for e in &ends[g.start..g.end] {
+            for &n in e {
+                last[n as usize] = slot;
+            }
+        }
+    }
+    let mut by_slot: Vec<Vec<Range<usize>>> = vec![Vec::new(); groups.len() + 1];
+    for (n, &slot) in last.iter().enumerate() {
+        let runs = &mut by_slot[slot];
+        match runs.last_mut() {
+            Some(r) if r.end == n => r.end = n + 1,
+            _ => runs.push(n..n + 1),
+        }
+    }
+    let mut finished_at = vec![0];
+    let mut finished = Vec::new();
+    for runs in by_slot {
+        finished.extend(runs);
+        finished_at.push(finished.len());
+    }
+    (finished, finished_at)
 }
 
 /// Raw view of the force field shared by the threads of one phase.
@@ -178,6 +225,74 @@ pub fn bar_forces_parallel<const L: usize>(layout: &BarLayout, k: &[Lanes<L>], u
             unsafe { segment_dispatch(s, &layout.ends, k, u, fp) }
         });
     }
+}
+
+/// As [`bar_forces`] (the same groups in the same order, so the same bits), calling
+/// `finish(nodes, f)` after each group for every run of nodes whose forces are then complete.
+/// Every node is handed over exactly once, after its last bar.
+pub fn bar_forces_finishing<const L: usize>(
+    layout: &BarLayout,
+    k: &[Lanes<L>],
+    u: &Field<L>,
+    f: &mut Field<L>,
+    mut finish: impl FnMut(Range<usize>, &mut Field<L>),
+) {
+    layout.check(k, u, f);
+    let mut slot = 0;
+    for s in &layout.segments {
+        for g in &s.groups {
+            let fp = ForcePtr(f.c.each_mut().map(|c| c.as_mut_ptr()));
+            // SAFETY: checked layout, one thread; `fp` is not used past this call.
+            unsafe { group_dispatch(g, &layout.ends, k, u, fp) };
+            for r in layout.finished_after(slot) {
+                finish(r.clone(), f);
+            }
+            slot += 1;
+        }
+    }
+    for r in layout.finished_after(slot) {
+        finish(r.clone(), f);
+    }
+}
+
+/// Runs one group with the widest vector instructions the CPU has.
+///
+/// # Safety
+/// As [`segment_dispatch`].
+unsafe fn group_dispatch<const L: usize>(
+    g: &BarGroup,
+    ends: &[[u32; 2]],
+    k: &[Lanes<L>],
+    u: &Field<L>,
+    f: ForcePtr<L>,
+) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::is_x86_feature_detected!("avx512f") {
+            // SAFETY: the CPU has AVX-512F; the caller's contract holds.
+            return unsafe { group_avx512(g, ends, k, u, f) };
+        }
+        if std::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2; the caller's contract holds.
+            return unsafe { group_avx2(g, ends, k, u, f) };
+        }
+    }
+    // SAFETY: the caller's contract.
+    unsafe { group_forces(g, ends, k, u, f) }
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+unsafe fn group_avx512<const L: usize>(g: &BarGroup, ends: &[[u32; 2]], k: &[Lanes<L>], u: &Field<L>, f: ForcePtr<L>) {
+    // SAFETY: forwarded contract.
+    unsafe { group_forces(g, ends, k, u, f) }
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn group_avx2<const L: usize>(g: &BarGroup, ends: &[[u32; 2]], k: &[Lanes<L>], u: &Field<L>, f: ForcePtr<L>) {
+    // SAFETY: forwarded contract.
+    unsafe { group_forces(g, ends, k, u, f) }
 }
 
 /// Runs one segment with the widest vector instructions the CPU has.
@@ -223,19 +338,25 @@ unsafe fn segment_avx2<const L: usize>(s: &Segment, ends: &[[u32; 2]], k: &[Lane
 #[inline(always)]
 unsafe fn segment_forces<const L: usize>(s: &Segment, ends: &[[u32; 2]], k: &[Lanes<L>], u: &Field<L>, f: ForcePtr<L>) {
     for g in &s.groups {
-        let (e, kk) = (&ends[g.start..g.end], &k[g.start..g.end]);
-        // SAFETY (all arms): ends are below the node count of u and f (checked layout).
-        unsafe {
-            match g.direction {
-                Direction::Axis(a) => {
-                    let a = a as usize;
-                    axial(e, kk, u.c[a].as_ptr(), f.0[a]);
-                }
-                Direction::Diagonal { neg_x: false, neg_y: false } => diagonal::<L, false, false>(e, kk, u, f),
-                Direction::Diagonal { neg_x: false, neg_y: true } => diagonal::<L, false, true>(e, kk, u, f),
-                Direction::Diagonal { neg_x: true, neg_y: false } => diagonal::<L, true, false>(e, kk, u, f),
-                Direction::Diagonal { neg_x: true, neg_y: true } => diagonal::<L, true, true>(e, kk, u, f),
+        // SAFETY: forwarded contract.
+        unsafe { group_forces(g, ends, k, u, f) }
+    }
+}
+
+#[inline(always)]
+unsafe fn group_forces<const L: usize>(g: &BarGroup, ends: &[[u32; 2]], k: &[Lanes<L>], u: &Field<L>, f: ForcePtr<L>) {
+    let (e, kk) = (&ends[g.start..g.end], &k[g.start..g.end]);
+    // SAFETY (all arms): ends are below the node count of u and f (checked layout).
+    unsafe {
+        match g.direction {
+            Direction::Axis(a) => {
+                let a = a as usize;
+                axial(e, kk, u.c[a].as_ptr(), f.0[a]);
             }
+            Direction::Diagonal { neg_x: false, neg_y: false } => diagonal::<L, false, false>(e, kk, u, f),
+            Direction::Diagonal { neg_x: false, neg_y: true } => diagonal::<L, false, true>(e, kk, u, f),
+            Direction::Diagonal { neg_x: true, neg_y: false } => diagonal::<L, true, false>(e, kk, u, f),
+            Direction::Diagonal { neg_x: true, neg_y: true } => diagonal::<L, true, true>(e, kk, u, f),
         }
     }
 }
@@ -371,6 +492,41 @@ pub fn stiffness_diagonal<const L: usize>(layout: &BarLayout, k: &[Lanes<L>], l:
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::{Model, Scene, SceneFile};
+
+    #[test]
+    fn finishing_hands_over_every_node_once_with_its_complete_force() {
+        for (nx, ny, nz) in [(10, 1, 5), (40, 20, 4)] {
+            let mut file = SceneFile::default();
+            (file.block.nx, file.block.ny, file.block.nz) = (nx, ny, nz);
+            let m = Model::new(Scene::try_from(file).unwrap());
+            let n = m.node_count();
+            let k: Vec<Lanes<2>> = m.bar_stiffness(3).unwrap().iter().map(|&v| [v, 0.5 * v]).collect();
+            let mut u = Field::<2>::zeros(n);
+            for c in 0..3 {
+                for (i, v) in u.c[c].iter_mut().enumerate() {
+                    let x = ((i * 7 + c * 13) % 29) as f64 * 1e-6;
+                    *v = [x, -0.3 * x];
+                }
+            }
+            let mut plain = Field::<2>::zeros(n);
+            bar_forces(m.layout(), &k, &u, &mut plain);
+            let mut seen = Field::<2>::zeros(n);
+            let mut times = vec![0u32; n];
+            let mut f = Field::<2>::zeros(n);
+            bar_forces_finishing(m.layout(), &k, &u, &mut f, |r, f| {
+                for i in r {
+                    times[i] += 1;
+                    for c in 0..3 {
+                        seen.c[c][i] = f.c[c][i];
+                    }
+                }
+            });
+            assert!(times.iter().all(|&t| t == 1), "{nx}×{ny}×{nz}: every node handed over once");
+            assert_eq!(seen, plain, "{nx}×{ny}×{nz}: forces complete when handed over");
+            assert_eq!(f, plain, "{nx}×{ny}×{nz}: same bits as bar_forces");
+        }
+    }
 
     #[test]
     #[should_panic(expected = "share node")]

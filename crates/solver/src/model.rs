@@ -21,7 +21,7 @@ pub const SLABS: usize = 8;
 /// Lattices with at least this many nodes have their bars ordered in cache blocks.
 pub const BLOCK_MIN_NODES: usize = 4096;
 /// Target number of nodes of one cache block (one module layer, a band of y).
-pub const BLOCK_NODES: usize = 2048;
+pub const BLOCK_NODES: usize = 512;
 
 /// The scene built into flat arrays, in the stepper's internal node and bar order.
 ///
@@ -193,6 +193,12 @@ impl Model {
     /// Total mass (kg).
     pub fn total_mass(&self) -> f64 {
         self.mass.iter().sum()
+    }
+
+    /// Whether the bars are ordered in cache blocks (lattices of [`BLOCK_MIN_NODES`] nodes or
+    /// more): then the stepper integrates each node right after its last bar.
+    pub fn cache_blocked(&self) -> bool {
+        self.layout.nodes() >= BLOCK_MIN_NODES
     }
 
     /// The bars in kernel order, with their segments and direction groups.
