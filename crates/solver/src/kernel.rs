@@ -258,7 +258,7 @@ pub fn bar_forces_finishing<const L: usize>(
 /// Runs one group with the widest vector instructions the CPU has.
 ///
 /// # Safety
-/// As [`segment_dispatch`].
+/// `layout.check` passed for these arrays, and no other thread writes the group's nodes.
 unsafe fn group_dispatch<const L: usize>(
     g: &BarGroup,
     ends: &[[u32; 2]],
@@ -295,10 +295,10 @@ unsafe fn group_avx2<const L: usize>(g: &BarGroup, ends: &[[u32; 2]], k: &[Lanes
     unsafe { group_forces(g, ends, k, u, f) }
 }
 
-/// Runs one segment with the widest vector instructions the CPU has.
+/// Runs the groups of one segment.
 ///
 /// # Safety
-/// `layout.check` passed for these arrays, and no other thread writes the segment's nodes.
+/// As [`group_dispatch`].
 unsafe fn segment_dispatch<const L: usize>(
     s: &Segment,
     ends: &[[u32; 2]],
@@ -306,40 +306,9 @@ unsafe fn segment_dispatch<const L: usize>(
     u: &Field<L>,
     f: ForcePtr<L>,
 ) {
-    #[cfg(target_arch = "x86_64")]
-    {
-        if std::is_x86_feature_detected!("avx512f") {
-            // SAFETY: the CPU has AVX-512F; the caller's contract holds.
-            return unsafe { segment_avx512(s, ends, k, u, f) };
-        }
-        if std::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU has AVX2; the caller's contract holds.
-            return unsafe { segment_avx2(s, ends, k, u, f) };
-        }
-    }
-    // SAFETY: the caller's contract.
-    unsafe { segment_forces(s, ends, k, u, f) }
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx512f")]
-unsafe fn segment_avx512<const L: usize>(s: &Segment, ends: &[[u32; 2]], k: &[Lanes<L>], u: &Field<L>, f: ForcePtr<L>) {
-    // SAFETY: forwarded contract.
-    unsafe { segment_forces(s, ends, k, u, f) }
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-unsafe fn segment_avx2<const L: usize>(s: &Segment, ends: &[[u32; 2]], k: &[Lanes<L>], u: &Field<L>, f: ForcePtr<L>) {
-    // SAFETY: forwarded contract.
-    unsafe { segment_forces(s, ends, k, u, f) }
-}
-
-#[inline(always)]
-unsafe fn segment_forces<const L: usize>(s: &Segment, ends: &[[u32; 2]], k: &[Lanes<L>], u: &Field<L>, f: ForcePtr<L>) {
     for g in &s.groups {
         // SAFETY: forwarded contract.
-        unsafe { group_forces(g, ends, k, u, f) }
+        unsafe { group_dispatch(g, ends, k, u, f) }
     }
 }
 
