@@ -30,6 +30,51 @@ use rayon::prelude::*;
 
 use crate::lattice::Direction;
 
+/// Defines `$name`, which runs the `#[inline(always)]` kernel `$kernel` compiled for the widest
+/// vector instructions the CPU has — AVX-512, AVX2 or baseline x86-64, picked at run time. Rust
+/// never fuses a multiply and an add on its own, so every build gives the same bits. An
+/// `unsafe fn` dispatcher forwards its kernel's safety contract.
+macro_rules! widest {
+    ($(#[$m:meta])* fn $name:ident<const L: usize>($($a:ident: $t:ty),* $(,)?) => $kernel:ident) => {
+        $(#[$m])*
+        fn $name<const L: usize>($($a: $t),*) {
+            // SAFETY: `$kernel` is safe; the builds differ only in instruction set.
+            unsafe { $crate::kernel::widest!(@run $kernel; $($a: $t),*) }
+        }
+    };
+    ($(#[$m:meta])* unsafe fn $name:ident<const L: usize>($($a:ident: $t:ty),* $(,)?) => $kernel:ident) => {
+        $(#[$m])*
+        unsafe fn $name<const L: usize>($($a: $t),*) {
+            // SAFETY: the caller's contract is `$kernel`'s.
+            unsafe { $crate::kernel::widest!(@run $kernel; $($a: $t),*) }
+        }
+    };
+    (@run $kernel:ident; $($a:ident: $t:ty),*) => {{
+        #[cfg(target_arch = "x86_64")]
+        {
+            #[target_feature(enable = "avx512f")]
+            #[allow(unused_unsafe)]
+            unsafe fn avx512<const L: usize>($($a: $t),*) {
+                unsafe { $kernel($($a),*) }
+            }
+            #[target_feature(enable = "avx2")]
+            #[allow(unused_unsafe)]
+            unsafe fn avx2<const L: usize>($($a: $t),*) {
+                unsafe { $kernel($($a),*) }
+            }
+            if std::is_x86_feature_detected!("avx512f") {
+                return avx512($($a),*);
+            }
+            if std::is_x86_feature_detected!("avx2") {
+                return avx2($($a),*);
+            }
+        }
+        #[allow(unused_unsafe)]
+        unsafe { $kernel($($a),*) }
+    }};
+}
+pub(crate) use widest;
+
 /// One `f64` per lane.
 pub type Lanes<const L: usize> = [f64; L];
 
@@ -255,44 +300,18 @@ pub fn bar_forces_finishing<const L: usize>(
     }
 }
 
-/// Runs one group with the widest vector instructions the CPU has.
-///
-/// # Safety
-/// `layout.check` passed for these arrays, and no other thread writes the group's nodes.
-unsafe fn group_dispatch<const L: usize>(
-    g: &BarGroup,
-    ends: &[[u32; 2]],
-    k: &[Lanes<L>],
-    u: &Field<L>,
-    f: ForcePtr<L>,
-) {
-    #[cfg(target_arch = "x86_64")]
-    {
-        if std::is_x86_feature_detected!("avx512f") {
-            // SAFETY: the CPU has AVX-512F; the caller's contract holds.
-            return unsafe { group_avx512(g, ends, k, u, f) };
-        }
-        if std::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU has AVX2; the caller's contract holds.
-            return unsafe { group_avx2(g, ends, k, u, f) };
-        }
-    }
-    // SAFETY: the caller's contract.
-    unsafe { group_forces(g, ends, k, u, f) }
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx512f")]
-unsafe fn group_avx512<const L: usize>(g: &BarGroup, ends: &[[u32; 2]], k: &[Lanes<L>], u: &Field<L>, f: ForcePtr<L>) {
-    // SAFETY: forwarded contract.
-    unsafe { group_forces(g, ends, k, u, f) }
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-unsafe fn group_avx2<const L: usize>(g: &BarGroup, ends: &[[u32; 2]], k: &[Lanes<L>], u: &Field<L>, f: ForcePtr<L>) {
-    // SAFETY: forwarded contract.
-    unsafe { group_forces(g, ends, k, u, f) }
+widest! {
+    /// Runs one group with the widest vector instructions the CPU has.
+    ///
+    /// # Safety
+    /// `layout.check` passed for these arrays, and no other thread writes the group's nodes.
+    unsafe fn group_dispatch<const L: usize>(
+        g: &BarGroup,
+        ends: &[[u32; 2]],
+        k: &[Lanes<L>],
+        u: &Field<L>,
+        f: ForcePtr<L>,
+    ) => group_forces
 }
 
 /// Runs the groups of one segment.

@@ -23,7 +23,7 @@
 
 use rayon::prelude::*;
 
-use crate::kernel::{Field, Lanes, bar_forces, bar_forces_finishing, bar_forces_parallel, strain_energy};
+use crate::kernel::{Field, Lanes, bar_forces, bar_forces_finishing, bar_forces_parallel, strain_energy, widest};
 use crate::model::Model;
 
 /// Steps a contact node must slide in a row for its slip to count as an onset.
@@ -716,57 +716,18 @@ struct Coefficients<const L: usize> {
     cp: Lanes<L>,
 }
 
-/// The trial update of one component over every node, with the widest vector instructions the
-/// CPU has; clears `f` as it reads it.
-fn integrate_dispatch<const L: usize>(
-    inv_mass: &[f64],
-    k: &Coefficients<L>,
-    body: Lanes<L>,
-    f: &mut [Lanes<L>],
-    u: &[Lanes<L>],
-    up: &[Lanes<L>],
-    out: &mut [Lanes<L>],
-) {
-    #[cfg(target_arch = "x86_64")]
-    {
-        if std::is_x86_feature_detected!("avx512f") {
-            // SAFETY: the CPU has AVX-512F.
-            return unsafe { integrate_avx512(inv_mass, k, body, f, u, up, out) };
-        }
-        if std::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU has AVX2.
-            return unsafe { integrate_avx2(inv_mass, k, body, f, u, up, out) };
-        }
-    }
-    integrate(inv_mass, k, body, f, u, up, out)
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx512f")]
-unsafe fn integrate_avx512<const L: usize>(
-    inv_mass: &[f64],
-    k: &Coefficients<L>,
-    body: Lanes<L>,
-    f: &mut [Lanes<L>],
-    u: &[Lanes<L>],
-    up: &[Lanes<L>],
-    out: &mut [Lanes<L>],
-) {
-    integrate(inv_mass, k, body, f, u, up, out)
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-unsafe fn integrate_avx2<const L: usize>(
-    inv_mass: &[f64],
-    k: &Coefficients<L>,
-    body: Lanes<L>,
-    f: &mut [Lanes<L>],
-    u: &[Lanes<L>],
-    up: &[Lanes<L>],
-    out: &mut [Lanes<L>],
-) {
-    integrate(inv_mass, k, body, f, u, up, out)
+widest! {
+    /// The trial update of one component over every node, with the widest vector instructions the
+    /// CPU has; clears `f` as it reads it.
+    fn integrate_dispatch<const L: usize>(
+        inv_mass: &[f64],
+        k: &Coefficients<L>,
+        body: Lanes<L>,
+        f: &mut [Lanes<L>],
+        u: &[Lanes<L>],
+        up: &[Lanes<L>],
+        out: &mut [Lanes<L>],
+    ) => integrate
 }
 
 #[inline(always)]
@@ -808,31 +769,9 @@ struct ContactArrays<'a, const L: usize> {
     reaction: &'a mut [Vec<Lanes<L>>; 3],
 }
 
-fn contact_dispatch<const L: usize>(c: &mut ContactArrays<'_, L>) {
-    #[cfg(target_arch = "x86_64")]
-    {
-        if std::is_x86_feature_detected!("avx512f") {
-            // SAFETY: the CPU has AVX-512F.
-            return unsafe { contact_avx512(c) };
-        }
-        if std::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU has AVX2.
-            return unsafe { contact_avx2(c) };
-        }
-    }
-    contact(c)
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx512f")]
-unsafe fn contact_avx512<const L: usize>(c: &mut ContactArrays<'_, L>) {
-    contact(c)
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-unsafe fn contact_avx2<const L: usize>(c: &mut ContactArrays<'_, L>) {
-    contact(c)
+widest! {
+    /// The contact update with the widest vector instructions the CPU has.
+    fn contact_dispatch<const L: usize>(c: &mut ContactArrays<'_, L>) => contact
 }
 
 #[inline(always)]

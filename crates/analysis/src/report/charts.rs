@@ -64,6 +64,22 @@ fn err(name: &str) -> impl Fn(String) -> AnalysisError + '_ {
     plot_err(name)
 }
 
+/// Draws the labels of `chart`'s series at `at`, in the report's legend style.
+fn draw_legend<'a, DB: DrawingBackend + 'a, CT: CoordTranslate>(
+    chart: &mut ChartContext<'a, DB, CT>,
+    at: SeriesLabelPosition,
+    name: &str,
+) -> Result<(), AnalysisError> {
+    chart
+        .configure_series_labels()
+        .position(at)
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK.mix(0.5))
+        .label_font((FONT, TICK))
+        .draw()
+        .map_err(|e| err(name)(e.to_string()))
+}
+
 /// Lines on linear axes, with markers and horizontal references; the legend at `legend_at`.
 #[allow(clippy::too_many_arguments)]
 pub fn linear(
@@ -142,14 +158,7 @@ pub fn linear(
             .map_err(|e| err(&name)(e.to_string()))?;
     }
     if legend {
-        chart
-            .configure_series_labels()
-            .position(legend_at)
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK.mix(0.5))
-            .label_font((FONT, TICK))
-            .draw()
-            .map_err(|e| err(&name)(e.to_string()))?;
+        draw_legend(&mut chart, legend_at, &name)?;
     }
     root.present().map_err(|e| err(&name)(e.to_string()))
 }
@@ -248,14 +257,7 @@ fn loglog_into(
         }
     }
     if legend {
-        chart
-            .configure_series_labels()
-            .position(legend_at.clone())
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK.mix(0.5))
-            .label_font((FONT, TICK))
-            .draw()
-            .map_err(|e| err(name)(e.to_string()))?;
+        draw_legend(&mut chart, legend_at.clone(), name)?;
     }
     Ok(())
 }
@@ -400,13 +402,6 @@ pub fn scatter(
             .label(l.label.clone())
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], c.stroke_width(3)));
     }
-    chart
-        .configure_series_labels()
-        .position(legend_at)
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK.mix(0.5))
-        .label_font((FONT, TICK))
-        .draw()
-        .map_err(|e| err(&name)(e.to_string()))?;
+    draw_legend(&mut chart, legend_at, &name)?;
     root.present().map_err(|e| err(&name)(e.to_string()))
 }
