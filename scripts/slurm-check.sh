@@ -1,46 +1,215 @@
 #!/usr/bin/env bash
-# A real check against Slurm: installs Debian's slurm-wlm and munge, starts a single-node cluster
-# on this machine, submits a pipeline as a job array of shards plus the dependent merge job
-# (pipelines/slurm/submit.sh, exactly as the README says), waits, and compares the merged tables
-# with a plain ensemble run of the same pipeline.
-#   scripts/slurm-check.sh [pipeline, default pipelines/paper-100.toml] [shards, default 8]
-# Needs root (packages, daemons). Work folder: /tmp/stickslip-slurm (override with WORK=…).
+# A real check against Slurm, self-contained: it starts a private single-node cluster (its own
+# munged, slurmctld and slurmd, with their own configuration, key, socket, spool, state, logs and
+# free high ports, all under one work folder), submits a pipeline as a job array of shards plus
+# the dependent merge job (pipelines/slurm/submit.sh, exactly as the README says), waits, and
+# compares the merged tables with a plain ensemble run of the same pipeline.
+#
+# It touches nothing outside its work folder except, if they are missing and only after saying
+# so, installing Debian's slurm-wlm and munge. It refuses, before changing anything, to run where
+# a Slurm it did not create is present (a slurm.conf in a system location, SLURM_CONF set, or a
+# running Slurm daemon): that is a real cluster's node and the check does not belong there. The
+# daemons it starts are stopped by their process ids when it exits, on success or failure.
+#
+# Needs root (slurmd launches the jobs). The binary: $STICKSLIP, else target/release/stickslip.
+# Work folder: /tmp/stickslip-slurm (override with WORK=…; only a folder the check created is
+# reused). Waits at most TIMEOUT seconds (default 3600) for the jobs.
 set -euo pipefail
+
+usage="usage: scripts/slurm-check.sh [pipeline, default pipelines/paper-100.toml] [shards, default 8]"
+case ${1:-} in
+    -h | --help) echo "$usage"; exit 0 ;;
+    -*) echo "$usage" >&2; exit 2 ;;
+esac
+[ $# -le 2 ] || { echo "$usage" >&2; exit 2; }
+
 cd "$(dirname "$0")/.."
+repo=$PWD
 pipeline=${1:-pipelines/paper-100.toml}
 shards=${2:-8}
 work=${WORK:-/tmp/stickslip-slurm}
-host=$(hostname -s)
-cpus=$(nproc)
+timeout_s=${TIMEOUT:-3600}
+marker=.stickslip-slurm-check
 
 say() { printf '\n== %s\n' "$*"; }
+die() { printf 'slurm check failed: %s\n' "$*" >&2; exit 1; }
+
+# ---- arguments and prerequisites (nothing is changed yet) ----
+[ -f "$pipeline" ] || die "no pipeline file $pipeline"
+pipeline=$(realpath "$pipeline")
+[[ $shards =~ ^[1-9][0-9]*$ ]] || die "shards must be a positive integer, not '$shards'"
+[[ $timeout_s =~ ^[1-9][0-9]*$ ]] || die "TIMEOUT must be a positive number of seconds"
+[ "$(id -u)" = 0 ] || die "needs root (slurmd runs the jobs; packages may be installed)"
+bin=${STICKSLIP:-target/release/stickslip}
+[ -x "$bin" ] || die "no stickslip binary at $bin: build it (cargo build --release -p stickslip) or set STICKSLIP"
+bin=$(realpath "$bin")
+[[ $work = /* ]] || work=$PWD/$work
+case $work in / | /tmp | /root | /home | /etc | /var | /usr) die "WORK=$work is not a folder of its own" ;; esac
+
+# Live processes (zombies aside) named $1 exactly, as "pid command line" lines.
+procs() {
+    local pid
+    for pid in $(pgrep -x "$1" || true); do
+        [[ $(ps -o stat= -p "$pid" 2>/dev/null) == Z* ]] && continue
+        printf '%s %s\n' "$pid" "$(tr '\0' ' ' <"/proc/$pid/cmdline" 2>/dev/null)"
+    done
+}
+
+# Refuses, with the reasons, when a Slurm the check did not create is present, or the work folder
+# is not the check's own. Changes nothing.
+preflight() {
+    local reasons=() f name line
+    for f in /etc/slurm/slurm.conf /etc/slurm-llnl/slurm.conf /usr/local/etc/slurm.conf; do
+        [ -e "$f" ] && reasons+=("a Slurm configuration exists: $f")
+    done
+    [ -n "${SLURM_CONF:-}" ] && reasons+=("SLURM_CONF is set ($SLURM_CONF)")
+    for name in slurmctld slurmd slurmdbd slurmstepd slurmrestd sackd; do
+        while IFS= read -r line; do
+            [ -n "$line" ] || continue
+            if [[ $line == *"$work/"* ]]; then
+                reasons+=("a $name left over from an earlier check in $work runs (stop it: kill ${line%% *}): $line")
+            else
+                reasons+=("a $name the check did not start runs: $line")
+            fi
+        done < <(procs "$name")
+    done
+    while IFS= read -r line; do
+        [[ $line == *"$work/"* ]] && reasons+=("a munged left over from an earlier check in $work runs (stop it: kill ${line%% *})")
+    done < <(procs munged)
+    if [ -e "$work" ] && [ ! -e "$work/$marker" ] && [ -n "$(ls -A "$work" 2>/dev/null)" ]; then
+        reasons+=("the work folder $work exists and was not made by this check (set WORK to a new folder)")
+    fi
+    if [ ${#reasons[@]} -gt 0 ]; then
+        echo "slurm check refused: this machine has a Slurm the check did not create, or its work folder is taken." >&2
+        printf '  - %s\n' "${reasons[@]}" >&2
+        echo "Nothing was changed. Run the check on a machine without Slurm (a VM or container)." >&2
+        exit 1
+    fi
+}
+
+say "preflight"
+preflight
+echo "no Slurm configuration or daemon present; work folder $work"
+while IFS= read -r line; do
+    [ -n "$line" ] && echo "note: a munged the check did not start runs ($line); left alone, the check uses its own"
+done < <(procs munged)
 
 say "packages"
-if ! command -v slurmctld >/dev/null || ! command -v munged >/dev/null; then
+missing=()
+for cmd in munged munge unmunge slurmctld slurmd sbatch squeue sinfo scancel; do
+    command -v "$cmd" >/dev/null || missing+=("$cmd")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+    echo "missing ${missing[*]}: installing Debian's slurm-wlm and munge:"
+    echo "  apt-get update && apt-get install -y --no-install-recommends slurm-wlm munge"
     apt-get update -qq >/dev/null
-    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq slurm-wlm munge >/dev/null
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends slurm-wlm munge >/dev/null
+    preflight # the packages must not have brought a Slurm of their own
 fi
-dpkg-query -W slurm-wlm munge
+dpkg-query -W slurm-wlm munge 2>/dev/null || true
 
-say "stickslip"
-cargo build --release -q -p stickslip
-bin=$(realpath target/release/stickslip)
+# ---- from here on everything lives in $work and is undone on exit ----
+host=$(hostname -s)
+cpus=$(nproc)
+mem=$(awk '/MemTotal/ { printf "%d", $2 / 1024 * 0.8 }' /proc/meminfo)
+etc=$work/etc spool=$work/spool state=$work/state log=$work/log run=$work/run mungedir=$work/munge
+export SLURM_CONF=$etc/slurm.conf
 
-say "munge"
-mkdir -p /etc/munge /run/munge /var/lib/munge /var/log/munge
-[ -s /etc/munge/munge.key ] || dd if=/dev/urandom bs=1 count=1024 of=/etc/munge/munge.key status=none
-chown -R munge:munge /etc/munge /run/munge /var/lib/munge /var/log/munge 2>/dev/null || true
-chmod 0700 /etc/munge && chmod 0400 /etc/munge/munge.key
-pgrep -x munged >/dev/null || su -s /bin/sh munge -c /usr/sbin/munged 2>/dev/null || /usr/sbin/munged --force
-munge -n | unmunge >/dev/null && echo "munge works"
+# Is TCP port $1 unused (no socket of any state bound to it, IPv4 or IPv6)?
+port_free() {
+    local hex
+    hex=$(printf '%04X' "$1")
+    ! awk -v p=":$hex" 'FNR > 1 && substr($2, length($2) - 4) == p { found = 1 } END { exit !found }' \
+        /proc/net/tcp /proc/net/tcp6 2>/dev/null
+}
+ctld_port=
+for _ in $(seq 100); do
+    p=$((40000 + RANDOM % 20000))
+    if port_free "$p" && port_free $((p + 1)); then ctld_port=$p; break; fi
+done
+[ -n "$ctld_port" ] || die "found no two free adjacent ports in 40000–60000"
+slurmd_port=$((ctld_port + 1))
+
+pids=() names=() job_ids=() stepd_before=$(pgrep -x slurmstepd | tr '\n' ' ' || true)
+cleanup() {
+    local rc=$? i pid left=()
+    trap - EXIT INT TERM
+    if [ ${#job_ids[@]} -gt 0 ] && [ $rc -ne 0 ]; then
+        scancel "${job_ids[@]}" 2>/dev/null || true
+        for _ in $(seq 20); do squeue -h -j "$(IFS=,; echo "${job_ids[*]}")" 2>/dev/null | grep -q . || break; sleep 0.5; done
+    fi
+    # Job steps this check's slurmd started (there were none before it, or the preflight refuses).
+    for pid in $(pgrep -x slurmstepd || true); do
+        [[ " $stepd_before " == *" $pid "* ]] || { kill "$pid" 2>/dev/null || true; }
+    done
+    for ((i = ${#pids[@]} - 1; i >= 0; i--)); do
+        pid=${pids[i]}
+        if ! kill -TERM "$pid" 2>/dev/null; then
+            echo "${names[i]} (pid $pid) had already exited"
+            wait "$pid" 2>/dev/null || true
+            continue
+        fi
+        for _ in $(seq 40); do kill -0 "$pid" 2>/dev/null || break; sleep 0.25; done
+        if kill -0 "$pid" 2>/dev/null; then kill -KILL "$pid" 2>/dev/null || true; fi
+        wait "$pid" 2>/dev/null || true
+        if kill -0 "$pid" 2>/dev/null; then left+=("${names[i]} $pid"); else echo "stopped ${names[i]} (pid $pid)"; fi
+    done
+    rm -rf "$mungedir" "$run" # the private key and sockets
+    if [ ${#left[@]} -gt 0 ]; then
+        echo "could not stop: ${left[*]}" >&2
+        rc=1
+    elif [ ${#pids[@]} -gt 0 ]; then
+        echo "cleaned up: no daemon of the check runs; logs and outputs in $work"
+    fi
+    if [ $rc -ne 0 ] && [ -d "$log" ]; then
+        for f in "$log"/* "$work"/job/slurm-*.out; do
+            [ -s "$f" ] && { echo "--- tail of $f"; tail -n 15 "$f"; }
+        done >&2
+    fi
+    exit $rc
+}
+trap cleanup EXIT
+trap 'exit 130' INT
+trap 'exit 143' TERM
+
+# Starts a daemon in the foreground of a background job and remembers its pid.
+start() {
+    local name=$1
+    shift
+    "$@" >"$log/$name.out" 2>&1 &
+    pids+=("$!") names+=("$name")
+    echo "started $name (pid $!)"
+}
+
+say "work folder $work"
+rm -rf "$work"
+mkdir -p "$work" "$etc" "$spool" "$state" "$log" "$run" "$mungedir" "$work/job"
+touch "$work/$marker"
+chmod 0700 "$mungedir"
+chmod 0755 "$work" "$run" # munged wants its socket folder reachable by every user
+echo "ports: slurmctld $ctld_port, slurmd $slurmd_port (both were free)"
+
+say "munge (private key and socket)"
+socket=$run/munge.socket
+dd if=/dev/urandom bs=1024 count=1 of="$mungedir/munge.key" status=none
+chmod 0400 "$mungedir/munge.key"
+start munged munged --foreground --socket="$socket" --key-file="$mungedir/munge.key" \
+    --pid-file="$run/munged.pid" --log-file="$log/munged.log" --seed-file="$mungedir/munged.seed"
+for _ in $(seq 40); do [ -S "$socket" ] && break; sleep 0.25; done
+[ -S "$socket" ] || die "munged did not create its socket $socket"
+munge --socket="$socket" -n | unmunge --socket="$socket" >/dev/null || die "munge does not work"
+echo "munge works"
 
 say "slurm (single node $host, $cpus CPUs)"
-mkdir -p /etc/slurm /var/spool/slurmd /var/spool/slurmctld /var/log/slurm
-mem=$(awk '/MemTotal/ { printf "%d", $2 / 1024 * 0.8 }' /proc/meminfo)
-cat > /etc/slurm/slurm.conf <<CONF
-ClusterName=stickslip
-SlurmctldHost=$host
+cat >"$SLURM_CONF" <<CONF
+# Written by scripts/slurm-check.sh for its private single-node cluster; removed with $work.
+ClusterName=stickslip-check
+SlurmctldHost=$host(127.0.0.1)
+SlurmctldPort=$ctld_port
+SlurmdPort=$slurmd_port
 AuthType=auth/munge
+CredType=cred/munge
+AuthInfo=socket=$socket
 SlurmUser=root
 ProctrackType=proctrack/linuxproc
 TaskPlugin=task/none
@@ -50,52 +219,59 @@ SelectTypeParameters=CR_CPU
 DefMemPerCPU=1000
 ReturnToService=2
 MpiDefault=none
-SlurmctldPidFile=/run/slurmctld.pid
-SlurmdPidFile=/run/slurmd.pid
-SlurmdSpoolDir=/var/spool/slurmd
-StateSaveLocation=/var/spool/slurmctld
-SlurmctldLogFile=/var/log/slurm/slurmctld.log
-SlurmdLogFile=/var/log/slurm/slurmd.log
+MailProg=/bin/true
+SlurmctldPidFile=$run/slurmctld.pid
+SlurmdPidFile=$run/slurmd.pid
+SlurmdSpoolDir=$spool
+StateSaveLocation=$state
+SlurmctldLogFile=$log/slurmctld.log
+SlurmdLogFile=$log/slurmd.log
 JobCompType=jobcomp/none
 AccountingStorageType=accounting_storage/none
 JobAcctGatherType=jobacct_gather/none
-NodeName=$host CPUs=$cpus RealMemory=$mem State=UNKNOWN
+NodeName=$host NodeAddr=127.0.0.1 CPUs=$cpus RealMemory=$mem State=UNKNOWN
 PartitionName=check Nodes=$host Default=YES MaxTime=INFINITE State=UP
 CONF
-pkill -x slurmctld 2>/dev/null || true
-pkill -x slurmd 2>/dev/null || true
-sleep 1
-slurmctld -c
-slurmd
+start slurmctld slurmctld -D -c -f "$SLURM_CONF"
+start slurmd slurmd -D -f "$SLURM_CONF" -N "$host"
+state=
 for _ in $(seq 60); do
     state=$(sinfo -h -o %T 2>/dev/null | head -n1 || true)
     [ "$state" = "idle" ] && break
     sleep 1
 done
 sinfo
-[ "$state" = "idle" ] || { echo "the node did not come up ($state)"; tail -n 20 /var/log/slurm/*.log; exit 1; }
+[ "$state" = "idle" ] || die "the node did not come up (state '${state:-none}')"
 
 say "submit $pipeline as $shards shards + merge"
-rm -rf "$work" && mkdir -p "$work" && cd "$work"
-start=$(date +%s.%N)
-STICKSLIP=$bin "$OLDPWD/pipelines/slurm/submit.sh" "$OLDPWD/$pipeline" "$work/out" "$shards" 1 | tee submit.txt
+cd "$work/job"
+start_t=$(date +%s.%N)
+STICKSLIP=$bin "$repo/pipelines/slurm/submit.sh" "$pipeline" "$work/out" "$shards" 1 | tee submit.txt
+array_job=$(sed -n 's/^array job \([0-9]*\).*/\1/p' submit.txt)
 merge_job=$(sed -n 's/.*merge job \([0-9]*\).*/\1/p' submit.txt)
-[ -n "$merge_job" ] || { echo "could not read the merge job id"; exit 1; }
-for _ in $(seq 3600); do
-    squeue -h -j "$merge_job" 2>/dev/null | grep -q . || break
+{ [ -n "$array_job" ] && [ -n "$merge_job" ]; } || die "could not read the job ids from submit.sh"
+job_ids=("$array_job" "$merge_job")
+waited=0
+while squeue -h -j "$array_job,$merge_job" 2>/dev/null | grep -q .; do
+    reason=$(squeue -h -j "$merge_job" -o %r 2>/dev/null || true)
+    [ "$reason" = DependencyNeverSatisfied ] && die "a shard failed, the merge job will never run"
+    [ "$waited" -lt "$timeout_s" ] || die "the jobs did not finish in $timeout_s s"
     sleep 1
+    waited=$((waited + 1))
 done
-end=$(date +%s.%N)
-cat slurm-stickslip-merge-*.out
-grep -q "^merged" slurm-stickslip-merge-*.out || { echo "merge job did not succeed"; tail -n 5 slurm-stickslip-*.out; exit 1; }
-slurm_s=$(echo "$end - $start" | bc)
+end_t=$(date +%s.%N)
+merge_out=slurm-stickslip-merge-$merge_job.out
+[ -f "$merge_out" ] || die "the merge job wrote no $merge_out"
+cat "$merge_out"
+grep -q "^merged" "$merge_out" || die "the merge job did not succeed"
+slurm_s=$(awk -v a="$start_t" -v b="$end_t" 'BEGIN { print b - a }')
 
 say "plain ensemble of the same pipeline"
-start=$(date +%s.%N)
-"$bin" pipeline "$OLDPWD/$pipeline" --out "$work/plain" --quiet > plain.txt
+start_t=$(date +%s.%N)
+"$bin" pipeline "$pipeline" --out "$work/plain" --quiet >plain.txt
+end_t=$(date +%s.%N)
 head -n 1 plain.txt
-end=$(date +%s.%N)
-plain_s=$(echo "$end - $start" | bc)
+plain_s=$(awk -v a="$start_t" -v b="$end_t" 'BEGIN { print b - a }')
 
 say "compare"
 "$bin" compare "$work/out" "$work/plain"

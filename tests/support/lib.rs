@@ -1,8 +1,9 @@
-//! Helpers shared by the whole-product tests in `tests/`.
+//! Helpers shared by the whole-product tests in `tests/` and the crates' tests that run pipelines.
 
 use std::path::PathBuf;
 
-use stickslip_solver::{Scene, SceneFile};
+use stickslip_config::PipelineFile;
+use stickslip_solver::Scene;
 
 /// The repository root.
 pub fn repo_root() -> PathBuf {
@@ -14,11 +15,11 @@ pub fn repo_path(rel: &str) -> PathBuf {
     repo_root().join(rel)
 }
 
-/// A validated scene from a default scene file changed by `edit`.
-pub fn scene_with(edit: impl FnOnce(&mut SceneFile)) -> Scene {
-    let mut file = SceneFile::default();
+/// A validated scene from the default pipeline file (the paper scene) changed by `edit`.
+pub fn scene_with(edit: impl FnOnce(&mut PipelineFile)) -> Scene {
+    let mut file = PipelineFile::default();
     edit(&mut file);
-    Scene::try_from(file).expect("test scene is valid")
+    file.scene().expect("test scene is valid")
 }
 
 /// A fresh empty folder under the system temp dir, unique per test name and process.

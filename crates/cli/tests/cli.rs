@@ -47,7 +47,11 @@ fn run_writes_series_and_control_tables_that_read_back() {
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     assert!(stdout.starts_with("seed 7: ") && stdout.contains("steps/s"), "{stdout}");
-    let series = read(&dir.join("out/series.parquet"));
+    // One seed is an ensemble of one: the layout and tables of `stickslip pipeline`.
+    for f in ["manifest.toml", "pipeline.toml", "tables/runs.parquet", "tables/events.parquet", "index.html"] {
+        assert!(dir.join("out").join(f).exists(), "run wrote no {f}");
+    }
+    let series = read(&dir.join("out/tables/series/seed-0000000007.parquet"));
     // 0.01 s every 1e-4 s: 101 samples (t = 0 and the end included).
     assert_eq!(series.height(), 101);
     for col in
@@ -59,7 +63,7 @@ fn run_writes_series_and_control_tables_that_read_back() {
     let sigma = series.column("normal_stress_pa").unwrap().f64().unwrap().mean().unwrap();
     let expected = 2400.0 * 9.81 * 0.2; // ρ·g·h
     assert!((sigma / expected - 1.0).abs() < 0.01, "mean σ {sigma} vs ρgh {expected}");
-    let control = read(&dir.join("out/control.parquet"));
+    let control = read(&dir.join("out/tables/control/seed-0000000007.parquet"));
     assert_eq!(control.height(), 2 * 101, "one node × two components × 101 samples");
     let acc = control.column("acceleration_m_s2").unwrap();
     assert_eq!(acc.null_count(), 0);
@@ -73,7 +77,7 @@ fn default_output_folder_is_under_reports() {
     std::fs::write(dir.join("small.toml"), SMALL).unwrap();
     let out = stickslip(&["run", "small.toml", "--seed", "3", "--quiet"], &dir);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    assert!(dir.join("reports/small/seed-3/series.parquet").exists());
+    assert!(dir.join("reports/small/seed-3/tables/series/seed-0000000003.parquet").exists());
 }
 
 #[test]
@@ -121,13 +125,17 @@ fn similarity_calculator_prints_the_papers_numbers() {
     let text = String::from_utf8_lossy(&out.stdout);
     let snapshot = include_str!("snapshots/similarity_paper_s2.txt");
     assert_eq!(text, snapshot, "output changed; if on purpose, update tests/snapshots/similarity_paper_s2.txt");
-    // The figures SPEC §9 pins: 7.6e25 dyne·cm, M = 6.778, 7.6e21, 21 s, 2.83 years.
+    // The figures docs/model.md §9 pins: 7.6e25 dyne·cm, M = 6.778, 7.6e21, 21 s, 2.83 years.
     for want in ["7.6000e25 dyne·cm", "6.778", "7.6000e21 dyne·cm", "21.0000 s", "2.837 years"] {
         assert!(text.contains(want), "missing {want}:\n{text}");
     }
-    let bad = stickslip(&["similarity", "--stress-drop-pa=-5"], &dir);
-    assert_eq!(bad.status.code(), Some(1));
-    assert!(String::from_utf8_lossy(&bad.stderr).contains("--stress-drop-pa = -5: must be positive"));
+    // A negative number is a value, not a flag: refused with its range.
+    for args in [["similarity", "--stress-drop-pa", "-5"], ["similarity", "--stress-drop-pa=-5", "--duration-s=1"]] {
+        let bad = stickslip(&args, &dir);
+        assert_eq!(bad.status.code(), Some(1));
+        let err = String::from_utf8_lossy(&bad.stderr);
+        assert!(err.contains("--stress-drop-pa = -5 is not allowed: a positive, finite number"), "{err}");
+    }
 }
 
 #[test]

@@ -1,33 +1,8 @@
-//! Errors of the solver: refused scenes, numerical failures, cancelled runs.
-
-use std::fmt;
-
-/// One refused value of a scene: which field, what it was, what is allowed.
-#[derive(Clone, Debug, PartialEq)]
-pub struct FieldError {
-    /// Dotted path of the field in the scene file, e.g. `material.poisson`.
-    pub field: String,
-    /// The value as given.
-    pub value: String,
-    /// What would be accepted, e.g. `0 < poisson < 0.5`.
-    pub allowed: String,
-}
-
-impl fmt::Display for FieldError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{} = {} is not allowed: {}", self.field, self.value, self.allowed)
-    }
-}
+//! Errors of the solver: numerical failures, unstable runs, cancelled runs.
 
 /// Everything that can go wrong in the solver.
 #[derive(Debug, thiserror::Error)]
 pub enum SolverError {
-    /// The scene has values that cannot be run; nothing was run.
-    #[error("invalid scene:\n{}", .0.iter().map(|e| format!("  - {e}")).collect::<Vec<_>>().join("\n"))]
-    InvalidScene(Vec<FieldError>),
-    /// The file is not valid TOML, has an unknown key, or a value of the wrong type.
-    #[error("{}", .0.trim_end())]
-    Syntax(String),
     /// The requested time step is above the critical step of the lattice actually built.
     #[error(
         "time step {dt_s:.6e} s is above the critical step {critical_s:.6e} s of this lattice \

@@ -1,36 +1,41 @@
 //! stickslip solver: the Lattice Discrete Element Method for stick-slip on a frictional base.
 //!
-//! A block of cubic truss modules (Nayfeh & Hefzy) with a Weibull random Young's modulus rests on
-//! a rigid base with Coulomb friction; it settles under its own weight, then a driven node shears
-//! it. Layers, from the bottom:
-//! - [`lattice`]: nodes, bars, boundary reductions, lumped-mass fractions (pure geometry);
+//! Owns the physics: a block of cubic truss modules (Nayfeh & Hefzy) with a Weibull random
+//! Young's modulus rests on a rigid base with friction; it settles under its own weight, then
+//! driven nodes shear it (docs/model.md §1–§6). Must not know: files, the pipeline format,
+//! tables, figures — it takes a validated [`Scene`] and hands back plain arrays
+//! ([`Recording`]). Layers, from the bottom:
+//! - [`geometry`]: nodes, bars, numbering, node sets (pure geometry);
 //! - [`material`]: bar stiffness and the Weibull fields;
-//! - [`scene`]: the scene file (TOML) and its validation;
-//! - [`model`]: a scene built into flat arrays in the stepper's order, shared by all seeds;
-//! - [`kernel`], [`stepper`]: the per-bar kernels and the explicit step, `L` seeds side by side;
-//! - [`critical`], [`statics`]: the critical time step and static solves;
+//! - [`laws`]: the friction laws of the base, one file each;
+//! - [`scene`]: the validated scene; [`model`]: it built into flat arrays, shared by all seeds,
+//!   with its bars in kernel order ([`layout`]);
+//! - [`field`]: vector fields over the nodes, `L` seeds side by side; [`step`]: one explicit
+//!   step of `L` seeds (state, parameters and scratch apart; bar, integrate and contact kernels);
+//! - [`statics`]: static solves, the critical time step, effective moduli;
 //! - [`quasistatic`]: the static self-weight start and the skip-ahead through quiet phases;
-//! - [`record`], [`run`]: recorders and the two loading stages.
-//!
-//! The solver does no file I/O: it hands back plain arrays ([`record::Records`]).
+//! - [`recording`], [`run`]: recorders and the two loading stages; [`inspect`]: what a scene
+//!   builds, for `stickslip check`.
 #![deny(missing_docs)]
 
-pub mod critical;
 pub mod error;
-pub mod kernel;
-pub mod lattice;
+pub mod field;
+pub mod geometry;
+pub mod inspect;
+pub mod laws;
+pub mod layout;
 pub mod material;
 pub mod model;
 pub mod quasistatic;
-pub mod record;
+pub mod recording;
 pub mod run;
 pub mod scene;
 pub mod statics;
-pub mod stepper;
+pub mod step;
 
-pub use error::{FieldError, SolverError};
-pub use lattice::{Dims, Lattice, NodeId};
+pub use error::SolverError;
+pub use geometry::{Dims, Lattice, NodeId};
 pub use model::Model;
-pub use record::{Channel, Records};
+pub use recording::{Channel, Recording, Sampling};
 pub use run::{BATCH, Perturbation, RunOptions, RunOutput, run_batched, run_lanes, run_seed};
-pub use scene::{Scene, SceneFile};
+pub use scene::Scene;

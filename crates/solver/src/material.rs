@@ -1,4 +1,4 @@
-//! Bar stiffness of the cubic truss (SPEC §1) and the Weibull random fields (SPEC §3).
+//! Bar stiffness of the cubic truss (docs/model.md §1) and the Weibull random fields (docs/model.md §3).
 
 use rand::SeedableRng;
 use rand::distr::{Distribution, Open01};
@@ -6,7 +6,7 @@ use rand::rngs::ChaCha8Rng;
 use statrs::function::gamma::ln_gamma;
 
 use crate::error::SolverError;
-use crate::lattice::BarFamily;
+use crate::geometry::BarFamily;
 
 /// Random stream used for the Young's-modulus field (one factor per bar, canonical bar order).
 pub const STREAM_YOUNG: u64 = 0;

@@ -5,8 +5,8 @@
 //! random factors ([`Model::bar_stiffness`], [`Model::friction_factors`]).
 
 use crate::error::SolverError;
-use crate::kernel::{BarGroup, BarLayout, Segment};
-use crate::lattice::{BarFamily, Direction, Lattice, NodeId};
+use crate::geometry::{Bar, BarFamily, Direction, Lattice, NodeId};
+use crate::layout::{BarGroup, BarLayout, Segment};
 use crate::material::{STREAM_FRICTION, STREAM_YOUNG, axial_stiffness, weibull_factors};
 use crate::scene::Scene;
 
@@ -44,7 +44,7 @@ pub struct Model {
     /// internal bar → canonical bar index.
     bar_canonical: Vec<u32>,
     /// Kernel stiffness of each internal bar for a homogeneous field: `EA/L` (surface reduction
-    /// applied), divided by 3 for diagonals (see [`crate::kernel`]).
+    /// applied), divided by 3 for diagonals (see [`crate::step::bars`]).
     nominal_k: Vec<f64>,
     contact: Vec<u32>,
     drivers: Vec<u32>,
@@ -75,7 +75,7 @@ impl Model {
         // z-slab of a node: bands of (2nz+1)/slabs ≥ 2 half-units, so a bar (which spans at most
         // two half-units in z) joins at most two neighbouring slabs.
         let slab = |id: NodeId| lattice.half_units(id)[2] * slabs / (2 * dims.nz + 1);
-        let segment_of = |bar: &crate::lattice::Bar| -> (u8, usize) {
+        let segment_of = |bar: &Bar| -> (u8, usize) {
             let (a, b) = (slab(bar.ends[0]), slab(bar.ends[1]));
             if a == b {
                 (0, a)
@@ -88,7 +88,7 @@ impl Model {
         // lies in one module layer and one band of y, so the seven direction groups of a block
         // reuse its node data from cache instead of sweeping the whole lattice seven times.
         let band = if n >= BLOCK_MIN_NODES { (BLOCK_NODES / (2 * dims.nx + 1)).max(1) } else { usize::MAX };
-        let block_of = |bar: &crate::lattice::Bar| -> (usize, usize) {
+        let block_of = |bar: &Bar| -> (usize, usize) {
             if band == usize::MAX {
                 return (0, 0);
             }

@@ -1,0 +1,300 @@
+//! `stickslip bench …`: the benchmarks of the lab crate, printed.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::Result;
+use stickslip_config::Pipeline;
+use stickslip_lab::accuracy::{AccuracyPlan, accuracy_figure, accuracy_frame, observed_order, run_accuracy};
+use stickslip_lab::calibrate::sweep;
+use stickslip_lab::peer::peer;
+use stickslip_lab::recording_cost::recording_cost;
+use stickslip_lab::skip::{JumpCheck, SkipBench, compare_skip, jumps_frame, runs_frame};
+use stickslip_store::io::write_parquet_atomic;
+
+use crate::seeds::parse_seeds;
+
+/// The benchmarks.
+#[derive(clap::Subcommand, Debug)]
+pub enum Command {
+    /// Run time against error: the pipeline's scene over Δt fractions and lattice refinements
+    /// of the same block, each against the finest run.
+    Accuracy {
+        /// Pipeline file (TOML).
+        pipeline: PathBuf,
+        /// Δt fractions of the critical step.
+        #[arg(long, value_delimiter = ',', default_value = "0.9,0.5,0.25,0.1", allow_negative_numbers = true)]
+        fractions: Vec<f64>,
+        /// Lattice refinements (modules per side multiplied, Lc divided).
+        #[arg(long, value_delimiter = ',', default_value = "1,2,4")]
+        refinements: Vec<u32>,
+        /// Shear duration (s) [default: the pipeline's].
+        #[arg(long, allow_negative_numbers = true)]
+        duration_s: Option<f64>,
+        /// Output folder [default: reports/bench/<pipeline name>].
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Quasi-static skip-ahead against full integration: whole runs, and each of the first
+    /// jumps against integrating through it from the same state.
+    Skip {
+        /// Pipeline file (TOML).
+        pipeline: PathBuf,
+        /// Seeds [default: the pipeline's], e.g. "1,5,10-20".
+        #[arg(long)]
+        seeds: Option<String>,
+        /// Jumps checked one by one per seed (those followed by an event first).
+        #[arg(long, default_value_t = 4)]
+        jumps: usize,
+        /// How long the compared runs go on after a jump (s).
+        #[arg(long, default_value_t = 0.05, allow_negative_numbers = true)]
+        window_s: f64,
+        /// Output folder [default: reports/bench/<pipeline name>].
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// What recording costs: the pipeline's scene with everything it records, then one thing
+    /// less at a time (best of several runs, one seed, one thread).
+    Recording {
+        /// Pipeline file (TOML).
+        pipeline: PathBuf,
+        /// Runs of each variant (the best counts).
+        #[arg(long, default_value_t = 7)]
+        repeats: usize,
+    },
+    /// Our side of the LAMMPS comparison (crates/lab/lammps/compare.sh runs both): writes the
+    /// homogeneous NX×NY×NZ lattice as a LAMMPS data file and input script into OUT and prints
+    /// our bar-updates per second with one seed and with eight side by side.
+    Peer {
+        /// Modules along x.
+        nx: i64,
+        /// Modules along y.
+        ny: i64,
+        /// Modules along z.
+        nz: i64,
+        /// Steps timed.
+        steps: usize,
+        /// Folder for lattice.data and in.lattice.
+        out: PathBuf,
+    },
+    /// Sweeps assumed values of a pipeline's scene over seeds and prints the main shocks of each
+    /// combination, e.g. `d2=100,400,900 t0=0.002,0.02` (keys: z, y, d2, d1, t0, frac, dur, vel,
+    /// mud, dc).
+    Calibrate {
+        /// Pipeline file (TOML).
+        pipeline: PathBuf,
+        /// KEY=V1,V2,… for each value swept.
+        values: Vec<String>,
+        /// Seeds.
+        #[arg(long, default_value = "123,200,7,1,2,3")]
+        seeds: String,
+    },
+}
+
+fn bench_out(pipeline: &Pipeline, out: Option<PathBuf>) -> PathBuf {
+    out.unwrap_or_else(|| PathBuf::from("reports").join("bench").join(&pipeline.name))
+}
+
+/// `stickslip bench …`.
+pub fn run(c: Command) -> Result<()> {
+    match c {
+        Command::Accuracy { pipeline, fractions, refinements, duration_s, out } => {
+            accuracy(&pipeline, fractions, refinements, duration_s, out)
+        }
+        Command::Skip { pipeline, seeds, jumps, window_s, out } => {
+            skip(&pipeline, seeds.as_deref(), jumps, window_s, out)
+        }
+        Command::Recording { pipeline, repeats } => {
+            anyhow::ensure!(repeats >= 1, "--repeats = 0 is not allowed: at least 1");
+            let p = Pipeline::load(&pipeline)?;
+            let rows = recording_cost(&p.file, repeats)?;
+            let base = rows[0].wall_s;
+            println!("{:<44} {:>10} {:>10} {:>10}", "variant", "steps", "wall (ms)", "speed-up");
+            for r in &rows {
+                println!("{:<44} {:>10} {:>10.1} {:>9.2}×", r.name, r.steps, r.wall_s * 1e3, base / r.wall_s);
+            }
+            Ok(())
+        }
+        Command::Peer { nx, ny, nz, steps, out } => {
+            anyhow::ensure!(nx >= 1 && ny >= 1 && nz >= 1, "NX NY NZ must be at least 1");
+            let t = peer(nx, ny, nz, steps, &out)?;
+            println!("bars {}", t.bars);
+            println!("dt {:e}", t.dt_s);
+            println!("ours_1 {:e}", t.one_seed);
+            println!("ours_8 {:e}", t.eight_seeds);
+            Ok(())
+        }
+        Command::Calibrate { pipeline, values, seeds } => {
+            let p = Pipeline::load(&pipeline)?;
+            let mut grid = Vec::new();
+            for spec in &values {
+                let (k, vs) = spec
+                    .split_once('=')
+                    .ok_or_else(|| anyhow::anyhow!("{spec:?}: expected KEY=V1,V2,… (e.g. d2=100,400)"))?;
+                let vals = vs
+                    .split(',')
+                    .map(|v| v.trim().parse::<f64>().map_err(|_| anyhow::anyhow!("{spec:?}: {v:?} is not a number")))
+                    .collect::<Result<Vec<f64>>>()?;
+                grid.push((k.to_string(), vals));
+            }
+            for combo in sweep(&p.file, &grid, &parse_seeds(&seeds)?)? {
+                println!("== {:?}", combo.values);
+                let mut s2 = Vec::new();
+                for (s, cat) in &combo.seeds {
+                    let mains: Vec<_> = cat.main_shocks().collect();
+                    let desc: Vec<String> = mains
+                        .iter()
+                        .map(|e| {
+                            format!(
+                                "{:.1}kPa/{:.1}ms/{:.1}ms@{:.3}({})",
+                                e.burst.stress_drop_pa / 1e3,
+                                e.burst.duration_s() * 1e3,
+                                e.burst.drop_time_s() * 1e3,
+                                e.burst.start_s,
+                                e.sub_events.len()
+                            )
+                        })
+                        .collect();
+                    println!("  seed {s}: {} events, mains: {}", cat.events.len(), desc.join(" "));
+                    if let Some(e) = mains.get(1) {
+                        s2.push((e.burst.stress_drop_pa, e.burst.drop_time_s(), e.recurrence_s.unwrap_or(f64::NAN)));
+                    }
+                }
+                let mean = |f: &dyn Fn(&(f64, f64, f64)) -> f64| {
+                    if s2.is_empty() { f64::NAN } else { s2.iter().map(f).sum::<f64>() / s2.len() as f64 }
+                };
+                println!(
+                    "  S2 (n = {}): drop {:.0} Pa, stress falls in {:.2} ms, S1→S2 {:.1} ms",
+                    s2.len(),
+                    mean(&|v| v.0),
+                    mean(&|v| v.1) * 1e3,
+                    mean(&|v| v.2) * 1e3
+                );
+            }
+            Ok(())
+        }
+    }
+}
+
+fn accuracy(
+    path: &Path,
+    fractions: Vec<f64>,
+    refinements: Vec<u32>,
+    duration_s: Option<f64>,
+    out: Option<PathBuf>,
+) -> Result<()> {
+    let pipeline = Pipeline::load(path)?;
+    for f in &fractions {
+        anyhow::ensure!(
+            *f > 0.0 && *f <= 1.0,
+            "--fractions: {f} is not allowed: 0 < fraction ≤ 1 (of the critical step)"
+        );
+    }
+    for r in &refinements {
+        anyhow::ensure!((1..=16).contains(r), "--refinements: {r} is not allowed: 1 ≤ r ≤ 16");
+    }
+    if let Some(d) = duration_s {
+        anyhow::ensure!(d > 0.0 && d.is_finite(), "--duration-s = {d} is not allowed: a positive number of seconds");
+    }
+    let out = bench_out(&pipeline, out);
+    let plan = AccuracyPlan { fractions, refinements, duration_s, seed: pipeline.seeds[0] };
+    let rows = run_accuracy(&pipeline.file, &pipeline.events, &plan, &mut |m| eprintln!("{m}"))?;
+    let table = out.join("accuracy.parquet");
+    write_parquet_atomic(&mut accuracy_frame(&rows)?, &table)?;
+    let figure = out.join("accuracy.png");
+    accuracy_figure(&rows, &figure)?;
+    println!(
+        "{:>10} {:>8} {:>10} {:>9} {:>12} {:>12} {:>12} {:>12} {:>12}",
+        "lattice", "Δt/crit", "steps", "wall s", "linear τ", "loading τ", "S1 τ", "S1 drop", "E1 onset"
+    );
+    for r in &rows {
+        let e = &r.errors;
+        println!(
+            "{:>10} {:>8} {:>10} {:>9.2} {:>12.3e} {:>12.3e} {:>12.3e} {:>12.3e} {:>12.3e}",
+            format!("{}×{}×{}", r.dims[0], r.dims[1], r.dims[2]),
+            r.dt_fraction,
+            r.steps,
+            r.wall_s,
+            e.linear_tau,
+            e.loading_tau,
+            e.s1_tau,
+            e.s1_drop,
+            e.e1_onset
+        );
+    }
+    for &r in &plan.refinements {
+        let shown = |p: Option<f64>| p.map_or("n/a".to_string(), |p| format!("{p:.2}"));
+        println!(
+            "refinement {r}: observed order in Δt — τ while linear {} (against its own smallest Δt: {}), \
+             before the first event {}, around S1 {}",
+            shown(observed_order(&rows, r, |x| x.errors.linear_tau)),
+            shown(observed_order(&rows, r, |x| x.linear_tau_error_dt)),
+            shown(observed_order(&rows, r, |x| x.errors.loading_tau)),
+            shown(observed_order(&rows, r, |x| x.errors.s1_tau))
+        );
+    }
+    if let Some(r) = rows.first() {
+        println!(
+            "(the reference run is linear until t = {:.4} s: no base node slides, lifts or lands before)",
+            r.linear_until_s
+        );
+    }
+    println!("→ {}, {}", table.display(), figure.display());
+    Ok(())
+}
+
+fn skip(path: &Path, seeds: Option<&str>, jumps: usize, window_s: f64, out: Option<PathBuf>) -> Result<()> {
+    let pipeline = Pipeline::load(path)?;
+    anyhow::ensure!(
+        window_s > 0.0 && window_s.is_finite(),
+        "--window-s = {window_s} is not allowed: a positive number of seconds"
+    );
+    let seeds = match seeds {
+        Some(s) => parse_seeds(s)?,
+        None => pipeline.seeds.clone(),
+    };
+    let out = bench_out(&pipeline, out);
+    let bench = SkipBench { jumps_per_seed: jumps, window_s };
+    let (runs, checks) = compare_skip(&pipeline.file, &pipeline.events, &seeds, bench, &mut |m| eprintln!("{m}"))?;
+    let runs_path = out.join("skip_runs.parquet");
+    write_parquet_atomic(&mut runs_frame(&runs)?, &runs_path)?;
+    let jumps_path = out.join("skip_jumps.parquet");
+    write_parquet_atomic(&mut jumps_frame(&checks)?, &jumps_path)?;
+    let (full, skip): (f64, f64) = runs.iter().fold((0.0, 0.0), |a, r| (a.0 + r.full_wall_s, a.1 + r.skip_wall_s));
+    let (skipped, steps): (u64, u64) = runs.iter().fold((0, 0), |a, r| (a.0 + r.skipped_steps, a.1 + r.shear_steps));
+    println!(
+        "{} seeds: full integration {full:.2} s, with skip-ahead {skip:.2} s ({:.2}×); {:.1}% of {} shear steps skipped in {} jumps",
+        runs.len(),
+        full / skip,
+        100.0 * skipped as f64 / steps.max(1) as f64,
+        steps,
+        runs.iter().map(|r| r.jumps).sum::<u64>()
+    );
+    for r in &runs {
+        println!(
+            "  seed {}: main shocks full/skip/perturbed {}/{}/{}, mean main drop {:.0}/{:.0}/{:.0} Pa",
+            r.seed,
+            r.main_shocks[0],
+            r.main_shocks[1],
+            r.main_shocks[2],
+            r.mean_drop_pa[0],
+            r.mean_drop_pa[1],
+            r.mean_drop_pa[2]
+        );
+    }
+    let max = |f: &dyn Fn(&JumpCheck) -> f64| checks.iter().map(f).filter(|v| v.is_finite()).fold(f64::NAN, f64::max);
+    let shown = |v: f64| if v.is_nan() { "n/a".to_string() } else { format!("{v:.2e}") };
+    let with_events = checks.iter().filter(|c| c.event[0].is_some() && c.event[1].is_some()).count();
+    println!(
+        "{} jumps checked one by one: onset error ≤ {} of the recurrence (run perturbed by 1e-9: {}); \
+         {with_events} followed by an event: drop error ≤ {} (perturbed run {}); event or none alike in {}/{}",
+        checks.len(),
+        shown(max(&|c| c.onset_error(1))),
+        shown(max(&|c| c.onset_error(2))),
+        shown(max(&|c| c.drop_error(1))),
+        shown(max(&|c| c.drop_error(2))),
+        checks.iter().filter(|c| c.same_events()).count(),
+        checks.len()
+    );
+    println!("→ {}, {}", runs_path.display(), jumps_path.display());
+    Ok(())
+}

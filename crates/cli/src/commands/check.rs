@@ -1,0 +1,188 @@
+//! `stickslip check`: validates a pipeline file and prints what it builds, without running it.
+
+use std::path::PathBuf;
+
+use anyhow::Result;
+use stickslip_config::Pipeline;
+use stickslip_solver::Model;
+use stickslip_solver::inspect::inspect;
+use stickslip_solver::scene::{SettleMethod, TimeStep};
+
+/// Arguments of `stickslip check`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// Pipeline file (TOML).
+    pub pipeline: PathBuf,
+    /// Compute the critical step for at most this many of the pipeline's seeds.
+    #[arg(long, default_value_t = 16)]
+    pub seeds: usize,
+}
+
+fn position(model: &Model, id: stickslip_solver::NodeId) -> String {
+    let p = model.lattice().position(id);
+    format!("LDEM {} at ({}, {}, {}) m", id.ldem(), round(p[0]), round(p[1]), round(p[2]))
+}
+
+/// Positions written without the round-off of `i·Lc`.
+fn round(v: f64) -> f64 {
+    (v * 1e9).round() / 1e9
+}
+
+/// `stickslip check`.
+pub fn run(a: Args) -> Result<()> {
+    anyhow::ensure!(a.seeds >= 1, "--seeds = 0 is not allowed: at least 1");
+    let pipeline = Pipeline::load(&a.pipeline)?;
+    let scene = &pipeline.scene;
+    let model = Model::new(scene.clone());
+    let seeds: Vec<u64> = pipeline.seeds.iter().copied().take(a.seeds).collect();
+    let facts = inspect(&model, &seeds)?;
+    let e = model.lattice().extent();
+    println!("pipeline {} ({}), hash {}", pipeline.name, a.pipeline.display(), pipeline.hash);
+    println!(
+        "  seeds: {} ({}{})",
+        pipeline.seeds.len(),
+        pipeline.seeds.iter().take(8).map(|s| s.to_string()).collect::<Vec<_>>().join(", "),
+        if pipeline.seeds.len() > 8 { ", …" } else { "" }
+    );
+    println!(
+        "  block {}×{}×{} modules of Lc = {} m ({} × {} × {} m): {} nodes, {} bars, {} contact nodes, mass {:.3} kg",
+        scene.dims.nx,
+        scene.dims.ny,
+        scene.dims.nz,
+        scene.lc_m,
+        e[0],
+        e[1],
+        e[2],
+        facts.nodes,
+        facts.bars,
+        facts.contact_nodes,
+        facts.mass_kg
+    );
+    let law = scene.friction.law;
+    println!(
+        "  friction: {} (μs = {}, μd = {}, Dc = {} m), CV of μ {}",
+        law.name(),
+        law.mu_static(),
+        law.mu_dynamic(),
+        law.weakening_distance_m(),
+        scene.friction.mu_cv
+    );
+    println!(
+        "  self-weight normal stress {:.1} Pa, sliding strength μs·σ = {:.1} Pa",
+        facts.self_weight_stress_pa, facts.strength_pa
+    );
+    let (lo, hi) = facts.critical_range_s();
+    let which = if facts.critical.len() == pipeline.seeds.len() {
+        format!("over the pipeline's {} seeds", facts.critical.len())
+    } else {
+        format!("over its first {} of {} seeds (--seeds N for more)", facts.critical.len(), pipeline.seeds.len())
+    };
+    println!("  critical step {lo:.4e} … {hi:.4e} s {which}; paper's 0.6·Lc/Cp = {:.4e} s", facts.paper_bound_s);
+    match scene.time_step {
+        TimeStep::Fraction(f) => {
+            println!("  time step: {f} of each seed's critical step ({:.4e} … {:.4e} s)", f * lo, f * hi)
+        }
+        TimeStep::Fixed(dt) => println!("  time step: {dt:e} s ({:.3} of the smallest critical step)", dt / lo),
+    }
+    if let Some(iv) = scene.record.interval_s {
+        println!("  (Δt is lowered to fit a whole number of steps into the record interval {iv} s)");
+    }
+    for m in &facts.moduli {
+        let name = |a: usize| ["x", "y", "z"][a];
+        let others: Vec<usize> = (0..3).filter(|&a| a != m.axis).collect();
+        println!(
+            "  effective stiffness along {} (static solve, uniaxial stress, seed {}): E = {:.4e} Pa ({:.3} of E), \
+             ν_{}{} = {:.3}, ν_{}{} = {:.3}",
+            name(m.axis),
+            seeds[0],
+            m.young_pa,
+            m.young_pa / scene.young_pa,
+            name(m.axis),
+            name(others[0]),
+            m.poisson[0],
+            name(m.axis),
+            name(others[1]),
+            m.poisson[1]
+        );
+    }
+    println!("  drivers: {}", scene.shear.drivers.iter().map(|&d| position(&model, d)).collect::<Vec<_>>().join("; "));
+    let sw = &scene.self_weight;
+    println!(
+        "  self-weight: {}",
+        match sw.method {
+            SettleMethod::Static =>
+                "solved statically (falls back to damped settling if friction cannot hold it)".into(),
+            SettleMethod::Dynamic => format!(
+                "damped settling, D = {} 1/s, until out-of-balance/weight < {:e}",
+                sw.damping_per_s, sw.settle_tolerance
+            ),
+        }
+    );
+    let sh = &scene.shear;
+    println!(
+        "  shear: u̇f = {} m/s (t0 = {} s), D = {} 1/s, for {} s",
+        sh.velocity_m_s, sh.rise_time_s, sh.damping_per_s, sh.duration_s
+    );
+    let r = &scene.record;
+    println!(
+        "  record: {}, interface {}{}{}{}",
+        r.interval_s.map_or("every step".to_string(), |iv| format!("every {iv} s")),
+        r.interface.iter().map(|q| q.name()).collect::<Vec<_>>().join(", "),
+        if r.energy { ", energy terms" } else { "" },
+        if r.slip_onsets { ", slip onsets" } else { "" },
+        if r.settling { ", the self-weight stage too" } else { "" },
+    );
+    let mut groups: Vec<(stickslip_solver::NodeId, Vec<String>)> = Vec::new();
+    for c in &r.control {
+        let what = format!("{} {}", c.quantity.name(), c.component.name());
+        match groups.iter_mut().find(|(n, _)| *n == c.node) {
+            Some((_, w)) => w.push(what),
+            None => groups.push((c.node, vec![what])),
+        }
+    }
+    for (node, what) in groups.iter().take(12) {
+        println!("  control {}: {}", position(&model, *node), what.join(", "));
+    }
+    if groups.len() > 12 {
+        println!("  … and {} more control nodes", groups.len() - 12);
+    }
+    let ev = &pipeline.events;
+    println!(
+        "  events: smoothing {} s, slip rate on {} / off {} m/s for {} s, merge gap {} s, min drop {} Pa, main shocks ≥ {} of the largest",
+        ev.smoothing_s, ev.v_on_m_s, ev.v_off_m_s, ev.quiet_s, ev.merge_gap_s, ev.min_drop_pa, ev.main_fraction
+    );
+    let si = &pipeline.similarity;
+    println!(
+        "  similarity: L_p = {} m (λ = {}), u̇_p = {:e} m/s, model area: {:?}",
+        si.prototype_length_m,
+        si.prototype_length_m / e[0],
+        si.prototype_rate_m_s,
+        si.area
+    );
+    match &pipeline.spectra {
+        Some(s) => println!(
+            "  spectra: {} periods {:.3e} … {:.3e} s, dampings {:?}, reading {:?}, baseline {:?}, window {:?}{}{}",
+            s.periods.len(),
+            s.periods.first().copied().unwrap_or(f64::NAN),
+            s.periods.last().copied().unwrap_or(f64::NAN),
+            s.dampings,
+            s.reading,
+            s.baseline,
+            s.window,
+            if s.at2 { ", AT2 files" } else { "" },
+            if s.attenuation { ", attenuation" } else { "" }
+        ),
+        None => println!("  spectra: off (no [spectra] section)"),
+    }
+    let sk = &scene.skip_ahead;
+    if sk.enabled {
+        println!(
+            "  skip-ahead: on (tolerance {:e}, {} explicit steps before each transition{})",
+            sk.tolerance,
+            sk.margin_steps,
+            sk.record_interval_s.map_or(String::new(), |iv| format!(", one sample per {iv} s while skipping"))
+        );
+    }
+    println!("  report: {}", if pipeline.report.enabled { "on" } else { "off" });
+    Ok(())
+}

@@ -1,0 +1,33 @@
+//! `stickslip merge`: gathers the shards of an ensemble.
+
+use std::path::PathBuf;
+
+use anyhow::Result;
+
+use crate::commands::pipeline::finish;
+
+/// Arguments of `stickslip merge`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// The shared output folder of the shards.
+    pub out: PathBuf,
+    /// Pipeline file [default: <out>/pipeline.toml, written by the shards].
+    #[arg(long)]
+    pub pipeline: Option<PathBuf>,
+    /// Number of shards, to name the incomplete ones.
+    #[arg(long)]
+    pub shards: Option<usize>,
+}
+
+/// `stickslip merge`.
+pub fn run(a: Args) -> Result<()> {
+    let r = stickslip_ensemble::merge::merge(&a.out, a.pipeline.as_deref(), a.shards)?;
+    println!(
+        "merged {} seeds ({} failed) in {:.1} s → {}",
+        r.seeds,
+        r.failed,
+        r.wall_time_s,
+        a.out.join("tables").display()
+    );
+    finish(&r.pipeline, &a.out)
+}

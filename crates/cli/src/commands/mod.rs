@@ -1,0 +1,11 @@
+//! One file per subcommand: its arguments and what it does.
+
+pub mod bench;
+pub mod check;
+pub mod compare;
+pub mod merge;
+pub mod pipeline;
+pub mod run;
+pub mod show;
+pub mod similarity;
+pub mod spectra;

@@ -1,0 +1,143 @@
+//! `stickslip pipeline`: every seed of one or more pipelines, their tables and report.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Instant;
+
+use anyhow::{Context, Result};
+use stickslip_config::Pipeline;
+use stickslip_ensemble::summary::digest;
+use stickslip_ensemble::{EnsembleOptions, EnsembleReport, run_ensemble, shard};
+use stickslip_store::Folder;
+
+use crate::progress;
+use crate::seeds::{parse_seeds, parse_shard};
+
+/// Arguments of `stickslip pipeline`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// Pipeline files (TOML), e.g. pipelines/paper.toml.
+    #[arg(required = true)]
+    pub pipelines: Vec<PathBuf>,
+    /// Output folder [default: reports/<pipeline name>]; only with one pipeline.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Seeds to run instead of the pipeline's, e.g. "1,5,10-20".
+    #[arg(long)]
+    pub seeds: Option<String>,
+    /// Worker threads [default: one per core].
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Discard results of a different pipeline found in the output folder.
+    #[arg(long)]
+    pub fresh: bool,
+    /// Run only the K-th of N disjoint slices of the seeds (K from 1), e.g. "3/8", for a job
+    /// array; the tables and report are gathered by `stickslip merge`.
+    #[arg(long, value_parser = parse_shard)]
+    pub shard: Option<(usize, usize)>,
+    /// No progress bar.
+    #[arg(long, short)]
+    pub quiet: bool,
+}
+
+/// Stops the running seeds at the first Ctrl-C (finished ones are kept), at once at the second.
+pub fn cancel_on_ctrl_c() -> Result<Arc<AtomicBool>> {
+    let cancel = Arc::new(AtomicBool::new(false));
+    let flag = cancel.clone();
+    ctrlc::set_handler(move || {
+        if flag.swap(true, Ordering::SeqCst) {
+            std::process::exit(130);
+        }
+        eprintln!("\ninterrupt: finishing the seeds being written (Ctrl-C again to stop at once)");
+    })
+    .context("installing the Ctrl-C handler")?;
+    Ok(cancel)
+}
+
+/// Runs an ensemble of `pipeline` with a progress bar (hidden with `quiet`).
+pub fn ensemble(
+    pipeline: &Pipeline,
+    options: &EnsembleOptions,
+    quiet: bool,
+    cancel: &AtomicBool,
+) -> Result<EnsembleReport> {
+    let pb =
+        progress::bar(quiet, options.seeds.len() as u64, "{msg} [{bar:40}] {pos}/{len} seeds ({elapsed}, ETA {eta})");
+    pb.set_message(pipeline.name.clone());
+    let report = run_ensemble(pipeline, options, &|done, _| pb.set_position(done as u64), cancel);
+    pb.finish_and_clear();
+    Ok(report?)
+}
+
+/// Prints the statistics and writes the report of a finished (or merged) folder.
+pub fn finish(pipeline: &Pipeline, out: &Path) -> Result<()> {
+    println!("{}", digest(&Folder::new(out))?);
+    if pipeline.report.enabled {
+        let start = Instant::now();
+        let r = stickslip_report::write_report(out, pipeline)?;
+        println!(
+            "report: {} figures in {:.1} s → {}{}",
+            r.figures.len(),
+            start.elapsed().as_secs_f64(),
+            r.index.display(),
+            if r.skipped.is_empty() {
+                String::new()
+            } else {
+                format!(" ({} skipped for lack of data)", r.skipped.len())
+            }
+        );
+    }
+    Ok(())
+}
+
+/// `stickslip pipeline`.
+pub fn run(a: Args) -> Result<()> {
+    anyhow::ensure!(a.out.is_none() || a.pipelines.len() == 1, "--out needs exactly one pipeline");
+    anyhow::ensure!(
+        !(a.fresh && a.shard.is_some()),
+        "--fresh with --shard would discard the other shards' results: clear the folder by hand"
+    );
+    anyhow::ensure!(a.threads != Some(0), "--threads 0: give at least 1 (or leave it out for one per core)");
+    // Validate every file before running any.
+    let pipelines = a.pipelines.iter().map(|p| Pipeline::load(p)).collect::<Result<Vec<_>, _>>()?;
+    let cancel = cancel_on_ctrl_c()?;
+    for pipeline in &pipelines {
+        let mut seeds = match &a.seeds {
+            Some(s) => parse_seeds(s)?,
+            None => pipeline.seeds.clone(),
+        };
+        if let Some((k, n)) = a.shard {
+            seeds = shard(&seeds, k, n);
+        }
+        let out = a.out.clone().unwrap_or_else(|| PathBuf::from("reports").join(&pipeline.name));
+        let options = EnsembleOptions {
+            out: out.clone(),
+            threads: a.threads.unwrap_or(0),
+            seeds,
+            fresh: a.fresh,
+            finish: a.shard.is_none(),
+        };
+        let report = ensemble(pipeline, &options, a.quiet, &cancel)?;
+        println!(
+            "{}{}: {} seeds ({} run now, {} already done, {} failed) in {:.1} s → {}",
+            pipeline.name,
+            a.shard.map_or(String::new(), |(k, n)| format!(" shard {k}/{n}")),
+            report.ran + report.skipped,
+            report.ran,
+            report.skipped,
+            report.failed.len(),
+            report.wall_time_s,
+            report.out.join("tables").display()
+        );
+        for (seed, msg) in report.failed.iter().take(5) {
+            println!("  seed {seed} failed: {msg}");
+        }
+        if a.shard.is_some() {
+            println!("  merge the shards with: stickslip merge {}", out.display());
+            continue;
+        }
+        finish(pipeline, &out)?;
+    }
+    Ok(())
+}

@@ -1,0 +1,21 @@
+//! stickslip config: pipeline files (TOML) read and validated into the domain types the other
+//! crates take.
+//!
+//! Owns the one input format of the product: the pipeline file ([`PipelineFile`]), its sections
+//! with their documented defaults (the paper scene), one [`Checker`] and one [`ConfigError`] for
+//! every section, and the validated [`Pipeline`] — the solver's [`stickslip_solver::Scene`], the
+//! seismology numerics' parameters, the spectra and report settings — with the hash that stamps
+//! its results. Every refused value names its field, the value and the allowed range, and nothing
+//! runs. Must not know: how a scene is run, tables, figures.
+#![deny(missing_docs)]
+
+pub mod check;
+pub mod error;
+pub mod pipeline;
+pub mod scene;
+pub mod sections;
+
+pub use check::Checker;
+pub use error::{ConfigError, FieldError};
+pub use pipeline::{Pipeline, PipelineFile};
+pub use sections::{ReportSettings, SpectraSettings};

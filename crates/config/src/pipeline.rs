@@ -1,0 +1,366 @@
+//! Pipeline files: the scene and what to do with it, in one TOML file — the product's only input
+//! format.
+//!
+//! A pipeline file has `version`, `name`, `description`, `[seeds]`, the scene sections at top
+//! level (`[block]`, `[material]`, …; see [`crate::scene`]) and the analysis sections
+//! (`[events]`, `[similarity]`, `[spectra]`, `[report]`; see [`crate::sections`]). Unknown keys
+//! are refused with their line; every value is validated before anything runs.
+
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+use stickslip_seismo::events::EventParams;
+use stickslip_seismo::similarity::SimilarityParams;
+use stickslip_solver::Scene;
+
+use crate::check::Checker;
+use crate::error::ConfigError;
+use crate::scene::{
+    BlockSection, BoundarySection, FrictionSection, MaterialSection, RecordSection, SceneSections, SelfWeightSection,
+    ShearSection, SkipAheadSection, TimeSection,
+};
+use crate::sections::{
+    EventsSection, ReportSection, ReportSettings, SimilaritySection, SpectraSection, SpectraSettings,
+};
+
+/// The pipeline-file version this build reads.
+pub const PIPELINE_VERSION: i64 = 1;
+
+/// `[seeds]`: the seeds of the ensemble, a list and/or a range.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Default)]
+#[serde(deny_unknown_fields)]
+pub struct SeedsSection {
+    /// Explicit seeds.
+    #[serde(default)]
+    pub list: Vec<i64>,
+    /// `count` consecutive seeds starting at `first`.
+    pub range: Option<SeedRange>,
+}
+
+/// A range of seeds.
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct SeedRange {
+    /// First seed.
+    pub first: i64,
+    /// Number of seeds.
+    pub count: i64,
+}
+
+/// A pipeline file as written (defaults = the paper scene).
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct PipelineFile {
+    /// File format version (1).
+    pub version: i64,
+    /// Name, used for the output folder `reports/<name>/`; letters, digits, `-`, `_`.
+    /// Default: the file name without extension.
+    pub name: Option<String>,
+    /// Free text shown in reports.
+    #[serde(default)]
+    pub description: String,
+    /// Seeds. Default: `list = [123]`.
+    #[serde(default)]
+    pub seeds: SeedsSection,
+    /// `[block]`.
+    #[serde(default)]
+    pub block: BlockSection,
+    /// `[material]`.
+    #[serde(default)]
+    pub material: MaterialSection,
+    /// `[friction]`.
+    #[serde(default)]
+    pub friction: FrictionSection,
+    /// `[time]`.
+    #[serde(default)]
+    pub time: TimeSection,
+    /// `[self_weight]`.
+    #[serde(default)]
+    pub self_weight: SelfWeightSection,
+    /// `[shear]`.
+    #[serde(default)]
+    pub shear: ShearSection,
+    /// `[[boundary]]`.
+    #[serde(default)]
+    pub boundary: Vec<BoundarySection>,
+    /// `[record]`.
+    #[serde(default)]
+    pub record: RecordSection,
+    /// `[skip_ahead]`.
+    #[serde(default)]
+    pub skip_ahead: SkipAheadSection,
+    /// `[events]`: event detection thresholds.
+    #[serde(default)]
+    pub events: EventsSection,
+    /// `[similarity]`: the prototype fault.
+    #[serde(default)]
+    pub similarity: SimilaritySection,
+    /// `[spectra]`: the spectra stage; absent = skipped.
+    pub spectra: Option<SpectraSection>,
+    /// `[report]`: figures and page (not part of the hash: it does not change any table).
+    #[serde(default)]
+    pub report: ReportSection,
+}
+
+impl Default for PipelineFile {
+    /// `version = 1` and nothing else: the paper scene with one seed.
+    fn default() -> Self {
+        PipelineFile {
+            version: PIPELINE_VERSION,
+            name: None,
+            description: String::new(),
+            seeds: SeedsSection::default(),
+            block: BlockSection::default(),
+            material: MaterialSection::default(),
+            friction: FrictionSection::default(),
+            time: TimeSection::default(),
+            self_weight: SelfWeightSection::default(),
+            shear: ShearSection::default(),
+            boundary: Vec::new(),
+            record: RecordSection::default(),
+            skip_ahead: SkipAheadSection::default(),
+            events: EventsSection::default(),
+            similarity: SimilaritySection::default(),
+            spectra: None,
+            report: ReportSection::default(),
+        }
+    }
+}
+
+/// Everything that determines one seed's results, hashed to tell results of a changed pipeline
+/// apart (seeds, name, description and report are not part of it: adding seeds keeps finished
+/// ones, and the report changes no table).
+#[derive(Serialize)]
+struct Hashed<'a> {
+    scene: SceneSections<'a>,
+    events: &'a EventsSection,
+    similarity: &'a SimilaritySection,
+    spectra: &'a Option<SpectraSection>,
+}
+
+/// Top-level keys of a pipeline file that are not part of the hash.
+pub const NOT_HASHED: [&str; 5] = ["version", "name", "description", "seeds", "report"];
+
+impl PipelineFile {
+    /// The hash of everything that determines a seed's results, 16 hex digits (FNV-1a of the
+    /// canonical TOML: equal for files that differ only in layout, comments or defaults written
+    /// out, different as soon as a value changes).
+    pub fn hash(&self) -> String {
+        let hashed = Hashed {
+            scene: self.scene_sections(),
+            events: &self.events,
+            similarity: &self.similarity,
+            spectra: &self.spectra,
+        };
+        let canonical = toml::to_string(&hashed).expect("pipeline sections serialise");
+        let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+        for b in canonical.bytes() {
+            h ^= u64::from(b);
+            h = h.wrapping_mul(0x0100_0000_01b3);
+        }
+        format!("{h:016x}")
+    }
+
+    /// The scene sections of this file.
+    pub fn scene_sections(&self) -> SceneSections<'_> {
+        SceneSections {
+            block: &self.block,
+            material: &self.material,
+            friction: &self.friction,
+            time: &self.time,
+            self_weight: &self.self_weight,
+            shear: &self.shear,
+            boundary: &self.boundary,
+            record: &self.record,
+            skip_ahead: &self.skip_ahead,
+        }
+    }
+
+    /// The scene of this file (validated).
+    pub fn scene(&self) -> Result<Scene, ConfigError> {
+        let mut ck = Checker::default();
+        let scene = crate::scene::build(self.scene_sections(), &mut ck);
+        ck.finish()?;
+        Ok(scene.expect("no refusal means a scene"))
+    }
+}
+
+/// A validated pipeline.
+#[derive(Clone, Debug)]
+pub struct Pipeline {
+    /// Name (output folder).
+    pub name: String,
+    /// Description.
+    pub description: String,
+    /// Seeds, in the order given, without duplicates.
+    pub seeds: Vec<u64>,
+    /// The scene.
+    pub scene: Scene,
+    /// Event detection.
+    pub events: EventParams,
+    /// Similarity scaling.
+    pub similarity: SimilarityParams,
+    /// Spectra stage, if asked.
+    pub spectra: Option<SpectraSettings>,
+    /// Report stage.
+    pub report: ReportSettings,
+    /// Hash of everything that determines a seed's results (see [`PipelineFile::hash`]).
+    pub hash: String,
+    /// Where it was read from.
+    pub source: Option<PathBuf>,
+    /// The file as read, defaults filled in.
+    pub file: PipelineFile,
+}
+
+impl Pipeline {
+    /// Reads and validates a pipeline file.
+    pub fn load(path: &Path) -> Result<Pipeline, ConfigError> {
+        let text =
+            std::fs::read_to_string(path).map_err(|e| ConfigError::Io { path: path.to_path_buf(), source: e })?;
+        let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("pipeline").to_string();
+        let mut p = Pipeline::from_toml(&text, &stem)
+            .map_err(|e| ConfigError::File { path: path.to_path_buf(), source: Box::new(e) })?;
+        p.source = Some(path.to_path_buf());
+        Ok(p)
+    }
+
+    /// Parses and validates pipeline TOML; `default_name` is used when the file has no `name`.
+    pub fn from_toml(text: &str, default_name: &str) -> Result<Pipeline, ConfigError> {
+        let file: PipelineFile = toml::from_str(text).map_err(|e| ConfigError::Syntax(e.to_string()))?;
+        Pipeline::from_file(file, default_name)
+    }
+
+    /// Validates a pipeline file given as a value (e.g. built in code from
+    /// [`PipelineFile::default`]).
+    pub fn from_file(file: PipelineFile, default_name: &str) -> Result<Pipeline, ConfigError> {
+        let mut ck = Checker::default();
+        if file.version != PIPELINE_VERSION {
+            ck.push("version", file.version, "1 (the pipeline format this stickslip reads)");
+        }
+        let name = file.name.clone().unwrap_or_else(|| default_name.to_string());
+        if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_') {
+            ck.push("name", format!("{name:?}"), "letters, digits, '-' and '_' (it names the output folder)");
+        }
+        let mut seeds: Vec<u64> = Vec::new();
+        for (i, &s) in file.seeds.list.iter().enumerate() {
+            match u64::try_from(s) {
+                Ok(s) => seeds.push(s),
+                Err(_) => ck.push(format!("seeds.list[{i}]"), s, "a seed ≥ 0"),
+            }
+        }
+        if let Some(r) = file.seeds.range {
+            if r.first < 0 {
+                ck.push("seeds.range.first", r.first, "a seed ≥ 0");
+            } else if !(1..=10_000_000).contains(&r.count) {
+                ck.push("seeds.range.count", r.count, "1 ≤ count ≤ 10000000");
+            } else {
+                seeds.extend((0..r.count as u64).map(|k| r.first as u64 + k));
+            }
+        }
+        if file.seeds.list.is_empty() && file.seeds.range.is_none() {
+            seeds.push(123);
+        }
+        let mut seen = std::collections::HashSet::new();
+        seeds.retain(|s| seen.insert(*s));
+        let events = file.events.build(&mut ck);
+        let scene = crate::scene::build(file.scene_sections(), &mut ck);
+        let similarity = file.similarity.build(scene.as_ref(), &mut ck);
+        let report = file.report.build(&mut ck);
+        let spectra = match (&file.spectra, &scene) {
+            (Some(sp), Some(scene)) => Some(sp.build(scene, &mut ck)),
+            _ => None,
+        };
+        ck.finish()?;
+        Ok(Pipeline {
+            name,
+            description: file.description.clone(),
+            seeds,
+            scene: scene.expect("no refusal means a scene"),
+            events,
+            similarity,
+            spectra,
+            report,
+            hash: file.hash(),
+            source: None,
+            file,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn seeds_from_list_and_range_without_duplicates() {
+        let p = Pipeline::from_toml("version = 1\n[seeds]\nlist = [5, 7]\nrange = { first = 6, count = 3 }\n", "t")
+            .unwrap();
+        assert_eq!(p.seeds, vec![5, 7, 6, 8]);
+        assert_eq!(p.name, "t");
+    }
+
+    #[test]
+    fn hash_ignores_layout_but_not_values() {
+        let a = Pipeline::from_toml("version = 1\n[material]\nyoung_cv = 0.05\n", "a").unwrap();
+        let b = Pipeline::from_toml("version = 1 # same\n", "b").unwrap();
+        let c = Pipeline::from_toml("version = 1\n[material]\nyoung_cv = 0.06\n", "c").unwrap();
+        assert_eq!(a.hash, b.hash);
+        assert_ne!(a.hash, c.hash);
+        let d = Pipeline::from_toml("version = 1\n[seeds]\nlist = [1, 2]\n", "d").unwrap();
+        assert_eq!(a.hash, d.hash, "the seed list is not part of the hash");
+        let e = Pipeline::from_toml("version = 1\n[events]\nmin_drop_pa = 100.0\n", "e").unwrap();
+        assert_ne!(a.hash, e.hash, "event thresholds are");
+    }
+
+    #[test]
+    fn every_top_level_key_is_hashed_or_said_not_to_be() {
+        // A file with every section present: each top-level key is in the hash's canonical form
+        // or in NOT_HASHED, so a new section cannot be left out of the hash by accident.
+        let file = PipelineFile { spectra: Some(SpectraSection::default()), ..PipelineFile::default() };
+        let table: toml::Table = toml::from_str(&toml::to_string(&file).unwrap()).unwrap();
+        let scene_keys =
+            ["block", "material", "friction", "time", "self_weight", "shear", "boundary", "record", "skip_ahead"];
+        let hashed_keys = ["events", "similarity", "spectra"];
+        for key in table.keys() {
+            assert!(
+                scene_keys.contains(&key.as_str())
+                    || hashed_keys.contains(&key.as_str())
+                    || NOT_HASHED.contains(&key.as_str()),
+                "top-level key {key} is neither hashed nor listed in NOT_HASHED"
+            );
+        }
+        // And every section changes the hash.
+        let base = file.hash();
+        let mut f = file.clone();
+        f.skip_ahead.tolerance = 2e-4;
+        assert_ne!(f.hash(), base);
+        let mut f = file.clone();
+        f.spectra.as_mut().unwrap().at2 = false;
+        assert_ne!(f.hash(), base);
+    }
+
+    #[test]
+    fn hash_of_the_paper_pipeline_is_the_one_results_are_stamped_with() {
+        // The hash of a published pipeline must not change with a refactor, or every results
+        // folder made with it would be refused. This is the hash pipelines/paper.toml had when
+        // its results were first written.
+        let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../pipelines/paper.toml")).unwrap();
+        let p = Pipeline::from_toml(&text, "paper").unwrap();
+        assert_eq!(p.hash, PAPER_HASH);
+    }
+
+    /// See `hash_of_the_paper_pipeline_is_the_one_results_are_stamped_with`.
+    const PAPER_HASH: &str = "89148099ad5170f0";
+
+    #[test]
+    fn the_default_file_builds_the_paper_scene() {
+        assert_eq!(PipelineFile::default().scene().unwrap(), Scene::paper());
+    }
+
+    #[test]
+    fn wrong_version_and_name_are_refused() {
+        let e = Pipeline::from_toml("version = 2\nname = \"a b\"\n", "x").unwrap_err().to_string();
+        assert!(e.contains("version = 2"), "{e}");
+        assert!(e.contains("name = \"a b\""), "{e}");
+    }
+}

@@ -1,0 +1,369 @@
+//! The analysis sections of a pipeline file — `[events]`, `[similarity]`, `[spectra]`,
+//! `[report]` — and their validation into the settings the seismology numerics, the ensemble and
+//! the report take.
+
+use serde::{Deserialize, Serialize};
+use stickslip_seismo::events::EventParams;
+use stickslip_seismo::similarity::{AreaChoice, SimilarityParams};
+use stickslip_seismo::spectra::fourier::Window;
+use stickslip_seismo::spectra::intensity::Baseline;
+use stickslip_seismo::spectra::response::{Reading, log_periods};
+use stickslip_solver::Scene;
+use stickslip_solver::geometry::NodeId;
+use stickslip_solver::scene::{ControlChannel, InterfaceQuantity, Kinematic};
+
+use crate::check::{Checker, Named};
+
+/// `[events]`: detector thresholds (docs/model.md §7).
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields, default)]
+pub struct EventsSection {
+    /// Smoothing window of `V` and `τ` in seconds. Default 1e-3.
+    pub smoothing_s: f64,
+    /// A sub-event starts when the smoothed slip rate exceeds this (m/s). Default 2e-4.
+    pub v_on_m_s: f64,
+    /// … and ends when it stays below this (m/s) for `quiet_s`. Default 5e-5.
+    pub v_off_m_s: f64,
+    /// Quiet time that ends a sub-event (s). Default 0.5e-3.
+    pub quiet_s: f64,
+    /// Sub-events closer than this form one event (s). Default 3e-3.
+    pub merge_gap_s: f64,
+    /// Events with a smaller stress drop are not catalogued (Pa). Default 500.
+    pub min_drop_pa: f64,
+    /// Main shocks have a drop of at least this fraction of the largest. Default 0.5.
+    pub main_fraction: f64,
+}
+
+impl Default for EventsSection {
+    fn default() -> Self {
+        let p = EventParams::default();
+        EventsSection {
+            smoothing_s: p.smoothing_s,
+            v_on_m_s: p.v_on_m_s,
+            v_off_m_s: p.v_off_m_s,
+            quiet_s: p.quiet_s,
+            merge_gap_s: p.merge_gap_s,
+            min_drop_pa: p.min_drop_pa,
+            main_fraction: p.main_fraction,
+        }
+    }
+}
+
+impl EventsSection {
+    /// The detector's parameters, every refused value recorded in `ck`.
+    pub fn build(&self, ck: &mut Checker) -> EventParams {
+        ck.positive("events.smoothing_s", self.smoothing_s);
+        ck.positive("events.v_on_m_s", self.v_on_m_s);
+        ck.positive("events.quiet_s", self.quiet_s);
+        if !(self.v_off_m_s > 0.0 && self.v_off_m_s < self.v_on_m_s) {
+            ck.push("events.v_off_m_s", self.v_off_m_s, "0 < v_off_m_s < v_on_m_s (hysteresis)");
+        }
+        ck.non_negative("events.merge_gap_s", self.merge_gap_s);
+        ck.non_negative("events.min_drop_pa", self.min_drop_pa);
+        ck.range("events.main_fraction", self.main_fraction, 0.0, true, 1.0, false);
+        EventParams {
+            smoothing_s: self.smoothing_s,
+            v_on_m_s: self.v_on_m_s,
+            v_off_m_s: self.v_off_m_s,
+            quiet_s: self.quiet_s,
+            merge_gap_s: self.merge_gap_s,
+            min_drop_pa: self.min_drop_pa,
+            main_fraction: self.main_fraction,
+        }
+    }
+}
+
+impl Named for AreaChoice {
+    const ALL: &'static [Self] = &[AreaChoice::Contact, AreaChoice::Rupture];
+    fn name(self) -> &'static str {
+        match self {
+            AreaChoice::Contact => "contact",
+            AreaChoice::Rupture => "rupture",
+        }
+    }
+}
+
+/// `[similarity]`: the prototype fault (docs/model.md §9).
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields, default)]
+pub struct SimilaritySection {
+    /// Prototype fault length L_p in metres. Default 1.0e4 (10 km, λ = 10⁴ for the paper block).
+    pub prototype_length_m: f64,
+    /// Prototype loading rate u̇_p in m/s. Default 3.17e-10 (1 cm/yr).
+    pub prototype_rate_m_s: f64,
+    /// Model area used for the moment: `"contact"` (default, the paper's) or `"rupture"` (the
+    /// event's peak share of sliding contact nodes; needs `slipping_nodes` recorded).
+    pub area: String,
+}
+
+impl Default for SimilaritySection {
+    fn default() -> Self {
+        let p = SimilarityParams::default();
+        SimilaritySection {
+            prototype_length_m: p.prototype_length_m,
+            prototype_rate_m_s: p.prototype_rate_m_s,
+            area: p.area.name().into(),
+        }
+    }
+}
+
+impl SimilaritySection {
+    /// The scaling parameters, every refused value recorded in `ck`.
+    pub fn build(&self, scene: Option<&Scene>, ck: &mut Checker) -> SimilarityParams {
+        ck.positive("similarity.prototype_length_m", self.prototype_length_m);
+        ck.positive("similarity.prototype_rate_m_s", self.prototype_rate_m_s);
+        let area = ck.named::<AreaChoice>("similarity.area", &self.area).unwrap_or(AreaChoice::Contact);
+        if area == AreaChoice::Rupture
+            && let Some(scene) = scene
+            && !scene.record.has(InterfaceQuantity::SlippingNodes)
+        {
+            ck.push(
+                "similarity.area",
+                "\"rupture\"",
+                "\"contact\" unless record.interface has \"slipping_nodes\" (the rupture area is the peak count of \
+                 sliding contact nodes; without it every area is 0 and every magnitude −∞)",
+            );
+        }
+        SimilarityParams {
+            prototype_length_m: self.prototype_length_m,
+            prototype_rate_m_s: self.prototype_rate_m_s,
+            area,
+        }
+    }
+}
+
+impl Named for Reading {
+    const ALL: &'static [Self] = &[Reading::Linear, Reading::BandLimited];
+    fn name(self) -> &'static str {
+        match self {
+            Reading::Linear => "linear",
+            Reading::BandLimited => "band_limited",
+        }
+    }
+}
+
+impl Named for Baseline {
+    const ALL: &'static [Self] = &[Baseline::None, Baseline::Linear];
+    fn name(self) -> &'static str {
+        match self {
+            Baseline::None => "none",
+            Baseline::Linear => "linear",
+        }
+    }
+}
+
+impl Named for Window {
+    const ALL: &'static [Self] = &[Window::Rectangular, Window::Hann];
+    fn name(self) -> &'static str {
+        match self {
+            Window::Rectangular => "rectangular",
+            Window::Hann => "hann",
+        }
+    }
+}
+
+/// `[spectra]`: the spectra stage (absent = skipped), docs/model.md §8.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields, default)]
+pub struct SpectraSection {
+    /// Damping ratios (fractions of critical, 0 ≤ ξ < 1). Default `[0.05]`.
+    pub dampings: Vec<f64>,
+    /// Control nodes (LDEM numbers) whose accelerations get spectra, intensity measures and
+    /// accelerogram files; empty = every control node recording acceleration.
+    pub nodes: Vec<i64>,
+    /// Explicit model-scale periods in seconds; empty = the log grid below.
+    pub periods_s: Vec<f64>,
+    /// Shortest period of the log grid (s, model scale). Default 1e-4.
+    pub period_min_s: f64,
+    /// Longest period of the log grid (s, model scale). Default 0.1.
+    pub period_max_s: f64,
+    /// Number of periods of the log grid. Default 100.
+    pub period_count: i64,
+    /// Reading of the samples: `"linear"` (default) or `"band_limited"`.
+    pub reading: String,
+    /// Oversampling of the band-limited reading. Default 16.
+    pub oversampling: i64,
+    /// Baseline correction for PGV and PGD: `"none"` (default) or `"linear"`.
+    pub baseline: String,
+    /// Window of the Fourier spectrum: `"rectangular"` (default) or `"hann"`.
+    pub fourier_window: String,
+    /// Write PEER `.AT2` files of every accelerogram (model and prototype scale). Default true.
+    pub at2: bool,
+    /// Attenuation of PGA and PGV with distance from each main shock's hypocentre (needs
+    /// `record.slip_onsets = true` and control nodes recording acceleration). Default false.
+    pub attenuation: bool,
+}
+
+impl Default for SpectraSection {
+    fn default() -> Self {
+        SpectraSection {
+            dampings: vec![0.05],
+            nodes: vec![],
+            periods_s: vec![],
+            period_min_s: 1e-4,
+            period_max_s: 0.1,
+            period_count: 100,
+            reading: Reading::Linear.name().into(),
+            oversampling: 16,
+            baseline: Baseline::None.name().into(),
+            fourier_window: Window::Rectangular.name().into(),
+            at2: true,
+            attenuation: false,
+        }
+    }
+}
+
+/// What the spectra stage computes (a validated `[spectra]`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SpectraSettings {
+    /// Damping ratios.
+    pub dampings: Vec<f64>,
+    /// Control nodes whose accelerations get spectra; empty = every control node recording
+    /// acceleration.
+    pub nodes: Vec<NodeId>,
+    /// Model-scale periods (s).
+    pub periods: Vec<f64>,
+    /// Reading of the samples.
+    pub reading: Reading,
+    /// Oversampling of the band-limited reading.
+    pub oversampling: usize,
+    /// Baseline correction for PGV and PGD.
+    pub baseline: Baseline,
+    /// Window of the Fourier spectrum.
+    pub window: Window,
+    /// Write AT2 files.
+    pub at2: bool,
+    /// Attenuation table and fit.
+    pub attenuation: bool,
+}
+
+impl SpectraSettings {
+    /// Whether a control channel gets spectra.
+    pub fn wants(&self, c: &ControlChannel) -> bool {
+        c.quantity == Kinematic::Acceleration && (self.nodes.is_empty() || self.nodes.contains(&c.node))
+    }
+}
+
+impl SpectraSection {
+    /// The stage's settings for `scene`, every refused value recorded in `ck`.
+    pub fn build(&self, scene: &Scene, ck: &mut Checker) -> SpectraSettings {
+        if self.dampings.is_empty() {
+            ck.push("spectra.dampings", "[]", "at least one damping ratio");
+        }
+        for (i, &d) in self.dampings.iter().enumerate() {
+            ck.range(&format!("spectra.dampings[{i}]"), d, 0.0, false, 1.0, true);
+        }
+        for (i, &t) in self.periods_s.iter().enumerate() {
+            ck.positive(&format!("spectra.periods_s[{i}]"), t);
+        }
+        if self.periods_s.is_empty() {
+            if ck.positive("spectra.period_min_s", self.period_min_s)
+                && !(self.period_max_s > self.period_min_s && self.period_max_s.is_finite())
+            {
+                ck.push(
+                    "spectra.period_max_s",
+                    self.period_max_s,
+                    format!("period_min_s ({}) < period_max_s (finite)", self.period_min_s),
+                );
+            }
+            ck.count("spectra.period_count", self.period_count, 1, 10_000, "");
+        }
+        ck.count("spectra.oversampling", self.oversampling, 1, 64, "");
+        let reading = ck.named("spectra.reading", &self.reading).unwrap_or(Reading::Linear);
+        let baseline = ck.named("spectra.baseline", &self.baseline).unwrap_or(Baseline::None);
+        let window = ck.named("spectra.fourier_window", &self.fourier_window).unwrap_or(Window::Rectangular);
+        let control = &scene.record.control;
+        let mut nodes = Vec::new();
+        for (i, &n) in self.nodes.iter().enumerate() {
+            match control.iter().find(|c| c.quantity == Kinematic::Acceleration && c.node.ldem() as i64 == n) {
+                Some(c) => nodes.push(c.node),
+                None => ck.push(
+                    format!("spectra.nodes[{i}]"),
+                    n,
+                    "a control node that records acceleration ([[record.control]])",
+                ),
+            }
+        }
+        let periods = if self.periods_s.is_empty() {
+            log_periods(self.period_min_s, self.period_max_s, self.period_count.max(1) as usize)
+        } else {
+            self.periods_s.clone()
+        };
+        let settings = SpectraSettings {
+            dampings: self.dampings.clone(),
+            nodes,
+            periods,
+            reading,
+            oversampling: self.oversampling.clamp(1, 64) as usize,
+            baseline,
+            window,
+            at2: self.at2,
+            attenuation: self.attenuation,
+        };
+        if !control.iter().any(|c| settings.wants(c)) {
+            ck.push(
+                "spectra",
+                "(present)",
+                "control nodes that record acceleration ([[record.control]] quantities = [\"acceleration\"])",
+            );
+        }
+        if self.attenuation && !scene.record.slip_onsets {
+            ck.push(
+                "spectra.attenuation",
+                "true",
+                "record.slip_onsets = true (the hypocentre is the first contact node to slide)",
+            );
+        }
+        if scene.skip_ahead.enabled
+            && scene.skip_ahead.record_interval_s.is_some_and(|iv| Some(iv) != scene.record.interval_s)
+        {
+            ck.push(
+                "spectra",
+                "(present)",
+                "uniformly sampled records: without skip_ahead.record_interval_s (the skip-ahead would sample quiet \
+                 phases more sparsely, and spectra need one sampling interval)",
+            );
+        }
+        settings
+    }
+}
+
+/// `[report]`: the report stage.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields, default)]
+pub struct ReportSection {
+    /// Write the report after the tables. Default true.
+    pub enabled: bool,
+    /// Seeds drawn one by one in the time-history figures; empty = the first four successful
+    /// seeds of the pipeline.
+    pub seeds: Vec<i64>,
+}
+
+impl Default for ReportSection {
+    fn default() -> Self {
+        ReportSection { enabled: true, seeds: vec![] }
+    }
+}
+
+/// What the report draws (a validated `[report]`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ReportSettings {
+    /// Write the report.
+    pub enabled: bool,
+    /// Seeds drawn one by one; empty = the first four successful seeds.
+    pub seeds: Vec<u64>,
+}
+
+impl ReportSection {
+    /// The report's settings, every refused value recorded in `ck`.
+    pub fn build(&self, ck: &mut Checker) -> ReportSettings {
+        let mut seeds = Vec::new();
+        for (i, &s) in self.seeds.iter().enumerate() {
+            match u64::try_from(s) {
+                Ok(s) => seeds.push(s),
+                Err(_) => ck.push(format!("report.seeds[{i}]"), s, "a seed ≥ 0"),
+            }
+        }
+        ReportSettings { enabled: self.enabled, seeds }
+    }
+}

@@ -1,0 +1,65 @@
+//! Errors of an ensemble run.
+
+use std::path::PathBuf;
+
+use stickslip_config::ConfigError;
+use stickslip_solver::SolverError;
+use stickslip_store::StoreError;
+
+/// Everything that can go wrong running, gathering or merging an ensemble.
+#[derive(Debug, thiserror::Error)]
+pub enum EnsembleError {
+    /// The pipeline file was refused.
+    #[error(transparent)]
+    Config(#[from] ConfigError),
+    /// The output folder could not be read or written.
+    #[error(transparent)]
+    Store(#[from] StoreError),
+    /// The solver failed outside a seed (e.g. building the model).
+    #[error(transparent)]
+    Solver(Box<SolverError>),
+    /// The output folder holds results of another pipeline.
+    #[error(
+        "{} holds results of another pipeline (hash {found}; this pipeline's is {expected}); nothing was run. \
+         Use --fresh to discard them, or --out to write elsewhere",
+        out.display()
+    )]
+    OtherPipeline {
+        /// The folder.
+        out: PathBuf,
+        /// Hash found there.
+        found: String,
+        /// Hash of the pipeline asked for.
+        expected: String,
+    },
+    /// The run was interrupted; finished seeds are kept.
+    #[error(
+        "interrupted: {done} of {total} seeds are finished in {}; run the same command again to resume",
+        out.display()
+    )]
+    Interrupted {
+        /// Seeds finished.
+        done: usize,
+        /// Seeds asked.
+        total: usize,
+        /// The folder.
+        out: PathBuf,
+    },
+    /// A merge found seeds missing or from another pipeline.
+    #[error("{}: cannot merge: {why}", out.display())]
+    Incomplete {
+        /// The folder.
+        out: PathBuf,
+        /// What is missing or mismatched.
+        why: String,
+    },
+    /// Something could not be set up.
+    #[error("{0}")]
+    Setup(String),
+}
+
+impl From<SolverError> for EnsembleError {
+    fn from(e: SolverError) -> Self {
+        EnsembleError::Solver(Box::new(e))
+    }
+}

@@ -1,0 +1,141 @@
+//! Gathering the per-seed parts of an output folder into one table each, and the statistics
+//! across seeds: the summary, the PSA statistics and the attenuation fits.
+
+use std::collections::{BTreeMap, HashSet};
+
+use polars::prelude::*;
+use stickslip_seismo::fit::log_log_fit;
+use stickslip_seismo::stats::percentile_sorted;
+use stickslip_store::frame::Columns;
+use stickslip_store::io::{scan_glob, write_parquet_atomic};
+use stickslip_store::schema::{
+    ATTENUATION, ATTENUATION_FIT, EVENTS_TABLE, GATHERED, PSA_STATS, RUNS, SIMILARITY, SPECTRA, SUMMARY, col,
+};
+use stickslip_store::tables::runs::Runs;
+use stickslip_store::tables::stats::{FitRow, PsaStatsRow, attenuation_fit_frame, psa_stats_frame, summary_frame};
+use stickslip_store::{Folder, StoreError};
+
+use crate::summary::summary_rows;
+
+/// The rows of `df` whose seed is in `keep`.
+fn only_seeds(df: DataFrame, keep: &HashSet<u64>, table: &str) -> Result<DataFrame, StoreError> {
+    let t = |e| StoreError::table(table, e);
+    let mask: BooleanChunked = df
+        .column(col::SEED)
+        .map_err(t)?
+        .u64()
+        .map_err(t)?
+        .iter()
+        .map(|s| s.is_some_and(|s| keep.contains(&s)))
+        .collect();
+    df.filter(&mask).map_err(t)
+}
+
+/// Gathers the per-seed parts of the gathered tables (restricted to `seeds`, sorted by each
+/// table's key) into one file each, and writes the statistics across seeds. Returns the gathered
+/// runs table, if any seed has finished.
+pub fn gather(out: &Folder, seeds: &[u64]) -> Result<Option<Runs>, StoreError> {
+    let keep: HashSet<u64> = seeds.iter().copied().collect();
+    let mut gathered: Vec<(&str, DataFrame)> = Vec::new();
+    for table in GATHERED {
+        let Some(df) = scan_glob(&out.part_glob(&table))? else { continue };
+        let mut df = only_seeds(df, &keep, table.name)?
+            .sort(table.key.to_vec(), SortMultipleOptions::default())
+            .map_err(|e| StoreError::table(table.name, e))?;
+        write_parquet_atomic(&mut df, &out.gathered(&table))?;
+        gathered.push((table.name, df));
+    }
+    if let Some(spectra) = scan_glob(&out.part_glob(&SPECTRA))? {
+        let spectra = only_seeds(spectra, &keep, SPECTRA.name)?;
+        write_parquet_atomic(&mut psa_stats_frame(&psa_stats(&spectra)?)?, &out.gathered(&PSA_STATS))?;
+    }
+    let get = |name: &str| gathered.iter().find(|(t, _)| *t == name).map(|(_, d)| d);
+    if let Some(att) = get(ATTENUATION.name) {
+        write_parquet_atomic(&mut attenuation_fit_frame(&attenuation_fits(att)?)?, &out.gathered(&ATTENUATION_FIT))?;
+    }
+    let runs = get(RUNS.name).map(Runs::read).transpose()?;
+    if let (Some(runs), Some(events), Some(similarity)) = (&runs, get(EVENTS_TABLE.name), get(SIMILARITY.name)) {
+        let mut summary = summary_frame(&summary_rows(runs, events, similarity)?)?;
+        write_parquet_atomic(&mut summary, &out.gathered(&SUMMARY))?;
+    }
+    Ok(runs)
+}
+
+/// PSA across seeds per (scale, node, component, damping, period): mean, geometric mean, and
+/// type-7 percentiles 5/50/95.
+pub fn psa_stats(spectra: &DataFrame) -> Result<Vec<PsaStatsRow>, StoreError> {
+    let c = Columns::of(spectra, SPECTRA.name);
+    let scale = c.strs(col::SCALE)?;
+    let node = c.f64s(col::NODE)?;
+    let comp = c.strs(col::COMPONENT)?;
+    let damping = c.f64s(col::DAMPING)?;
+    let period = c.f64s(col::PERIOD_S)?;
+    let psa = c.f64s(col::PSA_M_S2)?;
+    /// One spectral ordinate across seeds; f64 keys as bits so they order and compare exactly.
+    #[derive(PartialEq, Eq, PartialOrd, Ord)]
+    struct Key {
+        scale: String,
+        node: u32,
+        component: String,
+        damping: u64,
+        period: u64,
+    }
+    let mut groups: BTreeMap<Key, Vec<f64>> = BTreeMap::new();
+    for i in 0..c.height() {
+        let key = Key {
+            scale: scale[i].clone(),
+            node: node[i] as u32,
+            component: comp[i].clone(),
+            damping: damping[i].to_bits(),
+            period: period[i].to_bits(),
+        };
+        groups.entry(key).or_default().push(psa[i]);
+    }
+    let mut rows = Vec::new();
+    for (key, mut v) in groups {
+        v.retain(|x| x.is_finite());
+        if v.is_empty() {
+            continue;
+        }
+        v.sort_by(f64::total_cmp);
+        let n = v.len() as f64;
+        rows.push(PsaStatsRow {
+            scale: key.scale,
+            node: key.node,
+            component: key.component,
+            damping: f64::from_bits(key.damping),
+            period_s: f64::from_bits(key.period),
+            count: v.len() as u32,
+            stats: [
+                v.iter().sum::<f64>() / n,
+                if v[0] > 0.0 { (v.iter().map(|x| x.ln()).sum::<f64>() / n).exp() } else { f64::NAN },
+                percentile_sorted(&v, 0.05),
+                percentile_sorted(&v, 0.50),
+                percentile_sorted(&v, 0.95),
+            ],
+        });
+    }
+    Ok(rows)
+}
+
+/// Log-log fits of PGA and PGV against distance, per main-shock rank and over all main shocks.
+pub fn attenuation_fits(att: &DataFrame) -> Result<Vec<FitRow>, StoreError> {
+    let c = Columns::of(att, ATTENUATION.name);
+    let label = c.strs(col::LABEL)?;
+    let dist = c.f64s(col::DISTANCE_M)?;
+    let mut labels: Vec<String> = label.clone();
+    labels.sort_by_key(|l| l.trim_start_matches('S').parse::<u32>().unwrap_or(u32::MAX));
+    labels.dedup();
+    labels.push("main".into());
+    let mut rows = Vec::new();
+    for measure in [col::PGA_M_S2, col::PGV_M_S] {
+        let y = c.f64s(measure)?;
+        for g in &labels {
+            let pts = (0..c.height()).filter(|&i| g == "main" || &label[i] == g).map(|i| (dist[i], y[i]));
+            if let Some(fit) = log_log_fit(pts) {
+                rows.push(FitRow { group: g.clone(), measure, fit });
+            }
+        }
+    }
+    Ok(rows)
+}

@@ -1,0 +1,237 @@
+//! Ensembles: many seeds in parallel, each analysed and written as it finishes; resumable.
+//!
+//! Seeds run in parallel on a rayon pool, each batch of seeds owning its own solver state;
+//! finished seeds go through a bounded channel to the writing thread, so only a few recordings
+//! are in memory at once (and polars is never called from inside the rayon pool). Every part is
+//! written atomically (temporary file, then rename) and a seed's `runs` part is written last: a
+//! seed counts as finished when that part exists. A rerun skips finished seeds and runs the rest;
+//! a folder that holds results of a pipeline with another hash is refused (or discarded with
+//! `fresh`). The layout of the folder is [`stickslip_store::layout`]'s.
+
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc;
+use std::time::Instant;
+
+use rayon::prelude::*;
+use stickslip_config::Pipeline;
+use stickslip_solver::{BATCH, Model, RunOptions, SolverError, run_batched};
+use stickslip_store::io::write_text_atomic;
+use stickslip_store::{Folder, Manifest};
+
+use crate::error::EnsembleError;
+use crate::gather::gather;
+use crate::seed::{Analysed, analyse, write_seed};
+use crate::spectra::PlanCache;
+
+/// How to run an ensemble.
+#[derive(Clone, Debug)]
+pub struct EnsembleOptions {
+    /// Output folder.
+    pub out: PathBuf,
+    /// Worker threads (0: one per core).
+    pub threads: usize,
+    /// Seeds to run (usually the pipeline's).
+    pub seeds: Vec<u64>,
+    /// Discard results of another pipeline found in `out` instead of refusing.
+    pub fresh: bool,
+    /// Gather the tables and the statistics at the end (false for one shard of a larger
+    /// ensemble: `merge` does it once every shard is in).
+    pub finish: bool,
+}
+
+/// What an ensemble did.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EnsembleReport {
+    /// Seeds run now.
+    pub ran: usize,
+    /// Seeds found finished and skipped.
+    pub skipped: usize,
+    /// Seeds that failed, with their message (run now or before).
+    pub failed: Vec<(u64, String)>,
+    /// Wall time (s).
+    pub wall_time_s: f64,
+    /// Output folder.
+    pub out: PathBuf,
+    /// Integrated steps per second of wall time, over the seeds run now (0 if none).
+    pub steps_per_s: f64,
+}
+
+/// Claims `out` for `pipeline`: refuses (or, with `fresh`, clears) results of another pipeline,
+/// then writes the manifest and a copy of the pipeline file.
+pub fn prepare_output(out: &Folder, pipeline: &Pipeline, fresh: bool) -> Result<(), EnsembleError> {
+    if let Some(found) = out.read_manifest()?
+        && found.pipeline_hash != pipeline.hash
+    {
+        if !fresh {
+            return Err(EnsembleError::OtherPipeline {
+                out: out.root().to_path_buf(),
+                found: found.pipeline_hash,
+                expected: pipeline.hash.clone(),
+            });
+        }
+        let tables = out.tables();
+        if tables.exists() {
+            std::fs::remove_dir_all(&tables).map_err(|e| stickslip_store::StoreError::io(&tables, e))?;
+        }
+    }
+    out.write_manifest(&Manifest { name: pipeline.name.clone(), pipeline_hash: pipeline.hash.clone() })?;
+    if let Some(src) = &pipeline.source {
+        let text = std::fs::read_to_string(src).map_err(|e| stickslip_store::StoreError::io(src, e))?;
+        write_text_atomic(&out.pipeline_copy(), &text)?;
+    }
+    Ok(())
+}
+
+/// One seed, simulated and analysed.
+struct SeedResult {
+    seed: u64,
+    outcome: Result<Analysed, SolverError>,
+    wall_time_s: f64,
+}
+
+/// Simulates a batch of seeds side by side (see [`run_batched`]) and analyses each; a seed's
+/// wall time is its share of the batch's.
+fn simulate(
+    model: &Model,
+    pipeline: &Pipeline,
+    seeds: &[u64],
+    options: RunOptions,
+    cancel: &AtomicBool,
+    plans: &PlanCache,
+) -> Vec<SeedResult> {
+    let start = Instant::now();
+    let mut check = |_: f64| {
+        if cancel.load(Ordering::Relaxed) {
+            std::ops::ControlFlow::Break(())
+        } else {
+            std::ops::ControlFlow::Continue(())
+        }
+    };
+    let runs = run_batched(model, seeds, options, &mut check);
+    let share = start.elapsed().as_secs_f64() / seeds.len() as f64;
+    seeds
+        .iter()
+        .zip(runs)
+        .map(|(&seed, run)| {
+            let start = Instant::now();
+            let outcome = run.and_then(|out| analyse(out, model, pipeline, plans).map_err(SolverError::Numerical));
+            SeedResult { seed, outcome, wall_time_s: share + start.elapsed().as_secs_f64() }
+        })
+        .collect()
+}
+
+/// Runs the seeds of `options` that have not finished in `options.out`, then (with
+/// `options.finish`) gathers the tables and the statistics. `on_seed(done, total)` is called after
+/// each seed is written; setting `cancel` stops the running seeds (finished ones are kept) and
+/// returns [`EnsembleError::Interrupted`].
+pub fn run_ensemble(
+    pipeline: &Pipeline,
+    options: &EnsembleOptions,
+    on_seed: &(dyn Fn(usize, usize) + Sync),
+    cancel: &AtomicBool,
+) -> Result<EnsembleReport, EnsembleError> {
+    let start = Instant::now();
+    let out = Folder::new(&options.out);
+    prepare_output(&out, pipeline, options.fresh)?;
+    let pending: Vec<u64> = options.seeds.iter().copied().filter(|&s| !out.is_finished(s)).collect();
+    out.remove_stale_temporaries(&pending)?;
+    let skipped = options.seeds.len() - pending.len();
+    let total = options.seeds.len();
+    on_seed(skipped, total);
+    let model = Model::new(pipeline.scene.clone());
+    let plans = PlanCache::default();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(options.threads)
+        .build()
+        .map_err(|e| EnsembleError::Setup(format!("thread pool: {e}")))?;
+    let (tx, rx) = mpsc::sync_channel::<SeedResult>(2 * pool.current_num_threads());
+    let mut failed = Vec::new();
+    let mut done = skipped;
+    let mut ran = 0;
+    let mut integrated_steps = 0u64;
+    let mut write_error = None;
+    std::thread::scope(|scope| {
+        let model = &model;
+        let pending = &pending;
+        let plans = &plans;
+        // Batches of seeds share each pass over the lattice (lanes); a scene too large for
+        // that, with fewer seeds than threads, splits each step over the threads instead.
+        let threads = pool.current_num_threads();
+        let per_thread = pending.len().div_ceil(threads.max(1));
+        let batch = if per_thread >= BATCH {
+            BATCH
+        } else if per_thread >= 4 {
+            4
+        } else {
+            1
+        };
+        let options = RunOptions {
+            parallel_step: pending.len() < threads && model.layout().segments().len() > 1,
+            ..RunOptions::default()
+        };
+        scope.spawn(move || {
+            pool.install(|| {
+                pending.par_chunks(batch).for_each_with(tx, |tx, chunk| {
+                    if cancel.load(Ordering::Relaxed) {
+                        return;
+                    }
+                    for r in simulate(model, pipeline, chunk, options, cancel, plans) {
+                        let _ = tx.send(r);
+                    }
+                });
+            });
+        });
+        for r in rx {
+            if write_error.is_some() || matches!(r.outcome, Err(SolverError::Cancelled)) {
+                continue;
+            }
+            let outcome = r.outcome.map_err(|e| e.to_string());
+            if let Ok(a) = &outcome {
+                integrated_steps += a.run.integrated_steps();
+            }
+            match write_seed(&out, pipeline, model, r.seed, &outcome, r.wall_time_s) {
+                Ok(failure) => {
+                    if let Some(msg) = failure {
+                        failed.push((r.seed, msg));
+                    }
+                    done += 1;
+                    ran += 1;
+                    on_seed(done, total);
+                }
+                Err(e) => {
+                    cancel.store(true, Ordering::Relaxed);
+                    write_error = Some(e);
+                }
+            }
+        }
+    });
+    if let Some(e) = write_error {
+        return Err(e);
+    }
+    if cancel.load(Ordering::Relaxed) {
+        return Err(EnsembleError::Interrupted { done, total, out: options.out.clone() });
+    }
+    if options.finish
+        && let Some(runs) = gather(&out, &options.seeds)?
+    {
+        failed = runs.failed();
+    }
+    let wall_time_s = start.elapsed().as_secs_f64();
+    Ok(EnsembleReport {
+        ran,
+        skipped,
+        failed,
+        wall_time_s,
+        out: options.out.clone(),
+        steps_per_s: if ran > 0 { integrated_steps as f64 / wall_time_s } else { 0.0 },
+    })
+}
+
+/// The `k`-th (1-based) of `n` disjoint, contiguous slices of `seeds`, in their order: seeds
+/// `⌊(k−1)·len/n⌋ … ⌊k·len/n⌋ − 1`. Every seed is in exactly one slice whatever `n`.
+pub fn shard(seeds: &[u64], k: usize, n: usize) -> Vec<u64> {
+    assert!(n >= 1 && (1..=n).contains(&k), "shard {k}/{n}");
+    let len = seeds.len();
+    seeds[(k - 1) * len / n..k * len / n].to_vec()
+}

@@ -1,0 +1,172 @@
+//! Ensembles: determinism across thread counts, tables read back lazily, main shocks labelled,
+//! a changed pipeline refused.
+
+use std::path::Path;
+use std::sync::atomic::AtomicBool;
+
+use polars::prelude::*;
+use stickslip_config::Pipeline;
+use stickslip_ensemble::{EnsembleOptions, run_ensemble};
+use stickslip_support::{assert_same_tables, read_table, repo_path, scratch_dir};
+
+/// The paper pipeline cut to `seeds` seeds and `duration` seconds, sampled every 50 µs.
+fn short_paper(seeds: u64, duration: f64) -> String {
+    let text = std::fs::read_to_string(repo_path("pipelines/paper.toml")).unwrap();
+    let mut doc: toml::Table = toml::from_str(&text).unwrap();
+    doc.insert("name".into(), "short".into());
+    let mut s = toml::Table::new();
+    s.insert("range".into(), toml::Value::Table(toml::toml! { first = 1 count = 0 }));
+    s["range"].as_table_mut().unwrap().insert("count".into(), (seeds as i64).into());
+    doc.insert("seeds".into(), s.into());
+    doc["shear"].as_table_mut().unwrap().insert("duration_s".into(), duration.into());
+    doc["record"].as_table_mut().unwrap().insert("interval_s".into(), 5e-5.into());
+    toml::to_string(&doc).unwrap()
+}
+
+fn pipeline(dir: &Path, text: &str) -> Pipeline {
+    let path = dir.join("short.toml");
+    std::fs::write(&path, text).unwrap();
+    Pipeline::load(&path).unwrap()
+}
+
+fn run(p: &Pipeline, out: &Path, threads: usize) {
+    let options =
+        EnsembleOptions { out: out.to_path_buf(), threads, seeds: p.seeds.clone(), fresh: false, finish: true };
+    let report = run_ensemble(p, &options, &|_, _| {}, &AtomicBool::new(false)).unwrap();
+    assert_eq!(report.ran, p.seeds.len());
+    assert!(report.failed.is_empty(), "{:?}", report.failed);
+}
+
+fn scan(glob: &Path) -> DataFrame {
+    LazyFrame::scan_parquet(PlRefPath::new(glob.display().to_string()), ScanArgsParquet::default())
+        .unwrap()
+        .collect()
+        .unwrap()
+}
+
+#[test]
+fn tables_do_not_depend_on_the_thread_count_and_read_back_lazily() {
+    let dir = scratch_dir("ensemble-threads");
+    let p = pipeline(&dir, &short_paper(16, 0.12));
+    run(&p, &dir.join("one"), 1);
+    run(&p, &dir.join("two"), 2);
+    assert_same_tables(&dir.join("one"), &dir.join("two"), &["wall_time_s"]);
+
+    // Every per-seed table reads back lazily over all seeds with a glob.
+    let tables = dir.join("one/tables");
+    let runs = scan(&tables.join("runs/*.parquet"));
+    assert_eq!(runs.height(), 16);
+    let steps: u64 = runs.column("steps").unwrap().u64().unwrap().sum().unwrap();
+    assert!(steps > 16 * 10_000);
+    // 0.12 s every 50 µs: 2401 samples per seed.
+    assert_eq!(scan(&tables.join("series/*.parquet")).height(), 16 * 2401);
+    let mut pairs: Vec<_> = p.scene.record.control.iter().map(|c| (c.node, c.component)).collect();
+    pairs.sort();
+    pairs.dedup();
+    assert_eq!(scan(&tables.join("control/*.parquet")).height(), 16 * 2401 * pairs.len());
+    // Spectra of node 36 (x, z) at two scales, three dampings, 100 periods.
+    assert_eq!(scan(&tables.join("spectra/*.parquet")).height(), 16 * 2 * 2 * 3 * 100);
+    assert_eq!(read_table(&tables.join("psa_stats.parquet")).height(), 2 * 2 * 3 * 100);
+    assert_eq!(scan(&tables.join("accelerograms/*.parquet")).height(), 16 * 2 * 2 * 2401);
+    assert_eq!(std::fs::read_dir(dir.join("one/at2")).unwrap().count(), 16 * 2 * 2);
+    let events = scan(&tables.join("events/*.parquet"));
+    let n_events: u32 = runs.column("events").unwrap().u32().unwrap().sum().unwrap();
+    assert_eq!(events.height(), n_events as usize);
+    assert_eq!(read_table(&tables.join("events.parquet")).height(), n_events as usize);
+    assert_eq!(scan(&tables.join("similarity/*.parquet")).height(), n_events as usize);
+    let subs: u32 = events.column("sub_events").unwrap().u32().unwrap().sum().unwrap();
+    assert_eq!(scan(&tables.join("sub_events/*.parquet")).height(), subs as usize);
+    let summary = read_table(&tables.join("summary.parquet"));
+    assert!(summary.height() > 10);
+}
+
+#[test]
+fn paper_pipeline_main_shocks_are_found_and_labelled_in_time_order() {
+    let dir = scratch_dir("ensemble-paper");
+    let p = Pipeline::load(&repo_path("pipelines/paper.toml")).unwrap();
+    run(&p, &dir.join("out"), 2);
+    let events = read_table(&dir.join("out/tables/events.parquet"));
+    for &seed in &p.seeds {
+        let mask = events.column("seed").unwrap().u64().unwrap().equal(seed);
+        let e = events.filter(&mask).unwrap();
+        let kind = e.column("kind").unwrap().str().unwrap().clone();
+        let label = e.column("label").unwrap().str().unwrap().clone();
+        let start = e.column("start_s").unwrap().f64().unwrap().clone();
+        let mains: Vec<(String, f64)> = (0..e.height())
+            .filter(|&i| kind.get(i) == Some("main"))
+            .map(|i| (label.get(i).unwrap().to_string(), start.get(i).unwrap()))
+            .collect();
+        println!("seed {seed}: {mains:?}");
+        assert!(mains.len() >= 2, "seed {seed}: {} main shocks", mains.len());
+        for (k, (l, _)) in mains.iter().enumerate() {
+            assert_eq!(l, &format!("S{}", k + 1));
+        }
+        assert!(mains.windows(2).all(|w| w[0].1 < w[1].1), "labels in time order");
+    }
+}
+
+#[test]
+fn a_changed_pipeline_is_refused_and_fresh_starts_over() {
+    let dir = scratch_dir("ensemble-changed");
+    let p = pipeline(&dir, &short_paper(2, 0.02));
+    run(&p, &dir.join("out"), 2);
+    let changed = pipeline(&dir, &short_paper(2, 0.02).replace("young_cv = 0.05", "young_cv = 0.06"));
+    assert_ne!(p.hash, changed.hash);
+    let mut options =
+        EnsembleOptions { out: dir.join("out"), threads: 2, seeds: changed.seeds.clone(), fresh: false, finish: true };
+    let err = run_ensemble(&changed, &options, &|_, _| {}, &AtomicBool::new(false)).unwrap_err().to_string();
+    assert!(err.contains("holds results of another pipeline") && err.contains("--fresh"), "{err}");
+    options.fresh = true;
+    let report = run_ensemble(&changed, &options, &|_, _| {}, &AtomicBool::new(false)).unwrap();
+    assert_eq!((report.ran, report.skipped), (2, 0));
+    // The same pipeline again: nothing to run.
+    options.fresh = false;
+    let report = run_ensemble(&changed, &options, &|_, _| {}, &AtomicBool::new(false)).unwrap();
+    assert_eq!((report.ran, report.skipped), (0, 2));
+}
+
+#[test]
+fn shards_in_any_order_merge_to_the_plain_ensemble() {
+    use stickslip_ensemble::merge::merge;
+    use stickslip_ensemble::shard;
+    let dir = scratch_dir("ensemble-shards");
+    let p = pipeline(&dir, &short_paper(10, 0.06));
+    std::fs::copy(dir.join("short.toml"), dir.join("copy.toml")).unwrap();
+    run(&p, &dir.join("plain"), 2);
+    let n = 4;
+    for (out, order) in [("forward", (1..=n).collect::<Vec<_>>()), ("reverse", (1..=n).rev().collect())] {
+        for k in order {
+            let options = EnsembleOptions {
+                out: dir.join(out),
+                threads: 1,
+                seeds: shard(&p.seeds, k, n),
+                fresh: false,
+                finish: false,
+            };
+            run_ensemble(&p, &options, &|_, _| {}, &AtomicBool::new(false)).unwrap();
+        }
+        // A shard run twice (e.g. a requeued array task) changes nothing.
+        let again = EnsembleOptions {
+            out: dir.join(out),
+            threads: 2,
+            seeds: shard(&p.seeds, 2, n),
+            fresh: false,
+            finish: false,
+        };
+        assert_eq!(run_ensemble(&p, &again, &|_, _| {}, &AtomicBool::new(false)).unwrap().ran, 0);
+        let merged = merge(&dir.join(out), None, Some(n)).unwrap();
+        assert_eq!(merged.seeds, 10);
+        assert_same_tables(&dir.join("plain"), &dir.join(out), &["wall_time_s"]);
+    }
+    // An incomplete set of shards is refused, naming the missing shard.
+    let options = EnsembleOptions {
+        out: dir.join("partial"),
+        threads: 2,
+        seeds: shard(&p.seeds, 1, n),
+        fresh: false,
+        finish: false,
+    };
+    run_ensemble(&p, &options, &|_, _| {}, &AtomicBool::new(false)).unwrap();
+    let err = merge(&dir.join("partial"), None, Some(n)).unwrap_err().to_string();
+    assert!(err.contains("seeds missing") && err.contains("shards 2, 3, 4 of 4 incomplete"), "{err}");
+}

@@ -1,0 +1,79 @@
+//! What the ensemble writes of the spectra stage: AT2 files that read back, prototype spectra that are
+//! the scaled model spectra.
+
+use std::sync::atomic::AtomicBool;
+
+use polars::prelude::*;
+use stickslip_config::Pipeline;
+use stickslip_ensemble::{EnsembleOptions, run_ensemble};
+use stickslip_seismo::accelerogram::{AccelUnit, read_accelerogram};
+use stickslip_seismo::spectra::response::{Reading, SpectrumPlan, SpectrumScratch};
+use stickslip_support::{read_table, repo_path, scratch_dir};
+
+fn rows(df: &DataFrame, node: u32, comp: &str, scale: &str) -> DataFrame {
+    let m = df.column("node").unwrap().u32().unwrap().equal(node)
+        & df.column("component").unwrap().str().unwrap().equal(comp)
+        & df.column("scale").unwrap().str().unwrap().equal(scale);
+    df.filter(&m).unwrap()
+}
+
+fn f64s(df: &DataFrame, name: &str) -> Vec<f64> {
+    df.column(name).unwrap().f64().unwrap().iter().map(|v| v.unwrap()).collect()
+}
+
+#[test]
+fn at2_files_read_back_and_prototype_spectra_are_the_scaled_model_spectra() {
+    let dir = scratch_dir("spectra-outputs");
+    let text = std::fs::read_to_string(repo_path("pipelines/paper.toml")).unwrap();
+    let text = text.replace("list = [123, 200, 7]", "list = [123]").replace("duration_s = 0.32 ", "duration_s = 0.08 ");
+    std::fs::write(dir.join("p.toml"), &text).unwrap();
+    let p = Pipeline::load(&dir.join("p.toml")).unwrap();
+    let out = dir.join("out");
+    let options = EnsembleOptions { out: out.clone(), threads: 1, seeds: vec![123], fresh: false, finish: true };
+    run_ensemble(&p, &options, &|_, _| {}, &AtomicBool::new(false)).unwrap();
+    let acc = read_table(&out.join("tables/accelerograms/seed-0000000123.parquet"));
+    let spectra = read_table(&out.join("tables/spectra/seed-0000000123.parquet"));
+    let lambda = 1.0e4;
+    for scale in ["model", "prototype"] {
+        let path = out.join(format!("at2/paper_seed123_n36_z_{scale}.AT2"));
+        let head: Vec<String> = std::fs::read_to_string(&path).unwrap().lines().take(3).map(String::from).collect();
+        assert!(head[1].contains(&format!("{scale} scale")) && head[1].contains("acceleration in g"), "{}", head[1]);
+        assert_eq!(head[2], "ACCELERATION TIME SERIES IN UNITS OF G");
+        let record = read_accelerogram(&path, AccelUnit::G).unwrap();
+        let table = rows(&acc, 36, "z", scale);
+        let a = f64s(&table, "acceleration_m_s2");
+        let t = f64s(&table, "time_s");
+        assert_eq!(record.accel.len(), a.len());
+        assert!((record.dt / (t[1] - t[0]) - 1.0).abs() < 1e-7, "DT {} vs {}", record.dt, t[1] - t[0]);
+        let scale_max = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for (x, y) in record.accel.iter().zip(&a) {
+            assert!((x - y).abs() <= 5e-8 * y.abs() + 1e-12 * scale_max, "{x} vs {y}");
+        }
+        // The spectrum of the file as read back equals the table's rows of that scale.
+        let rows5 = {
+            let r = rows(&spectra, 36, "z", scale);
+            let m = r.column("damping").unwrap().f64().unwrap().equal(0.05);
+            r.filter(&m).unwrap()
+        };
+        let periods = f64s(&rows5, "period_s");
+        let psa = f64s(&rows5, "psa_m_s2");
+        let plan = SpectrumPlan::new(record.dt, &periods, &[0.05], Reading::Linear, 1);
+        let mut sd = vec![0.0; plan.len()];
+        plan.compute(&record.accel, &mut SpectrumScratch::default(), &mut sd);
+        // Up to the file's 8 significant digits: each sample is off by up to 5e-8 of itself,
+        // which long periods (tiny PSA against the PGA) feel as 1e-7 of the PGA.
+        for ((t, want), got_sd) in periods.iter().zip(&psa).zip(&sd) {
+            let got = got_sd * (2.0 * std::f64::consts::PI / t).powi(2);
+            assert!((got - want).abs() < 1e-6 * want + 1e-7 * scale_max, "{scale} T {t}: {got} vs {want}");
+        }
+        if scale == "prototype" {
+            let model = rows(&spectra, 36, "z", "model");
+            let model5 = model.filter(&model.column("damping").unwrap().f64().unwrap().equal(0.05)).unwrap();
+            for ((tm, am), (tp, ap)) in
+                f64s(&model5, "period_s").iter().zip(f64s(&model5, "psa_m_s2")).zip(periods.iter().zip(&psa))
+            {
+                assert!((tp / (tm * lambda) - 1.0).abs() < 1e-12 && (ap * lambda / am - 1.0).abs() < 1e-12);
+            }
+        }
+    }
+}

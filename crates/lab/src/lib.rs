@@ -1,0 +1,36 @@
+//! stickslip lab: how fast and how accurate the product is, measured.
+//!
+//! Owns every benchmark and calibration aid: run time against error ([`accuracy`]), the
+//! quasi-static skip-ahead against full integration ([`skip`]), what recording costs
+//! ([`recording_cost`]), the LAMMPS side-by-side ([`peer`], with `lammps/compare.sh`), sweeps of
+//! assumed values ([`calibrate`]), and the criterion benchmarks of the kernels and spectra
+//! (`benches/`). Speed is measured here, never asserted in tests. Must not know: the command
+//! line (it returns rows and writes tables and figures where it is told).
+#![deny(missing_docs)]
+
+pub mod accuracy;
+pub mod calibrate;
+pub mod peer;
+pub mod recording_cost;
+pub mod skip;
+
+use stickslip_config::ConfigError;
+use stickslip_report::ReportError;
+use stickslip_store::StoreError;
+
+/// Everything that can go wrong in a benchmark.
+#[derive(Debug, thiserror::Error)]
+pub enum LabError {
+    /// A pipeline or variant of it was refused.
+    #[error(transparent)]
+    Config(#[from] ConfigError),
+    /// A table could not be written.
+    #[error(transparent)]
+    Store(#[from] StoreError),
+    /// A figure could not be drawn.
+    #[error(transparent)]
+    Report(#[from] ReportError),
+    /// A run failed or the benchmark cannot be set up.
+    #[error("{0}")]
+    Setup(String),
+}

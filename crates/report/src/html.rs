@@ -1,0 +1,272 @@
+//! The report page: plain HTML, no network resources, opens from disk.
+
+// The page is built from literal HTML fragments that carry their own line ends.
+#![allow(clippy::write_with_newline)]
+
+use std::fmt::Write as _;
+
+use stickslip_store::schema::{SEED_TABLES, col};
+use stickslip_store::tables::runs::RunStatus;
+
+use crate::{Figure, ReportError, ReportInput};
+
+/// Escapes text for HTML.
+fn esc(s: &str) -> String {
+    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+}
+
+/// `mean ± std` of `quantity` in `group` of the summary, scaled, or "–".
+fn stat(d: &ReportInput, group: &str, quantity: &str, scale: f64, digits: usize) -> String {
+    let Some(s) = &d.summary else { return "–".into() };
+    match s.find(group, quantity) {
+        Some(i) if s.std[i].is_finite() => {
+            format!("{:.*} ± {:.*}", digits, s.mean[i] * scale, digits, s.std[i] * scale)
+        }
+        Some(i) => format!("{:.*}", digits, s.mean[i] * scale),
+        None => "–".into(),
+    }
+}
+
+fn count(d: &ReportInput, group: &str) -> String {
+    let Some(s) = &d.summary else { return "0".into() };
+    s.find(group, col::STRESS_DROP_PA).map_or("0".into(), |i| format!("{}", s.count[i]))
+}
+
+/// Files under `dir` with extension `ext`, sorted, relative to `out`.
+fn files(d: &ReportInput, dir: &str, ext: &str) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(d.folder.root().join(dir))
+        .map(|r| {
+            r.flatten()
+                .map(|e| e.file_name().to_string_lossy().into_owned())
+                .filter(|n| !n.starts_with('.') && n.ends_with(ext))
+                .map(|n| format!("{dir}/{n}"))
+                .collect()
+        })
+        .unwrap_or_default();
+    v.sort();
+    v
+}
+
+/// The page.
+pub(crate) fn page(d: &ReportInput, figures: &[Figure], skipped: &[(String, String)]) -> Result<String, ReportError> {
+    let p = d.pipeline;
+    let s = &p.scene;
+    let mut h = String::new();
+    let w = &mut h;
+    let _ = write!(
+        w,
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>stickslip: {name}</title>\n<style>\n\
+         body {{ font-family: 'DejaVu Sans', Arial, sans-serif; margin: 2em auto; max-width: 1250px; color: #222; line-height: 1.45; }}\n\
+         table {{ border-collapse: collapse; margin: 0.5em 0 1.5em; }}\n\
+         th, td {{ border: 1px solid #bbb; padding: 0.25em 0.6em; text-align: right; }}\n\
+         th {{ background: #eef; }} td.l, th.l {{ text-align: left; }}\n\
+         figure {{ margin: 1.5em 0; }} figure img {{ width: 100%; max-width: 1200px; border: 1px solid #ddd; }}\n\
+         figcaption {{ font-size: 0.95em; color: #333; max-width: 1200px; }}\n\
+         pre {{ background: #f6f6f6; padding: 1em; overflow-x: auto; font-size: 0.85em; }}\n\
+         code {{ background: #f2f2f2; padding: 0 0.2em; }}\n</style>\n</head>\n<body>\n",
+        name = esc(&p.name)
+    );
+    let _ = write!(w, "<h1>stickslip report: {}</h1>\n<p>{}</p>\n", esc(&p.name), esc(&p.description));
+    let ok_failed = match &d.runs {
+        Some(r) => {
+            let ok = r.status.iter().filter(|x| **x == RunStatus::Ok).count();
+            (ok, r.status.len() - ok)
+        }
+        None => (0, 0),
+    };
+    let _ = write!(
+        w,
+        "<p>Pipeline hash <code>{}</code>; {} seeds run ({} ok, {} failed). Tables in <code>tables/</code>, figures in \
+         <code>figures/</code>, the pipeline file as run: <a href=\"pipeline.toml\">pipeline.toml</a>.</p>\n",
+        esc(&p.hash),
+        ok_failed.0 + ok_failed.1,
+        ok_failed.0,
+        ok_failed.1
+    );
+    let lattice = s.lattice();
+    let e = lattice.extent();
+    let _ = write!(w, "<h2>Parameters</h2>\n<table>\n");
+    let rows: Vec<(&str, String)> = vec![
+        (
+            "block",
+            format!(
+                "{}×{}×{} modules of Lc = {} m ({} × {} × {} m), {} nodes, {} bars",
+                s.dims.nx,
+                s.dims.ny,
+                s.dims.nz,
+                s.lc_m,
+                e[0],
+                e[1],
+                e[2],
+                lattice.node_count(),
+                lattice.bars().len()
+            ),
+        ),
+        (
+            "material",
+            format!(
+                "E = {:e} Pa (Weibull CV {}), ρ = {} kg/m³, ν = {}",
+                s.young_pa, s.young_cv, s.density_kg_m3, s.poisson
+            ),
+        ),
+        (
+            "friction",
+            format!(
+                "μs = {}, μd = {}, Dc = {} m, CV of μ = {}",
+                s.friction.law.mu_static(),
+                s.friction.law.mu_dynamic(),
+                s.friction.law.weakening_distance_m(),
+                s.friction.mu_cv
+            ),
+        ),
+        (
+            "time step",
+            match s.time_step {
+                stickslip_solver::scene::TimeStep::Fraction(f) => format!(
+                    "{f} of the critical step of each seed's lattice{}",
+                    d.mean_dt_s.map(|dt| format!(" (Δt = {dt:.4e} s on average)")).unwrap_or_default()
+                ),
+                stickslip_solver::scene::TimeStep::Fixed(dt) => format!("Δt = {dt:e} s"),
+            },
+        ),
+        (
+            "self-weight stage",
+            format!(
+                "g = {} m/s², D = {} 1/s, settled at {:e}",
+                s.self_weight.gravity_m_s2, s.self_weight.damping_per_s, s.self_weight.settle_tolerance
+            ),
+        ),
+        (
+            "shear stage",
+            format!(
+                "D = {} 1/s, u̇f = {} m/s, t0 = {} s, {} s, driver LDEM {}",
+                s.shear.damping_per_s,
+                s.shear.velocity_m_s,
+                s.shear.rise_time_s,
+                s.shear.duration_s,
+                s.shear.drivers.iter().map(|n| n.ldem().to_string()).collect::<Vec<_>>().join(", ")
+            ),
+        ),
+        (
+            "similarity",
+            format!(
+                "L_p = {} m (λ = {}), u̇_p = {:e} m/s",
+                p.similarity.prototype_length_m,
+                p.similarity.prototype_length_m / e[0],
+                p.similarity.prototype_rate_m_s
+            ),
+        ),
+    ];
+    for (k, v) in rows {
+        let _ = writeln!(w, "<tr><th class=\"l\">{}</th><td class=\"l\">{}</td></tr>", esc(k), esc(&v));
+    }
+    let _ = write!(w, "</table>\n");
+
+    // Main shocks across seeds.
+    let _ = write!(
+        w,
+        "<h2>Main shocks across seeds</h2>\n<p>Mean ± standard deviation across seeds (model scale unless said). \
+         Paper (seed 200, S2): stress drop 7.6 kPa, duration 2.1 ms, S1→S2 recurrence 25.8 ms, M = 6.77; \
+         at prototype scale 21 s and 2.83 years.</p>\n<table>\n<tr><th class=\"l\">shock</th><th>events</th>\
+         <th>stress drop (kPa)</th><th>duration (ms)</th><th>stress falls in (ms)</th><th>recurrence (ms)</th>\
+         <th>M (paper's M0)</th><th>Mw (consistent M0)</th><th>prototype duration (s)</th>\
+         <th>prototype recurrence (years)</th></tr>\n"
+    );
+    let mut groups: Vec<String> = match &d.summary {
+        Some(sm) => sm.group.iter().filter(|g| g.starts_with('S')).cloned().collect(),
+        None => vec![],
+    };
+    groups.sort_by_key(|g| g[1..].parse::<u32>().unwrap_or(u32::MAX));
+    groups.dedup();
+    groups.push("main".into());
+    groups.push("all".into());
+    for g in &groups {
+        let _ = writeln!(
+            w,
+            "<tr><th class=\"l\">{}</th><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+            esc(g),
+            count(d, g),
+            stat(d, g, col::STRESS_DROP_PA, 1e-3, 2),
+            stat(d, g, col::DURATION_S, 1e3, 1),
+            stat(d, g, col::DROP_TIME_S, 1e3, 1),
+            stat(d, g, col::RECURRENCE_S, 1e3, 1),
+            stat(d, g, col::M_RIERA_PAPER_INTERPLATE, 1.0, 2),
+            stat(d, g, col::MW_CONSISTENT, 1.0, 2),
+            stat(d, g, col::PROTOTYPE_DURATION_S, 1.0, 1),
+            stat(d, g, col::PROTOTYPE_RECURRENCE_YEARS, 1.0, 2),
+        );
+    }
+    let _ = write!(w, "</table>\n");
+
+    let _ = write!(w, "<h2>Figures</h2>\n");
+    for f in figures {
+        let _ = write!(
+            w,
+            "<figure id=\"{id}\">\n<h3>{title}</h3>\n<img src=\"figures/{file}\" alt=\"{title}\">\n<figcaption>{caption}</figcaption>\n</figure>\n",
+            id = esc(f.file.trim_end_matches(".png")),
+            title = esc(&f.title),
+            file = esc(&f.file),
+            caption = esc(&f.caption)
+        );
+    }
+    if !skipped.is_empty() {
+        let _ = write!(w, "<p>Not drawn (their data is absent from this run):</p>\n<ul>\n");
+        for (f, why) in skipped {
+            let _ = writeln!(w, "<li><code>{}</code>: {}</li>", esc(f), esc(why));
+        }
+        let _ = write!(w, "</ul>\n");
+    }
+
+    let _ = write!(
+        w,
+        "<h2>Tables</h2>\n<p>Parquet files; every per-seed table also reads lazily over all seeds with a glob such as <code>tables/series/*.parquet</code>.</p>\n<ul>\n"
+    );
+    for f in files(d, "tables", ".parquet") {
+        let _ = writeln!(w, "<li><a href=\"{0}\">{0}</a></li>", esc(&f));
+    }
+    let _ = write!(w, "</ul>\n<p>Per-seed parts:</p>\n<ul>\n");
+    for table in SEED_TABLES.map(|t| t.name) {
+        let parts = files(d, &format!("tables/{table}"), ".parquet");
+        match parts.len() {
+            0 => {}
+            n if n <= 12 => {
+                let links: Vec<String> = parts.iter().map(|f| format!("<a href=\"{0}\">{0}</a>", esc(f))).collect();
+                let _ = writeln!(w, "<li><code>{table}</code>: {}</li>", links.join(", "));
+            }
+            n => {
+                let _ = writeln!(
+                    w,
+                    "<li><code>{table}</code>: {n} files <code>tables/{table}/seed-*.parquet</code>, e.g. <a href=\"{0}\">{0}</a></li>",
+                    esc(&parts[0])
+                );
+            }
+        }
+    }
+    let _ = write!(w, "</ul>\n");
+    let at2 = files(d, "at2", ".AT2");
+    if !at2.is_empty() {
+        let _ = write!(
+            w,
+            "<h2>Accelerograms (PEER .AT2)</h2>\n<p>{} files in <code>at2/</code>, named pipeline_seed_node_component_scale; \
+             values in g; model scale and prototype scale (times ×λ, accelerations ÷λ).</p>\n<ul>\n",
+            at2.len()
+        );
+        for f in at2.iter().take(60) {
+            let _ = writeln!(w, "<li><a href=\"{0}\">{0}</a></li>", esc(f));
+        }
+        let _ = write!(w, "</ul>\n");
+    }
+    if let Some(src) = &p.source
+        && let Ok(text) = std::fs::read_to_string(src)
+    {
+        let _ = write!(w, "<h2>Pipeline file</h2>\n<pre>{}</pre>\n", esc(&text));
+    }
+    let _ = write!(
+        w,
+        "<p><small>Written by stickslip {}. Conventions: τ is positive when the base resists the push; times are \
+         counted from the start of the shear stage; \"M (paper's M0)\" uses Eq. 15 as printed (Δσ·L_p·A_p·λ), Mw the \
+         consistent moment Δσ·L_p·A_p.</small></p>\n</body>\n</html>\n",
+        env!("CARGO_PKG_VERSION")
+    );
+    Ok(h)
+}

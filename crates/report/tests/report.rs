@@ -1,0 +1,127 @@
+//! The report end to end: every figure listed in the page exists, decodes as a PNG of the
+//! expected size and is not blank; every link of the page resolves to a file; figures without
+//! data are skipped, not drawn empty.
+
+use std::path::Path;
+use std::sync::atomic::AtomicBool;
+
+use stickslip_config::Pipeline;
+use stickslip_ensemble::{EnsembleOptions, run_ensemble};
+use stickslip_report::{ReportSummary, write_report};
+use stickslip_support::{repo_path, scratch_dir};
+
+/// Runs the pipeline `text` into `dir/out` and writes its report.
+fn run(dir: &Path, text: &str) -> ReportSummary {
+    std::fs::write(dir.join("p.toml"), text).unwrap();
+    let p = Pipeline::load(&dir.join("p.toml")).unwrap();
+    let options =
+        EnsembleOptions { out: dir.join("out"), threads: 2, seeds: p.seeds.clone(), fresh: false, finish: true };
+    run_ensemble(&p, &options, &|_, _| {}, &AtomicBool::new(false)).unwrap();
+    write_report(&dir.join("out"), &p).unwrap()
+}
+
+/// (width, height, variance of the grey level) of a PNG.
+fn png_stats(path: &Path) -> (u32, u32, f64) {
+    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    let channels = info.color_type.samples();
+    let grey: Vec<f64> = buf[..info.buffer_size()]
+        .chunks(channels)
+        .map(|p| p.iter().take(3).map(|&v| v as f64).sum::<f64>() / 3.0)
+        .collect();
+    let mean = grey.iter().sum::<f64>() / grey.len() as f64;
+    let var = grey.iter().map(|g| (g - mean).powi(2)).sum::<f64>() / grey.len() as f64;
+    (info.width, info.height, var)
+}
+
+/// Every `src="…"` and `href="…"` of the page.
+fn links(html: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    for key in ["src=\"", "href=\""] {
+        let mut rest = html;
+        while let Some(i) = rest.find(key) {
+            rest = &rest[i + key.len()..];
+            let end = rest.find('"').unwrap();
+            out.push(rest[..end].to_string());
+            rest = &rest[end..];
+        }
+    }
+    out
+}
+
+#[test]
+fn paper_report_has_every_figure_drawn_and_every_link_resolving() {
+    let dir = scratch_dir("report-paper");
+    let text = std::fs::read_to_string(repo_path("pipelines/paper.toml"))
+        .unwrap()
+        .replace("list = [123, 200, 7]", "list = [123, 200]")
+        .replace("duration_s = 0.32 ", "duration_s = 0.24 ");
+    let report = run(&dir, &text);
+    let out = dir.join("out");
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    assert!(report.figures.len() >= 12, "{} figures, skipped {:?}", report.figures.len(), report.skipped);
+    for f in &report.figures {
+        assert!(html.contains(&format!("src=\"figures/{}\"", f.file)), "{} not in the page", f.file);
+        let (w, h, var) = png_stats(&out.join("figures").join(&f.file));
+        assert_eq!((w, h), (1200, 700), "{}", f.file);
+        assert!(var > 100.0, "{} looks blank (grey variance {var})", f.file);
+    }
+    let all = links(&html);
+    assert!(all.len() > 20);
+    for l in &all {
+        assert!(out.join(l).is_file(), "link {l} does not resolve to a file");
+    }
+    for title in
+        ["Shear stress", "Normal stress", "Response spectra", "Attenuation", "Energy terms", "Main shocks across seeds"]
+    {
+        assert!(html.contains(title), "page lacks {title}");
+    }
+    assert!(!html.contains("http://") && !html.contains("https://"), "the page must not load network resources");
+}
+
+#[test]
+fn figures_without_data_are_skipped_not_drawn_empty() {
+    let dir = scratch_dir("report-bare");
+    // No spectra, no energy, no control nodes: those figures are skipped and listed as such.
+    let report = run(&dir, "version = 1\nname = \"bare\"\n[seeds]\nlist = [1]\n[shear]\nduration_s = 0.1\n");
+    let skipped: Vec<&str> = report.skipped.iter().map(|(f, _)| f.as_str()).collect();
+    for f in ["response_spectra_z.png", "fourier.png", "attenuation.png", "energy.png", "acceleration_s2.png"] {
+        assert!(skipped.contains(&f), "{f} should be skipped: {skipped:?}");
+        assert!(!dir.join("out/figures").join(f).exists(), "{f} drawn without data");
+    }
+    let html = std::fs::read_to_string(dir.join("out/index.html")).unwrap();
+    assert!(html.contains("Not drawn (their data is absent from this run)"));
+    assert!(dir.join("out/figures/shear_stress.png").exists());
+}
+
+#[test]
+fn the_page_renders_in_headless_chromium() {
+    if std::env::var_os("STICKSLIP_NO_BROWSER").is_some() {
+        println!("STICKSLIP_NO_BROWSER set: browser check skipped");
+        return;
+    }
+    let have = std::process::Command::new("chromium").arg("--version").output().is_ok_and(|o| o.status.success());
+    assert!(
+        have,
+        "chromium is not installed: .ci/run installs it (apt-get install chromium); set STICKSLIP_NO_BROWSER=1 to skip \
+         this check on a machine without it"
+    );
+    let dir = scratch_dir("report-browser");
+    let text = std::fs::read_to_string(repo_path("pipelines/paper.toml"))
+        .unwrap()
+        .replace("list = [123, 200, 7]", "list = [123]")
+        .replace("duration_s = 0.32 ", "duration_s = 0.12 ");
+    run(&dir, &text);
+    let shot = dir.join("shot.png");
+    let out = std::process::Command::new(repo_path("scripts/render-report.sh"))
+        .arg(dir.join("out"))
+        .arg(&shot)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    let (w, _, var) = png_stats(&shot);
+    assert_eq!(w, 1300);
+    assert!(var > 100.0, "blank screenshot");
+}

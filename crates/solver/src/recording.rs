@@ -1,0 +1,361 @@
+//! Recording: only the channels a scene asks for, at its interval, as plain arrays.
+//!
+//! "Recording" here is always the solver's sampled output of a run ([`Recording`]); accelerogram
+//! files are the seismology crate's.
+
+use crate::geometry::NodeId;
+use crate::scene::{ControlChannel, InterfaceQuantity, Kinematic, RecordPlan};
+use crate::step::{Energy, Interface, LaneView};
+
+/// What a recorder reads at one viewed time: a lane of a stepper, or a quasi-static motion
+/// the run skips through.
+pub(crate) trait Observed {
+    /// Interface resultants.
+    fn interface(&self) -> Interface;
+    /// Total driver reaction in x (N).
+    fn driver_force(&self) -> f64;
+    /// Driver displacement (m).
+    fn driver_target(&self) -> f64;
+    /// Energy terms.
+    fn energy(&self) -> Energy;
+    /// Displacement, velocity or acceleration of internal node `node`.
+    fn kinematic(&self, node: usize, q: Kinematic) -> [f64; 3];
+}
+
+impl<const L: usize> Observed for LaneView<'_, '_, L> {
+    fn interface(&self) -> Interface {
+        LaneView::interface(self)
+    }
+
+    fn driver_force(&self) -> f64 {
+        LaneView::driver_force(self)
+    }
+
+    fn driver_target(&self) -> f64 {
+        LaneView::driver_target(self)
+    }
+
+    fn energy(&self) -> Energy {
+        LaneView::energy(self)
+    }
+
+    fn kinematic(&self, node: usize, q: Kinematic) -> [f64; 3] {
+        match q {
+            Kinematic::Displacement => self.displacement(node),
+            Kinematic::Velocity => self.velocity(node),
+            Kinematic::Acceleration => self.acceleration(node),
+        }
+    }
+}
+
+/// A recorded scalar channel (the name carries the unit).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Channel {
+    /// τ = −ΣF_x/A (Pa), positive when the base resists the push.
+    ShearStress,
+    /// σ = ΣN/A (Pa).
+    NormalStress,
+    /// δ, mean x-displacement of the contact nodes (m).
+    MeanSlip,
+    /// Mean x-velocity of the contact nodes (m/s).
+    MeanSlipRate,
+    /// Max x-velocity of the contact nodes (m/s).
+    MaxSlipRate,
+    /// Sliding contact nodes (count).
+    SlippingNodes,
+    /// Lifted contact nodes (count).
+    LiftedNodes,
+    /// Total driver reaction in x (N).
+    DriverForce,
+    /// Imposed driver displacement (m).
+    DriverDisplacement,
+    /// Kinetic energy (J).
+    Kinetic,
+    /// Strain energy (J).
+    Elastic,
+    /// Dissipated by damping since the start (J).
+    DampingDissipated,
+    /// Dissipated by friction since the start (J).
+    FrictionDissipated,
+    /// Lost in landings since the start (J).
+    ImpactDissipated,
+    /// Work of gravity and body forces since the start (J).
+    BodyWork,
+    /// Work of the drivers since the start (J).
+    DriverWork,
+    /// Body plus driver work (J).
+    ExternalWork,
+    /// External work minus stored and dissipated energy (J); zero up to round-off.
+    EnergyResidual,
+}
+
+impl Channel {
+    /// Column name with unit.
+    pub fn name(self) -> &'static str {
+        match self {
+            Channel::ShearStress => "shear_stress_pa",
+            Channel::NormalStress => "normal_stress_pa",
+            Channel::MeanSlip => "mean_slip_m",
+            Channel::MeanSlipRate => "mean_slip_rate_m_s",
+            Channel::MaxSlipRate => "max_slip_rate_m_s",
+            Channel::SlippingNodes => "slipping_nodes",
+            Channel::LiftedNodes => "lifted_nodes",
+            Channel::DriverForce => "driver_force_n",
+            Channel::DriverDisplacement => "driver_displacement_m",
+            Channel::Kinetic => "kinetic_energy_j",
+            Channel::Elastic => "elastic_energy_j",
+            Channel::DampingDissipated => "damping_dissipated_j",
+            Channel::FrictionDissipated => "friction_dissipated_j",
+            Channel::ImpactDissipated => "impact_dissipated_j",
+            Channel::BodyWork => "body_work_j",
+            Channel::DriverWork => "driver_work_j",
+            Channel::ExternalWork => "external_work_j",
+            Channel::EnergyResidual => "energy_residual_j",
+        }
+    }
+
+    /// Whether the channel counts nodes (an integer).
+    pub fn is_count(self) -> bool {
+        matches!(self, Channel::SlippingNodes | Channel::LiftedNodes)
+    }
+
+    /// The energy channels, in order.
+    pub const ENERGY: [Channel; 9] = [
+        Channel::Kinetic,
+        Channel::Elastic,
+        Channel::DampingDissipated,
+        Channel::FrictionDissipated,
+        Channel::ImpactDissipated,
+        Channel::BodyWork,
+        Channel::DriverWork,
+        Channel::ExternalWork,
+        Channel::EnergyResidual,
+    ];
+
+    /// Channels of the plan, in a fixed order.
+    pub fn of_plan(plan: &RecordPlan) -> Vec<Channel> {
+        let mut out = Vec::new();
+        for q in InterfaceQuantity::ALL {
+            if !plan.has(q) {
+                continue;
+            }
+            out.extend_from_slice(match q {
+                InterfaceQuantity::ShearStress => &[Channel::ShearStress][..],
+                InterfaceQuantity::NormalStress => &[Channel::NormalStress],
+                InterfaceQuantity::MeanSlip => &[Channel::MeanSlip],
+                InterfaceQuantity::SlipRate => &[Channel::MeanSlipRate, Channel::MaxSlipRate],
+                InterfaceQuantity::SlippingNodes => &[Channel::SlippingNodes],
+                InterfaceQuantity::LiftedNodes => &[Channel::LiftedNodes],
+                InterfaceQuantity::Driver => &[Channel::DriverForce, Channel::DriverDisplacement],
+            });
+        }
+        if plan.energy {
+            out.extend_from_slice(&Channel::ENERGY);
+        }
+        out
+    }
+}
+
+/// How a recording was sampled.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Sampling {
+    /// Time step of the run (s).
+    pub step_s: f64,
+    /// Steps between two samples of the shear stage (from `record.interval_s`; 1 = every step).
+    pub stride: u64,
+    /// Index of the first sample of the shear stage (the samples before it, if the self-weight
+    /// stage was recorded, are every step at negative times).
+    pub shear_start: usize,
+    /// Whether every shear-stage sample is `stride` steps after the one before. Not so when the
+    /// skip-ahead samples quiet phases more sparsely, or when the stage's last step is off the
+    /// sampling grid (it is always recorded).
+    pub uniform: bool,
+}
+
+impl Sampling {
+    /// The sampling interval of the shear stage, `stride·Δt` (s).
+    pub fn interval_s(&self) -> f64 {
+        self.stride as f64 * self.step_s
+    }
+}
+
+/// The recorded series of one run.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Recording {
+    /// Time since the start of the shear stage (s); negative in the self-weight stage.
+    pub time_s: Vec<f64>,
+    /// Scalar channels, each as long as `time_s`.
+    pub channels: Vec<(Channel, Vec<f64>)>,
+    /// Control-node channels, each as long as `time_s`.
+    pub control: Vec<(ControlChannel, Vec<f64>)>,
+    /// Sustained slip onsets `(time_s, contact node)`, in time order (if recorded).
+    pub onsets: Vec<(f64, NodeId)>,
+    /// Quasi-static skips of the shear stage (with `[skip_ahead]` on), in time order.
+    pub skips: Vec<Skip>,
+    /// How the samples were taken.
+    pub sampling: Sampling,
+}
+
+/// What ends a quasi-static skip: the transition predicted next.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Transition {
+    /// A sticking base node reaches its static friction strength.
+    Slide(NodeId),
+    /// A base node's normal reaction reaches zero.
+    Lift(NodeId),
+    /// A lifted base node comes down onto the base.
+    Land(NodeId),
+    /// Nothing before the end of the shear stage.
+    End,
+}
+
+impl Transition {
+    /// `"slide"`, `"lift"`, `"land"` or `"end"`.
+    pub fn kind(self) -> &'static str {
+        match self {
+            Transition::Slide(_) => "slide",
+            Transition::Lift(_) => "lift",
+            Transition::Land(_) => "land",
+            Transition::End => "end",
+        }
+    }
+
+    /// The base node concerned, if any.
+    pub fn node(self) -> Option<NodeId> {
+        match self {
+            Transition::Slide(n) | Transition::Lift(n) | Transition::Land(n) => Some(n),
+            Transition::End => None,
+        }
+    }
+}
+
+/// One jump of the quasi-static skip-ahead: the run went from `from_s` to `to_s` (times of the
+/// shear stage) without integrating, along the exact quasi-static motion.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Skip {
+    /// Start (s).
+    pub from_s: f64,
+    /// End (s): explicit integration resumes here.
+    pub to_s: f64,
+    /// Steps not integrated.
+    pub steps: u64,
+    /// The predicted transition, `margin_steps` after `to_s`.
+    pub next: Transition,
+}
+
+impl Recording {
+    /// Values of a scalar channel, if recorded.
+    pub fn get(&self, ch: Channel) -> Option<&[f64]> {
+        self.channels.iter().find(|(c, _)| *c == ch).map(|(_, v)| v.as_slice())
+    }
+
+    /// Values of a control channel, if recorded.
+    pub fn control(&self, ch: ControlChannel) -> Option<&[f64]> {
+        self.control.iter().find(|(c, _)| *c == ch).map(|(_, v)| v.as_slice())
+    }
+
+    /// Number of samples.
+    pub fn len(&self) -> usize {
+        self.time_s.len()
+    }
+
+    /// Whether nothing was recorded.
+    pub fn is_empty(&self) -> bool {
+        self.time_s.is_empty()
+    }
+
+    /// The samples of the shear stage, if they are uniformly spaced.
+    pub fn uniform_shear(&self) -> Option<std::ops::Range<usize>> {
+        self.sampling.uniform.then_some(self.sampling.shear_start..self.len())
+    }
+}
+
+/// Collects the channels of one lane.
+pub(crate) struct Recorder {
+    pub(crate) records: Recording,
+    /// Step index of each sample (converted to time at the end).
+    pub(crate) steps: Vec<u64>,
+    /// Step of each slip onset and its node.
+    pub(crate) onset_steps: Vec<(u64, NodeId)>,
+    /// Skips as `(from step, to step, next transition)`.
+    pub(crate) skip_steps: Vec<(u64, u64, Transition)>,
+    control_nodes: Vec<usize>,
+    area: f64,
+}
+
+impl Recorder {
+    pub(crate) fn new(plan: &RecordPlan, model: &crate::model::Model, capacity: usize) -> Self {
+        let channels = Channel::of_plan(plan).into_iter().map(|c| (c, Vec::with_capacity(capacity))).collect();
+        let control = plan.control.iter().map(|&c| (c, Vec::with_capacity(capacity))).collect();
+        Recorder {
+            records: Recording {
+                time_s: Vec::with_capacity(capacity),
+                channels,
+                control,
+                onsets: Vec::new(),
+                skips: Vec::new(),
+                sampling: Sampling::default(),
+            },
+            onset_steps: Vec::new(),
+            skip_steps: Vec::new(),
+            steps: Vec::with_capacity(capacity),
+            control_nodes: plan.control.iter().map(|c| model.internal(c.node)).collect(),
+            area: model.lattice().contact_area(),
+        }
+    }
+
+    /// Records what `s` shows, step index `step`.
+    pub(crate) fn sample_view(&mut self, s: &impl Observed, step: u64) {
+        self.steps.push(step);
+        let needs_interface = self.records.channels.iter().any(|(c, _)| !Channel::ENERGY.contains(c));
+        let face = if needs_interface { s.interface() } else { Default::default() };
+        let energy = if self.records.channels.iter().any(|(c, _)| Channel::ENERGY.contains(c)) {
+            Some(s.energy())
+        } else {
+            None
+        };
+        for (ch, values) in &mut self.records.channels {
+            let e = || energy.expect("energy computed when an energy channel is recorded");
+            values.push(match ch {
+                Channel::ShearStress => -face.friction_x / self.area,
+                Channel::NormalStress => face.normal / self.area,
+                Channel::MeanSlip => face.mean_slip,
+                Channel::MeanSlipRate => face.mean_slip_rate,
+                Channel::MaxSlipRate => face.max_slip_rate,
+                Channel::SlippingNodes => face.slipping as f64,
+                Channel::LiftedNodes => face.lifted as f64,
+                Channel::DriverForce => s.driver_force(),
+                Channel::DriverDisplacement => s.driver_target(),
+                Channel::Kinetic => e().kinetic,
+                Channel::Elastic => e().elastic,
+                Channel::DampingDissipated => e().damping,
+                Channel::FrictionDissipated => e().friction,
+                Channel::ImpactDissipated => e().impact,
+                Channel::BodyWork => e().body_work,
+                Channel::DriverWork => e().driver_work,
+                Channel::ExternalWork => e().external_work(),
+                Channel::EnergyResidual => e().residual(),
+            });
+        }
+        for ((ch, values), &node) in self.records.control.iter_mut().zip(&self.control_nodes) {
+            values.push(s.kinematic(node, ch.quantity)[ch.component.axis()]);
+        }
+    }
+
+    /// Finishes: times from step indices, with `origin` the step index of shear time zero, `dt`
+    /// the time step and `stride` the steps between two samples of the shear stage.
+    pub(crate) fn finish(mut self, origin: u64, dt: f64, stride: u64) -> Recording {
+        let shear_start = self.steps.partition_point(|&s| s < origin);
+        let uniform = self.steps[shear_start..].windows(2).all(|w| w[1] - w[0] == stride);
+        self.records.sampling = Sampling { step_s: dt, stride, shear_start, uniform };
+        self.records.time_s = self.steps.iter().map(|&s| (s as f64 - origin as f64) * dt).collect();
+        self.records.onsets = self.onset_steps.iter().map(|&(s, n)| ((s as f64 - origin as f64) * dt, n)).collect();
+        let t = |s: u64| (s as f64 - origin as f64) * dt;
+        self.records.skips = self
+            .skip_steps
+            .iter()
+            .map(|&(from, to, next)| Skip { from_s: t(from), to_s: t(to), steps: to - from, next })
+            .collect();
+        self.records
+    }
+}

@@ -1,0 +1,331 @@
+//! `L` seeds side by side through the two loading stages: one [`Lane`] per seed, one stepper.
+
+use std::ops::ControlFlow;
+
+use crate::error::SolverError;
+use crate::field::Field;
+use crate::model::Model;
+use crate::quasistatic::{SKIP_CHECK_EVERY, ShearClock, SkipStats, Skipper, settle_statically};
+use crate::recording::Recorder;
+use crate::run::{RunOptions, RunOutput, prepare};
+use crate::scene::SettleMethod;
+use crate::statics::CriticalStep;
+use crate::step::{LaneView, Params, State, Stepper, Tracking, park, start_drivers};
+
+/// Steps between two blow-up checks.
+const BLOWUP_CHECK_EVERY: u64 = 16;
+/// Steps between two equilibrium checks in the self-weight stage.
+const SETTLE_CHECK_EVERY: u64 = 8;
+/// Steps between two progress reports.
+const PROGRESS_EVERY: u64 = 512;
+
+/// Where a lane is.
+enum Stage {
+    /// Loading stage 1, until static equilibrium or `max_steps`.
+    Settling { max_steps: u64 },
+    /// Loading stage 2: `origin` is the step of shear time zero, `steps` the stage's length,
+    /// `stride` the steps between two samples.
+    Shearing { origin: u64, steps: u64, stride: u64 },
+    /// Finished.
+    Done { origin: u64, stride: u64 },
+    /// Stopped, and why.
+    Failed(SolverError),
+}
+
+impl Stage {
+    fn running(&self) -> bool {
+        matches!(self, Stage::Settling { .. } | Stage::Shearing { .. })
+    }
+}
+
+/// One seed of a batch.
+struct Lane {
+    seed: u64,
+    stage: Stage,
+    critical: Option<CriticalStep>,
+    recorder: Option<Recorder>,
+    settle_steps: u64,
+    settled_by: SettleMethod,
+    settle_note: Option<String>,
+    skipper: Option<Skipper>,
+}
+
+impl Lane {
+    fn fail<const L: usize>(&mut self, e: SolverError, p: &mut Params<'_, L>, s: &mut State<L>, l: usize) {
+        self.stage = Stage::Failed(e);
+        park(p, s, l);
+    }
+}
+
+/// Runs `L` seeds side by side through the same model (lane `l` gives the same numbers as
+/// [`crate::run::run_seed`] of `seeds[l]`). A lane that fails does not stop the others. The
+/// quasi-static skip-ahead works with `L = 1` only; wider batches integrate every step.
+pub fn run_lanes<const L: usize>(
+    model: &Model,
+    seeds: [u64; L],
+    options: RunOptions,
+    progress: &mut dyn FnMut(f64) -> ControlFlow<()>,
+) -> [Result<RunOutput, SolverError>; L] {
+    let scene = model.scene();
+    let prepared = seeds.map(|seed| prepare(model, seed, options));
+    // Failed lanes still occupy a lane: give them a harmless set-up and park them.
+    let fallback = prepared.iter().find_map(|p| p.as_ref().ok().map(|(s, _)| s.clone()));
+    let Some(fallback) = fallback else {
+        return prepared.map(|p| p.map(|_| unreachable!("every lane failed")));
+    };
+    let setups = prepared.each_ref().map(|p| p.as_ref().map(|(s, _)| s.clone()).unwrap_or_else(|_| fallback.clone()));
+    let mut params = Params::<L>::new(model, &setups);
+    let mut state = State::<L>::at_rest(model.node_count(), model.contact().len(), model.drivers().len());
+    let mut stepper = Stepper::<L>::new(model);
+    let skipping = scene.skip_ahead.enabled && L == 1;
+    stepper.set_parallel(options.parallel_step);
+    stepper.set_tracking(Tracking { energy: scene.record.energy, onsets: scene.record.slip_onsets, slid: skipping });
+    let sw = scene.self_weight;
+    let weight_norm: f64 = model.mass().iter().map(|m| m * m).sum::<f64>().sqrt() * sw.gravity_m_s2;
+    let mut lanes: [Lane; L] = std::array::from_fn(|l| Lane {
+        seed: seeds[l],
+        stage: Stage::Settling { max_steps: (sw.max_duration_s / setups[l].dt_s).ceil() as u64 },
+        critical: None,
+        recorder: None,
+        settle_steps: 0,
+        settled_by: SettleMethod::Dynamic,
+        settle_note: None,
+        skipper: None,
+    });
+    for (l, p) in prepared.into_iter().enumerate() {
+        let lane = &mut lanes[l];
+        match p {
+            Ok((setup, critical)) => {
+                lane.critical = Some(critical);
+                let dt = setup.dt_s;
+                let stride = stride(scene.record.interval_s, dt);
+                let shear_steps = whole_steps(scene.shear.duration_s, dt);
+                // Reserve for the whole stage, up to a million samples (long runs grow as they go).
+                let capacity = (shear_steps / stride).min(1 << 20) as usize + 2;
+                lane.recorder = Some(Recorder::new(&scene.record, model, capacity));
+                params.set_damping(l, sw.damping_per_s);
+                params.set_body_acceleration(l, [0.0, 0.0, -sw.gravity_m_s2]);
+                if skipping {
+                    lane.skipper = Some(Skipper::new(model, setup.stiffness.clone(), &setup.friction));
+                }
+                if sw.method == SettleMethod::Static && sw.gravity_m_s2 > 0.0 {
+                    match settle_statically(model, &setup.stiffness, &setup.friction, sw.gravity_m_s2) {
+                        Ok(Ok(st)) => {
+                            start_at_rest(&params, &mut state, l, &st.u, &st.reactions);
+                            lane.settled_by = SettleMethod::Static;
+                            lane.stage = start_shear(&mut params, &mut state, l);
+                        }
+                        Ok(Err(why)) => lane.settle_note = Some(why),
+                        Err(e) => lane.settle_note = Some(e.to_string()),
+                    }
+                }
+            }
+            Err(e) => lane.fail(e, &mut params, &mut state, l),
+        }
+    }
+    // No gravity: nothing to settle.
+    if sw.gravity_m_s2 == 0.0 {
+        for (l, lane) in lanes.iter_mut().enumerate() {
+            if matches!(lane.stage, Stage::Settling { .. }) {
+                lane.stage = start_shear(&mut params, &mut state, l);
+            }
+        }
+    }
+
+    while lanes.iter().any(|lane| lane.stage.running()) {
+        // Driver targets for the step about to compute u_{S+1}.
+        let next = state.steps + 1;
+        for (l, lane) in lanes.iter().enumerate() {
+            if let Stage::Shearing { origin, .. } = lane.stage {
+                let t = (next - origin) as f64 * params.dt(l);
+                state.drivers.target[l] = scene.shear.driver_displacement(t);
+            }
+        }
+        stepper.step(&params, &mut state);
+        let view = state.steps - 1;
+        for (l, lane) in lanes.iter_mut().enumerate() {
+            if !lane.stage.running() {
+                continue;
+            }
+            if view.is_multiple_of(BLOWUP_CHECK_EVERY)
+                && let Some(b) = (LaneView { params: &params, state: &state, lane: l }).check_blowup()
+            {
+                let (origin, stage_name) = match lane.stage {
+                    Stage::Shearing { origin, .. } => (origin, "shear stage"),
+                    _ => (0, "self-weight stage"),
+                };
+                let id = model.canonical(b.node);
+                let p = model.lattice().position(id);
+                let dt = params.dt(l);
+                let crit = lane.critical.map_or(f64::NAN, |c| c.dt_s);
+                let e = SolverError::Unstable {
+                    step: view,
+                    time_s: (view as f64 - origin as f64) * dt,
+                    stage: stage_name,
+                    what: b.what,
+                    node: format!("({:.4}, {:.4}, {:.4}) m", p[0], p[1], p[2]),
+                    ldem: id.ldem(),
+                    dt_s: dt,
+                    fraction: dt / crit,
+                };
+                lane.fail(e, &mut params, &mut state, l);
+                continue;
+            }
+            if scene.record.slip_onsets {
+                let from = match lane.stage {
+                    Stage::Shearing { origin, .. } => Some(origin),
+                    Stage::Settling { .. } if scene.record.settling => Some(0),
+                    _ => None,
+                };
+                let contact = model.contact();
+                for (step, ci) in state.drain_onsets(l) {
+                    if let (Some(from), Some(r)) = (from, lane.recorder.as_mut())
+                        && step >= from
+                    {
+                        r.onset_steps.push((step, model.canonical(contact[ci as usize] as usize)));
+                    }
+                }
+            }
+            match lane.stage {
+                Stage::Settling { max_steps } => {
+                    if scene.record.settling
+                        && let Some(r) = lane.recorder.as_mut()
+                    {
+                        r.sample_view(&LaneView { params: &params, state: &state, lane: l }, view);
+                    }
+                    if view.is_multiple_of(SETTLE_CHECK_EVERY) && view > 0 {
+                        let ratio = LaneView { params: &params, state: &state, lane: l }.out_of_balance() / weight_norm;
+                        if ratio < sw.settle_tolerance {
+                            lane.settle_steps = state.steps;
+                            lane.stage = start_shear(&mut params, &mut state, l);
+                        } else if view >= max_steps {
+                            let e = SolverError::NotSettled {
+                                max_s: sw.max_duration_s,
+                                residual: ratio,
+                                tolerance: sw.settle_tolerance,
+                            };
+                            lane.fail(e, &mut params, &mut state, l);
+                        }
+                    }
+                }
+                Stage::Shearing { origin, steps, stride } => {
+                    let j = view - origin;
+                    if let Some(p) = options.perturb
+                        && j == (p.at_s / params.dt(l)).ceil().max(0.0) as u64
+                    {
+                        state.scale_lane(l, 1.0 + p.relative);
+                    }
+                    let recorder = lane.recorder.as_mut().expect("recorder of a running lane");
+                    if j.is_multiple_of(stride) || j >= steps {
+                        recorder.sample_view(&LaneView { params: &params, state: &state, lane: l }, view);
+                    }
+                    if j >= steps {
+                        lane.stage = Stage::Done { origin, stride };
+                    } else if let Some(skipper) = lane.skipper.as_mut()
+                        && j.is_multiple_of(SKIP_CHECK_EVERY)
+                        && options.max_jumps.is_none_or(|m| skipper.stats.jumps < m)
+                    {
+                        let skip_stride = scene.skip_ahead.record_interval_s.map_or(stride, |iv| {
+                            let interval = scene.record.interval_s.unwrap_or(iv);
+                            stride * ((iv / interval).round() as u64).max(1)
+                        });
+                        let clock = ShearClock { origin, end: origin + steps, stride: skip_stride };
+                        let track_energy = stepper.tracking().energy;
+                        if let Err(e) = skipper.look(&params, &mut state, l, &clock, recorder, track_energy) {
+                            lane.fail(e, &mut params, &mut state, l);
+                        }
+                    }
+                }
+                Stage::Done { .. } | Stage::Failed(_) => {}
+            }
+        }
+        if state.steps.is_multiple_of(PROGRESS_EVERY) {
+            let fraction = lanes
+                .iter()
+                .map(|lane| match lane.stage {
+                    Stage::Settling { .. } => 0.0,
+                    Stage::Shearing { origin, steps, .. } => ((state.steps - origin) as f64 / steps as f64).min(1.0),
+                    Stage::Done { .. } | Stage::Failed(_) => 1.0,
+                })
+                .sum::<f64>()
+                / L as f64;
+            if progress(fraction).is_break() {
+                for (l, lane) in lanes.iter_mut().enumerate() {
+                    if lane.stage.running() {
+                        lane.fail(SolverError::Cancelled, &mut params, &mut state, l);
+                    }
+                }
+            }
+        }
+    }
+
+    lanes.map(|lane| match lane.stage {
+        Stage::Done { origin, stride } => {
+            let l = seeds.iter().position(|&s| s == lane.seed).expect("lane of its seed");
+            let dt = params.dt(l);
+            let recorder = lane.recorder.expect("recorder of a finished lane");
+            let shear_steps = recorder.steps.last().map_or(0, |&s| s - origin);
+            Ok(RunOutput {
+                seed: lane.seed,
+                dt_s: dt,
+                critical: lane.critical.expect("critical step of a finished lane"),
+                settle_time_s: lane.settle_steps as f64 * dt,
+                settle_steps: lane.settle_steps,
+                shear_steps,
+                settled_by: lane.settled_by,
+                settle_note: lane.settle_note,
+                skip: lane.skipper.as_ref().map_or_else(SkipStats::default, |s| s.stats),
+                recording: recorder.finish(origin, dt, stride),
+            })
+        }
+        Stage::Failed(e) => Err(e),
+        Stage::Settling { .. } | Stage::Shearing { .. } => unreachable!("the loop ends when no lane is running"),
+    })
+}
+
+/// Puts lane `l` at rest in a static equilibrium `u` (every base node sticking, or lifted where
+/// its normal reaction is zero) as if the loads had been applied slowly: gravity's work so far
+/// is `½·f·u`, the strain energy.
+fn start_at_rest<const L: usize>(
+    params: &Params<'_, L>,
+    state: &mut State<L>,
+    l: usize,
+    u: &Field<1>,
+    reactions: &Field<1>,
+) {
+    let model = params.model;
+    let contact = model.contact();
+    let steps = state.steps;
+    state.set_lane(
+        l,
+        steps,
+        |_, i, c| u.c[c][i][0],
+        |ci| [0, 1, 2].map(|c| reactions.c[c][contact[ci] as usize][0]),
+        |_| 0.0,
+        0.0,
+    );
+    let b = params.body_acceleration(l);
+    let mass = model.mass();
+    let work: f64 = (0..model.node_count()).map(|i| (0..3).map(|c| mass[i] * b[c] * u.c[c][i][0]).sum::<f64>()).sum();
+    state.energy[l].body_work = 0.5 * work;
+}
+
+fn start_shear<const L: usize>(params: &mut Params<'_, L>, state: &mut State<L>, l: usize) -> Stage {
+    let model = params.model;
+    let scene = model.scene();
+    params.set_damping(l, scene.shear.damping_per_s);
+    start_drivers(model, state, l);
+    let dt = params.dt(l);
+    let stride = stride(scene.record.interval_s, dt);
+    Stage::Shearing { origin: state.steps, steps: whole_steps(scene.shear.duration_s, dt), stride }
+}
+
+/// Steps between two samples (Δt was fitted to the interval in `prepare`).
+fn stride(interval_s: Option<f64>, dt: f64) -> u64 {
+    interval_s.map_or(1, |iv| ((iv / dt).round() as u64).max(1))
+}
+
+/// Steps to cover `duration` (rounded up, ignoring round-off of a duration that is a multiple).
+fn whole_steps(duration: f64, dt: f64) -> u64 {
+    (duration / dt * (1.0 - 1e-12)).ceil() as u64
+}

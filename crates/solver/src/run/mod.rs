@@ -1,0 +1,149 @@
+//! Running a scene: per-seed random fields and critical steps, the self-weight stage until
+//! equilibrium, the shear stage with its driver, recording, stability checks.
+
+mod lanes;
+
+use std::ops::ControlFlow;
+
+use crate::error::SolverError;
+use crate::model::Model;
+use crate::quasistatic::SkipStats;
+use crate::recording::Recording;
+use crate::scene::{SettleMethod, TimeStep};
+use crate::statics::{CriticalStep, critical_time_step};
+use crate::step::LaneSetup;
+
+pub use lanes::run_lanes;
+
+/// Options that are not part of the physics.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct RunOptions {
+    /// Run even if a fixed `time.dt_s` is above the critical step (only to test that the
+    /// blow-up is caught; a normal run refuses it).
+    pub allow_unstable_time_step: bool,
+    /// Split each step over the threads of the current rayon pool (large lattices only: a
+    /// lattice cut into slabs, see [`crate::step::bars::BarLayout`]); the numbers are the same.
+    pub parallel_step: bool,
+    /// With `[skip_ahead]` on, stop skipping after this many jumps (to compare a jump with
+    /// integrating through it from the same state).
+    pub max_jumps: Option<u64>,
+    /// Scale the displacement state by `1 + relative` at shear time `at_s` (the first step at
+    /// or after it): a perturbation for sensitivity studies.
+    pub perturb: Option<Perturbation>,
+}
+
+/// A relative perturbation of the displacement state at one instant of the shear stage.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Perturbation {
+    /// Shear-stage time (s).
+    pub at_s: f64,
+    /// Relative change of every displacement.
+    pub relative: f64,
+}
+
+/// Seeds advanced side by side in one batch (the widest lane count, eight `f64` = one AVX-512
+/// register per node component).
+pub const BATCH: usize = 8;
+
+/// Runs `seeds` in batches of [`BATCH`], then 4, then one at a time for the rest: every seed
+/// gives the same numbers as [`run_seed`] (lanes are independent), several seeds share each
+/// pass over the lattice. Results are in the order of `seeds`. With `[skip_ahead]` on, every
+/// seed runs alone (a jump moves the whole stepper in time).
+pub fn run_batched(
+    model: &Model,
+    seeds: &[u64],
+    options: RunOptions,
+    progress: &mut dyn FnMut(f64) -> ControlFlow<()>,
+) -> Vec<Result<RunOutput, SolverError>> {
+    let mut out = Vec::with_capacity(seeds.len());
+    let mut rest = seeds;
+    let single = model.scene().skip_ahead.enabled;
+    while !rest.is_empty() {
+        if single {
+            out.extend(run_lanes::<1>(model, [rest[0]], options, progress));
+            rest = &rest[1..];
+        } else if rest.len() >= BATCH {
+            let chunk: [u64; BATCH] = rest[..BATCH].try_into().expect("length checked");
+            out.extend(run_lanes::<BATCH>(model, chunk, options, progress));
+            rest = &rest[BATCH..];
+        } else if rest.len() >= 4 {
+            let chunk: [u64; 4] = rest[..4].try_into().expect("length checked");
+            out.extend(run_lanes::<4>(model, chunk, options, progress));
+            rest = &rest[4..];
+        } else {
+            out.extend(run_lanes::<1>(model, [rest[0]], options, progress));
+            rest = &rest[1..];
+        }
+    }
+    out
+}
+
+/// What one seed's run produced.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunOutput {
+    /// Seed of the random fields.
+    pub seed: u64,
+    /// Time step used (s).
+    pub dt_s: f64,
+    /// Critical step of this seed's lattice (s).
+    pub critical: CriticalStep,
+    /// Duration of the self-weight stage (s).
+    pub settle_time_s: f64,
+    /// Steps of the self-weight stage.
+    pub settle_steps: u64,
+    /// Steps of the shear stage (integrated or skipped).
+    pub shear_steps: u64,
+    /// How the self-weight stage reached equilibrium.
+    pub settled_by: SettleMethod,
+    /// Why a static settle asked for was not used (the run settled dynamically instead).
+    pub settle_note: Option<String>,
+    /// What the quasi-static skip-ahead did (zeros when off).
+    pub skip: SkipStats,
+    /// Recorded series.
+    pub recording: Recording,
+}
+
+impl RunOutput {
+    /// All steps, integrated or skipped.
+    pub fn steps(&self) -> u64 {
+        self.settle_steps + self.shear_steps
+    }
+
+    /// Steps actually integrated.
+    pub fn integrated_steps(&self) -> u64 {
+        self.steps() - self.skip.skipped_steps
+    }
+}
+
+/// Runs one seed. `progress` receives the fraction done (0..1) now and then and may stop the
+/// run by returning `ControlFlow::Break(())`.
+pub fn run_seed(
+    model: &Model,
+    seed: u64,
+    options: RunOptions,
+    progress: &mut dyn FnMut(f64) -> ControlFlow<()>,
+) -> Result<RunOutput, SolverError> {
+    let [out] = run_lanes::<1>(model, [seed], options, progress);
+    out
+}
+
+pub(crate) fn prepare(model: &Model, seed: u64, options: RunOptions) -> Result<(LaneSetup, CriticalStep), SolverError> {
+    let stiffness = model.bar_stiffness(seed)?;
+    let friction = model.friction_factors(seed)?;
+    let critical = critical_time_step(model, &stiffness)?;
+    let mut dt_s = match model.scene().time_step {
+        TimeStep::Fraction(f) => f * critical.dt_s,
+        TimeStep::Fixed(dt) => {
+            if dt > critical.dt_s && !options.allow_unstable_time_step {
+                return Err(SolverError::TimeStepAboveCritical { dt_s: dt, critical_s: critical.dt_s, seed });
+            }
+            dt
+        }
+    };
+    // A recording interval is a whole number of steps: lower Δt (never raise it) to fit.
+    if let Some(interval) = model.scene().record.interval_s {
+        let k = (interval / dt_s * (1.0 - 1e-12)).ceil().max(1.0);
+        dt_s = interval / k;
+    }
+    Ok((LaneSetup { dt_s, stiffness, friction }, critical))
+}

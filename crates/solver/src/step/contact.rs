@@ -1,0 +1,223 @@
+//! Contact of the base nodes with the rigid base (docs/model.md §4): unilateral in z, friction in
+//! x and y by the scene's [`Law`].
+//!
+//! Per contact node, from its trial position `(x_t, y_t, z_t)` (the step's update without the
+//! base) and its position now `(x_n, y_n)`, with `g = m(1 + DΔt/2)/Δt²` the stiffness of the
+//! update (a displacement `δ` of the trial costs a force `g·δ`):
+//! - **lifted** if `z_t ≥ 0`: the trial stands, no reaction;
+//! - otherwise put back on the base, `N = −z_t·g`, and the tangential reaction needed to hold it
+//!   still is `R = (x_n − x_t, y_n − y_t)·g`. It **sticks** (stays at `(x_n, y_n)`, reaction `R`)
+//!   if `|R| ≤ μ_hold·N`, `μ_hold` being μs if it was sticking and its kinetic coefficient if it
+//!   was sliding; else it **slides** with friction `μ_k·N` along `R` (against the trial motion),
+//!   to `(x_t, y_t) + F/g`, and its slip path grows by the distance it moved. A sliding node whose
+//!   needed reaction falls within `μ_k·N` would reverse within the step, so it sticks (and heals).
+//!
+//! [`resolve`] is this rule for one node in plain scalar code; [`apply`] runs it for every contact
+//! node and `L` seeds side by side without branches (each lane takes its result by selection, so a
+//! lane's arithmetic does not depend on its neighbours), compiled for every instruction set; the
+//! two are tested bit for bit against each other.
+
+use crate::field::{Field, Lanes};
+use crate::laws::{FrictionLaw, Law, NodeFriction};
+use crate::step::isa::{Isa, widest};
+use crate::step::params::Params;
+use crate::step::state::{ContactState, SlipLog};
+
+/// Steps a contact node must slide in a row for its slip to count as an onset.
+pub const SUSTAINED_SLIP_STEPS: u32 = 10;
+
+/// The base's verdict on one contact node for one step.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Resolved {
+    /// Position after the step (m).
+    pub position: [f64; 3],
+    /// Reaction of the base: friction x, friction y, normal (N).
+    pub reaction: [f64; 3],
+    /// Whether the node slides.
+    pub sliding: bool,
+    /// Slip of the current slide (m), zero unless sliding.
+    pub slip_path: f64,
+}
+
+/// The contact rule for one node (see the module doc): `trial` is the position the step would
+/// give without the base, `now` the node's `(x, y)` before the step, `g = m(1 + DΔt/2)/Δt²`,
+/// `sliding` and `path` its state from the last step.
+pub fn resolve<F: Law>(
+    law: &F,
+    node: &NodeFriction,
+    g: f64,
+    trial: [f64; 3],
+    now: [f64; 2],
+    sliding: bool,
+    path: f64,
+) -> Resolved {
+    if !(trial[2] < 0.0) {
+        return Resolved { position: trial, reaction: [0.0; 3], sliding: false, slip_path: 0.0 };
+    }
+    let normal = -trial[2] * g;
+    let (rx, ry) = ((now[0] - trial[0]) * g, (now[1] - trial[1]) * g);
+    let need = (rx * rx + ry * ry).sqrt();
+    let mu_k = law.kinetic(node, path);
+    if need <= law.holding(node, sliding, mu_k) * normal {
+        return Resolved {
+            position: [now[0], now[1], 0.0],
+            reaction: [rx, ry, normal],
+            sliding: false,
+            slip_path: 0.0,
+        };
+    }
+    let scale = mu_k * normal / need;
+    let (fx, fy) = (rx * scale, ry * scale);
+    let (x1, y1) = (trial[0] + fx / g, trial[1] + fy / g);
+    let (sx, sy) = (x1 - now[0], y1 - now[1]);
+    Resolved {
+        position: [x1, y1, 0.0],
+        reaction: [fx, fy, normal],
+        sliding: true,
+        slip_path: path + (sx * sx + sy * sy).sqrt(),
+    }
+}
+
+/// What the lane kernel reads and writes.
+pub(crate) struct ContactArrays<'a, const L: usize> {
+    pub mass: &'a [f64],
+    pub nodes: &'a [u32],
+    pub cf: &'a Lanes<L>,
+    pub mu_s: &'a [Lanes<L>],
+    pub mu_d: &'a [Lanes<L>],
+    /// Trial positions (overwritten with the result).
+    pub trial: [&'a mut Vec<Lanes<L>>; 3],
+    /// Positions before the step, x and y.
+    pub now: [&'a Vec<Lanes<L>>; 2],
+    pub sliding: &'a mut [[bool; L]],
+    pub slip_path: &'a mut [Lanes<L>],
+    pub reaction: &'a mut [Vec<Lanes<L>>; 3],
+}
+
+/// Applies the contact rule to every contact node and lane: `trial` holds the trial positions
+/// (the result is written over them), `now` the positions before the step; updates the contact
+/// state and, when asked, the slip log (`step` is the step being taken).
+pub(crate) fn apply<const L: usize>(
+    p: &Params<'_, L>,
+    trial: &mut Field<L>,
+    now: &Field<L>,
+    contact: &mut ContactState<L>,
+    log: Option<(&mut SlipLog<L>, bool, bool, u64)>,
+) {
+    let model = p.model;
+    let [tx, ty, tz] = &mut trial.c;
+    let mut c = ContactArrays {
+        mass: model.mass(),
+        nodes: model.contact(),
+        cf: &p.coefficients().cf,
+        mu_s: &p.mu_static,
+        mu_d: &p.mu_dynamic,
+        trial: [tx, ty, tz],
+        now: [&now.c[0], &now.c[1]],
+        sliding: &mut contact.sliding,
+        slip_path: &mut contact.slip_path,
+        reaction: &mut contact.reaction,
+    };
+    let isa = Isa::current();
+    match p.law {
+        FrictionLaw::Coulomb(law) => contact_dispatch(isa, &mut c, law),
+        FrictionLaw::StaticDynamic(law) => contact_dispatch(isa, &mut c, law),
+        FrictionLaw::SlipWeakening(law) => contact_dispatch(isa, &mut c, law),
+    }
+    let Some((log, track_slid, track_onsets, step)) = log else { return };
+    if track_slid {
+        for (any, now) in log.slid.iter_mut().zip(&contact.sliding) {
+            for l in 0..L {
+                any[l] |= now[l];
+            }
+        }
+    }
+    if track_onsets {
+        for ci in 0..contact.sliding.len() {
+            for l in 0..L {
+                let run = &mut log.run[ci][l];
+                if contact.sliding[ci][l] {
+                    *run += 1;
+                    if *run == SUSTAINED_SLIP_STEPS {
+                        log.onsets[l].push((step + 1 - u64::from(SUSTAINED_SLIP_STEPS), ci as u32));
+                    }
+                } else {
+                    *run = 0;
+                }
+            }
+        }
+    }
+}
+
+widest! {
+    /// The contact update of every contact node in instruction set `isa`.
+    fn contact_dispatch<const L: usize, F: Law>(c: &mut ContactArrays<'_, L>, law: F) => contact
+}
+
+/// [`resolve`] for every contact node, `L` lanes at once without branches.
+#[inline(always)]
+fn contact<const L: usize, F: Law>(c: &mut ContactArrays<'_, L>, law: F) {
+    for (ci, &node) in c.nodes.iter().enumerate() {
+        let p = node as usize;
+        let m = c.mass[p];
+        let (xt, yt, zt) = (c.trial[0][p], c.trial[1][p], c.trial[2][p]);
+        let (xn, yn) = (c.now[0][p], c.now[1][p]);
+        let (slipping, path) = (c.sliding[ci], c.slip_path[ci]);
+        let (mu_s, mu_d) = (c.mu_s[ci], c.mu_d[ci]);
+        let (mut ox, mut oy, mut oz) = ([0.0; L], [0.0; L], [0.0; L]);
+        let (mut rxo, mut ryo, mut no) = ([0.0; L], [0.0; L], [0.0; L]);
+        let (mut slip_o, mut path_o) = ([false; L], [0.0; L]);
+        for l in 0..L {
+            let g = m / c.cf[l];
+            let touching = zt[l] < 0.0;
+            let normal = -zt[l] * g;
+            let (rx, ry) = ((xn[l] - xt[l]) * g, (yn[l] - yt[l]) * g);
+            let need = (rx * rx + ry * ry).sqrt();
+            let node = NodeFriction { mu_static: mu_s[l], mu_dynamic: mu_d[l] };
+            let mu_k = law.kinetic(&node, path[l]);
+            let limit = law.holding(&node, slipping[l], mu_k) * normal;
+            let stick = need <= limit;
+            // Sliding: friction μ_k·N against the trial motion (unused when sticking).
+            let scale = mu_k * normal / need;
+            let (fx, fy) = (rx * scale, ry * scale);
+            let (x1, y1) = (xt[l] + fx / g, yt[l] + fy / g);
+            let (sx, sy) = (x1 - xn[l], y1 - yn[l]);
+            let slides = touching && !stick;
+            ox[l] = if !touching {
+                xt[l]
+            } else if stick {
+                xn[l]
+            } else {
+                x1
+            };
+            oy[l] = if !touching {
+                yt[l]
+            } else if stick {
+                yn[l]
+            } else {
+                y1
+            };
+            oz[l] = if touching { 0.0 } else { zt[l] };
+            rxo[l] = if !touching {
+                0.0
+            } else if stick {
+                rx
+            } else {
+                fx
+            };
+            ryo[l] = if !touching {
+                0.0
+            } else if stick {
+                ry
+            } else {
+                fy
+            };
+            no[l] = if touching { normal } else { 0.0 };
+            slip_o[l] = slides;
+            path_o[l] = if slides { path[l] + (sx * sx + sy * sy).sqrt() } else { 0.0 };
+        }
+        (c.trial[0][p], c.trial[1][p], c.trial[2][p]) = (ox, oy, oz);
+        (c.reaction[0][ci], c.reaction[1][ci], c.reaction[2][ci]) = (rxo, ryo, no);
+        (c.sliding[ci], c.slip_path[ci]) = (slip_o, path_o);
+    }
+}

@@ -1,0 +1,137 @@
+//! Energy of the run (docs/model.md §2): strain and kinetic energy of a state, and the work and
+//! dissipation accumulated step by step, so that the balance closes to round-off.
+//!
+//! Every force's work over step n is `F·(uₙ₊₁ − uₙ₋₁)/2`; the kinetic energy is
+//! `½m|uₙ₊₁ − uₙ|²/Δt²` and the strain energy `½uₙᵀKuₙ₊₁`: the pair central differences conserve
+//! exactly.
+
+use crate::field::{Field, Lanes};
+use crate::geometry::Direction;
+use crate::layout::BarLayout;
+use crate::model::Model;
+use crate::step::params::Params;
+use crate::step::state::State;
+
+/// Cumulative energy terms of one lane (J), all measured from the start of the run.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Energy {
+    /// `½ Σ m|uₙ₊₁ − uₙ|²/Δt²`.
+    pub kinetic: f64,
+    /// `½ uₙᵀ K uₙ₊₁`.
+    pub elastic: f64,
+    /// Dissipated by mass-proportional damping.
+    pub damping: f64,
+    /// Dissipated by base friction.
+    pub friction: f64,
+    /// Lost in inelastic landings on the base.
+    pub impact: f64,
+    /// Work of body forces (gravity, body-force loads).
+    pub body_work: f64,
+    /// Work of the drivers.
+    pub driver_work: f64,
+}
+
+impl Energy {
+    /// Body plus driver work.
+    pub fn external_work(&self) -> f64 {
+        self.body_work + self.driver_work
+    }
+
+    /// External work minus everything stored and dissipated (zero up to round-off).
+    pub fn residual(&self) -> f64 {
+        self.external_work() - (self.kinetic + self.elastic + self.damping + self.friction + self.impact)
+    }
+}
+
+/// `½ Σ_b k_b·e_b(a)·e_b(b)` for lane `l`: the strain energy `½aᵀKb` (J). With `a = b` it is the
+/// strain energy of one state; with `a = uₙ`, `b = uₙ₊₁` it is the energy the central-difference
+/// scheme conserves exactly.
+pub fn strain_energy<const L: usize>(layout: &BarLayout, k: &[Lanes<L>], a: &Field<L>, b: &Field<L>, l: usize) -> f64 {
+    let ends = layout.ends();
+    let mut total = 0.0;
+    for g in layout.groups() {
+        let range = g.start..g.end;
+        let mut sum = 0.0;
+        match g.direction {
+            Direction::Axis(ax) => {
+                let (ca, cb) = (&a.c[ax as usize], &b.c[ax as usize]);
+                for (e, kb) in ends[range.clone()].iter().zip(&k[range]) {
+                    let (i, j) = (e[0] as usize, e[1] as usize);
+                    sum += kb[l] * (ca[j][l] - ca[i][l]) * (cb[j][l] - cb[i][l]);
+                }
+            }
+            Direction::Diagonal { neg_x, neg_y } => {
+                let (sx, sy) = (if neg_x { -1.0 } else { 1.0 }, if neg_y { -1.0 } else { 1.0 });
+                let proj = |u: &Field<L>, i: usize, j: usize| {
+                    sx * (u.c[0][j][l] - u.c[0][i][l])
+                        + sy * (u.c[1][j][l] - u.c[1][i][l])
+                        + (u.c[2][j][l] - u.c[2][i][l])
+                };
+                for (e, kb) in ends[range.clone()].iter().zip(&k[range]) {
+                    let (i, j) = (e[0] as usize, e[1] as usize);
+                    sum += kb[l] * proj(a, i, j) * proj(b, i, j);
+                }
+            }
+        }
+        total += sum;
+    }
+    0.5 * total
+}
+
+/// `½ Σ m|a − b|²/Δt²` for lane `l` (J).
+pub fn kinetic_energy<const L: usize>(model: &Model, a: &Field<L>, b: &Field<L>, l: usize, dt: f64) -> f64 {
+    let mass = model.mass();
+    let mut ke = 0.0;
+    for c in 0..3 {
+        let (a, b) = (&a.c[c], &b.c[c]);
+        for i in 0..mass.len() {
+            let v = a[i][l] - b[i][l];
+            ke += mass[i] * v * v;
+        }
+    }
+    0.5 * ke / (dt * dt)
+}
+
+/// Adds the work and dissipation of step n, `F·(uₙ₊₁ − uₙ₋₁)/2` for every force, to the
+/// accumulators. Called before the commit, when `state.u.nm1` holds the new uₙ₊₁ and `state.u.n`
+/// holds uₙ₋₁.
+pub(crate) fn accumulate<const L: usize>(p: &Params<'_, L>, state: &mut State<L>) {
+    let State { u, contact, drivers, energy, .. } = state;
+    let (new, old) = (&u.nm1, &u.n);
+    let model = p.model;
+    let mass = model.mass();
+    let mut damp = [0.0; L];
+    let mut body = [0.0; L];
+    for c in 0..3 {
+        let (new, old) = (&new.c[c], &old.c[c]);
+        let bc = p.body()[c];
+        for i in 0..mass.len() {
+            for l in 0..L {
+                let d2 = new[i][l] - old[i][l];
+                damp[l] += mass[i] * d2 * d2;
+                body[l] += mass[i] * bc[l] * d2;
+            }
+        }
+    }
+    for l in 0..L {
+        let e = &mut energy[l];
+        e.damping += damp[l] * p.damping(l) / (4.0 * p.dt(l));
+        e.body_work += 0.5 * body[l];
+    }
+    let reaction = &contact.reaction;
+    for (ci, &node) in model.contact().iter().enumerate() {
+        let i = node as usize;
+        for l in 0..L {
+            let d2 = |c: usize| new.c[c][i][l] - old.c[c][i][l];
+            let e = &mut energy[l];
+            e.friction -= 0.5 * (reaction[0][ci][l] * d2(0) + reaction[1][ci][l] * d2(1));
+            e.impact -= 0.5 * reaction[2][ci][l] * d2(2);
+        }
+    }
+    for (d, &node) in model.drivers().iter().enumerate() {
+        let i = node as usize;
+        for l in 0..L {
+            energy[l].driver_work += 0.5 * drivers.reaction[d][l] * (new.c[0][i][l] - old.c[0][i][l]);
+        }
+    }
+}

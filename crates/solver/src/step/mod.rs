@@ -1,0 +1,207 @@
+//! Explicit central differences with mass-proportional damping, rollers, drivers and the
+//! frictional base (docs/model.md §2, §4), advancing `L` seeds side by side.
+//!
+//! Three things apart: the [`State`] (time levels, contact, drivers, energy: what evolves), the
+//! [`Params`] (model, stiffness and friction of each seed, time step, damping, body force: what
+//! the step reads) and the [`Stepper`] (scratch memory and what to track).
+//!
+//! One step, in this order: `bar_forces → integrate (trial) → rollers → drivers → contact →
+//! energy (if tracked) → commit` (on cache-blocked lattices the first two are one pass: each
+//! node is integrated right after its last bar). The trial update is
+//! `u⁺ = [Δt²(f/m + b) + 2u − (1 − DΔt/2)u⁻] / (1 + DΔt/2)`; every constraint then replaces the
+//! trial value of its component and its reaction `R = m(1 + DΔt/2)/Δt² · (u_constrained − u⁺)` is
+//! exactly the force that makes the update satisfy the constraint. The contact rule is in
+//! [`contact`]; what a committed step shows (displacement, velocity, acceleration, reactions,
+//! energy at the viewed time) is read through a [`LaneView`].
+
+pub mod bars;
+pub mod contact;
+pub mod energy;
+pub mod integrate;
+pub mod isa;
+pub mod params;
+pub mod state;
+mod view;
+
+pub use crate::field::{Field, Lanes};
+pub use contact::SUSTAINED_SLIP_STEPS;
+pub use energy::Energy;
+pub use params::{LaneSetup, Params};
+pub use state::State;
+pub use view::{Blowup, Interface, LaneView, NodeContact};
+
+use crate::model::Model;
+use bars::{bar_forces, bar_forces_finishing, bar_forces_parallel};
+use integrate::{Levels, Update, integrate_all, integrate_range};
+use isa::Isa;
+
+/// What a stepper computes besides the motion.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Tracking {
+    /// Accumulate the energy terms (one extra pass over the nodes per step).
+    pub energy: bool,
+    /// Log sustained slip onsets (see [`State::drain_onsets`]).
+    pub onsets: bool,
+    /// Log which contact nodes slid between two looks of the skip-ahead.
+    pub slid: bool,
+}
+
+/// The scratch memory of a step of `L` seeds, and how to run it.
+pub struct Stepper<const L: usize> {
+    force: Field<L>,
+    parallel: bool,
+    tracking: Tracking,
+}
+
+impl<const L: usize> Stepper<L> {
+    /// A stepper for `model`, serial, tracking nothing.
+    pub fn new(model: &Model) -> Self {
+        Stepper { force: Field::zeros(model.node_count()), parallel: false, tracking: Tracking::default() }
+    }
+
+    /// Splits each step over the current rayon pool (the numbers do not change: see
+    /// [`bars::bar_forces_parallel`]). Worth it for large lattices only.
+    pub fn set_parallel(&mut self, on: bool) {
+        self.parallel = on;
+    }
+
+    /// What to track.
+    pub fn set_tracking(&mut self, tracking: Tracking) {
+        self.tracking = tracking;
+    }
+
+    /// What is tracked.
+    pub fn tracking(&self) -> Tracking {
+        self.tracking
+    }
+
+    /// Advances every lane of `state` by one step.
+    pub fn step(&mut self, p: &Params<'_, L>, state: &mut State<L>) {
+        let m = p.model;
+        let update = Update { inv_mass: m.inv_mass(), coef: p.coefficients(), body: p.body() };
+        let u = &mut state.u;
+        // The force field is zero here: the integration clears it as it consumes it. The trial
+        // `uₙ₊₂` is written over `uₙ₋₁`, no longer needed.
+        if self.parallel {
+            bar_forces_parallel(m.layout(), &p.k, &u.np1, &mut self.force);
+            integrate_all(&update, &mut self.force, Levels { u: &u.np1, up: &u.n, out: &mut u.nm1 }, true);
+        } else if !m.cache_blocked() {
+            // A small lattice stays in cache: two plain sweeps beat handing over short runs.
+            bar_forces(m.layout(), &p.k, &u.np1, &mut self.force);
+            integrate_all(&update, &mut self.force, Levels { u: &u.np1, up: &u.n, out: &mut u.nm1 }, false);
+        } else {
+            // Each node is integrated as soon as its last bar has run, while its data is still in
+            // cache, instead of sweeping every node array once more (the same arithmetic, so the
+            // same bits).
+            let isa = Isa::current();
+            let (now, before, out) = (&u.np1, &u.n, &mut u.nm1);
+            bar_forces_finishing(m.layout(), &p.k, now, &mut self.force, |r, f| {
+                integrate_range(isa, r, &update, f, Levels { u: now, up: before, out: &mut *out });
+            });
+        }
+        apply_fixed(m, &mut state.u);
+        apply_drivers(p, state);
+        let log = (self.tracking.slid || self.tracking.onsets).then_some((
+            &mut state.log,
+            self.tracking.slid,
+            self.tracking.onsets,
+            state.steps,
+        ));
+        contact::apply(p, &mut state.u.nm1, &state.u.np1, &mut state.contact, log);
+        if self.tracking.energy {
+            energy::accumulate(p, state);
+        }
+        state.u.commit();
+        state.steps += 1;
+    }
+}
+
+/// Rollers: held components keep the value they had (`uₙ₊₁` of the trial ← `uₙ`).
+fn apply_fixed<const L: usize>(m: &Model, u: &mut state::TimeLevels<L>) {
+    for &(node, mask) in m.fixed() {
+        for c in 0..3 {
+            if mask[c] {
+                u.nm1.c[c][node as usize] = u.np1.c[c][node as usize];
+            }
+        }
+    }
+}
+
+/// Drivers: x of each driven node set to its base plus the target; the reaction is the force that
+/// takes the trial there.
+fn apply_drivers<const L: usize>(p: &Params<'_, L>, state: &mut State<L>) {
+    let mass = p.model.mass();
+    let cf = &p.coefficients().cf;
+    let (d_state, trial) = (&mut state.drivers, &mut state.u.nm1);
+    for (d, &node) in p.model.drivers().iter().enumerate() {
+        let i = node as usize;
+        for l in 0..L {
+            if !d_state.on[l] {
+                d_state.reaction[d][l] = 0.0;
+                continue;
+            }
+            let target = d_state.base[d][l] + d_state.target[l];
+            d_state.reaction[d][l] = (target - trial.c[0][i][l]) * mass[i] / cf[l];
+            trial.c[0][i][l] = target;
+        }
+    }
+}
+
+/// Turns on the drivers of lane `l`: from now on their x is held at where they are now (the
+/// newest time level) plus the target of [`state::DriverState::target`].
+pub fn start_drivers<const L: usize>(model: &Model, state: &mut State<L>, l: usize) {
+    state.drivers.on[l] = true;
+    state.drivers.target[l] = 0.0;
+    for (d, &node) in model.drivers().iter().enumerate() {
+        state.drivers.base[d][l] = state.u.np1.c[0][node as usize][l];
+    }
+}
+
+/// Stops lane `l` from doing anything (a failed lane): zero displacements, drivers off, no body
+/// force.
+pub fn park<const L: usize>(p: &mut Params<'_, L>, state: &mut State<L>, l: usize) {
+    state.zero_lane(l);
+    p.set_body_acceleration(l, [0.0; 3]);
+}
+
+/// Parameters, state and scratch of `L` seeds together, for stepping by hand (tests,
+/// benchmarks, tools): [`crate::run`] drives the same three through the loading stages.
+pub struct Batch<'m, const L: usize> {
+    /// What the step reads.
+    pub params: Params<'m, L>,
+    /// What evolves.
+    pub state: State<L>,
+    /// Scratch and tracking.
+    pub stepper: Stepper<L>,
+}
+
+impl<'m, const L: usize> Batch<'m, L> {
+    /// `L` seeds of `model` at rest, no damping, no body force, drivers off.
+    pub fn new(model: &'m Model, lanes: &[LaneSetup; L]) -> Self {
+        Batch {
+            params: Params::new(model, lanes),
+            state: State::at_rest(model.node_count(), model.contact().len(), model.drivers().len()),
+            stepper: Stepper::new(model),
+        }
+    }
+
+    /// One step of every lane.
+    pub fn step(&mut self) {
+        self.stepper.step(&self.params, &mut self.state);
+    }
+
+    /// Lane `l` at its viewed time.
+    pub fn view(&self, l: usize) -> LaneView<'_, 'm, L> {
+        LaneView { params: &self.params, state: &self.state, lane: l }
+    }
+
+    /// Sets the start of lane `l` from the undeformed position of each node:
+    /// `f(p) = (u one step before the start, u at the start)`.
+    pub fn initialize(&mut self, l: usize, f: impl Fn([f64; 3]) -> ([f64; 3], [f64; 3])) {
+        let model = self.params.model;
+        let lattice = model.lattice();
+        let at = |i: usize| f(lattice.position(model.canonical(i)));
+        self.state.u.n.set_lane(l, |i, c| at(i).0[c]);
+        self.state.u.np1.set_lane(l, |i, c| at(i).1[c]);
+    }
+}

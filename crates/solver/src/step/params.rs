@@ -1,0 +1,144 @@
+//! The parameters of `L` seeds advancing together: the model, each seed's bar stiffness and
+//! friction coefficients, and the per-lane time step, damping and body force.
+
+use crate::field::Lanes;
+use crate::laws::FrictionLaw;
+use crate::model::Model;
+
+/// Per-lane set-up of a batch.
+#[derive(Clone, Debug)]
+pub struct LaneSetup {
+    /// Time step (s).
+    pub dt_s: f64,
+    /// Kernel stiffness per bar (internal order), e.g. [`Model::bar_stiffness`].
+    pub stiffness: Vec<f64>,
+    /// Friction factor per contact node, e.g. [`Model::friction_factors`].
+    pub friction: Vec<f64>,
+}
+
+/// Per-lane coefficients of the trial update `u⁺ = cf·(f/m + b) + c2·u − cp·u⁻`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Coefficients<const L: usize> {
+    /// `Δt²/(1 + DΔt/2)`.
+    pub cf: Lanes<L>,
+    /// `2/(1 + DΔt/2)`.
+    pub c2: Lanes<L>,
+    /// `(1 − DΔt/2)/(1 + DΔt/2)`.
+    pub cp: Lanes<L>,
+}
+
+/// What the step reads and does not change.
+#[derive(Clone, Debug)]
+pub struct Params<'m, const L: usize> {
+    /// The model.
+    pub model: &'m Model,
+    /// Kernel stiffness per bar and lane (see [`crate::step::bars`]).
+    pub k: Vec<Lanes<L>>,
+    /// The friction law.
+    pub law: FrictionLaw,
+    /// Static coefficient μs of each contact node, per lane (field factor applied).
+    pub mu_static: Vec<Lanes<L>>,
+    /// Dynamic coefficient μd of each contact node, per lane.
+    pub mu_dynamic: Vec<Lanes<L>>,
+    dt: Lanes<L>,
+    damping: Lanes<L>,
+    body: [Lanes<L>; 3],
+    coef: Coefficients<L>,
+}
+
+impl<'m, const L: usize> Params<'m, L> {
+    /// Parameters of `L` seeds with no damping and no body force.
+    pub fn new(model: &'m Model, lanes: &[LaneSetup; L]) -> Self {
+        let nb = model.bar_count();
+        let nc = model.contact().len();
+        let mut k = vec![[0.0; L]; nb];
+        for (l, lane) in lanes.iter().enumerate() {
+            assert_eq!(lane.stiffness.len(), nb, "one stiffness per bar");
+            assert_eq!(lane.friction.len(), nc, "one friction factor per contact node");
+            for (kb, &v) in k.iter_mut().zip(&lane.stiffness) {
+                kb[l] = v;
+            }
+        }
+        let law = model.scene().friction.law;
+        let mut mu_static = vec![[0.0; L]; nc];
+        let mut mu_dynamic = vec![[0.0; L]; nc];
+        for (l, lane) in lanes.iter().enumerate() {
+            for c in 0..nc {
+                let node = law.node(lane.friction[c]);
+                mu_static[c][l] = node.mu_static;
+                mu_dynamic[c][l] = node.mu_dynamic;
+            }
+        }
+        let mut p = Params {
+            model,
+            k,
+            law,
+            mu_static,
+            mu_dynamic,
+            dt: lanes.each_ref().map(|lane| lane.dt_s),
+            damping: [0.0; L],
+            body: [[0.0; L]; 3],
+            coef: Coefficients { cf: [0.0; L], c2: [0.0; L], cp: [0.0; L] },
+        };
+        for l in 0..L {
+            p.update_coefficients(l);
+        }
+        p
+    }
+
+    fn update_coefficients(&mut self, l: usize) {
+        let dt = self.dt[l];
+        let a = 0.5 * self.damping[l] * dt;
+        self.coef.cf[l] = dt * dt / (1.0 + a);
+        self.coef.c2[l] = 2.0 / (1.0 + a);
+        self.coef.cp[l] = (1.0 - a) / (1.0 + a);
+    }
+
+    /// Time step of lane `l` (s).
+    pub fn dt(&self, l: usize) -> f64 {
+        self.dt[l]
+    }
+
+    /// Mass-proportional damping of lane `l` (1/s).
+    pub fn damping(&self, l: usize) -> f64 {
+        self.damping[l]
+    }
+
+    /// Sets the mass-proportional damping D (1/s) of lane `l`.
+    pub fn set_damping(&mut self, l: usize, d: f64) {
+        self.damping[l] = d;
+        self.update_coefficients(l);
+    }
+
+    /// Sets the body acceleration (m/s², e.g. gravity `[0, 0, −g]`) of lane `l`.
+    pub fn set_body_acceleration(&mut self, l: usize, b: [f64; 3]) {
+        for (c, v) in b.into_iter().enumerate() {
+            self.body[c][l] = v;
+        }
+    }
+
+    /// Body acceleration of lane `l` (m/s²).
+    pub fn body_acceleration(&self, l: usize) -> [f64; 3] {
+        [self.body[0][l], self.body[1][l], self.body[2][l]]
+    }
+
+    /// Body acceleration of every lane, per axis.
+    pub fn body(&self) -> &[Lanes<L>; 3] {
+        &self.body
+    }
+
+    /// Time step of every lane.
+    pub fn dts(&self) -> &Lanes<L> {
+        &self.dt
+    }
+
+    /// Damping of every lane.
+    pub fn dampings(&self) -> &Lanes<L> {
+        &self.damping
+    }
+
+    /// Coefficients of the trial update.
+    pub fn coefficients(&self) -> &Coefficients<L> {
+        &self.coef
+    }
+}

@@ -1,0 +1,192 @@
+//! What one lane of a committed step shows at its viewed time: kinematics, interface resultants,
+//! energy, and the stability check.
+
+use crate::step::energy::{Energy, kinetic_energy, strain_energy};
+use crate::step::params::Params;
+use crate::step::state::State;
+
+/// Interface resultants of one lane at one instant (docs/model.md §4).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Interface {
+    /// Σ of the friction reactions in x (N); the base resists a +x push with a negative sum.
+    pub friction_x: f64,
+    /// Σ of the normal reactions (N).
+    pub normal: f64,
+    /// Mean x-displacement of the contact nodes (m).
+    pub mean_slip: f64,
+    /// Mean x-velocity of the contact nodes (m/s).
+    pub mean_slip_rate: f64,
+    /// Max x-velocity of the contact nodes (m/s).
+    pub max_slip_rate: f64,
+    /// Sliding contact nodes.
+    pub slipping: usize,
+    /// Lifted contact nodes.
+    pub lifted: usize,
+}
+
+/// One contact node as the interface sums see it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NodeContact {
+    /// Friction reaction in x (N).
+    pub friction_x: f64,
+    /// Normal reaction (N).
+    pub normal: f64,
+    /// x-displacement (m).
+    pub slip: f64,
+    /// x-velocity (m/s).
+    pub slip_rate: f64,
+    /// Sliding.
+    pub slipping: bool,
+    /// Off the base.
+    pub lifted: bool,
+}
+
+impl Interface {
+    /// The resultants of the contact nodes, summed in their order.
+    pub fn sum(nodes: impl ExactSizeIterator<Item = NodeContact>) -> Interface {
+        let n = nodes.len() as f64;
+        let mut s = Interface { max_slip_rate: f64::NEG_INFINITY, ..Interface::default() };
+        for c in nodes {
+            s.friction_x += c.friction_x;
+            s.normal += c.normal;
+            s.mean_slip += c.slip;
+            s.mean_slip_rate += c.slip_rate;
+            s.max_slip_rate = s.max_slip_rate.max(c.slip_rate);
+            s.slipping += usize::from(c.slipping);
+            s.lifted += usize::from(c.lifted);
+        }
+        s.mean_slip /= n;
+        s.mean_slip_rate /= n;
+        s
+    }
+}
+
+/// What the stability check found.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Blowup {
+    /// Internal node index.
+    pub node: usize,
+    /// Description.
+    pub what: String,
+}
+
+/// Lane `lane` of a committed step, at its viewed time.
+pub struct LaneView<'a, 'm, const L: usize> {
+    /// Parameters.
+    pub params: &'a Params<'m, L>,
+    /// State.
+    pub state: &'a State<L>,
+    /// Lane.
+    pub lane: usize,
+}
+
+impl<const L: usize> LaneView<'_, '_, L> {
+    /// Displacement of internal node `i` (m).
+    pub fn displacement(&self, i: usize) -> [f64; 3] {
+        self.state.u.n.get(i, self.lane)
+    }
+
+    /// Velocity of internal node `i`, `(uₙ₊₁ − uₙ₋₁)/2Δt` (m/s).
+    pub fn velocity(&self, i: usize) -> [f64; 3] {
+        let h = 0.5 / self.params.dt(self.lane);
+        let (a, b) = (self.state.u.np1.get(i, self.lane), self.state.u.nm1.get(i, self.lane));
+        [(a[0] - b[0]) * h, (a[1] - b[1]) * h, (a[2] - b[2]) * h]
+    }
+
+    /// Acceleration of internal node `i`, `(uₙ₊₁ − 2uₙ + uₙ₋₁)/Δt²` (m/s²).
+    pub fn acceleration(&self, i: usize) -> [f64; 3] {
+        let dt = self.params.dt(self.lane);
+        let h = 1.0 / (dt * dt);
+        let u = &self.state.u;
+        let (a, b, c) = (u.np1.get(i, self.lane), u.n.get(i, self.lane), u.nm1.get(i, self.lane));
+        [0, 1, 2].map(|k| (a[k] - 2.0 * b[k] + c[k]) * h)
+    }
+
+    /// Interface resultants.
+    pub fn interface(&self) -> Interface {
+        let (l, u, r) = (self.lane, &self.state.u, &self.state.contact.reaction);
+        let h = 0.5 / self.params.dt(l);
+        let contact = self.params.model.contact();
+        Interface::sum(contact.iter().enumerate().map(|(ci, &node)| {
+            let p = node as usize;
+            NodeContact {
+                friction_x: r[0][ci][l],
+                normal: r[2][ci][l],
+                slip: u.n.c[0][p][l],
+                slip_rate: (u.np1.c[0][p][l] - u.nm1.c[0][p][l]) * h,
+                slipping: self.state.contact.sliding[ci][l],
+                lifted: r[2][ci][l] == 0.0,
+            }
+        }))
+    }
+
+    /// Sum of the driver reactions in x (N).
+    pub fn driver_force(&self) -> f64 {
+        self.state.driver_force(self.lane)
+    }
+
+    /// Driver target displacement (m) used in the last step.
+    pub fn driver_target(&self) -> f64 {
+        self.state.drivers.target[self.lane]
+    }
+
+    /// Kinetic energy `½m|uₙ₊₁ − uₙ|²/Δt²` (J), one pass over the nodes.
+    pub fn kinetic_energy(&self) -> f64 {
+        let u = &self.state.u;
+        kinetic_energy(self.params.model, &u.np1, &u.n, self.lane, self.params.dt(self.lane))
+    }
+
+    /// Energy terms (a pass over all bars and nodes).
+    pub fn energy(&self) -> Energy {
+        let u = &self.state.u;
+        let mut e = self.state.energy[self.lane];
+        e.kinetic = self.kinetic_energy();
+        e.elastic = strain_energy(self.params.model.layout(), &self.params.k, &u.n, &u.np1, self.lane);
+        e
+    }
+
+    /// Out-of-balance force `‖m·a + c·v‖₂` over all nodes and components (N): zero at static
+    /// equilibrium.
+    pub fn out_of_balance(&self) -> f64 {
+        let (l, u) = (self.lane, &self.state.u);
+        let mass = self.params.model.mass();
+        let (dt, d) = (self.params.dt(l), self.params.damping(l));
+        let (ha, hv) = (1.0 / (dt * dt), d * 0.5 / dt);
+        let mut sum = 0.0;
+        for c in 0..3 {
+            let (a, b, o) = (&u.np1.c[c], &u.n.c[c], &u.nm1.c[c]);
+            for i in 0..mass.len() {
+                let r = mass[i] * ((a[i][l] - 2.0 * b[i][l] + o[i][l]) * ha + (a[i][l] - o[i][l]) * hv);
+                sum += r * r;
+            }
+        }
+        sum.sqrt()
+    }
+
+    /// A blow-up in the last step: a non-finite displacement, or a node that moved more than
+    /// `0.01·Lc` in one step (a particle speed no linear-elastic rock reaches).
+    pub fn check_blowup(&self) -> Option<Blowup> {
+        let (l, u) = (self.lane, &self.state.u);
+        let bound = 0.01 * self.params.model.scene().lc_m;
+        for c in 0..3 {
+            let (a, b) = (&u.np1.c[c], &u.n.c[c]);
+            for i in 0..a.len() {
+                let (x, y) = (a[i][l], b[i][l]);
+                if !x.is_finite() {
+                    return Some(Blowup { node: i, what: format!("non-finite {} displacement", ["x", "y", "z"][c]) });
+                }
+                let jump = (x - y).abs();
+                if jump > bound {
+                    return Some(Blowup {
+                        node: i,
+                        what: format!(
+                            "{} displacement changed by {jump:.3e} m in one step (bound 0.01·Lc = {bound:.3e} m)",
+                            ["x", "y", "z"][c]
+                        ),
+                    });
+                }
+            }
+        }
+        None
+    }
+}

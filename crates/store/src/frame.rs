@@ -1,0 +1,131 @@
+//! Building frames column by column, and reading columns back with their types.
+
+use polars::prelude::*;
+
+use crate::error::StoreError;
+
+/// Builds a frame column by column.
+pub struct Frame {
+    height: usize,
+    cols: Vec<Column>,
+}
+
+impl Frame {
+    /// A frame of `height` rows, no columns yet.
+    pub fn new(height: usize) -> Self {
+        Frame { height, cols: Vec::new() }
+    }
+
+    /// A float column; NaN (a value that does not exist, e.g. the recurrence of a first event) is
+    /// written as null, so no table ever holds a NaN.
+    pub fn f64(mut self, name: &str, v: Vec<f64>) -> Self {
+        if v.iter().any(|x| x.is_nan()) {
+            let v: Vec<Option<f64>> = v.into_iter().map(|x| (!x.is_nan()).then_some(x)).collect();
+            self.cols.push(Column::new(name.into(), v));
+        } else {
+            self.cols.push(Column::new(name.into(), v));
+        }
+        self
+    }
+
+    /// A float column with nulls (NaN also written as null).
+    pub fn opt_f64(mut self, name: &str, v: Vec<Option<f64>>) -> Self {
+        let v: Vec<Option<f64>> = v.into_iter().map(|x| x.filter(|x| !x.is_nan())).collect();
+        self.cols.push(Column::new(name.into(), v));
+        self
+    }
+
+    /// A u32 column.
+    pub fn u32(mut self, name: &str, v: Vec<u32>) -> Self {
+        self.cols.push(Column::new(name.into(), v));
+        self
+    }
+
+    /// A u32 column with nulls.
+    pub fn opt_u32(mut self, name: &str, v: Vec<Option<u32>>) -> Self {
+        self.cols.push(Column::new(name.into(), v));
+        self
+    }
+
+    /// A u64 column.
+    pub fn u64(mut self, name: &str, v: Vec<u64>) -> Self {
+        self.cols.push(Column::new(name.into(), v));
+        self
+    }
+
+    /// A string column.
+    pub fn str(mut self, name: &str, v: Vec<String>) -> Self {
+        self.cols.push(Column::new(name.into(), v));
+        self
+    }
+
+    /// A string column of static texts.
+    pub fn static_str(mut self, name: &str, v: Vec<&'static str>) -> Self {
+        self.cols.push(Column::new(name.into(), v));
+        self
+    }
+
+    /// The frame (`what` names the table in errors).
+    pub fn finish(self, what: &str) -> Result<DataFrame, StoreError> {
+        DataFrame::new(self.height, self.cols).map_err(|e| StoreError::table(what, e))
+    }
+}
+
+/// Typed access to the columns of a frame read back (`table` names it in errors).
+#[derive(Clone, Copy)]
+pub struct Columns<'a> {
+    df: &'a DataFrame,
+    table: &'a str,
+}
+
+impl<'a> Columns<'a> {
+    /// The columns of `df`, a frame of `table`.
+    pub fn of(df: &'a DataFrame, table: &'a str) -> Self {
+        Columns { df, table }
+    }
+
+    /// Rows.
+    pub fn height(&self) -> usize {
+        self.df.height()
+    }
+
+    /// Whether column `name` is there.
+    pub fn has(&self, name: &str) -> bool {
+        self.df.column(name).is_ok()
+    }
+
+    /// Column names in order.
+    pub fn names(&self) -> Vec<String> {
+        self.df.get_column_names().iter().map(|c| c.to_string()).collect()
+    }
+
+    fn err(&self, name: &str) -> impl Fn(PolarsError) -> StoreError + '_ {
+        let what = format!("{} (column {name})", self.table);
+        move |e| StoreError::table(what.clone(), e)
+    }
+
+    /// Column `name` as f64 (cast), nulls as NaN.
+    pub fn f64s(&self, name: &str) -> Result<Vec<f64>, StoreError> {
+        Ok(self.opt_f64s(name)?.into_iter().map(|v| v.unwrap_or(f64::NAN)).collect())
+    }
+
+    /// Column `name` as f64 (cast), with its nulls.
+    pub fn opt_f64s(&self, name: &str) -> Result<Vec<Option<f64>>, StoreError> {
+        let t = self.err(name);
+        let c = self.df.column(name).map_err(&t)?.cast(&DataType::Float64).map_err(&t)?;
+        Ok(c.f64().map_err(&t)?.iter().collect())
+    }
+
+    /// Column `name` as u64 (cast), nulls as 0.
+    pub fn u64s(&self, name: &str) -> Result<Vec<u64>, StoreError> {
+        let t = self.err(name);
+        let c = self.df.column(name).map_err(&t)?.cast(&DataType::UInt64).map_err(&t)?;
+        Ok(c.u64().map_err(&t)?.iter().map(|v| v.unwrap_or(0)).collect())
+    }
+
+    /// Column `name` as strings, nulls as empty.
+    pub fn strs(&self, name: &str) -> Result<Vec<String>, StoreError> {
+        let t = self.err(name);
+        Ok(self.df.column(name).map_err(&t)?.str().map_err(&t)?.iter().map(|v| v.unwrap_or("").to_string()).collect())
+    }
+}

@@ -1,0 +1,166 @@
+//! The output folder of a pipeline run, and its manifest.
+//!
+//! ```text
+//! <out>/manifest.toml                      pipeline name and hash of the results in this folder
+//! <out>/pipeline.toml                      the pipeline file as run
+//! <out>/tables/<table>/seed-<seed>.parquet one part per seed of each per-seed table
+//! <out>/tables/<table>.parquet             gathered tables and statistics across seeds
+//! <out>/at2/…                              accelerogram files
+//! <out>/figures/*.png, <out>/index.html    the report
+//! ```
+//! `<seed>` is written with ten digits (`seed-0000000123.parquet`) so the parts sort by seed.
+
+use std::path::{Path, PathBuf};
+
+use crate::error::StoreError;
+use crate::io::write_text_atomic;
+use crate::schema::{SEED_TABLES, TableSpec};
+
+/// The name of the manifest file.
+pub const MANIFEST: &str = "manifest.toml";
+
+/// An output folder.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Folder {
+    root: PathBuf,
+}
+
+impl Folder {
+    /// The folder at `root` (it need not exist yet).
+    pub fn new(root: impl Into<PathBuf>) -> Self {
+        Folder { root: root.into() }
+    }
+
+    /// Its root.
+    pub fn root(&self) -> &Path {
+        &self.root
+    }
+
+    /// `<out>/tables`.
+    pub fn tables(&self) -> PathBuf {
+        self.root.join("tables")
+    }
+
+    /// Path of a seed's part of `table`.
+    pub fn part(&self, table: &TableSpec, seed: u64) -> PathBuf {
+        self.tables().join(table.name).join(format!("seed-{seed:010}.parquet"))
+    }
+
+    /// Glob of the parts of `table`.
+    pub fn part_glob(&self, table: &TableSpec) -> PathBuf {
+        self.tables().join(table.name).join("*.parquet")
+    }
+
+    /// Path of a gathered table.
+    pub fn gathered(&self, table: &TableSpec) -> PathBuf {
+        self.tables().join(format!("{}.parquet", table.name))
+    }
+
+    /// The manifest.
+    pub fn manifest(&self) -> PathBuf {
+        self.root.join(MANIFEST)
+    }
+
+    /// The copy of the pipeline file.
+    pub fn pipeline_copy(&self) -> PathBuf {
+        self.root.join("pipeline.toml")
+    }
+
+    /// The accelerogram files.
+    pub fn at2_dir(&self) -> PathBuf {
+        self.root.join("at2")
+    }
+
+    /// The figures.
+    pub fn figures(&self) -> PathBuf {
+        self.root.join("figures")
+    }
+
+    /// The report page.
+    pub fn index(&self) -> PathBuf {
+        self.root.join("index.html")
+    }
+
+    /// Whether `seed` has finished here (its `runs` part, written last, exists).
+    pub fn is_finished(&self, seed: u64) -> bool {
+        self.part(&crate::schema::RUNS, seed).exists()
+    }
+
+    /// The manifest, if the folder has one.
+    pub fn read_manifest(&self) -> Result<Option<Manifest>, StoreError> {
+        let path = self.manifest();
+        if !path.exists() {
+            return Ok(None);
+        }
+        let text = std::fs::read_to_string(&path).map_err(|e| StoreError::io(&path, e))?;
+        let table: toml::Table =
+            toml::from_str(&text).map_err(|e| StoreError::Corrupt { path: path.clone(), what: e.to_string() })?;
+        let get = |k: &str| table.get(k).and_then(|v| v.as_str()).map(str::to_string);
+        match (get("name"), get("pipeline_hash")) {
+            (Some(name), Some(hash)) => Ok(Some(Manifest { name, pipeline_hash: hash })),
+            _ => Err(StoreError::Corrupt { path, what: "expected name and pipeline_hash".into() }),
+        }
+    }
+
+    /// Writes the manifest.
+    pub fn write_manifest(&self, m: &Manifest) -> Result<(), StoreError> {
+        let text = format!(
+            "# Written by stickslip {}: every table in this folder comes from this pipeline.\nname = {:?}\npipeline_hash = {:?}\n",
+            env!("CARGO_PKG_VERSION"),
+            m.name,
+            m.pipeline_hash
+        );
+        write_text_atomic(&self.manifest(), &text)
+    }
+
+    /// Refuses a folder that is not the output of a pipeline run (no such folder, or no manifest).
+    pub fn require_output(&self) -> Result<Manifest, StoreError> {
+        if !self.root.is_dir() {
+            return Err(StoreError::NotAnOutput { path: self.root.clone(), what: "no such folder".into() });
+        }
+        self.read_manifest()?.ok_or_else(|| StoreError::NotAnOutput {
+            path: self.root.clone(),
+            what: format!("no {MANIFEST}: not the output folder of a stickslip pipeline"),
+        })
+    }
+
+    /// Removes the hidden temporary files a killed writer left for `seeds` (only those: another
+    /// process may be writing other seeds into the same folder), in the per-seed tables and the
+    /// accelerogram folder.
+    pub fn remove_stale_temporaries(&self, seeds: &[u64]) -> Result<(), StoreError> {
+        let prefixes: std::collections::HashSet<String> =
+            seeds.iter().map(|s| format!(".seed-{s:010}.parquet.")).collect();
+        for table in SEED_TABLES {
+            let dir = self.tables().join(table.name);
+            let Ok(entries) = std::fs::read_dir(&dir) else { continue };
+            for file in entries.flatten() {
+                let name = file.file_name().to_string_lossy().into_owned();
+                if name.ends_with(".tmp") && name.rfind(".parquet.").is_some_and(|i| prefixes.contains(&name[..i + 9]))
+                {
+                    std::fs::remove_file(file.path()).map_err(|e| StoreError::io(&file.path(), e))?;
+                }
+            }
+        }
+        // Accelerogram files: `.<pipeline>_seed<seed>_….<ext>.<pid>.tmp`.
+        if let Ok(entries) = std::fs::read_dir(self.at2_dir()) {
+            let seeds: std::collections::HashSet<u64> = seeds.iter().copied().collect();
+            for file in entries.flatten() {
+                let name = file.file_name().to_string_lossy().into_owned();
+                let seed = name.split("_seed").nth(1).and_then(|r| r.split('_').next()).and_then(|s| s.parse().ok());
+                if name.starts_with('.') && name.ends_with(".tmp") && seed.is_some_and(|s| seeds.contains(&s)) {
+                    std::fs::remove_file(file.path()).map_err(|e| StoreError::io(&file.path(), e))?;
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// What `manifest.toml` says.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Manifest {
+    /// Pipeline name.
+    pub name: String,
+    /// Hash of the pipeline every table here comes from.
+    pub pipeline_hash: String,
+}

@@ -1,0 +1,431 @@
+//! Every table of an output folder, declared once: name, scope, sort key and columns. Writers
+//! and readers use these declarations and the column constants of [`col`], never literals.
+
+/// Column names (units in the names).
+pub mod col {
+    #![allow(missing_docs)]
+    pub const SEED: &str = "seed";
+    pub const STATUS: &str = "status";
+    pub const MESSAGE: &str = "message";
+    pub const STEPS: &str = "steps";
+    pub const SETTLE_STEPS: &str = "settle_steps";
+    pub const SETTLE_TIME_S: &str = "settle_time_s";
+    pub const SETTLED_BY: &str = "settled_by";
+    pub const SKIPPED_STEPS: &str = "skipped_steps";
+    pub const SIMULATED_TIME_S: &str = "simulated_time_s";
+    pub const WALL_TIME_S: &str = "wall_time_s";
+    pub const DT_S: &str = "dt_s";
+    pub const CRITICAL_DT_S: &str = "critical_dt_s";
+    pub const EVENTS: &str = "events";
+    pub const MAIN_SHOCKS: &str = "main_shocks";
+    pub const PIPELINE_HASH: &str = "pipeline_hash";
+    pub const TIME_S: &str = "time_s";
+    pub const NODE: &str = "node";
+    pub const COMPONENT: &str = "component";
+    pub const FROM_S: &str = "from_s";
+    pub const TO_S: &str = "to_s";
+    pub const NEXT: &str = "next";
+    pub const EVENT: &str = "event";
+    pub const SUB_EVENT: &str = "sub_event";
+    pub const KIND: &str = "kind";
+    pub const LABEL: &str = "label";
+    pub const START_S: &str = "start_s";
+    pub const END_S: &str = "end_s";
+    pub const DURATION_S: &str = "duration_s";
+    pub const DROP_TIME_S: &str = "drop_time_s";
+    pub const STRESS_DROP_PA: &str = "stress_drop_pa";
+    pub const SLIP_M: &str = "slip_m";
+    pub const PEAK_SLIP_RATE_M_S: &str = "peak_slip_rate_m_s";
+    pub const PEAK_SLIPPING_NODES: &str = "peak_slipping_nodes";
+    pub const RUPTURE_AREA_M2: &str = "rupture_area_m2";
+    pub const RECURRENCE_S: &str = "recurrence_s";
+    pub const SUB_EVENTS: &str = "sub_events";
+    pub const LAMBDA: &str = "lambda";
+    pub const MODEL_AREA_M2: &str = "model_area_m2";
+    pub const PROTOTYPE_AREA_M2: &str = "prototype_area_m2";
+    pub const PROTOTYPE_DURATION_S: &str = "prototype_duration_s";
+    pub const PROTOTYPE_RECURRENCE_S: &str = "prototype_recurrence_s";
+    pub const PROTOTYPE_RECURRENCE_YEARS: &str = "prototype_recurrence_years";
+    pub const M0_PAPER_DYNE_CM: &str = "m0_paper_dyne_cm";
+    pub const M0_CONSISTENT_DYNE_CM: &str = "m0_consistent_dyne_cm";
+    pub const M_RIERA_PAPER_INTERPLATE: &str = "m_riera_paper_interplate";
+    pub const M_RIERA_PAPER_INTRAPLATE: &str = "m_riera_paper_intraplate";
+    pub const M_RIERA_CONSISTENT_INTERPLATE: &str = "m_riera_consistent_interplate";
+    pub const M_RIERA_CONSISTENT_INTRAPLATE: &str = "m_riera_consistent_intraplate";
+    pub const MW_PAPER: &str = "mw_paper";
+    pub const MW_CONSISTENT: &str = "mw_consistent";
+    pub const SCALE: &str = "scale";
+    pub const DAMPING: &str = "damping";
+    pub const PERIOD_S: &str = "period_s";
+    pub const SD_M: &str = "sd_m";
+    pub const PSV_M_S: &str = "psv_m_s";
+    pub const PSA_M_S2: &str = "psa_m_s2";
+    pub const FREQUENCY_HZ: &str = "frequency_hz";
+    pub const AMPLITUDE_M_S: &str = "amplitude_m_s";
+    pub const PGA_M_S2: &str = "pga_m_s2";
+    pub const PGV_M_S: &str = "pgv_m_s";
+    pub const PGD_M: &str = "pgd_m";
+    pub const ARIAS_M_S: &str = "arias_m_s";
+    pub const D5_95_S: &str = "d5_95_s";
+    pub const T5_S: &str = "t5_s";
+    pub const T95_S: &str = "t95_s";
+    pub const ACCELERATION_M_S2: &str = "acceleration_m_s2";
+    pub const HYPOCENTRE_NODE: &str = "hypocentre_node";
+    pub const HYPOCENTRE_X_M: &str = "hypocentre_x_m";
+    pub const DISTANCE_M: &str = "distance_m";
+    pub const GROUP: &str = "group";
+    pub const QUANTITY: &str = "quantity";
+    pub const COUNT: &str = "count";
+    pub const MEAN: &str = "mean";
+    pub const STD: &str = "std";
+    pub const CV: &str = "cv";
+    pub const MIN: &str = "min";
+    pub const P5: &str = "p5";
+    pub const P50: &str = "p50";
+    pub const P95: &str = "p95";
+    pub const MAX: &str = "max";
+    pub const CI95_LOW: &str = "ci95_low";
+    pub const CI95_HIGH: &str = "ci95_high";
+    pub const GEOMETRIC_MEAN: &str = "geometric_mean";
+    pub const LOG_STD: &str = "log_std";
+    pub const MEAN_M_S2: &str = "mean_m_s2";
+    pub const GEOMETRIC_MEAN_M_S2: &str = "geometric_mean_m_s2";
+    pub const P5_M_S2: &str = "p5_m_s2";
+    pub const P50_M_S2: &str = "p50_m_s2";
+    pub const P95_M_S2: &str = "p95_m_s2";
+    pub const MEASURE: &str = "measure";
+    pub const POINTS: &str = "points";
+    pub const INTERCEPT: &str = "intercept";
+    pub const SLOPE: &str = "slope";
+    pub const R2: &str = "r2";
+}
+
+use col::*;
+
+/// Where a table lives.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Scope {
+    /// One part per seed only (`tables/<name>/seed-N.parquet`).
+    PerSeed,
+    /// One part per seed, gathered over the seeds into `tables/<name>.parquet`.
+    Gathered,
+    /// Computed across seeds, one file `tables/<name>.parquet`.
+    AcrossSeeds,
+}
+
+/// A table of the output folder.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TableSpec {
+    /// Name (file or folder name under `tables/`).
+    pub name: &'static str,
+    /// Where it lives.
+    pub scope: Scope,
+    /// Sort key of the gathered table.
+    pub key: &'static [&'static str],
+    /// Columns always written, in order.
+    pub columns: &'static [&'static str],
+    /// Columns that depend on the pipeline (what is recorded), if any, described.
+    pub variable: Option<&'static str>,
+}
+
+const BURST: [&str; 9] = [
+    START_S,
+    END_S,
+    DURATION_S,
+    DROP_TIME_S,
+    STRESS_DROP_PA,
+    SLIP_M,
+    PEAK_SLIP_RATE_M_S,
+    PEAK_SLIPPING_NODES,
+    RUPTURE_AREA_M2,
+];
+
+/// One row per seed: status, steps, times, Δt, events.
+pub const RUNS: TableSpec = TableSpec {
+    name: "runs",
+    scope: Scope::Gathered,
+    key: &[SEED],
+    columns: &[
+        SEED,
+        STATUS,
+        MESSAGE,
+        STEPS,
+        SETTLE_STEPS,
+        SETTLE_TIME_S,
+        SETTLED_BY,
+        SKIPPED_STEPS,
+        SIMULATED_TIME_S,
+        WALL_TIME_S,
+        DT_S,
+        CRITICAL_DT_S,
+        EVENTS,
+        MAIN_SHOCKS,
+        PIPELINE_HASH,
+    ],
+    variable: None,
+};
+
+/// One row per recorded instant.
+pub const SERIES: TableSpec = TableSpec {
+    name: "series",
+    scope: Scope::PerSeed,
+    key: &[SEED, TIME_S],
+    columns: &[SEED, TIME_S],
+    variable: Some("one column per recorded channel (record.interface, record.energy)"),
+};
+
+/// One row per control node, component and instant.
+pub const CONTROL: TableSpec = TableSpec {
+    name: "control",
+    scope: Scope::PerSeed,
+    key: &[SEED, NODE, COMPONENT, TIME_S],
+    columns: &[SEED, NODE, COMPONENT, TIME_S, "displacement_m", "velocity_m_s", ACCELERATION_M_S2],
+    variable: None,
+};
+
+/// One row per quasi-static jump of the skip-ahead.
+pub const SKIPS: TableSpec = TableSpec {
+    name: "skips",
+    scope: Scope::PerSeed,
+    key: &[SEED, FROM_S],
+    columns: &[SEED, FROM_S, TO_S, STEPS, NEXT, NODE],
+    variable: None,
+};
+
+/// Stick-slip events.
+pub const EVENTS_TABLE: TableSpec = TableSpec {
+    name: "events",
+    scope: Scope::Gathered,
+    key: &[SEED, EVENT],
+    columns: &[
+        SEED,
+        EVENT,
+        KIND,
+        LABEL,
+        BURST[0],
+        BURST[1],
+        BURST[2],
+        BURST[3],
+        BURST[4],
+        BURST[5],
+        BURST[6],
+        BURST[7],
+        BURST[8],
+        RECURRENCE_S,
+        SUB_EVENTS,
+    ],
+    variable: Some(
+        "one peak_abs_accel_n<LDEM>_<component>_m_s2 per recorded control acceleration, after rupture_area_m2",
+    ),
+};
+
+/// The bursts of slip each event is made of.
+pub const SUB_EVENTS_TABLE: TableSpec = TableSpec {
+    name: "sub_events",
+    scope: Scope::Gathered,
+    key: &[SEED, EVENT, SUB_EVENT],
+    columns: &[
+        SEED, EVENT, SUB_EVENT, BURST[0], BURST[1], BURST[2], BURST[3], BURST[4], BURST[5], BURST[6], BURST[7],
+        BURST[8],
+    ],
+    variable: Some("one peak_abs_accel_n<LDEM>_<component>_m_s2 per recorded control acceleration"),
+};
+
+/// Every event at prototype scale.
+pub const SIMILARITY: TableSpec = TableSpec {
+    name: "similarity",
+    scope: Scope::Gathered,
+    key: &[SEED, EVENT],
+    columns: &[
+        SEED,
+        EVENT,
+        KIND,
+        LABEL,
+        LAMBDA,
+        STRESS_DROP_PA,
+        MODEL_AREA_M2,
+        PROTOTYPE_AREA_M2,
+        PROTOTYPE_DURATION_S,
+        PROTOTYPE_RECURRENCE_S,
+        PROTOTYPE_RECURRENCE_YEARS,
+        M0_PAPER_DYNE_CM,
+        M0_CONSISTENT_DYNE_CM,
+        M_RIERA_PAPER_INTERPLATE,
+        M_RIERA_PAPER_INTRAPLATE,
+        M_RIERA_CONSISTENT_INTERPLATE,
+        M_RIERA_CONSISTENT_INTRAPLATE,
+        MW_PAPER,
+        MW_CONSISTENT,
+    ],
+    variable: None,
+};
+
+/// Response spectra of every accelerogram, both scales.
+pub const SPECTRA: TableSpec = TableSpec {
+    name: "spectra",
+    scope: Scope::PerSeed,
+    key: &[SEED, NODE, COMPONENT, SCALE, DAMPING, PERIOD_S],
+    columns: &[SEED, NODE, COMPONENT, SCALE, DAMPING, PERIOD_S, SD_M, PSV_M_S, PSA_M_S2],
+    variable: None,
+};
+
+/// Fourier amplitude spectra (model scale).
+pub const FOURIER: TableSpec = TableSpec {
+    name: "fourier",
+    scope: Scope::PerSeed,
+    key: &[SEED, NODE, COMPONENT, FREQUENCY_HZ],
+    columns: &[SEED, NODE, COMPONENT, FREQUENCY_HZ, AMPLITUDE_M_S],
+    variable: None,
+};
+
+/// Intensity measures of every accelerogram, both scales.
+pub const INTENSITY: TableSpec = TableSpec {
+    name: "intensity",
+    scope: Scope::Gathered,
+    key: &[SEED, NODE, COMPONENT, SCALE],
+    columns: &[SEED, NODE, COMPONENT, SCALE, PGA_M_S2, PGV_M_S, PGD_M, ARIAS_M_S, D5_95_S, T5_S, T95_S],
+    variable: None,
+};
+
+/// The accelerograms, both scales.
+pub const ACCELEROGRAMS: TableSpec = TableSpec {
+    name: "accelerograms",
+    scope: Scope::PerSeed,
+    key: &[SEED, NODE, COMPONENT, SCALE, TIME_S],
+    columns: &[SEED, NODE, COMPONENT, SCALE, TIME_S, ACCELERATION_M_S2],
+    variable: None,
+};
+
+/// Peak motions of every control node in every main shock, with the distance from its
+/// hypocentre.
+pub const ATTENUATION: TableSpec = TableSpec {
+    name: "attenuation",
+    scope: Scope::Gathered,
+    key: &[SEED, EVENT, NODE],
+    columns: &[SEED, EVENT, LABEL, HYPOCENTRE_NODE, HYPOCENTRE_X_M, NODE, DISTANCE_M, PGA_M_S2, PGV_M_S],
+    variable: None,
+};
+
+/// Statistics across seeds of the events and similarity tables.
+pub const SUMMARY: TableSpec = TableSpec {
+    name: "summary",
+    scope: Scope::AcrossSeeds,
+    key: &[GROUP, QUANTITY],
+    columns: &[
+        GROUP,
+        QUANTITY,
+        COUNT,
+        MEAN,
+        STD,
+        CV,
+        MIN,
+        P5,
+        P50,
+        P95,
+        MAX,
+        CI95_LOW,
+        CI95_HIGH,
+        GEOMETRIC_MEAN,
+        LOG_STD,
+    ],
+    variable: None,
+};
+
+/// PSA across seeds.
+pub const PSA_STATS: TableSpec = TableSpec {
+    name: "psa_stats",
+    scope: Scope::AcrossSeeds,
+    key: &[SCALE, NODE, COMPONENT, DAMPING, PERIOD_S],
+    columns: &[
+        SCALE,
+        NODE,
+        COMPONENT,
+        DAMPING,
+        PERIOD_S,
+        COUNT,
+        MEAN_M_S2,
+        GEOMETRIC_MEAN_M_S2,
+        P5_M_S2,
+        P50_M_S2,
+        P95_M_S2,
+    ],
+    variable: None,
+};
+
+/// Log-log fits of peak motions against distance.
+pub const ATTENUATION_FIT: TableSpec = TableSpec {
+    name: "attenuation_fit",
+    scope: Scope::AcrossSeeds,
+    key: &[GROUP, MEASURE],
+    columns: &[GROUP, MEASURE, POINTS, INTERCEPT, SLOPE, R2],
+    variable: None,
+};
+
+/// Every table, in the order the README documents them.
+pub const ALL: [TableSpec; 15] = [
+    RUNS,
+    SERIES,
+    CONTROL,
+    SKIPS,
+    EVENTS_TABLE,
+    SUB_EVENTS_TABLE,
+    SIMILARITY,
+    SPECTRA,
+    FOURIER,
+    INTENSITY,
+    ACCELEROGRAMS,
+    ATTENUATION,
+    SUMMARY,
+    PSA_STATS,
+    ATTENUATION_FIT,
+];
+
+/// Per-seed tables in the order a seed's parts are written: `runs` last, so a seed counts as
+/// finished when its `runs` part exists.
+pub const SEED_TABLES: [TableSpec; 12] = [
+    SERIES,
+    CONTROL,
+    SKIPS,
+    EVENTS_TABLE,
+    SUB_EVENTS_TABLE,
+    SIMILARITY,
+    SPECTRA,
+    FOURIER,
+    INTENSITY,
+    ACCELEROGRAMS,
+    ATTENUATION,
+    RUNS,
+];
+
+/// Tables gathered over the seeds into one file each, in the order they are gathered.
+pub const GATHERED: [TableSpec; 6] = [RUNS, EVENTS_TABLE, SUB_EVENTS_TABLE, SIMILARITY, INTENSITY, ATTENUATION];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn registry_is_consistent() {
+        let mut names: Vec<&str> = ALL.iter().map(|t| t.name).collect();
+        names.sort();
+        names.dedup();
+        assert_eq!(names.len(), ALL.len(), "table names are unique");
+        for t in ALL {
+            for k in t.key {
+                assert!(t.columns.contains(k) || t.variable.is_some(), "{}: key {k} is a column", t.name);
+            }
+            let per_seed = t.scope != Scope::AcrossSeeds;
+            assert_eq!(per_seed, SEED_TABLES.contains(&t), "{} is a per-seed table exactly when it has parts", t.name);
+            assert_eq!(
+                t.scope == Scope::Gathered,
+                GATHERED.contains(&t),
+                "{} is gathered exactly when so declared",
+                t.name
+            );
+            if per_seed {
+                assert_eq!(t.columns[0], SEED, "{}: per-seed tables start with seed", t.name);
+            }
+        }
+        assert_eq!(SEED_TABLES.last(), Some(&RUNS), "runs is written last");
+    }
+}

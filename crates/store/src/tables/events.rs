@@ -1,0 +1,187 @@
+//! One seed's event catalogue as tables: events, sub-events, and every event at prototype scale.
+//!
+//! Burst measures (both tables): `start_s`, `end_s`, `duration_s`, `drop_time_s`,
+//! `stress_drop_pa`, `slip_m`, `peak_slip_rate_m_s` f64, `peak_slipping_nodes` u32,
+//! `rupture_area_m2` f64, and one `peak_abs_accel_n<LDEM>_<component>_m_s2` f64 per recorded
+//! control acceleration.
+
+use polars::prelude::DataFrame;
+use stickslip_seismo::events::{Burst, Catalogue, EventKind};
+use stickslip_seismo::similarity::{ModelEvent, SECONDS_PER_YEAR, Scaled, moment_magnitude, riera_magnitude};
+use stickslip_solver::scene::ControlChannel;
+
+use crate::error::StoreError;
+use crate::frame::{Columns, Frame};
+use crate::schema::{EVENTS_TABLE, SIMILARITY, SUB_EVENTS_TABLE, col};
+
+/// Column name of the peak |acceleration| of a control channel.
+pub fn peak_accel_column(c: &ControlChannel) -> String {
+    format!("peak_abs_accel_n{}_{}_m_s2", c.node.ldem(), c.component.name())
+}
+
+/// Adds the burst measures of `bursts` to `frame`; `channels` names the accelerations whose peaks
+/// the bursts carry, in order.
+fn burst_columns(mut f: Frame, bursts: &[&Burst], channels: &[ControlChannel]) -> Frame {
+    let col = |g: &dyn Fn(&Burst) -> f64| bursts.iter().map(|b| g(b)).collect::<Vec<f64>>();
+    f = f
+        .f64(col::START_S, col(&|b| b.start_s))
+        .f64(col::END_S, col(&|b| b.end_s))
+        .f64(col::DURATION_S, col(&|b| b.duration_s()))
+        .f64(col::DROP_TIME_S, col(&|b| b.drop_time_s()))
+        .f64(col::STRESS_DROP_PA, col(&|b| b.stress_drop_pa))
+        .f64(col::SLIP_M, col(&|b| b.slip_m))
+        .f64(col::PEAK_SLIP_RATE_M_S, col(&|b| b.peak_slip_rate_m_s))
+        .u32(col::PEAK_SLIPPING_NODES, bursts.iter().map(|b| b.peak_slipping_nodes).collect())
+        .f64(col::RUPTURE_AREA_M2, col(&|b| b.rupture_area_m2));
+    for (k, c) in channels.iter().enumerate() {
+        let v = bursts.iter().map(|b| b.peak_acceleration.get(k).copied().unwrap_or(f64::NAN)).collect();
+        f = f.f64(&peak_accel_column(c), v);
+    }
+    f
+}
+
+/// The events table of one seed.
+pub fn events_frame(seed: u64, cat: &Catalogue, channels: &[ControlChannel]) -> Result<DataFrame, StoreError> {
+    let n = cat.events.len();
+    let bursts: Vec<&Burst> = cat.events.iter().map(|e| &e.burst).collect();
+    let f = Frame::new(n)
+        .u64(col::SEED, vec![seed; n])
+        .u32(col::EVENT, (0..n as u32).collect())
+        .static_str(col::KIND, cat.events.iter().map(|e| e.kind.name()).collect())
+        .str(col::LABEL, cat.events.iter().map(|e| e.kind.label()).collect());
+    burst_columns(f, &bursts, channels)
+        .opt_f64(col::RECURRENCE_S, cat.events.iter().map(|e| e.recurrence_s).collect())
+        .u32(col::SUB_EVENTS, cat.events.iter().map(|e| e.sub_events.len() as u32).collect())
+        .finish(EVENTS_TABLE.name)
+}
+
+/// The sub-events table of one seed.
+pub fn sub_events_frame(seed: u64, cat: &Catalogue, channels: &[ControlChannel]) -> Result<DataFrame, StoreError> {
+    let mut owner = Vec::new();
+    let mut index = Vec::new();
+    for (k, e) in cat.events.iter().enumerate() {
+        for (j, _) in e.sub_events.clone().enumerate() {
+            owner.push(k as u32);
+            index.push(j as u32);
+        }
+    }
+    let n = cat.sub_events.len();
+    let bursts: Vec<&Burst> = cat.sub_events.iter().collect();
+    let f = Frame::new(n).u64(col::SEED, vec![seed; n]).u32(col::EVENT, owner).u32(col::SUB_EVENT, index);
+    burst_columns(f, &bursts, channels).finish(SUB_EVENTS_TABLE.name)
+}
+
+/// The similarity table of one seed: every event of `cat` with its model-scale input and its
+/// prototype-scale numbers (`scaled[i]` belongs to `cat.events[i]`).
+pub fn similarity_frame(seed: u64, cat: &Catalogue, scaled: &[(ModelEvent, Scaled)]) -> Result<DataFrame, StoreError> {
+    let n = cat.events.len();
+    assert_eq!(scaled.len(), n, "one scaled row per event");
+    let col = |g: &dyn Fn(&ModelEvent, &Scaled) -> f64| -> Vec<f64> { scaled.iter().map(|(i, s)| g(i, s)).collect() };
+    Frame::new(n)
+        .u64(col::SEED, vec![seed; n])
+        .u32(col::EVENT, (0..n as u32).collect())
+        .static_str(col::KIND, cat.events.iter().map(|e| e.kind.name()).collect())
+        .str(col::LABEL, cat.events.iter().map(|e| e.kind.label()).collect())
+        .f64(col::LAMBDA, col(&|_, s| s.lambda))
+        .f64(col::STRESS_DROP_PA, col(&|i, _| i.stress_drop_pa))
+        .f64(col::MODEL_AREA_M2, col(&|i, _| i.model_area_m2))
+        .f64(col::PROTOTYPE_AREA_M2, col(&|_, s| s.prototype_area_m2))
+        .f64(col::PROTOTYPE_DURATION_S, col(&|_, s| s.prototype_duration_s.unwrap_or(f64::NAN)))
+        .opt_f64(col::PROTOTYPE_RECURRENCE_S, scaled.iter().map(|(_, s)| s.prototype_recurrence_s).collect())
+        .opt_f64(
+            col::PROTOTYPE_RECURRENCE_YEARS,
+            scaled.iter().map(|(_, s)| s.prototype_recurrence_s.map(|r| r / SECONDS_PER_YEAR)).collect(),
+        )
+        .f64(col::M0_PAPER_DYNE_CM, col(&|_, s| s.m0_paper_dyne_cm))
+        .f64(col::M0_CONSISTENT_DYNE_CM, col(&|_, s| s.m0_consistent_dyne_cm))
+        .f64(col::M_RIERA_PAPER_INTERPLATE, col(&|_, s| riera_magnitude(s.m0_paper_dyne_cm, false)))
+        .f64(col::M_RIERA_PAPER_INTRAPLATE, col(&|_, s| riera_magnitude(s.m0_paper_dyne_cm, true)))
+        .f64(col::M_RIERA_CONSISTENT_INTERPLATE, col(&|_, s| riera_magnitude(s.m0_consistent_dyne_cm, false)))
+        .f64(col::M_RIERA_CONSISTENT_INTRAPLATE, col(&|_, s| riera_magnitude(s.m0_consistent_dyne_cm, true)))
+        .f64(col::MW_PAPER, col(&|_, s| moment_magnitude(s.m0_paper_dyne_cm)))
+        .f64(col::MW_CONSISTENT, col(&|_, s| moment_magnitude(s.m0_consistent_dyne_cm)))
+        .finish(SIMILARITY.name)
+}
+
+/// What an event is, read back from its `kind` and `label` columns.
+fn kinds(c: &Columns<'_>) -> Result<Vec<EventKind>, StoreError> {
+    let (kind, label) = (c.strs(col::KIND)?, c.strs(col::LABEL)?);
+    Ok(kind.iter().zip(&label).map(|(k, l)| EventKind::parse(k, l).unwrap_or(EventKind::Minor)).collect())
+}
+
+/// The events table read back.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Events {
+    /// Seed of each event.
+    pub seed: Vec<u64>,
+    /// Index of the event in its seed.
+    pub event: Vec<u64>,
+    /// What each event is.
+    pub kind: Vec<EventKind>,
+    /// Start (s).
+    pub start_s: Vec<f64>,
+    /// Duration (s).
+    pub duration_s: Vec<f64>,
+    /// Stress drop (Pa).
+    pub stress_drop_pa: Vec<f64>,
+    /// Time since the previous main shock (s), main shocks after the first only.
+    pub recurrence_s: Vec<Option<f64>>,
+    /// The `peak_abs_accel_*` columns present.
+    pub peak_accel_columns: Vec<String>,
+}
+
+impl Events {
+    /// Reads the columns of an events table.
+    pub fn read(df: &DataFrame) -> Result<Events, StoreError> {
+        let c = Columns::of(df, EVENTS_TABLE.name);
+        Ok(Events {
+            seed: c.u64s(col::SEED)?,
+            event: c.u64s(col::EVENT)?,
+            kind: kinds(&c)?,
+            start_s: c.f64s(col::START_S)?,
+            duration_s: c.f64s(col::DURATION_S)?,
+            stress_drop_pa: c.f64s(col::STRESS_DROP_PA)?,
+            recurrence_s: c.opt_f64s(col::RECURRENCE_S)?,
+            peak_accel_columns: c.names().into_iter().filter(|n| n.starts_with("peak_abs_accel_")).collect(),
+        })
+    }
+
+    /// Number of events.
+    pub fn len(&self) -> usize {
+        self.seed.len()
+    }
+
+    /// Whether there is none.
+    pub fn is_empty(&self) -> bool {
+        self.seed.is_empty()
+    }
+}
+
+/// The similarity table read back.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Similarity {
+    /// Seed of each event.
+    pub seed: Vec<u64>,
+    /// What each event is.
+    pub kind: Vec<EventKind>,
+    /// λ of each row.
+    pub lambda: Vec<f64>,
+    /// Riera's magnitude from the paper's moment, interplate.
+    pub m_riera_paper_interplate: Vec<f64>,
+    /// Mw from the consistent moment.
+    pub mw_consistent: Vec<f64>,
+}
+
+impl Similarity {
+    /// Reads the columns of a similarity table.
+    pub fn read(df: &DataFrame) -> Result<Similarity, StoreError> {
+        let c = Columns::of(df, SIMILARITY.name);
+        Ok(Similarity {
+            seed: c.u64s(col::SEED)?,
+            kind: kinds(&c)?,
+            lambda: c.f64s(col::LAMBDA)?,
+            m_riera_paper_interplate: c.f64s(col::M_RIERA_PAPER_INTERPLATE)?,
+            mw_consistent: c.f64s(col::MW_CONSISTENT)?,
+        })
+    }
+}

@@ -1,0 +1,8 @@
+//! Writers (typed values → frames) and readers (frames → typed columns) of every table of
+//! [`crate::schema`].
+
+pub mod events;
+pub mod runs;
+pub mod series;
+pub mod spectra;
+pub mod stats;

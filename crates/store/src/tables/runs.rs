@@ -1,0 +1,182 @@
+//! The runs table: one row per seed.
+
+use polars::prelude::DataFrame;
+use stickslip_seismo::events::Catalogue;
+use stickslip_solver::RunOutput;
+
+use crate::error::StoreError;
+use crate::frame::{Columns, Frame};
+use crate::schema::{RUNS, col};
+
+/// Whether a seed ran to the end.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RunStatus {
+    /// Finished.
+    Ok,
+    /// Stopped with an error (its message in the row).
+    Failed,
+}
+
+impl RunStatus {
+    /// `"ok"` or `"failed"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            RunStatus::Ok => "ok",
+            RunStatus::Failed => "failed",
+        }
+    }
+
+    /// The status written as `name`.
+    pub fn parse(name: &str) -> Option<RunStatus> {
+        [RunStatus::Ok, RunStatus::Failed].into_iter().find(|s| s.name() == name)
+    }
+}
+
+/// One row of the runs table.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunRow {
+    /// Seed.
+    pub seed: u64,
+    /// `Ok(output summary)` or the error message.
+    pub outcome: Result<RunFacts, String>,
+    /// Wall time of the seed (s).
+    pub wall_time_s: f64,
+}
+
+/// What a successful run reports.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RunFacts {
+    /// All steps.
+    pub steps: u64,
+    /// Self-weight steps.
+    pub settle_steps: u64,
+    /// Self-weight duration (s).
+    pub settle_time_s: f64,
+    /// `"dynamic"` or `"static"`.
+    pub settled_by: &'static str,
+    /// Shear steps skipped by the quasi-static skip-ahead.
+    pub skipped_steps: u64,
+    /// Shear-stage duration simulated (s).
+    pub simulated_time_s: f64,
+    /// Δt (s).
+    pub dt_s: f64,
+    /// Critical Δt (s).
+    pub critical_dt_s: f64,
+    /// Events found.
+    pub events: u32,
+    /// Main shocks found.
+    pub main_shocks: u32,
+}
+
+impl RunFacts {
+    /// Facts of a finished run and its catalogue.
+    pub fn of(out: &RunOutput, cat: &Catalogue) -> Self {
+        RunFacts {
+            steps: out.steps(),
+            settle_steps: out.settle_steps,
+            settle_time_s: out.settle_time_s,
+            settled_by: out.settled_by.name(),
+            skipped_steps: out.skip.skipped_steps,
+            simulated_time_s: out.recording.time_s.last().copied().unwrap_or(0.0),
+            dt_s: out.dt_s,
+            critical_dt_s: out.critical.dt_s,
+            events: cat.events.len() as u32,
+            main_shocks: cat.main_shocks().count() as u32,
+        }
+    }
+}
+
+/// The runs table of some rows.
+pub fn frame(rows: &[RunRow], pipeline_hash: &str) -> Result<DataFrame, StoreError> {
+    let n = rows.len();
+    let fact = |g: &dyn Fn(&RunFacts) -> f64| -> Vec<f64> {
+        rows.iter().map(|r| r.outcome.as_ref().map_or(f64::NAN, g)).collect()
+    };
+    let count =
+        |g: &dyn Fn(&RunFacts) -> u64| -> Vec<u64> { rows.iter().map(|r| r.outcome.as_ref().map_or(0, g)).collect() };
+    let status = |r: &RunRow| if r.outcome.is_ok() { RunStatus::Ok } else { RunStatus::Failed };
+    Frame::new(n)
+        .u64(col::SEED, rows.iter().map(|r| r.seed).collect())
+        .static_str(col::STATUS, rows.iter().map(|r| status(r).name()).collect())
+        .str(col::MESSAGE, rows.iter().map(|r| r.outcome.as_ref().err().cloned().unwrap_or_default()).collect())
+        .u64(col::STEPS, count(&|f| f.steps))
+        .u64(col::SETTLE_STEPS, count(&|f| f.settle_steps))
+        .f64(col::SETTLE_TIME_S, fact(&|f| f.settle_time_s))
+        .static_str(col::SETTLED_BY, rows.iter().map(|r| r.outcome.as_ref().map_or("", |f| f.settled_by)).collect())
+        .u64(col::SKIPPED_STEPS, count(&|f| f.skipped_steps))
+        .f64(col::SIMULATED_TIME_S, fact(&|f| f.simulated_time_s))
+        .f64(col::WALL_TIME_S, rows.iter().map(|r| r.wall_time_s).collect())
+        .f64(col::DT_S, fact(&|f| f.dt_s))
+        .f64(col::CRITICAL_DT_S, fact(&|f| f.critical_dt_s))
+        .u32(col::EVENTS, count(&|f| f.events as u64).into_iter().map(|v| v as u32).collect())
+        .u32(col::MAIN_SHOCKS, count(&|f| f.main_shocks as u64).into_iter().map(|v| v as u32).collect())
+        .str(col::PIPELINE_HASH, vec![pipeline_hash.to_string(); n])
+        .finish(RUNS.name)
+}
+
+/// The runs table read back.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Runs {
+    /// Seeds.
+    pub seed: Vec<u64>,
+    /// Status of each.
+    pub status: Vec<RunStatus>,
+    /// Error message of each failed seed (empty for finished ones).
+    pub message: Vec<String>,
+    /// Hash of the pipeline each seed ran.
+    pub pipeline_hash: Vec<String>,
+    /// Main shocks of each seed.
+    pub main_shocks: Vec<u64>,
+    /// Events of each seed.
+    pub events: Vec<u64>,
+    /// Steps of each seed, integrated or skipped.
+    pub steps: Vec<u64>,
+    /// Steps skipped by the quasi-static skip-ahead.
+    pub skipped_steps: Vec<u64>,
+    /// Steps of the self-weight stage.
+    pub settle_steps: Vec<u64>,
+    /// How the self-weight stage settled.
+    pub settled_by: Vec<String>,
+    /// Δt (s), NaN for a failed seed.
+    pub dt_s: Vec<f64>,
+    /// Critical Δt (s), NaN for a failed seed.
+    pub critical_dt_s: Vec<f64>,
+    /// Wall time (s).
+    pub wall_time_s: Vec<f64>,
+}
+
+impl Runs {
+    /// Reads the columns of a runs table.
+    pub fn read(df: &DataFrame) -> Result<Runs, StoreError> {
+        let c = Columns::of(df, RUNS.name);
+        let status = c.strs(col::STATUS)?.iter().map(|s| RunStatus::parse(s).unwrap_or(RunStatus::Failed)).collect();
+        Ok(Runs {
+            seed: c.u64s(col::SEED)?,
+            status,
+            message: c.strs(col::MESSAGE)?,
+            pipeline_hash: c.strs(col::PIPELINE_HASH)?,
+            main_shocks: c.u64s(col::MAIN_SHOCKS)?,
+            events: c.u64s(col::EVENTS)?,
+            steps: c.u64s(col::STEPS)?,
+            skipped_steps: c.u64s(col::SKIPPED_STEPS)?,
+            settle_steps: c.u64s(col::SETTLE_STEPS)?,
+            settled_by: c.strs(col::SETTLED_BY)?,
+            dt_s: c.f64s(col::DT_S)?,
+            critical_dt_s: c.f64s(col::CRITICAL_DT_S)?,
+            wall_time_s: c.f64s(col::WALL_TIME_S)?,
+        })
+    }
+
+    /// Seeds that finished.
+    pub fn ok_seeds(&self) -> Vec<u64> {
+        self.seed.iter().zip(&self.status).filter(|(_, s)| **s == RunStatus::Ok).map(|(s, _)| *s).collect()
+    }
+
+    /// Seeds that failed, with their message.
+    pub fn failed(&self) -> Vec<(u64, String)> {
+        (0..self.seed.len())
+            .filter(|&i| self.status[i] == RunStatus::Failed)
+            .map(|i| (self.seed[i], self.message[i].clone()))
+            .collect()
+    }
+}

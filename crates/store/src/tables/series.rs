@@ -1,0 +1,116 @@
+//! The recorded series of one seed: the interface channels, the control nodes, the skip log.
+
+use polars::prelude::*;
+use stickslip_solver::Recording;
+use stickslip_solver::scene::{Component, Kinematic};
+
+use crate::error::StoreError;
+use crate::frame::{Columns, Frame};
+use crate::schema::{CONTROL, SERIES, SKIPS, col};
+
+/// The series table of one seed: `seed`, `time_s`, then one column per recorded channel
+/// ([`stickslip_solver::Channel::name`]), f64 except node counts (u32).
+pub fn series_frame(seed: u64, rec: &Recording) -> Result<DataFrame, StoreError> {
+    let n = rec.len();
+    let mut cols: Vec<Column> =
+        vec![Column::new(col::SEED.into(), vec![seed; n]), Column::new(col::TIME_S.into(), rec.time_s.clone())];
+    for (ch, values) in &rec.channels {
+        if ch.is_count() {
+            cols.push(Column::new(ch.name().into(), values.iter().map(|&v| v as u32).collect::<Vec<u32>>()));
+        } else {
+            cols.push(Column::new(ch.name().into(), values.clone()));
+        }
+    }
+    DataFrame::new(n, cols).map_err(|e| StoreError::table(SERIES.name, e))
+}
+
+/// The control-node table of one seed (long: one row per node, component and instant; an empty
+/// frame with the schema when nothing was recorded): `seed`, `node` u32 (LDEM number),
+/// `component` str, `time_s`, then `displacement_m`, `velocity_m_s`, `acceleration_m_s2` (null
+/// where not recorded).
+pub fn control_frame(seed: u64, rec: &Recording) -> Result<DataFrame, StoreError> {
+    let n = rec.len();
+    let mut pairs: Vec<(u64, Component)> = rec.control.iter().map(|(c, _)| (c.node.ldem(), c.component)).collect();
+    pairs.sort();
+    pairs.dedup();
+    let rows = pairs.len() * n;
+    let mut seed_col = Vec::with_capacity(rows);
+    let mut node_col = Vec::with_capacity(rows);
+    let mut comp_col: Vec<&str> = Vec::with_capacity(rows);
+    let mut time_col = Vec::with_capacity(rows);
+    let mut values: [Vec<Option<f64>>; 3] = [Vec::new(), Vec::new(), Vec::new()];
+    for &(node, comp) in &pairs {
+        seed_col.extend(std::iter::repeat_n(seed, n));
+        node_col.extend(std::iter::repeat_n(node as u32, n));
+        comp_col.extend(std::iter::repeat_n(comp.name(), n));
+        time_col.extend_from_slice(&rec.time_s);
+        for (q, out) in Kinematic::ALL.iter().zip(values.iter_mut()) {
+            let found =
+                rec.control.iter().find(|(c, _)| c.node.ldem() == node && c.component == comp && c.quantity == *q);
+            match found {
+                Some((_, v)) => out.extend(v.iter().map(|&x| Some(x))),
+                None => out.extend(std::iter::repeat_n(None, n)),
+            }
+        }
+    }
+    let mut cols = vec![
+        Column::new(col::SEED.into(), seed_col),
+        Column::new(col::NODE.into(), node_col),
+        Column::new(col::COMPONENT.into(), comp_col),
+        Column::new(col::TIME_S.into(), time_col),
+    ];
+    for (q, v) in Kinematic::ALL.iter().zip(values) {
+        cols.push(Column::new(q.column().into(), v));
+    }
+    DataFrame::new(rows, cols).map_err(|e| StoreError::table(CONTROL.name, e))
+}
+
+/// The skip log of one seed (one row per quasi-static jump): `seed`, `from_s`, `to_s` (shear-stage
+/// times), `steps` u64 (not integrated), `next` str (`slide`, `lift`, `land`, `end`: the
+/// transition predicted just after `to_s`), `node` u32 (its LDEM number, null for `end`).
+pub fn skips_frame(seed: u64, rec: &Recording) -> Result<DataFrame, StoreError> {
+    let s = &rec.skips;
+    let n = s.len();
+    Frame::new(n)
+        .u64(col::SEED, vec![seed; n])
+        .f64(col::FROM_S, s.iter().map(|k| k.from_s).collect())
+        .f64(col::TO_S, s.iter().map(|k| k.to_s).collect())
+        .u64(col::STEPS, s.iter().map(|k| k.steps).collect())
+        .static_str(col::NEXT, s.iter().map(|k| k.next.kind()).collect())
+        .opt_u32(col::NODE, s.iter().map(|k| k.next.node().map(|id| id.ldem() as u32)).collect())
+        .finish(SKIPS.name)
+}
+
+/// A time history: (times, values).
+pub type Trace = (Vec<f64>, Vec<f64>);
+
+/// The times and one channel of a series part, if it was recorded.
+pub fn read_series_channel(df: &DataFrame, channel: &str) -> Result<Option<Trace>, StoreError> {
+    let c = Columns::of(df, SERIES.name);
+    if !c.has(channel) {
+        return Ok(None);
+    }
+    Ok(Some((c.f64s(col::TIME_S)?, c.f64s(channel)?)))
+}
+
+/// One quantity of one control node and component from a control part, if recorded.
+pub fn read_control(
+    df: &DataFrame,
+    node_ldem: u64,
+    component: Component,
+    quantity: Kinematic,
+) -> Result<Option<Trace>, StoreError> {
+    let c = Columns::of(df, CONTROL.name);
+    let nodes = c.u64s(col::NODE)?;
+    let comps = c.strs(col::COMPONENT)?;
+    let idx: Vec<usize> = (0..c.height()).filter(|&i| nodes[i] == node_ldem && comps[i] == component.name()).collect();
+    if idx.is_empty() {
+        return Ok(None);
+    }
+    let t = c.f64s(col::TIME_S)?;
+    let v = c.opt_f64s(quantity.column())?;
+    if idx.iter().all(|&i| v[i].is_none()) {
+        return Ok(None);
+    }
+    Ok(Some((idx.iter().map(|&i| t[i]).collect(), idx.iter().map(|&i| v[i].unwrap_or(f64::NAN)).collect())))
+}

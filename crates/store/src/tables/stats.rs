@@ -1,0 +1,213 @@
+//! Tables across seeds: the summary statistics, PSA statistics and attenuation fits.
+
+use polars::prelude::DataFrame;
+use stickslip_seismo::fit::LogFit;
+use stickslip_seismo::stats::Summary;
+
+use crate::error::StoreError;
+use crate::frame::{Columns, Frame};
+use crate::schema::{ATTENUATION_FIT, PSA_STATS, SUMMARY, col};
+
+/// One row of the summary: the statistics of `quantity` over the events of `group`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SummaryRow {
+    /// `S1`, `S2`, … (main shocks of that rank over all seeds), `main`, `all`, or `seed`.
+    pub group: String,
+    /// A column of the events or similarity table, or a per-seed count.
+    pub quantity: String,
+    /// The statistics.
+    pub summary: Summary,
+}
+
+/// The summary table.
+pub fn summary_frame(rows: &[SummaryRow]) -> Result<DataFrame, StoreError> {
+    let n = rows.len();
+    let f = |g: &dyn Fn(&Summary) -> f64| rows.iter().map(|r| g(&r.summary)).collect::<Vec<f64>>();
+    let o = |g: &dyn Fn(&Summary) -> Option<f64>| rows.iter().map(|r| g(&r.summary)).collect::<Vec<Option<f64>>>();
+    Frame::new(n)
+        .str(col::GROUP, rows.iter().map(|r| r.group.clone()).collect())
+        .str(col::QUANTITY, rows.iter().map(|r| r.quantity.clone()).collect())
+        .u32(col::COUNT, rows.iter().map(|r| r.summary.count as u32).collect())
+        .f64(col::MEAN, f(&|s| s.mean))
+        .opt_f64(col::STD, o(&|s| s.std))
+        .opt_f64(col::CV, o(&|s| s.cv))
+        .f64(col::MIN, f(&|s| s.min))
+        .f64(col::P5, f(&|s| s.p5))
+        .f64(col::P50, f(&|s| s.p50))
+        .f64(col::P95, f(&|s| s.p95))
+        .f64(col::MAX, f(&|s| s.max))
+        .opt_f64(col::CI95_LOW, o(&|s| s.ci95_low))
+        .opt_f64(col::CI95_HIGH, o(&|s| s.ci95_high))
+        .opt_f64(col::GEOMETRIC_MEAN, o(&|s| s.geometric_mean))
+        .opt_f64(col::LOG_STD, o(&|s| s.log_std))
+        .finish(SUMMARY.name)
+}
+
+/// The summary table read back.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SummaryTable {
+    /// Group of each row.
+    pub group: Vec<String>,
+    /// Quantity of each row.
+    pub quantity: Vec<String>,
+    /// Count.
+    pub count: Vec<f64>,
+    /// Mean.
+    pub mean: Vec<f64>,
+    /// Standard deviation (NaN where undefined).
+    pub std: Vec<f64>,
+    /// Lower end of the 95% confidence interval of the mean (NaN where undefined).
+    pub ci95_low: Vec<f64>,
+    /// Upper end.
+    pub ci95_high: Vec<f64>,
+}
+
+impl SummaryTable {
+    /// Reads the columns of a summary table.
+    pub fn read(df: &DataFrame) -> Result<SummaryTable, StoreError> {
+        let c = Columns::of(df, SUMMARY.name);
+        Ok(SummaryTable {
+            group: c.strs(col::GROUP)?,
+            quantity: c.strs(col::QUANTITY)?,
+            count: c.f64s(col::COUNT)?,
+            mean: c.f64s(col::MEAN)?,
+            std: c.f64s(col::STD)?,
+            ci95_low: c.f64s(col::CI95_LOW)?,
+            ci95_high: c.f64s(col::CI95_HIGH)?,
+        })
+    }
+
+    /// The row of `quantity` in `group`, if any.
+    pub fn find(&self, group: &str, quantity: &str) -> Option<usize> {
+        (0..self.group.len()).find(|&i| self.group[i] == group && self.quantity[i] == quantity)
+    }
+}
+
+/// PSA across seeds at one (scale, node, component, damping, period).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PsaStatsRow {
+    /// `model` or `prototype`.
+    pub scale: String,
+    /// Node (LDEM number).
+    pub node: u32,
+    /// Component.
+    pub component: String,
+    /// Damping ratio.
+    pub damping: f64,
+    /// Period (s).
+    pub period_s: f64,
+    /// Seeds.
+    pub count: u32,
+    /// Mean, geometric mean, 5th, 50th and 95th percentiles (m/s²).
+    pub stats: [f64; 5],
+}
+
+/// The PSA statistics table.
+pub fn psa_stats_frame(rows: &[PsaStatsRow]) -> Result<DataFrame, StoreError> {
+    let n = rows.len();
+    let s = |k: usize| rows.iter().map(|r| r.stats[k]).collect::<Vec<f64>>();
+    Frame::new(n)
+        .str(col::SCALE, rows.iter().map(|r| r.scale.clone()).collect())
+        .u32(col::NODE, rows.iter().map(|r| r.node).collect())
+        .str(col::COMPONENT, rows.iter().map(|r| r.component.clone()).collect())
+        .f64(col::DAMPING, rows.iter().map(|r| r.damping).collect())
+        .f64(col::PERIOD_S, rows.iter().map(|r| r.period_s).collect())
+        .u32(col::COUNT, rows.iter().map(|r| r.count).collect())
+        .f64(col::MEAN_M_S2, s(0))
+        .f64(col::GEOMETRIC_MEAN_M_S2, s(1))
+        .f64(col::P5_M_S2, s(2))
+        .f64(col::P50_M_S2, s(3))
+        .f64(col::P95_M_S2, s(4))
+        .finish(PSA_STATS.name)
+}
+
+/// The PSA statistics read back.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PsaStats {
+    /// Scale.
+    pub scale: Vec<String>,
+    /// Node (LDEM number).
+    pub node: Vec<u64>,
+    /// Component.
+    pub component: Vec<String>,
+    /// Damping ratio.
+    pub damping: Vec<f64>,
+    /// Period (s).
+    pub period_s: Vec<f64>,
+    /// Mean (m/s²).
+    pub mean: Vec<f64>,
+    /// 5th percentile (m/s²).
+    pub p5: Vec<f64>,
+    /// 95th percentile (m/s²).
+    pub p95: Vec<f64>,
+}
+
+impl PsaStats {
+    /// Reads the columns of a PSA statistics table.
+    pub fn read(df: &DataFrame) -> Result<PsaStats, StoreError> {
+        let c = Columns::of(df, PSA_STATS.name);
+        Ok(PsaStats {
+            scale: c.strs(col::SCALE)?,
+            node: c.u64s(col::NODE)?,
+            component: c.strs(col::COMPONENT)?,
+            damping: c.f64s(col::DAMPING)?,
+            period_s: c.f64s(col::PERIOD_S)?,
+            mean: c.f64s(col::MEAN_M_S2)?,
+            p5: c.f64s(col::P5_M_S2)?,
+            p95: c.f64s(col::P95_M_S2)?,
+        })
+    }
+}
+
+/// One fit of the attenuation table.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FitRow {
+    /// `S1`, … or `main`.
+    pub group: String,
+    /// `pga_m_s2` or `pgv_m_s`.
+    pub measure: &'static str,
+    /// The fit.
+    pub fit: LogFit,
+}
+
+/// The attenuation fit table (`log10 y = intercept + slope·log10(distance_m)`).
+pub fn attenuation_fit_frame(rows: &[FitRow]) -> Result<DataFrame, StoreError> {
+    let n = rows.len();
+    Frame::new(n)
+        .str(col::GROUP, rows.iter().map(|r| r.group.clone()).collect())
+        .static_str(col::MEASURE, rows.iter().map(|r| r.measure).collect())
+        .u32(col::POINTS, rows.iter().map(|r| r.fit.points as u32).collect())
+        .f64(col::INTERCEPT, rows.iter().map(|r| r.fit.intercept).collect())
+        .f64(col::SLOPE, rows.iter().map(|r| r.fit.slope).collect())
+        .f64(col::R2, rows.iter().map(|r| r.fit.r2).collect())
+        .finish(ATTENUATION_FIT.name)
+}
+
+/// The attenuation fits read back.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AttenuationFit {
+    /// Group.
+    pub group: Vec<String>,
+    /// Measure.
+    pub measure: Vec<String>,
+    /// Intercept.
+    pub intercept: Vec<f64>,
+    /// Slope.
+    pub slope: Vec<f64>,
+    /// r².
+    pub r2: Vec<f64>,
+}
+
+impl AttenuationFit {
+    /// Reads the columns of an attenuation fit table.
+    pub fn read(df: &DataFrame) -> Result<AttenuationFit, StoreError> {
+        let c = Columns::of(df, ATTENUATION_FIT.name);
+        Ok(AttenuationFit {
+            group: c.strs(col::GROUP)?,
+            measure: c.strs(col::MEASURE)?,
+            intercept: c.f64s(col::INTERCEPT)?,
+            slope: c.f64s(col::SLOPE)?,
+            r2: c.f64s(col::R2)?,
+        })
+    }
+}
