@@ -90,6 +90,28 @@ pub enum Channel {
 }
 
 impl Channel {
+    /// Every channel.
+    pub const ALL: [Channel; 18] = [
+        Channel::ShearStress,
+        Channel::NormalStress,
+        Channel::MeanSlip,
+        Channel::MeanSlipRate,
+        Channel::MaxSlipRate,
+        Channel::SlippingNodes,
+        Channel::LiftedNodes,
+        Channel::DriverForce,
+        Channel::DriverDisplacement,
+        Channel::Kinetic,
+        Channel::Elastic,
+        Channel::DampingDissipated,
+        Channel::FrictionDissipated,
+        Channel::ImpactDissipated,
+        Channel::BodyWork,
+        Channel::DriverWork,
+        Channel::ExternalWork,
+        Channel::EnergyResidual,
+    ];
+
     /// Column name with unit.
     pub fn name(self) -> &'static str {
         match self {

@@ -282,4 +282,132 @@ mod tests {
             assert_eq!(f, plain, "{nx}×{ny}×{nz}: same bits as bar_forces");
         }
     }
+
+    /// The bar forces written plainly: every bar in kernel order, one lane at a time, the
+    /// arithmetic of the module doc.
+    fn reference<const L: usize>(layout: &BarLayout, k: &[Lanes<L>], u: &Field<L>) -> Field<L> {
+        let mut f = Field::<L>::zeros(layout.nodes());
+        for g in layout.groups() {
+            for (e, kb) in layout.ends()[g.start..g.end].iter().zip(&k[g.start..g.end]) {
+                let (i, j) = (e[0] as usize, e[1] as usize);
+                for l in 0..L {
+                    match g.direction {
+                        Direction::Axis(a) => {
+                            let a = a as usize;
+                            let t = kb[l] * (u.c[a][j][l] - u.c[a][i][l]);
+                            f.c[a][i][l] += t;
+                            f.c[a][j][l] -= t;
+                        }
+                        Direction::Diagonal { neg_x, neg_y } => {
+                            let sx = if neg_x { -1.0 } else { 1.0 };
+                            let sy = if neg_y { -1.0 } else { 1.0 };
+                            let d = |c: usize| u.c[c][j][l] - u.c[c][i][l];
+                            let t = kb[l] * (sx * d(0) + sy * d(1) + d(2));
+                            let tc = [sx * t, sy * t, t];
+                            for c in 0..3 {
+                                f.c[c][i][l] += tc[c];
+                                f.c[c][j][l] -= tc[c];
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        f
+    }
+
+    /// A random displacement field and stiffness for `L` lanes.
+    fn random_state<const L: usize>(m: &crate::Model, seed: u64) -> (Vec<Lanes<L>>, Field<L>) {
+        use rand::{RngExt, SeedableRng};
+        let mut rng = rand::rngs::ChaCha8Rng::seed_from_u64(seed);
+        let k0 = m.nominal_stiffness();
+        let k = k0.iter().map(|&v| std::array::from_fn(|_| v * rng.random_range(0.8..1.2))).collect();
+        let mut u = Field::<L>::zeros(m.node_count());
+        for c in 0..3 {
+            for v in u.c[c].iter_mut() {
+                *v = std::array::from_fn(|_| rng.random_range(-1e-6..1e-6));
+            }
+        }
+        (k, u)
+    }
+
+    fn model(nx: usize, ny: usize, nz: usize) -> crate::Model {
+        crate::Model::new(crate::Scene { dims: crate::geometry::Dims::new(nx, ny, nz), ..crate::Scene::paper() })
+    }
+
+    fn every_pass_agrees<const L: usize>(m: &crate::Model, seed: u64) {
+        let (k, u) = random_state::<L>(m, seed);
+        let want = reference(m.layout(), &k, &u);
+        let n = m.node_count();
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
+        for isa in Isa::available() {
+            Isa::pinned(isa, || {
+                let mut f = Field::<L>::zeros(n);
+                bar_forces(m.layout(), &k, &u, &mut f);
+                assert_eq!(f, want, "plain pass, {isa:?}, {L} lanes");
+                let mut f = Field::<L>::zeros(n);
+                bar_forces_finishing(m.layout(), &k, &u, &mut f, |_, _| {});
+                assert_eq!(f, want, "finishing pass, {isa:?}, {L} lanes");
+                let mut f = Field::<L>::zeros(n);
+                pool.install(|| bar_forces_parallel(m.layout(), &k, &u, &mut f));
+                assert_eq!(f, want, "parallel pass, {isa:?}, {L} lanes");
+            });
+        }
+    }
+
+    #[test]
+    fn every_build_and_pass_of_the_bar_kernel_agrees_with_the_plain_reference() {
+        // The paper lattice (one segment), a cache-blocked one, and one cut into z-slabs.
+        for (nx, ny, nz) in [(10, 1, 5), (40, 20, 4), (40, 20, 10)] {
+            let m = model(nx, ny, nz);
+            every_pass_agrees::<1>(&m, 1);
+            every_pass_agrees::<8>(&m, 2);
+        }
+        assert!(model(40, 20, 10).layout().segments().len() > 1, "the last lattice is cut into slabs");
+    }
+
+    #[test]
+    fn fused_pass_gives_the_plain_pass_and_integration_in_every_build() {
+        use crate::step::integrate::{Levels, Update, integrate_all, integrate_range};
+        use crate::step::params::Coefficients;
+        let m = model(40, 20, 4);
+        assert!(m.cache_blocked());
+        let (k, u) = random_state::<4>(&m, 5);
+        let (_, up) = random_state::<4>(&m, 6);
+        let coef = Coefficients {
+            cf: [1e-11, 2e-11, 3e-11, 4e-11],
+            c2: [1.99, 1.98, 1.97, 1.96],
+            cp: [0.99, 0.98, 0.97, 0.96],
+        };
+        let body = [[0.0; 4], [0.0; 4], [-9.81, -9.81, -1.0, 0.0]];
+        let update = Update { inv_mass: m.inv_mass(), coef: &coef, body: &body };
+        // The trial written plainly.
+        let f = reference(m.layout(), &k, &u);
+        let mut want = Field::<4>::zeros(m.node_count());
+        for c in 0..3 {
+            for i in 0..m.node_count() {
+                for l in 0..4 {
+                    let im = m.inv_mass()[i];
+                    want.c[c][i][l] = coef.cf[l] * (f.c[c][i][l] * im + body[c][l]) + coef.c2[l] * u.c[c][i][l]
+                        - coef.cp[l] * up.c[c][i][l];
+                }
+            }
+        }
+        for isa in Isa::available() {
+            Isa::pinned(isa, || {
+                let mut f = Field::<4>::zeros(m.node_count());
+                let mut plain = Field::<4>::zeros(m.node_count());
+                bar_forces(m.layout(), &k, &u, &mut f);
+                integrate_all(&update, &mut f, Levels { u: &u, up: &up, out: &mut plain }, false);
+                assert_eq!(plain, want, "plain pass and integration, {isa:?}");
+                assert!(f.c.iter().all(|c| c.iter().all(|v| *v == [0.0; 4])), "the force field is cleared");
+                let mut f = Field::<4>::zeros(m.node_count());
+                let mut fused = Field::<4>::zeros(m.node_count());
+                bar_forces_finishing(m.layout(), &k, &u, &mut f, |r, f| {
+                    integrate_range(isa, r, &update, f, Levels { u: &u, up: &up, out: &mut fused });
+                });
+                assert_eq!(fused, want, "fused pass, {isa:?}");
+            });
+        }
+    }
 }
