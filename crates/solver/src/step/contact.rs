@@ -1,5 +1,5 @@
 //! Contact of the base nodes with the rigid base (docs/model.md §4): unilateral in z, friction in
-//! x and y by the scene's [`Law`].
+//! x and y by the scene's [`FrictionLaw`].
 //!
 //! Per contact node, from its trial position `(x_t, y_t, z_t)` (the step's update without the
 //! base) and its position now `(x_n, y_n)`, with `g = m(1 + DΔt/2)/Δt²` the stiffness of the
@@ -18,7 +18,7 @@
 //! two are tested bit for bit against each other.
 
 use crate::field::{Field, Lanes};
-use crate::laws::{FrictionLaw, Law, NodeFriction};
+use crate::laws::{FrictionLaw, NodeFriction};
 use crate::step::isa::{Isa, widest};
 use crate::step::params::Params;
 use crate::step::state::{ContactState, SlipLog};
@@ -42,8 +42,8 @@ pub struct Resolved {
 /// The contact rule for one node (see the module doc): `trial` is the position the step would
 /// give without the base, `now` the node's `(x, y)` before the step, `g = m(1 + DΔt/2)/Δt²`,
 /// `sliding` and `path` its state from the last step.
-pub fn resolve<F: Law>(
-    law: &F,
+pub fn resolve(
+    law: &FrictionLaw,
     node: &NodeFriction,
     g: f64,
     trial: [f64; 3],
@@ -118,12 +118,7 @@ pub(crate) fn apply<const L: usize>(
         slip_path: &mut contact.slip_path,
         reaction: &mut contact.reaction,
     };
-    let isa = Isa::current();
-    match p.law {
-        FrictionLaw::Coulomb(law) => contact_dispatch(isa, &mut c, law),
-        FrictionLaw::StaticDynamic(law) => contact_dispatch(isa, &mut c, law),
-        FrictionLaw::SlipWeakening(law) => contact_dispatch(isa, &mut c, law),
-    }
+    contact_dispatch(Isa::current(), &mut c, p.law);
     let Some((log, track_slid, track_onsets, step)) = log else { return };
     if track_slid {
         for (any, now) in log.slid.iter_mut().zip(&contact.sliding) {
@@ -151,12 +146,12 @@ pub(crate) fn apply<const L: usize>(
 
 widest! {
     /// The contact update of every contact node in instruction set `isa`.
-    fn contact_dispatch<const L: usize, F: Law>(c: &mut ContactArrays<'_, L>, law: F) => contact
+    fn contact_dispatch<const L: usize>(c: &mut ContactArrays<'_, L>, law: FrictionLaw) => contact
 }
 
 /// [`resolve`] for every contact node, `L` lanes at once without branches.
 #[inline(always)]
-fn contact<const L: usize, F: Law>(c: &mut ContactArrays<'_, L>, law: F) {
+fn contact<const L: usize>(c: &mut ContactArrays<'_, L>, law: FrictionLaw) {
     for (ci, &node) in c.nodes.iter().enumerate() {
         let p = node as usize;
         let m = c.mass[p];
@@ -227,7 +222,7 @@ mod tests {
     use rand::{RngExt, SeedableRng};
 
     use super::*;
-    use crate::laws::{Coulomb, SlipWeakening, StaticDynamic};
+    use crate::laws::{Coulomb, FrictionLaw, SlipWeakening, StaticDynamic};
 
     /// Random contact states of `nodes` nodes and `L` lanes: trial positions below and above the
     /// base, nodes that were sliding with some slip path, coefficients varying per node and lane.
@@ -242,13 +237,15 @@ mod tests {
         path: Vec<Lanes<L>>,
     }
 
-    fn case<const L: usize>(seed: u64, nodes: usize) -> Case<L> {
+    fn case<const L: usize>(law: &FrictionLaw, seed: u64, nodes: usize) -> Case<L> {
         let mut rng = rand::rngs::ChaCha8Rng::seed_from_u64(seed);
         let mut lanes = |lo: f64, hi: f64| -> Lanes<L> { std::array::from_fn(|_| rng.random_range(lo..hi)) };
         let mass: Vec<f64> = (0..nodes).map(|_| lanes(1.0, 3.0)[0]).collect();
         let cf = lanes(1e-11, 1e-10);
-        let mu_s: Vec<Lanes<L>> = (0..nodes).map(|_| lanes(0.3, 5.0)).collect();
-        let mu_d: Vec<Lanes<L>> = mu_s.iter().map(|m| m.map(|v| v * 0.8)).collect();
+        // The law's coefficients times a random-field factor per node and lane.
+        let factors: Vec<Lanes<L>> = (0..nodes).map(|_| lanes(0.3, 5.0)).collect();
+        let mu_s = factors.iter().map(|f| f.map(|v| law.node(v).mu_static)).collect();
+        let mu_d = factors.iter().map(|f| f.map(|v| law.node(v).mu_dynamic)).collect();
         // Tangential trials a few µm from where the node is, vertical ones ±1 µm about the base:
         // some nodes lift, some stick, some slide.
         let trial = [
@@ -263,8 +260,8 @@ mod tests {
     }
 
     /// The lane kernel in build `isa` against [`resolve`] on every node and lane, bit for bit.
-    fn agree<const L: usize, F: Law + std::fmt::Debug>(law: F, isa: Isa, seed: u64) {
-        let c = case::<L>(seed, 40);
+    fn agree<const L: usize>(law: FrictionLaw, isa: Isa, seed: u64) {
+        let c = case::<L>(&law, seed, 40);
         let nodes: Vec<u32> = (0..c.mass.len() as u32).collect();
         let mut trial = c.trial.clone();
         let mut sliding = c.sliding.clone();
@@ -320,10 +317,14 @@ mod tests {
     fn lane_kernel_agrees_with_the_scalar_law_bit_for_bit_in_every_build() {
         for isa in Isa::available() {
             for seed in 0..4 {
-                agree::<8, _>(Coulomb { mu: 1.0 }, isa, seed);
-                agree::<4, _>(StaticDynamic { mu_static: 1.0, mu_dynamic: 0.8 }, isa, seed);
-                agree::<1, _>(SlipWeakening { mu_static: 1.0, mu_dynamic: 0.8, dc_m: 3e-6 }, isa, seed);
-                agree::<8, _>(SlipWeakening { mu_static: 1.0, mu_dynamic: 0.8, dc_m: 3e-6 }, isa, seed);
+                let plain = FrictionLaw::Coulomb(Coulomb { mu: 1.0 });
+                let sd = FrictionLaw::StaticDynamic(StaticDynamic { mu_static: 1.0, mu_dynamic: 0.8 });
+                let sw = FrictionLaw::SlipWeakening(SlipWeakening { mu_static: 1.0, mu_dynamic: 0.8, dc_m: 3e-6 });
+                for law in [plain, sd, sw] {
+                    agree::<1>(law, isa, seed);
+                    agree::<4>(law, isa, seed);
+                    agree::<8>(law, isa, seed);
+                }
             }
         }
     }

@@ -107,7 +107,9 @@ fn integrate<const L: usize>(
     up: &[Lanes<L>],
     out: &mut [Lanes<L>],
 ) {
-    let (inv_mass, k, body) = (one.inv_mass, one.coef, one.body);
+    // The coefficients as local values, so they stay in registers through the loop.
+    let (inv_mass, body) = (one.inv_mass, one.body);
+    let (cf, c2, cp) = (one.coef.cf, one.coef.c2, one.coef.cp);
     let n = inv_mass.len();
     let (f, u, up, out) = (&mut f[..n], &u[..n], &up[..n], &mut out[..n]);
     for i in 0..n {
@@ -115,7 +117,7 @@ fn integrate<const L: usize>(
         let (fi, ui, upi) = (f[i], u[i], up[i]);
         let mut o = [0.0; L];
         for l in 0..L {
-            o[l] = k.cf[l] * (fi[l] * im + body[l]) + k.c2[l] * ui[l] - k.cp[l] * upi[l];
+            o[l] = cf[l] * (fi[l] * im + body[l]) + c2[l] * ui[l] - cp[l] * upi[l];
         }
         out[i] = o;
         f[i] = [0.0; L];
