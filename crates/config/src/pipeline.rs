@@ -95,7 +95,7 @@ pub struct PipelineFile {
     /// `[similarity]`: the prototype fault.
     #[serde(default)]
     pub similarity: SimilaritySection,
-    /// `[spectra]`: the spectra stage; absent = skipped.
+    /// `[spectra]`: the spectra analysis; absent = skipped.
     pub spectra: Option<SpectraSection>,
     /// `[report]`: figures and page (not part of the hash: it does not change any table).
     #[serde(default)]
@@ -200,7 +200,7 @@ pub struct Pipeline {
     pub events: EventParams,
     /// Similarity scaling.
     pub similarity: SimilarityParams,
-    /// Spectra stage, if asked.
+    /// Spectra analysis, if asked.
     pub spectra: Option<SpectraSettings>,
     /// Report stage.
     pub report: ReportSettings,

@@ -162,7 +162,7 @@ impl Named for Window {
     }
 }
 
-/// `[spectra]`: the spectra stage (absent = skipped), docs/model.md §8.
+/// `[spectra]`: the spectra analysis (absent = skipped), docs/model.md §8.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields, default)]
 pub struct SpectraSection {
@@ -213,7 +213,7 @@ impl Default for SpectraSection {
     }
 }
 
-/// What the spectra stage computes (a validated `[spectra]`).
+/// What the spectra analysis computes (a validated `[spectra]`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct SpectraSettings {
     /// Damping ratios.
@@ -328,7 +328,7 @@ impl SpectraSection {
     }
 }
 
-/// `[report]`: the report stage.
+/// `[report]`: the report.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields, default)]
 pub struct ReportSection {

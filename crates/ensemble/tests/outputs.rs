@@ -1,4 +1,4 @@
-//! What the ensemble writes of the spectra stage: AT2 files that read back, prototype spectra that are
+//! What the ensemble writes of the spectra analysis: AT2 files that read back, prototype spectra that are
 //! the scaled model spectra.
 
 use std::sync::atomic::AtomicBool;

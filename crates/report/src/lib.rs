@@ -64,7 +64,7 @@ pub struct Figure {
     pub caption: String,
 }
 
-/// What the report stage wrote.
+/// What the report wrote.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ReportSummary {
     /// The page.

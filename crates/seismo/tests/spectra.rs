@@ -1,4 +1,4 @@
-//! Response spectra, intensity measures and records against closed forms (SPEC §8).
+//! Response spectra, intensity measures and records against closed forms (docs/model.md §8).
 
 use std::f64::consts::PI;
 

@@ -276,7 +276,7 @@ fn spectra_x(d: &ReportInput, path: &Path) -> Result<Outcome, ReportError> {
 /// the 5–95% band bold.
 fn spectra(d: &ReportInput, path: &Path, comp: Component) -> Result<Outcome, ReportError> {
     let (Some(stats), Some((node, _))) = (&d.psa_stats, accelerogram_channel(d)) else {
-        return Ok(Outcome::Skipped("no spectra stage".into()));
+        return Ok(Outcome::Skipped("no spectra analysis".into()));
     };
     let cname = comp.name();
     let damping =

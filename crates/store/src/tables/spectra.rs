@@ -1,4 +1,4 @@
-//! Tables of the spectra stage: spectra, Fourier spectra, intensity measures, accelerograms and
+//! Tables of the spectra analysis: spectra, Fourier spectra, intensity measures, accelerograms and
 //! attenuation of one seed.
 //!
 //! `node` is the LDEM number (u32), `component` `x`/`y`/`z`, `scale` `model` or `prototype`.
@@ -16,7 +16,7 @@ use crate::frame::{Columns, Frame};
 use crate::schema::{ACCELEROGRAMS, ATTENUATION, FOURIER, INTENSITY, SPECTRA, col};
 use crate::tables::series::Trace;
 
-/// The two scales every table of the stage is written at.
+/// The two scales every table of the spectra analysis is written at.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Scale {
     /// As simulated.
@@ -46,7 +46,7 @@ impl Scale {
     }
 }
 
-/// What the spectra stage computed for one control channel (model scale).
+/// What the spectra analysis computed for one control channel (model scale).
 #[derive(Clone, Debug)]
 pub struct ChannelSpectra {
     /// The channel.
@@ -59,7 +59,7 @@ pub struct ChannelSpectra {
     pub t0: f64,
     /// Accelerations (m/s²).
     pub accel: Vec<f64>,
-    /// SD (m), damping-major over the stage's periods.
+    /// SD (m), damping-major over the analysis's periods.
     pub sd: Vec<f64>,
     /// Intensity measures.
     pub intensity: Intensity,
