@@ -9,7 +9,7 @@ use stickslip_seismo::stats::percentile_sorted;
 use stickslip_store::frame::Columns;
 use stickslip_store::io::{scan_glob, write_parquet_atomic};
 use stickslip_store::schema::{
-    ATTENUATION, ATTENUATION_FIT, EVENTS_TABLE, GATHERED, PSA_STATS, RUNS, SIMILARITY, SPECTRA, SUMMARY, col,
+    self, ATTENUATION, ATTENUATION_FIT, EVENTS_TABLE, PSA_STATS, RUNS, SIMILARITY, SPECTRA, SUMMARY, col,
 };
 use stickslip_store::tables::runs::Runs;
 use stickslip_store::tables::stats::{FitRow, PsaStatsRow, attenuation_fit_frame, psa_stats_frame, summary_frame};
@@ -37,7 +37,7 @@ fn only_seeds(df: DataFrame, keep: &HashSet<u64>, table: &str) -> Result<DataFra
 pub fn gather(out: &Folder, seeds: &[u64]) -> Result<Option<Runs>, StoreError> {
     let keep: HashSet<u64> = seeds.iter().copied().collect();
     let mut gathered: Vec<(&str, DataFrame)> = Vec::new();
-    for table in GATHERED {
+    for table in schema::gathered() {
         let Some(df) = scan_glob(&out.part_glob(&table))? else { continue };
         let mut df = only_seeds(df, &keep, table.name)?
             .sort(table.key.to_vec(), SortMultipleOptions::default())

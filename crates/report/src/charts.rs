@@ -217,44 +217,38 @@ fn loglog_into(
     // Thin lines first, the bands over them, the bold lines on top.
     let (thin, bold): (Vec<&Line>, Vec<&Line>) = lines.iter().partition(|l| l.width <= 1);
     let mut legend = !bands.is_empty();
-    for l in &thin {
-        let style = l.colour.mix(l.alpha).stroke_width(l.width);
-        let s = chart
-            .draw_series(LineSeries::new(l.points.iter().copied().filter(|p| p.0 > 0.0 && p.1 > 0.0), style))
-            .map_err(|e| err(name)(e.to_string()))?;
-        if !l.label.is_empty() {
-            legend = true;
-            let c = l.colour.mix(l.alpha.max(0.6));
-            s.label(l.label.clone())
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], c.stroke_width(3)));
+    for (bold_pass, group) in [(false, &thin), (true, &bold)] {
+        if bold_pass {
+            for b in bands {
+                let mut poly: Vec<(f64, f64)> = b.points.iter().map(|p| (p.0, p.2)).collect();
+                poly.extend(b.points.iter().rev().map(|p| (p.0, p.1)));
+                let c = b.colour;
+                chart
+                    .draw_series(std::iter::once(Polygon::new(poly, c.mix(0.25).filled())))
+                    .map_err(|e| err(name)(e.to_string()))?
+                    .label(b.label.clone())
+                    .legend(move |(x, y)| Rectangle::new([(x, y - 6), (x + 24, y + 6)], c.mix(0.25).filled()));
+            }
         }
-    }
-    for b in bands {
-        let mut poly: Vec<(f64, f64)> = b.points.iter().map(|p| (p.0, p.2)).collect();
-        poly.extend(b.points.iter().rev().map(|p| (p.0, p.1)));
-        let c = b.colour;
-        chart
-            .draw_series(std::iter::once(Polygon::new(poly, c.mix(0.25).filled())))
-            .map_err(|e| err(name)(e.to_string()))?
-            .label(b.label.clone())
-            .legend(move |(x, y)| Rectangle::new([(x, y - 6), (x + 24, y + 6)], c.mix(0.25).filled()));
-    }
-    for l in bold {
-        let style = l.colour.mix(l.alpha).stroke_width(l.width);
-        let s = chart
-            .draw_series(LineSeries::new(l.points.iter().copied().filter(|p| p.0 > 0.0 && p.1 > 0.0), style))
-            .map_err(|e| err(name)(e.to_string()))?;
-        if !l.label.is_empty() {
-            legend = true;
-            let c = l.colour.mix(l.alpha.max(0.6));
-            s.label(l.label.clone())
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], c.stroke_width(3)));
-        }
-        if *dots {
-            let c = l.colour;
-            chart
-                .draw_series(l.points.iter().filter(|p| p.0 > 0.0 && p.1 > 0.0).map(|&p| Circle::new(p, 5, c.filled())))
+        for l in group.iter() {
+            let style = l.colour.mix(l.alpha).stroke_width(l.width);
+            let s = chart
+                .draw_series(LineSeries::new(l.points.iter().copied().filter(|p| p.0 > 0.0 && p.1 > 0.0), style))
                 .map_err(|e| err(name)(e.to_string()))?;
+            if !l.label.is_empty() {
+                legend = true;
+                let c = l.colour.mix(l.alpha.max(0.6));
+                s.label(l.label.clone())
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], c.stroke_width(3)));
+            }
+            if bold_pass && *dots {
+                let c = l.colour;
+                chart
+                    .draw_series(
+                        l.points.iter().filter(|p| p.0 > 0.0 && p.1 > 0.0).map(|&p| Circle::new(p, 5, c.filled())),
+                    )
+                    .map_err(|e| err(name)(e.to_string()))?;
+            }
         }
     }
     if legend {

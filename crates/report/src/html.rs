@@ -5,7 +5,7 @@
 
 use std::fmt::Write as _;
 
-use stickslip_store::schema::{SEED_TABLES, col};
+use stickslip_store::schema::{col, seed_tables};
 use stickslip_store::tables::runs::RunStatus;
 
 use crate::{Figure, ReportError, ReportInput};
@@ -225,7 +225,7 @@ pub(crate) fn page(d: &ReportInput, figures: &[Figure], skipped: &[(String, Stri
         let _ = writeln!(w, "<li><a href=\"{0}\">{0}</a></li>", esc(&f));
     }
     let _ = write!(w, "</ul>\n<p>Per-seed parts:</p>\n<ul>\n");
-    for table in SEED_TABLES.map(|t| t.name) {
+    for table in seed_tables().map(|t| t.name) {
         let parts = files(d, &format!("tables/{table}"), ".parquet");
         match parts.len() {
             0 => {}

@@ -141,18 +141,8 @@ impl Channel {
         matches!(self, Channel::SlippingNodes | Channel::LiftedNodes)
     }
 
-    /// The energy channels, in order.
-    pub const ENERGY: [Channel; 9] = [
-        Channel::Kinetic,
-        Channel::Elastic,
-        Channel::DampingDissipated,
-        Channel::FrictionDissipated,
-        Channel::ImpactDissipated,
-        Channel::BodyWork,
-        Channel::DriverWork,
-        Channel::ExternalWork,
-        Channel::EnergyResidual,
-    ];
+    /// The energy channels, in order (the last nine of [`Channel::ALL`]).
+    pub const ENERGY: &[Channel] = Channel::ALL.split_at(9).1;
 
     /// Channels of the plan, in a fixed order.
     pub fn of_plan(plan: &RecordPlan) -> Vec<Channel> {
@@ -172,7 +162,7 @@ impl Channel {
             });
         }
         if plan.energy {
-            out.extend_from_slice(&Channel::ENERGY);
+            out.extend_from_slice(Channel::ENERGY);
         }
         out
     }

@@ -129,3 +129,40 @@ impl<'a> Columns<'a> {
         Ok(self.df.column(name).map_err(&t)?.str().map_err(&t)?.iter().map(|v| v.unwrap_or("").to_string()).collect())
     }
 }
+
+/// Declares a table read back with typed columns: a struct of one `Vec` per column kept and its
+/// `read(df)`, each field written once with the expression that reads it from the frame's
+/// [`Columns`] (bound to the name given after `|`).
+///
+/// ```ignore
+/// read_back! {
+///     /// The runs table read back.
+///     pub struct Runs from RUNS, |c| {
+///         /// Seeds.
+///         seed: Vec<u64> = c.u64s(col::SEED)?,
+///     }
+/// }
+/// ```
+macro_rules! read_back {
+    (
+        $(#[$m:meta])*
+        pub struct $name:ident from $table:path, |$c:ident| {
+            $($(#[$fm:meta])* $field:ident: $ty:ty = $read:expr),* $(,)?
+        }
+    ) => {
+        $(#[$m])*
+        #[derive(Clone, Debug, PartialEq)]
+        pub struct $name {
+            $($(#[$fm])* pub $field: $ty,)*
+        }
+
+        impl $name {
+            /// Reads the columns of the table from a frame.
+            pub fn read(df: &polars::prelude::DataFrame) -> Result<$name, $crate::error::StoreError> {
+                let $c = $crate::frame::Columns::of(df, $table.name);
+                Ok($name { $($field: $read,)* })
+            }
+        }
+    };
+}
+pub(crate) use read_back;

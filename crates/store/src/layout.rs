@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 
 use crate::error::StoreError;
 use crate::io::write_text_atomic;
-use crate::schema::{SEED_TABLES, TableSpec};
+use crate::schema::{TableSpec, seed_tables};
 
 /// The name of the manifest file.
 pub const MANIFEST: &str = "manifest.toml";
@@ -130,7 +130,7 @@ impl Folder {
     pub fn remove_stale_temporaries(&self, seeds: &[u64]) -> Result<(), StoreError> {
         let prefixes: std::collections::HashSet<String> =
             seeds.iter().map(|s| format!(".seed-{s:010}.parquet.")).collect();
-        for table in SEED_TABLES {
+        for table in seed_tables() {
             let dir = self.tables().join(table.name);
             let Ok(entries) = std::fs::read_dir(&dir) else { continue };
             for file in entries.flatten() {

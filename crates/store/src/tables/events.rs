@@ -11,7 +11,7 @@ use stickslip_seismo::similarity::{ModelEvent, SECONDS_PER_YEAR, Scaled, moment_
 use stickslip_solver::scene::ControlChannel;
 
 use crate::error::StoreError;
-use crate::frame::{Columns, Frame};
+use crate::frame::{Columns, Frame, read_back};
 use crate::schema::{EVENTS_TABLE, SIMILARITY, SUB_EVENTS_TABLE, col};
 
 /// Column name of the peak |acceleration| of a control channel.
@@ -109,43 +109,29 @@ fn kinds(c: &Columns<'_>) -> Result<Vec<EventKind>, StoreError> {
     Ok(kind.iter().zip(&label).map(|(k, l)| EventKind::parse(k, l).unwrap_or(EventKind::Minor)).collect())
 }
 
-/// The events table read back.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Events {
-    /// Seed of each event.
-    pub seed: Vec<u64>,
-    /// Index of the event in its seed.
-    pub event: Vec<u64>,
-    /// What each event is.
-    pub kind: Vec<EventKind>,
-    /// Start (s).
-    pub start_s: Vec<f64>,
-    /// Duration (s).
-    pub duration_s: Vec<f64>,
-    /// Stress drop (Pa).
-    pub stress_drop_pa: Vec<f64>,
-    /// Time since the previous main shock (s), main shocks after the first only.
-    pub recurrence_s: Vec<Option<f64>>,
-    /// The `peak_abs_accel_*` columns present.
-    pub peak_accel_columns: Vec<String>,
+read_back! {
+    /// The events table read back.
+    pub struct Events from EVENTS_TABLE, |c| {
+        /// Seed of each event.
+        seed: Vec<u64> = c.u64s(col::SEED)?,
+        /// Index of the event in its seed.
+        event: Vec<u64> = c.u64s(col::EVENT)?,
+        /// What each event is.
+        kind: Vec<EventKind> = kinds(&c)?,
+        /// Start (s).
+        start_s: Vec<f64> = c.f64s(col::START_S)?,
+        /// Duration (s).
+        duration_s: Vec<f64> = c.f64s(col::DURATION_S)?,
+        /// Stress drop (Pa).
+        stress_drop_pa: Vec<f64> = c.f64s(col::STRESS_DROP_PA)?,
+        /// Time since the previous main shock (s), main shocks after the first only.
+        recurrence_s: Vec<Option<f64>> = c.opt_f64s(col::RECURRENCE_S)?,
+        /// The `peak_abs_accel_*` columns present.
+        peak_accel_columns: Vec<String> = c.names().into_iter().filter(|n| n.starts_with("peak_abs_accel_")).collect(),
+    }
 }
 
 impl Events {
-    /// Reads the columns of an events table.
-    pub fn read(df: &DataFrame) -> Result<Events, StoreError> {
-        let c = Columns::of(df, EVENTS_TABLE.name);
-        Ok(Events {
-            seed: c.u64s(col::SEED)?,
-            event: c.u64s(col::EVENT)?,
-            kind: kinds(&c)?,
-            start_s: c.f64s(col::START_S)?,
-            duration_s: c.f64s(col::DURATION_S)?,
-            stress_drop_pa: c.f64s(col::STRESS_DROP_PA)?,
-            recurrence_s: c.opt_f64s(col::RECURRENCE_S)?,
-            peak_accel_columns: c.names().into_iter().filter(|n| n.starts_with("peak_abs_accel_")).collect(),
-        })
-    }
-
     /// Number of events.
     pub fn len(&self) -> usize {
         self.seed.len()
@@ -157,31 +143,18 @@ impl Events {
     }
 }
 
-/// The similarity table read back.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Similarity {
-    /// Seed of each event.
-    pub seed: Vec<u64>,
-    /// What each event is.
-    pub kind: Vec<EventKind>,
-    /// λ of each row.
-    pub lambda: Vec<f64>,
-    /// Riera's magnitude from the paper's moment, interplate.
-    pub m_riera_paper_interplate: Vec<f64>,
-    /// Mw from the consistent moment.
-    pub mw_consistent: Vec<f64>,
-}
-
-impl Similarity {
-    /// Reads the columns of a similarity table.
-    pub fn read(df: &DataFrame) -> Result<Similarity, StoreError> {
-        let c = Columns::of(df, SIMILARITY.name);
-        Ok(Similarity {
-            seed: c.u64s(col::SEED)?,
-            kind: kinds(&c)?,
-            lambda: c.f64s(col::LAMBDA)?,
-            m_riera_paper_interplate: c.f64s(col::M_RIERA_PAPER_INTERPLATE)?,
-            mw_consistent: c.f64s(col::MW_CONSISTENT)?,
-        })
+read_back! {
+    /// The similarity table read back.
+    pub struct Similarity from SIMILARITY, |c| {
+        /// Seed of each event.
+        seed: Vec<u64> = c.u64s(col::SEED)?,
+        /// What each event is.
+        kind: Vec<EventKind> = kinds(&c)?,
+        /// λ of each row.
+        lambda: Vec<f64> = c.f64s(col::LAMBDA)?,
+        /// Riera's magnitude from the paper's moment, interplate.
+        m_riera_paper_interplate: Vec<f64> = c.f64s(col::M_RIERA_PAPER_INTERPLATE)?,
+        /// Mw from the consistent moment.
+        mw_consistent: Vec<f64> = c.f64s(col::MW_CONSISTENT)?,
     }
 }

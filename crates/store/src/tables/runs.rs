@@ -5,7 +5,7 @@ use stickslip_seismo::events::Catalogue;
 use stickslip_solver::RunOutput;
 
 use crate::error::StoreError;
-use crate::frame::{Columns, Frame};
+use crate::frame::{Frame, read_back};
 use crate::schema::{RUNS, col};
 
 /// Whether a seed ran to the end.
@@ -114,59 +114,39 @@ pub fn frame(rows: &[RunRow], pipeline_hash: &str) -> Result<DataFrame, StoreErr
         .finish(RUNS.name)
 }
 
-/// The runs table read back.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Runs {
-    /// Seeds.
-    pub seed: Vec<u64>,
-    /// Status of each.
-    pub status: Vec<RunStatus>,
-    /// Error message of each failed seed (empty for finished ones).
-    pub message: Vec<String>,
-    /// Hash of the pipeline each seed ran.
-    pub pipeline_hash: Vec<String>,
-    /// Main shocks of each seed.
-    pub main_shocks: Vec<u64>,
-    /// Events of each seed.
-    pub events: Vec<u64>,
-    /// Steps of each seed, integrated or skipped.
-    pub steps: Vec<u64>,
-    /// Steps skipped by the quasi-static skip-ahead.
-    pub skipped_steps: Vec<u64>,
-    /// Steps of the self-weight stage.
-    pub settle_steps: Vec<u64>,
-    /// How the self-weight stage settled.
-    pub settled_by: Vec<String>,
-    /// Δt (s), NaN for a failed seed.
-    pub dt_s: Vec<f64>,
-    /// Critical Δt (s), NaN for a failed seed.
-    pub critical_dt_s: Vec<f64>,
-    /// Wall time (s).
-    pub wall_time_s: Vec<f64>,
+read_back! {
+    /// The runs table read back.
+    pub struct Runs from RUNS, |c| {
+        /// Seeds.
+        seed: Vec<u64> = c.u64s(col::SEED)?,
+        /// Status of each.
+        status: Vec<RunStatus> = c.strs(col::STATUS)?.iter().map(|s| RunStatus::parse(s).unwrap_or(RunStatus::Failed)).collect(),
+        /// Error message of each failed seed (empty for finished ones).
+        message: Vec<String> = c.strs(col::MESSAGE)?,
+        /// Hash of the pipeline each seed ran.
+        pipeline_hash: Vec<String> = c.strs(col::PIPELINE_HASH)?,
+        /// Main shocks of each seed.
+        main_shocks: Vec<u64> = c.u64s(col::MAIN_SHOCKS)?,
+        /// Events of each seed.
+        events: Vec<u64> = c.u64s(col::EVENTS)?,
+        /// Steps of each seed, integrated or skipped.
+        steps: Vec<u64> = c.u64s(col::STEPS)?,
+        /// Steps skipped by the quasi-static skip-ahead.
+        skipped_steps: Vec<u64> = c.u64s(col::SKIPPED_STEPS)?,
+        /// Steps of the self-weight stage.
+        settle_steps: Vec<u64> = c.u64s(col::SETTLE_STEPS)?,
+        /// How the self-weight stage settled.
+        settled_by: Vec<String> = c.strs(col::SETTLED_BY)?,
+        /// Δt (s), NaN for a failed seed.
+        dt_s: Vec<f64> = c.f64s(col::DT_S)?,
+        /// Critical Δt (s), NaN for a failed seed.
+        critical_dt_s: Vec<f64> = c.f64s(col::CRITICAL_DT_S)?,
+        /// Wall time (s).
+        wall_time_s: Vec<f64> = c.f64s(col::WALL_TIME_S)?,
+    }
 }
 
 impl Runs {
-    /// Reads the columns of a runs table.
-    pub fn read(df: &DataFrame) -> Result<Runs, StoreError> {
-        let c = Columns::of(df, RUNS.name);
-        let status = c.strs(col::STATUS)?.iter().map(|s| RunStatus::parse(s).unwrap_or(RunStatus::Failed)).collect();
-        Ok(Runs {
-            seed: c.u64s(col::SEED)?,
-            status,
-            message: c.strs(col::MESSAGE)?,
-            pipeline_hash: c.strs(col::PIPELINE_HASH)?,
-            main_shocks: c.u64s(col::MAIN_SHOCKS)?,
-            events: c.u64s(col::EVENTS)?,
-            steps: c.u64s(col::STEPS)?,
-            skipped_steps: c.u64s(col::SKIPPED_STEPS)?,
-            settle_steps: c.u64s(col::SETTLE_STEPS)?,
-            settled_by: c.strs(col::SETTLED_BY)?,
-            dt_s: c.f64s(col::DT_S)?,
-            critical_dt_s: c.f64s(col::CRITICAL_DT_S)?,
-            wall_time_s: c.f64s(col::WALL_TIME_S)?,
-        })
-    }
-
     /// Seeds that finished.
     pub fn ok_seeds(&self) -> Vec<u64> {
         self.seed.iter().zip(&self.status).filter(|(_, s)| **s == RunStatus::Ok).map(|(s, _)| *s).collect()

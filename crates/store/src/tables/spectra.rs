@@ -12,7 +12,7 @@ use stickslip_solver::geometry::{Lattice, NodeId};
 use stickslip_solver::scene::{Component, ControlChannel};
 
 use crate::error::StoreError;
-use crate::frame::{Columns, Frame};
+use crate::frame::{Columns, Frame, read_back};
 use crate::schema::{ACCELEROGRAMS, ATTENUATION, FOURIER, INTENSITY, SPECTRA, col};
 use crate::tables::series::Trace;
 
@@ -217,38 +217,23 @@ pub fn attenuation_frame(seed: u64, rows: &[AttenuationRow], lattice: &Lattice) 
         .finish(ATTENUATION.name)
 }
 
-/// The spectra table read back (one or many seeds).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Spectra {
-    /// Seed of each row.
-    pub seed: Vec<u64>,
-    /// Node (LDEM number).
-    pub node: Vec<u64>,
-    /// Component.
-    pub component: Vec<String>,
-    /// Scale.
-    pub scale: Vec<String>,
-    /// Damping ratio.
-    pub damping: Vec<f64>,
-    /// Period (s).
-    pub period_s: Vec<f64>,
-    /// PSA (m/s²).
-    pub psa_m_s2: Vec<f64>,
-}
-
-impl Spectra {
-    /// Reads the columns of a spectra table.
-    pub fn read(df: &DataFrame) -> Result<Spectra, StoreError> {
-        let c = Columns::of(df, SPECTRA.name);
-        Ok(Spectra {
-            seed: c.u64s(col::SEED)?,
-            node: c.u64s(col::NODE)?,
-            component: c.strs(col::COMPONENT)?,
-            scale: c.strs(col::SCALE)?,
-            damping: c.f64s(col::DAMPING)?,
-            period_s: c.f64s(col::PERIOD_S)?,
-            psa_m_s2: c.f64s(col::PSA_M_S2)?,
-        })
+read_back! {
+    /// The spectra table read back (one or many seeds).
+    pub struct Spectra from SPECTRA, |c| {
+        /// Seed of each row.
+        seed: Vec<u64> = c.u64s(col::SEED)?,
+        /// Node (LDEM number).
+        node: Vec<u64> = c.u64s(col::NODE)?,
+        /// Component.
+        component: Vec<String> = c.strs(col::COMPONENT)?,
+        /// Scale.
+        scale: Vec<String> = c.strs(col::SCALE)?,
+        /// Damping ratio.
+        damping: Vec<f64> = c.f64s(col::DAMPING)?,
+        /// Period (s).
+        period_s: Vec<f64> = c.f64s(col::PERIOD_S)?,
+        /// PSA (m/s²).
+        psa_m_s2: Vec<f64> = c.f64s(col::PSA_M_S2)?,
     }
 }
 
@@ -264,31 +249,21 @@ pub fn read_fourier(df: &DataFrame, node_ldem: u64, component: Component) -> Res
     Ok(Some((idx.iter().map(|&i| f[i]).collect(), idx.iter().map(|&i| a[i]).collect())))
 }
 
-/// The attenuation table read back.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Attenuation {
-    /// Main shock of each row (`S1`, …).
-    pub label: Vec<String>,
-    /// Distance from the hypocentre (m).
-    pub distance_m: Vec<f64>,
-    /// Peak acceleration (m/s²).
-    pub pga_m_s2: Vec<f64>,
-    /// Peak velocity (m/s), NaN where not recorded.
-    pub pgv_m_s: Vec<f64>,
+read_back! {
+    /// The attenuation table read back.
+    pub struct Attenuation from ATTENUATION, |c| {
+        /// Main shock of each row (`S1`, …).
+        label: Vec<String> = c.strs(col::LABEL)?,
+        /// Distance from the hypocentre (m).
+        distance_m: Vec<f64> = c.f64s(col::DISTANCE_M)?,
+        /// Peak acceleration (m/s²).
+        pga_m_s2: Vec<f64> = c.f64s(col::PGA_M_S2)?,
+        /// Peak velocity (m/s), NaN where not recorded.
+        pgv_m_s: Vec<f64> = c.f64s(col::PGV_M_S)?,
+    }
 }
 
 impl Attenuation {
-    /// Reads the columns of an attenuation table.
-    pub fn read(df: &DataFrame) -> Result<Attenuation, StoreError> {
-        let c = Columns::of(df, ATTENUATION.name);
-        Ok(Attenuation {
-            label: c.strs(col::LABEL)?,
-            distance_m: c.f64s(col::DISTANCE_M)?,
-            pga_m_s2: c.f64s(col::PGA_M_S2)?,
-            pgv_m_s: c.f64s(col::PGV_M_S)?,
-        })
-    }
-
     /// Rows.
     pub fn len(&self) -> usize {
         self.label.len()

@@ -5,7 +5,7 @@ use stickslip_seismo::fit::LogFit;
 use stickslip_seismo::stats::Summary;
 
 use crate::error::StoreError;
-use crate::frame::{Columns, Frame};
+use crate::frame::{Frame, read_back};
 use crate::schema::{ATTENUATION_FIT, PSA_STATS, SUMMARY, col};
 
 /// One row of the summary: the statistics of `quantity` over the events of `group`.
@@ -43,40 +43,27 @@ pub fn summary_frame(rows: &[SummaryRow]) -> Result<DataFrame, StoreError> {
         .finish(SUMMARY.name)
 }
 
-/// The summary table read back.
-#[derive(Clone, Debug, PartialEq)]
-pub struct SummaryTable {
-    /// Group of each row.
-    pub group: Vec<String>,
-    /// Quantity of each row.
-    pub quantity: Vec<String>,
-    /// Count.
-    pub count: Vec<f64>,
-    /// Mean.
-    pub mean: Vec<f64>,
-    /// Standard deviation (NaN where undefined).
-    pub std: Vec<f64>,
-    /// Lower end of the 95% confidence interval of the mean (NaN where undefined).
-    pub ci95_low: Vec<f64>,
-    /// Upper end.
-    pub ci95_high: Vec<f64>,
+read_back! {
+    /// The summary table read back.
+    pub struct SummaryTable from SUMMARY, |c| {
+        /// Group of each row.
+        group: Vec<String> = c.strs(col::GROUP)?,
+        /// Quantity of each row.
+        quantity: Vec<String> = c.strs(col::QUANTITY)?,
+        /// Count.
+        count: Vec<f64> = c.f64s(col::COUNT)?,
+        /// Mean.
+        mean: Vec<f64> = c.f64s(col::MEAN)?,
+        /// Standard deviation (NaN where undefined).
+        std: Vec<f64> = c.f64s(col::STD)?,
+        /// Lower end of the 95% confidence interval of the mean (NaN where undefined).
+        ci95_low: Vec<f64> = c.f64s(col::CI95_LOW)?,
+        /// Upper end.
+        ci95_high: Vec<f64> = c.f64s(col::CI95_HIGH)?,
+    }
 }
 
 impl SummaryTable {
-    /// Reads the columns of a summary table.
-    pub fn read(df: &DataFrame) -> Result<SummaryTable, StoreError> {
-        let c = Columns::of(df, SUMMARY.name);
-        Ok(SummaryTable {
-            group: c.strs(col::GROUP)?,
-            quantity: c.strs(col::QUANTITY)?,
-            count: c.f64s(col::COUNT)?,
-            mean: c.f64s(col::MEAN)?,
-            std: c.f64s(col::STD)?,
-            ci95_low: c.f64s(col::CI95_LOW)?,
-            ci95_high: c.f64s(col::CI95_HIGH)?,
-        })
-    }
-
     /// The row of `quantity` in `group`, if any.
     pub fn find(&self, group: &str, quantity: &str) -> Option<usize> {
         (0..self.group.len()).find(|&i| self.group[i] == group && self.quantity[i] == quantity)
@@ -121,41 +108,25 @@ pub fn psa_stats_frame(rows: &[PsaStatsRow]) -> Result<DataFrame, StoreError> {
         .finish(PSA_STATS.name)
 }
 
-/// The PSA statistics read back.
-#[derive(Clone, Debug, PartialEq)]
-pub struct PsaStats {
-    /// Scale.
-    pub scale: Vec<String>,
-    /// Node (LDEM number).
-    pub node: Vec<u64>,
-    /// Component.
-    pub component: Vec<String>,
-    /// Damping ratio.
-    pub damping: Vec<f64>,
-    /// Period (s).
-    pub period_s: Vec<f64>,
-    /// Mean (m/s²).
-    pub mean: Vec<f64>,
-    /// 5th percentile (m/s²).
-    pub p5: Vec<f64>,
-    /// 95th percentile (m/s²).
-    pub p95: Vec<f64>,
-}
-
-impl PsaStats {
-    /// Reads the columns of a PSA statistics table.
-    pub fn read(df: &DataFrame) -> Result<PsaStats, StoreError> {
-        let c = Columns::of(df, PSA_STATS.name);
-        Ok(PsaStats {
-            scale: c.strs(col::SCALE)?,
-            node: c.u64s(col::NODE)?,
-            component: c.strs(col::COMPONENT)?,
-            damping: c.f64s(col::DAMPING)?,
-            period_s: c.f64s(col::PERIOD_S)?,
-            mean: c.f64s(col::MEAN_M_S2)?,
-            p5: c.f64s(col::P5_M_S2)?,
-            p95: c.f64s(col::P95_M_S2)?,
-        })
+read_back! {
+    /// The PSA statistics read back.
+    pub struct PsaStats from PSA_STATS, |c| {
+        /// Scale.
+        scale: Vec<String> = c.strs(col::SCALE)?,
+        /// Node (LDEM number).
+        node: Vec<u64> = c.u64s(col::NODE)?,
+        /// Component.
+        component: Vec<String> = c.strs(col::COMPONENT)?,
+        /// Damping ratio.
+        damping: Vec<f64> = c.f64s(col::DAMPING)?,
+        /// Period (s).
+        period_s: Vec<f64> = c.f64s(col::PERIOD_S)?,
+        /// Mean (m/s²).
+        mean: Vec<f64> = c.f64s(col::MEAN_M_S2)?,
+        /// 5th percentile (m/s²).
+        p5: Vec<f64> = c.f64s(col::P5_M_S2)?,
+        /// 95th percentile (m/s²).
+        p95: Vec<f64> = c.f64s(col::P95_M_S2)?,
     }
 }
 
@@ -183,31 +154,18 @@ pub fn attenuation_fit_frame(rows: &[FitRow]) -> Result<DataFrame, StoreError> {
         .finish(ATTENUATION_FIT.name)
 }
 
-/// The attenuation fits read back.
-#[derive(Clone, Debug, PartialEq)]
-pub struct AttenuationFit {
-    /// Group.
-    pub group: Vec<String>,
-    /// Measure.
-    pub measure: Vec<String>,
-    /// Intercept.
-    pub intercept: Vec<f64>,
-    /// Slope.
-    pub slope: Vec<f64>,
-    /// r².
-    pub r2: Vec<f64>,
-}
-
-impl AttenuationFit {
-    /// Reads the columns of an attenuation fit table.
-    pub fn read(df: &DataFrame) -> Result<AttenuationFit, StoreError> {
-        let c = Columns::of(df, ATTENUATION_FIT.name);
-        Ok(AttenuationFit {
-            group: c.strs(col::GROUP)?,
-            measure: c.strs(col::MEASURE)?,
-            intercept: c.f64s(col::INTERCEPT)?,
-            slope: c.f64s(col::SLOPE)?,
-            r2: c.f64s(col::R2)?,
-        })
+read_back! {
+    /// The attenuation fits read back.
+    pub struct AttenuationFit from ATTENUATION_FIT, |c| {
+        /// Group.
+        group: Vec<String> = c.strs(col::GROUP)?,
+        /// Measure.
+        measure: Vec<String> = c.strs(col::MEASURE)?,
+        /// Intercept.
+        intercept: Vec<f64> = c.f64s(col::INTERCEPT)?,
+        /// Slope.
+        slope: Vec<f64> = c.f64s(col::SLOPE)?,
+        /// r².
+        r2: Vec<f64> = c.f64s(col::R2)?,
     }
 }
