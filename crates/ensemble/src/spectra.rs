@@ -14,7 +14,7 @@ use stickslip_config::SpectraSettings;
 use stickslip_seismo::events::Catalogue;
 use stickslip_seismo::spectra::fourier::fourier_amplitude;
 use stickslip_seismo::spectra::intensity::intensity;
-use stickslip_seismo::spectra::response::{SpectrumPlan, SpectrumScratch};
+use stickslip_seismo::spectra::response::{SpectrumError, SpectrumPlan, SpectrumScratch};
 use stickslip_solver::geometry::NodeId;
 use stickslip_solver::scene::{Component, Kinematic};
 use stickslip_solver::{Model, Recording};
@@ -36,12 +36,14 @@ pub struct PlanCache {
 }
 
 impl PlanCache {
-    fn get(&self, dt: f64, s: &SpectraSettings) -> Arc<SpectrumPlan> {
+    fn get(&self, dt: f64, s: &SpectraSettings) -> Result<Arc<SpectrumPlan>, SpectrumError> {
         let mut plans = self.plans.lock().expect("plan cache lock");
-        plans
-            .entry(dt.to_bits())
-            .or_insert_with(|| Arc::new(SpectrumPlan::new(dt, &s.periods, &s.dampings, s.reading, s.oversampling)))
-            .clone()
+        if let Some(p) = plans.get(&dt.to_bits()) {
+            return Ok(p.clone());
+        }
+        let plan = Arc::new(SpectrumPlan::new(dt, &s.periods, &s.dampings, s.reading, s.oversampling)?);
+        plans.insert(dt.to_bits(), plan.clone());
+        Ok(plan)
     }
 }
 
@@ -52,8 +54,14 @@ thread_local! {
 
 /// Why a seed's spectra could not be computed.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("spectra need a uniformly sampled record: {0}")]
-pub struct NotUniform(pub String);
+pub enum SpectraFailure {
+    /// The shear stage was not sampled uniformly.
+    #[error("spectra need a uniformly sampled record: {0}")]
+    NotUniform(String),
+    /// The spectra refused the record (e.g. a non-finite sample).
+    #[error(transparent)]
+    Spectrum(#[from] SpectrumError),
+}
 
 /// Runs the analysis for one seed's recording; the shear-stage samples must be uniformly spaced.
 pub fn compute(
@@ -63,9 +71,9 @@ pub fn compute(
     settings: &SpectraSettings,
     smoothing_s: f64,
     plans: &PlanCache,
-) -> Result<SeedSpectra, NotUniform> {
+) -> Result<SeedSpectra, SpectraFailure> {
     let Some(span) = rec.uniform_shear() else {
-        return Err(NotUniform(format!(
+        return Err(SpectraFailure::NotUniform(format!(
             "the shear stage was sampled every {} steps except where the skip-ahead sampled quiet phases more sparsely \
              or the stage's last step fell off the grid",
             rec.sampling.stride
@@ -76,17 +84,17 @@ pub fn compute(
         return Ok(SeedSpectra::default());
     }
     let dt = (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64;
-    let plan = plans.get(dt, settings);
+    let plan = plans.get(dt, settings)?;
     let lattice = model.lattice();
     let mut channels = Vec::new();
     for (ch, accel) in rec.control.iter().filter(|(c, _)| settings.wants(c)) {
         let accel = &accel[span.clone()];
         let mut sd = vec![0.0; plan.len()];
-        let fourier = SCRATCH.with(|s| {
+        let fourier = SCRATCH.with(|s| -> Result<_, SpectrumError> {
             let (scratch, planner) = &mut *s.borrow_mut();
-            plan.compute(accel, scratch, &mut sd);
-            fourier_amplitude(accel, dt, settings.window, planner)
-        });
+            plan.compute(accel, scratch, &mut sd)?;
+            Ok(fourier_amplitude(accel, dt, settings.window, planner))
+        })?;
         channels.push(ChannelSpectra {
             channel: *ch,
             position: lattice.position(ch.node),

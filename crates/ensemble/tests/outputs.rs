@@ -57,9 +57,9 @@ fn at2_files_read_back_and_prototype_spectra_are_the_scaled_model_spectra() {
         };
         let periods = f64s(&rows5, "period_s");
         let psa = f64s(&rows5, "psa_m_s2");
-        let plan = SpectrumPlan::new(record.dt, &periods, &[0.05], Reading::Linear, 1);
+        let plan = SpectrumPlan::new(record.dt, &periods, &[0.05], Reading::Linear, 1).unwrap();
         let mut sd = vec![0.0; plan.len()];
-        plan.compute(&record.accel, &mut SpectrumScratch::default(), &mut sd);
+        plan.compute(&record.accel, &mut SpectrumScratch::default(), &mut sd).unwrap();
         // Up to the file's 8 significant digits: each sample is off by up to 5e-8 of itself,
         // which long periods (tiny PSA against the PGA) feel as 1e-7 of the PGA.
         for ((t, want), got_sd) in periods.iter().zip(&psa).zip(&sd) {

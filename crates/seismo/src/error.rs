@@ -13,6 +13,9 @@ pub enum SeismoError {
         /// The cause.
         source: std::io::Error,
     },
+    /// A spectrum could not be computed (a bad interval, period, damping or sample).
+    #[error(transparent)]
+    Spectrum(#[from] crate::spectra::response::SpectrumError),
     /// A file is not in the format it claims.
     #[error("{}: {what}", path.display())]
     Format {

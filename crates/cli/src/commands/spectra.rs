@@ -79,8 +79,15 @@ pub fn run(a: Args) -> Result<()> {
     let periods = log_periods(tmin, tmax, a.period_count);
     let reading = if a.band_limited { Reading::BandLimited } else { Reading::Linear };
     let baseline = if a.baseline { Baseline::Linear } else { Baseline::None };
-    let r =
-        RecordSpectra::compute(&record.accel, record.dt, &periods, &a.dampings, reading, baseline, Window::Rectangular);
+    let r = RecordSpectra::compute(
+        &record.accel,
+        record.dt,
+        &periods,
+        &a.dampings,
+        reading,
+        baseline,
+        Window::Rectangular,
+    )?;
     let [mut spectra, mut fourier, mut intensity] =
         record_frames(&periods, &a.dampings, &r.sd, &r.fourier, &r.intensity)?;
     let stem = a.record.file_stem().and_then(|s| s.to_str()).unwrap_or("record").to_string();

@@ -1,15 +1,19 @@
-//! Spectra of acceleration records (docs/model.md §8): elastic response spectra, Fourier
-//! amplitude spectra and intensity measures.
+//! Spectra of acceleration records (docs/model.md §8): elastic response spectra with exact peaks
+//! ([`response`], one oscillator's exact step in [`oscillator`]), the orientation-independent
+//! RotD50/RotD100 of two horizontal components ([`rotd`]), Fourier amplitude spectra and
+//! intensity measures.
 
 pub mod fourier;
 pub mod intensity;
+pub mod oscillator;
 pub mod response;
+pub mod rotd;
 
 use rustfft::FftPlanner;
 
 use fourier::{FourierSpectrum, Window, fourier_amplitude};
 use intensity::{Baseline, Intensity, intensity};
-use response::{Reading, SpectrumPlan, SpectrumScratch};
+use response::{Reading, SpectrumError, SpectrumPlan, SpectrumScratch};
 
 /// Everything the product computes of one accelerogram.
 #[derive(Clone, Debug)]
@@ -34,14 +38,14 @@ impl RecordSpectra {
         reading: Reading,
         baseline: Baseline,
         window: Window,
-    ) -> RecordSpectra {
-        let plan = SpectrumPlan::new(dt, periods, dampings, reading, 16);
+    ) -> Result<RecordSpectra, SpectrumError> {
+        let plan = SpectrumPlan::new(dt, periods, dampings, reading, 16)?;
         let mut sd = vec![0.0; plan.len()];
-        plan.compute(accel, &mut SpectrumScratch::default(), &mut sd);
-        RecordSpectra {
+        plan.compute(accel, &mut SpectrumScratch::default(), &mut sd)?;
+        Ok(RecordSpectra {
             sd,
             fourier: fourier_amplitude(accel, dt, window, &mut FftPlanner::new()),
             intensity: intensity(accel, dt, baseline),
-        }
+        })
     }
 }
