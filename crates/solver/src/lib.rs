@@ -7,7 +7,8 @@
 //! ([`Recording`]). Layers, from the bottom:
 //! - [`geometry`]: nodes, bars, numbering, node sets (pure geometry);
 //! - [`material`]: bar stiffness and the Weibull fields;
-//! - [`laws`]: the friction laws of the base, one file each;
+//! - [`laws`]: the friction laws of the base (one kinetic-coefficient formula);
+//! - [`dispersion`]: plane waves in the unbounded lattice and the highest frequency it resolves;
 //! - [`scene`]: the validated scene; [`model`]: it built into flat arrays, shared by all seeds,
 //!   with its bars in kernel order ([`layout`]);
 //! - [`field`]: vector fields over the nodes, `L` seeds side by side; [`step`]: one explicit
@@ -18,6 +19,7 @@
 //!   builds, for `stickslip check`.
 #![deny(missing_docs)]
 
+pub mod dispersion;
 pub mod error;
 pub mod field;
 pub mod geometry;
