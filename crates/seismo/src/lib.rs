@@ -2,8 +2,9 @@
 //!
 //! Owns: event detection and measures ([`events`]), similarity scaling and magnitudes
 //! ([`similarity`]), statistics of samples across seeds ([`stats`]), least-squares fits
-//! ([`fit`]), response and Fourier spectra and intensity measures ([`spectra`]), and the
-//! accelerogram file formats ([`accelerogram`]).
+//! ([`fit`]), response, RotD and Fourier spectra and intensity measures ([`spectra`]),
+//! accelerogram processing and file formats ([`accelerogram`]), design spectra ([`design`]) and
+//! the selection of record sets matched to them ([`selection`]).
 //!
 //! Must not know: the solver, the pipeline file, tables or figures. Every function takes slices
 //! and plain parameter structs, so it can be used on any record, simulated or recorded; the
@@ -11,9 +12,11 @@
 #![deny(missing_docs)]
 
 pub mod accelerogram;
+pub mod design;
 pub mod error;
 pub mod events;
 pub mod fit;
+pub mod selection;
 pub mod similarity;
 pub mod spectra;
 pub mod stats;
