@@ -1,6 +1,7 @@
 //! stickslip seismo: the seismology numerics of the product, on plain arrays.
 //!
-//! Owns: event detection and measures ([`events`]), similarity scaling and magnitudes
+//! Owns: event detection and measures ([`events`]), the statistics of catalogues of events
+//! (Gutenberg–Richter, recurrence, aftershocks, scaling: [`catalogue`]), similarity scaling and magnitudes
 //! ([`similarity`]), statistics of samples across seeds ([`stats`]), least-squares fits
 //! ([`fit`]), response, RotD and Fourier spectra and intensity measures ([`spectra`]),
 //! accelerogram processing and file formats ([`accelerogram`]), design spectra ([`design`]) and
@@ -12,6 +13,7 @@
 #![deny(missing_docs)]
 
 pub mod accelerogram;
+pub mod catalogue;
 pub mod design;
 pub mod error;
 pub mod events;
