@@ -6,6 +6,7 @@
 //! trusts. [`Scene::paper`] is the paper's scene (docs/model.md §6), the reference the tests and
 //! benchmarks start from.
 
+use crate::dispersion::{DispersionError, LatticeMaterial, UsableBand, usable_band};
 use crate::geometry::{Dims, Lattice, NodeId};
 use crate::laws::{Coulomb, FrictionLaw};
 
@@ -354,6 +355,14 @@ impl Scene {
     /// The paper's bound `0.6·Lc/Cp` (Eq. 5) in seconds, for comparison with the true one.
     pub fn paper_time_step_bound(&self) -> f64 {
         0.6 * self.lc_m / self.p_wave_speed()
+    }
+
+    /// The usable band of the homogeneous lattice of this scene (mean Young's modulus): the
+    /// highest frequency whose plane waves travel within `tolerance` of the long-wave speeds
+    /// ([`crate::dispersion::usable_band`], docs/model.md §8).
+    pub fn usable_band(&self, tolerance: f64) -> Result<UsableBand, DispersionError> {
+        let m = LatticeMaterial::new(self.young_pa, self.poisson, self.density_kg_m3, self.lc_m)?;
+        usable_band(&m, tolerance)
     }
 }
 
