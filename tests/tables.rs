@@ -61,16 +61,19 @@ fn every_table_matches_its_declaration_and_reads_back_typed() {
     use stickslip_store::io::read_parquet;
     use stickslip_store::schema::{self, Scope};
     use stickslip_store::tables::events::{Events, Similarity};
+    use stickslip_store::tables::records::{Accelerograms, Attenuation, Records, SetTable, Spectra, read_fourier};
     use stickslip_store::tables::runs::Runs;
     use stickslip_store::tables::series::{read_control, read_series_channel};
-    use stickslip_store::tables::spectra::{Attenuation, Spectra, read_fourier};
     use stickslip_store::tables::stats::{AttenuationFit, PsaStats, SummaryTable};
 
     let dir = stickslip_support::scratch_dir("registry");
     let paper = std::fs::read_to_string(stickslip_support::repo_path("pipelines/paper.toml"))
         .unwrap()
         .replace("list = [123, 200, 7]", "list = [123, 200]")
-        .replace("duration_s = 0.32 ", "duration_s = 0.12 ");
+        .replace("duration_s = 0.32 ", "duration_s = 0.12 ")
+        // A set any record can meet: every declared table is then written.
+        + "\n[set]\ntarget = \"ec8\"\na_g_m_s2 = 1e-3\nt1_s = 10.0\ncount = 1\ncomponent = \"x\"\nscale_min = 1e-6\n\
+           scale_max = 1e6\n";
     let skip = "version = 1\nname = \"skip\"\n[seeds]\nlist = [7]\n[friction]\nmu_dynamic = 4.5\n[shear]\n\
                 velocity_m_s = 1.1e-6\nduration_s = 3.0\n[record]\ninterval_s = 1e-4\n[skip_ahead]\nenabled = true\n";
     let mut seen = std::collections::BTreeSet::new();
@@ -119,8 +122,11 @@ fn every_table_matches_its_declaration_and_reads_back_typed() {
                     "psa_stats" => assert!(!PsaStats::read(&df).unwrap().mean.is_empty()),
                     "attenuation" => assert!(!Attenuation::read(&df).unwrap().is_empty()),
                     "attenuation_fit" => assert!(!AttenuationFit::read(&df).unwrap().slope.is_empty()),
-                    "spectra" => assert!(!Spectra::read(&df).unwrap().psa_m_s2.is_empty()),
-                    "fourier" => assert!(read_fourier(&df, 36, Component::Z).unwrap().is_some()),
+                    "spectra" | "rotd" => assert!(!Spectra::read(&df).unwrap().psa_m_s2.is_empty()),
+                    "records" => assert!(!Records::read(&df).unwrap().record.is_empty()),
+                    "accelerograms" => assert!(!Accelerograms::read(&df).unwrap().time_s.is_empty()),
+                    "set" => assert_eq!(SetTable::read(&df).unwrap().record.len(), 1),
+                    "fourier" => assert!(read_fourier(&df, "S1-n36-z").unwrap().is_some()),
                     // The skip-ahead pipeline has no control node: its part is empty, with the schema.
                     "control" => assert_eq!(
                         read_control(&df, 36, Component::Z, Kinematic::Acceleration).unwrap().is_some(),

@@ -8,7 +8,7 @@ mod text;
 
 use clap::{Parser, Subcommand};
 
-use commands::{bench, check, compare, merge, pipeline, run, show, similarity, spectra};
+use commands::{bench, check, compare, merge, pipeline, run, select, show, similarity, spectra};
 
 /// Earthquake stick-slip with the Lattice Discrete Element Method: simulate ensembles of seeds and
 /// turn them into event catalogues, accelerograms, spectra, statistics and scaled magnitudes.
@@ -41,6 +41,9 @@ enum Command {
     /// Response spectra, Fourier spectrum and intensity measures of an accelerogram file (PEER
     /// .AT2, or CSV with time and acceleration columns).
     Spectra(spectra::Args),
+    /// Choose a set of an ensemble's records matched to a design spectrum (ASCE 7, EC8 or a CSV
+    /// target), scaled, and write it under <folder>/set/.
+    Select(select::Args),
     /// Benchmarks (tables and figures under reports/bench/).
     #[command(subcommand)]
     Bench(bench::Command),
@@ -63,6 +66,7 @@ fn main() {
         Command::Show(a) => show::run(a),
         Command::Similarity(a) => similarity::run(a),
         Command::Spectra(a) => spectra::run(a),
+        Command::Select(a) => select::run(a),
         Command::Bench(c) => bench::run(c),
     };
     if let Err(e) = result {

@@ -9,13 +9,17 @@
 //! runs. Must not know: how a scene is run, tables, figures.
 #![deny(missing_docs)]
 
+pub mod accelerograms;
 pub mod check;
 pub mod error;
 pub mod pipeline;
 pub mod scene;
 pub mod sections;
+pub mod set;
 
+pub use accelerograms::AccelerogramSettings;
 pub use check::Checker;
 pub use error::{ConfigError, FieldError};
 pub use pipeline::{Pipeline, PipelineFile};
 pub use sections::{ReportSettings, SpectraSettings};
+pub use set::SetSettings;

@@ -13,6 +13,7 @@ use stickslip_seismo::events::EventParams;
 use stickslip_seismo::similarity::SimilarityParams;
 use stickslip_solver::Scene;
 
+use crate::accelerograms::{AccelerogramSettings, AccelerogramsSection};
 use crate::check::Checker;
 use crate::error::ConfigError;
 use crate::scene::{
@@ -22,6 +23,7 @@ use crate::scene::{
 use crate::sections::{
     EventsSection, ReportSection, ReportSettings, SimilaritySection, SpectraSection, SpectraSettings,
 };
+use crate::set::{SetSection, SetSettings};
 
 /// The pipeline-file version this build reads.
 pub const PIPELINE_VERSION: i64 = 1;
@@ -95,8 +97,14 @@ pub struct PipelineFile {
     /// `[similarity]`: the prototype fault.
     #[serde(default)]
     pub similarity: SimilaritySection,
-    /// `[spectra]`: the spectra analysis; absent = skipped.
+    /// `[accelerograms]`: records of events (or of the whole run), processed; absent = none
+    /// unless `[spectra]` asks for spectra (then its defaults).
+    pub accelerograms: Option<AccelerogramsSection>,
+    /// `[spectra]`: spectra of the records; absent = skipped.
     pub spectra: Option<SpectraSection>,
+    /// `[set]`: a set of records matched to a design spectrum (not part of the hash: it is chosen
+    /// from finished seeds and changes no seed's table).
+    pub set: Option<SetSection>,
     /// `[report]`: figures and page (not part of the hash: it does not change any table).
     #[serde(default)]
     pub report: ReportSection,
@@ -121,7 +129,9 @@ impl Default for PipelineFile {
             skip_ahead: SkipAheadSection::default(),
             events: EventsSection::default(),
             similarity: SimilaritySection::default(),
+            accelerograms: None,
             spectra: None,
+            set: None,
             report: ReportSection::default(),
         }
     }
@@ -135,11 +145,12 @@ struct Hashed<'a> {
     scene: SceneSections<'a>,
     events: &'a EventsSection,
     similarity: &'a SimilaritySection,
+    accelerograms: &'a Option<AccelerogramsSection>,
     spectra: &'a Option<SpectraSection>,
 }
 
 /// Top-level keys of a pipeline file that are not part of the hash.
-pub const NOT_HASHED: [&str; 5] = ["version", "name", "description", "seeds", "report"];
+pub const NOT_HASHED: [&str; 6] = ["version", "name", "description", "seeds", "set", "report"];
 
 impl PipelineFile {
     /// The hash of everything that determines a seed's results, 16 hex digits (FNV-1a of the
@@ -150,6 +161,7 @@ impl PipelineFile {
             scene: self.scene_sections(),
             events: &self.events,
             similarity: &self.similarity,
+            accelerograms: &self.accelerograms,
             spectra: &self.spectra,
         };
         let canonical = toml::to_string(&hashed).expect("pipeline sections serialise");
@@ -200,8 +212,12 @@ pub struct Pipeline {
     pub events: EventParams,
     /// Similarity scaling.
     pub similarity: SimilarityParams,
-    /// Spectra analysis, if asked.
+    /// Records, if asked (by `[accelerograms]` or `[spectra]`).
+    pub accelerograms: Option<AccelerogramSettings>,
+    /// Spectra of the records, if asked.
     pub spectra: Option<SpectraSettings>,
+    /// A matched set, if asked.
+    pub set: Option<SetSettings>,
     /// Report stage.
     pub report: ReportSettings,
     /// Hash of everything that determines a seed's results (see [`PipelineFile::hash`]).
@@ -218,7 +234,10 @@ impl Pipeline {
         let text =
             std::fs::read_to_string(path).map_err(|e| ConfigError::Io { path: path.to_path_buf(), source: e })?;
         let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("pipeline").to_string();
-        let mut p = Pipeline::from_toml(&text, &stem)
+        let base = path.parent().unwrap_or(Path::new("."));
+        let mut p = toml::from_str(&text)
+            .map_err(|e| ConfigError::Syntax(e.to_string()))
+            .and_then(|file| Pipeline::from_file_in(file, &stem, base))
             .map_err(|e| ConfigError::File { path: path.to_path_buf(), source: Box::new(e) })?;
         p.source = Some(path.to_path_buf());
         Ok(p)
@@ -233,6 +252,12 @@ impl Pipeline {
     /// Validates a pipeline file given as a value (e.g. built in code from
     /// [`PipelineFile::default`]).
     pub fn from_file(file: PipelineFile, default_name: &str) -> Result<Pipeline, ConfigError> {
+        Pipeline::from_file_in(file, default_name, Path::new("."))
+    }
+
+    /// As [`Pipeline::from_file`], with files the pipeline names (a CSV target) read relative to
+    /// `base`.
+    pub fn from_file_in(file: PipelineFile, default_name: &str, base: &Path) -> Result<Pipeline, ConfigError> {
         let mut ck = Checker::default();
         if file.version != PIPELINE_VERSION {
             ck.push("version", file.version, "1 (the pipeline format this stickslip reads)");
@@ -270,6 +295,17 @@ impl Pipeline {
             (Some(sp), Some(scene)) => Some(sp.build(scene, &mut ck)),
             _ => None,
         };
+        let accelerograms = match (&file.accelerograms, &file.spectra, &scene) {
+            (Some(a), _, Some(scene)) => Some(a.build(scene, &mut ck)),
+            (None, Some(_), Some(scene)) => Some(AccelerogramsSection::default().build(scene, &mut ck)),
+            _ => None,
+        };
+        let set = file.set.as_ref().and_then(|s| {
+            if accelerograms.is_none() && file.spectra.is_none() {
+                ck.push("set", "(present)", "records and their spectra: an [accelerograms] and a [spectra] section");
+            }
+            s.build(base, spectra.as_ref().map(|sp| sp.dampings.as_slice()), &mut ck)
+        });
         ck.finish()?;
         Ok(Pipeline {
             name,
@@ -278,7 +314,9 @@ impl Pipeline {
             scene: scene.expect("no refusal means a scene"),
             events,
             similarity,
+            accelerograms,
             spectra,
+            set,
             report,
             hash: file.hash(),
             source: None,
@@ -316,11 +354,16 @@ mod tests {
     fn every_top_level_key_is_hashed_or_said_not_to_be() {
         // A file with every section present: each top-level key is in the hash's canonical form
         // or in NOT_HASHED, so a new section cannot be left out of the hash by accident.
-        let file = PipelineFile { spectra: Some(SpectraSection::default()), ..PipelineFile::default() };
+        let file = PipelineFile {
+            accelerograms: Some(AccelerogramsSection::default()),
+            spectra: Some(SpectraSection::default()),
+            set: Some(SetSection::default()),
+            ..PipelineFile::default()
+        };
         let table: toml::Table = toml::from_str(&toml::to_string(&file).unwrap()).unwrap();
         let scene_keys =
             ["block", "material", "friction", "time", "self_weight", "shear", "boundary", "record", "skip_ahead"];
-        let hashed_keys = ["events", "similarity", "spectra"];
+        let hashed_keys = ["events", "similarity", "accelerograms", "spectra"];
         for key in table.keys() {
             assert!(
                 scene_keys.contains(&key.as_str())
@@ -335,22 +378,29 @@ mod tests {
         f.skip_ahead.tolerance = 2e-4;
         assert_ne!(f.hash(), base);
         let mut f = file.clone();
-        f.spectra.as_mut().unwrap().at2 = false;
+        f.spectra.as_mut().unwrap().rotd = false;
         assert_ne!(f.hash(), base);
+        let mut f = file.clone();
+        f.accelerograms.as_mut().unwrap().post_event_s = 0.05;
+        assert_ne!(f.hash(), base);
+        let mut f = file.clone();
+        f.set.as_mut().unwrap().count = 7;
+        assert_eq!(f.hash(), base, "the set is not part of the hash");
     }
 
     #[test]
     fn hash_of_the_paper_pipeline_is_the_one_results_are_stamped_with() {
         // The hash of a published pipeline must not change with a refactor, or every results
-        // folder made with it would be refused. This is the hash pipelines/paper.toml had when
-        // its results were first written.
+        // folder made with it would be refused. This is the hash of pipelines/paper.toml since it
+        // asks for per-event records (a changed file, so a new hash: old folders are refused and
+        // say so).
         let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../pipelines/paper.toml")).unwrap();
         let p = Pipeline::from_toml(&text, "paper").unwrap();
         assert_eq!(p.hash, PAPER_HASH);
     }
 
     /// See `hash_of_the_paper_pipeline_is_the_one_results_are_stamped_with`.
-    const PAPER_HASH: &str = "89148099ad5170f0";
+    const PAPER_HASH: &str = "60f6bcec30bbec4d";
 
     #[test]
     fn the_default_file_builds_the_paper_scene() {

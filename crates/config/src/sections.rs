@@ -6,11 +6,9 @@ use serde::{Deserialize, Serialize};
 use stickslip_seismo::events::EventParams;
 use stickslip_seismo::similarity::{AreaChoice, SimilarityParams};
 use stickslip_seismo::spectra::fourier::Window;
-use stickslip_seismo::spectra::intensity::Baseline;
 use stickslip_seismo::spectra::response::{Reading, log_periods};
 use stickslip_solver::Scene;
-use stickslip_solver::geometry::NodeId;
-use stickslip_solver::scene::{ControlChannel, InterfaceQuantity, Kinematic};
+use stickslip_solver::scene::InterfaceQuantity;
 
 use crate::check::{Checker, Named};
 
@@ -142,16 +140,6 @@ impl Named for Reading {
     }
 }
 
-impl Named for Baseline {
-    const ALL: &'static [Self] = &[Baseline::None, Baseline::Linear];
-    fn name(self) -> &'static str {
-        match self {
-            Baseline::None => "none",
-            Baseline::Linear => "linear",
-        }
-    }
-}
-
 impl Named for Window {
     const ALL: &'static [Self] = &[Window::Rectangular, Window::Hann];
     fn name(self) -> &'static str {
@@ -162,15 +150,12 @@ impl Named for Window {
     }
 }
 
-/// `[spectra]`: the spectra analysis (absent = skipped), docs/model.md §8.
+/// `[spectra]`: spectra of the records of `[accelerograms]` (absent = none), docs/model.md §8.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields, default)]
 pub struct SpectraSection {
     /// Damping ratios (fractions of critical, 0 ≤ ξ < 1). Default `[0.05]`.
     pub dampings: Vec<f64>,
-    /// Control nodes (LDEM numbers) whose accelerations get spectra, intensity measures and
-    /// accelerogram files; empty = every control node recording acceleration.
-    pub nodes: Vec<i64>,
     /// Explicit model-scale periods in seconds; empty = the log grid below.
     pub periods_s: Vec<f64>,
     /// Shortest period of the log grid (s, model scale). Default 1e-4.
@@ -183,14 +168,13 @@ pub struct SpectraSection {
     pub reading: String,
     /// Oversampling of the band-limited reading. Default 16.
     pub oversampling: i64,
-    /// Baseline correction for PGV and PGD: `"none"` (default) or `"linear"`.
-    pub baseline: String,
     /// Window of the Fourier spectrum: `"rectangular"` (default) or `"hann"`.
     pub fourier_window: String,
-    /// Write PEER `.AT2` files of every accelerogram (model and prototype scale). Default true.
-    pub at2: bool,
+    /// RotD50 and RotD100 (Boore 2010) of every node recording both horizontal components.
+    /// Default true.
+    pub rotd: bool,
     /// Attenuation of PGA and PGV with distance from each main shock's hypocentre (needs
-    /// `record.slip_onsets = true` and control nodes recording acceleration). Default false.
+    /// `record.slip_onsets = true`). Default false.
     pub attenuation: bool,
 }
 
@@ -198,16 +182,14 @@ impl Default for SpectraSection {
     fn default() -> Self {
         SpectraSection {
             dampings: vec![0.05],
-            nodes: vec![],
             periods_s: vec![],
             period_min_s: 1e-4,
             period_max_s: 0.1,
             period_count: 100,
             reading: Reading::Linear.name().into(),
             oversampling: 16,
-            baseline: Baseline::None.name().into(),
             fourier_window: Window::Rectangular.name().into(),
-            at2: true,
+            rotd: true,
             attenuation: false,
         }
     }
@@ -218,34 +200,22 @@ impl Default for SpectraSection {
 pub struct SpectraSettings {
     /// Damping ratios.
     pub dampings: Vec<f64>,
-    /// Control nodes whose accelerations get spectra; empty = every control node recording
-    /// acceleration.
-    pub nodes: Vec<NodeId>,
     /// Model-scale periods (s).
     pub periods: Vec<f64>,
     /// Reading of the samples.
     pub reading: Reading,
     /// Oversampling of the band-limited reading.
     pub oversampling: usize,
-    /// Baseline correction for PGV and PGD.
-    pub baseline: Baseline,
     /// Window of the Fourier spectrum.
     pub window: Window,
-    /// Write AT2 files.
-    pub at2: bool,
+    /// RotD50 and RotD100 of nodes with both horizontal components.
+    pub rotd: bool,
     /// Attenuation table and fit.
     pub attenuation: bool,
 }
 
-impl SpectraSettings {
-    /// Whether a control channel gets spectra.
-    pub fn wants(&self, c: &ControlChannel) -> bool {
-        c.quantity == Kinematic::Acceleration && (self.nodes.is_empty() || self.nodes.contains(&c.node))
-    }
-}
-
 impl SpectraSection {
-    /// The stage's settings for `scene`, every refused value recorded in `ck`.
+    /// The settings for `scene`, every refused value recorded in `ck`.
     pub fn build(&self, scene: &Scene, ck: &mut Checker) -> SpectraSettings {
         if self.dampings.is_empty() {
             ck.push("spectra.dampings", "[]", "at least one damping ratio");
@@ -270,43 +240,12 @@ impl SpectraSection {
         }
         ck.count("spectra.oversampling", self.oversampling, 1, 64, "");
         let reading = ck.named("spectra.reading", &self.reading).unwrap_or(Reading::Linear);
-        let baseline = ck.named("spectra.baseline", &self.baseline).unwrap_or(Baseline::None);
         let window = ck.named("spectra.fourier_window", &self.fourier_window).unwrap_or(Window::Rectangular);
-        let control = &scene.record.control;
-        let mut nodes = Vec::new();
-        for (i, &n) in self.nodes.iter().enumerate() {
-            match control.iter().find(|c| c.quantity == Kinematic::Acceleration && c.node.ldem() as i64 == n) {
-                Some(c) => nodes.push(c.node),
-                None => ck.push(
-                    format!("spectra.nodes[{i}]"),
-                    n,
-                    "a control node that records acceleration ([[record.control]])",
-                ),
-            }
-        }
         let periods = if self.periods_s.is_empty() {
             log_periods(self.period_min_s, self.period_max_s, self.period_count.max(1) as usize)
         } else {
             self.periods_s.clone()
         };
-        let settings = SpectraSettings {
-            dampings: self.dampings.clone(),
-            nodes,
-            periods,
-            reading,
-            oversampling: self.oversampling.clamp(1, 64) as usize,
-            baseline,
-            window,
-            at2: self.at2,
-            attenuation: self.attenuation,
-        };
-        if !control.iter().any(|c| settings.wants(c)) {
-            ck.push(
-                "spectra",
-                "(present)",
-                "control nodes that record acceleration ([[record.control]] quantities = [\"acceleration\"])",
-            );
-        }
         if self.attenuation && !scene.record.slip_onsets {
             ck.push(
                 "spectra.attenuation",
@@ -314,17 +253,15 @@ impl SpectraSection {
                 "record.slip_onsets = true (the hypocentre is the first contact node to slide)",
             );
         }
-        if scene.skip_ahead.enabled
-            && scene.skip_ahead.record_interval_s.is_some_and(|iv| Some(iv) != scene.record.interval_s)
-        {
-            ck.push(
-                "spectra",
-                "(present)",
-                "uniformly sampled records: without skip_ahead.record_interval_s (the skip-ahead would sample quiet \
-                 phases more sparsely, and spectra need one sampling interval)",
-            );
+        SpectraSettings {
+            dampings: self.dampings.clone(),
+            periods,
+            reading,
+            oversampling: self.oversampling.clamp(1, 64) as usize,
+            window,
+            rotd: self.rotd,
+            attenuation: self.attenuation,
         }
-        settings
     }
 }
 

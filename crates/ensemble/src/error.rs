@@ -53,6 +53,10 @@ pub enum EnsembleError {
         /// What is missing or mismatched.
         why: String,
     },
+    /// No set of records could be selected (the reason says which rule could not be met), or a
+    /// set record could not be written.
+    #[error("set: {0}")]
+    Set(stickslip_seismo::SeismoError),
     /// Something could not be set up.
     #[error("{0}")]
     Setup(String),

@@ -9,7 +9,7 @@ use stickslip_seismo::stats::percentile_sorted;
 use stickslip_store::frame::Columns;
 use stickslip_store::io::{scan_glob, write_parquet_atomic};
 use stickslip_store::schema::{
-    self, ATTENUATION, ATTENUATION_FIT, EVENTS_TABLE, PSA_STATS, RUNS, SIMILARITY, SPECTRA, SUMMARY, col,
+    self, ATTENUATION, ATTENUATION_FIT, EVENTS_TABLE, PSA_STATS, ROTD, RUNS, SIMILARITY, SPECTRA, SUMMARY, col,
 };
 use stickslip_store::tables::runs::Runs;
 use stickslip_store::tables::stats::{FitRow, PsaStatsRow, attenuation_fit_frame, psa_stats_frame, summary_frame};
@@ -45,8 +45,17 @@ pub fn gather(out: &Folder, seeds: &[u64]) -> Result<Option<Runs>, StoreError> {
         write_parquet_atomic(&mut df, &out.gathered(&table))?;
         gathered.push((table.name, df));
     }
-    if let Some(spectra) = scan_glob(&out.part_glob(&SPECTRA))? {
-        let spectra = only_seeds(spectra, &keep, SPECTRA.name)?;
+    let mut spectra: Option<DataFrame> = None;
+    for table in [SPECTRA, ROTD] {
+        if let Some(df) = scan_glob(&out.part_glob(&table))? {
+            let df = only_seeds(df, &keep, table.name)?;
+            spectra = Some(match spectra {
+                None => df,
+                Some(all) => all.vstack(&df).map_err(|e| StoreError::table(table.name, e))?,
+            });
+        }
+    }
+    if let Some(spectra) = spectra {
         write_parquet_atomic(&mut psa_stats_frame(&psa_stats(&spectra)?)?, &out.gathered(&PSA_STATS))?;
     }
     let get = |name: &str| gathered.iter().find(|(t, _)| *t == name).map(|(_, d)| d);
@@ -61,8 +70,8 @@ pub fn gather(out: &Folder, seeds: &[u64]) -> Result<Option<Runs>, StoreError> {
     Ok(runs)
 }
 
-/// PSA across seeds per (scale, node, component, damping, period): mean, geometric mean, and
-/// type-7 percentiles 5/50/95.
+/// PSA across records per (scale, node, component, damping, period): mean, geometric mean, and
+/// type-7 percentiles 5/50/95, and whether the period is in every record's band.
 pub fn psa_stats(spectra: &DataFrame) -> Result<Vec<PsaStatsRow>, StoreError> {
     let c = Columns::of(spectra, SPECTRA.name);
     let scale = c.strs(col::SCALE)?;
@@ -71,6 +80,7 @@ pub fn psa_stats(spectra: &DataFrame) -> Result<Vec<PsaStatsRow>, StoreError> {
     let damping = c.f64s(col::DAMPING)?;
     let period = c.f64s(col::PERIOD_S)?;
     let psa = c.f64s(col::PSA_M_S2)?;
+    let in_band = c.bools(col::IN_BAND)?;
     /// One spectral ordinate across seeds; f64 keys as bits so they order and compare exactly.
     #[derive(PartialEq, Eq, PartialOrd, Ord)]
     struct Key {
@@ -80,7 +90,7 @@ pub fn psa_stats(spectra: &DataFrame) -> Result<Vec<PsaStatsRow>, StoreError> {
         damping: u64,
         period: u64,
     }
-    let mut groups: BTreeMap<Key, Vec<f64>> = BTreeMap::new();
+    let mut groups: BTreeMap<Key, (Vec<f64>, bool)> = BTreeMap::new();
     for i in 0..c.height() {
         let key = Key {
             scale: scale[i].clone(),
@@ -89,10 +99,12 @@ pub fn psa_stats(spectra: &DataFrame) -> Result<Vec<PsaStatsRow>, StoreError> {
             damping: damping[i].to_bits(),
             period: period[i].to_bits(),
         };
-        groups.entry(key).or_default().push(psa[i]);
+        let g = groups.entry(key).or_insert((Vec::new(), true));
+        g.0.push(psa[i]);
+        g.1 &= in_band[i];
     }
     let mut rows = Vec::new();
-    for (key, mut v) in groups {
+    for (key, (mut v, in_band)) in groups {
         v.retain(|x| x.is_finite());
         if v.is_empty() {
             continue;
@@ -113,6 +125,7 @@ pub fn psa_stats(spectra: &DataFrame) -> Result<Vec<PsaStatsRow>, StoreError> {
                 percentile_sorted(&v, 0.50),
                 percentile_sorted(&v, 0.95),
             ],
+            in_band,
         });
     }
     Ok(rows)

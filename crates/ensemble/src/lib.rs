@@ -1,7 +1,8 @@
 //! stickslip ensemble: many seeds of a pipeline, from the solver to the output folder.
 //!
 //! Owns: running seeds in parallel, batched side by side ([`run`]); analysing each seed — events,
-//! similarity scaling, spectra — and writing its parts as it finishes ([`seed`], [`spectra`]);
+//! similarity scaling, records and their spectra — and writing its parts and files as it
+//! finishes ([`seed`], [`records`]);
 //! resuming an interrupted ensemble, shards and their merge ([`merge`]); gathering the tables and
 //! the statistics across seeds ([`gather`], [`summary`]). Must not know: the pipeline file's
 //! syntax (it takes a validated [`stickslip_config::Pipeline`]), figures, the command line.
@@ -10,9 +11,10 @@
 pub mod error;
 pub mod gather;
 pub mod merge;
+pub mod records;
 pub mod run;
 pub mod seed;
-pub mod spectra;
+pub mod set;
 pub mod summary;
 
 pub use error::EnsembleError;

@@ -15,6 +15,7 @@ use stickslip_store::{Folder, StoreError};
 use crate::error::EnsembleError;
 use crate::gather::gather;
 use crate::run::shard;
+use crate::set::{SetOutcome, select_set};
 
 /// What `merge` did.
 #[derive(Clone, Debug)]
@@ -27,6 +28,8 @@ pub struct MergeReport {
     pub failed: usize,
     /// Wall time (s).
     pub wall_time_s: f64,
+    /// The set of `[set]`, if asked: chosen, or why none could be.
+    pub set: Option<Result<SetOutcome, String>>,
 }
 
 /// Merges the shards in `out`. The pipeline is `<out>/pipeline.toml` (written by every shard)
@@ -82,8 +85,9 @@ pub fn merge(out: &Path, pipeline: Option<&Path>, shards: Option<usize>) -> Resu
         return Err(EnsembleError::Incomplete { out: out.to_path_buf(), why: why.join("; ") });
     }
     gather(&folder, &p.seeds)?;
+    let set = p.set.as_ref().map(|s| select_set(&folder, &p, s).map_err(|e| e.to_string()));
     let failed = p.seeds.iter().filter(|s| found.get(s).is_some_and(|r| r.2 != "ok")).count();
-    Ok(MergeReport { seeds: p.seeds.len(), failed, wall_time_s: start.elapsed().as_secs_f64(), pipeline: p })
+    Ok(MergeReport { seeds: p.seeds.len(), failed, wall_time_s: start.elapsed().as_secs_f64(), pipeline: p, set })
 }
 
 /// At most 20 seeds, then a count.

@@ -21,8 +21,9 @@ use stickslip_store::{Folder, Manifest};
 
 use crate::error::EnsembleError;
 use crate::gather::gather;
+use crate::records::PlanCache;
 use crate::seed::{Analysed, analyse, write_seed};
-use crate::spectra::PlanCache;
+use crate::set::{SetOutcome, select_set};
 
 /// How to run an ensemble.
 #[derive(Clone, Debug)]
@@ -41,7 +42,7 @@ pub struct EnsembleOptions {
 }
 
 /// What an ensemble did.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct EnsembleReport {
     /// Seeds run now.
     pub ran: usize,
@@ -55,6 +56,8 @@ pub struct EnsembleReport {
     pub out: PathBuf,
     /// Integrated steps per second of wall time, over the seeds run now (0 if none).
     pub steps_per_s: f64,
+    /// The set of `[set]`, if asked: chosen, or why none could be.
+    pub set: Option<Result<SetOutcome, String>>,
 }
 
 /// Claims `out` for `pipeline`: refuses (or, with `fresh`, clears) results of another pipeline,
@@ -212,10 +215,12 @@ pub fn run_ensemble(
     if cancel.load(Ordering::Relaxed) {
         return Err(EnsembleError::Interrupted { done, total, out: options.out.clone() });
     }
+    let mut set = None;
     if options.finish
         && let Some(runs) = gather(&out, &options.seeds)?
     {
         failed = runs.failed();
+        set = pipeline.set.as_ref().map(|s| select_set(&out, pipeline, s).map_err(|e| e.to_string()));
     }
     let wall_time_s = start.elapsed().as_secs_f64();
     Ok(EnsembleReport {
@@ -225,6 +230,7 @@ pub fn run_ensemble(
         wall_time_s,
         out: options.out.clone(),
         steps_per_s: if ran > 0 { integrated_steps as f64 / wall_time_s } else { 0.0 },
+        set,
     })
 }
 

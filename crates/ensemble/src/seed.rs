@@ -1,29 +1,31 @@
 //! One seed from its run to its tables: events detected on the recording, scaled to the
-//! prototype, its spectra; then every part written (the `runs` part last).
-
-use std::path::Path;
+//! prototype, its records and their spectra; then every part and file written (the `runs` part
+//! last).
 
 use stickslip_config::Pipeline;
+use stickslip_config::accelerograms::RecordFormat;
 use stickslip_seismo::accelerogram::at2_text;
+use stickslip_seismo::accelerogram::sac::{SacMeta, SacUnit, sac_bytes};
 use stickslip_seismo::events::{Catalogue, EventParams, Signals, detect};
-use stickslip_seismo::similarity::{AreaChoice, ModelEvent, Scaled, scale};
+use stickslip_seismo::similarity::{AreaChoice, ModelEvent, Scaled, moment_magnitude, scale};
 use stickslip_solver::scene::{ControlChannel, Kinematic};
 use stickslip_solver::{Channel, Model, Recording, RunOutput};
 use stickslip_store::Folder;
-use stickslip_store::io::{write_parquet_atomic, write_text_atomic};
+use stickslip_store::io::{write_bytes_atomic, write_parquet_atomic, write_text_atomic};
 use stickslip_store::schema::{
-    ACCELEROGRAMS, ATTENUATION, CONTROL, EVENTS_TABLE, FOURIER, INTENSITY, RUNS, SERIES, SIMILARITY, SKIPS, SPECTRA,
-    SUB_EVENTS_TABLE,
+    ACCELEROGRAMS, ATTENUATION, CONTROL, EVENTS_TABLE, FOURIER, INTENSITY, RECORDS, ROTD, RUNS, SERIES, SIMILARITY,
+    SKIPS, SPECTRA, SUB_EVENTS_TABLE,
 };
 use stickslip_store::tables::events::{events_frame, similarity_frame, sub_events_frame};
+use stickslip_store::tables::records::{
+    RecordData, Scale, accelerograms_frame, attenuation_frame, fourier_frame, intensity_frame, records_frame,
+    rotd_frame, spectra_frame,
+};
 use stickslip_store::tables::runs::{self, RunFacts, RunRow};
 use stickslip_store::tables::series::{control_frame, series_frame, skips_frame};
-use stickslip_store::tables::spectra::{
-    accelerograms_frame, attenuation_frame, fourier_frame, intensity_frame, spectra_frame,
-};
 
 use crate::error::EnsembleError;
-use crate::spectra::{PlanCache, SeedSpectra, at2_name};
+use crate::records::{PlanCache, SeedRecords};
 
 /// A seed's run and what was found in it.
 pub struct Analysed {
@@ -33,8 +35,8 @@ pub struct Analysed {
     pub catalogue: Catalogue,
     /// Every event at prototype scale.
     pub scaled: Vec<(ModelEvent, Scaled)>,
-    /// Its spectra, if the pipeline asks for them.
-    pub spectra: Option<SeedSpectra>,
+    /// Its records (and their spectra), if the pipeline asks for them.
+    pub records: Option<SeedRecords>,
 }
 
 /// Control acceleration channels recorded by the scene, in table order.
@@ -89,14 +91,22 @@ pub fn scaled_events(cat: &Catalogue, model: &Model, pipeline: &Pipeline) -> Vec
 pub fn analyse(run: RunOutput, model: &Model, pipeline: &Pipeline, plans: &PlanCache) -> Result<Analysed, String> {
     let catalogue = catalogue(&run.recording, model, &pipeline.events)?;
     let scaled = scaled_events(&catalogue, model, pipeline);
-    let spectra = match &pipeline.spectra {
-        Some(s) => Some(
-            crate::spectra::compute(&run.recording, &catalogue, model, s, pipeline.events.smoothing_s, plans)
-                .map_err(|e| e.to_string())?,
+    let records = match &pipeline.accelerograms {
+        Some(acc) => Some(
+            crate::records::compute(
+                &run.recording,
+                &catalogue,
+                model,
+                acc,
+                pipeline.spectra.as_ref(),
+                pipeline.events.smoothing_s,
+                plans,
+            )
+            .map_err(|e| e.to_string())?,
         ),
         None => None,
     };
-    Ok(Analysed { run, catalogue, scaled, spectra })
+    Ok(Analysed { run, catalogue, scaled, records })
 }
 
 /// The prototype length ratio λ of the pipeline's block.
@@ -127,19 +137,23 @@ pub fn write_seed(
             if !rec.skips.is_empty() {
                 frames.insert(2, (SKIPS, skips_frame(seed, rec)?));
             }
-            if let (Some(s), Some(settings)) = (&a.spectra, &pipeline.spectra) {
+            if let (Some(r), Some(acc)) = (&a.records, &pipeline.accelerograms) {
                 let lambda = lambda(model, pipeline);
-                frames
-                    .push((SPECTRA, spectra_frame(seed, &s.channels, &settings.periods, &settings.dampings, lambda)?));
-                frames.push((FOURIER, fourier_frame(seed, &s.channels)?));
-                frames.push((INTENSITY, intensity_frame(seed, &s.channels, lambda)?));
-                frames.push((ACCELEROGRAMS, accelerograms_frame(seed, &s.channels, lambda)?));
-                if settings.attenuation {
-                    frames.push((ATTENUATION, attenuation_frame(seed, &s.attenuation, model.lattice())?));
+                frames.push((RECORDS, records_frame(seed, &r.records, lambda)?));
+                frames.push((ACCELEROGRAMS, accelerograms_frame(seed, &r.records, lambda)?));
+                frames.push((INTENSITY, intensity_frame(seed, &r.records, lambda)?));
+                if let Some(settings) = &pipeline.spectra {
+                    let (p, d) = (&settings.periods, &settings.dampings);
+                    frames.push((SPECTRA, spectra_frame(seed, &r.records, p, d, lambda)?));
+                    frames.push((FOURIER, fourier_frame(seed, &r.records)?));
+                    if settings.rotd {
+                        frames.push((ROTD, rotd_frame(seed, &r.rotd, p, d, lambda)?));
+                    }
+                    if settings.attenuation {
+                        frames.push((ATTENUATION, attenuation_frame(seed, &r.attenuation, model.lattice())?));
+                    }
                 }
-                if settings.at2 {
-                    write_at2(out, pipeline, seed, s, lambda)?;
-                }
+                write_record_files(out, pipeline, seed, &r.records, &a.scaled, &acc.formats, lambda)?;
             }
             for (table, df) in &mut frames {
                 write_parquet_atomic(df, &out.part(table, seed))?;
@@ -152,26 +166,118 @@ pub fn write_seed(
     Ok(failure)
 }
 
-/// Writes the AT2 files of one seed (model and prototype scale) under `<out>/at2/`.
-fn write_at2(out: &Folder, pipeline: &Pipeline, seed: u64, s: &SeedSpectra, lambda: f64) -> Result<(), EnsembleError> {
-    let dir = out.at2_dir();
-    for c in &s.channels {
-        for (scale, l) in [("model", 1.0), ("prototype", lambda)] {
-            let name = at2_name(&pipeline.name, seed, c.channel.node, c.channel.component, scale);
-            let p = c.position;
+/// Name of a record's file: pipeline, seed, record and scale.
+pub fn record_file_name(pipeline: &str, seed: u64, record: &str, scale: Scale, format: RecordFormat) -> String {
+    format!("{pipeline}_seed{seed}_{record}_{}.{}", scale.name(), format.extension())
+}
+
+/// Writes the files of one seed's records (each format asked for, model and prototype scale)
+/// under `<out>/records/`.
+fn write_record_files(
+    out: &Folder,
+    pipeline: &Pipeline,
+    seed: u64,
+    records: &[RecordData],
+    scaled: &[(ModelEvent, Scaled)],
+    formats: &[RecordFormat],
+    lambda: f64,
+) -> Result<(), EnsembleError> {
+    let dir = out.records_dir();
+    for r in records {
+        let p = &r.processed;
+        for scale in Scale::ALL {
+            let l = scale.factor(lambda);
+            let band = r.band.scaled(l);
+            let pos = r.position.map(|x| x * l);
             let description = format!(
-                "stickslip pipeline {}, seed {seed}, node {} at ({}, {}, {}) m, component {}, {scale} scale \
-                 (lambda = {l}: time x{l}, acceleration /{l}); acceleration in g",
+                "stickslip {} seed {seed} record {} ({} scale, lambda = {l}): node {} at ({}, {}, {}) m, component {}, \
+                 band-pass {:.4}-{:.4} Hz, usable {:.4}-{:.4} Hz",
                 pipeline.name,
-                c.channel.node.ldem(),
-                p[0],
-                p[1],
-                p[2],
-                c.channel.component.name()
+                r.id,
+                scale.name(),
+                r.channel.node.ldem(),
+                pos[0],
+                pos[1],
+                pos[2],
+                r.channel.component.name(),
+                band.f_low_hz,
+                band.f_high_hz,
+                band.usable_low_hz,
+                band.usable_high_hz,
             );
-            let accel: Vec<f64> = c.accel.iter().map(|a| a / l).collect();
-            write_text_atomic(&Path::new(&dir).join(name), &at2_text(&accel, c.dt * l, &description))?;
+            let accel: Vec<f64> = p.accel.iter().map(|a| a / l).collect();
+            let dt = p.dt * l;
+            for &format in formats {
+                let path = dir.join(record_file_name(&pipeline.name, seed, &r.id, scale, format));
+                match format {
+                    RecordFormat::At2 => write_text_atomic(&path, &at2_text(&accel, dt, &description))?,
+                    RecordFormat::Csv => {
+                        let mut text =
+                            format!("# {description}\ntime_s,acceleration_m_s2,velocity_m_s,displacement_m\n");
+                        for i in 0..accel.len() {
+                            let t = (r.start_s + p.t_first) * l + i as f64 * dt;
+                            text.push_str(&format!(
+                                "{t:.9e},{:.9e},{:.9e},{:.9e}\n",
+                                accel[i],
+                                p.vel[i],
+                                p.disp[i] * l
+                            ));
+                        }
+                        write_text_atomic(&path, &text)?;
+                    }
+                    RecordFormat::Sac => {
+                        let magnitude = r
+                            .event
+                            .and_then(|k| scaled.get(k as usize))
+                            .map(|(_, s)| moment_magnitude(s.m0_consistent_dyne_cm));
+                        let meta = sac_meta(r, scale, l, magnitude);
+                        let bytes = sac_bytes(&accel, dt, &meta)
+                            .map_err(|e| EnsembleError::Setup(format!("SAC file of record {}: {e}", r.id)))?;
+                        write_bytes_atomic(&path, &bytes)?;
+                    }
+                }
+            }
         }
     }
     Ok(())
+}
+
+/// SAC header of a record: station = node, component, event = label, begin = run time of the
+/// first sample (the run's time as the reference), station position in model coordinates (m ×
+/// λ: `STLA`/`STLO`/`STEL` hold x, y, z), the band in `USER0`–`USER3` (Hz: corners, usable range).
+fn sac_meta(r: &RecordData, scale: Scale, l: f64, magnitude: Option<f64>) -> SacMeta {
+    let band = r.band.scaled(l);
+    SacMeta {
+        station: format!("N{}", r.channel.node.ldem()),
+        component: r.channel.component.name().to_uppercase(),
+        network: "SS".into(),
+        location: if scale == Scale::Model { "M".into() } else { "P".into() },
+        event: r.label.clone(),
+        begin: (r.start_s + r.processed.t_first) * l,
+        station_lat: Some(r.position[0] * l),
+        station_lon: Some(r.position[1] * l),
+        station_elevation: Some(r.position[2] * l),
+        component_incidence: Some(if r.channel.component.name() == "z" { 0.0 } else { 90.0 }),
+        component_azimuth: Some(match r.channel.component.name() {
+            "x" => 90.0,
+            "y" => 0.0,
+            _ => 0.0,
+        }),
+        magnitude,
+        user: [
+            Some(band.f_low_hz),
+            Some(band.f_high_hz),
+            Some(band.usable_low_hz),
+            Some(band.usable_high_hz),
+            Some(l),
+            None,
+            None,
+            None,
+            None,
+            None,
+        ],
+        user_labels: ["FLOWHIGH".into(), "USABLE".into(), "LAMBDA".into()],
+        unit: SacUnit::NanometrePerSecond2,
+        ..SacMeta::default()
+    }
 }

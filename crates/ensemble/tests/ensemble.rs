@@ -64,11 +64,18 @@ fn tables_do_not_depend_on_the_thread_count_and_read_back_lazily() {
     pairs.sort();
     pairs.dedup();
     assert_eq!(scan(&tables.join("control/*.parquet")).height(), 16 * 2401 * pairs.len());
-    // Spectra of node 36 (x, z) at two scales, three dampings, 100 periods.
-    assert_eq!(scan(&tables.join("spectra/*.parquet")).height(), 16 * 2 * 2 * 3 * 100);
-    assert_eq!(read_table(&tables.join("psa_stats.parquet")).height(), 2 * 2 * 3 * 100);
-    assert_eq!(scan(&tables.join("accelerograms/*.parquet")).height(), 16 * 2 * 2 * 2401);
-    assert_eq!(std::fs::read_dir(dir.join("one/at2")).unwrap().count(), 16 * 2 * 2);
+    // One record per main shock and component of node 36 (x, y, z); spectra of each at two
+    // scales, three dampings, 100 periods; RotD50 and RotD100 of each x–y pair.
+    let mains: u64 = runs.column("main_shocks").unwrap().cast(&DataType::UInt64).unwrap().u64().unwrap().sum().unwrap();
+    let records = read_table(&tables.join("records.parquet"));
+    assert_eq!(records.height() as u64, mains * 3 * 2, "three components, two scales");
+    assert_eq!(scan(&tables.join("spectra/*.parquet")).height() as u64, mains * 3 * 2 * 3 * 100);
+    assert_eq!(scan(&tables.join("rotd/*.parquet")).height() as u64, mains * 2 * 2 * 3 * 100);
+    assert_eq!(read_table(&tables.join("psa_stats.parquet")).height(), 5 * 2 * 3 * 100);
+    let samples: u64 =
+        records.column("samples").unwrap().cast(&DataType::UInt64).unwrap().u64().unwrap().sum().unwrap();
+    assert_eq!(scan(&tables.join("accelerograms/*.parquet")).height() as u64, samples);
+    assert_eq!(std::fs::read_dir(dir.join("one/records")).unwrap().count() as u64, mains * 3 * 2 * 2, "AT2 and SAC");
     let events = scan(&tables.join("events/*.parquet"));
     let n_events: u32 = runs.column("events").unwrap().u32().unwrap().sum().unwrap();
     assert_eq!(events.height(), n_events as usize);

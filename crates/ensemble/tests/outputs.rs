@@ -1,4 +1,5 @@
-//! What the ensemble writes of the spectra analysis: AT2 files that read back, prototype spectra that are
+//! What the ensemble writes of the accelerogram records: AT2 files that read back as the table's
+//! processed record, spectra of the file that are the table's spectra, prototype spectra that are
 //! the scaled model spectra.
 
 use std::sync::atomic::AtomicBool;
@@ -10,9 +11,8 @@ use stickslip_seismo::accelerogram::{AccelUnit, read_accelerogram};
 use stickslip_seismo::spectra::response::{Reading, SpectrumPlan, SpectrumScratch};
 use stickslip_support::{read_table, repo_path, scratch_dir};
 
-fn rows(df: &DataFrame, node: u32, comp: &str, scale: &str) -> DataFrame {
-    let m = df.column("node").unwrap().u32().unwrap().equal(node)
-        & df.column("component").unwrap().str().unwrap().equal(comp)
+fn rows(df: &DataFrame, record: &str, scale: &str) -> DataFrame {
+    let m = df.column("record").unwrap().str().unwrap().equal(record)
         & df.column("scale").unwrap().str().unwrap().equal(scale);
     df.filter(&m).unwrap()
 }
@@ -33,14 +33,18 @@ fn at2_files_read_back_and_prototype_spectra_are_the_scaled_model_spectra() {
     run_ensemble(&p, &options, &|_, _| {}, &AtomicBool::new(false)).unwrap();
     let acc = read_table(&out.join("tables/accelerograms/seed-0000000123.parquet"));
     let spectra = read_table(&out.join("tables/spectra/seed-0000000123.parquet"));
+    let records = read_table(&out.join("tables/records.parquet"));
+    let z = records.filter(&records.column("component").unwrap().str().unwrap().equal("z")).unwrap();
+    assert!(z.height() >= 2, "a z record at both scales: {records}");
+    let name = z.column("record").unwrap().str().unwrap().get(0).unwrap().to_string();
     let lambda = 1.0e4;
     for scale in ["model", "prototype"] {
-        let path = out.join(format!("at2/paper_seed123_n36_z_{scale}.AT2"));
+        let path = out.join(format!("records/paper_seed123_{name}_{scale}.AT2"));
         let head: Vec<String> = std::fs::read_to_string(&path).unwrap().lines().take(3).map(String::from).collect();
-        assert!(head[1].contains(&format!("{scale} scale")) && head[1].contains("acceleration in g"), "{}", head[1]);
+        assert!(head[1].contains(&format!("({scale} scale")), "{}", head[1]);
         assert_eq!(head[2], "ACCELERATION TIME SERIES IN UNITS OF G");
         let record = read_accelerogram(&path, AccelUnit::G).unwrap();
-        let table = rows(&acc, 36, "z", scale);
+        let table = rows(&acc, &name, scale);
         let a = f64s(&table, "acceleration_m_s2");
         let t = f64s(&table, "time_s");
         assert_eq!(record.accel.len(), a.len());
@@ -51,7 +55,7 @@ fn at2_files_read_back_and_prototype_spectra_are_the_scaled_model_spectra() {
         }
         // The spectrum of the file as read back equals the table's rows of that scale.
         let rows5 = {
-            let r = rows(&spectra, 36, "z", scale);
+            let r = rows(&spectra, &name, scale);
             let m = r.column("damping").unwrap().f64().unwrap().equal(0.05);
             r.filter(&m).unwrap()
         };
@@ -67,7 +71,7 @@ fn at2_files_read_back_and_prototype_spectra_are_the_scaled_model_spectra() {
             assert!((got - want).abs() < 1e-6 * want + 1e-7 * scale_max, "{scale} T {t}: {got} vs {want}");
         }
         if scale == "prototype" {
-            let model = rows(&spectra, 36, "z", "model");
+            let model = rows(&spectra, &name, "model");
             let model5 = model.filter(&model.column("damping").unwrap().f64().unwrap().equal(0.05)).unwrap();
             for ((tm, am), (tp, ap)) in
                 f64s(&model5, "period_s").iter().zip(f64s(&model5, "psa_m_s2")).zip(periods.iter().zip(&psa))

@@ -24,8 +24,8 @@ use stickslip_store::schema::{
     ATTENUATION, ATTENUATION_FIT, EVENTS_TABLE, PSA_STATS, RUNS, SIMILARITY, SUMMARY, TableSpec,
 };
 use stickslip_store::tables::events::{Events, Similarity};
+use stickslip_store::tables::records::Attenuation;
 use stickslip_store::tables::runs::Runs;
-use stickslip_store::tables::spectra::Attenuation;
 use stickslip_store::tables::stats::{AttenuationFit, PsaStats, SummaryTable};
 use stickslip_store::{Folder, StoreError};
 

@@ -53,6 +53,12 @@ impl Frame {
         self
     }
 
+    /// A boolean column.
+    pub fn bool(mut self, name: &str, v: Vec<bool>) -> Self {
+        self.cols.push(Column::new(name.into(), v));
+        self
+    }
+
     /// A string column.
     pub fn str(mut self, name: &str, v: Vec<String>) -> Self {
         self.cols.push(Column::new(name.into(), v));
@@ -121,6 +127,12 @@ impl<'a> Columns<'a> {
         let t = self.err(name);
         let c = self.df.column(name).map_err(&t)?.cast(&DataType::UInt64).map_err(&t)?;
         Ok(c.u64().map_err(&t)?.iter().map(|v| v.unwrap_or(0)).collect())
+    }
+
+    /// Column `name` as booleans, nulls as false.
+    pub fn bools(&self, name: &str) -> Result<Vec<bool>, StoreError> {
+        let t = self.err(name);
+        Ok(self.df.column(name).map_err(&t)?.bool().map_err(&t)?.iter().map(|v| v.unwrap_or(false)).collect())
     }
 
     /// Column `name` as strings, nulls as empty.

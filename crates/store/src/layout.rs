@@ -5,7 +5,8 @@
 //! <out>/pipeline.toml                      the pipeline file as run
 //! <out>/tables/<table>/seed-<seed>.parquet one part per seed of each per-seed table
 //! <out>/tables/<table>.parquet             gathered tables and statistics across seeds
-//! <out>/at2/…                              accelerogram files
+//! <out>/records/…                          record files (AT2, SAC, CSV), model and prototype scale
+//! <out>/set/…                              a set matched to a design spectrum: its records and table
 //! <out>/figures/*.png, <out>/index.html    the report
 //! ```
 //! `<seed>` is written with ten digits (`seed-0000000123.parquet`) so the parts sort by seed.
@@ -66,9 +67,14 @@ impl Folder {
         self.root.join("pipeline.toml")
     }
 
-    /// The accelerogram files.
-    pub fn at2_dir(&self) -> PathBuf {
-        self.root.join("at2")
+    /// The record files (AT2, SAC, CSV).
+    pub fn records_dir(&self) -> PathBuf {
+        self.root.join("records")
+    }
+
+    /// A matched set: its scaled record files, table and figure.
+    pub fn set_dir(&self) -> PathBuf {
+        self.root.join("set")
     }
 
     /// The figures.
@@ -141,8 +147,8 @@ impl Folder {
                 }
             }
         }
-        // Accelerogram files: `.<pipeline>_seed<seed>_….<ext>.<pid>.tmp`.
-        if let Ok(entries) = std::fs::read_dir(self.at2_dir()) {
+        // Record files: `.<pipeline>_seed<seed>_….<ext>.<pid>.tmp`.
+        if let Ok(entries) = std::fs::read_dir(self.records_dir()) {
             let seeds: std::collections::HashSet<u64> = seeds.iter().copied().collect();
             for file in entries.flatten() {
                 let name = file.file_name().to_string_lossy().into_owned();

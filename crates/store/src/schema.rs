@@ -70,6 +70,23 @@ pub mod col {
     pub const T5_S: &str = "t5_s";
     pub const T95_S: &str = "t95_s";
     pub const ACCELERATION_M_S2: &str = "acceleration_m_s2";
+    pub const VELOCITY_M_S: &str = "velocity_m_s";
+    pub const DISPLACEMENT_M: &str = "displacement_m";
+    pub const RECORD: &str = "record";
+    pub const X_M: &str = "x_m";
+    pub const Y_M: &str = "y_m";
+    pub const Z_M: &str = "z_m";
+    pub const PRE_EVENT_S: &str = "pre_event_s";
+    pub const SAMPLES: &str = "samples";
+    pub const FIRST_SAMPLE_S: &str = "first_sample_s";
+    pub const F_LOW_HZ: &str = "f_low_hz";
+    pub const F_HIGH_HZ: &str = "f_high_hz";
+    pub const USABLE_LOW_HZ: &str = "usable_low_hz";
+    pub const USABLE_HIGH_HZ: &str = "usable_high_hz";
+    pub const IN_BAND: &str = "in_band";
+    pub const SCALE_FACTOR: &str = "scale_factor";
+    pub const MISFIT: &str = "misfit";
+    pub const RANK: &str = "rank";
     pub const HYPOCENTRE_NODE: &str = "hypocentre_node";
     pub const HYPOCENTRE_X_M: &str = "hypocentre_x_m";
     pub const DISTANCE_M: &str = "distance_m";
@@ -260,39 +277,80 @@ pub const SIMILARITY: TableSpec = TableSpec {
     variable: None,
 };
 
-/// Response spectra of every accelerogram, both scales.
-pub const SPECTRA: TableSpec = TableSpec {
-    name: "spectra",
-    scope: Scope::PerSeed,
-    key: &[SEED, NODE, COMPONENT, SCALE, DAMPING, PERIOD_S],
-    columns: &[SEED, NODE, COMPONENT, SCALE, DAMPING, PERIOD_S, SD_M, PSV_M_S, PSA_M_S2],
-    variable: None,
-};
-
-/// Fourier amplitude spectra (model scale).
-pub const FOURIER: TableSpec = TableSpec {
-    name: "fourier",
-    scope: Scope::PerSeed,
-    key: &[SEED, NODE, COMPONENT, FREQUENCY_HZ],
-    columns: &[SEED, NODE, COMPONENT, FREQUENCY_HZ, AMPLITUDE_M_S],
-    variable: None,
-};
-
-/// Intensity measures of every accelerogram, both scales.
-pub const INTENSITY: TableSpec = TableSpec {
-    name: "intensity",
+/// One row per record and scale: what it is (event, node, component), where it was cut from the
+/// run, its sampling, filter corners and usable band (docs/model.md §8).
+pub const RECORDS: TableSpec = TableSpec {
+    name: "records",
     scope: Scope::Gathered,
-    key: &[SEED, NODE, COMPONENT, SCALE],
-    columns: &[SEED, NODE, COMPONENT, SCALE, PGA_M_S2, PGV_M_S, PGD_M, ARIAS_M_S, D5_95_S, T5_S, T95_S],
+    key: &[SEED, RECORD, SCALE],
+    columns: &[
+        SEED,
+        RECORD,
+        EVENT,
+        LABEL,
+        NODE,
+        COMPONENT,
+        SCALE,
+        X_M,
+        Y_M,
+        Z_M,
+        START_S,
+        PRE_EVENT_S,
+        DT_S,
+        SAMPLES,
+        FIRST_SAMPLE_S,
+        F_LOW_HZ,
+        F_HIGH_HZ,
+        USABLE_LOW_HZ,
+        USABLE_HIGH_HZ,
+    ],
     variable: None,
 };
 
-/// The accelerograms, both scales.
+/// The processed records (acceleration, velocity, displacement), both scales.
 pub const ACCELEROGRAMS: TableSpec = TableSpec {
     name: "accelerograms",
     scope: Scope::PerSeed,
-    key: &[SEED, NODE, COMPONENT, SCALE, TIME_S],
-    columns: &[SEED, NODE, COMPONENT, SCALE, TIME_S, ACCELERATION_M_S2],
+    key: &[SEED, RECORD, SCALE, TIME_S],
+    columns: &[SEED, RECORD, SCALE, TIME_S, ACCELERATION_M_S2, VELOCITY_M_S, DISPLACEMENT_M],
+    variable: None,
+};
+
+/// Response spectra of every record, both scales, with whether each period is in its band.
+pub const SPECTRA: TableSpec = TableSpec {
+    name: "spectra",
+    scope: Scope::PerSeed,
+    key: &[SEED, RECORD, SCALE, DAMPING, PERIOD_S],
+    columns: &[SEED, RECORD, NODE, COMPONENT, SCALE, DAMPING, PERIOD_S, SD_M, PSV_M_S, PSA_M_S2, IN_BAND],
+    variable: None,
+};
+
+/// RotD50 and RotD100 (`component`) of the two horizontal records of a node, both scales.
+pub const ROTD: TableSpec = TableSpec {
+    name: "rotd",
+    scope: Scope::PerSeed,
+    key: &[SEED, RECORD, COMPONENT, SCALE, DAMPING, PERIOD_S],
+    columns: &[SEED, RECORD, NODE, COMPONENT, SCALE, DAMPING, PERIOD_S, SD_M, PSV_M_S, PSA_M_S2, IN_BAND],
+    variable: None,
+};
+
+/// Fourier amplitude spectra of the processed records (model scale).
+pub const FOURIER: TableSpec = TableSpec {
+    name: "fourier",
+    scope: Scope::PerSeed,
+    key: &[SEED, RECORD, FREQUENCY_HZ],
+    columns: &[SEED, RECORD, FREQUENCY_HZ, AMPLITUDE_M_S],
+    variable: None,
+};
+
+/// Intensity measures of every processed record, both scales.
+pub const INTENSITY: TableSpec = TableSpec {
+    name: "intensity",
+    scope: Scope::Gathered,
+    key: &[SEED, RECORD, SCALE],
+    columns: &[
+        SEED, RECORD, EVENT, LABEL, NODE, COMPONENT, SCALE, PGA_M_S2, PGV_M_S, PGD_M, ARIAS_M_S, D5_95_S, T5_S, T95_S,
+    ],
     variable: None,
 };
 
@@ -348,7 +406,17 @@ pub const PSA_STATS: TableSpec = TableSpec {
         P5_M_S2,
         P50_M_S2,
         P95_M_S2,
+        IN_BAND,
     ],
+    variable: None,
+};
+
+/// A set of records matched to a design spectrum (prototype scale), in the order chosen.
+pub const SET: TableSpec = TableSpec {
+    name: "set",
+    scope: Scope::AcrossSeeds,
+    key: &[RANK],
+    columns: &[RANK, SEED, RECORD, LABEL, NODE, COMPONENT, SCALE_FACTOR, MISFIT, USABLE_LOW_HZ, USABLE_HIGH_HZ],
     variable: None,
 };
 
@@ -362,7 +430,7 @@ pub const ATTENUATION_FIT: TableSpec = TableSpec {
 };
 
 /// Every table, in the order the README documents them.
-pub const ALL: [TableSpec; 15] = [
+pub const ALL: [TableSpec; 18] = [
     RUNS,
     SERIES,
     CONTROL,
@@ -370,14 +438,17 @@ pub const ALL: [TableSpec; 15] = [
     EVENTS_TABLE,
     SUB_EVENTS_TABLE,
     SIMILARITY,
+    RECORDS,
+    ACCELEROGRAMS,
     SPECTRA,
+    ROTD,
     FOURIER,
     INTENSITY,
-    ACCELEROGRAMS,
     ATTENUATION,
     SUMMARY,
     PSA_STATS,
     ATTENUATION_FIT,
+    SET,
 ];
 
 /// Per-seed tables in the order a seed's parts are written: `runs` last, so a seed counts as

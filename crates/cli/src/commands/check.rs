@@ -4,6 +4,8 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 use stickslip_config::Pipeline;
+use stickslip_config::accelerograms::RecordSpan;
+use stickslip_config::check::Named;
 use stickslip_solver::Model;
 use stickslip_solver::inspect::inspect;
 use stickslip_solver::scene::{SettleMethod, TimeStep};
@@ -159,20 +161,65 @@ pub fn run(a: Args) -> Result<()> {
         si.prototype_rate_m_s,
         si.area
     );
+    let lambda = si.prototype_length_m / e[0];
+    match &pipeline.accelerograms {
+        Some(a) => {
+            let nodes = if a.nodes.is_empty() {
+                "every control node recording acceleration".to_string()
+            } else {
+                a.nodes.iter().map(|n| n.ldem().to_string()).collect::<Vec<_>>().join(", ")
+            };
+            let span = match a.span {
+                RecordSpan::Events => {
+                    format!("{} events from {} s before to {} s after", a.events.name(), a.pre_event_s, a.post_event_s)
+                }
+                RecordSpan::WholeRun => "the whole shear stage".into(),
+            };
+            let formats: Vec<&str> = a.formats.iter().map(|f| f.name()).collect();
+            println!(
+                "  records: {span}, nodes {nodes}; files {}",
+                if formats.is_empty() { "none".into() } else { formats.join(", ") }
+            );
+            println!(
+                "  usable band: up to f_max = {:.1} Hz at model scale ({:.4} Hz prototype, λ = {lambda}): plane waves \
+                 within {}% of their long-wave speed; filter {} Hz … {} Hz, order {}",
+                a.resolved_hz,
+                a.resolved_hz / lambda,
+                100.0 * a.band_tolerance,
+                a.low_corner_hz.map_or("1/record length".into(), |f| f.to_string()),
+                a.high_corner_hz.map_or("f_max".into(), |f| f.to_string()),
+                a.order
+            );
+        }
+        None => println!("  records: off (no [accelerograms] or [spectra] section)"),
+    }
     match &pipeline.spectra {
         Some(s) => println!(
-            "  spectra: {} periods {:.3e} … {:.3e} s, dampings {:?}, reading {:?}, baseline {:?}, window {:?}{}{}",
+            "  spectra: {} periods {:.3e} … {:.3e} s, dampings {:?}, reading {:?}, window {:?}{}{}",
             s.periods.len(),
             s.periods.first().copied().unwrap_or(f64::NAN),
             s.periods.last().copied().unwrap_or(f64::NAN),
             s.dampings,
             s.reading,
-            s.baseline,
             s.window,
-            if s.at2 { ", AT2 files" } else { "" },
+            if s.rotd { ", RotD50/RotD100" } else { "" },
             if s.attenuation { ", attenuation" } else { "" }
         ),
         None => println!("  spectra: off (no [spectra] section)"),
+    }
+    if let Some(set) = &pipeline.set {
+        let (a, b) = set.options.range.bounds().unwrap_or((f64::NAN, f64::NAN));
+        println!(
+            "  set: {} records ({} at most per {}), {} spectra at {}%, periods {a} … {b} s (prototype), scale factors {} … {}; target {}",
+            set.options.count,
+            set.options.per_group,
+            set.per.name(),
+            set.component.name(),
+            100.0 * set.damping,
+            set.options.scale_min,
+            set.options.scale_max,
+            set.target_name
+        );
     }
     let sk = &scene.skip_ahead;
     if sk.enabled {

@@ -29,5 +29,6 @@ pub fn run(a: Args) -> Result<()> {
         r.wall_time_s,
         a.out.join("tables").display()
     );
+    crate::commands::pipeline::print_set_result(&r.pipeline, r.set.as_ref(), &a.out);
     finish(&r.pipeline, &a.out)
 }

@@ -6,6 +6,7 @@ pub mod compare;
 pub mod merge;
 pub mod pipeline;
 pub mod run;
+pub mod select;
 pub mod show;
 pub mod similarity;
 pub mod spectra;

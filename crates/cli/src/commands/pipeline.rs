@@ -7,6 +7,7 @@ use std::time::Instant;
 
 use anyhow::{Context, Result};
 use stickslip_config::Pipeline;
+use stickslip_ensemble::set::SetOutcome;
 use stickslip_ensemble::summary::digest;
 use stickslip_ensemble::{EnsembleOptions, EnsembleReport, run_ensemble, shard};
 use stickslip_store::Folder;
@@ -68,6 +69,15 @@ pub fn ensemble(
     let report = run_ensemble(pipeline, options, &|done, _| pb.set_position(done as u64), cancel);
     pb.finish_and_clear();
     Ok(report?)
+}
+
+/// Prints the set of `[set]`, or why none could be chosen.
+pub fn print_set_result(pipeline: &Pipeline, set: Option<&Result<SetOutcome, String>>, out: &Path) {
+    match (set, &pipeline.set) {
+        (Some(Ok(o)), Some(s)) => crate::commands::select::print_set(o, &s.target_name, &Folder::new(out)),
+        (Some(Err(e)), _) => println!("set: none chosen: {e}"),
+        _ => {}
+    }
 }
 
 /// Prints the statistics and writes the report of a finished (or merged) folder.
@@ -137,6 +147,7 @@ pub fn run(a: Args) -> Result<()> {
             println!("  merge the shards with: stickslip merge {}", out.display());
             continue;
         }
+        print_set_result(pipeline, report.set.as_ref(), &out);
         finish(pipeline, &out)?;
     }
     Ok(())

@@ -11,8 +11,8 @@ use stickslip_solver::Channel;
 use stickslip_solver::scene::{Component, Kinematic};
 use stickslip_store::io::scan_glob;
 use stickslip_store::schema::{CONTROL, FOURIER, SERIES, SPECTRA, col};
+use stickslip_store::tables::records::{Spectra, read_fourier};
 use stickslip_store::tables::series::{Trace, read_control, read_series_channel};
-use stickslip_store::tables::spectra::{Spectra, read_fourier};
 
 use crate::charts::{self, Band, HLine, Line, Marker, Panel, Points};
 use crate::plot::{WIDTH, colour, decimate};
@@ -66,12 +66,12 @@ fn series(d: &ReportInput, seed: u64, column: &str) -> Result<Option<Trace>, Rep
     Ok(read_series_channel(&df, column)?)
 }
 
-/// The node and component the accelerogram figures show: the first spectra node (or control
+/// The node and component the accelerogram figures show: the first node with records (or control
 /// node recording acceleration), component z if recorded.
 fn accelerogram_channel(d: &ReportInput) -> Option<(u64, Component)> {
     let control = &d.pipeline.scene.record.control;
     let wanted = |c: &&stickslip_solver::scene::ControlChannel| {
-        d.pipeline.spectra.as_ref().map_or(c.quantity == Kinematic::Acceleration, |s| s.wants(c))
+        d.pipeline.accelerograms.as_ref().map_or(c.quantity == Kinematic::Acceleration, |a| a.wants(c))
     };
     let node = control.iter().find(wanted)?.node;
     let comps: Vec<_> = control.iter().filter(wanted).filter(|c| c.node == node).map(|c| c.component).collect();
@@ -296,20 +296,24 @@ fn spectra(d: &ReportInput, path: &Path, comp: Component) -> Result<Outcome, Rep
                     && stats.damping[i] == damping
             })
             .collect();
+        let rows: Vec<usize> = rows.into_iter().filter(|&i| stats.in_band[i]).collect();
         let mut lines = Vec::new();
         if let Some(sp) = &all {
-            let mut seeds: Vec<u64> = sp.seed.clone();
-            seeds.sort();
-            seeds.dedup();
-            count = seeds.len();
-            for s in seeds {
+            let mut records: Vec<(u64, &str)> = (0..sp.seed.len())
+                .filter(|&i| sp.node[i] == node && sp.component[i] == cname)
+                .map(|i| (sp.seed[i], sp.record[i].as_str()))
+                .collect();
+            records.sort();
+            records.dedup();
+            count = records.len();
+            for (s, r) in records {
                 let pts: Vec<(f64, f64)> = (0..sp.seed.len())
                     .filter(|&i| {
                         sp.seed[i] == s
-                            && sp.node[i] == node
-                            && sp.component[i] == cname
+                            && sp.record[i] == r
                             && sp.scale[i] == scale
                             && sp.damping[i] == damping
+                            && sp.in_band[i]
                     })
                     .map(|i| (sp.period_s[i], sp.psa_m_s2[i]))
                     .collect();
@@ -323,7 +327,7 @@ fn spectra(d: &ReportInput, path: &Path, comp: Component) -> Result<Outcome, Rep
             }
         }
         if let Some(l) = lines.first_mut() {
-            l.label = "each seed".into();
+            l.label = "each record".into();
         }
         lines.push(Line {
             label: "mean".into(),
@@ -351,9 +355,11 @@ fn spectra(d: &ReportInput, path: &Path, comp: Component) -> Result<Outcome, Rep
     Ok(Outcome::Drawn {
         title: format!("Response spectra, node {node} ({cname})"),
         caption: format!(
-            "Pseudo-spectral acceleration at {:.0}% damping of the {cname} accelerogram of node {node}: every seed thin \
-             ({count} seeds), the mean and the 5–95% band across seeds bold. Left at model scale, right at prototype scale \
-             (periods ×λ, PSA ÷λ). Exact for the straight-line reading of the samples (Nigam–Jennings).",
+            "Pseudo-spectral acceleration at {:.0}% damping of the processed {cname} records of node {node}: every record \
+             thin ({count} records), the mean and the 5–95% band across records bold, drawn only over the usable band \
+             (periods between 1/f_max of the lattice and 1/(1.25·f_low) of the filter). Left at model scale, right at \
+             prototype scale (periods ×λ, PSA ÷λ). Exact peaks for the straight-line reading of the samples \
+             (Nigam–Jennings).",
             100.0 * damping
         ),
     })
@@ -367,7 +373,7 @@ fn fourier(d: &ReportInput, path: &Path) -> Result<Outcome, ReportError> {
     let mut lines = Vec::new();
     for (k, &seed) in d.seeds.iter().enumerate() {
         let Some(df) = d.part(&FOURIER, seed)? else { continue };
-        let Some((f, a)) = read_fourier(&df, node, comp)? else { continue };
+        let Some((f, a)) = read_fourier(&df, &format!("S2-n{node}-{cname}"))? else { continue };
         // Log-spaced thinning: keep the maximum per 1/200 decade.
         let mut pts: Vec<(f64, f64)> = Vec::new();
         let mut bucket = i64::MIN;
@@ -407,8 +413,8 @@ fn fourier(d: &ReportInput, path: &Path) -> Result<Outcome, ReportError> {
     Ok(Outcome::Drawn {
         title: format!("Fourier spectra, node {node} ({cname})"),
         caption: format!(
-            "Fourier amplitude |X(f)|·Δt of the {cname} accelerogram of node {node} for {} (whole record, zero-padded \
-             to a power of two, no window; the largest value per 1/200 decade is drawn). At prototype scale the \
+            "Fourier amplitude |X(f)|·Δt of the processed {cname} record of node {node} in main shock S2 for {} \
+             (zero-padded to a power of two; the largest value per 1/200 decade is drawn). At prototype scale the \
              frequencies are divided by λ, the amplitudes unchanged.",
             seeds_text(&d.seeds)
         ),

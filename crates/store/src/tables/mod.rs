@@ -2,7 +2,7 @@
 //! [`crate::schema`].
 
 pub mod events;
+pub mod records;
 pub mod runs;
 pub mod series;
-pub mod spectra;
 pub mod stats;

@@ -70,7 +70,7 @@ impl SummaryTable {
     }
 }
 
-/// PSA across seeds at one (scale, node, component, damping, period).
+/// PSA across records at one (scale, node, component, damping, period).
 #[derive(Clone, Debug, PartialEq)]
 pub struct PsaStatsRow {
     /// `model` or `prototype`.
@@ -83,10 +83,12 @@ pub struct PsaStatsRow {
     pub damping: f64,
     /// Period (s).
     pub period_s: f64,
-    /// Seeds.
+    /// Records.
     pub count: u32,
     /// Mean, geometric mean, 5th, 50th and 95th percentiles (m/s²).
     pub stats: [f64; 5],
+    /// Whether the period is in the usable band of every record.
+    pub in_band: bool,
 }
 
 /// The PSA statistics table.
@@ -105,6 +107,7 @@ pub fn psa_stats_frame(rows: &[PsaStatsRow]) -> Result<DataFrame, StoreError> {
         .f64(col::P5_M_S2, s(2))
         .f64(col::P50_M_S2, s(3))
         .f64(col::P95_M_S2, s(4))
+        .bool(col::IN_BAND, rows.iter().map(|r| r.in_band).collect())
         .finish(PSA_STATS.name)
 }
 
@@ -127,6 +130,8 @@ read_back! {
         p5: Vec<f64> = c.f64s(col::P5_M_S2)?,
         /// 95th percentile (m/s²).
         p95: Vec<f64> = c.f64s(col::P95_M_S2)?,
+        /// Whether the period is in the usable band of every record.
+        in_band: Vec<bool> = c.bools(col::IN_BAND)?,
     }
 }
 

@@ -1,0 +1,328 @@
+//! `[accelerograms]`: the records a pipeline hands to engineers (docs/model.md §8): which events
+//! and nodes get one, the window around each event, the standard processing and the files.
+//!
+//! A record is the acceleration of one control node and component from `pre_event_s` before an
+//! event's start to `post_event_s` after its end (clipped to the shear stage), or the whole shear
+//! stage (`records = "whole_run"`). It is processed the usual way for strong-motion data (Boore &
+//! Bommer 2005; PEER NGA-West2, Ancheta et al. 2014): mean removal, cosine tapers, zero pads at each
+//! end, an acausal Butterworth band-pass, optionally a polynomial baseline, then velocity and
+//! displacement by the trapezoidal rule (`stickslip_seismo::accelerogram::processing`).
+//!
+//! **The usable band** of a record, at model scale (prototype: divided by λ):
+//! - high end: the lattice's own resolution `f_max` — the frequency where the phase velocity of
+//!   plane waves departs by `band_tolerance` from its long-wave value
+//!   (`stickslip_solver::dispersion`) — or the given `high_corner_hz` if lower; the filter's high
+//!   corner defaults to it;
+//! - low end: `1.25·f_low`, the filter's low corner times the NGA-West2 factor (the lowest usable
+//!   frequency of a record filtered at `f_low`), with `f_low` defaulting to `1/T` for a record of
+//!   duration `T` (one cycle of the corner frequency fits in the record).
+
+use serde::{Deserialize, Serialize};
+use stickslip_seismo::accelerogram::processing::USABLE_LOW_FACTOR;
+use stickslip_solver::geometry::NodeId;
+use stickslip_solver::scene::{Kinematic, Scene};
+
+use crate::check::{Checker, Named};
+
+/// Which stretches of the run become records.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RecordSpan {
+    /// One record per selected event.
+    Events,
+    /// One record of the whole shear stage.
+    WholeRun,
+}
+
+impl Named for RecordSpan {
+    const ALL: &'static [Self] = &[RecordSpan::Events, RecordSpan::WholeRun];
+    fn name(self) -> &'static str {
+        match self {
+            RecordSpan::Events => "events",
+            RecordSpan::WholeRun => "whole_run",
+        }
+    }
+}
+
+/// Which events get records.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EventChoice {
+    /// Main shocks only.
+    Main,
+    /// Every catalogued event whose stress drop is at least `min_drop_pa`.
+    All,
+}
+
+impl Named for EventChoice {
+    const ALL: &'static [Self] = &[EventChoice::Main, EventChoice::All];
+    fn name(self) -> &'static str {
+        match self {
+            EventChoice::Main => "main",
+            EventChoice::All => "all",
+        }
+    }
+}
+
+/// How the record's zero level is set before processing.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MeanChoice {
+    /// The mean of the pre-event window (the whole record when it has none).
+    PreEvent,
+    /// The mean of the whole record.
+    Whole,
+    /// The record's own zero.
+    None,
+}
+
+impl Named for MeanChoice {
+    const ALL: &'static [Self] = &[MeanChoice::PreEvent, MeanChoice::Whole, MeanChoice::None];
+    fn name(self) -> &'static str {
+        match self {
+            MeanChoice::PreEvent => "pre_event",
+            MeanChoice::Whole => "whole",
+            MeanChoice::None => "none",
+        }
+    }
+}
+
+/// A file format of the records.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RecordFormat {
+    /// PEER NGA `.AT2` (acceleration in g).
+    At2,
+    /// SAC binary, little-endian (acceleration in m/s²).
+    Sac,
+    /// CSV: time, acceleration, velocity, displacement (SI).
+    Csv,
+}
+
+impl Named for RecordFormat {
+    const ALL: &'static [Self] = &[RecordFormat::At2, RecordFormat::Sac, RecordFormat::Csv];
+    fn name(self) -> &'static str {
+        match self {
+            RecordFormat::At2 => "at2",
+            RecordFormat::Sac => "sac",
+            RecordFormat::Csv => "csv",
+        }
+    }
+}
+
+impl RecordFormat {
+    /// File extension.
+    pub fn extension(self) -> &'static str {
+        match self {
+            RecordFormat::At2 => "AT2",
+            RecordFormat::Sac => "SAC",
+            RecordFormat::Csv => "csv",
+        }
+    }
+}
+
+/// `[accelerograms]` as written in a pipeline file.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields, default)]
+pub struct AccelerogramsSection {
+    /// `"events"` (default: one record per selected event) or `"whole_run"`.
+    pub records: String,
+    /// `"main"` (default: main shocks) or `"all"` (every event with a drop ≥ `min_drop_pa`).
+    pub events: String,
+    /// With `events = "all"`: the smallest stress drop that gets a record (Pa). Default 0.
+    pub min_drop_pa: f64,
+    /// Control nodes (LDEM numbers) that get records; empty = every control node recording
+    /// acceleration.
+    pub nodes: Vec<i64>,
+    /// Window before an event's start (s, model scale). Default 2e-3.
+    pub pre_event_s: f64,
+    /// Window after an event's end, to keep the coda (s, model scale). Default 20e-3.
+    pub post_event_s: f64,
+    /// Zero level: `"pre_event"` (default), `"whole"` or `"none"`.
+    pub mean: String,
+    /// Cosine taper at each end, as a fraction of the record's duration. Default 0.05.
+    pub taper: f64,
+    /// Zero pads of `1.5·order/f_low` at each end before filtering (Converse & Brady). Default true.
+    pub pad: bool,
+    /// Butterworth order of the acausal band-pass. Default 4.
+    pub filter_order: i64,
+    /// Low corner (Hz, model scale); 0 = `1/T` for a record of duration `T`. Default 0.
+    pub low_corner_hz: f64,
+    /// High corner (Hz, model scale); 0 = the lattice's `f_max`. Default 0.
+    pub high_corner_hz: f64,
+    /// Phase-velocity departure that defines the lattice's `f_max`. Default 0.05.
+    pub band_tolerance: f64,
+    /// Degree of the polynomial baseline fitted to the displacement; 0 = none. Default 0.
+    pub baseline_degree: i64,
+    /// Files written per record, at model and prototype scale: any of `"at2"`, `"sac"`, `"csv"`.
+    /// Default `["at2", "sac"]`. Every record is also in the `accelerograms` table.
+    pub formats: Vec<String>,
+}
+
+impl Default for AccelerogramsSection {
+    fn default() -> Self {
+        AccelerogramsSection {
+            records: RecordSpan::Events.name().into(),
+            events: EventChoice::Main.name().into(),
+            min_drop_pa: 0.0,
+            nodes: vec![],
+            pre_event_s: 2e-3,
+            post_event_s: 20e-3,
+            mean: MeanChoice::PreEvent.name().into(),
+            taper: 0.05,
+            pad: true,
+            filter_order: 4,
+            low_corner_hz: 0.0,
+            high_corner_hz: 0.0,
+            band_tolerance: 0.05,
+            baseline_degree: 0,
+            formats: vec![RecordFormat::At2.name().into(), RecordFormat::Sac.name().into()],
+        }
+    }
+}
+
+/// A validated `[accelerograms]`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AccelerogramSettings {
+    /// Events or the whole run.
+    pub span: RecordSpan,
+    /// Which events.
+    pub events: EventChoice,
+    /// Smallest drop of a non-main event with a record (Pa).
+    pub min_drop_pa: f64,
+    /// Nodes with records; empty = every control node recording acceleration.
+    pub nodes: Vec<NodeId>,
+    /// Window before the start (s).
+    pub pre_event_s: f64,
+    /// Window after the end (s).
+    pub post_event_s: f64,
+    /// Zero level.
+    pub mean: MeanChoice,
+    /// Taper fraction at each end.
+    pub taper: f64,
+    /// Zero pads.
+    pub pad: bool,
+    /// Butterworth order.
+    pub order: u32,
+    /// Low corner (Hz), `None` = `1/T`.
+    pub low_corner_hz: Option<f64>,
+    /// High corner (Hz), `None` = the lattice's `f_max`.
+    pub high_corner_hz: Option<f64>,
+    /// Departure that defines `f_max`.
+    pub band_tolerance: f64,
+    /// The lattice's `f_max` at that departure (Hz, model scale): the highest frequency a record
+    /// can be used at.
+    pub resolved_hz: f64,
+    /// Baseline degree.
+    pub baseline_degree: Option<usize>,
+    /// Files per record.
+    pub formats: Vec<RecordFormat>,
+}
+
+impl AccelerogramsSection {
+    /// The settings for `scene`, every refused value recorded in `ck`.
+    pub fn build(&self, scene: &Scene, ck: &mut Checker) -> AccelerogramSettings {
+        let span = ck.named("accelerograms.records", &self.records).unwrap_or(RecordSpan::Events);
+        let events = ck.named("accelerograms.events", &self.events).unwrap_or(EventChoice::Main);
+        ck.non_negative("accelerograms.min_drop_pa", self.min_drop_pa);
+        let window_ok = ck.non_negative("accelerograms.pre_event_s", self.pre_event_s)
+            & ck.non_negative("accelerograms.post_event_s", self.post_event_s);
+        let mean = ck.named("accelerograms.mean", &self.mean).unwrap_or(MeanChoice::PreEvent);
+        ck.range("accelerograms.taper", self.taper, 0.0, false, 0.5, false);
+        let order = ck.count("accelerograms.filter_order", self.filter_order, 1, 16, "").unwrap_or(4) as u32;
+        let corners_ok = ck.non_negative("accelerograms.low_corner_hz", self.low_corner_hz)
+            & ck.non_negative("accelerograms.high_corner_hz", self.high_corner_hz);
+        if self.low_corner_hz > 0.0 && self.high_corner_hz > 0.0 && self.high_corner_hz <= self.low_corner_hz {
+            ck.push(
+                "accelerograms.high_corner_hz",
+                self.high_corner_hz,
+                format!("above low_corner_hz ({} Hz), or 0 for the lattice's f_max", self.low_corner_hz),
+            );
+        }
+        let tolerance_ok = ck.range("accelerograms.band_tolerance", self.band_tolerance, 0.0, true, 0.5, true);
+        let baseline_degree = match self.baseline_degree {
+            0 => None,
+            d => ck.count("accelerograms.baseline_degree", d, 2, 10, " (or 0 for none)"),
+        };
+        if self.min_drop_pa > 0.0 && events == EventChoice::Main {
+            ck.push(
+                "accelerograms.min_drop_pa",
+                self.min_drop_pa,
+                "0 with events = \"main\" (the threshold chooses among all events: set events = \"all\")",
+            );
+        }
+        let formats = ck.named_list("accelerograms.formats", &self.formats);
+        let control = &scene.record.control;
+        let mut nodes = Vec::new();
+        for (i, &n) in self.nodes.iter().enumerate() {
+            match control.iter().find(|c| c.quantity == Kinematic::Acceleration && c.node.ldem() as i64 == n) {
+                Some(c) => nodes.push(c.node),
+                None => ck.push(
+                    format!("accelerograms.nodes[{i}]"),
+                    n,
+                    "a control node that records acceleration ([[record.control]])",
+                ),
+            }
+        }
+        if !control.iter().any(|c| c.quantity == Kinematic::Acceleration) {
+            ck.push(
+                "accelerograms",
+                "(present)",
+                "control nodes that record acceleration ([[record.control]] quantities = [\"acceleration\"])",
+            );
+        }
+        if scene.skip_ahead.enabled
+            && scene.skip_ahead.record_interval_s.is_some_and(|iv| Some(iv) != scene.record.interval_s)
+        {
+            ck.push(
+                "accelerograms",
+                "(present)",
+                "uniformly sampled records: without skip_ahead.record_interval_s (the skip-ahead would sample quiet \
+                 phases more sparsely, and records need one sampling interval)",
+            );
+        }
+        let resolved_hz = match scene.usable_band(self.band_tolerance.clamp(1e-6, 0.49)) {
+            Ok(b) => b.f_max_hz,
+            Err(e) => {
+                ck.push("accelerograms", "(present)", format!("a lattice whose dispersion can be computed: {e}"));
+                f64::INFINITY
+            }
+        };
+        let top = self.high_corner_hz.clamp(0.0, resolved_hz);
+        let top = if top > 0.0 { top } else { resolved_hz };
+        let shortest = self.pre_event_s + self.post_event_s;
+        let low = if self.low_corner_hz > 0.0 { self.low_corner_hz } else { 1.0 / shortest };
+        if span == RecordSpan::Events && window_ok && corners_ok && tolerance_ok && !(USABLE_LOW_FACTOR * low < top) {
+            ck.push(
+                "accelerograms.post_event_s",
+                self.post_event_s,
+                format!(
+                    "a window (pre_event_s + post_event_s = {shortest} s) long enough for a usable band: the low corner \
+                     {low} Hz × {USABLE_LOW_FACTOR} must stay below the band's top {top:.1} Hz (the lattice's f_max or \
+                     high_corner_hz)"
+                ),
+            );
+        }
+        AccelerogramSettings {
+            span,
+            events,
+            min_drop_pa: self.min_drop_pa,
+            nodes,
+            pre_event_s: self.pre_event_s,
+            post_event_s: self.post_event_s,
+            mean,
+            taper: self.taper,
+            pad: self.pad,
+            order,
+            low_corner_hz: (self.low_corner_hz > 0.0).then_some(self.low_corner_hz),
+            high_corner_hz: (self.high_corner_hz > 0.0).then_some(self.high_corner_hz),
+            band_tolerance: self.band_tolerance,
+            resolved_hz,
+            baseline_degree,
+            formats,
+        }
+    }
+}
+
+impl AccelerogramSettings {
+    /// Whether control channel `c` gets records.
+    pub fn wants(&self, c: &stickslip_solver::scene::ControlChannel) -> bool {
+        c.quantity == Kinematic::Acceleration && (self.nodes.is_empty() || self.nodes.contains(&c.node))
+    }
+}

@@ -1,0 +1,317 @@
+//! `[set]`: a set of records matched to a design spectrum, chosen from an ensemble's records
+//! (`stickslip_seismo::selection`), at prototype scale.
+//!
+//! The target is ASCE 7-16 (§11.4.6: `S_DS`, `S_D1` in g and `T_L` in s), Eurocode 8 (EN 1998-1
+//! §3.2.2.2: `a_g` in m/s², spectrum type 1 or 2, ground type A–E) or a CSV table of period (s)
+//! and PSA (m/s²). The period range is given, or `[0.2·T₁, 2·T₁]` from the structure's
+//! fundamental period `T₁` (ASCE 7-16 §16.2.1, EN 1998-1 §3.2.3.1.2). `count` records (ASCE 7-16
+//! §16.2.2 asks for 11), at most `max_per` of one event (or seed), each scaled by a factor within
+//! `[scale_min, scale_max]`, whose mean spectrum minimises the log misfit over the range and is
+//! nowhere in it below 90% of the target. Only records whose usable band covers the range are
+//! eligible.
+//!
+//! Not part of the pipeline's hash: the set is chosen from finished seeds each time the ensemble
+//! is gathered, and changes no seed's tables.
+
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+use stickslip_seismo::design::{Asce7, DesignSpectrum, Ec8, Ec8Type, GroundType, Tabulated};
+use stickslip_seismo::selection::{PeriodRange, SelectionOptions};
+
+use crate::check::{Checker, Named};
+
+/// Which spectrum of a record is matched.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SetComponent {
+    /// Each horizontal component (x and y) is a candidate on its own.
+    Horizontal,
+    /// x only.
+    X,
+    /// y only.
+    Y,
+    /// z only.
+    Z,
+    /// The x–y pair of a node, by its RotD50 spectrum (both components are scaled alike).
+    Rotd50,
+}
+
+impl Named for SetComponent {
+    const ALL: &'static [Self] =
+        &[SetComponent::Horizontal, SetComponent::X, SetComponent::Y, SetComponent::Z, SetComponent::Rotd50];
+    fn name(self) -> &'static str {
+        match self {
+            SetComponent::Horizontal => "horizontal",
+            SetComponent::X => "x",
+            SetComponent::Y => "y",
+            SetComponent::Z => "z",
+            SetComponent::Rotd50 => "rotd50",
+        }
+    }
+}
+
+/// What one group of records (at most `max_per` chosen) is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SetGroup {
+    /// The records of one event of one seed.
+    Event,
+    /// The records of one seed.
+    Seed,
+}
+
+impl Named for SetGroup {
+    const ALL: &'static [Self] = &[SetGroup::Event, SetGroup::Seed];
+    fn name(self) -> &'static str {
+        match self {
+            SetGroup::Event => "event",
+            SetGroup::Seed => "seed",
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum TargetKind {
+    Asce7,
+    Ec8,
+    Csv,
+}
+
+impl Named for TargetKind {
+    const ALL: &'static [Self] = &[TargetKind::Asce7, TargetKind::Ec8, TargetKind::Csv];
+    fn name(self) -> &'static str {
+        match self {
+            TargetKind::Asce7 => "asce7",
+            TargetKind::Ec8 => "ec8",
+            TargetKind::Csv => "csv",
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Ground(GroundType);
+
+impl Named for Ground {
+    const ALL: &'static [Self] = &[
+        Ground(GroundType::A),
+        Ground(GroundType::B),
+        Ground(GroundType::C),
+        Ground(GroundType::D),
+        Ground(GroundType::E),
+    ];
+    fn name(self) -> &'static str {
+        match self.0 {
+            GroundType::A => "A",
+            GroundType::B => "B",
+            GroundType::C => "C",
+            GroundType::D => "D",
+            GroundType::E => "E",
+        }
+    }
+}
+
+/// `[set]` as written in a pipeline file (or a file given to `stickslip select`).
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields, default)]
+pub struct SetSection {
+    /// `"asce7"` (default), `"ec8"` or `"csv"`.
+    pub target: String,
+    /// ASCE 7: design spectral acceleration at short periods `S_DS` (g). Default 1.0.
+    pub s_ds_g: f64,
+    /// ASCE 7: design spectral acceleration at 1 s `S_D1` (g). Default 0.6.
+    pub s_d1_g: f64,
+    /// ASCE 7: long-period transition period `T_L` (s). Default 8.
+    pub t_l_s: f64,
+    /// EC8: design ground acceleration on type A ground `a_g` (m/s²). Default 2.5.
+    pub a_g_m_s2: f64,
+    /// EC8: spectrum type, 1 (surface-wave magnitude above 5.5) or 2. Default 1.
+    pub ec8_type: i64,
+    /// EC8: ground type `"A"` … `"E"`. Default `"B"`.
+    pub ground: String,
+    /// CSV target: a file of `period_s, psa_m_s2` rows (a header line allowed), relative to the
+    /// pipeline file.
+    pub target_csv: String,
+    /// Fundamental period `T₁` (s): the range is `[0.2·T₁, 2·T₁]`; 0 = use `period_min_s`,
+    /// `period_max_s`. Default 1.0.
+    pub t1_s: f64,
+    /// Lower end of the period range (s), with `t1_s = 0`.
+    pub period_min_s: f64,
+    /// Upper end of the period range (s), with `t1_s = 0`.
+    pub period_max_s: f64,
+    /// Number of records. Default 11.
+    pub count: i64,
+    /// At most this many records of one group. Default 2.
+    pub max_per: i64,
+    /// A group is an `"event"` (default) or a `"seed"`.
+    pub per: String,
+    /// Smallest amplitude scale factor. Default 0.25.
+    pub scale_min: f64,
+    /// Largest amplitude scale factor. Default 4.
+    pub scale_max: f64,
+    /// The spectrum matched: `"horizontal"` (default), `"x"`, `"y"`, `"z"` or `"rotd50"`.
+    pub component: String,
+    /// Damping ratio of the spectra matched (one of `[spectra] dampings`). Default 0.05.
+    pub damping: f64,
+}
+
+impl Default for SetSection {
+    fn default() -> Self {
+        SetSection {
+            target: TargetKind::Asce7.name().into(),
+            s_ds_g: 1.0,
+            s_d1_g: 0.6,
+            t_l_s: 8.0,
+            a_g_m_s2: 2.5,
+            ec8_type: 1,
+            ground: "B".into(),
+            target_csv: String::new(),
+            t1_s: 1.0,
+            period_min_s: 0.0,
+            period_max_s: 0.0,
+            count: 11,
+            max_per: 2,
+            per: SetGroup::Event.name().into(),
+            scale_min: 0.25,
+            scale_max: 4.0,
+            component: SetComponent::Horizontal.name().into(),
+            damping: 0.05,
+        }
+    }
+}
+
+/// A validated `[set]`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SetSettings {
+    /// The target spectrum (PSA in m/s²).
+    pub target: DesignSpectrum,
+    /// What the target is, for captions (e.g. "ASCE 7-16, S_DS = 1 g, S_D1 = 0.6 g, T_L = 8 s").
+    pub target_name: String,
+    /// Selection options (range, count, caps, scale bounds).
+    pub options: SelectionOptions,
+    /// What a group is.
+    pub per: SetGroup,
+    /// The spectrum matched.
+    pub component: SetComponent,
+    /// Damping ratio.
+    pub damping: f64,
+}
+
+impl SetSection {
+    /// The settings; a CSV target is read relative to `base` (the pipeline file's folder). Every
+    /// refused value is recorded in `ck`; `None` when the target could not be built.
+    pub fn build(&self, base: &Path, dampings: Option<&[f64]>, ck: &mut Checker) -> Option<SetSettings> {
+        let kind = ck.named::<TargetKind>("set.target", &self.target)?;
+        let (target, target_name) = match kind {
+            TargetKind::Asce7 => {
+                let ok = ck.positive("set.s_ds_g", self.s_ds_g) & ck.positive("set.s_d1_g", self.s_d1_g);
+                let t_s = self.s_d1_g / self.s_ds_g;
+                if ok && !(self.t_l_s > t_s && self.t_l_s.is_finite()) {
+                    ck.push("set.t_l_s", self.t_l_s, format!("T_L > T_S = S_D1/S_DS = {t_s} s (finite)"));
+                }
+                let name =
+                    format!("ASCE 7-16, S_DS = {} g, S_D1 = {} g, T_L = {} s", self.s_ds_g, self.s_d1_g, self.t_l_s);
+                (Asce7::new(self.s_ds_g, self.s_d1_g, self.t_l_s).ok().map(DesignSpectrum::Asce7), name)
+            }
+            TargetKind::Ec8 => {
+                ck.positive("set.a_g_m_s2", self.a_g_m_s2);
+                let kind = match self.ec8_type {
+                    1 => Some(Ec8Type::Type1),
+                    2 => Some(Ec8Type::Type2),
+                    _ => {
+                        ck.push("set.ec8_type", self.ec8_type, "1 or 2");
+                        None
+                    }
+                };
+                let ground = ck.named::<Ground>("set.ground", &self.ground);
+                let name = format!(
+                    "EN 1998-1 type {} spectrum, a_g = {} m/s², ground {}",
+                    self.ec8_type, self.a_g_m_s2, self.ground
+                );
+                let xi = 100.0 * self.damping;
+                let spectrum = match (kind, ground) {
+                    (Some(k), Some(g)) => Ec8::new(self.a_g_m_s2, k, g.0, xi).ok().map(DesignSpectrum::Ec8),
+                    _ => None,
+                };
+                (spectrum, name)
+            }
+            TargetKind::Csv => {
+                let path: PathBuf = base.join(&self.target_csv);
+                let name = format!("target spectrum {}", self.target_csv);
+                (read_target_csv(&path, ck).map(DesignSpectrum::Tabulated), name)
+            }
+        };
+        let range = if self.t1_s > 0.0 {
+            ck.positive("set.t1_s", self.t1_s);
+            PeriodRange::Fundamental { t1: self.t1_s }
+        } else {
+            if ck.positive("set.period_min_s", self.period_min_s)
+                && !(self.period_max_s > self.period_min_s && self.period_max_s.is_finite())
+            {
+                ck.push("set.period_max_s", self.period_max_s, format!("above period_min_s ({} s)", self.period_min_s));
+            }
+            PeriodRange::Explicit { t_a: self.period_min_s, t_b: self.period_max_s }
+        };
+        let count = ck.count("set.count", self.count, 1, 1000, "").unwrap_or(11);
+        let max_per = ck.count("set.max_per", self.max_per, 1, 1000, "").unwrap_or(2);
+        let per = ck.named("set.per", &self.per).unwrap_or(SetGroup::Event);
+        if ck.positive("set.scale_min", self.scale_min)
+            && !(self.scale_max >= self.scale_min && self.scale_max.is_finite())
+        {
+            ck.push("set.scale_max", self.scale_max, format!("at least scale_min ({}), finite", self.scale_min));
+        }
+        let component = ck.named("set.component", &self.component).unwrap_or(SetComponent::Horizontal);
+        match dampings {
+            Some(d) if !d.iter().any(|&x| (x - self.damping).abs() <= 1e-12) => {
+                ck.push("set.damping", self.damping, format!("one of the spectra's dampings {d:?}"));
+            }
+            None => ck.push("set", "(present)", "a [spectra] section (the set is matched on the records' spectra)"),
+            _ => {}
+        }
+        let options = SelectionOptions {
+            count,
+            per_group: max_per,
+            scale_min: self.scale_min,
+            scale_max: self.scale_max,
+            ..SelectionOptions::new(range)
+        };
+        Some(SetSettings { target: target?, target_name, options, per, component, damping: self.damping })
+    }
+}
+
+/// A CSV target: rows `period_s, psa_m_s2` (comma, semicolon or tab; `#` comments and one header
+/// line allowed).
+fn read_target_csv(path: &Path, ck: &mut Checker) -> Option<Tabulated> {
+    let field = "set.target_csv";
+    let text = match std::fs::read_to_string(path) {
+        Ok(t) => t,
+        Err(e) => {
+            ck.push(field, path.display(), format!("a readable CSV file of period_s, psa_m_s2 ({e})"));
+            return None;
+        }
+    };
+    let (mut t, mut psa) = (Vec::new(), Vec::new());
+    for (k, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let cells: Vec<&str> = line.split([',', ';', '\t']).map(str::trim).collect();
+        match (cells.first().and_then(|c| c.parse::<f64>().ok()), cells.get(1).and_then(|c| c.parse::<f64>().ok())) {
+            (Some(a), Some(b)) => {
+                t.push(a);
+                psa.push(b);
+            }
+            _ if t.is_empty() && k == 0 => continue,
+            _ => {
+                ck.push(field, format!("{} line {}", path.display(), k + 1), "two numbers: period_s, psa_m_s2");
+                return None;
+            }
+        }
+    }
+    match Tabulated::new(&t, &psa) {
+        Ok(tab) => Some(tab),
+        Err(e) => {
+            ck.push(field, path.display(), e.to_string());
+            None
+        }
+    }
+}

@@ -1,0 +1,300 @@
+//! The records of one seed (docs/model.md §8): for every selected event (or the whole run) and
+//! every control node and component asked for, the acceleration over the event's window,
+//! processed, with its usable band, intensity measures, and — when `[spectra]` asks — its response
+//! and Fourier spectra and the RotD50/RotD100 of the node's two horizontal components; and the
+//! attenuation of peak motions with distance from each main shock's hypocentre.
+//!
+//! Everything is computed at model scale; the tables rescale to the prototype (docs/model.md §9).
+
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex};
+
+use rustfft::FftPlanner;
+use stickslip_config::accelerograms::{EventChoice, MeanChoice, RecordSpan};
+use stickslip_config::{AccelerogramSettings, SpectraSettings};
+use stickslip_seismo::SeismoError;
+use stickslip_seismo::accelerogram::processing::{MeanRemoval, Padding, ProcessingOptions, RecordBand, process};
+use stickslip_seismo::events::Catalogue;
+use stickslip_seismo::spectra::fourier::fourier_amplitude;
+use stickslip_seismo::spectra::intensity::{Baseline, intensity};
+use stickslip_seismo::spectra::response::{SpectrumError, SpectrumPlan, SpectrumScratch};
+use stickslip_seismo::spectra::rotd::{RotDPlan, RotDScratch, RotDSpectrum};
+use stickslip_solver::geometry::NodeId;
+use stickslip_solver::scene::{Component, Kinematic};
+use stickslip_solver::{Model, Recording};
+use stickslip_store::tables::records::{AttenuationRow, RecordData, RotdData};
+
+/// What the analysis produced for one seed.
+#[derive(Clone, Debug, Default)]
+pub struct SeedRecords {
+    /// One entry per record.
+    pub records: Vec<RecordData>,
+    /// RotD of the nodes with both horizontal records, per window.
+    pub rotd: Vec<RotdData>,
+    /// Records left out, with the reason (a window clipped by the run's ends too short for any
+    /// usable band).
+    pub left_out: Vec<String>,
+    /// Attenuation rows (if asked).
+    pub attenuation: Vec<AttenuationRow>,
+}
+
+/// Plans shared by the workers, one per sampling interval.
+#[derive(Default)]
+pub struct PlanCache {
+    spectra: Mutex<HashMap<u64, Arc<SpectrumPlan>>>,
+    rotd: Mutex<HashMap<u64, Arc<RotDPlan>>>,
+}
+
+impl PlanCache {
+    fn spectrum(&self, dt: f64, s: &SpectraSettings) -> Result<Arc<SpectrumPlan>, SpectrumError> {
+        let mut plans = self.spectra.lock().expect("plan cache lock");
+        if let Some(p) = plans.get(&dt.to_bits()) {
+            return Ok(p.clone());
+        }
+        let plan = Arc::new(SpectrumPlan::new(dt, &s.periods, &s.dampings, s.reading, s.oversampling)?);
+        plans.insert(dt.to_bits(), plan.clone());
+        Ok(plan)
+    }
+
+    fn rotd(&self, dt: f64, s: &SpectraSettings) -> Result<Arc<RotDPlan>, SpectrumError> {
+        let mut plans = self.rotd.lock().expect("plan cache lock");
+        if let Some(p) = plans.get(&dt.to_bits()) {
+            return Ok(p.clone());
+        }
+        let plan = Arc::new(RotDPlan::new(dt, &s.periods, &s.dampings, s.reading, s.oversampling)?);
+        plans.insert(dt.to_bits(), plan.clone());
+        Ok(plan)
+    }
+}
+
+struct Scratch {
+    spectrum: SpectrumScratch,
+    rotd: RotDScratch,
+    fft: FftPlanner<f64>,
+}
+
+thread_local! {
+    static SCRATCH: std::cell::RefCell<Scratch> = std::cell::RefCell::new(Scratch {
+        spectrum: SpectrumScratch::default(),
+        rotd: RotDScratch::default(),
+        fft: FftPlanner::new(),
+    });
+}
+
+/// Why a seed's records could not be made.
+#[derive(Debug, thiserror::Error)]
+pub enum RecordFailure {
+    /// The shear stage was not sampled uniformly.
+    #[error("records need a uniformly sampled run: {0}")]
+    NotUniform(String),
+    /// The numerics refused a record.
+    #[error("record {record}: {source}")]
+    Numerics {
+        /// The record.
+        record: String,
+        /// Why.
+        source: SeismoError,
+    },
+}
+
+/// One window of the run that becomes records.
+struct Window {
+    event: Option<u32>,
+    label: String,
+    /// Sample range within the recording.
+    samples: std::ops::Range<usize>,
+    pre_event_s: f64,
+}
+
+/// The windows of the run: one per selected event, or the whole shear stage.
+fn windows(t: &[f64], offset: usize, catalogue: &Catalogue, acc: &AccelerogramSettings) -> Vec<Window> {
+    if acc.span == RecordSpan::WholeRun {
+        return vec![Window { event: None, label: "run".into(), samples: offset..offset + t.len(), pre_event_s: 0.0 }];
+    }
+    let mut out = Vec::new();
+    for (k, e) in catalogue.events.iter().enumerate() {
+        let main = e.kind.is_main();
+        let chosen = match acc.events {
+            EventChoice::Main => main,
+            EventChoice::All => main || e.burst.stress_drop_pa >= acc.min_drop_pa,
+        };
+        if !chosen {
+            continue;
+        }
+        let label = match e.kind.rank().filter(|_| main) {
+            Some(rank) => format!("S{rank}"),
+            None => format!("E{k}"),
+        };
+        let a = t.partition_point(|&x| x < e.burst.start_s - acc.pre_event_s);
+        let b = t.partition_point(|&x| x <= e.burst.end_s + acc.post_event_s);
+        if b < a + 2 {
+            continue;
+        }
+        let pre = (e.burst.start_s - t[a]).max(0.0);
+        out.push(Window { event: Some(k as u32), label, samples: offset + a..offset + b, pre_event_s: pre });
+    }
+    out
+}
+
+/// Runs the analysis for one seed's recording.
+pub fn compute(
+    rec: &Recording,
+    catalogue: &Catalogue,
+    model: &Model,
+    acc: &AccelerogramSettings,
+    spectra: Option<&SpectraSettings>,
+    smoothing_s: f64,
+    plans: &PlanCache,
+) -> Result<SeedRecords, RecordFailure> {
+    let Some(span) = rec.uniform_shear() else {
+        return Err(RecordFailure::NotUniform(format!(
+            "the shear stage was sampled every {} steps except where the skip-ahead sampled quiet phases more sparsely \
+             or the stage's last step fell off the grid",
+            rec.sampling.stride
+        )));
+    };
+    let mut out = SeedRecords::default();
+    if spectra.is_some_and(|s| s.attenuation) {
+        out.attenuation = attenuation(rec, catalogue, model, smoothing_s);
+    }
+    let t = &rec.time_s[span.clone()];
+    if t.len() < 2 {
+        return Ok(out);
+    }
+    let dt = (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64;
+    let lattice = model.lattice();
+    for w in windows(t, span.start, catalogue, acc) {
+        let mut horizontal: HashMap<NodeId, [Option<usize>; 2]> = HashMap::new();
+        for (ch, accel) in rec.control.iter().filter(|(c, _)| acc.wants(c)) {
+            let id = format!("{}-n{}-{}", w.label, ch.node.ldem(), ch.component.name());
+            let raw = &accel[w.samples.clone()];
+            let duration = (raw.len() - 1) as f64 * dt;
+            let band = match RecordBand::new(duration, dt, acc.resolved_hz, acc.low_corner_hz, acc.high_corner_hz) {
+                Ok(b) => b,
+                Err(e) => {
+                    out.left_out.push(format!("{id}: {e}"));
+                    continue;
+                }
+            };
+            let numerics = |source: SeismoError| RecordFailure::Numerics { record: id.clone(), source };
+            let mean = match acc.mean {
+                MeanChoice::PreEvent if w.pre_event_s > 0.0 => MeanRemoval::PreEvent { seconds: w.pre_event_s },
+                MeanChoice::PreEvent | MeanChoice::Whole => MeanRemoval::WholeRecord,
+                MeanChoice::None => MeanRemoval::Off,
+            };
+            let opts = ProcessingOptions {
+                mean,
+                taper_start: acc.taper,
+                taper_end: acc.taper,
+                padding: if acc.pad { Padding::Auto } else { Padding::None },
+                f_low: band.f_low_hz,
+                f_high: Some(band.f_high_hz),
+                order: acc.order,
+                baseline_degree: acc.baseline_degree,
+            };
+            let processed = process(raw, dt, &opts).map_err(numerics)?;
+            let intensity = intensity(&processed.accel, dt, Baseline::None);
+            let (mut sd, mut fourier) = (Vec::new(), None);
+            if let Some(s) = spectra {
+                let plan = plans.spectrum(dt, s).map_err(|e| numerics(e.into()))?;
+                sd = vec![0.0; plan.len()];
+                let f = SCRATCH.with(|scratch| -> Result<_, SpectrumError> {
+                    let scratch = &mut *scratch.borrow_mut();
+                    plan.compute(&processed.accel, &mut scratch.spectrum, &mut sd)?;
+                    Ok(fourier_amplitude(&processed.accel, dt, s.window, &mut scratch.fft))
+                });
+                fourier = Some(f.map_err(|e| numerics(e.into()))?);
+            }
+            match ch.component {
+                Component::X => horizontal.entry(ch.node).or_default()[0] = Some(out.records.len()),
+                Component::Y => horizontal.entry(ch.node).or_default()[1] = Some(out.records.len()),
+                Component::Z => {}
+            }
+            out.records.push(RecordData {
+                id,
+                event: w.event,
+                label: w.label.clone(),
+                channel: *ch,
+                position: lattice.position(ch.node),
+                start_s: t[w.samples.start - span.start],
+                pre_event_s: w.pre_event_s,
+                processed,
+                band,
+                intensity,
+                sd,
+                fourier,
+            });
+        }
+        let Some(s) = spectra.filter(|s| s.rotd) else { continue };
+        let mut pairs: Vec<(NodeId, usize, usize)> =
+            horizontal.into_iter().filter_map(|(n, [x, y])| Some((n, x?, y?))).collect();
+        pairs.sort();
+        for (node, ix, iy) in pairs {
+            let (x, y) = (&out.records[ix], &out.records[iy]);
+            let id = format!("{}-n{}-xy", w.label, node.ldem());
+            let numerics = |source: SeismoError| RecordFailure::Numerics { record: id.clone(), source };
+            let plan = plans.rotd(dt, s).map_err(|e| numerics(e.into()))?;
+            let mut r = RotDSpectrum::default();
+            SCRATCH
+                .with(|scratch| {
+                    plan.compute(&x.processed.accel, &y.processed.accel, &mut scratch.borrow_mut().rotd, &mut r)
+                })
+                .map_err(|e| numerics(e.into()))?;
+            out.rotd.push(RotdData {
+                id,
+                event: w.event,
+                label: w.label.clone(),
+                node,
+                band: x.band.intersect(&y.band),
+                sd50: r.rotd50,
+                sd100: r.rotd100,
+            });
+        }
+    }
+    Ok(out)
+}
+
+/// Peak motions of every control node in every main shock, with the distance from the shock's
+/// hypocentre (its first sustained slip onset in `[start − smoothing, end]`).
+fn attenuation(rec: &Recording, catalogue: &Catalogue, model: &Model, smoothing_s: f64) -> Vec<AttenuationRow> {
+    let lattice = model.lattice();
+    let t = &rec.time_s;
+    let mut nodes: Vec<NodeId> = rec.control.iter().map(|(c, _)| c.node).collect();
+    nodes.sort();
+    nodes.dedup();
+    let series = |node: NodeId, q: Kinematic| -> Vec<&[f64]> {
+        rec.control.iter().filter(|(c, _)| c.node == node && c.quantity == q).map(|(_, v)| v.as_slice()).collect()
+    };
+    let mut rows = Vec::new();
+    for (k, e) in catalogue.events.iter().enumerate() {
+        let Some(rank) = e.kind.rank().filter(|_| e.kind.is_main()) else { continue };
+        let Some(hypo) = hypocentre(rec, e.burst.start_s - smoothing_s, e.burst.end_s) else { continue };
+        let h = lattice.position(hypo);
+        let (a, b) = (t.partition_point(|&x| x < e.burst.start_s), t.partition_point(|&x| x <= e.burst.end_s));
+        for &node in &nodes {
+            let p = lattice.position(node);
+            let distance = ((p[0] - h[0]).powi(2) + (p[1] - h[1]).powi(2) + (p[2] - h[2]).powi(2)).sqrt();
+            let peak = |comps: &[&[f64]]| -> f64 {
+                if comps.is_empty() {
+                    return f64::NAN;
+                }
+                (a..b).map(|i| comps.iter().map(|c| c[i] * c[i]).sum::<f64>().sqrt()).fold(0.0, f64::max)
+            };
+            rows.push(AttenuationRow {
+                event: k as u32,
+                rank,
+                hypocentre: hypo,
+                node,
+                distance_m: distance,
+                pga_m_s2: peak(&series(node, Kinematic::Acceleration)),
+                pgv_m_s: peak(&series(node, Kinematic::Velocity)),
+            });
+        }
+    }
+    rows
+}
+
+/// The first contact node to slide for good in `[from, to]` (s), if slip onsets were recorded.
+pub fn hypocentre(rec: &Recording, from: f64, to: f64) -> Option<NodeId> {
+    rec.onsets.iter().find(|(time, _)| *time >= from && *time <= to).map(|&(_, n)| n)
+}

@@ -1,0 +1,227 @@
+//! A set of an ensemble's records matched to a design spectrum (`[set]`,
+//! `stickslip_seismo::selection`), at prototype scale: the candidates are the records of every
+//! finished seed (each horizontal component, one component, or each node's x–y pair by its
+//! RotD50), with the usable band each was processed to; the chosen records are written scaled, as
+//! AT2 and SAC files under `<out>/set/`, with the `set` table.
+
+use std::collections::{BTreeMap, HashMap};
+
+use stickslip_config::set::{SetComponent, SetGroup};
+use stickslip_config::{Pipeline, SetSettings};
+use stickslip_seismo::accelerogram::at2_text;
+use stickslip_seismo::accelerogram::sac::{SacMeta, SacUnit, sac_bytes};
+use stickslip_seismo::selection::{Candidate, Selection, select};
+use stickslip_store::Folder;
+use stickslip_store::io::{
+    read_parquet_if_present, scan_glob, write_bytes_atomic, write_parquet_atomic, write_text_atomic,
+};
+use stickslip_store::schema::{ACCELEROGRAMS, RECORDS, ROTD, SET, SPECTRA};
+use stickslip_store::tables::records::{Accelerograms, Records, SetRow, Spectra, set_frame};
+
+use crate::error::EnsembleError;
+
+/// What a selection found.
+#[derive(Clone, Debug)]
+pub struct SetOutcome {
+    /// The selection (records, scale factors, mean spectrum, the rule's ratio).
+    pub selection: Selection,
+    /// The rows of the set table.
+    pub rows: Vec<SetRow>,
+    /// The prototype period grid (s).
+    pub periods: Vec<f64>,
+    /// The target on the grid (m/s²).
+    pub target: Vec<f64>,
+    /// Each chosen record's unscaled PSA on the grid (m/s²).
+    pub spectra: Vec<Vec<f64>>,
+    /// Candidates considered.
+    pub candidates: usize,
+}
+
+/// One candidate's data besides its spectrum.
+struct Meta {
+    seed: u64,
+    record: String,
+    label: String,
+    node: u32,
+    component: String,
+    usable_hz: (f64, f64),
+}
+
+/// Selects the set of `settings` among the records of the finished seeds in `out`, writes its
+/// table and files, and returns it; refuses with the rule it cannot meet.
+pub fn select_set(out: &Folder, pipeline: &Pipeline, settings: &SetSettings) -> Result<SetOutcome, EnsembleError> {
+    let missing =
+        |what: &str| EnsembleError::Setup(format!("{}: no {what} to choose a set from", out.root().display()));
+    let records = read_parquet_if_present(&out.gathered(&RECORDS))?.ok_or_else(|| missing("records table"))?;
+    let records = Records::read(&records)?;
+    let rotd = settings.component == SetComponent::Rotd50;
+    let table = if rotd { ROTD } else { SPECTRA };
+    let spectra = scan_glob(&out.part_glob(&table))?.ok_or_else(|| missing(&format!("{} table", table.name)))?;
+    let spectra = Spectra::read(&spectra)?;
+    // Band of each record at prototype scale; a RotD pair takes the narrower of its two.
+    let mut band: HashMap<(u64, String), (f64, f64, String, u32)> = HashMap::new();
+    for i in 0..records.seed.len() {
+        if records.scale[i] != "prototype" {
+            continue;
+        }
+        let key = if rotd {
+            let pair = records.record[i].rsplit_once('-').map_or(String::new(), |(head, _)| format!("{head}-xy"));
+            (records.seed[i], pair)
+        } else {
+            (records.seed[i], records.record[i].clone())
+        };
+        let e = band.entry(key).or_insert((0.0, f64::INFINITY, records.label[i].clone(), records.node[i] as u32));
+        e.0 = e.0.max(records.usable_low_hz[i]);
+        e.1 = e.1.min(records.usable_high_hz[i]);
+    }
+    let wanted = |comp: &str| match settings.component {
+        SetComponent::Horizontal => comp == "x" || comp == "y",
+        SetComponent::X => comp == "x",
+        SetComponent::Y => comp == "y",
+        SetComponent::Z => comp == "z",
+        SetComponent::Rotd50 => comp == "rotd50",
+    };
+    let mut grid: Vec<f64> = Vec::new();
+    let mut psa: BTreeMap<(u64, String), (String, Vec<f64>)> = BTreeMap::new();
+    for i in 0..spectra.seed.len() {
+        if spectra.scale[i] != "prototype"
+            || (spectra.damping[i] - settings.damping).abs() > 1e-12
+            || !wanted(&spectra.component[i])
+        {
+            continue;
+        }
+        let e = psa
+            .entry((spectra.seed[i], spectra.record[i].clone()))
+            .or_insert_with(|| (spectra.component[i].clone(), vec![]));
+        e.1.push(spectra.psa_m_s2[i]);
+        if psa.len() == 1 {
+            grid.push(spectra.period_s[i]);
+        }
+    }
+    // The target where it is defined (a CSV table may not span the whole grid).
+    let on_grid: Vec<(usize, f64)> =
+        grid.iter().enumerate().filter_map(|(k, &t)| settings.target.psa(t).ok().map(|v| (k, v))).collect();
+    let periods: Vec<f64> = on_grid.iter().map(|&(k, _)| grid[k]).collect();
+    let target: Vec<f64> = on_grid.iter().map(|&(_, v)| v).collect();
+    let mut metas = Vec::new();
+    let mut candidates = Vec::new();
+    let mut full = Vec::new();
+    for ((seed, record), (component, values)) in psa {
+        let Some(&(lo, hi, ref label, node)) = band.get(&(seed, record.clone())) else { continue };
+        if values.len() != grid.len() {
+            continue;
+        }
+        let group = match settings.per {
+            SetGroup::Event => format!("seed {seed} / {label}"),
+            SetGroup::Seed => format!("seed {seed}"),
+        };
+        candidates.push(Candidate {
+            id: format!("{seed}/{record}"),
+            group,
+            psa: on_grid.iter().map(|&(k, _)| values[k]).collect(),
+            usable_min: 1.0 / hi,
+            usable_max: if lo > 0.0 { 1.0 / lo } else { f64::INFINITY },
+        });
+        full.push(values);
+        metas.push(Meta { seed, record, label: label.clone(), node, component, usable_hz: (lo, hi) });
+    }
+    let selection = select(&periods, &target, &candidates, &settings.options).map_err(EnsembleError::Set)?;
+    let rows: Vec<SetRow> = selection
+        .records
+        .iter()
+        .map(|c| {
+            let m = &metas[c.index];
+            SetRow {
+                seed: m.seed,
+                record: m.record.clone(),
+                label: m.label.clone(),
+                node: m.node,
+                component: m.component.clone(),
+                scale_factor: c.scale,
+                misfit: c.misfit,
+                usable_hz: m.usable_hz,
+            }
+        })
+        .collect();
+    write_parquet_atomic(&mut set_frame(&rows)?, &out.gathered(&SET))?;
+    write_set_files(out, pipeline, settings, &rows)?;
+    let spectra = selection.records.iter().map(|c| on_grid.iter().map(|&(k, _)| full[c.index][k]).collect()).collect();
+    Ok(SetOutcome { selection, rows, periods, target, spectra, candidates: candidates.len() })
+}
+
+/// Writes the chosen records, scaled, at prototype scale: AT2 and SAC, one file per component
+/// (both of a RotD50 pair).
+fn write_set_files(
+    out: &Folder,
+    pipeline: &Pipeline,
+    settings: &SetSettings,
+    rows: &[SetRow],
+) -> Result<(), EnsembleError> {
+    let dir = out.set_dir();
+    if dir.exists() {
+        // A new set replaces the old one whole.
+        for e in std::fs::read_dir(&dir).map_err(|e| stickslip_store::StoreError::io(&dir, e))?.flatten() {
+            let _ = std::fs::remove_file(e.path());
+        }
+    }
+    let mut by_seed: BTreeMap<u64, Vec<(usize, &SetRow)>> = BTreeMap::new();
+    for (k, r) in rows.iter().enumerate() {
+        by_seed.entry(r.seed).or_default().push((k, r));
+    }
+    for (seed, chosen) in by_seed {
+        let Some(df) = read_parquet_if_present(&out.part(&ACCELEROGRAMS, seed))? else { continue };
+        let acc = Accelerograms::read(&df)?;
+        for (k, r) in chosen {
+            let names: Vec<String> = match r.record.strip_suffix("-xy") {
+                Some(head) => vec![format!("{head}-x"), format!("{head}-y")],
+                None => vec![r.record.clone()],
+            };
+            for name in names {
+                let idx: Vec<usize> =
+                    (0..acc.seed.len()).filter(|&i| acc.record[i] == name && acc.scale[i] == "prototype").collect();
+                if idx.len() < 2 {
+                    continue;
+                }
+                let dt = acc.time_s[idx[1]] - acc.time_s[idx[0]];
+                let a: Vec<f64> = idx.iter().map(|&i| r.scale_factor * acc.acceleration_m_s2[i]).collect();
+                let stem = format!("{}_set{:02}_seed{seed}_{name}", pipeline.name, k + 1);
+                let description = format!(
+                    "stickslip {} set record {} of {}: seed {seed} {name} x {:.4} (prototype scale), matched to {}",
+                    pipeline.name,
+                    k + 1,
+                    rows.len(),
+                    r.scale_factor,
+                    settings.target_name
+                );
+                write_text_atomic(&dir.join(format!("{stem}.AT2")), &at2_text(&a, dt, &description))?;
+                let component = name.rsplit('-').next().unwrap_or("").to_uppercase();
+                let meta = SacMeta {
+                    station: format!("N{}", r.node),
+                    component,
+                    network: "SS".into(),
+                    location: "P".into(),
+                    event: r.label.clone(),
+                    begin: acc.time_s[idx[0]],
+                    user: [
+                        Some(r.scale_factor),
+                        Some(r.usable_hz.0),
+                        Some(r.usable_hz.1),
+                        None,
+                        None,
+                        None,
+                        None,
+                        None,
+                        None,
+                        None,
+                    ],
+                    user_labels: ["SCALE".into(), "USABLE".into(), String::new()],
+                    unit: SacUnit::NanometrePerSecond2,
+                    ..SacMeta::default()
+                };
+                let bytes = sac_bytes(&a, dt, &meta).map_err(EnsembleError::Set)?;
+                write_bytes_atomic(&dir.join(format!("{stem}.SAC")), &bytes)?;
+            }
+        }
+    }
+    Ok(())
+}
