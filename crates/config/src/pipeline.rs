@@ -301,10 +301,8 @@ impl Pipeline {
             _ => None,
         };
         let set = file.set.as_ref().and_then(|s| {
-            if accelerograms.is_none() && file.spectra.is_none() {
-                ck.push("set", "(present)", "records and their spectra: an [accelerograms] and a [spectra] section");
-            }
-            s.build(base, spectra.as_ref().map(|sp| sp.dampings.as_slice()), &mut ck)
+            let grid = spectra.as_ref().zip(scene.as_ref()).map(|(sp, sc)| prototype_grid(sp, sc, &similarity));
+            s.build(base, grid, &mut ck)
         });
         ck.finish()?;
         Ok(Pipeline {
@@ -322,6 +320,25 @@ impl Pipeline {
             source: None,
             file,
         })
+    }
+}
+
+/// The dampings of `spectra` and its period grid's ends at prototype scale (s), with
+/// λ = L_p / (the block's length), as the ensemble scales its records.
+fn prototype_grid<'a>(
+    spectra: &'a SpectraSettings,
+    scene: &Scene,
+    similarity: &SimilarityParams,
+) -> (&'a [f64], (f64, f64)) {
+    let lambda = similarity.prototype_length_m / (scene.dims.nx as f64 * scene.lc_m);
+    let (lo, hi) = spectra.periods.iter().fold((f64::INFINITY, 0.0f64), |(a, b), &t| (a.min(t), b.max(t)));
+    (spectra.dampings.as_slice(), (lo * lambda, hi * lambda))
+}
+
+impl Pipeline {
+    /// What a `[set]` is checked against: the spectra's dampings and prototype-scale period grid.
+    pub fn set_grid(&self) -> Option<(&[f64], (f64, f64))> {
+        self.spectra.as_ref().map(|sp| prototype_grid(sp, &self.scene, &self.similarity))
     }
 }
 

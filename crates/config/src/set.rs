@@ -196,9 +196,12 @@ pub struct SetSettings {
 }
 
 impl SetSection {
-    /// The settings; a CSV target is read relative to `base` (the pipeline file's folder). Every
-    /// refused value is recorded in `ck`; `None` when the target could not be built.
-    pub fn build(&self, base: &Path, dampings: Option<&[f64]>, ck: &mut Checker) -> Option<SetSettings> {
+    /// The settings; a CSV target is read relative to `base` (the pipeline file's folder).
+    /// `spectra` gives the dampings computed and the prototype-scale period grid `(shortest,
+    /// longest)` (s), which must hold the period range. Every refused value is recorded in `ck`;
+    /// `None` when the target could not be built.
+    pub fn build(&self, base: &Path, spectra: Option<(&[f64], (f64, f64))>, ck: &mut Checker) -> Option<SetSettings> {
+        let dampings = spectra.map(|s| s.0);
         let kind = ck.named::<TargetKind>("set.target", &self.target)?;
         let (target, target_name) = match kind {
             TargetKind::Asce7 => {
@@ -250,6 +253,25 @@ impl SetSection {
             }
             PeriodRange::Explicit { t_a: self.period_min_s, t_b: self.period_max_s }
         };
+        if let (Some((_, (lo, hi))), Ok((t_a, t_b))) = (spectra, range.bounds()) {
+            // Relative slack: the grid's ends are exact, a range given by hand may round.
+            if t_a < lo * (1.0 - 1e-9) || t_b > hi * (1.0 + 1e-9) {
+                let field = if self.t1_s > 0.0 { "set.t1_s" } else { "set.period_min_s" };
+                let value = if self.t1_s > 0.0 { self.t1_s } else { self.period_min_s };
+                ck.push(
+                    field,
+                    value,
+                    format!(
+                        "a period range ({} … {} s at prototype scale) inside the spectra's periods \
+                         ({} … {} s at prototype scale: [spectra] period_min_s, period_max_s × λ)",
+                        round12(t_a),
+                        round12(t_b),
+                        round12(lo),
+                        round12(hi)
+                    ),
+                );
+            }
+        }
         let count = ck.count("set.count", self.count, 1, 1000, "").unwrap_or(11);
         let max_per = ck.count("set.max_per", self.max_per, 1, 1000, "").unwrap_or(2);
         let per = ck.named("set.per", &self.per).unwrap_or(SetGroup::Event);
@@ -275,6 +297,11 @@ impl SetSection {
         };
         Some(SetSettings { target: target?, target_name, options, per, component, damping: self.damping })
     }
+}
+
+/// `x` to 12 significant digits, for messages (0.020000000000000004 → 0.02).
+fn round12(x: f64) -> f64 {
+    format!("{x:.11e}").parse().unwrap_or(x)
 }
 
 /// A CSV target: rows `period_s, psa_m_s2` (comma, semicolon or tab; `#` comments and one header

@@ -38,8 +38,7 @@ pub fn run(a: Args) -> Result<()> {
             let file: SetFile = toml::from_str(&text).with_context(|| format!("{}", path.display()))?;
             let mut ck = Checker::default();
             let base = path.parent().unwrap_or(std::path::Path::new("."));
-            let dampings = pipeline.spectra.as_ref().map(|s| s.dampings.as_slice());
-            let s = file.set.build(base, dampings, &mut ck);
+            let s = file.set.build(base, pipeline.set_grid(), &mut ck);
             ck.finish().with_context(|| format!("{}", path.display()))?;
             s.context("the set could not be built")?
         }
