@@ -8,7 +8,7 @@ mod text;
 
 use clap::{Parser, Subcommand};
 
-use commands::{bench, check, compare, merge, pipeline, run, select, show, similarity, spectra};
+use commands::{bench, catalogue, check, compare, merge, pipeline, run, select, show, similarity, spectra};
 
 /// Earthquake stick-slip with the Lattice Discrete Element Method: simulate ensembles of seeds and
 /// turn them into event catalogues, accelerograms, spectra, statistics and scaled magnitudes.
@@ -44,6 +44,9 @@ enum Command {
     /// Choose a set of an ensemble's records matched to a design spectrum (ASCE 7, EC8 or a CSV
     /// target), scaled, and write it under <folder>/set/.
     Select(select::Args),
+    /// Catalogue statistics of an ensemble: Gutenberg–Richter b-values, recurrence CV and
+    /// renewal fits, Omori–Utsu aftershock decay, scaling exponents (rewrites their tables).
+    Catalogue(catalogue::Args),
     /// Benchmarks (tables and figures under reports/bench/).
     #[command(subcommand)]
     Bench(bench::Command),
@@ -67,6 +70,7 @@ fn main() {
         Command::Similarity(a) => similarity::run(a),
         Command::Spectra(a) => spectra::run(a),
         Command::Select(a) => select::run(a),
+        Command::Catalogue(a) => catalogue::run(a),
         Command::Bench(c) => bench::run(c),
     };
     if let Err(e) = result {

@@ -69,6 +69,15 @@ fn run_writes_series_and_control_tables_that_read_back() {
     assert_eq!(acc.null_count(), 0);
     let vel = control.column("velocity_m_s").unwrap();
     assert_eq!(vel.null_count(), control.height(), "velocity was not asked for");
+    // The catalogue statistics of a catalogue far too small: each says why, none is NaN.
+    let out = stickslip(&["catalogue", "out"], &dir);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(stdout.contains("Gutenberg–Richter") && stdout.contains("no fit:") && !stdout.contains("NaN"), "{stdout}");
+    let b = read(&dir.join("out/tables/b_values.parquet"));
+    assert_eq!(b.column("reason").unwrap().null_count(), 0, "every b-value row says why it has no fit");
+    let out = stickslip(&["catalogue", "no-such-folder"], &dir);
+    assert!(!out.status.success() && String::from_utf8_lossy(&out.stderr).contains("no-such-folder"));
 }
 
 #[test]

@@ -15,6 +15,7 @@ use stickslip_store::tables::runs::Runs;
 use stickslip_store::tables::stats::{FitRow, PsaStatsRow, attenuation_fit_frame, psa_stats_frame, summary_frame};
 use stickslip_store::{Folder, StoreError};
 
+use crate::catalogue::write_catalogue;
 use crate::summary::summary_rows;
 
 /// The rows of `df` whose seed is in `keep`.
@@ -62,10 +63,14 @@ pub fn gather(out: &Folder, seeds: &[u64]) -> Result<Option<Runs>, StoreError> {
     if let Some(att) = get(ATTENUATION.name) {
         write_parquet_atomic(&mut attenuation_fit_frame(&attenuation_fits(att)?)?, &out.gathered(&ATTENUATION_FIT))?;
     }
-    let runs = get(RUNS.name).map(Runs::read).transpose()?;
+    let runs_df = get(RUNS.name);
+    let runs = runs_df.map(Runs::read).transpose()?;
     if let (Some(runs), Some(events), Some(similarity)) = (&runs, get(EVENTS_TABLE.name), get(SIMILARITY.name)) {
         let mut summary = summary_frame(&summary_rows(runs, events, similarity)?)?;
         write_parquet_atomic(&mut summary, &out.gathered(&SUMMARY))?;
+    }
+    if let (Some(runs), Some(events), Some(similarity)) = (runs_df, get(EVENTS_TABLE.name), get(SIMILARITY.name)) {
+        write_catalogue(out, runs, events, similarity)?;
     }
     Ok(runs)
 }

@@ -8,6 +8,7 @@
 //! syntax (it takes a validated [`stickslip_config::Pipeline`]), figures, the command line.
 #![deny(missing_docs)]
 
+pub mod catalogue;
 pub mod error;
 pub mod gather;
 pub mod merge;

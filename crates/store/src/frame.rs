@@ -65,6 +65,18 @@ impl Frame {
         self
     }
 
+    /// A u64 column with nulls.
+    pub fn opt_u64(mut self, name: &str, v: Vec<Option<u64>>) -> Self {
+        self.cols.push(Column::new(name.into(), v));
+        self
+    }
+
+    /// A string column with nulls.
+    pub fn opt_str(mut self, name: &str, v: Vec<Option<String>>) -> Self {
+        self.cols.push(Column::new(name.into(), v));
+        self
+    }
+
     /// A string column of static texts.
     pub fn static_str(mut self, name: &str, v: Vec<&'static str>) -> Self {
         self.cols.push(Column::new(name.into(), v));
@@ -127,6 +139,19 @@ impl<'a> Columns<'a> {
         let t = self.err(name);
         let c = self.df.column(name).map_err(&t)?.cast(&DataType::UInt64).map_err(&t)?;
         Ok(c.u64().map_err(&t)?.iter().map(|v| v.unwrap_or(0)).collect())
+    }
+
+    /// Column `name` as u64 (cast), with its nulls.
+    pub fn opt_u64s(&self, name: &str) -> Result<Vec<Option<u64>>, StoreError> {
+        let t = self.err(name);
+        let c = self.df.column(name).map_err(&t)?.cast(&DataType::UInt64).map_err(&t)?;
+        Ok(c.u64().map_err(&t)?.iter().collect())
+    }
+
+    /// Column `name` as strings, with its nulls.
+    pub fn opt_strs(&self, name: &str) -> Result<Vec<Option<String>>, StoreError> {
+        let t = self.err(name);
+        Ok(self.df.column(name).map_err(&t)?.str().map_err(&t)?.iter().map(|v| v.map(String::from)).collect())
     }
 
     /// Column `name` as booleans, nulls as false.

@@ -115,6 +115,58 @@ pub mod col {
     pub const INTERCEPT: &str = "intercept";
     pub const SLOPE: &str = "slope";
     pub const R2: &str = "r2";
+    pub const BIN_LOW: &str = "bin_low";
+    pub const BIN_CENTRE: &str = "bin_centre";
+    pub const BIN_HIGH: &str = "bin_high";
+    pub const INCREMENTAL: &str = "incremental";
+    pub const CUMULATIVE: &str = "cumulative";
+    pub const FIT_CUMULATIVE: &str = "fit_cumulative";
+    pub const REASON: &str = "reason";
+    pub const MC_MAXC: &str = "mc_maxc";
+    pub const MC_GOF: &str = "mc_gof";
+    pub const GOF_PERCENT: &str = "gof_percent";
+    pub const MC: &str = "mc";
+    pub const EVENTS_ABOVE_MC: &str = "events_above_mc";
+    pub const B: &str = "b";
+    pub const B_SIGMA: &str = "b_sigma";
+    pub const B_BINNED: &str = "b_binned";
+    pub const A_VALUE: &str = "a";
+    pub const SEQUENCE: &str = "sequence";
+    pub const INTERVALS: &str = "intervals";
+    pub const MEAN_S: &str = "mean_s";
+    pub const STD_S: &str = "std_s";
+    pub const MEAN_CI95_LOW_S: &str = "mean_ci95_low_s";
+    pub const MEAN_CI95_HIGH_S: &str = "mean_ci95_high_s";
+    pub const CV_CI95_LOW: &str = "cv_ci95_low";
+    pub const CV_CI95_HIGH: &str = "cv_ci95_high";
+    pub const BPT_MEAN_S: &str = "bpt_mean_s";
+    pub const BPT_APERIODICITY: &str = "bpt_aperiodicity";
+    pub const BPT_AIC: &str = "bpt_aic";
+    pub const WEIBULL_SCALE_S: &str = "weibull_scale_s";
+    pub const WEIBULL_SHAPE: &str = "weibull_shape";
+    pub const WEIBULL_AIC: &str = "weibull_aic";
+    pub const EXPONENTIAL_AIC: &str = "exponential_aic";
+    pub const CENTRE_S: &str = "centre_s";
+    pub const EXPOSURE_S: &str = "exposure_s";
+    pub const RATE_PER_S: &str = "rate_per_s";
+    pub const RATE_ERROR_PER_S: &str = "rate_error_per_s";
+    pub const OMORI_RATE_PER_S: &str = "omori_rate_per_s";
+    pub const AFTERSHOCKS: &str = "aftershocks";
+    pub const K: &str = "k";
+    pub const C_S: &str = "c_s";
+    pub const P: &str = "p";
+    pub const K_SE: &str = "k_se";
+    pub const C_SE_S: &str = "c_se_s";
+    pub const P_SE: &str = "p_se";
+    pub const FIT_START_S: &str = "fit_start_s";
+    pub const FIT_END_S: &str = "fit_end_s";
+    pub const RELATION: &str = "relation";
+    pub const EXPONENT: &str = "exponent";
+    pub const EXPONENT_SE: &str = "exponent_se";
+    pub const EXPONENT_CI95_LOW: &str = "exponent_ci95_low";
+    pub const EXPONENT_CI95_HIGH: &str = "exponent_ci95_high";
+    pub const RESIDUAL_STD: &str = "residual_std";
+    pub const SELF_SIMILAR_EXPONENT: &str = "self_similar_exponent";
 }
 
 use col::*;
@@ -429,8 +481,118 @@ pub const ATTENUATION_FIT: TableSpec = TableSpec {
     variable: None,
 };
 
+/// Magnitude–frequency distributions (magnitudes in bins of 0.1; moment and stress drop in
+/// logarithmic bins), per seed and pooled (`seed` null), with the Gutenberg–Richter fit's
+/// expected cumulative count above its Mc.
+pub const MAGNITUDE_FREQUENCY: TableSpec = TableSpec {
+    name: "magnitude_frequency",
+    scope: Scope::AcrossSeeds,
+    key: &[SEED, QUANTITY, BIN_CENTRE],
+    columns: &[SEED, QUANTITY, BIN_LOW, BIN_CENTRE, BIN_HIGH, INCREMENTAL, CUMULATIVE, FIT_CUMULATIVE],
+    variable: None,
+};
+
+/// Gutenberg–Richter fits: completeness magnitude (maximum curvature + 0.2, goodness of fit 90%)
+/// and b-value (Aki–Utsu, Shi–Bolt σ), or the reason none could be made.
+pub const B_VALUES: TableSpec = TableSpec {
+    name: "b_values",
+    scope: Scope::AcrossSeeds,
+    key: &[SEED, QUANTITY],
+    columns: &[
+        SEED,
+        QUANTITY,
+        EVENTS,
+        MC_MAXC,
+        MC_GOF,
+        GOF_PERCENT,
+        MC,
+        EVENTS_ABOVE_MC,
+        B,
+        B_SIGMA,
+        B_BINNED,
+        A_VALUE,
+        REASON,
+    ],
+    variable: None,
+};
+
+/// Recurrence statistics of main shocks and of all events (model-scale seconds): mean, CV and
+/// the BPT, Weibull and exponential renewal fits, or the reason none could be made.
+pub const RECURRENCE_STATS: TableSpec = TableSpec {
+    name: "recurrence_stats",
+    scope: Scope::AcrossSeeds,
+    key: &[SEED, SEQUENCE],
+    columns: &[
+        SEED,
+        SEQUENCE,
+        INTERVALS,
+        MEAN_S,
+        STD_S,
+        CV,
+        MEAN_CI95_LOW_S,
+        MEAN_CI95_HIGH_S,
+        CV_CI95_LOW,
+        CV_CI95_HIGH,
+        BPT_MEAN_S,
+        BPT_APERIODICITY,
+        BPT_AIC,
+        WEIBULL_SCALE_S,
+        WEIBULL_SHAPE,
+        WEIBULL_AIC,
+        EXPONENTIAL_AIC,
+        REASON,
+    ],
+    variable: None,
+};
+
+/// Aftershock rate per main shock against time since it, stacked over main shocks (per seed and
+/// pooled), with the Omori–Utsu fit's rate where one could be made.
+pub const AFTERSHOCKS_TABLE: TableSpec = TableSpec {
+    name: "aftershocks",
+    scope: Scope::AcrossSeeds,
+    key: &[SEED, START_S],
+    columns: &[SEED, START_S, END_S, CENTRE_S, COUNT, EXPOSURE_S, RATE_PER_S, RATE_ERROR_PER_S, OMORI_RATE_PER_S],
+    variable: None,
+};
+
+/// Omori–Utsu fits `K/(t + c)^p` of the stacked aftershocks, or the reason none could be made.
+pub const OMORI: TableSpec = TableSpec {
+    name: "omori",
+    scope: Scope::AcrossSeeds,
+    key: &[SEED],
+    columns: &[SEED, MAIN_SHOCKS, AFTERSHOCKS, K, C_S, P, K_SE, C_SE_S, P_SE, FIT_START_S, FIT_END_S, REASON],
+    variable: None,
+};
+
+/// Scaling relations (moment–area, moment–duration, stress drop–magnitude): fitted exponent with
+/// its 95% interval beside the self-similar one, or the reason none could be made.
+pub const SCALING: TableSpec = TableSpec {
+    name: "scaling",
+    scope: Scope::AcrossSeeds,
+    key: &[SEED, RELATION],
+    columns: &[
+        SEED,
+        RELATION,
+        POINTS,
+        EXPONENT,
+        EXPONENT_SE,
+        EXPONENT_CI95_LOW,
+        EXPONENT_CI95_HIGH,
+        INTERCEPT,
+        R2,
+        RESIDUAL_STD,
+        SELF_SIMILAR_EXPONENT,
+        REASON,
+    ],
+    variable: None,
+};
+
+/// The catalogue tables, written together by the gathering step.
+pub const CATALOGUE: [TableSpec; 6] =
+    [MAGNITUDE_FREQUENCY, B_VALUES, RECURRENCE_STATS, AFTERSHOCKS_TABLE, OMORI, SCALING];
+
 /// Every table, in the order the README documents them.
-pub const ALL: [TableSpec; 18] = [
+pub const ALL: [TableSpec; 24] = [
     RUNS,
     SERIES,
     CONTROL,
@@ -449,6 +611,12 @@ pub const ALL: [TableSpec; 18] = [
     PSA_STATS,
     ATTENUATION_FIT,
     SET,
+    MAGNITUDE_FREQUENCY,
+    B_VALUES,
+    RECURRENCE_STATS,
+    AFTERSHOCKS_TABLE,
+    OMORI,
+    SCALING,
 ];
 
 /// Per-seed tables in the order a seed's parts are written: `runs` last, so a seed counts as

@@ -1,6 +1,7 @@
 //! One file per subcommand: its arguments and what it does.
 
 pub mod bench;
+pub mod catalogue;
 pub mod check;
 pub mod compare;
 pub mod merge;
