@@ -4,6 +4,7 @@ pub mod bench;
 pub mod check;
 pub mod compare;
 pub mod merge;
+pub mod per_seed;
 pub mod pipeline;
 pub mod run;
 pub mod select;
