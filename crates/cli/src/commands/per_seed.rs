@@ -90,7 +90,7 @@ pub fn run(a: Args) -> Result<()> {
         );
     }
     println!(
-        "σ range: lowest and highest normal stress of the shear stage (t ≥ 0) as a change from the self-weight \
+        "\nσ range: lowest and highest normal stress of the shear stage (t ≥ 0) as a change from the self-weight \
          σ0 = ρgh = {:.2} kPa; raw samples, and averaged over a centred {} ms window",
         sigma0 * 1e-3,
         AVERAGE_S * 1e3
