@@ -39,7 +39,6 @@ die() { printf 'slurm check failed: %s\n' "$*" >&2; exit 1; }
 pipeline=$(realpath "$pipeline")
 [[ $shards =~ ^[1-9][0-9]*$ ]] || die "shards must be a positive integer, not '$shards'"
 [[ $timeout_s =~ ^[1-9][0-9]*$ ]] || die "TIMEOUT must be a positive number of seconds"
-[ "$(id -u)" = 0 ] || die "needs root (slurmd runs the jobs; packages may be installed)"
 bin=${STICKSLIP:-target/release/stickslip}
 [ -x "$bin" ] || die "no stickslip binary at $bin: build it (cargo build --release -p stickslip) or set STICKSLIP"
 bin=$(realpath "$bin")
@@ -89,6 +88,8 @@ preflight() {
 
 say "preflight"
 preflight
+# Root only after the refusals above: they must reach whoever runs it, root or not.
+[ "$(id -u)" = 0 ] || die "needs root (slurmd runs the jobs; packages may be installed)"
 echo "no Slurm configuration or daemon present; work folder $work"
 while IFS= read -r line; do
     [ -n "$line" ] && echo "note: a munged the check did not start runs ($line); left alone, the check uses its own"

@@ -8,7 +8,7 @@ mod text;
 
 use clap::{Parser, Subcommand};
 
-use commands::{bench, catalogue, check, compare, merge, pipeline, run, select, show, similarity, spectra};
+use commands::{bench, catalogue, check, compare, merge, per_seed, pipeline, run, select, show, similarity, spectra};
 
 /// Earthquake stick-slip with the Lattice Discrete Element Method: simulate ensembles of seeds and
 /// turn them into event catalogues, accelerograms, spectra, statistics and scaled magnitudes.
@@ -36,6 +36,9 @@ enum Command {
     Check(check::Args),
     /// Print the schema and first rows of a Parquet table (or every part matching a glob).
     Show(show::Args),
+    /// One main shock seed by seed (stress drop, duration, recurrence, magnitude, normal-stress
+    /// range) as a Markdown table: the README's calibration table.
+    Seeds(per_seed::Args),
     /// Scale a model event to a prototype fault (docs/model.md §9) and print the numbers.
     Similarity(similarity::Args),
     /// Response spectra, Fourier spectrum and intensity measures of an accelerogram file (PEER
@@ -67,6 +70,7 @@ fn main() {
         Command::Compare(a) => compare::run(a),
         Command::Check(a) => check::run(a),
         Command::Show(a) => show::run(a),
+        Command::Seeds(a) => per_seed::run(a),
         Command::Similarity(a) => similarity::run(a),
         Command::Spectra(a) => spectra::run(a),
         Command::Select(a) => select::run(a),

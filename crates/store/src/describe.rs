@@ -52,15 +52,29 @@ pub fn describe(path: &Path, view: &View) -> Result<String, StoreError> {
     Ok(format!("{}: {} rows × {} columns\n{}\n{body}", path.display(), df.height(), df.width(), schema.join("\n")))
 }
 
-/// One line per column: its name, then the values of the rows.
+/// One line per column: its name, then the values of the rows, each row's values in an aligned
+/// column.
 fn transposed(df: &DataFrame) -> PolarsResult<String> {
-    let width = df.get_column_names().iter().map(|n| n.len()).max().unwrap_or(0);
+    let width = df.get_column_names().iter().map(|n| n.chars().count()).max().unwrap_or(0);
+    let cells: Vec<Vec<String>> = df
+        .columns()
+        .iter()
+        .map(|c| {
+            (0..df.height())
+                .map(|i| c.get(i).map(|v| format!("{v}").trim_matches('"').to_string()).unwrap_or_default())
+                .collect()
+        })
+        .collect();
+    let widths: Vec<usize> =
+        (0..df.height()).map(|i| cells.iter().map(|r| r[i].chars().count()).max().unwrap_or(0)).collect();
     let mut out = String::new();
-    for c in df.columns() {
-        let values: Vec<String> = (0..df.height())
-            .map(|i| c.get(i).map(|v| format!("{v}").trim_matches('"').to_string()).unwrap_or_default())
-            .collect();
-        out.push_str(&format!("{:<width$}  {}\n", c.name(), values.join("  ")));
+    for (c, row) in df.columns().iter().zip(&cells) {
+        let mut line = format!("{:<width$}", c.name().as_str());
+        for (v, w) in row.iter().zip(&widths) {
+            line.push_str(&format!("  {v:<w$}"));
+        }
+        out.push_str(line.trim_end());
+        out.push('\n');
     }
     Ok(out)
 }

@@ -9,14 +9,24 @@ use crate::error::StoreError;
 
 /// Writes `df` to `path` atomically: a hidden temporary file in the same folder, then a rename,
 /// so a reader (or a resumed run) never sees a half-written table.
+///
+/// Every reader sees plain types: the Arrow schema stored in the file is polars' oldest
+/// compatibility level (strings as `large_string`, not the `string_view` some pyarrow compute
+/// functions reject), and a float zero is written as +0.0, never −0.0 (τ = −ΣF/A of a free
+/// interface would otherwise print as "-0.0").
 pub fn write_parquet_atomic(df: &mut DataFrame, path: &Path) -> Result<(), StoreError> {
     let dir = path.parent().unwrap_or(Path::new("."));
     std::fs::create_dir_all(dir).map_err(|e| StoreError::io(dir, e))?;
     let tmp = temp_path(path);
+    let table = path.display().to_string();
+    positive_zeros(df).map_err(|e| StoreError::table(&table, e))?;
+    let arrow_schema = polars_parquet::write::schema_to_metadata_key(&df.schema().to_arrow(CompatLevel::oldest()));
+    let metadata = KeyValueMetadata::Static(vec![arrow_schema]);
     let result = (|| {
         let file = File::create(&tmp).map_err(|e| StoreError::io(&tmp, e))?;
         ParquetWriter::new(file)
             .with_compression(ParquetCompression::Zstd(None))
+            .with_key_value_metadata(Some(metadata))
             .finish(df)
             .map_err(|e| StoreError::table(path.display().to_string(), e))?;
         std::fs::rename(&tmp, path).map_err(|e| StoreError::io(path, e))
@@ -25,6 +35,21 @@ pub fn write_parquet_atomic(df: &mut DataFrame, path: &Path) -> Result<(), Store
         let _ = std::fs::remove_file(&tmp);
     }
     result
+}
+
+/// Turns every −0.0 of the float columns into +0.0 (x + 0.0 changes nothing else).
+fn positive_zeros(df: &mut DataFrame) -> PolarsResult<()> {
+    let names: Vec<PlSmallStr> =
+        df.columns().iter().filter(|c| c.dtype() == &DataType::Float64).map(|c| c.name().clone()).collect();
+    for name in names {
+        let col = df.column(&name)?;
+        let ca = col.f64()?;
+        if ca.iter().flatten().any(|v| v == 0.0 && v.is_sign_negative()) {
+            let fixed = ca.apply_values(|v| v + 0.0).into_column();
+            df.replace(&name, fixed)?;
+        }
+    }
+    Ok(())
 }
 
 /// Writes `text` to `path` atomically (temporary file, then rename).
@@ -72,4 +97,31 @@ pub fn scan_glob(glob: &Path) -> Result<Option<DataFrame>, StoreError> {
     let lf = LazyFrame::scan_parquet(PlRefPath::new(&pattern), ScanArgsParquet::default())
         .map_err(|e| StoreError::table(&pattern, e))?;
     lf.collect().map(Some).map_err(|e| StoreError::table(&pattern, e))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn written_tables_have_plain_strings_and_no_negative_zero() {
+        let dir = std::env::temp_dir().join(format!("stickslip-store-io-{}", std::process::id()));
+        let path = dir.join("t.parquet");
+        let mut df = df!("kind" => ["main", "minor"], "tau_pa" => [-0.0, -1.5]).unwrap();
+        write_parquet_atomic(&mut df, &path).unwrap();
+        let back = read_parquet(&path).unwrap();
+        let tau: Vec<f64> = back.column("tau_pa").unwrap().f64().unwrap().iter().flatten().collect();
+        assert_eq!(tau, [0.0, -1.5]);
+        assert!(tau[0].is_sign_positive(), "a zero came back as -0.0");
+        assert_eq!(back.column("kind").unwrap().dtype(), &DataType::String);
+        // The Arrow schema stored in the file (what pyarrow reads; polars maps it back to its own
+        // types) is that of the oldest compatibility level: large_string, not string_view.
+        let meta = polars_parquet::read::read_metadata(&mut File::open(&path).unwrap()).unwrap();
+        let stored = meta.key_value_metadata().as_ref().unwrap().iter().find(|kv| kv.key == "ARROW:schema").cloned();
+        let key = |level| polars_parquet::write::schema_to_metadata_key(&back.schema().to_arrow(level));
+        assert_eq!(stored, Some(key(CompatLevel::oldest())));
+        assert_ne!(stored, Some(key(CompatLevel::newest())), "the levels do not differ for this table");
+        assert_eq!(back.schema().to_arrow(CompatLevel::oldest()).get("kind").unwrap().dtype, ArrowDataType::LargeUtf8);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }

@@ -5,6 +5,7 @@ pub mod catalogue;
 pub mod check;
 pub mod compare;
 pub mod merge;
+pub mod per_seed;
 pub mod pipeline;
 pub mod run;
 pub mod select;

@@ -82,7 +82,14 @@ pub fn print_set_result(pipeline: &Pipeline, set: Option<&Result<SetOutcome, Str
 
 /// Prints the statistics and writes the report of a finished (or merged) folder.
 pub fn finish(pipeline: &Pipeline, out: &Path) -> Result<()> {
-    println!("{}", digest(&Folder::new(out))?);
+    let folder = Folder::new(out);
+    let events = stickslip_store::io::scan_glob(&folder.part_glob(&stickslip_store::schema::EVENTS_TABLE))?;
+    let ran = stickslip_store::io::scan_glob(&folder.part_glob(&stickslip_store::schema::SERIES))?.is_some();
+    if events.is_some_and(|e| e.height() > 0) || !ran {
+        println!("{}", digest(&folder)?);
+    } else {
+        println!("{}", no_events(pipeline, &folder));
+    }
     if pipeline.report.enabled {
         let start = Instant::now();
         let r = stickslip_report::write_report(out, pipeline)?;
@@ -99,6 +106,54 @@ pub fn finish(pipeline: &Pipeline, out: &Path) -> Result<()> {
         );
     }
     Ok(())
+}
+
+/// Why a finished ensemble has no event, from what its seeds recorded, and what to try.
+fn no_events(pipeline: &Pipeline, folder: &Folder) -> String {
+    use stickslip_solver::Channel;
+    let ev = &pipeline.events;
+    let sh = &pipeline.scene.shear;
+    let series = stickslip_store::io::scan_glob(&folder.part_glob(&stickslip_store::schema::SERIES)).ok().flatten();
+    let largest = |c: Channel| -> Option<f64> {
+        let values = series.as_ref()?.column(c.name()).ok()?.f64().ok()?.iter().flatten().collect::<Vec<_>>();
+        values.into_iter().reduce(f64::max)
+    };
+    let mut lines = vec![
+        "no events in any seed, so no statistics. An event is a burst of slip of the base: the mean slip rate, \
+         smoothed over events.smoothing_s, must rise above events.v_on_m_s and τ must then drop by at least \
+         events.min_drop_pa."
+            .to_string(),
+    ];
+    match largest(Channel::MeanSlipRate) {
+        Some(v) => lines.push(format!(
+            "  largest mean slip rate recorded (unsmoothed): {v:.3e} m/s against v_on = {:e} m/s{}",
+            ev.v_on_m_s,
+            if v < ev.v_on_m_s { ": the base never slipped fast enough" } else { "" }
+        )),
+        None => lines.push("  the slip rate is not recorded (add \"slip_rate\" to record.interface)".into()),
+    }
+    if let Some(tau) = largest(Channel::ShearStress) {
+        let model = stickslip_solver::Model::new(pipeline.scene.clone());
+        let sigma = model.total_mass() * pipeline.scene.self_weight.gravity_m_s2 / model.lattice().contact_area();
+        let mu = pipeline.scene.friction.law.mu_static();
+        lines.push(format!(
+            "  largest shear stress τ: {tau:.4e} Pa; sliding needs about μs·σ = {:.4e} Pa (μs = {mu}, self-weight σ = {sigma:.4e} Pa)",
+            mu * sigma
+        ));
+    }
+    lines.push(format!(
+        "  the shear stage lasted {} s: the driver moved about {:.3e} m at {} m/s",
+        sh.duration_s,
+        sh.velocity_m_s * (sh.duration_s - sh.rise_time_s).max(0.0),
+        sh.velocity_m_s
+    ));
+    lines.push(
+        "  try: a longer [shear] duration_s (or a faster velocity_m_s) so τ reaches the strength; a lower [friction] \
+         mu_static; a lower [events] v_on_m_s or min_drop_pa for small events; and look at figures/shear_stress.png \
+         and `stickslip check` for what the scene builds"
+            .into(),
+    );
+    lines.join("\n")
 }
 
 /// `stickslip pipeline`.
