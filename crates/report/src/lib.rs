@@ -11,8 +11,10 @@
 #![deny(missing_docs)]
 
 pub mod charts;
+pub mod clip;
 pub mod figures;
 mod html;
+pub mod place;
 pub mod plot;
 
 use std::path::{Path, PathBuf};
@@ -62,6 +64,8 @@ pub struct Figure {
     pub title: String,
     /// What it shows.
     pub caption: String,
+    /// The name of each panel (e.g. the seed and node it shows; empty for an unnamed panel).
+    pub panels: Vec<String>,
 }
 
 /// What the report wrote.
@@ -160,9 +164,9 @@ pub fn write_report(out: &Path, pipeline: &Pipeline) -> Result<ReportSummary, Re
         // Draw into a temporary file, then rename: a reader never sees half a figure.
         let tmp = dir.join(format!(".{file}.{}.tmp.png", std::process::id()));
         match draw(&input, &tmp)? {
-            figures::Outcome::Drawn { title, caption } => {
+            figures::Outcome::Drawn { title, caption, panels } => {
                 std::fs::rename(&tmp, &path).map_err(|e| ReportError::Io { path: path.clone(), source: e })?;
-                drawn.push(Figure { file: file.to_string(), title, caption });
+                drawn.push(Figure { file: file.to_string(), title, caption, panels });
             }
             figures::Outcome::Skipped(why) => {
                 let _ = std::fs::remove_file(&tmp);
