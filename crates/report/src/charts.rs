@@ -17,7 +17,8 @@
 //!   rule of [`crate::place`]: the candidate covering the fewest data pixels and no other label.
 //!   A reference-line label that cannot find a free spot goes in the right margin beside its
 //!   line, a panel name or legend above the axes (the panel is redrawn with that space
-//!   reserved); a marker label that would overlap another label is dropped.
+//!   reserved); a marker label with no free spot near its triangle is dropped (listed in
+//!   [`DrawnPanel::dropped`]).
 //!
 //! [`render`] draws into memory and returns what it drew ([`Drawn`]: each panel's plotting area
 //! in pixels, where every label went, the data mask) so tests can check both rules on the
@@ -252,7 +253,7 @@ pub struct DrawnPanel {
     pub name: String,
     /// Every label placed.
     pub labels: Vec<PlacedLabel>,
-    /// Labels not drawn because every spot for them overlapped another label.
+    /// Labels not drawn because every spot near their anchor covered data or another label.
     pub dropped: Vec<String>,
     /// The pixels covered by data (lines with their width plus a 2-px clearance, bands, points,
     /// markers, reference lines).
@@ -329,6 +330,7 @@ struct Outside {
 
 /// Draws `sheet` into memory: the image and what was drawn where.
 pub fn render(sheet: &Sheet) -> Result<(Image, Drawn), ReportError> {
+    crate::plot::register_fonts();
     let n = sheet.panels.len();
     let mut outside: Vec<Outside> =
         sheet.panels.iter().map(|p| Outside { hlines: vec![false; p.hlines.len()], ..Outside::default() }).collect();
@@ -515,11 +517,13 @@ fn fill_band(
                 let (lo, hi) = (a.1 + t * (b.1 - a.1), a.2 + t * (b.2 - a.2));
                 let (top, bottom) = (lo.min(hi).max(f.clip.y0), lo.max(hi).min(f.clip.y1));
                 if top <= bottom {
+                    // One pixel more on every side: plotters fills the polygon of rounded
+                    // vertices, which can reach half a pixel past the exact edge.
                     data.mark_box(PixelBox {
-                        x0: x as i32,
-                        y0: top.floor() as i32,
-                        x1: x as i32 + 1,
-                        y1: bottom.ceil() as i32 + 1,
+                        x0: x as i32 - 1,
+                        y0: top.floor() as i32 - 1,
+                        x1: x as i32 + 2,
+                        y1: bottom.ceil() as i32 + 2,
                     });
                 }
                 x += 1.0;
@@ -748,13 +752,21 @@ fn draw_panel(
     let boxes = |placed: &[PlacedLabel]| placed.iter().map(|l| l.bbox).collect::<Vec<_>>();
     for (m, c) in marker_px.iter().filter(|(m, _)| !m.text.is_empty()) {
         let item = text_item(root, &m.text, m.text_colour)?;
-        let cands = around_point(*c, TRIANGLE, 2, item.size);
+        // Beside the triangle first, then further away above or below it.
+        let mut cands = around_point(*c, TRIANGLE, 2, item.size);
+        for k in 1..=4 {
+            let up = item.size.1 * k + 4 * k;
+            cands.extend(around_point((c.0, c.1 - up), TRIANGLE, 2, item.size).into_iter().take(3));
+            cands.extend(around_point((c.0, c.1 + up), TRIANGLE, 2, item.size).into_iter().skip(5).take(3));
+        }
         match choose(&cands, &plot, &data, &boxes(&placed)) {
-            Some((i, n)) => {
+            Some((i, 0)) => {
                 put_text(root, &item, &cands[i])?;
-                placed.push(PlacedLabel { text: item.text, bbox: cands[i], data_pixels: n, outside: false });
+                placed.push(PlacedLabel { text: item.text, bbox: cands[i], data_pixels: 0, outside: false });
             }
-            None => dropped.push(item.text),
+            // Every spot near it is on data or on another label: a label there could not be
+            // read, and a label far away would name the wrong triangle.
+            _ => dropped.push(item.text),
         }
     }
     let mut want = Reserve::default();

@@ -64,6 +64,8 @@ pub struct Figure {
     pub title: String,
     /// What it shows.
     pub caption: String,
+    /// The titles drawn on the image (the figure's, then each panel's).
+    pub headings: Vec<String>,
     /// The name of each panel (e.g. the seed and node it shows; empty for an unnamed panel).
     pub panels: Vec<String>,
 }
@@ -164,9 +166,9 @@ pub fn write_report(out: &Path, pipeline: &Pipeline) -> Result<ReportSummary, Re
         // Draw into a temporary file, then rename: a reader never sees half a figure.
         let tmp = dir.join(format!(".{file}.{}.tmp.png", std::process::id()));
         match draw(&input, &tmp)? {
-            figures::Outcome::Drawn { title, caption, panels } => {
+            figures::Outcome::Drawn { title, caption, headings, panels } => {
                 std::fs::rename(&tmp, &path).map_err(|e| ReportError::Io { path: path.clone(), source: e })?;
-                drawn.push(Figure { file: file.to_string(), title, caption, panels });
+                drawn.push(Figure { file: file.to_string(), title, caption, headings, panels });
             }
             figures::Outcome::Skipped(why) => {
                 let _ = std::fs::remove_file(&tmp);

@@ -26,6 +26,9 @@ pub enum Outcome {
         title: String,
         /// What it shows.
         caption: String,
+        /// The texts drawn as titles on the image: the sheet's, then each panel's (empty ones left
+        /// out).
+        headings: Vec<String>,
         /// The name of each panel (empty for a panel without one), in drawing order.
         panels: Vec<String>,
     },
@@ -74,7 +77,12 @@ fn paper_fig(d: &ReportInput, n: u32) -> String {
 /// Draws `sheet` to `path` and returns the figure's outcome.
 fn drawn(path: &Path, sheet: &Sheet, title: String, caption: String) -> Result<Outcome, ReportError> {
     let out = charts::draw(path, sheet)?;
-    Ok(Outcome::Drawn { title, caption, panels: out.panels.into_iter().map(|p| p.name).collect() })
+    let headings = std::iter::once(&sheet.title)
+        .chain(sheet.panels.iter().map(|p| &p.title))
+        .filter(|t| !t.is_empty())
+        .cloned()
+        .collect();
+    Ok(Outcome::Drawn { title, caption, headings, panels: out.panels.into_iter().map(|p| p.name).collect() })
 }
 
 /// (time, values) of a series column for one seed, if recorded.
@@ -127,10 +135,18 @@ fn accelerogram_nodes(d: &ReportInput) -> (Vec<NodeChannel>, usize) {
     if total <= MAX_NODES {
         return (all, total);
     }
-    // First, last and evenly between.
-    let pick: Vec<NodeChannel> =
-        (0..MAX_NODES).map(|k| all[(k * (total - 1) + (MAX_NODES - 1) / 2) / (MAX_NODES - 1)].clone()).collect();
-    (pick, total)
+    (spread(total, MAX_NODES).into_iter().map(|i| all[i].clone()).collect(), total)
+}
+
+/// `max` of the indices `0..total` spread evenly over them, the first and the last included (all
+/// of them when `total ≤ max`), in increasing order.
+pub fn spread(total: usize, max: usize) -> Vec<usize> {
+    match (total, max) {
+        (t, m) if t <= m => (0..t).collect(),
+        (_, 0) => vec![],
+        (_, 1) => vec![0],
+        (t, m) => (0..m).map(|k| (k * (t - 1) + (m - 1) / 2) / (m - 1)).collect(),
+    }
 }
 
 /// How the caption says which nodes are drawn.
@@ -833,4 +849,28 @@ fn energy(d: &ReportInput, path: &Path) -> Result<Outcome, ReportError> {
              |residual| is {residual:.2e} mJ against {work:.3} mJ of external work: the balance closes to round-off."
         ),
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::spread;
+
+    #[test]
+    fn a_subset_of_nodes_spans_the_recorded_ones() {
+        assert_eq!(spread(2, 3), vec![0, 1], "all of them when few");
+        assert_eq!(spread(12, 3), vec![0, 6, 11]);
+        assert_eq!(spread(4, 3), vec![0, 2, 3]);
+        assert_eq!(spread(5, 1), vec![0]);
+        for total in 1..40 {
+            for max in 1..6 {
+                let s = spread(total, max);
+                assert_eq!(s.len(), total.min(max));
+                assert!(s.windows(2).all(|w| w[0] < w[1]), "{total} {max}: {s:?}");
+                assert_eq!(s[0], 0);
+                if max > 1 {
+                    assert_eq!(*s.last().unwrap(), total - 1, "{total} {max}: the last node is shown");
+                }
+            }
+        }
+    }
 }
