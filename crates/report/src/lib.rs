@@ -23,10 +23,10 @@ use polars::prelude::DataFrame;
 use stickslip_config::Pipeline;
 use stickslip_store::io::{read_parquet_if_present, write_text_atomic};
 use stickslip_store::schema::{
-    ATTENUATION, ATTENUATION_FIT, EVENTS_TABLE, PSA_STATS, RUNS, SIMILARITY, SUMMARY, TableSpec,
+    ATTENUATION, ATTENUATION_FIT, EVENTS_TABLE, PSA_STATS, RECORDS, RUNS, SIMILARITY, SUMMARY, TableSpec,
 };
 use stickslip_store::tables::events::{Events, Similarity};
-use stickslip_store::tables::records::Attenuation;
+use stickslip_store::tables::records::{Attenuation, Records};
 use stickslip_store::tables::runs::Runs;
 use stickslip_store::tables::stats::{AttenuationFit, PsaStats, SummaryTable};
 use stickslip_store::{Folder, StoreError};
@@ -102,6 +102,8 @@ pub struct ReportInput<'a> {
     pub attenuation: Option<Attenuation>,
     /// Their fits.
     pub attenuation_fit: Option<AttenuationFit>,
+    /// The per-event records cut by `[accelerograms]` (what, where, usable band).
+    pub records: Option<Records>,
     /// Mean Δt over the seeds (s), if any finished.
     pub mean_dt_s: Option<f64>,
     /// Seeds drawn one by one (successful, at most four unless the pipeline names them).
@@ -140,6 +142,7 @@ impl<'a> ReportInput<'a> {
             psa_stats: table(&PSA_STATS)?.as_ref().map(PsaStats::read).transpose()?,
             attenuation: table(&ATTENUATION)?.as_ref().map(Attenuation::read).transpose()?,
             attenuation_fit: table(&ATTENUATION_FIT)?.as_ref().map(AttenuationFit::read).transpose()?,
+            records: table(&RECORDS)?.as_ref().map(Records::read).transpose()?,
             mean_dt_s,
             seeds,
             folder,

@@ -10,8 +10,8 @@ use stickslip_seismo::spectra::intensity::G;
 use stickslip_solver::Channel;
 use stickslip_solver::scene::{Component, ControlChannel, Kinematic};
 use stickslip_store::io::scan_glob;
-use stickslip_store::schema::{CONTROL, FOURIER, SERIES, SPECTRA, col};
-use stickslip_store::tables::records::{Spectra, read_fourier};
+use stickslip_store::schema::{ACCELEROGRAMS, CONTROL, FOURIER, SERIES, SPECTRA, col};
+use stickslip_store::tables::records::{Accelerograms, Spectra, read_fourier};
 use stickslip_store::tables::series::{Trace, read_control, read_series_channel};
 
 use crate::charts::{self, Band, HLine, Line, Marker, Panel, Points, Sheet};
@@ -40,12 +40,13 @@ pub enum Outcome {
 pub type Draw = fn(&ReportInput, &Path) -> Result<Outcome, ReportError>;
 
 /// Every figure, in page order.
-pub const ALL: [(&str, Draw); 13] = [
+pub const ALL: [(&str, Draw); 14] = [
     ("shear_stress.png", shear_stress),
     ("normal_stress.png", normal_stress),
     ("mean_slip.png", mean_slip),
     ("acceleration_s2.png", acceleration_s2),
     ("acceleration_run.png", acceleration_run),
+    ("records.png", event_records),
     ("response_spectra_z.png", spectra_z),
     ("response_spectra_x.png", spectra_x),
     ("fourier.png", fourier),
@@ -426,6 +427,107 @@ fn acceleration_run(d: &ReportInput, path: &Path) -> Result<Outcome, ReportError
         format!(
             "Acceleration through all the main shocks, one row per seed, {} (model scale).",
             nodes_text(&nodes, total)
+        ),
+    )
+}
+
+/// The processed main-shock records of one node and seed: acceleration, velocity and
+/// displacement, one line per main shock, each record's usable band in the caption.
+fn event_records(d: &ReportInput, path: &Path) -> Result<Outcome, ReportError> {
+    let Some(rec) = &d.records else { return Ok(Outcome::Skipped("no [accelerograms] records".into())) };
+    let (nodes, _) = accelerogram_nodes(d);
+    let Some(node) = nodes.first() else { return Ok(Outcome::Skipped("no control node records acceleration".into())) };
+    let cname = node.component.name();
+    // The first drawn seed with main-shock records of this node.
+    let is_main = |l: &str| rank_of(l).is_some();
+    let rows_of = |seed: u64| -> Vec<usize> {
+        let mut rows: Vec<usize> = (0..rec.seed.len())
+            .filter(|&i| {
+                rec.seed[i] == seed
+                    && rec.node[i] == node.ldem
+                    && rec.component[i] == cname
+                    && rec.scale[i] == "model"
+                    && is_main(&rec.label[i])
+            })
+            .collect();
+        rows.sort_by_key(|&i| rank_of(&rec.label[i]));
+        rows
+    };
+    let Some((seed, rows)) = d.seeds.iter().map(|&s| (s, rows_of(s))).find(|(_, r)| !r.is_empty()) else {
+        return Ok(Outcome::Skipped(format!("no main-shock record of node {} ({cname})", node.ldem)));
+    };
+    let Some(df) = d.part(&ACCELEROGRAMS, seed)? else {
+        return Ok(Outcome::Skipped(format!("no accelerograms table for seed {seed}")));
+    };
+    let acc = Accelerograms::read(&df)?;
+    let quantities: [(&str, f64); 3] = [("a (m/s²)", 1.0), ("v (mm/s)", 1e3), ("d (µm)", 1e6)];
+    let mut panels: Vec<Panel> = quantities
+        .iter()
+        .map(|(desc, _)| Panel {
+            y_desc: desc.to_string(),
+            symmetric_y: true,
+            y_tick_count: Some(3),
+            compact: true,
+            ..Panel::default()
+        })
+        .collect();
+    let post_s = d.pipeline.accelerograms.as_ref().map_or(f64::INFINITY, |a| a.post_event_s);
+    let mut bands = Vec::new();
+    for (k, &i) in rows.iter().enumerate() {
+        let (record, label) = (&rec.record[i], &rec.label[i]);
+        // The window around the shock, without the pads added for the filter.
+        let shock = rec.start_s[i] + rec.pre_event_s[i];
+        let at: Vec<usize> = (0..acc.seed.len())
+            .filter(|&j| {
+                acc.record[j] == *record
+                    && acc.scale[j] == "model"
+                    && acc.time_s[j] >= rec.start_s[i] - 1e-12
+                    && acc.time_s[j] <= shock + post_s
+            })
+            .collect();
+        if at.is_empty() {
+            continue;
+        }
+        let t: Vec<f64> = at.iter().map(|&j| (acc.time_s[j] - shock) * 1e3).collect();
+        for (q, (panel, (_, factor))) in panels.iter_mut().zip(quantities).enumerate() {
+            let v: Vec<f64> = at
+                .iter()
+                .map(|&j| factor * [acc.acceleration_m_s2[j], acc.velocity_m_s[j], acc.displacement_m[j]][q])
+                .collect();
+            let mut line = Line::new(if q == 0 { label.clone() } else { String::new() }, decimate(&t, &v, 2000), k);
+            line.width = 1;
+            panel.lines.push(line);
+        }
+        bands.push(format!(
+            "{label} {}–{} Hz",
+            crate::plot::fmt_tick(&rec.usable_low_hz[i]),
+            crate::plot::fmt_tick(&rec.usable_high_hz[i])
+        ));
+    }
+    if panels[0].lines.is_empty() {
+        return Ok(Outcome::Skipped(format!("no samples of the records of seed {seed}")));
+    }
+    let pre_ms = d.pipeline.accelerograms.as_ref().map(|a| a.pre_event_s * 1e3);
+    let sheet = accelerogram_sheet(
+        format!("Main-shock records of node {} ({cname}), seed {seed}, model scale", node.ldem),
+        "time from the start of the main shock (ms)",
+        panels.into_iter().map(|p| vec![p]).collect(),
+        1,
+    );
+    drawn(
+        path,
+        &sheet,
+        format!("Main-shock records, node {}", node.ldem),
+        format!(
+            "The processed records of {} ({cname}) for each main shock of seed {seed} (mean removed, tapered, padded, \
+             band-pass filtered inside the usable band, baseline corrected): acceleration, velocity and displacement, \
+             model scale, from the start of each record's window{} to its end (the pads added for the filter not \
+             drawn). Usable band of each record: {}. At \
+             prototype scale times ×λ, accelerations ÷λ, displacements ×λ; every record of every seed is in the \
+             accelerograms table and the AT2/SAC files.",
+            node.name(),
+            pre_ms.map(|p| format!(" ({} ms before the shock)", crate::plot::fmt_tick(&p))).unwrap_or_default(),
+            bands.join("; ")
         ),
     )
 }
