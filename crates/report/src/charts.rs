@@ -670,6 +670,11 @@ fn draw_panel(
         .chain(panel.markers.iter().map(|m| m.at.1))
         .chain(panel.hlines.iter().map(|h| h.y));
     let mut y = panel.y_range.unwrap_or_else(|| range(panel.y_scale, ys));
+    // Headroom over the data for the labels of markers (a peak's marker sits at the top of the
+    // trace, and its label goes above it): a tenth of the height more.
+    if panel.y_range.is_none() && panel.y_scale == Scale::Linear && panel.markers.iter().any(|m| !m.text.is_empty()) {
+        y.1 += 0.1 * (y.1 - y.0);
+    }
     if panel.symmetric_y && panel.y_scale == Scale::Linear {
         let m = y.0.abs().max(y.1.abs());
         y = (-m, m);

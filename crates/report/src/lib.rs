@@ -68,6 +68,8 @@ pub struct Figure {
     pub headings: Vec<String>,
     /// The name of each panel (e.g. the seed and node it shows; empty for an unnamed panel).
     pub panels: Vec<String>,
+    /// Labels left out because no spot near their anchor was free of data and other labels.
+    pub dropped: Vec<String>,
 }
 
 /// What the report wrote.
@@ -169,9 +171,9 @@ pub fn write_report(out: &Path, pipeline: &Pipeline) -> Result<ReportSummary, Re
         // Draw into a temporary file, then rename: a reader never sees half a figure.
         let tmp = dir.join(format!(".{file}.{}.tmp.png", std::process::id()));
         match draw(&input, &tmp)? {
-            figures::Outcome::Drawn { title, caption, headings, panels } => {
+            figures::Outcome::Drawn { title, caption, headings, panels, dropped } => {
                 std::fs::rename(&tmp, &path).map_err(|e| ReportError::Io { path: path.clone(), source: e })?;
-                drawn.push(Figure { file: file.to_string(), title, caption, headings, panels });
+                drawn.push(Figure { file: file.to_string(), title, caption, headings, panels, dropped });
             }
             figures::Outcome::Skipped(why) => {
                 let _ = std::fs::remove_file(&tmp);

@@ -67,6 +67,7 @@ fn paper_report_has_every_figure_drawn_and_every_link_resolving() {
         let (w, h, var) = png_stats(&out.join("figures").join(&f.file));
         assert_eq!((w, h), (1200, 700), "{}", f.file);
         assert!(var > 100.0, "{} looks blank (grey variance {var})", f.file);
+        assert!(f.dropped.is_empty(), "{}: labels left out for want of room: {:?}", f.file, f.dropped);
     }
     let all = links(&html);
     assert!(all.len() > 20);

@@ -31,6 +31,8 @@ pub enum Outcome {
         headings: Vec<String>,
         /// The name of each panel (empty for a panel without one), in drawing order.
         panels: Vec<String>,
+        /// Labels not drawn for want of a free spot (see [`charts::DrawnPanel::dropped`]).
+        dropped: Vec<String>,
     },
     /// Not drawn, and why.
     Skipped(String),
@@ -83,7 +85,8 @@ fn drawn(path: &Path, sheet: &Sheet, title: String, caption: String) -> Result<O
         .filter(|t| !t.is_empty())
         .cloned()
         .collect();
-    Ok(Outcome::Drawn { title, caption, headings, panels: out.panels.into_iter().map(|p| p.name).collect() })
+    let dropped = out.panels.iter().flat_map(|p| p.dropped.iter().cloned()).collect();
+    Ok(Outcome::Drawn { title, caption, headings, panels: out.panels.into_iter().map(|p| p.name).collect(), dropped })
 }
 
 /// (time, values) of a series column for one seed, if recorded.
