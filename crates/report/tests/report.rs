@@ -126,7 +126,15 @@ fn figures_without_data_are_skipped_not_drawn_empty() {
     // No spectra, no energy, no control nodes: those figures are skipped and listed as such.
     let report = run(&dir, "version = 1\nname = \"bare\"\n[seeds]\nlist = [1]\n[shear]\nduration_s = 0.1\n");
     let skipped: Vec<&str> = report.skipped.iter().map(|(f, _)| f.as_str()).collect();
-    for f in ["response_spectra_z.png", "fourier.png", "attenuation.png", "energy.png", "acceleration_s2.png"] {
+    for f in [
+        "response_spectra_z.png",
+        "fourier.png",
+        "attenuation.png",
+        "energy.png",
+        "acceleration_s2.png",
+        "records.png",
+        "record_set.png",
+    ] {
         assert!(skipped.contains(&f), "{f} should be skipped: {skipped:?}");
         assert!(!dir.join("out/figures").join(f).exists(), "{f} drawn without data");
     }

@@ -10,8 +10,8 @@ use stickslip_seismo::spectra::intensity::G;
 use stickslip_solver::Channel;
 use stickslip_solver::scene::{Component, ControlChannel, Kinematic};
 use stickslip_store::io::scan_glob;
-use stickslip_store::schema::{ACCELEROGRAMS, CONTROL, FOURIER, SERIES, SPECTRA, col};
-use stickslip_store::tables::records::{Accelerograms, Spectra, read_fourier};
+use stickslip_store::schema::{ACCELEROGRAMS, CONTROL, FOURIER, ROTD, SERIES, SET, SPECTRA, col};
+use stickslip_store::tables::records::{Accelerograms, SetTable, Spectra, read_fourier};
 use stickslip_store::tables::series::{Trace, read_control, read_series_channel};
 
 use crate::charts::{self, Band, HLine, Line, Marker, Panel, Points, Sheet};
@@ -42,7 +42,7 @@ pub enum Outcome {
 pub type Draw = fn(&ReportInput, &Path) -> Result<Outcome, ReportError>;
 
 /// Every figure, in page order.
-pub const ALL: [(&str, Draw); 14] = [
+pub const ALL: [(&str, Draw); 15] = [
     ("shear_stress.png", shear_stress),
     ("normal_stress.png", normal_stress),
     ("mean_slip.png", mean_slip),
@@ -52,6 +52,7 @@ pub const ALL: [(&str, Draw); 14] = [
     ("response_spectra_z.png", spectra_z),
     ("response_spectra_x.png", spectra_x),
     ("fourier.png", fourier),
+    ("record_set.png", record_set),
     ("stress_drop_vs_duration.png", drop_vs_duration),
     ("recurrence.png", recurrence),
     ("magnitude.png", magnitude),
@@ -706,6 +707,105 @@ fn fourier(d: &ReportInput, path: &Path) -> Result<Outcome, ReportError> {
              λ, the amplitudes unchanged.",
             seeds_text(&d.seeds),
             nodes_text(&nodes, total)
+        ),
+    )
+}
+
+/// The record set chosen by `[set]` against its design spectrum, prototype scale: the target, each
+/// scaled record, their mean, the rule's fraction of the target, the period range shaded.
+fn record_set(d: &ReportInput, path: &Path) -> Result<Outcome, ReportError> {
+    let Some(settings) = &d.pipeline.set else { return Ok(Outcome::Skipped("no [set] section".into())) };
+    let Some(df) = stickslip_store::io::read_parquet_if_present(&d.folder.gathered(&SET))? else {
+        return Ok(Outcome::Skipped("no set table (the selection failed or has not run)".into()));
+    };
+    let set = SetTable::read(&df)?;
+    let rotd = settings.component == stickslip_config::set::SetComponent::Rotd50;
+    let table = if rotd { ROTD } else { SPECTRA };
+    let Some(sp) = scan_glob(&d.folder.part_glob(&table))?.map(|df| Spectra::read(&df)).transpose()? else {
+        return Ok(Outcome::Skipped(format!("no {} table", table.name)));
+    };
+    // A record's prototype spectrum at the set's damping (of its RotD50 in the RotD table, which
+    // also holds RotD100), by increasing period.
+    let psa_of = |seed: u64, record: &str| -> Vec<(f64, f64)> {
+        let mut pts: Vec<(f64, f64)> = (0..sp.seed.len())
+            .filter(|&i| {
+                sp.seed[i] == seed
+                    && sp.record[i] == record
+                    && sp.scale[i] == "prototype"
+                    && (!rotd || sp.component[i] == "rotd50")
+                    && (sp.damping[i] - settings.damping).abs() < 1e-12
+            })
+            .map(|i| (sp.period_s[i], sp.psa_m_s2[i]))
+            .collect();
+        pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+        pts
+    };
+    let mut lines = Vec::new();
+    let mut scaled_all: Vec<Vec<(f64, f64)>> = Vec::new();
+    for k in 0..set.seed.len() {
+        let pts: Vec<(f64, f64)> =
+            psa_of(set.seed[k], &set.record[k]).into_iter().map(|(t, a)| (t, a * set.scale_factor[k])).collect();
+        if pts.is_empty() {
+            continue;
+        }
+        lines.push(Line {
+            label: if lines.is_empty() { "each scaled record".into() } else { String::new() },
+            points: pts.clone(),
+            colour: RGBColor(150, 150, 150),
+            width: 1,
+            alpha: 0.7,
+        });
+        scaled_all.push(pts);
+    }
+    if scaled_all.is_empty() {
+        return Ok(Outcome::Skipped("no spectrum of the chosen records".into()));
+    }
+    // The mean on the common grid (every record's spectrum has the pipeline's periods).
+    let n = scaled_all.iter().map(Vec::len).min().unwrap_or(0);
+    let mean: Vec<(f64, f64)> = (0..n)
+        .map(|j| (scaled_all[0][j].0, scaled_all.iter().map(|r| r[j].1).sum::<f64>() / scaled_all.len() as f64))
+        .collect();
+    let target: Vec<(f64, f64)> =
+        mean.iter().filter_map(|&(t, _)| settings.target.psa(t).ok().map(|v| (t, v))).collect();
+    let fraction = settings.options.rule_fraction;
+    let floor: Vec<(f64, f64)> = target.iter().map(|&(t, v)| (t, fraction * v)).collect();
+    let range = settings.options.range.bounds().ok();
+    let ys = lines.iter().flat_map(|l| l.points.iter().map(|p| p.1)).chain(target.iter().map(|p| p.1));
+    let (lo, hi) = crate::plot::log_range(ys);
+    let bands = range
+        .map(|(a, b)| Band {
+            points: vec![(a, lo, hi), (b, lo, hi)],
+            colour: RGBColor(120, 120, 120),
+            label: "period range of the match".into(),
+        })
+        .into_iter()
+        .collect();
+    lines.push(Line { label: "mean of the set".into(), points: mean, colour: colour(1), width: 3, alpha: 1.0 });
+    lines.push(Line { label: settings.target_name.clone(), points: target, colour: BLACK, width: 3, alpha: 1.0 });
+    lines.push(Line {
+        label: format!("{:.0}% of the target", 100.0 * fraction),
+        points: floor,
+        colour: colour(0),
+        width: 2,
+        alpha: 1.0,
+    });
+    let panel = Panel { lines, bands, y_range: Some((lo, hi)), ..Panel::loglog("period (s)", "PSA (m/s²)") };
+    let count = scaled_all.len();
+    let comp = if rotd { "RotD50".to_string() } else { set.component.first().cloned().unwrap_or_default() };
+    drawn(
+        path,
+        &Sheet::new(format!("Record set of {count} matched to the target spectrum, prototype scale"), 1, vec![panel]),
+        "Record set matched to a design spectrum".into(),
+        format!(
+            "The {count} records chosen by [set] ({comp}, {:.0}% damping), each scaled by its factor (grey), their \
+             mean, the target spectrum ({}) and {:.0}% of it, at prototype scale; the shaded band is the period range \
+             of the match{}. The set table lists each record, its factor and misfit; the scaled records are under set/.",
+            100.0 * settings.damping,
+            settings.target_name,
+            100.0 * fraction,
+            range
+                .map(|(a, b)| format!(" ({}–{} s)", crate::plot::fmt_tick(&a), crate::plot::fmt_tick(&b)))
+                .unwrap_or_default()
         ),
     )
 }
