@@ -368,6 +368,15 @@ mod tests {
     }
 
     #[test]
+    fn paper_figures_is_off_by_default_and_not_part_of_the_hash() {
+        let a = Pipeline::from_toml("version = 1\n", "a").unwrap();
+        assert!(!a.report.paper_figures, "a user's own scene is not compared with the paper");
+        let b = Pipeline::from_toml("version = 1\n[report]\npaper_figures = true\n", "b").unwrap();
+        assert!(b.report.paper_figures);
+        assert_eq!(a.hash, b.hash, "the report changes no table");
+    }
+
+    #[test]
     fn every_top_level_key_is_hashed_or_said_not_to_be() {
         // A file with every section present: each top-level key is in the hash's canonical form
         // or in NOT_HASHED, so a new section cannot be left out of the hash by accident.

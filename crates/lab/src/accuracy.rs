@@ -26,7 +26,7 @@ use std::time::Instant;
 use polars::prelude::DataFrame;
 use stickslip_config::PipelineFile;
 use stickslip_ensemble::seed::catalogue;
-use stickslip_report::charts::{Line, Panel, loglog_panels};
+use stickslip_report::charts::{Line, Panel, Sheet, draw};
 use stickslip_seismo::events::{Catalogue, EventParams};
 use stickslip_solver::scene::{InterfaceQuantity, SettleMethod};
 use stickslip_solver::{Channel, Model, RunOptions, RunOutput, run_seed};
@@ -410,22 +410,19 @@ pub fn accuracy_figure(rows: &[AccuracyRow], path: &Path) -> Result<(), LabError
         pareto.colour = stickslip_report::plot::BLACK;
         pareto.width = 1;
         lines.push(pareto);
-        Panel {
-            title: title.to_string(),
-            x_desc: "wall time (s)".into(),
-            y_desc: "normalised L2 error".into(),
-            lines,
-            bands: vec![],
-            legend_at: stickslip_report::charts::SeriesLabelPosition::LowerLeft,
-            dots: true,
-        }
+        Panel { title: title.to_string(), lines, dots: true, ..Panel::loglog("wall time (s)", "normalised L2 error") }
     };
-    Ok(loglog_panels(
+    draw(
         path,
-        &[
-            panel(|e| e.linear_tau, "τ(t) while linear"),
-            panel(|e| e.loading_tau, "τ(t) before the first event"),
-            panel(|e| e.s1_tau, "τ(t) around S1"),
-        ],
-    )?)
+        &Sheet::new(
+            "",
+            3,
+            vec![
+                panel(|e| e.linear_tau, "τ(t) while linear"),
+                panel(|e| e.loading_tau, "τ(t) before the first event"),
+                panel(|e| e.s1_tau, "τ(t) around S1"),
+            ],
+        ),
+    )?;
+    Ok(())
 }

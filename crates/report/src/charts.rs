@@ -1,26 +1,53 @@
-//! Chart shapes shared by the figures: lines on linear or log axes, stacked panels, strips and
-//! scatters, each written to a PNG of the standard size.
+//! The chart layer every figure draws with: a [`Sheet`] of one or more [`Panel`]s (a grid), each
+//! panel with linear or log axes holding lines, shaded bands, point groups, markers and
+//! horizontal reference lines, plus a legend and a panel name.
+//!
+//! Two rules hold for everything drawn here, so a new figure gets them for free:
+//!
+//! - **Nothing leaves the plotting area.** Plotters positions elements in a drawing area but does
+//!   not clip them, and it joins wide polylines with uncapped mitres: at a sharp reversal (the
+//!   min/max pairs of a decimated trace) the inner join lies hundreds of pixels away, which drew
+//!   a vertical line through the title of the shear-stress figure. So data are mapped to pixels
+//!   here (in f64, through the log transform on log axes), polylines are broken at non-finite
+//!   points and clipped to the plotting area ([`crate::clip`], Liang–Barsky), bands are clipped as
+//!   polygons, and plotters only draws 1-px segments (a wide line is a square brush of 1-px
+//!   copies, clipped again). Markers and points are drawn only when they lie wholly inside.
+//! - **Labels go where no data is.** Every text a panel places — marker labels, reference-line
+//!   labels, the panel name, the legend — is a box of its size in the chart's font, put by the
+//!   rule of [`crate::place`]: the candidate covering the fewest data pixels and no other label.
+//!   A reference-line label that cannot find a free spot goes in the right margin beside its
+//!   line, a panel name or legend above the axes (the panel is redrawn with that space
+//!   reserved); a marker label with no free spot near its triangle is dropped (listed in
+//!   [`DrawnPanel::dropped`]).
+//!
+//! [`render`] draws into memory and returns what it drew ([`Drawn`]: each panel's plotting area
+//! in pixels, where every label went, the data mask) so tests can check both rules on the
+//! pixels; [`draw`] also writes the PNG.
 
 use std::path::Path;
 
 use plotters::coord::Shift;
-pub use plotters::prelude::SeriesLabelPosition;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use super::plot::{FONT, LABEL, TICK, TITLE, canvas, colour, fmt_tick, log_range, padded_range, plot_err};
 use crate::ReportError;
+use crate::clip::{ClipRect, clip_polygon, clip_polyline};
+use crate::place::{Occupancy, PixelBox, along_hline, around_point, choose, in_area};
+use crate::plot::{FONT, HEIGHT, LABEL, TICK, TITLE, WIDTH, colour, fmt_tick, log_range, padded_range};
 
 /// One polyline.
+#[derive(Clone, Debug)]
 pub struct Line {
     /// Legend text (empty: no legend entry).
     pub label: String,
-    /// Points.
+    /// Points in data coordinates; a non-finite point (or a non-positive one on a log axis)
+    /// breaks the line.
     pub points: Vec<(f64, f64)>,
     /// Colour.
     pub colour: RGBColor,
-    /// Stroke width (px).
+    /// Stroke width (px); lines of width ≤ 1 are drawn under the bands, the others over them.
     pub width: u32,
-    /// Opacity 0–1.
+    /// Opacity 0–1 (of each 1-px copy: keep translucent lines 1 px wide).
     pub alpha: f64,
 }
 
@@ -31,17 +58,21 @@ impl Line {
     }
 }
 
-/// A labelled point (e.g. a main shock marker).
+/// A triangle marking a point (e.g. a main shock), with an optional label placed beside it.
+#[derive(Clone, Debug)]
 pub struct Marker {
     /// Where.
     pub at: (f64, f64),
-    /// Text beside it.
+    /// Text beside it (empty: none).
     pub text: String,
-    /// Colour.
+    /// Colour of the triangle.
     pub colour: RGBColor,
+    /// Colour of the text.
+    pub text_colour: RGBColor,
 }
 
-/// A horizontal reference line with a label.
+/// A dashed horizontal reference line with a label.
+#[derive(Clone, Debug)]
 pub struct HLine {
     /// Ordinate.
     pub y: f64,
@@ -52,6 +83,7 @@ pub struct HLine {
 }
 
 /// A shaded band between two curves sharing abscissae.
+#[derive(Clone, Debug)]
 pub struct Band {
     /// (x, low, high).
     pub points: Vec<(f64, f64, f64)>,
@@ -61,266 +93,10 @@ pub struct Band {
     pub label: String,
 }
 
-fn err(name: &str) -> impl Fn(String) -> ReportError + '_ {
-    plot_err(name)
-}
-
-/// Draws the labels of `chart`'s series at `at`, in the report's legend style.
-fn draw_legend<'a, DB: DrawingBackend + 'a, CT: CoordTranslate>(
-    chart: &mut ChartContext<'a, DB, CT>,
-    at: SeriesLabelPosition,
-    name: &str,
-) -> Result<(), ReportError> {
-    chart
-        .configure_series_labels()
-        .position(at)
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK.mix(0.5))
-        .label_font((FONT, TICK))
-        .draw()
-        .map_err(|e| err(name)(e.to_string()))
-}
-
-/// Lines on linear axes, with markers and horizontal references; the legend at `legend_at`.
-#[allow(clippy::too_many_arguments)]
-pub fn linear(
-    path: &Path,
-    title: &str,
-    x_desc: &str,
-    y_desc: &str,
-    lines: &[Line],
-    markers: &[Marker],
-    hlines: &[HLine],
-    legend_at: SeriesLabelPosition,
-) -> Result<(), ReportError> {
-    let name = path.display().to_string();
-    let root = canvas(path);
-    let (x0, x1) = padded_range(lines.iter().flat_map(|l| l.points.iter().map(|p| p.0)));
-    let (y0, y1) = padded_range(
-        lines
-            .iter()
-            .flat_map(|l| l.points.iter().map(|p| p.1))
-            .chain(hlines.iter().map(|h| h.y))
-            .chain(markers.iter().map(|m| m.at.1)),
-    );
-    let mut chart = ChartBuilder::on(&root)
-        .caption(title, (FONT, TITLE))
-        .margin(18)
-        .x_label_area_size(60)
-        .y_label_area_size(95)
-        .build_cartesian_2d(x0..x1, y0..y1)
-        .map_err(|e| err(&name)(e.to_string()))?;
-    chart
-        .configure_mesh()
-        .x_desc(x_desc)
-        .y_desc(y_desc)
-        .axis_desc_style((FONT, LABEL))
-        .label_style((FONT, TICK))
-        .x_label_formatter(&fmt_tick)
-        .y_label_formatter(&fmt_tick)
-        .light_line_style(WHITE.mix(0.0))
-        .draw()
-        .map_err(|e| err(&name)(e.to_string()))?;
-    for h in hlines {
-        chart
-            .draw_series(DashedLineSeries::new(vec![(x0, h.y), (x1, h.y)], 10, 6, h.colour.stroke_width(2)))
-            .map_err(|e| err(&name)(e.to_string()))?;
-        chart
-            .draw_series(std::iter::once(Text::new(
-                h.text.clone(),
-                (x0 + 0.01 * (x1 - x0), h.y),
-                (FONT, TICK).into_font().color(&h.colour),
-            )))
-            .map_err(|e| err(&name)(e.to_string()))?;
-    }
-    let mut legend = false;
-    for l in lines {
-        let style = l.colour.mix(l.alpha).stroke_width(l.width);
-        let s = chart
-            .draw_series(LineSeries::new(l.points.iter().copied(), style))
-            .map_err(|e| err(&name)(e.to_string()))?;
-        if !l.label.is_empty() {
-            legend = true;
-            let c = l.colour;
-            s.label(l.label.clone())
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], c.stroke_width(3)));
-        }
-    }
-    for m in markers {
-        chart
-            .draw_series(std::iter::once(TriangleMarker::new(m.at, 9, m.colour.filled())))
-            .map_err(|e| err(&name)(e.to_string()))?;
-        chart
-            .draw_series(std::iter::once(Text::new(
-                m.text.clone(),
-                (m.at.0, m.at.1 + 0.035 * (y1 - y0)),
-                (FONT, TICK).into_font().color(&m.colour),
-            )))
-            .map_err(|e| err(&name)(e.to_string()))?;
-    }
-    if legend {
-        draw_legend(&mut chart, legend_at, &name)?;
-    }
-    root.present().map_err(|e| err(&name)(e.to_string()))
-}
-
-/// One log-log panel.
-pub struct Panel {
-    /// Heading.
-    pub title: String,
-    /// Abscissa description.
-    pub x_desc: String,
-    /// Ordinate description.
-    pub y_desc: String,
-    /// Lines (width ≤ 1 drawn under the bands, the others over them).
-    pub lines: Vec<Line>,
-    /// Shaded bands.
-    pub bands: Vec<Band>,
-    /// Where the legend goes.
-    pub legend_at: SeriesLabelPosition,
-    /// Mark each point of the bold lines with a dot.
-    pub dots: bool,
-}
-
-/// Draws a log-log panel into `area`.
-fn loglog_into(
-    area: &DrawingArea<BitMapBackend<'_>, Shift>,
-    name: &str,
-    panel: &Panel,
-    caption_size: u32,
-) -> Result<(), ReportError> {
-    let Panel { title, x_desc, y_desc, lines, bands, legend_at, dots } = panel;
-    let (x0, x1) = log_range(lines.iter().flat_map(|l| l.points.iter().map(|p| p.0)));
-    let (y0, y1) = log_range(
-        lines
-            .iter()
-            .flat_map(|l| l.points.iter().map(|p| p.1))
-            .chain(bands.iter().flat_map(|b| b.points.iter().flat_map(|p| [p.1, p.2]))),
-    );
-    let mut chart = ChartBuilder::on(area)
-        .caption(title.as_str(), (FONT, caption_size))
-        .margin(18)
-        .x_label_area_size(60)
-        .y_label_area_size(95)
-        .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
-        .map_err(|e| err(name)(e.to_string()))?;
-    chart
-        .configure_mesh()
-        .x_desc(x_desc.as_str())
-        .y_desc(y_desc.as_str())
-        .axis_desc_style((FONT, LABEL))
-        .label_style((FONT, TICK))
-        .x_label_formatter(&fmt_tick)
-        .y_label_formatter(&fmt_tick)
-        .draw()
-        .map_err(|e| err(name)(e.to_string()))?;
-    // Thin lines first, the bands over them, the bold lines on top.
-    let (thin, bold): (Vec<&Line>, Vec<&Line>) = lines.iter().partition(|l| l.width <= 1);
-    let mut legend = !bands.is_empty();
-    for (bold_pass, group) in [(false, &thin), (true, &bold)] {
-        if bold_pass {
-            for b in bands {
-                let mut poly: Vec<(f64, f64)> = b.points.iter().map(|p| (p.0, p.2)).collect();
-                poly.extend(b.points.iter().rev().map(|p| (p.0, p.1)));
-                let c = b.colour;
-                chart
-                    .draw_series(std::iter::once(Polygon::new(poly, c.mix(0.25).filled())))
-                    .map_err(|e| err(name)(e.to_string()))?
-                    .label(b.label.clone())
-                    .legend(move |(x, y)| Rectangle::new([(x, y - 6), (x + 24, y + 6)], c.mix(0.25).filled()));
-            }
-        }
-        for l in group.iter() {
-            let style = l.colour.mix(l.alpha).stroke_width(l.width);
-            let s = chart
-                .draw_series(LineSeries::new(l.points.iter().copied().filter(|p| p.0 > 0.0 && p.1 > 0.0), style))
-                .map_err(|e| err(name)(e.to_string()))?;
-            if !l.label.is_empty() {
-                legend = true;
-                let c = l.colour.mix(l.alpha.max(0.6));
-                s.label(l.label.clone())
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], c.stroke_width(3)));
-            }
-            if bold_pass && *dots {
-                let c = l.colour;
-                chart
-                    .draw_series(
-                        l.points.iter().filter(|p| p.0 > 0.0 && p.1 > 0.0).map(|&p| Circle::new(p, 5, c.filled())),
-                    )
-                    .map_err(|e| err(name)(e.to_string()))?;
-            }
-        }
-    }
-    if legend {
-        draw_legend(&mut chart, legend_at.clone(), name)?;
-    }
-    Ok(())
-}
-
-/// Lines and bands on log-log axes, in one or more side-by-side panels.
-pub fn loglog_panels(path: &Path, panels: &[Panel]) -> Result<(), ReportError> {
-    let name = path.display().to_string();
-    let root = canvas(path);
-    let areas = root.split_evenly((1, panels.len().max(1)));
-    let size = if panels.len() > 1 { TITLE - 6 } else { TITLE };
-    for (panel, area) in panels.iter().zip(&areas) {
-        loglog_into(area, &name, panel, size)?;
-    }
-    root.present().map_err(|e| err(&name)(e.to_string()))
-}
-
-/// One small panel per series, stacked, sharing the x range (the paper's Figs. 6 and 7).
-pub fn stacked(path: &Path, title: &str, x_desc: &str, y_desc: &str, panels: &[Line]) -> Result<(), ReportError> {
-    let name = path.display().to_string();
-    let root = canvas(path);
-    let (top, rest) = root.split_vertically(50);
-    top.titled(title, (FONT, TITLE)).map_err(|e| err(&name)(e.to_string()))?;
-    let _ = top;
-    let (x0, x1) = padded_range(panels.iter().flat_map(|l| l.points.iter().map(|p| p.0)));
-    let areas = rest.split_evenly((panels.len().max(1), 1));
-    for (k, (l, area)) in panels.iter().zip(&areas).enumerate() {
-        let last = k + 1 == panels.len();
-        let (y0, y1) = padded_range(l.points.iter().map(|p| p.1));
-        let ymax = y0.abs().max(y1.abs());
-        let mut chart = ChartBuilder::on(area)
-            .margin_left(18)
-            .margin_right(18)
-            .margin_top(4)
-            .x_label_area_size(if last { 55 } else { 8 })
-            .y_label_area_size(95)
-            .build_cartesian_2d(x0..x1, -ymax..ymax)
-            .map_err(|e| err(&name)(e.to_string()))?;
-        let no_label = |_: &f64| String::new();
-        let mut mesh = chart.configure_mesh();
-        mesh.y_desc(y_desc)
-            .axis_desc_style((FONT, TICK + 2))
-            .label_style((FONT, TICK))
-            .y_labels(3)
-            .y_label_formatter(&fmt_tick);
-        mesh.light_line_style(WHITE.mix(0.0));
-        if last {
-            mesh.x_desc(x_desc).x_label_formatter(&fmt_tick);
-        } else {
-            mesh.x_label_formatter(&no_label);
-        }
-        mesh.draw().map_err(|e| err(&name)(e.to_string()))?;
-        chart
-            .draw_series(LineSeries::new(l.points.iter().copied(), l.colour.stroke_width(1)))
-            .map_err(|e| err(&name)(e.to_string()))?;
-        chart
-            .draw_series(std::iter::once(Text::new(
-                l.label.clone(),
-                (x0 + 0.01 * (x1 - x0), 0.93 * ymax),
-                (FONT, TICK).into_font().color(&l.colour),
-            )))
-            .map_err(|e| err(&name)(e.to_string()))?;
-    }
-    root.present().map_err(|e| err(&name)(e.to_string()))
-}
-
 /// A group of points for a scatter or strip plot.
+#[derive(Clone, Debug)]
 pub struct Points {
-    /// Legend text.
+    /// Legend text (empty: no legend entry).
     pub label: String,
     /// Points.
     pub points: Vec<(f64, f64)>,
@@ -330,73 +106,804 @@ pub struct Points {
     pub size: u32,
 }
 
-/// Scatter plot with optional fitted lines and horizontal references; `x_ticks` labels
-/// categorical abscissae; the legend at `legend_at`.
-#[allow(clippy::too_many_arguments)]
-pub fn scatter(
-    path: &Path,
-    title: &str,
-    x_desc: &str,
-    y_desc: &str,
-    groups: &[Points],
-    lines: &[Line],
-    hlines: &[HLine],
-    x_ticks: Option<&dyn Fn(&f64) -> String>,
-    legend_at: SeriesLabelPosition,
+/// How an axis maps values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Scale {
+    /// Linear.
+    Linear,
+    /// Base-10 logarithmic (only positive values are drawn).
+    Log,
+}
+
+/// One panel: axes and what they hold.
+#[derive(Clone, Debug)]
+pub struct Panel {
+    /// Heading above the panel (empty: none).
+    pub title: String,
+    /// Abscissa description (empty: none).
+    pub x_desc: String,
+    /// Ordinate description.
+    pub y_desc: String,
+    /// Abscissa scale.
+    pub x_scale: Scale,
+    /// Ordinate scale.
+    pub y_scale: Scale,
+    /// Abscissa range; `None`: the data's, padded.
+    pub x_range: Option<(f64, f64)>,
+    /// Ordinate range; `None`: the data's, padded.
+    pub y_range: Option<(f64, f64)>,
+    /// Ordinate range symmetric about zero (accelerograms).
+    pub symmetric_y: bool,
+    /// Lines.
+    pub lines: Vec<Line>,
+    /// Shaded bands.
+    pub bands: Vec<Band>,
+    /// Point groups.
+    pub points: Vec<Points>,
+    /// Triangle markers.
+    pub markers: Vec<Marker>,
+    /// Horizontal reference lines.
+    pub hlines: Vec<HLine>,
+    /// The panel's name (e.g. seed and node), placed inside the axes where no data is.
+    pub name: String,
+    /// Tick labels of a categorical abscissa (one per integer); `None`: numbers.
+    pub x_ticks: Option<fn(&f64) -> String>,
+    /// Write the abscissa's tick labels (false for stacked panels above the bottom one).
+    pub x_tick_labels: bool,
+    /// Number of ordinate tick labels; `None`: plotters' choice.
+    pub y_tick_count: Option<usize>,
+    /// Minor grid lines (log axes look better with them).
+    pub minor_grid: bool,
+    /// Mark each point of the bold lines with a dot.
+    pub dots: bool,
+    /// Draw a legend of the labelled lines, bands and point groups.
+    pub legend: bool,
+    /// Small margins and fonts, for panels stacked in a column.
+    pub compact: bool,
+}
+
+impl Default for Panel {
+    fn default() -> Self {
+        Panel {
+            title: String::new(),
+            x_desc: String::new(),
+            y_desc: String::new(),
+            x_scale: Scale::Linear,
+            y_scale: Scale::Linear,
+            x_range: None,
+            y_range: None,
+            symmetric_y: false,
+            lines: vec![],
+            bands: vec![],
+            points: vec![],
+            markers: vec![],
+            hlines: vec![],
+            name: String::new(),
+            x_ticks: None,
+            x_tick_labels: true,
+            y_tick_count: None,
+            minor_grid: false,
+            dots: false,
+            legend: true,
+            compact: false,
+        }
+    }
+}
+
+impl Panel {
+    /// A panel with linear axes.
+    pub fn linear(x_desc: impl Into<String>, y_desc: impl Into<String>) -> Self {
+        Panel { x_desc: x_desc.into(), y_desc: y_desc.into(), ..Panel::default() }
+    }
+
+    /// A panel with log-log axes and a minor grid.
+    pub fn loglog(x_desc: impl Into<String>, y_desc: impl Into<String>) -> Self {
+        Panel { x_scale: Scale::Log, y_scale: Scale::Log, minor_grid: true, ..Panel::linear(x_desc, y_desc) }
+    }
+}
+
+/// A figure: a title over a grid of panels, filled row by row.
+#[derive(Clone, Debug)]
+pub struct Sheet {
+    /// Title over the whole figure (empty: none).
+    pub title: String,
+    /// Panels per row.
+    pub columns: usize,
+    /// The panels.
+    pub panels: Vec<Panel>,
+    /// Image width (px).
+    pub width: u32,
+    /// Image height (px).
+    pub height: u32,
+}
+
+impl Sheet {
+    /// A sheet of the standard size.
+    pub fn new(title: impl Into<String>, columns: usize, panels: Vec<Panel>) -> Self {
+        Sheet { title: title.into(), columns: columns.max(1), panels, width: WIDTH, height: HEIGHT }
+    }
+
+    /// The same sheet `height` pixels high.
+    pub fn with_height(mut self, height: u32) -> Self {
+        self.height = height;
+        self
+    }
+}
+
+/// A label as drawn.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PlacedLabel {
+    /// Its text (a legend: its entries joined by " | ").
+    pub text: String,
+    /// Its box in pixels, padding included.
+    pub bbox: PixelBox,
+    /// Data pixels under it (0 unless no free spot existed inside the axes).
+    pub data_pixels: u32,
+    /// Whether it went outside the axes (right margin or the strip above them).
+    pub outside: bool,
+}
+
+/// What one panel drew.
+#[derive(Clone, Debug)]
+pub struct DrawnPanel {
+    /// The plotting area in image pixels (plotters' `plotting_area().get_pixel_range()`):
+    /// every data pixel lies inside.
+    pub area: PixelBox,
+    /// The panel's name.
+    pub name: String,
+    /// Every label placed.
+    pub labels: Vec<PlacedLabel>,
+    /// Labels not drawn because every spot near their anchor covered data or another label.
+    pub dropped: Vec<String>,
+    /// The pixels covered by data (lines with their width plus a 2-px clearance, bands, points,
+    /// markers, reference lines).
+    pub data: Occupancy,
+}
+
+/// What a sheet drew.
+#[derive(Clone, Debug)]
+pub struct Drawn {
+    /// One per panel, in the sheet's order.
+    pub panels: Vec<DrawnPanel>,
+}
+
+/// An RGB image in memory.
+#[derive(Clone, Debug)]
+pub struct Image {
+    /// Width (px).
+    pub width: u32,
+    /// Height (px).
+    pub height: u32,
+    /// Pixels, row by row, three bytes each.
+    pub rgb: Vec<u8>,
+}
+
+impl Image {
+    /// The colour of pixel `(x, y)`.
+    pub fn pixel(&self, x: u32, y: u32) -> [u8; 3] {
+        let i = 3 * (y as usize * self.width as usize + x as usize);
+        [self.rgb[i], self.rgb[i + 1], self.rgb[i + 2]]
+    }
+
+    /// Writes the image as a PNG.
+    pub fn save_png(&self, path: &Path) -> Result<(), ReportError> {
+        let io = |e: std::io::Error| ReportError::Io { path: path.to_path_buf(), source: e };
+        let file = std::fs::File::create(path).map_err(io)?;
+        let mut enc = png::Encoder::new(std::io::BufWriter::new(file), self.width, self.height);
+        enc.set_color(png::ColorType::Rgb);
+        enc.set_depth(png::BitDepth::Eight);
+        let fail =
+            |e: png::EncodingError| ReportError::Plot { figure: path.display().to_string(), what: e.to_string() };
+        let mut w = enc.write_header().map_err(fail)?;
+        w.write_image_data(&self.rgb).map_err(fail)?;
+        w.finish().map_err(fail)
+    }
+}
+
+/// Draws `sheet` into a PNG at `path`.
+pub fn draw(path: &Path, sheet: &Sheet) -> Result<Drawn, ReportError> {
+    let (image, drawn) = render(sheet).map_err(|e| match e {
+        ReportError::Plot { what, .. } => ReportError::Plot { figure: path.display().to_string(), what },
+        e => e,
+    })?;
+    image.save_png(path)?;
+    Ok(drawn)
+}
+
+/// Space a panel keeps outside its axes for labels that found no free spot inside.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+struct Reserve {
+    /// A strip between the panel's heading and its axes (legend, name).
+    top: i32,
+    /// A right margin (reference-line labels).
+    right: i32,
+}
+
+/// Which of a panel's labels go outside the axes. Only ever switched on, so the passes of
+/// [`render`] end.
+#[derive(Clone, Debug, Default)]
+struct Outside {
+    legend: bool,
+    name: bool,
+    hlines: Vec<bool>,
+}
+
+/// Draws `sheet` into memory: the image and what was drawn where.
+pub fn render(sheet: &Sheet) -> Result<(Image, Drawn), ReportError> {
+    crate::plot::register_fonts();
+    let n = sheet.panels.len();
+    let mut outside: Vec<Outside> =
+        sheet.panels.iter().map(|p| Outside { hlines: vec![false; p.hlines.len()], ..Outside::default() }).collect();
+    let mut reserves = vec![Reserve::default(); n];
+    // Each pass draws everything; a label that finds no free spot inside switches to outside,
+    // and the panel is drawn again with room for it. Decisions only switch one way, so this
+    // ends after at most one pass per label; six passes is plenty in practice.
+    for pass in 0..6 {
+        let mut rgb = vec![255u8; 3 * sheet.width as usize * sheet.height as usize];
+        let mut panels = Vec::with_capacity(n);
+        let mut wanted = Vec::with_capacity(n);
+        {
+            let root = BitMapBackend::with_buffer(&mut rgb, (sheet.width, sheet.height)).into_drawing_area();
+            root.fill(&WHITE).map_err(fail)?;
+            let body = if sheet.title.is_empty() {
+                root.clone()
+            } else {
+                root.titled(&sheet.title, (FONT, TITLE)).map_err(fail)?
+            };
+            let cols = sheet.columns.max(1);
+            let areas = body.split_evenly((n.div_ceil(cols).max(1), cols));
+            let caption = if n > 1 { TITLE - 6 } else { TITLE };
+            for ((panel, area), (out, reserve)) in
+                sheet.panels.iter().zip(&areas).zip(outside.iter_mut().zip(&reserves))
+            {
+                let (drawn, want) = draw_panel(&root, area, panel, caption, *reserve, out)?;
+                panels.push(drawn);
+                wanted.push(want);
+            }
+            root.present().map_err(fail)?;
+        }
+        if wanted == reserves || pass == 5 {
+            return Ok((Image { width: sheet.width, height: sheet.height, rgb }, Drawn { panels }));
+        }
+        reserves = wanted;
+    }
+    unreachable!("the last pass returns")
+}
+
+fn fail(e: impl std::fmt::Display) -> ReportError {
+    ReportError::Plot { figure: "chart".into(), what: e.to_string() }
+}
+
+/// Value → pixel along one axis (f64, so points far outside stay exact for clipping).
+#[derive(Clone, Copy, Debug)]
+struct Axis {
+    lo: f64,
+    hi: f64,
+    log: bool,
+    /// Pixels of `lo` and `hi` (as plotters maps them: the first and last pixel of the area).
+    p0: f64,
+    p1: f64,
+}
+
+impl Axis {
+    fn px(&self, v: f64) -> Option<f64> {
+        if !v.is_finite() || (self.log && v <= 0.0) {
+            return None;
+        }
+        let f = if self.log {
+            (v.log10() - self.lo.log10()) / (self.hi.log10() - self.lo.log10())
+        } else {
+            (v - self.lo) / (self.hi - self.lo)
+        };
+        Some(self.p0 + f * (self.p1 - self.p0))
+    }
+}
+
+/// The pixel frame of one panel's axes.
+struct Frame {
+    x: Axis,
+    y: Axis,
+    /// The plotting area.
+    area: PixelBox,
+    /// The same, closed, in f64: what everything is clipped to.
+    clip: ClipRect,
+}
+
+impl Frame {
+    /// A data point in pixels (NaN where it cannot be drawn, which breaks a polyline).
+    fn px(&self, p: (f64, f64)) -> (f64, f64) {
+        match (self.x.px(p.0), self.y.px(p.1)) {
+            (Some(x), Some(y)) => (x, y),
+            _ => (f64::NAN, f64::NAN),
+        }
+    }
+
+    /// Whether a box of half-size `r` around pixel `c` lies wholly inside.
+    fn holds(&self, c: (f64, f64), r: f64) -> bool {
+        c.0.is_finite()
+            && c.1.is_finite()
+            && self.clip.contains((c.0 - r, c.1 - r))
+            && self.clip.contains((c.0 + r, c.1 + r))
+    }
+}
+
+/// Clearance kept free around data for labels (px).
+const CLEAR: i32 = 2;
+/// Padding inside a label's box (px).
+const PAD: i32 = 3;
+
+fn range(scale: Scale, values: impl Iterator<Item = f64>) -> (f64, f64) {
+    match scale {
+        Scale::Linear => padded_range(values),
+        Scale::Log => log_range(values),
+    }
+}
+
+/// Draws a 1-px polyline (already clipped, pixel coordinates).
+fn stroke_1px(
+    root: &DrawingArea<BitMapBackend<'_>, Shift>,
+    run: &[(f64, f64)],
+    style: ShapeStyle,
 ) -> Result<(), ReportError> {
-    let name = path.display().to_string();
-    let root = canvas(path);
-    let (x0, x1) = padded_range(groups.iter().flat_map(|g| g.points.iter().map(|p| p.0)));
-    let (y0, y1) =
-        padded_range(groups.iter().flat_map(|g| g.points.iter().map(|p| p.1)).chain(hlines.iter().map(|h| h.y)));
-    let mut chart = ChartBuilder::on(&root)
-        .caption(title, (FONT, TITLE))
-        .margin(18)
-        .x_label_area_size(60)
-        .y_label_area_size(95)
-        .build_cartesian_2d(x0..x1, y0..y1)
-        .map_err(|e| err(&name)(e.to_string()))?;
-    let fmt: &dyn Fn(&f64) -> String = x_ticks.unwrap_or(&fmt_tick);
-    let mut mesh = chart.configure_mesh();
-    mesh.x_desc(x_desc)
-        .y_desc(y_desc)
-        .axis_desc_style((FONT, LABEL))
-        .label_style((FONT, TICK))
-        .x_label_formatter(fmt)
-        .y_label_formatter(&fmt_tick)
-        .light_line_style(WHITE.mix(0.0));
-    if x_ticks.is_some() {
-        mesh.x_labels(((x1 - x0).round() as usize + 1).min(20));
+    let pts: Vec<(i32, i32)> = run.iter().map(|p| (p.0.round() as i32, p.1.round() as i32)).collect();
+    root.draw(&PathElement::new(pts, style)).map_err(fail)
+}
+
+/// Draws a polyline `width` px wide, clipped to the frame, and marks it in `data`. A wide line
+/// is a square brush: `width²` copies of the 1-px line shifted by whole pixels, each clipped
+/// (no joins, so no mitre can reach outside).
+fn stroke(
+    root: &DrawingArea<BitMapBackend<'_>, Shift>,
+    f: &Frame,
+    points: &[(f64, f64)],
+    colour: RGBColor,
+    width: u32,
+    alpha: f64,
+    data: &mut Occupancy,
+) -> Result<(), ReportError> {
+    let px: Vec<(f64, f64)> = points.iter().map(|&p| f.px(p)).collect();
+    let style = colour.mix(alpha).stroke_width(1);
+    let w = width.max(1) as i32;
+    let offsets: Vec<i32> = (0..w).map(|k| k - (w - 1) / 2).collect();
+    for run in clip_polyline(&px, &f.clip) {
+        for pair in run.windows(2) {
+            data.mark_segment(pair[0], pair[1], w / 2 + CLEAR);
+        }
+        if w == 1 {
+            stroke_1px(root, &run, style)?;
+            continue;
+        }
+        for &dx in &offsets {
+            for &dy in &offsets {
+                let shifted: Vec<(f64, f64)> = run.iter().map(|p| (p.0 + dx as f64, p.1 + dy as f64)).collect();
+                for part in clip_polyline(&shifted, &f.clip) {
+                    stroke_1px(root, &part, style)?;
+                }
+            }
+        }
     }
-    mesh.draw().map_err(|e| err(&name)(e.to_string()))?;
-    for h in hlines {
-        chart
-            .draw_series(DashedLineSeries::new(vec![(x0, h.y), (x1, h.y)], 10, 6, h.colour.stroke_width(2)))
-            .map_err(|e| err(&name)(e.to_string()))?;
-        chart
-            .draw_series(std::iter::once(Text::new(
-                h.text.clone(),
-                (x0 + 0.01 * (x1 - x0), h.y + 0.045 * (y1 - y0)),
-                (FONT, TICK).into_font().color(&h.colour),
-            )))
-            .map_err(|e| err(&name)(e.to_string()))?;
+    Ok(())
+}
+
+/// Draws a band clipped to the frame and marks its pixels.
+fn fill_band(
+    root: &DrawingArea<BitMapBackend<'_>, Shift>,
+    f: &Frame,
+    band: &Band,
+    data: &mut Occupancy,
+) -> Result<(), ReportError> {
+    // Runs of points that map to pixels (a NaN or, on a log axis, a non-positive bound breaks it).
+    let px: Vec<Option<(f64, f64, f64)>> =
+        band.points.iter().map(|&(x, lo, hi)| Some((f.x.px(x)?, f.y.px(lo)?, f.y.px(hi)?))).collect();
+    for run in px.split(|p| p.is_none()) {
+        let run: Vec<(f64, f64, f64)> = run.iter().flatten().copied().collect();
+        if run.len() < 2 {
+            continue;
+        }
+        let mut poly: Vec<(f64, f64)> = run.iter().map(|p| (p.0, p.2)).collect();
+        poly.extend(run.iter().rev().map(|p| (p.0, p.1)));
+        let clipped = clip_polygon(&poly, &f.clip);
+        if clipped.len() >= 3 {
+            let pts: Vec<(i32, i32)> = clipped.iter().map(|p| (p.0.round() as i32, p.1.round() as i32)).collect();
+            root.draw(&Polygon::new(pts, band.colour.mix(0.25).filled())).map_err(fail)?;
+        }
+        // Its pixels, column by column between neighbouring samples.
+        for w in run.windows(2) {
+            let (a, b) = (w[0], w[1]);
+            let (xa, xb) = (a.0.min(b.0).max(f.clip.x0), a.0.max(b.0).min(f.clip.x1));
+            let mut x = xa.ceil();
+            while x <= xb {
+                let t = if b.0 != a.0 { (x - a.0) / (b.0 - a.0) } else { 0.0 };
+                let (lo, hi) = (a.1 + t * (b.1 - a.1), a.2 + t * (b.2 - a.2));
+                let (top, bottom) = (lo.min(hi).max(f.clip.y0), lo.max(hi).min(f.clip.y1));
+                if top <= bottom {
+                    // One pixel more on every side: plotters fills the polygon of rounded
+                    // vertices, which can reach half a pixel past the exact edge.
+                    data.mark_box(PixelBox {
+                        x0: x as i32 - 1,
+                        y0: top.floor() as i32 - 1,
+                        x1: x as i32 + 2,
+                        y1: bottom.ceil() as i32 + 2,
+                    });
+                }
+                x += 1.0;
+            }
+        }
     }
-    for g in groups {
-        let (c, size) = (g.colour, g.size);
-        chart
-            .draw_series(g.points.iter().map(|&p| Circle::new(p, size, c.mix(0.75).filled())))
-            .map_err(|e| err(&name)(e.to_string()))?
-            .label(g.label.clone())
-            .legend(move |(x, y)| Circle::new((x + 10, y), size, c.filled()));
+    Ok(())
+}
+
+/// A text item to place: its text, colour, and box size with padding.
+struct TextItem {
+    text: String,
+    colour: RGBColor,
+    size: (i32, i32),
+}
+
+fn text_item(
+    root: &DrawingArea<BitMapBackend<'_>, Shift>,
+    text: &str,
+    colour: RGBColor,
+) -> Result<TextItem, ReportError> {
+    let (w, h) = root.estimate_text_size(text, &(FONT, TICK).into_font().into()).map_err(fail)?;
+    Ok(TextItem { text: text.to_string(), colour, size: (w as i32 + 2 * PAD, h as i32 + 2 * PAD) })
+}
+
+fn put_text(root: &DrawingArea<BitMapBackend<'_>, Shift>, item: &TextItem, at: &PixelBox) -> Result<(), ReportError> {
+    let style = (FONT, TICK).into_font().color(&item.colour).pos(Pos::new(HPos::Left, VPos::Top));
+    root.draw(&Text::new(item.text.clone(), (at.x0 + PAD, at.y0 + PAD), style)).map_err(fail)
+}
+
+/// A legend entry: its sample glyph and text.
+enum Sample {
+    Line(RGBColor),
+    Patch(RGBColor),
+    Dot(RGBColor, u32),
+}
+
+/// Width of a legend entry's sample glyph and the gap after it (px).
+const SAMPLE_W: i32 = 26;
+const SAMPLE_GAP: i32 = 6;
+
+fn draw_sample(root: &DrawingArea<BitMapBackend<'_>, Shift>, s: &Sample, x: i32, y: i32) -> Result<(), ReportError> {
+    match s {
+        Sample::Line(c) => root.draw(&Rectangle::new([(x, y - 1), (x + SAMPLE_W - 2, y + 1)], c.filled())),
+        Sample::Patch(c) => root.draw(&Rectangle::new([(x, y - 6), (x + SAMPLE_W - 2, y + 6)], c.mix(0.25).filled())),
+        Sample::Dot(c, r) => root.draw(&Circle::new((x + SAMPLE_W / 2, y), (*r).min(6) as i32, c.filled())),
     }
-    for l in lines {
-        let c = l.colour;
-        chart
-            .draw_series(LineSeries::new(l.points.iter().copied(), c.stroke_width(l.width)))
-            .map_err(|e| err(&name)(e.to_string()))?
-            .label(l.label.clone())
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], c.stroke_width(3)));
+    .map_err(fail)
+}
+
+/// Builds the axes of `panel` in `area`, draws its mesh, and returns the plotting area.
+fn axes(
+    area: &DrawingArea<BitMapBackend<'_>, Shift>,
+    panel: &Panel,
+    x: (f64, f64),
+    y: (f64, f64),
+    reserve_right: i32,
+) -> Result<PixelBox, ReportError> {
+    let has_x_desc = !panel.x_desc.is_empty();
+    let x_area = match (panel.x_tick_labels, has_x_desc) {
+        (false, _) => 8,
+        (true, false) => 35,
+        (true, true) => {
+            if panel.compact {
+                55
+            } else {
+                60
+            }
+        }
+    };
+    let mut builder = ChartBuilder::on(area);
+    builder
+        .margin_left(18)
+        .margin_right(18 + reserve_right)
+        .margin_top(if panel.compact { 4 } else { 10 })
+        .margin_bottom(if panel.compact { 2 } else { 8 })
+        .x_label_area_size(x_area)
+        .y_label_area_size(95);
+    let no_label = |_: &f64| String::new();
+    let x_fmt: &dyn Fn(&f64) -> String = match (panel.x_tick_labels, panel.x_ticks.as_ref()) {
+        (false, _) => &no_label,
+        (true, Some(f)) => f,
+        (true, None) => &fmt_tick,
+    };
+    let desc = if panel.compact { TICK + 2 } else { LABEL };
+    let light = if panel.minor_grid { RGBColor(235, 235, 235).mix(1.0) } else { WHITE.mix(0.0) };
+    macro_rules! mesh {
+        ($xspec:expr, $yspec:expr) => {{
+            let mut chart = builder.build_cartesian_2d($xspec, $yspec).map_err(fail)?;
+            let mut mesh = chart.configure_mesh();
+            mesh.y_desc(panel.y_desc.as_str())
+                .axis_desc_style((FONT, desc))
+                .label_style((FONT, TICK))
+                .x_label_formatter(x_fmt)
+                .y_label_formatter(&fmt_tick)
+                .light_line_style(light);
+            if has_x_desc && panel.x_tick_labels {
+                mesh.x_desc(panel.x_desc.as_str());
+            }
+            if panel.x_ticks.is_some() {
+                mesh.x_labels(((x.1 - x.0).round() as usize + 1).min(20));
+            }
+            if let Some(n) = panel.y_tick_count {
+                mesh.y_labels(n);
+            }
+            mesh.draw().map_err(fail)?;
+            chart.plotting_area().get_pixel_range()
+        }};
     }
-    draw_legend(&mut chart, legend_at, &name)?;
-    root.present().map_err(|e| err(&name)(e.to_string()))
+    let (xr, yr) = match (panel.x_scale, panel.y_scale) {
+        (Scale::Linear, Scale::Linear) => mesh!(x.0..x.1, y.0..y.1),
+        (Scale::Log, Scale::Log) => mesh!((x.0..x.1).log_scale(), (y.0..y.1).log_scale()),
+        (Scale::Linear, Scale::Log) => mesh!(x.0..x.1, (y.0..y.1).log_scale()),
+        (Scale::Log, Scale::Linear) => mesh!((x.0..x.1).log_scale(), y.0..y.1),
+    };
+    Ok(PixelBox { x0: xr.start, y0: yr.start, x1: xr.end, y1: yr.end })
+}
+
+/// Draws one panel into `area` (drawing on `root` in image pixels) and returns what it drew and
+/// the room it wants outside its axes.
+fn draw_panel(
+    root: &DrawingArea<BitMapBackend<'_>, Shift>,
+    area: &DrawingArea<BitMapBackend<'_>, Shift>,
+    panel: &Panel,
+    caption: u32,
+    reserve: Reserve,
+    out: &mut Outside,
+) -> Result<(DrawnPanel, Reserve), ReportError> {
+    let (img_w, img_h) = root.dim_in_pixel();
+    let xs = panel
+        .lines
+        .iter()
+        .flat_map(|l| l.points.iter().map(|p| p.0))
+        .chain(panel.bands.iter().flat_map(|b| b.points.iter().map(|p| p.0)))
+        .chain(panel.points.iter().flat_map(|g| g.points.iter().map(|p| p.0)))
+        .chain(panel.markers.iter().map(|m| m.at.0));
+    let x = panel.x_range.unwrap_or_else(|| range(panel.x_scale, xs));
+    let ys = panel
+        .lines
+        .iter()
+        .flat_map(|l| l.points.iter().map(|p| p.1))
+        .chain(panel.bands.iter().flat_map(|b| b.points.iter().flat_map(|p| [p.1, p.2])))
+        .chain(panel.points.iter().flat_map(|g| g.points.iter().map(|p| p.1)))
+        .chain(panel.markers.iter().map(|m| m.at.1))
+        .chain(panel.hlines.iter().map(|h| h.y));
+    let mut y = panel.y_range.unwrap_or_else(|| range(panel.y_scale, ys));
+    // Headroom over the data for the labels of markers (a peak's marker sits at the top of the
+    // trace, and its label goes above it): a tenth of the height more.
+    if panel.y_range.is_none() && panel.y_scale == Scale::Linear && panel.markers.iter().any(|m| !m.text.is_empty()) {
+        y.1 += 0.1 * (y.1 - y.0);
+    }
+    if panel.symmetric_y && panel.y_scale == Scale::Linear {
+        let m = y.0.abs().max(y.1.abs());
+        y = (-m, m);
+    }
+
+    // Heading, the strip kept for outside labels, then the axes.
+    let mut rest = area.clone();
+    if !panel.title.is_empty() {
+        rest = rest.titled(&panel.title, (FONT, caption)).map_err(fail)?;
+    }
+    let (strip_x, strip_y) = rest.get_pixel_range();
+    let strip = PixelBox { x0: strip_x.start, y0: strip_y.start, x1: strip_x.end, y1: strip_y.start + reserve.top };
+    let (_, below) = rest.split_vertically(reserve.top);
+    let plot = axes(&below, panel, x, y, reserve.right)?;
+    let f = Frame {
+        x: Axis { lo: x.0, hi: x.1, log: panel.x_scale == Scale::Log, p0: plot.x0 as f64, p1: (plot.x1 - 1) as f64 },
+        y: Axis { lo: y.0, hi: y.1, log: panel.y_scale == Scale::Log, p0: (plot.y1 - 1) as f64, p1: plot.y0 as f64 },
+        area: plot,
+        clip: ClipRect { x0: plot.x0 as f64, y0: plot.y0 as f64, x1: (plot.x1 - 1) as f64, y1: (plot.y1 - 1) as f64 },
+    };
+    let mut data = Occupancy::new(img_w, img_h);
+
+    // Data: thin lines, bands, reference lines, bold lines (with dots), points, markers.
+    let (thin, bold): (Vec<&Line>, Vec<&Line>) = panel.lines.iter().partition(|l| l.width <= 1);
+    for l in &thin {
+        stroke(root, &f, &l.points, l.colour, l.width, l.alpha, &mut data)?;
+    }
+    for b in &panel.bands {
+        fill_band(root, &f, b, &mut data)?;
+    }
+    for h in &panel.hlines {
+        let Some(py) = f.y.px(h.y).filter(|py| *py >= f.clip.y0 && *py <= f.clip.y1) else { continue };
+        let style = h.colour.stroke_width(1);
+        let mut x0 = f.clip.x0;
+        while x0 < f.clip.x1 {
+            let x1 = (x0 + 10.0).min(f.clip.x1);
+            for dy in [0.0, 1.0] {
+                let yy = (py + dy).min(f.clip.y1);
+                stroke_1px(root, &[(x0, yy), (x1, yy)], style)?;
+            }
+            x0 += 16.0;
+        }
+        data.mark_segment((f.clip.x0, py), (f.clip.x1, py), 1 + CLEAR);
+    }
+    for l in &bold {
+        stroke(root, &f, &l.points, l.colour, l.width, l.alpha, &mut data)?;
+        if panel.dots {
+            for p in l.points.iter().map(|&p| f.px(p)).filter(|&c| f.holds(c, 5.0)) {
+                let c = (p.0.round() as i32, p.1.round() as i32);
+                root.draw(&Circle::new(c, 5, l.colour.filled())).map_err(fail)?;
+                data.mark_box(PixelBox::at(c.0 - 5 - CLEAR, c.1 - 5 - CLEAR, (11 + 2 * CLEAR, 11 + 2 * CLEAR)));
+            }
+        }
+    }
+    for g in &panel.points {
+        let r = g.size as i32;
+        for c in g.points.iter().map(|&p| f.px(p)).filter(|&c| f.holds(c, r as f64)) {
+            let c = (c.0.round() as i32, c.1.round() as i32);
+            root.draw(&Circle::new(c, r, g.colour.mix(0.75).filled())).map_err(fail)?;
+            data.mark_box(PixelBox::at(c.0 - r - CLEAR, c.1 - r - CLEAR, (2 * (r + CLEAR) + 1, 2 * (r + CLEAR) + 1)));
+        }
+    }
+    const TRIANGLE: i32 = 9;
+    let mut marker_px = Vec::new();
+    for m in &panel.markers {
+        let c = f.px(m.at);
+        if !f.holds(c, TRIANGLE as f64) {
+            continue;
+        }
+        let c = (c.0.round() as i32, c.1.round() as i32);
+        root.draw(&TriangleMarker::new(c, TRIANGLE, m.colour.filled())).map_err(fail)?;
+        data.mark_box(PixelBox::at(c.0 - TRIANGLE, c.1 - TRIANGLE, (2 * TRIANGLE + 1, 2 * TRIANGLE + 1)));
+        marker_px.push((m, c));
+    }
+
+    // Labels, by the rule of crate::place: marker labels first (they belong to a spot), then the
+    // reference-line labels, the panel name, the legend (the most movable).
+    let mut placed: Vec<PlacedLabel> = Vec::new();
+    let mut dropped: Vec<String> = Vec::new();
+    let boxes = |placed: &[PlacedLabel]| placed.iter().map(|l| l.bbox).collect::<Vec<_>>();
+    for (m, c) in marker_px.iter().filter(|(m, _)| !m.text.is_empty()) {
+        let item = text_item(root, &m.text, m.text_colour)?;
+        // Beside the triangle first, then further away above or below it.
+        let mut cands = around_point(*c, TRIANGLE, 2, item.size);
+        for k in 1..=4 {
+            let up = item.size.1 * k + 4 * k;
+            cands.extend(around_point((c.0, c.1 - up), TRIANGLE, 2, item.size).into_iter().take(3));
+            cands.extend(around_point((c.0, c.1 + up), TRIANGLE, 2, item.size).into_iter().skip(5).take(3));
+        }
+        match choose(&cands, &plot, &data, &boxes(&placed)) {
+            Some((i, 0)) => {
+                put_text(root, &item, &cands[i])?;
+                placed.push(PlacedLabel { text: item.text, bbox: cands[i], data_pixels: 0, outside: false });
+            }
+            // Every spot near it is on data or on another label: a label there could not be
+            // read, and a label far away would name the wrong triangle.
+            _ => dropped.push(item.text),
+        }
+    }
+    let mut want = Reserve::default();
+    let margin =
+        PixelBox { x0: plot.x1 + 4, y0: area.get_pixel_range().1.start, x1: area.get_pixel_range().0.end, y1: plot.y1 };
+    for (k, h) in panel.hlines.iter().enumerate().filter(|(_, h)| !h.text.is_empty()) {
+        let Some(py) = f.y.px(h.y).filter(|py| *py >= f.clip.y0 && *py <= f.clip.y1) else { continue };
+        let py = py.round() as i32;
+        let item = text_item(root, &h.text, h.colour)?;
+        if !out.hlines[k] {
+            let cands = along_hline(py, plot.x0, plot.x1, 4, item.size);
+            match choose(&cands, &plot, &data, &boxes(&placed)) {
+                Some((i, 0)) => {
+                    put_text(root, &item, &cands[i])?;
+                    placed.push(PlacedLabel { text: item.text, bbox: cands[i], data_pixels: 0, outside: false });
+                    continue;
+                }
+                _ => out.hlines[k] = true,
+            }
+        }
+        // In the right margin, beside the end of its line (or just above or below it).
+        want.right = want.right.max(item.size.0 + 8);
+        let (w, hgt) = item.size;
+        let cands: Vec<PixelBox> = [0, -hgt, hgt, -2 * hgt, 2 * hgt]
+            .iter()
+            .map(|d| PixelBox::at(plot.x1 + 6, py - hgt / 2 + d, (w, hgt)))
+            .collect();
+        match choose(&cands, &margin, &data, &boxes(&placed)) {
+            Some((i, n)) => {
+                put_text(root, &item, &cands[i])?;
+                placed.push(PlacedLabel { text: item.text, bbox: cands[i], data_pixels: n, outside: true });
+            }
+            None if reserve.right >= want.right => dropped.push(item.text),
+            None => {} // drawn in the next pass, with the margin
+        }
+    }
+
+    // The panel name and the legend: inside where no data is, else in the strip above the axes.
+    let mut strip_items: Vec<(TextItem, Option<Sample>)> = Vec::new();
+    if !panel.name.is_empty() {
+        let item = text_item(root, &panel.name, BLACK)?;
+        let mut cands = in_area(&plot, 4, 12, item.size);
+        if cands.len() > 1 {
+            cands.swap(0, 1); // a name reads best at the upper left
+        }
+        let mut inside = false;
+        if !out.name
+            && let Some((i, 0)) = choose(&cands, &plot, &data, &boxes(&placed))
+        {
+            put_text(root, &item, &cands[i])?;
+            placed.push(PlacedLabel { text: item.text.clone(), bbox: cands[i], data_pixels: 0, outside: false });
+            inside = true;
+        }
+        if !inside {
+            out.name = true;
+            strip_items.push((item, None));
+        }
+    }
+    if panel.legend {
+        let mut entries: Vec<(TextItem, Sample)> = Vec::new();
+        for l in panel.lines.iter().filter(|l| !l.label.is_empty()) {
+            entries.push((text_item(root, &l.label, BLACK)?, Sample::Line(l.colour)));
+        }
+        for b in panel.bands.iter().filter(|b| !b.label.is_empty()) {
+            entries.push((text_item(root, &b.label, BLACK)?, Sample::Patch(b.colour)));
+        }
+        for g in panel.points.iter().filter(|g| !g.label.is_empty()) {
+            entries.push((text_item(root, &g.label, BLACK)?, Sample::Dot(g.colour, g.size)));
+        }
+        if !entries.is_empty() {
+            let row_h = entries.iter().map(|e| e.0.size.1).max().unwrap_or(0);
+            let w = entries.iter().map(|e| e.0.size.0).max().unwrap_or(0) + SAMPLE_W + SAMPLE_GAP + 2 * PAD;
+            let size = (w, row_h * entries.len() as i32 + 2 * PAD);
+            let cands = in_area(&plot, 6, 12, size);
+            let mut inside = false;
+            if !out.legend
+                && let Some((i, 0)) = choose(&cands, &plot, &data, &boxes(&placed))
+            {
+                let b = cands[i];
+                root.draw(&Rectangle::new([(b.x0, b.y0), (b.x1 - 1, b.y1 - 1)], WHITE.mix(0.9).filled()))
+                    .map_err(fail)?;
+                root.draw(&Rectangle::new([(b.x0, b.y0), (b.x1 - 1, b.y1 - 1)], BLACK.mix(0.5))).map_err(fail)?;
+                for (k, (item, sample)) in entries.iter().enumerate() {
+                    let top = b.y0 + PAD + k as i32 * row_h;
+                    draw_sample(root, sample, b.x0 + 2 * PAD, top + row_h / 2)?;
+                    let at = PixelBox::at(b.x0 + PAD + SAMPLE_W + SAMPLE_GAP, top, item.size);
+                    put_text(root, item, &at)?;
+                }
+                let text = entries.iter().map(|e| e.0.text.as_str()).collect::<Vec<_>>().join(" | ");
+                placed.push(PlacedLabel { text, bbox: b, data_pixels: 0, outside: false });
+                inside = true;
+            }
+            if !inside {
+                out.legend = true;
+                strip_items.extend(entries.into_iter().map(|(t, s)| (t, Some(s))));
+            }
+        }
+    }
+    // The strip: the items flow left to right over the width of the axes, wrapping.
+    if !strip_items.is_empty() {
+        let row_h = strip_items.iter().map(|e| e.0.size.1).max().unwrap_or(0);
+        let (mut cx, mut row) = (plot.x0, 0);
+        let mut spots = Vec::new();
+        for (item, sample) in &strip_items {
+            let w = item.size.0 + if sample.is_some() { SAMPLE_W + SAMPLE_GAP } else { 0 } + 8;
+            if cx + w > plot.x1 && cx > plot.x0 {
+                cx = plot.x0;
+                row += 1;
+            }
+            spots.push((cx, row));
+            cx += w;
+        }
+        want.top = (row + 1) * row_h + 4;
+        if reserve.top >= want.top {
+            for ((item, sample), (sx, r)) in strip_items.iter().zip(spots) {
+                let top = strip.y0 + 2 + r * row_h;
+                let mut tx = sx;
+                if let Some(s) = sample {
+                    draw_sample(root, s, sx + PAD, top + row_h / 2)?;
+                    tx += SAMPLE_W + SAMPLE_GAP;
+                }
+                let b = PixelBox::at(tx, top, item.size);
+                put_text(root, item, &b)?;
+                placed.push(PlacedLabel {
+                    text: item.text.clone(),
+                    bbox: b,
+                    data_pixels: data.count(&b),
+                    outside: true,
+                });
+            }
+        }
+    }
+    let want = Reserve { top: want.top.max(reserve.top), right: want.right.max(reserve.right) };
+    Ok((DrawnPanel { area: f.area, name: panel.name.clone(), labels: placed, dropped, data }, want))
 }

@@ -11,8 +11,10 @@
 #![deny(missing_docs)]
 
 pub mod charts;
+pub mod clip;
 pub mod figures;
 mod html;
+pub mod place;
 pub mod plot;
 
 use std::path::{Path, PathBuf};
@@ -21,10 +23,10 @@ use polars::prelude::DataFrame;
 use stickslip_config::Pipeline;
 use stickslip_store::io::{read_parquet_if_present, write_text_atomic};
 use stickslip_store::schema::{
-    ATTENUATION, ATTENUATION_FIT, EVENTS_TABLE, PSA_STATS, RUNS, SIMILARITY, SUMMARY, TableSpec,
+    ATTENUATION, ATTENUATION_FIT, EVENTS_TABLE, PSA_STATS, RECORDS, RUNS, SIMILARITY, SUMMARY, TableSpec,
 };
 use stickslip_store::tables::events::{Events, Similarity};
-use stickslip_store::tables::records::Attenuation;
+use stickslip_store::tables::records::{Attenuation, Records};
 use stickslip_store::tables::runs::Runs;
 use stickslip_store::tables::stats::{AttenuationFit, PsaStats, SummaryTable};
 use stickslip_store::{Folder, StoreError};
@@ -62,6 +64,12 @@ pub struct Figure {
     pub title: String,
     /// What it shows.
     pub caption: String,
+    /// The titles drawn on the image (the figure's, then each panel's).
+    pub headings: Vec<String>,
+    /// The name of each panel (e.g. the seed and node it shows; empty for an unnamed panel).
+    pub panels: Vec<String>,
+    /// Labels left out because no spot near their anchor was free of data and other labels.
+    pub dropped: Vec<String>,
 }
 
 /// What the report wrote.
@@ -96,6 +104,8 @@ pub struct ReportInput<'a> {
     pub attenuation: Option<Attenuation>,
     /// Their fits.
     pub attenuation_fit: Option<AttenuationFit>,
+    /// The per-event records cut by `[accelerograms]` (what, where, usable band).
+    pub records: Option<Records>,
     /// Mean Δt over the seeds (s), if any finished.
     pub mean_dt_s: Option<f64>,
     /// Seeds drawn one by one (successful, at most four unless the pipeline names them).
@@ -134,6 +144,7 @@ impl<'a> ReportInput<'a> {
             psa_stats: table(&PSA_STATS)?.as_ref().map(PsaStats::read).transpose()?,
             attenuation: table(&ATTENUATION)?.as_ref().map(Attenuation::read).transpose()?,
             attenuation_fit: table(&ATTENUATION_FIT)?.as_ref().map(AttenuationFit::read).transpose()?,
+            records: table(&RECORDS)?.as_ref().map(Records::read).transpose()?,
             mean_dt_s,
             seeds,
             folder,
@@ -160,9 +171,9 @@ pub fn write_report(out: &Path, pipeline: &Pipeline) -> Result<ReportSummary, Re
         // Draw into a temporary file, then rename: a reader never sees half a figure.
         let tmp = dir.join(format!(".{file}.{}.tmp.png", std::process::id()));
         match draw(&input, &tmp)? {
-            figures::Outcome::Drawn { title, caption } => {
+            figures::Outcome::Drawn { title, caption, headings, panels, dropped } => {
                 std::fs::rename(&tmp, &path).map_err(|e| ReportError::Io { path: path.clone(), source: e })?;
-                drawn.push(Figure { file: file.to_string(), title, caption });
+                drawn.push(Figure { file: file.to_string(), title, caption, headings, panels, dropped });
             }
             figures::Outcome::Skipped(why) => {
                 let _ = std::fs::remove_file(&tmp);

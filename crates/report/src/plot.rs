@@ -1,9 +1,7 @@
 //! Plotting helpers: the bundled font, sizes, colours, decimation, axis ranges.
 
-use std::path::Path;
 use std::sync::Once;
 
-use plotters::prelude::*;
 use plotters::style::FontStyle;
 pub use plotters::style::{BLACK, RGBColor};
 
@@ -110,13 +108,6 @@ pub fn log_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     let (lo, hi) = (lo / 1.3, hi * 1.3);
     let decade = 10f64.powf(hi.log10().floor());
     (if decade >= lo { lo } else { decade * 0.9 }, hi)
-}
-
-/// A white canvas of the standard size at `path`.
-pub fn canvas(path: &Path) -> DrawingArea<BitMapBackend<'_>, plotters::coord::Shift> {
-    let root = BitMapBackend::new(path, (WIDTH, HEIGHT)).into_drawing_area();
-    let _ = root.fill(&WHITE);
-    root
 }
 
 /// Tick label formatter: plain numbers with up to 4 significant digits, scientific when tiny or

@@ -67,6 +67,7 @@ fn paper_report_has_every_figure_drawn_and_every_link_resolving() {
         let (w, h, var) = png_stats(&out.join("figures").join(&f.file));
         assert_eq!((w, h), (1200, 700), "{}", f.file);
         assert!(var > 100.0, "{} looks blank (grey variance {var})", f.file);
+        assert!(f.dropped.is_empty(), "{}: labels left out for want of room: {:?}", f.file, f.dropped);
     }
     let all = links(&html);
     assert!(all.len() > 20);
@@ -79,6 +80,44 @@ fn paper_report_has_every_figure_drawn_and_every_link_resolving() {
         assert!(html.contains(title), "page lacks {title}");
     }
     assert!(!html.contains("http://") && !html.contains("https://"), "the page must not load network resources");
+    // The paper's pipelines name the paper's figures.
+    let shear = report.figures.iter().find(|f| f.file == "shear_stress.png").unwrap();
+    assert!(shear.headings.iter().any(|h| h.contains("(paper Fig. 3)")), "{:?}", shear.headings);
+}
+
+#[test]
+fn a_users_scene_with_two_control_nodes_draws_both_and_cites_no_paper_figure() {
+    let dir = scratch_dir("report-two-nodes");
+    let paper = std::fs::read_to_string(repo_path("pipelines/paper.toml")).unwrap();
+    let text = paper
+        .replace("name = \"paper\"", "name = \"two-nodes\"")
+        .replace("list = [123, 200, 7]", "list = [123]")
+        .replace("duration_s = 0.32 ", "duration_s = 0.24 ")
+        .replace("nodes = [36]", "nodes = [36, 40]")
+        .replace("paper_figures = true", "paper_figures = false");
+    assert_eq!(text.matches("nodes = [36, 40]").count(), 2, "the control and accelerogram nodes of paper.toml changed");
+    assert!(text.contains("paper_figures = false"));
+    let report = run(&dir, &text);
+    for f in &report.figures {
+        for h in &f.headings {
+            assert!(!h.contains("paper Fig."), "{}: title {h:?} cites the paper in a user's scene", f.file);
+        }
+        assert!(!f.caption.contains("paper Fig."), "{}: caption cites the paper", f.file);
+    }
+    let drawn: Vec<&str> = report.figures.iter().map(|f| f.file.as_str()).collect();
+    for file in [
+        "acceleration_s2.png",
+        "acceleration_run.png",
+        "response_spectra_z.png",
+        "response_spectra_x.png",
+        "fourier.png",
+    ] {
+        let f = report.figures.iter().find(|f| f.file == file).unwrap_or_else(|| panic!("{file} not drawn: {drawn:?}"));
+        for node in ["node 36 ", "node 40 "] {
+            assert!(f.panels.iter().any(|p| p.contains(node)), "{file}: no panel of {node}: {:?}", f.panels);
+            assert!(f.caption.contains(node), "{file}: the caption does not name {node}");
+        }
+    }
 }
 
 #[test]
@@ -87,7 +126,15 @@ fn figures_without_data_are_skipped_not_drawn_empty() {
     // No spectra, no energy, no control nodes: those figures are skipped and listed as such.
     let report = run(&dir, "version = 1\nname = \"bare\"\n[seeds]\nlist = [1]\n[shear]\nduration_s = 0.1\n");
     let skipped: Vec<&str> = report.skipped.iter().map(|(f, _)| f.as_str()).collect();
-    for f in ["response_spectra_z.png", "fourier.png", "attenuation.png", "energy.png", "acceleration_s2.png"] {
+    for f in [
+        "response_spectra_z.png",
+        "fourier.png",
+        "attenuation.png",
+        "energy.png",
+        "acceleration_s2.png",
+        "records.png",
+        "record_set.png",
+    ] {
         assert!(skipped.contains(&f), "{f} should be skipped: {skipped:?}");
         assert!(!dir.join("out/figures").join(f).exists(), "{f} drawn without data");
     }

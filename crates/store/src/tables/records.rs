@@ -365,6 +365,10 @@ read_back! {
         component: Vec<String> = c.strs(col::COMPONENT)?,
         /// Scale.
         scale: Vec<String> = c.strs(col::SCALE)?,
+        /// Time of the window's first sample in the run (s; before any padding).
+        start_s: Vec<f64> = c.f64s(col::START_S)?,
+        /// Part of the window before the event's start (s).
+        pre_event_s: Vec<f64> = c.f64s(col::PRE_EVENT_S)?,
         /// Sampling interval (s).
         dt_s: Vec<f64> = c.f64s(col::DT_S)?,
         /// Lowest usable frequency (Hz).
