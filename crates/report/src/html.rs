@@ -243,16 +243,29 @@ pub(crate) fn page(d: &ReportInput, figures: &[Figure], skipped: &[(String, Stri
         }
     }
     let _ = write!(w, "</ul>\n");
-    let at2 = files(d, "at2", ".AT2");
-    if !at2.is_empty() {
+    for (dir, what) in [
+        (
+            "records",
+            "Accelerogram records: one per event, node and component, processed (band-pass inside the usable band); named pipeline_seed_record_scale",
+        ),
+        ("set", "The record set matched to the design spectrum, scaled"),
+    ] {
+        let mut listed: Vec<String> = [".AT2", ".SAC", ".csv"].iter().flat_map(|ext| files(d, dir, ext)).collect();
+        listed.sort();
+        if listed.is_empty() {
+            continue;
+        }
         let _ = write!(
             w,
-            "<h2>Accelerograms (PEER .AT2)</h2>\n<p>{} files in <code>at2/</code>, named pipeline_seed_node_component_scale; \
-             values in g; model scale and prototype scale (times ×λ, accelerations ÷λ).</p>\n<ul>\n",
-            at2.len()
+            "<h2>{what}</h2>\n<p>{} files in <code>{dir}/</code>: PEER .AT2 (g), SAC (nm/s²) or CSV (SI); model scale \
+             and prototype scale (times ×λ, accelerations ÷λ).</p>\n<ul>\n",
+            listed.len()
         );
-        for f in at2.iter().take(60) {
+        for f in listed.iter().take(60) {
             let _ = writeln!(w, "<li><a href=\"{0}\">{0}</a></li>", esc(f));
+        }
+        if listed.len() > 60 {
+            let _ = writeln!(w, "<li>… and {} more</li>", listed.len() - 60);
         }
         let _ = write!(w, "</ul>\n");
     }

@@ -1,6 +1,8 @@
 //! The figures of the report, each from the tables of the output folder, drawn with the chart
 //! layer of [`crate::charts`] (clipped to the axes, labels placed where no data is).
 
+mod catalogue;
+
 use std::path::Path;
 
 use plotters::style::{BLACK, RGBColor};
@@ -42,7 +44,7 @@ pub enum Outcome {
 pub type Draw = fn(&ReportInput, &Path) -> Result<Outcome, ReportError>;
 
 /// Every figure, in page order.
-pub const ALL: [(&str, Draw); 15] = [
+pub const ALL: [(&str, Draw); 20] = [
     ("shear_stress.png", shear_stress),
     ("normal_stress.png", normal_stress),
     ("mean_slip.png", mean_slip),
@@ -58,6 +60,11 @@ pub const ALL: [(&str, Draw); 15] = [
     ("magnitude.png", magnitude),
     ("attenuation.png", attenuation),
     ("energy.png", energy),
+    ("catalogue.png", catalogue::overview),
+    ("magnitude_frequency.png", catalogue::magnitude_frequency),
+    ("recurrence_fits.png", catalogue::recurrence_fits),
+    ("aftershocks.png", catalogue::aftershocks),
+    ("scaling.png", catalogue::scaling),
 ];
 
 /// At most this many nodes are drawn side by side in the accelerogram, spectrum and Fourier
@@ -215,6 +222,9 @@ fn shear_stress(d: &ReportInput, path: &Path) -> Result<Outcome, ReportError> {
     if lines.is_empty() {
         return Ok(Outcome::Skipped("no shear stress recorded".into()));
     }
+    if markers.len() > LONG_RUN_MAIN_SHOCKS {
+        return long_shear_stress(d, path);
+    }
     // Several seeds share each main-shock rank, and their S2s lie close together: each rank is
     // labelled once, above the highest of its triangles, in black (it names the triangles of
     // every seed); the chart drops any label that would still overlap another.
@@ -245,6 +255,103 @@ fn shear_stress(d: &ReportInput, path: &Path) -> Result<Outcome, ReportError> {
              found by the event detector (stress drops of at least half the largest), each rank labelled once; the \
              smaller drops between them are fore- and aftershocks.",
             seeds_text(&d.seeds)
+        ),
+    )
+}
+
+/// More main shocks than this in the τ(t) figure and it is drawn as a long run: an envelope with
+/// ticks, and a zoom on the largest event.
+pub const LONG_RUN_MAIN_SHOCKS: usize = 40;
+
+/// Per pixel column, the minimum and maximum of `y` (x at the column's centre).
+fn envelope(t: &[f64], y: &[f64], columns: usize) -> Vec<(f64, f64, f64)> {
+    let (Some(&t0), Some(&t1)) = (t.first(), t.last()) else { return vec![] };
+    let width = (t1 - t0).max(f64::MIN_POSITIVE) / columns as f64;
+    let mut out: Vec<(f64, f64, f64)> = Vec::with_capacity(columns);
+    let mut current = usize::MAX;
+    for (&x, &v) in t.iter().zip(y) {
+        let k = (((x - t0) / width) as usize).min(columns - 1);
+        if k != current {
+            out.push((t0 + (k as f64 + 0.5) * width, v, v));
+            current = k;
+        } else if let Some(last) = out.last_mut() {
+            last.1 = last.1.min(v);
+            last.2 = last.2.max(v);
+        }
+    }
+    out
+}
+
+/// τ(t) of a long run (first seed): the min–max envelope per pixel column with a tick per main
+/// shock, and below it the stretch from the main shock before the largest drop to the one after.
+fn long_shear_stress(d: &ReportInput, path: &Path) -> Result<Outcome, ReportError> {
+    let Some(&seed) = d.seeds.first() else { return Ok(Outcome::Skipped("no successful seed".into())) };
+    let Some((t, tau)) = series(d, seed, Channel::ShearStress.name())? else {
+        return Ok(Outcome::Skipped("no shear stress recorded".into()));
+    };
+    let kpa: Vec<f64> = tau.iter().map(|v| v / 1e3).collect();
+    let shocks = main_shocks(d, seed)?;
+    let top = kpa.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let ticks = Points {
+        label: format!("main shocks ({})", shocks.len()),
+        points: shocks.iter().map(|(_, s)| (*s, top * 1.04)).collect(),
+        colour: colour(3),
+        size: 2,
+    };
+    let whole = Panel {
+        bands: vec![Band {
+            points: envelope(&t, &kpa, WIDTH as usize),
+            colour: colour(0),
+            label: "min–max per pixel".into(),
+        }],
+        points: vec![ticks],
+        ..Panel::linear("time since the start of shearing (s)", "τ (kPa)")
+    };
+    // The largest main shock by stress drop, and its neighbours.
+    let ev = d.events.as_ref();
+    let largest = ev.and_then(|ev| {
+        (0..ev.len())
+            .filter(|&i| ev.seed[i] == seed && ev.kind[i].is_main())
+            .max_by(|&a, &b| ev.stress_drop_pa[a].total_cmp(&ev.stress_drop_pa[b]))
+            .map(|i| (ev.kind[i].label(), ev.start_s[i], ev.stress_drop_pa[i]))
+    });
+    let mut panels = vec![whole];
+    let mut zoom_text = String::new();
+    if let Some((label, start, drop)) = largest {
+        let before = shocks.iter().map(|s| s.1).filter(|&s| s < start).fold(t[0], f64::max);
+        let after = shocks.iter().map(|s| s.1).find(|&s| s > start).unwrap_or(t[t.len() - 1]);
+        let (a, b) = (t.partition_point(|&x| x < before), t.partition_point(|&x| x <= after));
+        let markers: Vec<Marker> = shocks
+            .iter()
+            .filter(|s| s.1 >= before && s.1 <= after)
+            .map(|(l, s)| Marker {
+                at: (*s, value_at(&t, &kpa, *s)),
+                text: l.clone(),
+                colour: colour(0),
+                text_colour: BLACK,
+            })
+            .collect();
+        panels.push(Panel {
+            lines: vec![Line::new("", decimate(&t[a..b], &kpa[a..b], WIDTH as usize), 0)],
+            markers,
+            name: format!("zoom: {label}, the largest drop ({:.2} kPa)", drop / 1e3),
+            ..Panel::linear("time since the start of shearing (s)", "τ (kPa)")
+        });
+        zoom_text = format!(
+            " Below, from the main shock before the largest drop ({label}, {:.2} kPa) to the one after it, at full \
+             resolution.",
+            drop / 1e3
+        );
+    }
+    let sheet = Sheet::new(format!("Shear stress on the base, seed {seed}"), 1, panels);
+    drawn(
+        path,
+        &sheet,
+        "Shear stress τ(t)".into(),
+        format!(
+            "Mean shear stress on the base, τ = −ΣF_x/A, of seed {seed} over the whole run as the range of τ in each \
+             pixel column (a long run: {} main shocks, each a tick above the envelope).{zoom_text}",
+            shocks.len()
         ),
     )
 }
@@ -1058,7 +1165,19 @@ fn energy(d: &ReportInput, path: &Path) -> Result<Outcome, ReportError> {
 
 #[cfg(test)]
 mod tests {
-    use super::spread;
+    use super::{envelope, spread};
+
+    #[test]
+    fn the_envelope_keeps_each_columns_extremes() {
+        // A sawtooth of 1,000 teeth over 100 columns: every column spans the whole tooth.
+        let t: Vec<f64> = (0..100_000).map(|i| i as f64 * 1e-3).collect();
+        let y: Vec<f64> = (0..100_000).map(|i| (i % 100) as f64).collect();
+        let e = envelope(&t, &y, 100);
+        assert_eq!(e.len(), 100);
+        assert!(e.iter().all(|&(_, lo, hi)| lo == 0.0 && hi == 99.0), "{:?}", &e[..3]);
+        // Column centres span the record.
+        assert!((e[0].0 - 0.4999).abs() < 1e-3 && (e[99].0 - 99.4995).abs() < 1e-2, "{} {}", e[0].0, e[99].0);
+    }
 
     #[test]
     fn a_subset_of_nodes_spans_the_recorded_ones() {
