@@ -11,6 +11,8 @@
 //! - significant duration D5–95: the time between the instants the cumulative Arias intensity
 //!   reaches 5% and 95% of its total, each found by linear interpolation between samples.
 
+use crate::accelerogram::processing::integrate;
+
 /// Standard gravity (m/s²).
 pub const G: f64 = 9.80665;
 
@@ -45,19 +47,6 @@ impl Intensity {
     pub fn d5_95(&self) -> f64 {
         self.t95 - self.t5
     }
-}
-
-/// Cumulative trapezoidal integral of `x` from 0.
-fn integrate(x: &[f64], dt: f64) -> Vec<f64> {
-    let mut out = Vec::with_capacity(x.len());
-    let mut acc = 0.0;
-    for (i, v) in x.iter().enumerate() {
-        if i > 0 {
-            acc += 0.5 * (x[i - 1] + v) * dt;
-        }
-        out.push(acc);
-    }
-    out
 }
 
 /// Time where the non-decreasing `h` first reaches `level`, interpolated linearly.
