@@ -196,78 +196,7 @@ pub struct Selection {
     pub eligible: usize,
 }
 
-/// Why no set could be selected.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-pub enum Refusal {
-    /// Too few records have a usable band covering the range.
-    #[error(
-        "only {eligible} of {candidates} candidates have a usable band covering the period range [{t_a}, {t_b}] s; \
-         {needed} are needed"
-    )]
-    TooFewEligible {
-        /// Records needed (N).
-        needed: usize,
-        /// Eligible records.
-        eligible: usize,
-        /// Candidates given.
-        candidates: usize,
-        /// Range (s).
-        t_a: f64,
-        /// Range (s).
-        t_b: f64,
-    },
-    /// The group cap leaves too few records.
-    #[error(
-        "the {eligible} eligible records come from {groups} groups; at most {per_group} per group allows only \
-         {capacity} records, {needed} are needed"
-    )]
-    TooFewGroups {
-        /// Records needed (N).
-        needed: usize,
-        /// Eligible records.
-        eligible: usize,
-        /// Groups among the eligible records.
-        groups: usize,
-        /// The cap.
-        per_group: usize,
-        /// Records the cap allows.
-        capacity: usize,
-    },
-    /// Even at the largest scale factor the mean cannot reach the rule somewhere in the range.
-    #[error(
-        "at T = {period} s even the {needed} strongest eligible records allowed by the group cap, all scaled by \
-         s_max = {scale_max}, reach only {:.1}% of the target (the rule asks {:.0}%): raise s_max or add stronger records",
-        100.0 * best_ratio, 100.0 * rule_fraction
-    )]
-    ScaleBounds {
-        /// Records needed (N).
-        needed: usize,
-        /// Period where the bound fails (s).
-        period: f64,
-        /// Best reachable ratio of the mean to the target there.
-        best_ratio: f64,
-        /// The scale bound.
-        scale_max: f64,
-        /// The rule.
-        rule_fraction: f64,
-    },
-    /// The necessary check passed but the search found no set meeting the rule.
-    #[error(
-        "the search found no set meeting the rule: the best set, all scaled by s_max = {scale_max}, reaches \
-         {:.1}% of the target at T = {period} s (the rule asks {:.0}%)",
-        100.0 * best_ratio, 100.0 * rule_fraction
-    )]
-    NotFound {
-        /// Best reachable ratio of the best set found.
-        best_ratio: f64,
-        /// Period where it is reached (s).
-        period: f64,
-        /// The scale bound.
-        scale_max: f64,
-        /// The rule.
-        rule_fraction: f64,
-    },
-}
+pub use crate::error::Refusal;
 
 fn refuse(r: Refusal) -> SeismoError {
     SeismoError::Selection(r)

@@ -174,18 +174,7 @@ pub fn butterworth_gain(f: f64, f_low: f64, f_high: Option<f64>, order: u32) -> 
     high_pass * low_pass
 }
 
-/// Cumulative trapezoidal integral of `x` sampled every `dt`, starting from 0.
-pub fn integrate(x: &[f64], dt: f64) -> Vec<f64> {
-    let mut out = Vec::with_capacity(x.len());
-    let mut acc = 0.0;
-    for (i, v) in x.iter().enumerate() {
-        if i > 0 {
-            acc += 0.5 * (x[i - 1] + v) * dt;
-        }
-        out.push(acc);
-    }
-    out
-}
+pub use crate::spectra::intensity::integrate;
 
 /// Multiplies the first `n_start` and last `n_end` samples by half-cosine ramps
 /// `½(1 − cos(π·k/n))`, `k = 0…n−1` counted from the record's end inwards (the end sample becomes 0).

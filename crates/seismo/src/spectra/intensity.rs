@@ -11,8 +11,6 @@
 //! - significant duration D5–95: the time between the instants the cumulative Arias intensity
 //!   reaches 5% and 95% of its total, each found by linear interpolation between samples.
 
-use crate::accelerogram::processing::integrate;
-
 /// Standard gravity (m/s²).
 pub const G: f64 = 9.80665;
 
@@ -90,6 +88,19 @@ pub fn intensity(a: &[f64], dt: f64, baseline: Baseline) -> Intensity {
         t5: crossing(&h, 0.05 * total, dt),
         t95: crossing(&h, 0.95 * total, dt),
     }
+}
+
+/// Cumulative trapezoidal integral of `x` sampled every `dt`, starting from 0.
+pub fn integrate(x: &[f64], dt: f64) -> Vec<f64> {
+    let mut out = Vec::with_capacity(x.len());
+    let mut acc = 0.0;
+    for (i, v) in x.iter().enumerate() {
+        if i > 0 {
+            acc += 0.5 * (x[i - 1] + v) * dt;
+        }
+        out.push(acc);
+    }
+    out
 }
 
 #[cfg(test)]

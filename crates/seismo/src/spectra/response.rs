@@ -67,50 +67,7 @@ use rustfft::{Fft, FftPlanner};
 use crate::spectra::oscillator::Oscillator;
 pub use crate::spectra::oscillator::free_vibration_peak;
 
-/// A numerical input the spectra cannot answer for.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-pub enum SpectrumError {
-    /// The sampling interval is not a positive finite number.
-    #[error("sampling interval {dt} s: need 0 < Δt (finite)")]
-    Interval {
-        /// The interval (s).
-        dt: f64,
-    },
-    /// A period is not a positive finite number.
-    #[error("period {index} is {value} s: need 0 < T (finite)")]
-    Period {
-        /// Its position in the list.
-        index: usize,
-        /// The period (s).
-        value: f64,
-    },
-    /// A damping ratio is outside [0, 1).
-    #[error("damping {index} is {value}: need 0 ≤ ξ < 1")]
-    Damping {
-        /// Its position in the list.
-        index: usize,
-        /// The damping ratio.
-        value: f64,
-    },
-    /// A sample of the record is NaN or infinite.
-    #[error("sample {index} of {component} is {value}: records must be finite")]
-    NonFinite {
-        /// Which record ("record", "x" or "y").
-        component: &'static str,
-        /// Sample index.
-        index: usize,
-        /// The value.
-        value: f64,
-    },
-    /// The two horizontal components do not have the same number of samples.
-    #[error("the components have {x} and {y} samples: they must be sampled alike")]
-    Components {
-        /// Samples of x.
-        x: usize,
-        /// Samples of y.
-        y: usize,
-    },
-}
+pub use crate::error::SpectrumError;
 
 /// How the samples of a record are read between sample times.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
