@@ -833,8 +833,8 @@ fn record_set(d: &ReportInput, path: &Path) -> Result<Outcome, ReportError> {
     };
     // A record's prototype spectrum at the set's damping (of its RotD50 in the RotD table, which
     // also holds RotD100), by increasing period.
-    let psa_of = |seed: u64, record: &str| -> Vec<(f64, f64)> {
-        let mut pts: Vec<(f64, f64)> = (0..sp.seed.len())
+    let psa_of = |seed: u64, record: &str| -> Vec<(f64, f64, bool)> {
+        let mut pts: Vec<(f64, f64, bool)> = (0..sp.seed.len())
             .filter(|&i| {
                 sp.seed[i] == seed
                     && sp.record[i] == record
@@ -842,22 +842,25 @@ fn record_set(d: &ReportInput, path: &Path) -> Result<Outcome, ReportError> {
                     && (!rotd || sp.component[i] == "rotd50")
                     && (sp.damping[i] - settings.damping).abs() < 1e-12
             })
-            .map(|i| (sp.period_s[i], sp.psa_m_s2[i]))
+            .map(|i| (sp.period_s[i], sp.psa_m_s2[i], sp.in_band[i]))
             .collect();
         pts.sort_by(|a, b| a.0.total_cmp(&b.0));
         pts
     };
+    // Each record is drawn only in its usable band; the mean only where every record is in band.
     let mut lines = Vec::new();
-    let mut scaled_all: Vec<Vec<(f64, f64)>> = Vec::new();
+    let mut scaled_all: Vec<Vec<(f64, f64, bool)>> = Vec::new();
     for k in 0..set.seed.len() {
-        let pts: Vec<(f64, f64)> =
-            psa_of(set.seed[k], &set.record[k]).into_iter().map(|(t, a)| (t, a * set.scale_factor[k])).collect();
+        let pts: Vec<(f64, f64, bool)> = psa_of(set.seed[k], &set.record[k])
+            .into_iter()
+            .map(|(t, a, b)| (t, a * set.scale_factor[k], b))
+            .collect();
         if pts.is_empty() {
             continue;
         }
         lines.push(Line {
-            label: if lines.is_empty() { "each scaled record".into() } else { String::new() },
-            points: pts.clone(),
+            label: if lines.is_empty() { "each scaled record, in its usable band".into() } else { String::new() },
+            points: pts.iter().filter(|p| p.2).map(|p| (p.0, p.1)).collect(),
             colour: RGBColor(150, 150, 150),
             width: 1,
             alpha: 0.7,
@@ -870,10 +873,11 @@ fn record_set(d: &ReportInput, path: &Path) -> Result<Outcome, ReportError> {
     // The mean on the common grid (every record's spectrum has the pipeline's periods).
     let n = scaled_all.iter().map(Vec::len).min().unwrap_or(0);
     let mean: Vec<(f64, f64)> = (0..n)
+        .filter(|&j| scaled_all.iter().all(|r| r[j].2))
         .map(|j| (scaled_all[0][j].0, scaled_all.iter().map(|r| r[j].1).sum::<f64>() / scaled_all.len() as f64))
         .collect();
     let target: Vec<(f64, f64)> =
-        mean.iter().filter_map(|&(t, _)| settings.target.psa(t).ok().map(|v| (t, v))).collect();
+        scaled_all[0][..n].iter().filter_map(|&(t, _, _)| settings.target.psa(t).ok().map(|v| (t, v))).collect();
     let fraction = settings.options.rule_fraction;
     let floor: Vec<(f64, f64)> = target.iter().map(|&(t, v)| (t, fraction * v)).collect();
     let range = settings.options.range.bounds().ok();
