@@ -130,6 +130,7 @@ pub fn run_seed(
 pub(crate) fn prepare(model: &Model, seed: u64, options: RunOptions) -> Result<(LaneSetup, CriticalStep), SolverError> {
     let stiffness = model.bar_stiffness(seed)?;
     let friction = model.friction_factors(seed)?;
+    let strength = model.bar_strength(seed)?;
     let critical = critical_time_step(model, &stiffness)?;
     let mut dt_s = match model.scene().time_step {
         TimeStep::Fraction(f) => f * critical.dt_s,
@@ -145,5 +146,5 @@ pub(crate) fn prepare(model: &Model, seed: u64, options: RunOptions) -> Result<(
         let k = (interval / dt_s * (1.0 - 1e-12)).ceil().max(1.0);
         dt_s = interval / k;
     }
-    Ok((LaneSetup { dt_s, stiffness, friction }, critical))
+    Ok((LaneSetup { dt_s, stiffness, friction, strength }, critical))
 }
