@@ -224,6 +224,20 @@ pub struct RuptureSection {
     /// of a P wave across a module).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub ae_link_time_s: Option<f64>,
+    /// Zones whose bars stay elastic, `{ face = "x_min", depth_m = 0.1 }`: every bar whose
+    /// midpoint lies within `depth_m` of the face (grips, loading points). Default none.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub elastic_zones: Vec<ElasticZoneSection>,
+}
+
+/// One elastic zone of `[rupture]`.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct ElasticZoneSection {
+    /// The face: `"x_min"`, `"x_max"`, `"y_min"`, `"y_max"`, `"z_min"`, `"z_max"`.
+    pub face: String,
+    /// Depth from the face (m), > 0.
+    pub depth_m: f64,
 }
 
 impl Default for RuptureSection {
@@ -237,6 +251,7 @@ impl Default for RuptureSection {
             young_correlation: 0.0,
             ae_link_distance_m: None,
             ae_link_time_s: None,
+            elastic_zones: Vec::new(),
         }
     }
 }
@@ -689,6 +704,15 @@ fn rupture(ck: &mut Checker, r: &RuptureSection, m: &MaterialSection, lc_m: f64)
     if let Some(t) = r.ae_link_time_s {
         ck.non_negative("rupture.ae_link_time_s", t);
     }
+    let mut elastic_zones = Vec::new();
+    for (i, z) in r.elastic_zones.iter().enumerate() {
+        let face = ck.named::<Face>(&format!("rupture.elastic_zones[{i}].face"), &z.face);
+        if ck.positive(&format!("rupture.elastic_zones[{i}].depth_m"), z.depth_m)
+            && let Some(face) = face
+        {
+            elastic_zones.push((face, z.depth_m));
+        }
+    }
     Rupture {
         fracture_energy_j_m2: r.fracture_energy_j_m2,
         kr,
@@ -696,6 +720,7 @@ fn rupture(ck: &mut Checker, r: &RuptureSection, m: &MaterialSection, lc_m: f64)
         fracture_energy_cv: r.fracture_energy_cv,
         fracture_energy_stream: stream,
         young_correlation: r.young_correlation,
+        elastic_zones,
     }
 }
 

@@ -42,5 +42,5 @@ pub use error::SolverError;
 pub use geometry::{Dims, Lattice, NodeId};
 pub use model::Model;
 pub use recording::{Channel, Crack, Recording, Sampling};
-pub use run::{BATCH, Perturbation, RunOptions, RunOutput, run_batched, run_lanes, run_seed};
+pub use run::{BATCH, BarDamage, Perturbation, RunOptions, RunOutput, run_batched, run_lanes, run_seed};
 pub use scene::Scene;

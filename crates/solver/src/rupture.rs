@@ -68,10 +68,11 @@ use rand::distr::{Distribution, Open01};
 use rand::rngs::ChaCha8Rng;
 
 use crate::error::SolverError;
+use crate::geometry::{Bar, Face, Lattice};
 use crate::material::{STREAM_YOUNG, UnitWeibull, truss_constants};
 
 /// The validated `[rupture]` of a scene: the bilinear law's parameters and the fields on `Gf`.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Rupture {
     /// Mean fracture energy Gf (J/m²).
     pub fracture_energy_j_m2: f64,
@@ -85,9 +86,23 @@ pub struct Rupture {
     pub fracture_energy_stream: Option<u64>,
     /// Correlation of the normal scores of the E and Gf fields (0: independent).
     pub young_correlation: f64,
+    /// Zones whose bars stay elastic: every bar whose midpoint lies within the depth (m) of the
+    /// face, e.g. the grips of a tension test or the block around a loading point.
+    pub elastic_zones: Vec<(Face, f64)>,
 }
 
 impl Rupture {
+    /// Whether `bar` lies in an elastic zone (its midpoint within a zone's depth of its face).
+    pub fn stays_elastic(&self, lattice: &Lattice, bar: &Bar) -> bool {
+        let m = lattice.bar_midpoint(bar);
+        let extent = lattice.extent();
+        self.elastic_zones.iter().any(|&(face, depth)| {
+            let (axis, far) = face.axis();
+            let distance = if far { extent[axis] - m[axis] } else { m[axis] };
+            distance <= depth + 1e-9 * lattice.lc()
+        })
+    }
+
     /// Critical strain of a homogeneous bar of the lattice (any family):
     /// `εp = √(2·Gf / (Kr·(2 + 4δ)·α·E·Lc))`.
     pub fn peak_strain(&self, young_pa: f64, poisson: f64, lc_m: f64) -> f64 {
@@ -349,6 +364,7 @@ mod tests {
             fracture_energy_cv: 0.0,
             fracture_energy_stream: None,
             young_correlation: 0.0,
+            elastic_zones: Vec::new(),
         };
         let ea = crate::material::axial_stiffness(crate::geometry::BarFamily::Edge, e, nu, lc);
         let eps_p = r.peak_strain(e, nu, lc);
@@ -475,6 +491,7 @@ mod tests {
             fracture_energy_cv: 0.0,
             fracture_energy_stream: None,
             young_correlation: 0.0,
+            elastic_zones: Vec::new(),
         };
         for family in [crate::geometry::BarFamily::Edge, crate::geometry::BarFamily::Diagonal] {
             let l = if family == crate::geometry::BarFamily::Diagonal { 3f64.sqrt() / 2.0 * lc } else { lc };
@@ -485,7 +502,7 @@ mod tests {
         // Kosteski's εp = Rf·√(Gf/((1−ν²)E)) with the derived Kr is the same critical strain.
         let rf = 2.0;
         let kr = kr_from_failure_factor(rf, nu, lc);
-        let with_rf = Rupture { kr, ..r };
+        let with_rf = Rupture { kr, ..r.clone() };
         let kosteski = rf * (r.fracture_energy_j_m2 / ((1.0 - nu * nu) * e)).sqrt();
         assert!((with_rf.peak_strain(e, nu, lc) / kosteski - 1.0).abs() < 1e-14);
         assert!((kr_from_failure_factor(max_failure_factor(nu, lc), nu, lc) - 1.0).abs() < 1e-14);
@@ -516,6 +533,7 @@ mod tests {
             fracture_energy_cv: 0.2,
             fracture_energy_stream: Some(2),
             young_correlation: 0.0,
+            elastic_zones: Vec::new(),
         };
         let g = fracture_energy_factors(&r, 0.1, 5, n).unwrap().unwrap();
         let mean = g.iter().sum::<f64>() / n as f64;
@@ -542,7 +560,8 @@ mod tests {
         };
         assert!(corr(&score(&ue), &gf_scores(&g)).abs() < 0.01, "independent streams");
         for rho in [0.7, -0.4] {
-            let g = fracture_energy_factors(&Rupture { young_correlation: rho, ..r }, 0.1, 5, n).unwrap().unwrap();
+            let g =
+                fracture_energy_factors(&Rupture { young_correlation: rho, ..r.clone() }, 0.1, 5, n).unwrap().unwrap();
             let c = corr(&score(&ue), &gf_scores(&g));
             assert!((c - rho).abs() < 0.01, "ρ = {rho}: measured {c}");
         }

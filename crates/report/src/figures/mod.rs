@@ -1,5 +1,7 @@
 //! The figures of the report, each from the tables of the output folder.
 
+mod cracks;
+
 use std::path::Path;
 
 use plotters::chart::SeriesLabelPosition;
@@ -35,7 +37,7 @@ pub enum Outcome {
 pub type Draw = fn(&ReportInput, &Path) -> Result<Outcome, ReportError>;
 
 /// Every figure, in page order.
-pub const ALL: [(&str, Draw); 13] = [
+pub const ALL: [(&str, Draw); 15] = [
     ("shear_stress.png", shear_stress),
     ("normal_stress.png", normal_stress),
     ("mean_slip.png", mean_slip),
@@ -49,6 +51,8 @@ pub const ALL: [(&str, Draw); 13] = [
     ("magnitude.png", magnitude),
     ("attenuation.png", attenuation),
     ("energy.png", energy),
+    ("cracks.png", cracks::crack_map),
+    ("acoustic_emission.png", cracks::emission),
 ];
 
 fn seeds_text(seeds: &[u64]) -> String {
@@ -91,6 +95,15 @@ fn main_shocks(d: &ReportInput, seed: u64) -> Result<Vec<(String, f64)>, ReportE
     Ok((0..ev.len())
         .filter(|&i| ev.seed[i] == seed && ev.kind[i].is_main())
         .map(|i| (ev.kind[i].label(), ev.start_s[i]))
+        .collect())
+}
+
+/// Main shocks of one seed: (label, start, end).
+fn main_shocks_with_ends(d: &ReportInput, seed: u64) -> Result<Vec<(String, f64, f64)>, ReportError> {
+    let Some(ev) = &d.events else { return Ok(vec![]) };
+    Ok((0..ev.len())
+        .filter(|&i| ev.seed[i] == seed && ev.kind[i].is_main())
+        .map(|i| (ev.kind[i].label(), ev.start_s[i], ev.start_s[i] + ev.duration_s[i]))
         .collect())
 }
 
@@ -647,6 +660,9 @@ fn energy(d: &ReportInput, path: &Path) -> Result<Outcome, ReportError> {
         ("lost in landings", Channel::ImpactDissipated),
         ("balance residual", Channel::EnergyResidual),
     ];
+    let fracture = read_series_channel(&df, Channel::FractureDissipated.name())?.is_some();
+    let terms: Vec<(&str, Channel)> =
+        terms.into_iter().chain(fracture.then_some(("fracture dissipated", Channel::FractureDissipated))).collect();
     let mut lines = Vec::new();
     let mut residual = 0.0f64;
     let mut work = 0.0f64;

@@ -7,7 +7,8 @@ use crate::field::Field;
 use crate::model::Model;
 use crate::quasistatic::{SKIP_CHECK_EVERY, ShearClock, SkipStats, Skipper, settle_statically};
 use crate::recording::{Crack, Recorder};
-use crate::run::{RunOptions, RunOutput, prepare};
+use crate::run::{BarDamage, RunOptions, RunOutput, prepare};
+use crate::rupture::BarLaw;
 use crate::scene::SettleMethod;
 use crate::statics::CriticalStep;
 use crate::step::rupture::{CrackKind, CrackLog, elongations};
@@ -287,11 +288,36 @@ pub fn run_lanes<const L: usize>(
                 settle_note: lane.settle_note,
                 skip: lane.skipper.as_ref().map_or_else(SkipStats::default, |s| s.stats),
                 recording: recorder.finish(origin, dt, stride),
+                damage: damage(model, &params, &state, l),
             })
         }
         Stage::Failed(e) => Err(e),
         Stage::Settling { .. } | Stage::Shearing { .. } => unreachable!("the loop ends when no lane is running"),
     })
+}
+
+/// The bars of lane `l` past their peak, by canonical index, with what the law says they
+/// dissipated.
+fn damage<const L: usize>(model: &Model, params: &Params<'_, L>, state: &State<L>, l: usize) -> Vec<BarDamage> {
+    let (Some(d), Some(law)) = (&state.rupture, &params.rupture) else { return Vec::new() };
+    let mut out: Vec<BarDamage> = (0..model.bar_count())
+        .filter(|&b| d.secant[b][l] != params.k[b][l])
+        .map(|b| {
+            let canonical = model.bar_canonical()[b];
+            let bar = &model.lattice().bars()[canonical as usize];
+            let kernel = if bar.family == crate::geometry::BarFamily::Diagonal { 3f64.sqrt() } else { 1.0 };
+            let length = bar.length_factor() * model.scene().lc_m;
+            let bar_law = BarLaw { k: params.k[b][l], peak: law.peak[b][l], kr: law.kr };
+            BarDamage {
+                bar: canonical,
+                reach_strain: d.reach[b][l] / (kernel * length),
+                dissipated_j: bar_law.dissipated(d.reach[b][l]),
+                broken: d.secant[b][l] == 0.0,
+            }
+        })
+        .collect();
+    out.sort_by_key(|d| d.bar);
+    out
 }
 
 /// A crack of lane `l` as recorded: canonical bar, strain, energy (docs/model.md §11); the time is

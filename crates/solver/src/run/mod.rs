@@ -101,6 +101,22 @@ pub struct RunOutput {
     pub skip: SkipStats,
     /// Recorded series.
     pub recording: Recording,
+    /// Every bar past its peak at the end of the run (when the scene's bars crack), by canonical
+    /// index.
+    pub damage: Vec<BarDamage>,
+}
+
+/// A bar past its peak at the end of a run (docs/model.md §11).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BarDamage {
+    /// Canonical bar index.
+    pub bar: u32,
+    /// Largest strain it reached.
+    pub reach_strain: f64,
+    /// Energy it dissipated by the law's closed form `Gf·A_f·(κ − εp)/(εr − εp)` (J).
+    pub dissipated_j: f64,
+    /// Whether it reached `εr`.
+    pub broken: bool,
 }
 
 impl RunOutput {

@@ -77,7 +77,7 @@ impl<'m, const L: usize> Params<'m, L> {
         }
         let rupture = match (lanes.iter().all(|l| l.strength.is_some()), lanes.iter().all(|l| l.strength.is_none())) {
             (true, _) => {
-                let kr = model.scene().rupture.expect("lanes with a strength need a scene with [rupture]").kr;
+                let kr = model.scene().rupture.as_ref().expect("lanes with a strength need a scene with [rupture]").kr;
                 let mut peak = vec![[0.0; L]; nb];
                 for (l, lane) in lanes.iter().enumerate() {
                     let s = lane.strength.as_ref().expect("checked");

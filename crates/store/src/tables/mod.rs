@@ -1,6 +1,7 @@
 //! Writers (typed values → frames) and readers (frames → typed columns) of every table of
 //! [`crate::schema`].
 
+pub mod cracks;
 pub mod events;
 pub mod records;
 pub mod runs;
