@@ -14,8 +14,8 @@ use stickslip_solver::{Channel, Model, Recording, RunOutput};
 use stickslip_store::Folder;
 use stickslip_store::io::{write_bytes_atomic, write_parquet_atomic, write_text_atomic};
 use stickslip_store::schema::{
-    ACCELEROGRAMS, ACOUSTIC_EMISSION, ATTENUATION, CONTROL, CRACKS, EVENTS_TABLE, FOURIER, INTENSITY, RECORDS, ROTD, RUNS,
-    SERIES, SIMILARITY, SKIPS, SPECTRA, SUB_EVENTS_TABLE,
+    ACCELEROGRAMS, ACOUSTIC_EMISSION, ATTENUATION, CONTROL, CRACKS, EVENTS_TABLE, FOURIER, INTENSITY, RECORDS, ROTD,
+    RUNS, SERIES, SIMILARITY, SKIPS, SPECTRA, SUB_EVENTS_TABLE,
 };
 use stickslip_store::tables::cracks::{breaks, cracks_frame, emission_frame};
 use stickslip_store::tables::events::{events_frame, similarity_frame, sub_events_frame};
