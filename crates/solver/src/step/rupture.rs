@@ -341,14 +341,15 @@ unsafe fn group_forces<const L: usize>(
     }
 }
 
-/// Whether any lane's `t·p` passes the gate.
+/// Whether any lane's `t·p` passes the gate: the largest over the lanes against it (a vector
+/// max and one compare, where a chain of per-lane compares does not vectorise).
 #[inline(always)]
 fn gated<const L: usize>(t: &Lanes<L>, p: &Lanes<L>, gate: f64) -> bool {
-    let mut hit = false;
-    for l in 0..L {
-        hit |= t[l] * p[l] > gate;
+    let mut top = t[0] * p[0];
+    for l in 1..L {
+        top = top.max(t[l] * p[l]);
     }
-    hit
+    top > gate
 }
 
 #[inline(always)]
@@ -382,7 +383,7 @@ unsafe fn axial<const L: usize>(
                     let (oi, oj) = (*oc.add(i), *oc.add(j));
                     std::array::from_fn(|l| oj[l] - oi[l])
                 };
-                exact(b, &p, &mut t, before, s, out);
+                t = exact(b, p, t, before, s, out);
             }
             let fi = &mut *fc.add(i);
             for l in 0..L {
@@ -433,7 +434,7 @@ unsafe fn diagonal<const L: usize, const NX: bool, const NY: bool>(
                         (&*ox.add(i), &*ox.add(j), &*oy.add(i), &*oy.add(j), &*oz.add(i), &*oz.add(j));
                     std::array::from_fn(|l| sx * (xj[l] - xi[l]) + sy * (yj[l] - yi[l]) + (zj[l] - zi[l]))
                 };
-                exact(b, &p, &mut t, before, s, out);
+                t = exact(b, p, t, before, s, out);
             }
             // One array per loop (see the elastic kernel).
             let (tx, ty) = (t.map(|v| sx * v), t.map(|v| sy * v));
@@ -447,8 +448,9 @@ unsafe fn diagonal<const L: usize, const NX: bool, const NY: bool>(
     }
 }
 
-/// The exact law for bar `b` in every lane: replaces `t` by the law's force (the same bits where
-/// nothing changes), updates the damage, adds the energy the bar dissipated in the step
+/// The exact law for bar `b` in every lane: returns the law's force in place of `t` (the same
+/// bits where nothing changes; `p` and `t` go by value so that the hot loop never takes their
+/// address and keeps them in registers), updates the damage, adds the energy the bar dissipated in the step
 /// (`before()` gives its elongation one level back) and logs its transitions.
 ///
 /// # Safety
@@ -457,12 +459,12 @@ unsafe fn diagonal<const L: usize, const NX: bool, const NY: bool>(
 #[inline(never)]
 unsafe fn exact<const L: usize>(
     b: usize,
-    p: &Lanes<L>,
-    t: &mut Lanes<L>,
+    p: Lanes<L>,
+    mut t: Lanes<L>,
     before: impl Fn() -> Lanes<L>,
     s: Shared<L>,
     out: &mut SegmentOut<L>,
-) {
+) -> Lanes<L> {
     // SAFETY: forwarded contract.
     let (k0, peak, secant, reach) =
         unsafe { (&*s.k0.add(b), &*s.peak.add(b), &mut *s.secant.add(b), &mut *s.reach.add(b)) };
@@ -496,6 +498,7 @@ unsafe fn exact<const L: usize>(
         // SAFETY: forwarded contract.
         unsafe { *s.gate.add(b) = f64::NEG_INFINITY };
     }
+    t
 }
 
 /// `½ Σ_b k_b·p_b(a)·p_b(b)` for lane `l` with `k_b` the stiffness each bar has at `a`'s
