@@ -276,3 +276,44 @@ fn explore() {
         println!("seed {seed}: {t:?}, peak/(E·εp) {:.4}", t.peak_pa / t.strength_pa);
     }
 }
+
+/// Exploration of the paper scene with cracking bars: `GF` (J/m²), `CV` on Gf, `ZONE` (depth of
+/// the elastic zone at x_min, m; 0 = none), `SEED` from the environment.
+#[test]
+#[ignore]
+fn explore_stick_slip() {
+    let var = |k: &str, d: f64| std::env::var(k).map(|v| v.parse().unwrap()).unwrap_or(d);
+    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/pipelines/paper.toml")).unwrap();
+    let (gf, cv, zone) = (var("GF", 100.0), var("CV", 0.0), var("ZONE", 0.0));
+    let mut body = format!("[rupture]\nfracture_energy_j_m2 = {gf}\nkr = 3.0\n");
+    if cv > 0.0 {
+        body += &format!("fracture_energy_cv = {cv}\nfracture_energy_stream = 2\n");
+    }
+    if zone > 0.0 {
+        body += &format!("elastic_zones = [{{ face = \"x_min\", depth_m = {zone} }}]\n");
+    }
+    let (model, out) = run(&format!("{text}\n{body}"), var("SEED", 123.0) as u64);
+    let lattice = model.lattice();
+    let s = model.scene();
+    let eps = s.rupture.as_ref().unwrap().peak_strain(s.young_pa, s.poisson, s.lc_m);
+    println!("Gf {gf}: E·εp = {:.4e} Pa", s.young_pa * eps);
+    let tau = out.recording.get(Channel::ShearStress).unwrap();
+    println!("max shear stress {:.4e} Pa", tau.iter().cloned().fold(0.0, f64::max));
+    for c in &out.recording.cracks {
+        let b = &lattice.bars()[c.bar as usize];
+        let m = lattice.bar_midpoint(b);
+        println!(
+            "  t {:.5} {} {} {} at [{:.3}, {:.3}, {:.3}] strain {:.3e}",
+            c.time_s,
+            c.kind.name(),
+            b.family.name(),
+            b.direction.name(),
+            m[0],
+            m[1],
+            m[2],
+            c.strain
+        );
+    }
+    let frac = out.recording.get(Channel::FractureDissipated).unwrap();
+    println!("cracks {}, fracture {:.4e} J", out.recording.cracks.len(), frac.last().unwrap());
+}
