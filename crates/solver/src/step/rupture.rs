@@ -298,6 +298,7 @@ widest! {
     /// # Safety
     /// The pass's arrays were checked against the layout, and no other thread touches the
     /// group's nodes or bars.
+    #[allow(clippy::too_many_arguments)]
     unsafe fn group_dispatch<const L: usize>(
         g: &BarGroup,
         ends: &[[u32; 2]],
