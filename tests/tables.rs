@@ -46,9 +46,9 @@ fn failed_and_finished_seeds_leave_no_nan_in_any_table() {
     }
 }
 
-/// Runs a short paper pipeline (spectra, attenuation, energy) and a short skip-ahead one, and
-/// checks every table against the store's registry: each declared column is written, nothing
-/// undeclared is, and every typed reader reads what its writer wrote.
+/// Runs a short paper pipeline (spectra, attenuation, energy), a short skip-ahead one and the
+/// tension prism (cracks), and checks every table against the store's registry: each declared
+/// column is written, nothing undeclared is, and every typed reader reads what its writer wrote.
 #[test]
 fn every_table_matches_its_declaration_and_reads_back_typed() {
     use std::sync::atomic::AtomicBool;
@@ -60,6 +60,7 @@ fn every_table_matches_its_declaration_and_reads_back_typed() {
     use stickslip_store::Folder;
     use stickslip_store::io::read_parquet;
     use stickslip_store::schema::{self, Scope};
+    use stickslip_store::tables::cracks::{AcousticEmission, Cracks};
     use stickslip_store::tables::events::{Events, Similarity};
     use stickslip_store::tables::records::{Accelerograms, Attenuation, Records, SetTable, Spectra, read_fourier};
     use stickslip_store::tables::runs::Runs;
@@ -76,8 +77,12 @@ fn every_table_matches_its_declaration_and_reads_back_typed() {
            scale_max = 1e6\n";
     let skip = "version = 1\nname = \"skip\"\n[seeds]\nlist = [7]\n[friction]\nmu_dynamic = 4.5\n[shear]\n\
                 velocity_m_s = 1.1e-6\nduration_s = 3.0\n[record]\ninterval_s = 1e-4\n[skip_ahead]\nenabled = true\n";
+    // The tension prism, one seed: the crack catalogue and its acoustic-emission events.
+    let tension = std::fs::read_to_string(stickslip_support::repo_path("pipelines/rupture-tension.toml"))
+        .unwrap()
+        .replace("list = [1, 2, 3, 4]", "list = [1]");
     let mut seen = std::collections::BTreeSet::new();
-    for (name, text) in [("paper", paper.as_str()), ("skip", skip)] {
+    for (name, text) in [("paper", paper.as_str()), ("skip", skip), ("tension", tension.as_str())] {
         std::fs::write(dir.join(format!("{name}.toml")), text).unwrap();
         let p = Pipeline::load(&dir.join(format!("{name}.toml"))).unwrap();
         let out = dir.join(name);
@@ -126,6 +131,8 @@ fn every_table_matches_its_declaration_and_reads_back_typed() {
                     "records" => assert!(!Records::read(&df).unwrap().record.is_empty()),
                     "accelerograms" => assert!(!Accelerograms::read(&df).unwrap().time_s.is_empty()),
                     "set" => assert_eq!(SetTable::read(&df).unwrap().record.len(), 1),
+                    "cracks" => assert!(!Cracks::read(&df).unwrap().is_empty()),
+                    "acoustic_emission" => assert!(!AcousticEmission::read(&df).unwrap().is_empty()),
                     "fourier" => assert!(read_fourier(&df, "S1-n36-z").unwrap().is_some()),
                     // The skip-ahead pipeline has no control node: its part is empty, with the schema.
                     "control" => assert_eq!(
@@ -141,5 +148,5 @@ fn every_table_matches_its_declaration_and_reads_back_typed() {
         }
     }
     let all: std::collections::BTreeSet<&str> = schema::ALL.iter().map(|t| t.name).collect();
-    assert_eq!(seen, all, "every declared table is written by one of the two pipelines");
+    assert_eq!(seen, all, "every declared table is written by one of the three pipelines");
 }

@@ -9,6 +9,7 @@
 use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
+use stickslip_seismo::emission::ClusterParams;
 use stickslip_seismo::events::EventParams;
 use stickslip_seismo::similarity::SimilarityParams;
 use stickslip_solver::Scene;
@@ -17,8 +18,8 @@ use crate::accelerograms::{AccelerogramSettings, AccelerogramsSection};
 use crate::check::Checker;
 use crate::error::ConfigError;
 use crate::scene::{
-    BlockSection, BoundarySection, FrictionSection, MaterialSection, RecordSection, SceneSections, SelfWeightSection,
-    ShearSection, SkipAheadSection, TimeSection,
+    BlockSection, BoundarySection, FrictionSection, MaterialSection, RecordSection, RuptureSection, SceneSections,
+    SelfWeightSection, ShearSection, SkipAheadSection, TimeSection,
 };
 use crate::sections::{
     EventsSection, ReportSection, ReportSettings, SimilaritySection, SpectraSection, SpectraSettings,
@@ -91,6 +92,9 @@ pub struct PipelineFile {
     /// `[skip_ahead]`.
     #[serde(default)]
     pub skip_ahead: SkipAheadSection,
+    /// `[rupture]`: bars that crack; absent = every bar elastic.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rupture: Option<RuptureSection>,
     /// `[events]`: event detection thresholds.
     #[serde(default)]
     pub events: EventsSection,
@@ -127,6 +131,7 @@ impl Default for PipelineFile {
             boundary: Vec::new(),
             record: RecordSection::default(),
             skip_ahead: SkipAheadSection::default(),
+            rupture: None,
             events: EventsSection::default(),
             similarity: SimilaritySection::default(),
             accelerograms: None,
@@ -185,6 +190,7 @@ impl PipelineFile {
             boundary: &self.boundary,
             record: &self.record,
             skip_ahead: &self.skip_ahead,
+            rupture: &self.rupture,
         }
     }
 
@@ -218,6 +224,8 @@ pub struct Pipeline {
     pub spectra: Option<SpectraSettings>,
     /// A matched set, if asked.
     pub set: Option<SetSettings>,
+    /// How bar breaks group into acoustic-emission events, when the bars crack.
+    pub emission: Option<ClusterParams>,
     /// Report stage.
     pub report: ReportSettings,
     /// Hash of everything that determines a seed's results (see [`PipelineFile::hash`]).
@@ -304,6 +312,13 @@ impl Pipeline {
             let grid = spectra.as_ref().zip(scene.as_ref()).map(|(sp, sc)| prototype_grid(sp, sc, &similarity));
             s.build(base, grid, &mut ck)
         });
+        let emission = match (&file.rupture, &scene) {
+            (Some(r), Some(scene)) => Some(ClusterParams {
+                link_distance_m: r.ae_link_distance_m.unwrap_or(2.0 * scene.lc_m),
+                link_time_s: r.ae_link_time_s.unwrap_or(10.0 * scene.lc_m / scene.p_wave_speed()),
+            }),
+            _ => None,
+        };
         ck.finish()?;
         Ok(Pipeline {
             name,
@@ -315,6 +330,7 @@ impl Pipeline {
             accelerograms,
             spectra,
             set,
+            emission,
             report,
             hash: file.hash(),
             source: None,
@@ -384,11 +400,22 @@ mod tests {
             accelerograms: Some(AccelerogramsSection::default()),
             spectra: Some(SpectraSection::default()),
             set: Some(SetSection::default()),
+            rupture: Some(RuptureSection::default()),
             ..PipelineFile::default()
         };
         let table: toml::Table = toml::from_str(&toml::to_string(&file).unwrap()).unwrap();
-        let scene_keys =
-            ["block", "material", "friction", "time", "self_weight", "shear", "boundary", "record", "skip_ahead"];
+        let scene_keys = [
+            "block",
+            "material",
+            "friction",
+            "time",
+            "self_weight",
+            "shear",
+            "boundary",
+            "record",
+            "skip_ahead",
+            "rupture",
+        ];
         let hashed_keys = ["events", "similarity", "accelerograms", "spectra"];
         for key in table.keys() {
             assert!(
@@ -412,6 +439,11 @@ mod tests {
         let mut f = file.clone();
         f.set.as_mut().unwrap().count = 7;
         assert_eq!(f.hash(), base, "the set is not part of the hash");
+        let mut f = file.clone();
+        f.rupture.as_mut().unwrap().fracture_energy_j_m2 = 50.0;
+        assert_ne!(f.hash(), base);
+        let f = PipelineFile { rupture: None, ..file.clone() };
+        assert_ne!(f.hash(), base, "rupture on or off");
     }
 
     #[test]

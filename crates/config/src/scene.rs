@@ -8,6 +8,7 @@ use serde::{Deserialize, Serialize};
 use stickslip_solver::Scene;
 use stickslip_solver::geometry::{Dims, Face, Lattice, NodeId, NodeSet};
 use stickslip_solver::laws::{Coulomb, FrictionLaw, SlipWeakening, StaticDynamic};
+use stickslip_solver::rupture::{Rupture, kr_from_failure_factor, max_failure_factor};
 use stickslip_solver::scene::{
     Component, ControlChannel, Friction, InterfaceQuantity, Kinematic, RecordPlan, SelfWeight, SettleMethod, Shear,
     SkipAhead, TimeStep,
@@ -142,6 +143,10 @@ pub struct ShearSection {
     /// Driven nodes by position in metres. Default `[[0.0, 0.0, 2·Lc]]`, used only when
     /// `driver_nodes` is empty too.
     pub driver_at_m: Vec<[f64; 3]>,
+    /// Every node of a face driven (`"x_min"`, `"x_max"`, …), added to the lists (e.g. a prism
+    /// pulled by its end). Omitted = none.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub driver_face: Option<String>,
 }
 
 impl Default for ShearSection {
@@ -153,6 +158,7 @@ impl Default for ShearSection {
             duration_s: 0.32,
             driver_nodes: Vec::new(),
             driver_at_m: Vec::new(),
+            driver_face: None,
         }
     }
 }
@@ -185,6 +191,73 @@ impl Default for SkipAheadSection {
         SkipAheadSection { enabled: false, tolerance: 1e-4, margin_steps: 20, record_interval_s: None }
     }
 }
+
+/// `[rupture]`: bars that crack, by the bilinear softening law of the LDEM (docs/model.md §11);
+/// absent = every bar linear elastic.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields, default)]
+pub struct RuptureSection {
+    /// Mean fracture energy Gf in J/m² (the energy a crack dissipates per unit area). Default 100
+    /// (rock-like).
+    pub fracture_energy_j_m2: f64,
+    /// `Kr = εr/εp` > 1, where the softening branch reaches zero force. Default 3 when
+    /// `failure_factor_per_sqrt_m` is not given; exclusive with it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub kr: Option<f64>,
+    /// Failure factor Rf in 1/√m: `εp = Rf·√(Gf/((1 − ν²)E))` (Kosteski et al.), `Kr` then follows
+    /// from the energy and must exceed 1. Exclusive with `kr`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub failure_factor_per_sqrt_m: Option<f64>,
+    /// Coefficient of variation of the Weibull field on Gf (per bar); 0 = uniform. Default 0.
+    pub fracture_energy_cv: f64,
+    /// Random stream of the Gf field, ≥ 2 (0 and 1 are E's and μ's); required when
+    /// `fracture_energy_cv` > 0.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fracture_energy_stream: Option<i64>,
+    /// Correlation of the normal scores of the E and Gf fields (Gaussian copula), −1 … 1.
+    /// Default 0 (independent).
+    pub young_correlation: f64,
+    /// Acoustic emission: two breaks at most this far apart (m) … Omitted = 2·Lc.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ae_link_distance_m: Option<f64>,
+    /// … and at most this long apart (s) belong to one event. Omitted = 10·Lc/Cp (ten transits
+    /// of a P wave across a module).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ae_link_time_s: Option<f64>,
+    /// Zones whose bars stay elastic, `{ face = "x_min", depth_m = 0.1 }`: every bar whose
+    /// midpoint lies within `depth_m` of the face (grips, loading points). Default none.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub elastic_zones: Vec<ElasticZoneSection>,
+}
+
+/// One elastic zone of `[rupture]`.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct ElasticZoneSection {
+    /// The face: `"x_min"`, `"x_max"`, `"y_min"`, `"y_max"`, `"z_min"`, `"z_max"`.
+    pub face: String,
+    /// Depth from the face (m), > 0.
+    pub depth_m: f64,
+}
+
+impl Default for RuptureSection {
+    fn default() -> Self {
+        RuptureSection {
+            fracture_energy_j_m2: 100.0,
+            kr: None,
+            failure_factor_per_sqrt_m: None,
+            fracture_energy_cv: 0.0,
+            fracture_energy_stream: None,
+            young_correlation: 0.0,
+            ae_link_distance_m: None,
+            ae_link_time_s: None,
+            elastic_zones: Vec::new(),
+        }
+    }
+}
+
+/// `Kr` when `[rupture]` gives neither `kr` nor a failure factor.
+pub const DEFAULT_KR: f64 = 3.0;
 
 /// `[[boundary]]`: rollers, i.e. displacement components held at zero on a face.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
@@ -282,6 +355,14 @@ pub struct SceneSections<'a> {
     pub record: &'a RecordSection,
     /// `[skip_ahead]`.
     pub skip_ahead: &'a SkipAheadSection,
+    /// `[rupture]` (left out of the canonical form when absent, so the hashes of files without it
+    /// do not change).
+    #[serde(skip_serializing_if = "is_absent")]
+    pub rupture: &'a Option<RuptureSection>,
+}
+
+fn is_absent<T>(x: &&Option<T>) -> bool {
+    x.is_none()
 }
 
 /// Largest node count the solver accepts (node indices are 32-bit).
@@ -438,6 +519,14 @@ pub(crate) fn build(file: SceneSections<'_>, ck: &mut Checker) -> Option<Scene> 
             }
         }
     }
+    let rupture = file.rupture.as_ref().map(|ru| rupture(ck, ru, m, b.lc_m));
+    if rupture.is_some() && sk.enabled {
+        ck.push(
+            "skip_ahead.enabled",
+            "true",
+            "false with [rupture] (the skip-ahead follows the linear elastic motion; a bar past its peak is not linear)",
+        );
+    }
     let mut interface: Vec<InterfaceQuantity> = ck.named_list("record.interface", &r.interface);
     interface.dedup();
     // Everything below needs the lattice.
@@ -456,15 +545,27 @@ pub(crate) fn build(file: SceneSections<'_>, ck: &mut Checker) -> Option<Scene> 
     } else {
         (&sh.driver_nodes, sh.driver_at_m.clone())
     };
+    let (driver_ldem, driver_at) = match sh.driver_face {
+        Some(_) if sh.driver_nodes.is_empty() && sh.driver_at_m.is_empty() => (&[][..], Vec::new()),
+        _ => (driver_ldem, driver_at),
+    };
     let mut drivers = resolve_nodes(ck, &lattice, ("shear.driver_nodes", "shear.driver_at_m"), driver_ldem, &driver_at);
+    if let Some(face) = &sh.driver_face
+        && let Some(face) = ck.named::<Face>("shear.driver_face", face)
+    {
+        drivers.extend(face.nodes(&lattice));
+    }
     drivers.sort();
     drivers.dedup();
-    for d in &drivers {
+    // Without gravity and friction the base carries nothing, and a base node may be driven.
+    let base_carries = file.self_weight.gravity_m_s2 != 0.0 || file.friction.mu_static != 0.0;
+    for d in drivers.iter().filter(|_| base_carries) {
         if lattice.half_units(*d)[2] == 0 {
             ck.push(
                 "shear.driver",
                 format!("LDEM {} at {:?} m", d.ldem(), lattice.position(*d)),
-                "a node above the base (z > 0): base nodes are held by friction",
+                "a node above the base (z > 0): base nodes are held by friction (any node, without gravity and \
+                 friction)",
             );
         }
     }
@@ -515,7 +616,112 @@ pub(crate) fn build(file: SceneSections<'_>, ck: &mut Checker) -> Option<Scene> 
             margin_steps: sk.margin_steps.max(1) as u64,
             record_interval_s: sk.record_interval_s,
         },
+        rupture,
     })
+}
+
+/// The bilinear law of `[rupture]`, every refused value recorded in `ck`.
+fn rupture(ck: &mut Checker, r: &RuptureSection, m: &MaterialSection, lc_m: f64) -> Rupture {
+    ck.positive("rupture.fracture_energy_j_m2", r.fracture_energy_j_m2);
+    let lattice_ok = m.poisson > 0.0 && m.poisson < 0.5 && lc_m > 0.0 && lc_m.is_finite();
+    let kr = match (r.kr, r.failure_factor_per_sqrt_m) {
+        (Some(_), Some(_)) => {
+            ck.push(
+                "rupture",
+                "both kr and failure_factor_per_sqrt_m",
+                "one of rupture.kr or rupture.failure_factor_per_sqrt_m (with a failure factor, Kr follows from the energy)",
+            );
+            DEFAULT_KR
+        }
+        (Some(kr), None) => {
+            ck.range("rupture.kr", kr, 1.0, true, f64::INFINITY, true);
+            kr
+        }
+        (None, Some(rf)) => {
+            if ck.positive("rupture.failure_factor_per_sqrt_m", rf) && lattice_ok {
+                let kr = kr_from_failure_factor(rf, m.poisson, lc_m);
+                if !(kr > 1.0) {
+                    ck.push(
+                        "rupture.failure_factor_per_sqrt_m",
+                        rf,
+                        format!(
+                            "0 < failure_factor_per_sqrt_m < {:.6} for this lattice (it gives Kr = 2(1 − ν²)/((2 + 4δ)·α·Lc·Rf²) \
+                             = {kr:.4}; the softening branch needs Kr > 1)",
+                            max_failure_factor(m.poisson, lc_m)
+                        ),
+                    );
+                }
+                kr
+            } else {
+                DEFAULT_KR
+            }
+        }
+        (None, None) => DEFAULT_KR,
+    };
+    ck.range("rupture.fracture_energy_cv", r.fracture_energy_cv, 0.0, false, 1.0, false);
+    let stream = match (r.fracture_energy_stream, r.fracture_energy_cv > 0.0) {
+        (None, true) => {
+            ck.push(
+                "rupture.fracture_energy_stream",
+                "(missing)",
+                format!(
+                    "a random stream ≥ 2 for the Weibull field on Gf (fracture_energy_cv = {}); streams 0 and 1 draw the \
+                     fields on E and μ",
+                    r.fracture_energy_cv
+                ),
+            );
+            None
+        }
+        (Some(s), true) => {
+            if s < 2 {
+                ck.push(
+                    "rupture.fracture_energy_stream",
+                    s,
+                    "an integer ≥ 2 (streams 0 and 1 draw the fields on E and μ; the Gf field needs its own)",
+                );
+            }
+            u64::try_from(s).ok()
+        }
+        (Some(s), false) => {
+            ck.push("rupture.fracture_energy_stream", s, "only with rupture.fracture_energy_cv > 0 (no field to draw)");
+            None
+        }
+        (None, false) => None,
+    };
+    if ck.range("rupture.young_correlation", r.young_correlation, -1.0, false, 1.0, false)
+        && r.young_correlation != 0.0
+        && !(m.young_cv > 0.0 && r.fracture_energy_cv > 0.0)
+    {
+        ck.push(
+            "rupture.young_correlation",
+            r.young_correlation,
+            "0 unless material.young_cv and rupture.fracture_energy_cv are both > 0 (a correlation needs two fields)",
+        );
+    }
+    if let Some(d) = r.ae_link_distance_m {
+        ck.positive("rupture.ae_link_distance_m", d);
+    }
+    if let Some(t) = r.ae_link_time_s {
+        ck.non_negative("rupture.ae_link_time_s", t);
+    }
+    let mut elastic_zones = Vec::new();
+    for (i, z) in r.elastic_zones.iter().enumerate() {
+        let face = ck.named::<Face>(&format!("rupture.elastic_zones[{i}].face"), &z.face);
+        if ck.positive(&format!("rupture.elastic_zones[{i}].depth_m"), z.depth_m)
+            && let Some(face) = face
+        {
+            elastic_zones.push((face, z.depth_m));
+        }
+    }
+    Rupture {
+        fracture_energy_j_m2: r.fracture_energy_j_m2,
+        kr,
+        failure_factor_per_sqrt_m: r.failure_factor_per_sqrt_m,
+        fracture_energy_cv: r.fracture_energy_cv,
+        fracture_energy_stream: stream,
+        young_correlation: r.young_correlation,
+        elastic_zones,
+    }
 }
 
 /// The rollers of `[[boundary]]`, merged per node and sorted. A contact node may only be held in

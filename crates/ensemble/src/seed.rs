@@ -6,6 +6,7 @@ use stickslip_config::Pipeline;
 use stickslip_config::accelerograms::RecordFormat;
 use stickslip_seismo::accelerogram::at2_text;
 use stickslip_seismo::accelerogram::sac::{SacMeta, SacUnit, sac_bytes};
+use stickslip_seismo::emission::{Cluster, clusters};
 use stickslip_seismo::events::{Catalogue, EventParams, Signals, detect};
 use stickslip_seismo::similarity::{AreaChoice, ModelEvent, Scaled, moment_magnitude, scale};
 use stickslip_solver::scene::{ControlChannel, Kinematic};
@@ -13,9 +14,10 @@ use stickslip_solver::{Channel, Model, Recording, RunOutput};
 use stickslip_store::Folder;
 use stickslip_store::io::{write_bytes_atomic, write_parquet_atomic, write_text_atomic};
 use stickslip_store::schema::{
-    ACCELEROGRAMS, ATTENUATION, CONTROL, EVENTS_TABLE, FOURIER, INTENSITY, RECORDS, ROTD, RUNS, SERIES, SIMILARITY,
-    SKIPS, SPECTRA, SUB_EVENTS_TABLE,
+    ACCELEROGRAMS, ACOUSTIC_EMISSION, ATTENUATION, CONTROL, CRACKS, EVENTS_TABLE, FOURIER, INTENSITY, RECORDS, ROTD,
+    RUNS, SERIES, SIMILARITY, SKIPS, SPECTRA, SUB_EVENTS_TABLE,
 };
+use stickslip_store::tables::cracks::{breaks, cracks_frame, emission_frame};
 use stickslip_store::tables::events::{events_frame, similarity_frame, sub_events_frame};
 use stickslip_store::tables::records::{
     RecordData, Scale, accelerograms_frame, attenuation_frame, fourier_frame, intensity_frame, records_frame,
@@ -37,6 +39,8 @@ pub struct Analysed {
     pub scaled: Vec<(ModelEvent, Scaled)>,
     /// Its records (and their spectra), if the pipeline asks for them.
     pub records: Option<SeedRecords>,
+    /// Its bar breaks as acoustic-emission events, when the bars crack.
+    pub emission: Option<Vec<Cluster>>,
 }
 
 /// Control acceleration channels recorded by the scene, in table order.
@@ -106,7 +110,8 @@ pub fn analyse(run: RunOutput, model: &Model, pipeline: &Pipeline, plans: &PlanC
         ),
         None => None,
     };
-    Ok(Analysed { run, catalogue, scaled, records })
+    let emission = pipeline.emission.as_ref().map(|p| clusters(&breaks(&run.recording.cracks, model.lattice()), p));
+    Ok(Analysed { run, catalogue, scaled, records, emission })
 }
 
 /// The prototype length ratio λ of the pipeline's block.
@@ -136,6 +141,10 @@ pub fn write_seed(
             ];
             if !rec.skips.is_empty() {
                 frames.insert(2, (SKIPS, skips_frame(seed, rec)?));
+            }
+            if let Some(clusters) = &a.emission {
+                frames.push((CRACKS, cracks_frame(seed, &rec.cracks, model.lattice())?));
+                frames.push((ACOUSTIC_EMISSION, emission_frame(seed, clusters)?));
             }
             if let (Some(r), Some(acc)) = (&a.records, &pipeline.accelerograms) {
                 let lambda = lambda(model, pipeline);

@@ -23,7 +23,12 @@ fn model(nx: i64, ny: i64, nz: i64) -> Model {
 fn setup(m: &Model, seed: u64) -> LaneSetup {
     let k = m.bar_stiffness(seed).unwrap();
     let dt = 0.5 * critical_time_step(m, &k).unwrap().dt_s;
-    LaneSetup { dt_s: dt, stiffness: k, friction: m.friction_factors(seed).unwrap() }
+    LaneSetup {
+        dt_s: dt,
+        stiffness: k,
+        friction: m.friction_factors(seed).unwrap(),
+        strength: m.bar_strength(seed).unwrap(),
+    }
 }
 
 fn stepping<const L: usize>(c: &mut Criterion, m: &Model, name: &str) {

@@ -1,7 +1,8 @@
 //! stickslip report: the figures and the HTML page of an output folder.
 //!
 //! Owns: what a reader sees of a run — the paper's figures for any ensemble, spectra with bands
-//! across seeds, event catalogue views, attenuation, energy ([`figures`], drawn with the chart
+//! across seeds, event catalogue views, attenuation, energy, cracks and acoustic emission
+//! ([`figures`], drawn with the chart
 //! shapes of [`charts`]), and a plain HTML page that links them all ([`html`]). It reads only the
 //! output folder, through the store's typed readers ([`ReportInput`]), and the pipeline that made
 //! it. Must not know: how the tables were computed or scheduled; the command line.
@@ -23,8 +24,10 @@ use polars::prelude::DataFrame;
 use stickslip_config::Pipeline;
 use stickslip_store::io::{read_parquet_if_present, write_text_atomic};
 use stickslip_store::schema::{
-    ATTENUATION, ATTENUATION_FIT, EVENTS_TABLE, PSA_STATS, RECORDS, RUNS, SIMILARITY, SUMMARY, TableSpec,
+    ACOUSTIC_EMISSION, ATTENUATION, ATTENUATION_FIT, CRACKS, EVENTS_TABLE, PSA_STATS, RECORDS, RUNS, SIMILARITY,
+    SUMMARY, TableSpec,
 };
+use stickslip_store::tables::cracks::{AcousticEmission, Cracks};
 use stickslip_store::tables::events::{Events, Similarity};
 use stickslip_store::tables::records::{Attenuation, Records};
 use stickslip_store::tables::runs::Runs;
@@ -106,6 +109,10 @@ pub struct ReportInput<'a> {
     pub attenuation_fit: Option<AttenuationFit>,
     /// The per-event records cut by `[accelerograms]` (what, where, usable band).
     pub records: Option<Records>,
+    /// Bars that softened or broke (scenes with `[rupture]`).
+    pub cracks: Option<Cracks>,
+    /// Acoustic-emission events (scenes with `[rupture]`).
+    pub emission: Option<AcousticEmission>,
     /// Mean Δt over the seeds (s), if any finished.
     pub mean_dt_s: Option<f64>,
     /// Seeds drawn one by one (successful, at most four unless the pipeline names them).
@@ -145,6 +152,8 @@ impl<'a> ReportInput<'a> {
             attenuation: table(&ATTENUATION)?.as_ref().map(Attenuation::read).transpose()?,
             attenuation_fit: table(&ATTENUATION_FIT)?.as_ref().map(AttenuationFit::read).transpose()?,
             records: table(&RECORDS)?.as_ref().map(Records::read).transpose()?,
+            cracks: table(&CRACKS)?.as_ref().map(Cracks::read).transpose()?,
+            emission: table(&ACOUSTIC_EMISSION)?.as_ref().map(AcousticEmission::read).transpose()?,
             mean_dt_s,
             seeds,
             folder,

@@ -4,8 +4,9 @@
 //! (Gutenberg–Richter, recurrence, aftershocks, scaling: [`catalogue`]), similarity scaling and magnitudes
 //! ([`similarity`]), statistics of samples across seeds ([`stats`]), least-squares fits
 //! ([`fit`]), response, RotD and Fourier spectra and intensity measures ([`spectra`]),
-//! accelerogram processing and file formats ([`accelerogram`]), design spectra ([`design`]) and
-//! the selection of record sets matched to them ([`selection`]).
+//! accelerogram processing and file formats ([`accelerogram`]), design spectra ([`design`]), the
+//! selection of record sets matched to them ([`selection`]) and acoustic-emission clusters of bar
+//! breaks ([`emission`]).
 //!
 //! Must not know: the solver, the pipeline file, tables or figures. Every function takes slices
 //! and plain parameter structs, so it can be used on any record, simulated or recorded; the
@@ -15,6 +16,7 @@
 pub mod accelerogram;
 pub mod catalogue;
 pub mod design;
+pub mod emission;
 pub mod error;
 pub mod events;
 pub mod fit;

@@ -9,6 +9,8 @@
 //! - [`material`]: bar stiffness and the Weibull fields;
 //! - [`laws`]: the friction laws of the base (one kinetic-coefficient formula);
 //! - [`dispersion`]: plane waves in the unbounded lattice and the highest frequency it resolves;
+//! - [`rupture`]: the bilinear softening law of bars that crack (opt-in), crack areas, the
+//!   fields on the fracture energy;
 //! - [`scene`]: the validated scene; [`model`]: it built into flat arrays, shared by all seeds,
 //!   with its bars in kernel order ([`layout`]);
 //! - [`field`]: vector fields over the nodes, `L` seeds side by side; [`step`]: one explicit
@@ -31,6 +33,7 @@ pub mod model;
 pub mod quasistatic;
 pub mod recording;
 pub mod run;
+pub mod rupture;
 pub mod scene;
 pub mod statics;
 pub mod step;
@@ -38,6 +41,6 @@ pub mod step;
 pub use error::SolverError;
 pub use geometry::{Dims, Lattice, NodeId};
 pub use model::Model;
-pub use recording::{Channel, Recording, Sampling};
-pub use run::{BATCH, Perturbation, RunOptions, RunOutput, run_batched, run_lanes, run_seed};
+pub use recording::{Channel, Crack, Recording, Sampling};
+pub use run::{BATCH, BarDamage, Perturbation, RunOptions, RunOutput, run_batched, run_lanes, run_seed};
 pub use scene::Scene;

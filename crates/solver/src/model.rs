@@ -8,6 +8,7 @@ use crate::error::SolverError;
 use crate::geometry::{Bar, BarFamily, Direction, Lattice, NodeId};
 use crate::layout::{BarGroup, BarLayout, Segment};
 use crate::material::{STREAM_FRICTION, STREAM_YOUNG, axial_stiffness, weibull_factors};
+use crate::rupture::{crack_area, fracture_energy_factors};
 use crate::scene::Scene;
 
 /// Where a bar goes in kernel order: (segment (phase, index), cache block, direction, internal
@@ -246,6 +247,50 @@ impl Model {
             }
         }
         Ok(k)
+    }
+
+    /// Peak elongation of every bar for `seed` when the scene's bars crack (docs/model.md §11), in
+    /// kernel units (internal order; a diagonal's is √3 times its elongation, see
+    /// [`crate::step::bars`]): `εp·√(ΦG/ΦE)·L`, with `εp` the homogeneous critical strain and the
+    /// seed's factors of the E and Gf fields; infinite for the bars of an elastic zone. `None`
+    /// without `[rupture]`.
+    pub fn bar_strength(&self, seed: u64) -> Result<Option<Vec<f64>>, SolverError> {
+        let Some(r) = &self.scene.rupture else { return Ok(None) };
+        let s = &self.scene;
+        let eps = r.peak_strain(s.young_pa, s.poisson, s.lc_m);
+        let n = self.bar_count();
+        let young = weibull_factors(s.young_cv, seed, STREAM_YOUNG, n)?;
+        let toughness = fracture_energy_factors(r, s.young_cv, seed, n)?;
+        let factor = |v: &Option<Vec<f64>>, c: usize| v.as_ref().map_or(1.0, |v| v[c]);
+        Ok(Some(
+            self.bar_canonical
+                .iter()
+                .map(|&c| {
+                    let c = c as usize;
+                    let bar = &self.lattice.bars()[c];
+                    if r.stays_elastic(&self.lattice, bar) {
+                        return f64::INFINITY;
+                    }
+                    let kernel = if bar.family == BarFamily::Diagonal { 3f64.sqrt() } else { 1.0 };
+                    let ratio = factor(&toughness, c) / factor(&young, c);
+                    eps * ratio.sqrt() * bar.length_factor() * s.lc_m * kernel
+                })
+                .collect(),
+        ))
+    }
+
+    /// Crack-area share `A_f` (m²) of every bar, internal order (docs/model.md §11): the area of
+    /// a crack plane normal to an axis that the bar stands for.
+    pub fn crack_areas(&self) -> Vec<f64> {
+        let s = &self.scene;
+        self.bar_canonical
+            .iter()
+            .map(|&c| {
+                let bar = &self.lattice.bars()[c as usize];
+                let ea = bar.surface_factor * axial_stiffness(bar.family, s.young_pa, s.poisson, s.lc_m);
+                crack_area(ea, bar.length_factor() * s.lc_m, s.young_pa, s.poisson, s.lc_m)
+            })
+            .collect()
     }
 
     /// Friction factors of the contact nodes (order of [`Model::contact`]) for `seed`: the

@@ -5,6 +5,7 @@
 
 use crate::geometry::NodeId;
 use crate::scene::{ControlChannel, InterfaceQuantity, Kinematic, RecordPlan};
+use crate::step::rupture::CrackKind;
 use crate::step::{Energy, Interface, LaneView};
 
 /// What a recorder reads at one viewed time: a lane of a stepper, or a quasi-static motion
@@ -79,6 +80,9 @@ pub enum Channel {
     FrictionDissipated,
     /// Lost in landings since the start (J).
     ImpactDissipated,
+    /// Dissipated by bars that crack since the start (J); recorded only when the scene's bars
+    /// crack.
+    FractureDissipated,
     /// Work of gravity and body forces since the start (J).
     BodyWork,
     /// Work of the drivers since the start (J).
@@ -91,7 +95,7 @@ pub enum Channel {
 
 impl Channel {
     /// Every channel.
-    pub const ALL: [Channel; 18] = [
+    pub const ALL: [Channel; 19] = [
         Channel::ShearStress,
         Channel::NormalStress,
         Channel::MeanSlip,
@@ -106,6 +110,7 @@ impl Channel {
         Channel::DampingDissipated,
         Channel::FrictionDissipated,
         Channel::ImpactDissipated,
+        Channel::FractureDissipated,
         Channel::BodyWork,
         Channel::DriverWork,
         Channel::ExternalWork,
@@ -129,6 +134,7 @@ impl Channel {
             Channel::DampingDissipated => "damping_dissipated_j",
             Channel::FrictionDissipated => "friction_dissipated_j",
             Channel::ImpactDissipated => "impact_dissipated_j",
+            Channel::FractureDissipated => "fracture_dissipated_j",
             Channel::BodyWork => "body_work_j",
             Channel::DriverWork => "driver_work_j",
             Channel::ExternalWork => "external_work_j",
@@ -141,11 +147,12 @@ impl Channel {
         matches!(self, Channel::SlippingNodes | Channel::LiftedNodes)
     }
 
-    /// The energy channels, in order (the last nine of [`Channel::ALL`]).
+    /// The energy channels, in order (the last ten of [`Channel::ALL`]).
     pub const ENERGY: &[Channel] = Channel::ALL.split_at(9).1;
 
-    /// Channels of the plan, in a fixed order.
-    pub fn of_plan(plan: &RecordPlan) -> Vec<Channel> {
+    /// Channels of the plan, in a fixed order; `fracture` when the scene's bars crack (only then
+    /// is the fracture term a column).
+    pub fn of_plan(plan: &RecordPlan, fracture: bool) -> Vec<Channel> {
         let mut out = Vec::new();
         for q in InterfaceQuantity::ALL {
             if !plan.has(q) {
@@ -162,7 +169,7 @@ impl Channel {
             });
         }
         if plan.energy {
-            out.extend_from_slice(Channel::ENERGY);
+            out.extend(Channel::ENERGY.iter().filter(|&&c| fracture || c != Channel::FractureDissipated));
         }
         out
     }
@@ -204,8 +211,27 @@ pub struct Recording {
     pub onsets: Vec<(f64, NodeId)>,
     /// Quasi-static skips of the shear stage (with `[skip_ahead]` on), in time order.
     pub skips: Vec<Skip>,
+    /// Bars that started softening or broke (when the scene's bars crack), in time order, both
+    /// loading stages (self-weight at negative times).
+    pub cracks: Vec<Crack>,
     /// How the samples were taken.
     pub sampling: Sampling,
+}
+
+/// One bar passing its peak or breaking (docs/model.md §11).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Crack {
+    /// Time since the start of the shear stage (s).
+    pub time_s: f64,
+    /// Canonical bar index (docs/model.md §10.5).
+    pub bar: u32,
+    /// Softening or breaking.
+    pub kind: CrackKind,
+    /// The bar's axial strain then (at or just past `εp` or `εr`).
+    pub strain: f64,
+    /// Energy: for a softening, the strain energy the bar held at its peak, `½·EA·εp²·L`; for a
+    /// break, the fracture energy it dissipated, `Gf·A_f = ½·EA·εp·εr·L` (J).
+    pub energy_j: f64,
 }
 
 /// What ends a quasi-static skip: the transition predicted next.
@@ -291,13 +317,18 @@ pub(crate) struct Recorder {
     pub(crate) onset_steps: Vec<(u64, NodeId)>,
     /// Skips as `(from step, to step, next transition)`.
     pub(crate) skip_steps: Vec<(u64, u64, Transition)>,
+    /// Cracks with the step index in place of the time.
+    pub(crate) crack_steps: Vec<(u64, Crack)>,
     control_nodes: Vec<usize>,
     area: f64,
 }
 
 impl Recorder {
     pub(crate) fn new(plan: &RecordPlan, model: &crate::model::Model, capacity: usize) -> Self {
-        let channels = Channel::of_plan(plan).into_iter().map(|c| (c, Vec::with_capacity(capacity))).collect();
+        let channels = Channel::of_plan(plan, model.scene().rupture.is_some())
+            .into_iter()
+            .map(|c| (c, Vec::with_capacity(capacity)))
+            .collect();
         let control = plan.control.iter().map(|&c| (c, Vec::with_capacity(capacity))).collect();
         Recorder {
             records: Recording {
@@ -306,10 +337,12 @@ impl Recorder {
                 control,
                 onsets: Vec::new(),
                 skips: Vec::new(),
+                cracks: Vec::new(),
                 sampling: Sampling::default(),
             },
             onset_steps: Vec::new(),
             skip_steps: Vec::new(),
+            crack_steps: Vec::new(),
             steps: Vec::with_capacity(capacity),
             control_nodes: plan.control.iter().map(|c| model.internal(c.node)).collect(),
             area: model.lattice().contact_area(),
@@ -343,6 +376,7 @@ impl Recorder {
                 Channel::DampingDissipated => e().damping,
                 Channel::FrictionDissipated => e().friction,
                 Channel::ImpactDissipated => e().impact,
+                Channel::FractureDissipated => e().fracture,
                 Channel::BodyWork => e().body_work,
                 Channel::DriverWork => e().driver_work,
                 Channel::ExternalWork => e().external_work(),
@@ -363,6 +397,7 @@ impl Recorder {
         self.records.time_s = self.steps.iter().map(|&s| (s as f64 - origin as f64) * dt).collect();
         self.records.onsets = self.onset_steps.iter().map(|&(s, n)| ((s as f64 - origin as f64) * dt, n)).collect();
         let t = |s: u64| (s as f64 - origin as f64) * dt;
+        self.records.cracks = self.crack_steps.iter().map(|&(s, c)| Crack { time_s: t(s), ..c }).collect();
         self.records.skips = self
             .skip_steps
             .iter()

@@ -9,6 +9,7 @@
 use crate::dispersion::{DispersionError, LatticeMaterial, UsableBand, usable_band};
 use crate::geometry::{Dims, Lattice, NodeId};
 use crate::laws::{Coulomb, FrictionLaw};
+use crate::rupture::Rupture;
 
 /// How Δt is chosen.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -294,6 +295,8 @@ pub struct Scene {
     pub record: RecordPlan,
     /// Quasi-static skip-ahead.
     pub skip_ahead: SkipAhead,
+    /// Bars that crack (the bilinear law of docs/model.md §11); `None`: every bar elastic.
+    pub rupture: Option<Rupture>,
 }
 
 impl Scene {
@@ -338,6 +341,7 @@ impl Scene {
                 control: Vec::new(),
             },
             skip_ahead: SkipAhead { enabled: false, tolerance: 1e-4, margin_steps: 20, record_interval_s: None },
+            rupture: None,
         }
     }
 

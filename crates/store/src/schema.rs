@@ -167,6 +167,17 @@ pub mod col {
     pub const EXPONENT_CI95_HIGH: &str = "exponent_ci95_high";
     pub const RESIDUAL_STD: &str = "residual_std";
     pub const SELF_SIMILAR_EXPONENT: &str = "self_similar_exponent";
+    pub const BAR: &str = "bar";
+    pub const FAMILY: &str = "family";
+    pub const DIRECTION: &str = "direction";
+    pub const STRAIN: &str = "strain";
+    pub const ENERGY_J: &str = "energy_j";
+    pub const CLUSTER: &str = "cluster";
+    pub const BREAKS: &str = "breaks";
+    pub const CENTROID_X_M: &str = "centroid_x_m";
+    pub const CENTROID_Y_M: &str = "centroid_y_m";
+    pub const CENTROID_Z_M: &str = "centroid_z_m";
+    pub const MAGNITUDE: &str = "magnitude";
 }
 
 use col::*;
@@ -416,6 +427,39 @@ pub const ATTENUATION: TableSpec = TableSpec {
     variable: None,
 };
 
+/// Every bar that started softening or broke (scenes with `[rupture]`, docs/model.md §11).
+pub const CRACKS: TableSpec = TableSpec {
+    name: "cracks",
+    scope: Scope::Gathered,
+    key: &[SEED, TIME_S, BAR, KIND],
+    columns: &[SEED, TIME_S, KIND, BAR, FAMILY, DIRECTION, X_M, Y_M, Z_M, STRAIN, ENERGY_J],
+    variable: None,
+};
+
+/// Bar breaks grouped into acoustic-emission events, with their magnitudes (docs/model.md §11).
+pub const ACOUSTIC_EMISSION: TableSpec = TableSpec {
+    name: "acoustic_emission",
+    scope: Scope::Gathered,
+    key: &[SEED, CLUSTER],
+    columns: &[
+        SEED,
+        CLUSTER,
+        START_S,
+        END_S,
+        DURATION_S,
+        BREAKS,
+        X_M,
+        Y_M,
+        Z_M,
+        CENTROID_X_M,
+        CENTROID_Y_M,
+        CENTROID_Z_M,
+        ENERGY_J,
+        MAGNITUDE,
+    ],
+    variable: None,
+};
+
 /// Statistics across seeds of the events and similarity tables.
 pub const SUMMARY: TableSpec = TableSpec {
     name: "summary",
@@ -592,7 +636,7 @@ pub const CATALOGUE: [TableSpec; 6] =
     [MAGNITUDE_FREQUENCY, B_VALUES, RECURRENCE_STATS, AFTERSHOCKS_TABLE, OMORI, SCALING];
 
 /// Every table, in the order the README documents them.
-pub const ALL: [TableSpec; 24] = [
+pub const ALL: [TableSpec; 26] = [
     RUNS,
     SERIES,
     CONTROL,
@@ -607,6 +651,8 @@ pub const ALL: [TableSpec; 24] = [
     FOURIER,
     INTENSITY,
     ATTENUATION,
+    CRACKS,
+    ACOUSTIC_EMISSION,
     SUMMARY,
     PSA_STATS,
     ATTENUATION_FIT,

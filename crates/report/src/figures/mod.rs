@@ -3,6 +3,8 @@
 
 mod catalogue;
 
+mod cracks;
+
 use std::path::Path;
 
 use plotters::style::{BLACK, RGBColor};
@@ -44,7 +46,7 @@ pub enum Outcome {
 pub type Draw = fn(&ReportInput, &Path) -> Result<Outcome, ReportError>;
 
 /// Every figure, in page order.
-pub const ALL: [(&str, Draw); 20] = [
+pub const ALL: [(&str, Draw); 22] = [
     ("shear_stress.png", shear_stress),
     ("normal_stress.png", normal_stress),
     ("mean_slip.png", mean_slip),
@@ -60,6 +62,8 @@ pub const ALL: [(&str, Draw); 20] = [
     ("magnitude.png", magnitude),
     ("attenuation.png", attenuation),
     ("energy.png", energy),
+    ("cracks.png", cracks::crack_map),
+    ("acoustic_emission.png", cracks::emission),
     ("catalogue.png", catalogue::overview),
     ("magnitude_frequency.png", catalogue::magnitude_frequency),
     ("recurrence_fits.png", catalogue::recurrence_fits),
@@ -196,6 +200,15 @@ fn main_shocks(d: &ReportInput, seed: u64) -> Result<Vec<(String, f64)>, ReportE
     Ok((0..ev.len())
         .filter(|&i| ev.seed[i] == seed && ev.kind[i].is_main())
         .map(|i| (ev.kind[i].label(), ev.start_s[i]))
+        .collect())
+}
+
+/// Main shocks of one seed: (label, start, end).
+fn main_shocks_with_ends(d: &ReportInput, seed: u64) -> Result<Vec<(String, f64, f64)>, ReportError> {
+    let Some(ev) = &d.events else { return Ok(vec![]) };
+    Ok((0..ev.len())
+        .filter(|&i| ev.seed[i] == seed && ev.kind[i].is_main())
+        .map(|i| (ev.kind[i].label(), ev.start_s[i], ev.start_s[i] + ev.duration_s[i]))
         .collect())
 }
 
@@ -851,10 +864,8 @@ fn record_set(d: &ReportInput, path: &Path) -> Result<Outcome, ReportError> {
     let mut lines = Vec::new();
     let mut scaled_all: Vec<Vec<(f64, f64, bool)>> = Vec::new();
     for k in 0..set.seed.len() {
-        let pts: Vec<(f64, f64, bool)> = psa_of(set.seed[k], &set.record[k])
-            .into_iter()
-            .map(|(t, a, b)| (t, a * set.scale_factor[k], b))
-            .collect();
+        let pts: Vec<(f64, f64, bool)> =
+            psa_of(set.seed[k], &set.record[k]).into_iter().map(|(t, a, b)| (t, a * set.scale_factor[k], b)).collect();
         if pts.is_empty() {
             continue;
         }
@@ -1136,6 +1147,9 @@ fn energy(d: &ReportInput, path: &Path) -> Result<Outcome, ReportError> {
         ("lost in landings", Channel::ImpactDissipated),
         ("balance residual", Channel::EnergyResidual),
     ];
+    let fracture = read_series_channel(&df, Channel::FractureDissipated.name())?.is_some();
+    let terms: Vec<(&str, Channel)> =
+        terms.into_iter().chain(fracture.then_some(("fracture dissipated", Channel::FractureDissipated))).collect();
     let mut lines = Vec::new();
     let mut residual = 0.0f64;
     let mut work = 0.0f64;

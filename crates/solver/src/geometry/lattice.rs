@@ -105,6 +105,17 @@ pub enum BarFamily {
     Centre,
 }
 
+impl BarFamily {
+    /// `"edge"`, `"diagonal"` or `"centre"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            BarFamily::Edge => "edge",
+            BarFamily::Diagonal => "diagonal",
+            BarFamily::Centre => "centre",
+        }
+    }
+}
+
 /// Direction class of a bar: every bar of the regular lattice lies along one of seven lines.
 ///
 /// Bars are oriented so that the direction from `ends[0]` to `ends[1]` is `+axis` for axial bars
@@ -123,6 +134,20 @@ pub enum Direction {
 }
 
 impl Direction {
+    /// `"x"`, `"y"`, `"z"` for axial bars; `"+x+y+z"`, `"-x+y+z"`, `"+x-y+z"`, `"-x-y+z"` for
+    /// the body diagonals (the direction from a bar's first end to its second).
+    pub fn name(self) -> &'static str {
+        match self {
+            Direction::Axis(0) => "x",
+            Direction::Axis(1) => "y",
+            Direction::Axis(_) => "z",
+            Direction::Diagonal { neg_x: false, neg_y: false } => "+x+y+z",
+            Direction::Diagonal { neg_x: true, neg_y: false } => "-x+y+z",
+            Direction::Diagonal { neg_x: false, neg_y: true } => "+x-y+z",
+            Direction::Diagonal { neg_x: true, neg_y: true } => "-x-y+z",
+        }
+    }
+
     /// The unit vector.
     pub fn unit(self) -> [f64; 3] {
         match self {
@@ -322,6 +347,12 @@ impl Lattice {
             NodeKind::Corner(c) => c.map(|v| v as f64 * self.lc),
             NodeKind::Centre(m) => m.map(|v| (v as f64 + 0.5) * self.lc),
         }
+    }
+
+    /// Midpoint of a bar (m).
+    pub fn bar_midpoint(&self, bar: &Bar) -> [f64; 3] {
+        let (a, b) = (self.half_units(bar.ends[0]), self.half_units(bar.ends[1]));
+        [0, 1, 2].map(|c| (a[c] + b[c]) as f64 * 0.25 * self.lc)
     }
 
     /// Position in units of `Lc/2` (exact integers), used for ordering and lookup.

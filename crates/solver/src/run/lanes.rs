@@ -6,10 +6,12 @@ use crate::error::SolverError;
 use crate::field::Field;
 use crate::model::Model;
 use crate::quasistatic::{SKIP_CHECK_EVERY, ShearClock, SkipStats, Skipper, settle_statically};
-use crate::recording::Recorder;
-use crate::run::{RunOptions, RunOutput, prepare};
+use crate::recording::{Crack, Recorder};
+use crate::run::{BarDamage, RunOptions, RunOutput, prepare};
+use crate::rupture::BarLaw;
 use crate::scene::SettleMethod;
 use crate::statics::CriticalStep;
+use crate::step::rupture::{CrackKind, CrackLog, elongations};
 use crate::step::{LaneView, Params, State, Stepper, Tracking, park, start_drivers};
 
 /// Steps between two blow-up checks.
@@ -75,7 +77,7 @@ pub fn run_lanes<const L: usize>(
     };
     let setups = prepared.each_ref().map(|p| p.as_ref().map(|(s, _)| s.clone()).unwrap_or_else(|_| fallback.clone()));
     let mut params = Params::<L>::new(model, &setups);
-    let mut state = State::<L>::at_rest(model.node_count(), model.contact().len(), model.drivers().len());
+    let mut state = State::<L>::for_params(&params);
     let mut stepper = Stepper::<L>::new(model);
     let skipping = scene.skip_ahead.enabled && L == 1;
     stepper.set_parallel(options.parallel_step);
@@ -110,6 +112,9 @@ pub fn run_lanes<const L: usize>(
                 }
                 if sw.method == SettleMethod::Static && sw.gravity_m_s2 > 0.0 {
                     match settle_statically(model, &setup.stiffness, &setup.friction, sw.gravity_m_s2) {
+                        Ok(Ok(st)) if let Some(why) = beyond_peak(model, setup.strength.as_deref(), &st.u) => {
+                            lane.settle_note = Some(why)
+                        }
                         Ok(Ok(st)) => {
                             start_at_rest(&params, &mut state, l, &st.u, &st.reactions);
                             lane.settled_by = SettleMethod::Static;
@@ -170,6 +175,13 @@ pub fn run_lanes<const L: usize>(
                 };
                 lane.fail(e, &mut params, &mut state, l);
                 continue;
+            }
+            if let Some(damage) = state.rupture.as_mut()
+                && let Some(r) = lane.recorder.as_mut()
+            {
+                for c in damage.drain(l) {
+                    r.crack_steps.push((c.step, crack(model, &params, l, &c)));
+                }
             }
             if scene.record.slip_onsets {
                 let from = match lane.stage {
@@ -276,11 +288,72 @@ pub fn run_lanes<const L: usize>(
                 settle_note: lane.settle_note,
                 skip: lane.skipper.as_ref().map_or_else(SkipStats::default, |s| s.stats),
                 recording: recorder.finish(origin, dt, stride),
+                damage: damage(model, &params, &state, l),
             })
         }
         Stage::Failed(e) => Err(e),
         Stage::Settling { .. } | Stage::Shearing { .. } => unreachable!("the loop ends when no lane is running"),
     })
+}
+
+/// The bars of lane `l` past their peak, by canonical index, with what the law says they
+/// dissipated.
+fn damage<const L: usize>(model: &Model, params: &Params<'_, L>, state: &State<L>, l: usize) -> Vec<BarDamage> {
+    let (Some(d), Some(law)) = (&state.rupture, &params.rupture) else { return Vec::new() };
+    let mut out: Vec<BarDamage> = (0..model.bar_count())
+        .filter(|&b| d.secant[b][l] != params.k[b][l])
+        .map(|b| {
+            let canonical = model.bar_canonical()[b];
+            let bar = &model.lattice().bars()[canonical as usize];
+            let kernel = if bar.family == crate::geometry::BarFamily::Diagonal { 3f64.sqrt() } else { 1.0 };
+            let length = bar.length_factor() * model.scene().lc_m;
+            let bar_law = BarLaw { k: params.k[b][l], peak: law.peak[b][l], kr: law.kr };
+            BarDamage {
+                bar: canonical,
+                reach_strain: d.reach[b][l] / (kernel * length),
+                dissipated_j: bar_law.dissipated(d.reach[b][l]),
+                broken: d.secant[b][l] == 0.0,
+            }
+        })
+        .collect();
+    out.sort_by_key(|d| d.bar);
+    out
+}
+
+/// A crack of lane `l` as recorded: canonical bar, strain, energy (docs/model.md §11); the time is
+/// set when the recorder finishes.
+fn crack<const L: usize>(model: &Model, params: &Params<'_, L>, l: usize, c: &CrackLog) -> Crack {
+    let b = c.bar as usize;
+    let canonical = model.bar_canonical()[b];
+    let bar = &model.lattice().bars()[canonical as usize];
+    // Kernel units: a diagonal's elongation is stored √3 times, its stiffness a third.
+    let kernel = if bar.family == crate::geometry::BarFamily::Diagonal { 3f64.sqrt() } else { 1.0 };
+    let length = bar.length_factor() * model.scene().lc_m;
+    let law = params.rupture.as_ref().expect("cracks come from the rupture kernel");
+    let (k, peak) = (params.k[b][l], law.peak[b][l]);
+    let energy_j = match c.kind {
+        CrackKind::Soften => 0.5 * k * peak * peak,
+        CrackKind::Break => 0.5 * k * peak * (law.kr * peak),
+    };
+    Crack { time_s: 0.0, bar: canonical, kind: c.kind, strain: c.elongation / (kernel * length), energy_j }
+}
+
+/// Why a static self-weight state `u` cannot be used when the bars crack: the first bar it loads
+/// past its peak elongation (the static solve is linear elastic).
+fn beyond_peak(model: &Model, strength: Option<&[f64]>, u: &Field<1>) -> Option<String> {
+    let peak = strength?;
+    let p = elongations(model.layout(), u, 0);
+    let b = (0..p.len()).find(|&b| p[b] > peak[b])?;
+    let bar = &model.lattice().bars()[model.bar_canonical()[b] as usize];
+    let at = model.lattice().bar_midpoint(bar);
+    Some(format!(
+        "the static self-weight would load a {} bar at ({:.3}, {:.3}, {:.3}) m past its peak strain; settled dynamically \
+         so that it softens as it should",
+        bar.family.name(),
+        at[0],
+        at[1],
+        at[2]
+    ))
 }
 
 /// Puts lane `l` at rest in a static equilibrium `u` (every base node sticking, or lifted where

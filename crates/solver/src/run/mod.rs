@@ -101,6 +101,22 @@ pub struct RunOutput {
     pub skip: SkipStats,
     /// Recorded series.
     pub recording: Recording,
+    /// Every bar past its peak at the end of the run (when the scene's bars crack), by canonical
+    /// index.
+    pub damage: Vec<BarDamage>,
+}
+
+/// A bar past its peak at the end of a run (docs/model.md §11).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BarDamage {
+    /// Canonical bar index.
+    pub bar: u32,
+    /// Largest strain it reached.
+    pub reach_strain: f64,
+    /// Energy it dissipated by the law's closed form `Gf·A_f·(κ − εp)/(εr − εp)` (J).
+    pub dissipated_j: f64,
+    /// Whether it reached `εr`.
+    pub broken: bool,
 }
 
 impl RunOutput {
@@ -130,6 +146,7 @@ pub fn run_seed(
 pub(crate) fn prepare(model: &Model, seed: u64, options: RunOptions) -> Result<(LaneSetup, CriticalStep), SolverError> {
     let stiffness = model.bar_stiffness(seed)?;
     let friction = model.friction_factors(seed)?;
+    let strength = model.bar_strength(seed)?;
     let critical = critical_time_step(model, &stiffness)?;
     let mut dt_s = match model.scene().time_step {
         TimeStep::Fraction(f) => f * critical.dt_s,
@@ -145,5 +162,5 @@ pub(crate) fn prepare(model: &Model, seed: u64, options: RunOptions) -> Result<(
         let k = (interval / dt_s * (1.0 - 1e-12)).ceil().max(1.0);
         dt_s = interval / k;
     }
-    Ok((LaneSetup { dt_s, stiffness, friction }, critical))
+    Ok((LaneSetup { dt_s, stiffness, friction, strength }, critical))
 }

@@ -33,7 +33,7 @@ use crate::layout::{BarGroup, BarLayout, Segment};
 use crate::step::isa::{Isa, widest};
 
 /// Checks that `k`, `u` and `f` fit `layout` (the kernels index them without bounds checks).
-fn check<const L: usize>(layout: &BarLayout, k: &[Lanes<L>], u: &Field<L>, f: &Field<L>) {
+pub(crate) fn check<const L: usize>(layout: &BarLayout, k: &[Lanes<L>], u: &Field<L>, f: &Field<L>) {
     assert_eq!(k.len(), layout.ends().len(), "one stiffness per bar");
     for c in 0..3 {
         assert!(u.c[c].len() == layout.nodes() && f.c[c].len() == layout.nodes(), "fields over the layout's nodes");
@@ -42,7 +42,7 @@ fn check<const L: usize>(layout: &BarLayout, k: &[Lanes<L>], u: &Field<L>, f: &F
 
 /// Raw view of the force field shared by the threads of one phase.
 #[derive(Clone, Copy)]
-struct ForcePtr<const L: usize>([*mut Lanes<L>; 3]);
+pub(crate) struct ForcePtr<const L: usize>(pub(crate) [*mut Lanes<L>; 3]);
 
 // SAFETY: the segments run together write disjoint nodes (checked by `BarLayout::new`).
 unsafe impl<const L: usize> Send for ForcePtr<L> {}
@@ -177,14 +177,14 @@ unsafe fn axial<const L: usize>(ends: &[[u32; 2]], k: &[Lanes<L>], u: *const Lan
 }
 
 #[inline(always)]
-fn add_lanes<const L: usize>(a: &mut Lanes<L>, b: &Lanes<L>) {
+pub(crate) fn add_lanes<const L: usize>(a: &mut Lanes<L>, b: &Lanes<L>) {
     for l in 0..L {
         a[l] += b[l];
     }
 }
 
 #[inline(always)]
-fn sub_lanes<const L: usize>(a: &mut Lanes<L>, b: &Lanes<L>) {
+pub(crate) fn sub_lanes<const L: usize>(a: &mut Lanes<L>, b: &Lanes<L>) {
     for l in 0..L {
         a[l] -= b[l];
     }

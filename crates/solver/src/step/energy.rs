@@ -3,7 +3,8 @@
 //!
 //! Every force's work over step n is `F·(uₙ₊₁ − uₙ₋₁)/2`; the kinetic energy is
 //! `½m|uₙ₊₁ − uₙ|²/Δt²` and the strain energy `½uₙᵀKuₙ₊₁`: the pair central differences conserve
-//! exactly.
+//! exactly. Bars that crack keep that pairing with the stiffness each bar has at step n, and the
+//! rupture kernel books what they dissipate ([`crate::step::rupture`]).
 
 use crate::field::{Field, Lanes};
 use crate::geometry::Direction;
@@ -25,6 +26,8 @@ pub struct Energy {
     pub friction: f64,
     /// Lost in inelastic landings on the base.
     pub impact: f64,
+    /// Dissipated by bars that crack (docs/model.md §11; 0 without rupture).
+    pub fracture: f64,
     /// Work of body forces (gravity, body-force loads).
     pub body_work: f64,
     /// Work of the drivers.
@@ -39,7 +42,8 @@ impl Energy {
 
     /// External work minus everything stored and dissipated (zero up to round-off).
     pub fn residual(&self) -> f64 {
-        self.external_work() - (self.kinetic + self.elastic + self.damping + self.friction + self.impact)
+        self.external_work()
+            - (self.kinetic + self.elastic + self.damping + self.friction + self.impact + self.fracture)
     }
 }
 

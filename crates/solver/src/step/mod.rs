@@ -20,6 +20,7 @@ pub mod energy;
 pub mod integrate;
 pub mod isa;
 pub mod params;
+pub mod rupture;
 pub mod state;
 mod view;
 
@@ -46,17 +47,42 @@ pub struct Tracking {
     pub slid: bool,
 }
 
+/// Which bar kernel a stepper runs, chosen once from the scene.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kernel {
+    /// Linear-elastic bars ([`bars`]): every scene without `[rupture]`.
+    Elastic,
+    /// Bars that crack ([`rupture`]).
+    Rupture,
+}
+
 /// The scratch memory of a step of `L` seeds, and how to run it.
 pub struct Stepper<const L: usize> {
     force: Field<L>,
     parallel: bool,
     tracking: Tracking,
+    kernel: Kernel,
+    /// Per-segment ledgers and crack lists of the rupture kernel.
+    outs: Vec<rupture::SegmentOut<L>>,
 }
 
 impl<const L: usize> Stepper<L> {
-    /// A stepper for `model`, serial, tracking nothing.
+    /// A stepper for `model`, serial, tracking nothing; its kernel is the rupture kernel when the
+    /// scene's bars crack, the elastic one otherwise.
     pub fn new(model: &Model) -> Self {
-        Stepper { force: Field::zeros(model.node_count()), parallel: false, tracking: Tracking::default() }
+        let kernel = if model.scene().rupture.is_some() { Kernel::Rupture } else { Kernel::Elastic };
+        Stepper {
+            force: Field::zeros(model.node_count()),
+            parallel: false,
+            tracking: Tracking::default(),
+            kernel,
+            outs: Vec::new(),
+        }
+    }
+
+    /// The bar kernel this stepper runs.
+    pub fn kernel(&self) -> Kernel {
+        self.kernel
     }
 
     /// Splits each step over the current rayon pool (the numbers do not change: see
@@ -79,25 +105,29 @@ impl<const L: usize> Stepper<L> {
     pub fn step(&mut self, p: &Params<'_, L>, state: &mut State<L>) {
         let m = p.model;
         let update = Update { inv_mass: m.inv_mass(), coef: p.coefficients(), body: p.body() };
-        let u = &mut state.u;
-        // The force field is zero here: the integration clears it as it consumes it. The trial
-        // `uₙ₊₂` is written over `uₙ₋₁`, no longer needed.
-        if self.parallel {
-            bar_forces_parallel(m.layout(), &p.k, &u.np1, &mut self.force);
-            integrate_all(&update, &mut self.force, Levels { u: &u.np1, up: &u.n, out: &mut u.nm1 }, true);
-        } else if !m.cache_blocked() {
-            // A small lattice stays in cache: two plain sweeps beat handing over short runs.
-            bar_forces(m.layout(), &p.k, &u.np1, &mut self.force);
-            integrate_all(&update, &mut self.force, Levels { u: &u.np1, up: &u.n, out: &mut u.nm1 }, false);
+        if self.kernel == Kernel::Rupture {
+            self.rupture_forces_and_trial(p, state, &update);
         } else {
-            // Each node is integrated as soon as its last bar has run, while its data is still in
-            // cache, instead of sweeping every node array once more (the same arithmetic, so the
-            // same bits).
-            let isa = Isa::current();
-            let (now, before, out) = (&u.np1, &u.n, &mut u.nm1);
-            bar_forces_finishing(m.layout(), &p.k, now, &mut self.force, |r, f| {
-                integrate_range(isa, r, &update, f, Levels { u: now, up: before, out: &mut *out });
-            });
+            let u = &mut state.u;
+            // The force field is zero here: the integration clears it as it consumes it. The trial
+            // `uₙ₊₂` is written over `uₙ₋₁`, no longer needed.
+            if self.parallel {
+                bar_forces_parallel(m.layout(), &p.k, &u.np1, &mut self.force);
+                integrate_all(&update, &mut self.force, Levels { u: &u.np1, up: &u.n, out: &mut u.nm1 }, true);
+            } else if !m.cache_blocked() {
+                // A small lattice stays in cache: two plain sweeps beat handing over short runs.
+                bar_forces(m.layout(), &p.k, &u.np1, &mut self.force);
+                integrate_all(&update, &mut self.force, Levels { u: &u.np1, up: &u.n, out: &mut u.nm1 }, false);
+            } else {
+                // Each node is integrated as soon as its last bar has run, while its data is still in
+                // cache, instead of sweeping every node array once more (the same arithmetic, so the
+                // same bits).
+                let isa = Isa::current();
+                let (now, before, out) = (&u.np1, &u.n, &mut u.nm1);
+                bar_forces_finishing(m.layout(), &p.k, now, &mut self.force, |r, f| {
+                    integrate_range(isa, r, &update, f, Levels { u: now, up: before, out: &mut *out });
+                });
+            }
         }
         apply_fixed(m, &mut state.u);
         apply_drivers(p, state);
@@ -113,6 +143,39 @@ impl<const L: usize> Stepper<L> {
         }
         state.u.commit();
         state.steps += 1;
+    }
+}
+
+impl<const L: usize> Stepper<L> {
+    /// The rupture kernel's bar forces and the trial update, in the same three ways as the
+    /// elastic ones; then the energy the bars dissipated and their transitions, folded in segment
+    /// order.
+    fn rupture_forces_and_trial(&mut self, p: &Params<'_, L>, state: &mut State<L>, update: &Update<'_, L>) {
+        let m = p.model;
+        let State { u, rupture: damage, energy, steps, .. } = state;
+        let damage = damage.as_mut().expect("the rupture kernel runs on a state with damage");
+        let params = p.rupture.as_ref().expect("the rupture kernel runs with the law's parameters");
+        let (now, before, out) = (&u.np1, &u.n, &mut u.nm1);
+        let pass = rupture::Pass { layout: m.layout(), k0: &p.k, params, state: &mut *damage, u: now, older: before };
+        if self.parallel {
+            rupture::forces_parallel(pass, &mut self.force, &mut self.outs);
+            integrate_all(update, &mut self.force, Levels { u: now, up: before, out }, true);
+        } else if !m.cache_blocked() {
+            rupture::forces(pass, &mut self.force, &mut self.outs);
+            integrate_all(update, &mut self.force, Levels { u: now, up: before, out }, false);
+        } else {
+            let isa = Isa::current();
+            rupture::forces_finishing(pass, &mut self.force, &mut self.outs, |r, f| {
+                integrate_range(isa, r, update, f, Levels { u: now, up: before, out: &mut *out });
+            });
+        }
+        let mut dissipated = [0.0; L];
+        rupture::fold(&self.outs, *steps, &mut dissipated, damage);
+        for l in 0..L {
+            if dissipated[l] != 0.0 {
+                energy[l].fracture += dissipated[l];
+            }
+        }
     }
 }
 
@@ -183,6 +246,13 @@ impl<'m, const L: usize> Batch<'m, L> {
             state: State::at_rest(model.node_count(), model.contact().len(), model.drivers().len()),
             stepper: Stepper::new(model),
         }
+        .with_damage()
+    }
+
+    /// Gives the state its intact damage arrays when the bars crack.
+    fn with_damage(mut self) -> Self {
+        self.state = State::for_params(&self.params);
+        self
     }
 
     /// One step of every lane.

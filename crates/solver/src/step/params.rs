@@ -4,6 +4,7 @@
 use crate::field::Lanes;
 use crate::laws::FrictionLaw;
 use crate::model::Model;
+use crate::step::rupture::RuptureParams;
 
 /// Per-lane set-up of a batch.
 #[derive(Clone, Debug)]
@@ -14,6 +15,9 @@ pub struct LaneSetup {
     pub stiffness: Vec<f64>,
     /// Friction factor per contact node, e.g. [`Model::friction_factors`].
     pub friction: Vec<f64>,
+    /// Peak elongation per bar (kernel units) when the scene's bars crack, e.g.
+    /// [`Model::bar_strength`]; `None`: elastic bars. Every lane of a batch has it or none does.
+    pub strength: Option<Vec<f64>>,
 }
 
 /// Per-lane coefficients of the trial update `u⁺ = cf·(f/m + b) + c2·u − cp·u⁻`.
@@ -40,6 +44,8 @@ pub struct Params<'m, const L: usize> {
     pub mu_static: Vec<Lanes<L>>,
     /// Dynamic coefficient μd of each contact node, per lane.
     pub mu_dynamic: Vec<Lanes<L>>,
+    /// The bilinear law's peaks and `Kr` when bars crack (docs/model.md §11).
+    pub rupture: Option<RuptureParams<L>>,
     dt: Lanes<L>,
     damping: Lanes<L>,
     body: [Lanes<L>; 3],
@@ -69,12 +75,29 @@ impl<'m, const L: usize> Params<'m, L> {
                 mu_dynamic[c][l] = node.mu_dynamic;
             }
         }
+        let rupture = match (lanes.iter().all(|l| l.strength.is_some()), lanes.iter().all(|l| l.strength.is_none())) {
+            (true, _) => {
+                let kr = model.scene().rupture.as_ref().expect("lanes with a strength need a scene with [rupture]").kr;
+                let mut peak = vec![[0.0; L]; nb];
+                for (l, lane) in lanes.iter().enumerate() {
+                    let s = lane.strength.as_ref().expect("checked");
+                    assert_eq!(s.len(), nb, "one strength per bar");
+                    for (pb, &v) in peak.iter_mut().zip(s) {
+                        pb[l] = v;
+                    }
+                }
+                Some(RuptureParams { peak, kr })
+            }
+            (_, true) => None,
+            _ => panic!("every lane of a batch has a strength, or none does"),
+        };
         let mut p = Params {
             model,
             k,
             law,
             mu_static,
             mu_dynamic,
+            rupture,
             dt: lanes.each_ref().map(|lane| lane.dt_s),
             damping: [0.0; L],
             body: [[0.0; L]; 3],

@@ -12,6 +12,8 @@
 
 use crate::field::{Field, Lanes};
 use crate::step::energy::Energy;
+use crate::step::params::Params;
+use crate::step::rupture::RuptureState;
 
 /// Displacements around the viewed step `n`.
 #[derive(Clone, Debug, PartialEq)]
@@ -98,6 +100,8 @@ pub struct State<const L: usize> {
     pub energy: [Energy; L],
     /// Slip history.
     pub log: SlipLog<L>,
+    /// Damage of the bars, when they crack (docs/model.md §11).
+    pub rupture: Option<RuptureState<L>>,
     /// Committed steps (the viewed step is `steps − 1`).
     pub steps: u64,
 }
@@ -125,8 +129,17 @@ impl<const L: usize> State<L> {
                 onsets: std::array::from_fn(|_| Vec::new()),
                 slid: vec![[false; L]; contacts],
             },
+            rupture: None,
             steps: 0,
         }
+    }
+
+    /// A state at rest for the parameters `p`: every bar intact when the scene's bars crack.
+    pub fn for_params(p: &Params<'_, L>) -> Self {
+        let m = p.model;
+        let mut s = State::at_rest(m.node_count(), m.contact().len(), m.drivers().len());
+        s.rupture = p.rupture.as_ref().map(|r| RuptureState::intact(&p.k, r));
+        s
     }
 
     /// Displacement of internal node `i`, lane `l`, at the viewed time (m).

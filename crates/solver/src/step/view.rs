@@ -141,7 +141,11 @@ impl<const L: usize> LaneView<'_, '_, L> {
         let u = &self.state.u;
         let mut e = self.state.energy[self.lane];
         e.kinetic = self.kinetic_energy();
-        e.elastic = strain_energy(self.params.model.layout(), &self.params.k, &u.n, &u.np1, self.lane);
+        let layout = self.params.model.layout();
+        e.elastic = match &self.state.rupture {
+            None => strain_energy(layout, &self.params.k, &u.n, &u.np1, self.lane),
+            Some(r) => crate::step::rupture::strain_energy(layout, &self.params.k, &r.secant, &u.n, &u.np1, self.lane),
+        };
         e
     }
 

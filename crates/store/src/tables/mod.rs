@@ -2,6 +2,7 @@
 //! [`crate::schema`].
 
 pub mod catalogue;
+pub mod cracks;
 pub mod events;
 pub mod records;
 pub mod runs;
