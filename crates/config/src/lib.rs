@@ -13,6 +13,7 @@ pub mod accelerograms;
 pub mod check;
 pub mod error;
 pub mod pipeline;
+pub mod precision;
 pub mod scene;
 pub mod sections;
 pub mod set;

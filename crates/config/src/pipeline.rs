@@ -17,6 +17,7 @@ use stickslip_solver::Scene;
 use crate::accelerograms::{AccelerogramSettings, AccelerogramsSection};
 use crate::check::Checker;
 use crate::error::ConfigError;
+use crate::precision::{PrecisionTarget, TargetSection};
 use crate::scene::{
     BlockSection, BoundarySection, FrictionSection, MaterialSection, RecordSection, RuptureSection, SceneSections,
     SelfWeightSection, ShearSection, SkipAheadSection, TimeSection,
@@ -38,6 +39,8 @@ pub struct SeedsSection {
     pub list: Vec<i64>,
     /// `count` consecutive seeds starting at `first`.
     pub range: Option<SeedRange>,
+    /// Run in batches until a statistic is precise enough (the seeds above are the budget).
+    pub target: Option<TargetSection>,
 }
 
 /// A range of seeds.
@@ -210,8 +213,11 @@ pub struct Pipeline {
     pub name: String,
     /// Description.
     pub description: String,
-    /// Seeds, in the order given, without duplicates.
+    /// Seeds, in the order given, without duplicates (with a precision target: the budget, used
+    /// in this order).
     pub seeds: Vec<u64>,
+    /// Stop adding seeds once a statistic is precise enough (`[seeds.target]`).
+    pub target: Option<PrecisionTarget>,
     /// The scene.
     pub scene: Scene,
     /// Event detection.
@@ -295,6 +301,7 @@ impl Pipeline {
         }
         let mut seen = std::collections::HashSet::new();
         seeds.retain(|s| seen.insert(*s));
+        let target = file.seeds.target.as_ref().and_then(|t| t.build(seeds.len(), &mut ck));
         let events = file.events.build(&mut ck);
         let scene = crate::scene::build(file.scene_sections(), &mut ck);
         let similarity = file.similarity.build(scene.as_ref(), &mut ck);
@@ -324,6 +331,7 @@ impl Pipeline {
             name,
             description: file.description.clone(),
             seeds,
+            target,
             scene: scene.expect("no refusal means a scene"),
             events,
             similarity,
