@@ -12,6 +12,7 @@ pub mod catalogue;
 pub mod error;
 pub mod gather;
 pub mod merge;
+pub mod precision;
 pub mod records;
 pub mod run;
 pub mod seed;

@@ -112,7 +112,13 @@ pub fn digest(out: &Folder) -> Result<String, StoreError> {
     const SHOWN: usize = 8;
     let hidden = groups.len().saturating_sub(SHOWN);
     let main = "main".to_string();
+    let mut cis = Vec::new();
     for g in groups.into_iter().take(SHOWN).chain(std::iter::once(&main)) {
+        if let Some(n) = t.find(g, col::STRESS_DROP_PA)
+            && t.ci95_low[n].is_finite()
+        {
+            cis.push(format!("{g} {:.2}–{:.2}", t.ci95_low[n] * 1e-3, t.ci95_high[n] * 1e-3));
+        }
         let Some(n) = t.find(g, col::STRESS_DROP_PA) else { continue };
         if *g == main && hidden > 0 {
             lines.push(format!("… {hidden} more main shocks (their statistics in tables/summary.parquet)"));
@@ -126,6 +132,12 @@ pub fn digest(out: &Folder) -> Result<String, StoreError> {
             fmt(t.find(g, col::DROP_TIME_S), 1e3, "ms", 1),
             fmt(t.find(g, col::RECURRENCE_S), rec_scale, rec_unit, 1),
             fmt(t.find(g, col::M_RIERA_PAPER_INTERPLATE), 1.0, "", 2),
+        ));
+    }
+    if !cis.is_empty() {
+        lines.push(format!(
+            "(± is the spread over seeds, std; 95% CI of the mean stress drop, kPa: {})",
+            cis.join(", ")
         ));
     }
     Ok(lines.join("\n"))

@@ -177,3 +177,64 @@ fn shards_in_any_order_merge_to_the_plain_ensemble() {
     let err = merge(&dir.join("partial"), None, Some(n)).unwrap_err().to_string();
     assert!(err.contains("seeds missing") && err.contains("shards 2, 3, 4 of 4 incomplete"), "{err}");
 }
+
+/// `short_paper` with a `[seeds.target]` on the main shocks' stress drop.
+fn with_target(text: &str, relative: f64, batch: i64) -> String {
+    let mut doc: toml::Table = toml::from_str(text).unwrap();
+    let seeds = doc["seeds"].as_table_mut().unwrap();
+    let mut t = toml::Table::new();
+    t.insert("quantity".into(), "stress_drop_pa".into());
+    t.insert("group".into(), "main".into());
+    t.insert("relative".into(), relative.into());
+    t.insert("batch".into(), batch.into());
+    seeds.insert("target".into(), t.into());
+    toml::to_string(&doc).unwrap()
+}
+
+fn run_precise(p: &Pipeline, out: &Path, threads: usize) -> stickslip_ensemble::precision::PrecisionOutcome {
+    let options =
+        EnsembleOptions { out: out.to_path_buf(), threads, seeds: p.seeds.clone(), fresh: false, finish: true };
+    let target = p.target.as_ref().expect("a target");
+    let (report, outcome) =
+        stickslip_ensemble::precision::run_to_precision(p, target, &options, &|_, _| {}, &AtomicBool::new(false))
+            .unwrap();
+    assert_eq!(report.ran + report.skipped, outcome.seeds_used);
+    outcome
+}
+
+#[test]
+fn a_precision_target_stops_at_the_same_seed_whatever_the_threads_and_says_when_it_cannot_be_met() {
+    let dir = scratch_dir("ensemble-precision");
+    // Loose enough to be met before the budget of 12 seeds: the main shocks' drops spread by
+    // ~20% (S1 larger than the rest), so a 15% half-width needs a few batches of 3 seeds.
+    let p = pipeline(&dir, &with_target(&short_paper(12, 0.12), 0.15, 3));
+    let one = run_precise(&p, &dir.join("one"), 1);
+    let two = run_precise(&p, &dir.join("two"), 2);
+    assert!(one.met, "{}", one.describe());
+    assert!(one.seeds_used < 12 && one.seeds_used.is_multiple_of(3), "{}", one.describe());
+    assert_eq!(one, two, "the seeds used must not depend on the thread count");
+    let h = one.half_width.unwrap();
+    assert!(h <= 0.15 * one.mean.unwrap().abs(), "{}", one.describe());
+    // The gathered tables hold exactly the seeds used.
+    let runs = read_table(&dir.join("one/tables/runs.parquet"));
+    assert_eq!(runs.height(), one.seeds_used);
+    // Resuming the finished folder reaches the same decision without running a seed.
+    let again = run_precise(&p, &dir.join("one"), 2);
+    assert_eq!(again.seeds_used, one.seeds_used);
+
+    // An impossible target spends the whole budget and says so.
+    let q = pipeline(&dir, &with_target(&short_paper(6, 0.12), 1e-9, 3));
+    let out = run_precise(&q, &dir.join("impossible"), 2);
+    assert!(!out.met && out.seeds_used == 6, "{}", out.describe());
+    assert!(out.describe().contains("NOT met: all 6 seeds of the budget used"), "{}", out.describe());
+}
+
+#[test]
+fn every_target_quantity_is_summarised() {
+    use stickslip_config::precision::TARGET_QUANTITIES;
+    use stickslip_ensemble::summary::{EVENT_QUANTITIES, SIMILARITY_QUANTITIES};
+    for q in TARGET_QUANTITIES {
+        assert!(EVENT_QUANTITIES.contains(&q) || SIMILARITY_QUANTITIES.contains(&q), "{q} is not summarised");
+    }
+    assert_eq!(TARGET_QUANTITIES.len(), EVENT_QUANTITIES.len() + SIMILARITY_QUANTITIES.len());
+}

@@ -7,6 +7,7 @@ use std::time::Instant;
 
 use anyhow::{Context, Result};
 use stickslip_config::Pipeline;
+use stickslip_ensemble::precision::run_to_precision;
 use stickslip_ensemble::set::SetOutcome;
 use stickslip_ensemble::summary::digest;
 use stickslip_ensemble::{EnsembleOptions, EnsembleReport, run_ensemble, shard};
@@ -166,6 +167,13 @@ pub fn run(a: Args) -> Result<()> {
     anyhow::ensure!(a.threads != Some(0), "--threads 0: give at least 1 (or leave it out for one per core)");
     // Validate every file before running any.
     let pipelines = a.pipelines.iter().map(|p| Pipeline::load(p)).collect::<Result<Vec<_>, _>>()?;
+    for p in &pipelines {
+        anyhow::ensure!(
+            p.target.is_none() || (a.seeds.is_none() && a.shard.is_none()),
+            "{}: a pipeline with [seeds.target] chooses its own seeds in batches: run it without --seeds and --shard",
+            p.name
+        );
+    }
     let cancel = cancel_on_ctrl_c()?;
     for pipeline in &pipelines {
         let mut seeds = match &a.seeds {
@@ -183,7 +191,21 @@ pub fn run(a: Args) -> Result<()> {
             fresh: a.fresh,
             finish: a.shard.is_none(),
         };
-        let report = ensemble(pipeline, &options, a.quiet, &cancel)?;
+        let (report, precision) = match &pipeline.target {
+            Some(target) => {
+                let pb = progress::bar(
+                    a.quiet,
+                    options.seeds.len() as u64,
+                    "{msg} [{bar:40}] {pos}/{len} seeds of the budget ({elapsed})",
+                );
+                pb.set_message(pipeline.name.clone());
+                let r = run_to_precision(pipeline, target, &options, &|done, _| pb.set_position(done as u64), &cancel);
+                pb.finish_and_clear();
+                let (report, outcome) = r?;
+                (report, Some(outcome))
+            }
+            None => (ensemble(pipeline, &options, a.quiet, &cancel)?, None),
+        };
         println!(
             "{}{}: {} seeds ({} run now, {} already done, {} failed) in {:.1} s → {}",
             pipeline.name,
@@ -197,6 +219,9 @@ pub fn run(a: Args) -> Result<()> {
         );
         for (seed, msg) in report.failed.iter().take(5) {
             println!("  seed {seed} failed: {msg}");
+        }
+        if let Some(p) = &precision {
+            println!("{}", p.describe());
         }
         if a.shard.is_some() {
             println!("  merge the shards with: stickslip merge {}", out.display());
