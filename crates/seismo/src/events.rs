@@ -240,12 +240,15 @@ pub fn detect(signals: &Signals<'_>, contact_nodes: usize, contact_area_m2: f64,
             .enumerate()
             .fold((0, f64::INFINITY), |m, (i, v)| if v < m.1 { (i, v) } else { m });
         let peak_nodes = slipping.map_or(0.0, |s| s[a..b].iter().copied().fold(0.0, f64::max));
+        // `b` is one past the last slipping sample: the first sample of the quiet spell, which is
+        // the documented end (the record's last sample if it ends while slipping).
+        let end = b.min(n - 1);
         Burst {
             start_s: t[a],
-            end_s: t[b - 1],
+            end_s: t[end],
             stress_drop_pa: tau_s[a] - min_tau,
             drop_end_s: t[a + imin],
-            slip_m: slip[b - 1] - slip[a],
+            slip_m: slip[end] - slip[a],
             peak_slip_rate_m_s: v[a..b].iter().copied().fold(f64::NEG_INFINITY, f64::max),
             peak_slipping_nodes: peak_nodes as u32,
             rupture_area_m2: peak_nodes / contact_nodes as f64 * contact_area_m2,
@@ -435,7 +438,7 @@ mod tests {
         let expected = [(2000, 2250), (6000, 6050), (7000, 7200), (7600, 7650), (12000, 12300)];
         for (e, (a, b)) in cat.events.iter().zip(expected) {
             assert!((e.burst.start_s - a as f64 * DT).abs() <= DT * 1.0001, "start {} vs {a}", e.burst.start_s / DT);
-            assert!((e.burst.end_s - b as f64 * DT).abs() <= DT * 1.0001, "end {} vs {b}", e.burst.end_s / DT);
+            assert!((e.burst.end_s - b as f64 * DT).abs() <= DT * 1e-6, "end {} vs {b}", e.burst.end_s / DT);
         }
         let sub_starts: Vec<usize> = cat.sub_events.iter().map(|s| (s.start_s / DT).round() as usize).collect();
         assert_eq!(sub_starts, vec![2000, 2150, 6000, 7000, 7600, 12000, 12100, 12200]);
@@ -449,6 +452,70 @@ mod tests {
         let slip = (180.0 * 1e-3 + 20.0 * 1e-6) * DT;
         assert!((s2.burst.slip_m - slip).abs() <= 1e-3 * DT * 1.0001, "slip {} vs {slip}", s2.burst.slip_m);
         assert!(cat.events[0].recurrence_s.is_none() && cat.events[1].recurrence_s.is_none());
+    }
+
+    /// One burst of `len` samples at 1 mm/s from sample 5000 with a drop of `drop` Pa, under the
+    /// default 1-ms smoothing (w = 100 samples at DT = 10 µs).
+    fn one_burst(bursts: &[(usize, usize, f64, f64)]) -> Catalogue {
+        let rec = synthetic(12000, bursts);
+        detect(&signals(&rec), 22, 0.1, &EventParams::default())
+    }
+
+    /// What the default smoothing does to a clean burst, in closed form: with a centred moving
+    /// average of w samples, V̄ = rate × (share of the window inside the burst), so V̄ crosses
+    /// v_on = 0.2 × rate 0.3w before the burst starts, and falls below v_off = 0.05 × rate 0.45w
+    /// after it ends; a burst of L samples is measured L + 0.75w long (0.75 ms at 1 ms smoothing).
+    #[test]
+    fn a_clean_ramp_and_drop_is_measured_as_the_smoothing_predicts() {
+        let w = 100.0;
+        let (a, b) = (5000usize, 5200usize);
+        let cat = one_burst(&[(a, b, 1e-3, 6000.0)]);
+        assert_eq!(cat.events.len(), 1);
+        let e = &cat.events[0].burst;
+        let start = (a as f64 - 0.3 * w) * DT;
+        let end = (b as f64 + 0.45 * w) * DT;
+        assert!((e.start_s - start).abs() <= 1.0001 * DT, "start {} vs {}", e.start_s / DT, start / DT);
+        assert!((e.end_s - end).abs() <= 1.0001 * DT, "end {} vs {}", e.end_s / DT, end / DT);
+        assert!((e.duration_s() - (b - a) as f64 * DT - 0.75 * w * DT).abs() <= 2.0001 * DT);
+        // Slip: all of the burst's (200 samples at 1 mm/s), whatever the smoothing.
+        assert!((e.slip_m - 200.0 * 1e-3 * DT).abs() < 1e-12, "slip {}", e.slip_m);
+        // Drop: τ̄ at the (early) start minus the minimum of τ̄. The start falls 30 samples
+        // before the burst, where τ̄ averages the rising ramp (3 Pa per sample) with the first
+        // 20 samples of the fall; the minimum of τ̄ is shaved by averaging the bottom of the
+        // fall with the flat stretch after it. Both lower the drop: 6 kPa is read as 5.6–6 kPa.
+        assert!(e.stress_drop_pa < 6000.0 && e.stress_drop_pa > 0.93 * 6000.0, "drop {}", e.stress_drop_pa);
+    }
+
+    /// Ringing faster than the smoothing window (2 kHz: two periods per millisecond) averages
+    /// out of τ̄: the drop is that of the clean burst, up to what the ringing's decay (10 ms)
+    /// leaves in a 1-ms window (about w/τ × amplitude ≈ 100 Pa, 2% of the drop).
+    #[test]
+    fn ringing_superposed_on_the_drop_is_averaged_out() {
+        let (a, b) = (5000usize, 5200usize);
+        let clean = one_burst(&[(a, b, 1e-3, 6000.0)]);
+        let mut rec = synthetic(12000, &[(a, b, 1e-3, 6000.0)]);
+        for (i, tau) in rec[1].iter_mut().enumerate() {
+            if i >= a {
+                let t = (i - a) as f64 * DT;
+                *tau += 1000.0 * (2.0 * std::f64::consts::PI * 2000.0 * t).sin() * (-t / 0.01).exp();
+            }
+        }
+        let rung = detect(&signals(&rec), 22, 0.1, &EventParams::default());
+        assert_eq!(rung.events.len(), 1);
+        let (d0, d1) = (clean.events[0].burst.stress_drop_pa, rung.events[0].burst.stress_drop_pa);
+        // A 1-kPa ringing, unsmoothed, would change the drop by up to 1 kPa (17%).
+        assert!((d1 - d0).abs() < 0.03 * d0, "drop {d1} with ringing vs {d0} clean");
+        assert_eq!(rung.events[0].burst.start_s, clean.events[0].burst.start_s);
+    }
+
+    /// Two drops 0.5 ms apart (closer than the 1-ms window) are one event whose drop is both.
+    #[test]
+    fn two_drops_closer_than_the_smoothing_window_are_one_event() {
+        let cat = one_burst(&[(5000, 5200, 1e-3, 3000.0), (5250, 5450, 1e-3, 3000.0)]);
+        assert_eq!(cat.events.len(), 1, "{:?}", cat.events.iter().map(|e| e.burst.start_s).collect::<Vec<_>>());
+        let e = &cat.events[0].burst;
+        assert!(e.stress_drop_pa < 6000.0 && e.stress_drop_pa > 0.93 * 6000.0, "drop {}", e.stress_drop_pa);
+        assert!((e.end_s - (5450.0 + 45.0) * DT).abs() <= 1.0001 * DT, "end {}", e.end_s / DT);
     }
 
     #[test]
