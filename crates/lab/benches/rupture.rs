@@ -13,34 +13,11 @@
 use std::hint::black_box;
 use std::time::Instant;
 
-use stickslip_config::PipelineFile;
-use stickslip_config::scene::RuptureSection;
+use stickslip_lab::kernel_scene::{model, setup};
 use stickslip_solver::Model;
-use stickslip_solver::statics::critical_time_step;
 use stickslip_solver::step::{Batch, Kernel, LaneSetup};
 
 const ROUNDS: usize = 9;
-
-fn model(nx: i64, ny: i64, nz: i64, rupture: bool) -> Model {
-    let mut f = PipelineFile::default();
-    (f.block.nx, f.block.ny, f.block.nz) = (nx, ny, nz);
-    f.shear.driver_at_m = vec![[0.0, 0.0, 0.1]];
-    if rupture {
-        f.rupture = Some(RuptureSection::default());
-    }
-    Model::new(f.scene().unwrap())
-}
-
-fn setup(m: &Model, seed: u64) -> LaneSetup {
-    let k = m.bar_stiffness(seed).unwrap();
-    let dt = 0.5 * critical_time_step(m, &k).unwrap().dt_s;
-    LaneSetup {
-        dt_s: dt,
-        stiffness: k,
-        friction: m.friction_factors(seed).unwrap(),
-        strength: m.bar_strength(seed).unwrap(),
-    }
-}
 
 /// A batch of `L` seeds under self-weight with the paper's damping, 50 steps in.
 fn batch<const L: usize>(m: &Model) -> Batch<'_, L> {

@@ -7,29 +7,10 @@
 use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use stickslip_config::PipelineFile;
+use stickslip_lab::kernel_scene::{model, setup};
 use stickslip_solver::Model;
-use stickslip_solver::statics::critical_time_step;
 use stickslip_solver::step::bars::bar_forces;
 use stickslip_solver::step::{Batch, Field, LaneSetup};
-
-fn model(nx: i64, ny: i64, nz: i64) -> Model {
-    let mut f = PipelineFile::default();
-    (f.block.nx, f.block.ny, f.block.nz) = (nx, ny, nz);
-    f.shear.driver_at_m = vec![[0.0, 0.0, 0.1]];
-    Model::new(f.scene().unwrap())
-}
-
-fn setup(m: &Model, seed: u64) -> LaneSetup {
-    let k = m.bar_stiffness(seed).unwrap();
-    let dt = 0.5 * critical_time_step(m, &k).unwrap().dt_s;
-    LaneSetup {
-        dt_s: dt,
-        stiffness: k,
-        friction: m.friction_factors(seed).unwrap(),
-        strength: m.bar_strength(seed).unwrap(),
-    }
-}
 
 fn stepping<const L: usize>(c: &mut Criterion, m: &Model, name: &str) {
     let lanes: [LaneSetup; L] = std::array::from_fn(|l| setup(m, l as u64 + 1));
@@ -102,7 +83,7 @@ fn benches(c: &mut Criterion) {
     triad(c, 72);
     triad(c, 256);
     for (nx, ny, nz) in [(10, 1, 5), (40, 20, 4), (100, 50, 10)] {
-        let m = model(nx, ny, nz);
+        let m = model(nx, ny, nz, false);
         let name = format!("{nx}x{ny}x{nz}");
         kernel::<1>(c, &m, &name);
         kernel::<8>(c, &m, &name);

@@ -10,6 +10,7 @@
 
 pub mod accuracy;
 pub mod calibrate;
+pub mod kernel_scene;
 pub mod peer;
 pub mod recording_cost;
 pub mod skip;
