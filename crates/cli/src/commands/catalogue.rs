@@ -31,7 +31,13 @@ pub fn run(a: Args) -> Result<()> {
     print(&stats, None);
     if let Some(seed) = a.seed {
         if !stats.b_values.iter().any(|r| r.seed == Some(seed)) {
-            bail!("seed {seed}: no rows (the folder has one seed, whose rows are the pooled ones, or not this seed)");
+            let mut seeds: Vec<u64> = stats.b_values.iter().filter_map(|r| r.seed).collect();
+            seeds.dedup();
+            if seeds.is_empty() {
+                bail!("--seed {seed}: the folder has one seed, so its statistics are the pooled ones printed above");
+            }
+            let list: Vec<String> = seeds.iter().map(u64::to_string).collect();
+            bail!("--seed {seed} is not a seed of this folder; its seeds are {}", list.join(", "));
         }
         println!();
         print(&stats, Some(seed));
