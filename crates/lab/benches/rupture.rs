@@ -13,25 +13,10 @@
 use std::hint::black_box;
 use std::time::Instant;
 
-use stickslip_lab::kernel_scene::{model, setup};
-use stickslip_solver::Model;
-use stickslip_solver::step::{Batch, Kernel, LaneSetup};
+use stickslip_lab::kernel_scene::{model, settling_batch};
+use stickslip_solver::step::{Batch, Kernel};
 
 const ROUNDS: usize = 9;
-
-/// A batch of `L` seeds under self-weight with the paper's damping, 50 steps in.
-fn batch<const L: usize>(m: &Model) -> Batch<'_, L> {
-    let lanes: [LaneSetup; L] = std::array::from_fn(|l| setup(m, l as u64 + 1));
-    let mut s = Batch::<L>::new(m, &lanes);
-    for l in 0..L {
-        s.params.set_damping(l, 400.0);
-        s.params.set_body_acceleration(l, [0.0, 0.0, -9.81]);
-    }
-    for _ in 0..50 {
-        s.step();
-    }
-    s
-}
 
 fn time<const L: usize>(s: &mut Batch<'_, L>, steps: usize) -> f64 {
     let t = Instant::now();
@@ -49,7 +34,7 @@ fn median(mut v: Vec<f64>) -> f64 {
 
 fn compare<const L: usize>(dims: (i64, i64, i64)) {
     let (elastic_m, rupture_m) = (model(dims.0, dims.1, dims.2, false), model(dims.0, dims.1, dims.2, true));
-    let (mut elastic, mut rupture) = (batch::<L>(&elastic_m), batch::<L>(&rupture_m));
+    let (mut elastic, mut rupture) = (settling_batch::<L>(&elastic_m), settling_batch::<L>(&rupture_m));
     assert_eq!(elastic.stepper.kernel(), Kernel::Elastic);
     assert_eq!(rupture.stepper.kernel(), Kernel::Rupture);
     // Steps per block: about 0.1 s of the elastic kernel.

@@ -7,21 +7,13 @@
 use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use stickslip_lab::kernel_scene::{model, setup};
+use stickslip_lab::kernel_scene::{model, settling_batch, setup};
 use stickslip_solver::Model;
 use stickslip_solver::step::bars::bar_forces;
-use stickslip_solver::step::{Batch, Field, LaneSetup};
+use stickslip_solver::step::{Batch, Field};
 
 fn stepping<const L: usize>(c: &mut Criterion, m: &Model, name: &str) {
-    let lanes: [LaneSetup; L] = std::array::from_fn(|l| setup(m, l as u64 + 1));
-    let mut s = Batch::<L>::new(m, &lanes);
-    for l in 0..L {
-        s.params.set_damping(l, 400.0);
-        s.params.set_body_acceleration(l, [0.0, 0.0, -9.81]);
-    }
-    for _ in 0..50 {
-        s.step();
-    }
+    let mut s = settling_batch::<L>(m);
     let mut g = c.benchmark_group("step");
     g.throughput(Throughput::Elements((m.bar_count() * L) as u64));
     g.bench_function(BenchmarkId::new(format!("{L}_seeds"), name), |b| b.iter(|| s.step()));

@@ -1,11 +1,12 @@
 //! The scene the kernel benchmarks step (`benches/step.rs`, `benches/rupture.rs`): the paper's
-//! block at any size, driven at one node, and one seed's lane at half its critical step.
+//! block at any size, driven at one node, one seed's lane at half its critical step, and a batch
+//! of seeds settling under self-weight.
 
 use stickslip_config::PipelineFile;
 use stickslip_config::scene::RuptureSection;
 use stickslip_solver::Model;
 use stickslip_solver::statics::critical_time_step;
-use stickslip_solver::step::LaneSetup;
+use stickslip_solver::step::{Batch, LaneSetup};
 
 /// The paper's scene with `nx × ny × nz` modules, with `[rupture]` at its defaults if asked.
 pub fn model(nx: i64, ny: i64, nz: i64, rupture: bool) -> Model {
@@ -28,4 +29,18 @@ pub fn setup(m: &Model, seed: u64) -> LaneSetup {
         friction: m.friction_factors(seed).expect("friction"),
         strength: m.bar_strength(seed).expect("strength"),
     }
+}
+
+/// Seeds 1…L of `m` side by side under self-weight with the paper's damping (400/s), 50 steps in.
+pub fn settling_batch<const L: usize>(m: &Model) -> Batch<'_, L> {
+    let lanes: [LaneSetup; L] = std::array::from_fn(|l| setup(m, l as u64 + 1));
+    let mut s = Batch::<L>::new(m, &lanes);
+    for l in 0..L {
+        s.params.set_damping(l, 400.0);
+        s.params.set_body_acceleration(l, [0.0, 0.0, -9.81]);
+    }
+    for _ in 0..50 {
+        s.step();
+    }
+    s
 }

@@ -164,14 +164,8 @@ unsafe fn axial<const L: usize>(ends: &[[u32; 2]], k: &[Lanes<L>], u: *const Lan
             for l in 0..L {
                 t[l] = kb[l] * (uj[l] - ui[l]);
             }
-            let fi = &mut *f.add(i);
-            for l in 0..L {
-                fi[l] += t[l];
-            }
-            let fj = &mut *f.add(j);
-            for l in 0..L {
-                fj[l] -= t[l];
-            }
+            add_lanes(&mut *f.add(i), &t);
+            sub_lanes(&mut *f.add(j), &t);
         }
     }
 }

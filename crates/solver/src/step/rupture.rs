@@ -386,14 +386,8 @@ unsafe fn axial<const L: usize>(
                 };
                 t = exact(b, p, t, before, s, out);
             }
-            let fi = &mut *fc.add(i);
-            for l in 0..L {
-                fi[l] += t[l];
-            }
-            let fj = &mut *fc.add(j);
-            for l in 0..L {
-                fj[l] -= t[l];
-            }
+            add_lanes(&mut *fc.add(i), &t);
+            sub_lanes(&mut *fc.add(j), &t);
         }
     }
 }
