@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 use stickslip_seismo::emission::ClusterParams;
 use stickslip_seismo::events::EventParams;
 use stickslip_seismo::similarity::SimilarityParams;
-use stickslip_solver::Scene;
+use stickslip_solver::{Scene, TracePlan};
 
 use crate::accelerograms::{AccelerogramSettings, AccelerogramsSection};
 use crate::check::Checker;
@@ -200,9 +200,24 @@ impl PipelineFile {
     /// The scene of this file (validated).
     pub fn scene(&self) -> Result<Scene, ConfigError> {
         let mut ck = Checker::default();
+        let events = self.events.build(&mut ck);
         let scene = crate::scene::build(self.scene_sections(), &mut ck);
         ck.finish()?;
-        Ok(scene.expect("no refusal means a scene"))
+        let mut scene = scene.expect("no refusal means a scene");
+        scene.record.trace = trace_plan(&events, scene.shear.duration_s);
+        Ok(scene)
+    }
+}
+
+/// What the solver keeps of every step for the detector `events` (docs/model.md §7): steps
+/// within `2·smoothing + quiet` of a step whose raw slip rate reaches half of `v_off` (so every
+/// smoothing window and quiet spell the detector reads lies at full rate), and between bursts
+/// one step in `smoothing/4` or in 1/200,000 of the shear stage, whichever is longer.
+pub fn trace_plan(events: &EventParams, shear_duration_s: f64) -> TracePlan {
+    TracePlan {
+        hot_rate_m_s: 0.5 * events.v_off_m_s,
+        margin_s: 2.0 * events.smoothing_s + events.quiet_s,
+        quiet_interval_s: (0.25 * events.smoothing_s).max(shear_duration_s / 200_000.0),
     }
 }
 
@@ -332,7 +347,11 @@ impl Pipeline {
             description: file.description.clone(),
             seeds,
             target,
-            scene: scene.expect("no refusal means a scene"),
+            scene: {
+                let mut scene = scene.expect("no refusal means a scene");
+                scene.record.trace = trace_plan(&events, scene.shear.duration_s);
+                scene
+            },
             events,
             similarity,
             accelerograms,

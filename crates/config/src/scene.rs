@@ -5,7 +5,6 @@
 //! allowed range.
 
 use serde::{Deserialize, Serialize};
-use stickslip_solver::Scene;
 use stickslip_solver::geometry::{Dims, Face, Lattice, NodeId, NodeSet};
 use stickslip_solver::laws::{Coulomb, FrictionLaw, SlipWeakening, StaticDynamic};
 use stickslip_solver::rupture::{Rupture, kr_from_failure_factor, max_failure_factor};
@@ -13,6 +12,7 @@ use stickslip_solver::scene::{
     Component, ControlChannel, Friction, InterfaceQuantity, Kinematic, RecordPlan, SelfWeight, SettleMethod, Shear,
     SkipAhead, TimeStep,
 };
+use stickslip_solver::{Scene, TracePlan};
 
 use crate::check::Checker;
 
@@ -302,8 +302,8 @@ fn default_components() -> Vec<String> {
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields, default)]
 pub struct RecordSection {
-    /// Sampling interval in seconds; Δt is lowered (never raised) to make it a whole number of
-    /// steps. Omitted = every step.
+    /// Sampling interval in seconds: samples are taken every `round(interval_s/Δt)` steps (Δt
+    /// does not depend on it, so neither do the run and its events). Omitted = every step.
     pub interval_s: Option<f64>,
     /// Interface quantities. Default: all of them.
     pub interface: Vec<String>,
@@ -609,6 +609,7 @@ pub(crate) fn build(file: SceneSections<'_>, ck: &mut Checker) -> Option<Scene> 
             settling: r.settling,
             slip_onsets: r.slip_onsets,
             control,
+            trace: TracePlan::default(),
         },
         skip_ahead: SkipAhead {
             enabled: sk.enabled,

@@ -10,7 +10,7 @@ use stickslip_seismo::emission::{Cluster, clusters};
 use stickslip_seismo::events::{Catalogue, EventParams, Signals, detect};
 use stickslip_seismo::similarity::{AreaChoice, ModelEvent, Scaled, moment_magnitude, scale};
 use stickslip_solver::scene::{ControlChannel, Kinematic};
-use stickslip_solver::{Channel, Model, Recording, RunOutput};
+use stickslip_solver::{Model, Recording, RunOutput};
 use stickslip_store::Folder;
 use stickslip_store::io::{write_bytes_atomic, write_parquet_atomic, write_text_atomic};
 use stickslip_store::schema::{
@@ -48,20 +48,17 @@ pub fn acceleration_channels(model: &Model) -> Vec<ControlChannel> {
     model.scene().record.control.iter().filter(|c| c.quantity == Kinematic::Acceleration).copied().collect()
 }
 
-/// Detects the events of a recording (docs/model.md §7); refuses a recording without the
-/// channels the detector needs.
+/// Detects the events of a run on the solver's event trace (docs/model.md §7): every step around
+/// each burst of slip, whatever the recording interval, so the catalogue does not depend on it.
 pub fn catalogue(rec: &Recording, model: &Model, events: &EventParams) -> Result<Catalogue, String> {
-    let need = |ch: Channel, asked: &str| {
-        rec.get(ch).ok_or_else(|| format!("event detection needs the channel {asked}: add it to record.interface"))
-    };
-    let accelerations: Vec<&[f64]> =
-        rec.control.iter().filter(|(c, _)| c.quantity == Kinematic::Acceleration).map(|(_, v)| v.as_slice()).collect();
+    let trace = &rec.trace;
+    let accelerations: Vec<&[f64]> = trace.accelerations.iter().map(|(_, v)| v.as_slice()).collect();
     let signals = Signals {
-        time_s: &rec.time_s,
-        shear_stress_pa: need(Channel::ShearStress, "shear_stress")?,
-        mean_slip_m: need(Channel::MeanSlip, "mean_slip")?,
-        mean_slip_rate_m_s: need(Channel::MeanSlipRate, "slip_rate")?,
-        slipping_nodes: rec.get(Channel::SlippingNodes),
+        time_s: &trace.time_s,
+        shear_stress_pa: &trace.shear_stress_pa,
+        mean_slip_m: &trace.mean_slip_m,
+        mean_slip_rate_m_s: &trace.mean_slip_rate_m_s,
+        slipping_nodes: Some(&trace.slipping_nodes),
         accelerations: &accelerations,
     };
     Ok(detect(&signals, model.contact().len(), model.lattice().contact_area(), events))

@@ -17,7 +17,7 @@
 //!   step of `L` seeds (state, parameters and scratch apart; bar, integrate and contact kernels);
 //! - [`statics`]: static solves, the critical time step, effective moduli;
 //! - [`quasistatic`]: the static self-weight start and the skip-ahead through quiet phases;
-//! - [`recording`], [`run`]: recorders and the two loading stages; [`inspect`]: what a scene
+//! - [`recording`], [`trace`], [`run`]: recorders, the event trace and the two loading stages; [`inspect`]: what a scene
 //!   builds, for `stickslip check`.
 #![deny(missing_docs)]
 
@@ -37,6 +37,7 @@ pub mod rupture;
 pub mod scene;
 pub mod statics;
 pub mod step;
+pub mod trace;
 
 pub use error::SolverError;
 pub use geometry::{Dims, Lattice, NodeId};
@@ -44,3 +45,4 @@ pub use model::Model;
 pub use recording::{Channel, Crack, Recording, Sampling};
 pub use run::{BATCH, BarDamage, Perturbation, RunOptions, RunOutput, run_batched, run_lanes, run_seed};
 pub use scene::Scene;
+pub use trace::{Trace, TracePlan};

@@ -7,6 +7,7 @@ use crate::geometry::NodeId;
 use crate::scene::{ControlChannel, InterfaceQuantity, Kinematic, RecordPlan};
 use crate::step::rupture::CrackKind;
 use crate::step::{Energy, Interface, LaneView};
+use crate::trace::{Trace, Tracer};
 
 /// What a recorder reads at one viewed time: a lane of a stepper, or a quasi-static motion
 /// the run skips through.
@@ -180,14 +181,14 @@ impl Channel {
 pub struct Sampling {
     /// Time step of the run (s).
     pub step_s: f64,
-    /// Steps between two samples of the shear stage (from `record.interval_s`; 1 = every step).
+    /// Steps between two samples of the shear stage: `record.interval_s / Δt` rounded (1 = every
+    /// step); the interval recorded is `stride·Δt`.
     pub stride: u64,
     /// Index of the first sample of the shear stage (the samples before it, if the self-weight
     /// stage was recorded, are every step at negative times).
     pub shear_start: usize,
     /// Whether every shear-stage sample is `stride` steps after the one before. Not so when the
-    /// skip-ahead samples quiet phases more sparsely, or when the stage's last step is off the
-    /// sampling grid (it is always recorded).
+    /// skip-ahead samples quiet phases more sparsely.
     pub uniform: bool,
 }
 
@@ -216,6 +217,9 @@ pub struct Recording {
     pub cracks: Vec<Crack>,
     /// How the samples were taken.
     pub sampling: Sampling,
+    /// The shear stage's interface signals at the solver's own steps around every burst of slip
+    /// (whatever the interval): what events are measured on.
+    pub trace: Trace,
 }
 
 /// One bar passing its peak or breaking (docs/model.md §11).
@@ -319,6 +323,8 @@ pub(crate) struct Recorder {
     pub(crate) skip_steps: Vec<(u64, u64, Transition)>,
     /// Cracks with the step index in place of the time.
     pub(crate) crack_steps: Vec<(u64, Crack)>,
+    /// The event trace, from the first step of the shear stage.
+    pub(crate) tracer: Option<Tracer>,
     control_nodes: Vec<usize>,
     area: f64,
 }
@@ -339,7 +345,9 @@ impl Recorder {
                 skips: Vec::new(),
                 cracks: Vec::new(),
                 sampling: Sampling::default(),
+                trace: Trace::default(),
             },
+            tracer: None,
             onset_steps: Vec::new(),
             skip_steps: Vec::new(),
             crack_steps: Vec::new(),
@@ -394,6 +402,9 @@ impl Recorder {
         let shear_start = self.steps.partition_point(|&s| s < origin);
         let uniform = self.steps[shear_start..].windows(2).all(|w| w[1] - w[0] == stride);
         self.records.sampling = Sampling { step_s: dt, stride, shear_start, uniform };
+        if let Some(tracer) = self.tracer.take() {
+            self.records.trace = tracer.finish(dt);
+        }
         self.records.time_s = self.steps.iter().map(|&s| (s as f64 - origin as f64) * dt).collect();
         self.records.onsets = self.onset_steps.iter().map(|&(s, n)| ((s as f64 - origin as f64) * dt, n)).collect();
         let t = |s: u64| (s as f64 - origin as f64) * dt;

@@ -10,6 +10,7 @@ use crate::dispersion::{DispersionError, LatticeMaterial, UsableBand, usable_ban
 use crate::geometry::{Dims, Lattice, NodeId};
 use crate::laws::{Coulomb, FrictionLaw};
 use crate::rupture::Rupture;
+pub use crate::trace::TracePlan;
 
 /// How Δt is chosen.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -256,6 +257,8 @@ pub struct RecordPlan {
     pub slip_onsets: bool,
     /// Control channels, sorted and unique.
     pub control: Vec<ControlChannel>,
+    /// The event trace, kept whatever the interval (docs/model.md §7).
+    pub trace: TracePlan,
 }
 
 impl RecordPlan {
@@ -339,6 +342,7 @@ impl Scene {
                 settling: false,
                 slip_onsets: false,
                 control: Vec::new(),
+                trace: TracePlan::default(),
             },
             skip_ahead: SkipAhead { enabled: false, tolerance: 1e-4, margin_steps: 20, record_interval_s: None },
             rupture: None,

@@ -87,7 +87,13 @@ pub fn run(a: Args) -> Result<()> {
         TimeStep::Fixed(dt) => println!("  time step: {dt:e} s ({:.3} of the smallest critical step)", dt / lo),
     }
     if let Some(iv) = scene.record.interval_s {
-        println!("  (Δt is lowered to fit a whole number of steps into the record interval {iv} s)");
+        let k = |dt: f64| (iv / dt).round().max(1.0);
+        let (k_lo, k_hi) = match scene.time_step {
+            TimeStep::Fraction(f) => (k(f * hi), k(f * lo)),
+            TimeStep::Fixed(dt) => (k(dt), k(dt)),
+        };
+        let steps = if k_lo == k_hi { format!("{k_lo}") } else { format!("{k_lo}–{k_hi}") };
+        println!("  recorded every {steps} steps (the nearest whole number to {iv} s; Δt does not depend on it)");
     }
     for m in &facts.moduli {
         let name = |a: usize| ["x", "y", "z"][a];

@@ -343,7 +343,9 @@ impl Skipper {
                 let dx = driver_x(&cp) - driver_x(&cm);
                 acc.driver_work += 0.5 * driver_r(&c).iter().sum::<f64>() * dx;
             }
-            if (s - clock.origin).is_multiple_of(clock.stride) {
+            let traced = recorder.tracer.as_ref().is_some_and(|t| t.on_grid(s));
+            let sampled = (s - clock.origin).is_multiple_of(clock.stride);
+            if traced || sampled {
                 let shown = MotionView {
                     model,
                     motion,
@@ -353,7 +355,12 @@ impl Skipper {
                     kinetic: kinetic(&c, &cp),
                     elastic: elastic(&c, &cp),
                 };
-                recorder.sample_view(&shown, s);
+                if sampled {
+                    recorder.sample_view(&shown, s);
+                }
+                if traced && let Some(t) = recorder.tracer.as_mut() {
+                    t.observe(&shown, s);
+                }
             }
         }
         recorder.skip_steps.push((view, to, next));

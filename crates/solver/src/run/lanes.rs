@@ -13,6 +13,7 @@ use crate::scene::SettleMethod;
 use crate::statics::CriticalStep;
 use crate::step::rupture::{CrackKind, CrackLog, elongations};
 use crate::step::{LaneView, Params, State, Stepper, Tracking, park, start_drivers};
+use crate::trace::Tracer;
 
 /// Steps between two blow-up checks.
 const BLOWUP_CHECK_EVERY: u64 = 16;
@@ -29,7 +30,7 @@ enum Stage {
     /// `stride` the steps between two samples.
     Shearing { origin: u64, steps: u64, stride: u64 },
     /// Finished.
-    Done { origin: u64, stride: u64 },
+    Done { origin: u64, stride: u64, steps: u64 },
     /// Stopped, and why.
     Failed(SolverError),
 }
@@ -228,11 +229,20 @@ pub fn run_lanes<const L: usize>(
                         state.scale_lane(l, 1.0 + p.relative);
                     }
                     let recorder = lane.recorder.as_mut().expect("recorder of a running lane");
-                    if j.is_multiple_of(stride) || j >= steps {
+                    let shown = LaneView { params: &params, state: &state, lane: l };
+                    recorder
+                        .tracer
+                        .get_or_insert_with(|| {
+                            Tracer::new(&scene.record.trace, model, origin, params.dt(l), &scene.record.control)
+                        })
+                        .observe(&shown, view);
+                    // Samples on the grid of `stride` steps only (the stage's last step too
+                    // when it falls on it), so that a recording is uniform.
+                    if j.is_multiple_of(stride) {
                         recorder.sample_view(&LaneView { params: &params, state: &state, lane: l }, view);
                     }
                     if j >= steps {
-                        lane.stage = Stage::Done { origin, stride };
+                        lane.stage = Stage::Done { origin, stride, steps };
                     } else if let Some(skipper) = lane.skipper.as_mut()
                         && j.is_multiple_of(SKIP_CHECK_EVERY)
                         && options.max_jumps.is_none_or(|m| skipper.stats.jumps < m)
@@ -272,18 +282,17 @@ pub fn run_lanes<const L: usize>(
     }
 
     lanes.map(|lane| match lane.stage {
-        Stage::Done { origin, stride } => {
+        Stage::Done { origin, stride, steps } => {
             let l = seeds.iter().position(|&s| s == lane.seed).expect("lane of its seed");
             let dt = params.dt(l);
             let recorder = lane.recorder.expect("recorder of a finished lane");
-            let shear_steps = recorder.steps.last().map_or(0, |&s| s - origin);
             Ok(RunOutput {
                 seed: lane.seed,
                 dt_s: dt,
                 critical: lane.critical.expect("critical step of a finished lane"),
                 settle_time_s: lane.settle_steps as f64 * dt,
                 settle_steps: lane.settle_steps,
-                shear_steps,
+                shear_steps: steps,
                 settled_by: lane.settled_by,
                 settle_note: lane.settle_note,
                 skip: lane.skipper.as_ref().map_or_else(SkipStats::default, |s| s.stats),
@@ -393,7 +402,8 @@ fn start_shear<const L: usize>(params: &mut Params<'_, L>, state: &mut State<L>,
     Stage::Shearing { origin: state.steps, steps: whole_steps(scene.shear.duration_s, dt), stride }
 }
 
-/// Steps between two samples (Δt was fitted to the interval in `prepare`).
+/// Steps between two samples: the interval's nearest whole number of steps (Δt does not
+/// depend on it).
 fn stride(interval_s: Option<f64>, dt: f64) -> u64 {
     interval_s.map_or(1, |iv| ((iv / dt).round() as u64).max(1))
 }

@@ -148,7 +148,9 @@ pub(crate) fn prepare(model: &Model, seed: u64, options: RunOptions) -> Result<(
     let friction = model.friction_factors(seed)?;
     let strength = model.bar_strength(seed)?;
     let critical = critical_time_step(model, &stiffness)?;
-    let mut dt_s = match model.scene().time_step {
+    // Δt never depends on the recording interval (which samples every `round(interval/Δt)`
+    // steps): the same seed gives the same run whatever it records.
+    let dt_s = match model.scene().time_step {
         TimeStep::Fraction(f) => f * critical.dt_s,
         TimeStep::Fixed(dt) => {
             if dt > critical.dt_s && !options.allow_unstable_time_step {
@@ -157,10 +159,5 @@ pub(crate) fn prepare(model: &Model, seed: u64, options: RunOptions) -> Result<(
             dt
         }
     };
-    // A recording interval is a whole number of steps: lower Δt (never raise it) to fit.
-    if let Some(interval) = model.scene().record.interval_s {
-        let k = (interval / dt_s * (1.0 - 1e-12)).ceil().max(1.0);
-        dt_s = interval / k;
-    }
     Ok((LaneSetup { dt_s, stiffness, friction, strength }, critical))
 }

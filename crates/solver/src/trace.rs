@@ -1,0 +1,171 @@
+//! The event trace: the interface signals events are measured on, taken from the solver's own
+//! steps so that they do not depend on how often the run is recorded (docs/model.md §7).
+//!
+//! Every integrated step of the shear stage is looked at. A step is **hot** when the raw mean
+//! slip rate of the contact nodes is at least [`TracePlan::hot_rate_m_s`] in magnitude; every
+//! step within [`TracePlan::margin_s`] of a hot step is kept, so each burst of slip is held at
+//! the full rate of the solver with a margin on both sides. Between bursts only one step in
+//! every [`TracePlan::quiet_interval_s`] is kept (and, through a quasi-static skip, the skipped
+//! motion on the same grid). A detector that smooths over less than the margin and whose
+//! thresholds are above the hot rate therefore sees exactly what it would see on every step.
+
+use crate::recording::Observed;
+use crate::scene::{ControlChannel, Kinematic};
+
+/// What the event trace keeps (the validated form of the pipeline's `[events]` needs).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TracePlan {
+    /// A step is hot when `|mean slip rate| ≥` this (m/s).
+    pub hot_rate_m_s: f64,
+    /// Steps within this time of a hot step are kept (s).
+    pub margin_s: f64,
+    /// Between bursts, one step in this interval is kept (s).
+    pub quiet_interval_s: f64,
+}
+
+impl Default for TracePlan {
+    /// The plan for the default detector (1-ms smoothing, 50 µm/s quiet threshold).
+    fn default() -> Self {
+        TracePlan { hot_rate_m_s: 2.5e-5, margin_s: 3e-3, quiet_interval_s: 2.5e-4 }
+    }
+}
+
+/// The event trace of one run: the shear stage's interface signals at full rate around every
+/// burst of slip and sparsely between them, in time order.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Trace {
+    /// Time since the start of the shear stage (s).
+    pub time_s: Vec<f64>,
+    /// Shear stress τ = −ΣF_x/A (Pa).
+    pub shear_stress_pa: Vec<f64>,
+    /// Normal stress σ = ΣN/A (Pa).
+    pub normal_stress_pa: Vec<f64>,
+    /// Mean x-displacement of the contact nodes (m).
+    pub mean_slip_m: Vec<f64>,
+    /// Mean x-velocity of the contact nodes (m/s).
+    pub mean_slip_rate_m_s: Vec<f64>,
+    /// Sliding contact nodes.
+    pub slipping_nodes: Vec<f64>,
+    /// The recorded control acceleration channels, at the same instants.
+    pub accelerations: Vec<(ControlChannel, Vec<f64>)>,
+}
+
+impl Trace {
+    /// Samples held.
+    pub fn len(&self) -> usize {
+        self.time_s.len()
+    }
+
+    /// Whether it holds nothing.
+    pub fn is_empty(&self) -> bool {
+        self.time_s.is_empty()
+    }
+}
+
+/// Scalars per sample before the accelerations: step, τ, σ, δ, V, slipping.
+const FIXED: usize = 6;
+
+/// Builds a [`Trace`] step by step.
+pub(crate) struct Tracer {
+    hot_rate: f64,
+    margin: u64,
+    quiet: u64,
+    origin: u64,
+    area: f64,
+    nodes: Vec<(ControlChannel, usize)>,
+    width: usize,
+    /// The last `margin` steps not yet kept, flat, `width` values each.
+    pending: std::collections::VecDeque<f64>,
+    kept: Vec<f64>,
+    keep_until: Option<u64>,
+    scratch: Vec<f64>,
+}
+
+impl Tracer {
+    /// A tracer for a shear stage starting at step `origin`, time step `dt`.
+    pub(crate) fn new(
+        plan: &TracePlan,
+        model: &crate::model::Model,
+        origin: u64,
+        dt: f64,
+        accelerations: &[ControlChannel],
+    ) -> Tracer {
+        let nodes: Vec<(ControlChannel, usize)> = accelerations
+            .iter()
+            .filter(|c| c.quantity == Kinematic::Acceleration)
+            .map(|&c| (c, model.internal(c.node)))
+            .collect();
+        let width = FIXED + nodes.len();
+        Tracer {
+            hot_rate: plan.hot_rate_m_s,
+            margin: (plan.margin_s / dt).ceil().max(1.0) as u64,
+            quiet: (plan.quiet_interval_s / dt).round().max(1.0) as u64,
+            origin,
+            area: model.lattice().contact_area(),
+            nodes,
+            width,
+            pending: std::collections::VecDeque::new(),
+            kept: Vec::new(),
+            keep_until: None,
+            scratch: Vec::with_capacity(width),
+        }
+    }
+
+    /// Whether a skipped (quasi-static) step `step` lies on the quiet grid.
+    pub(crate) fn on_grid(&self, step: u64) -> bool {
+        (step - self.origin).is_multiple_of(self.quiet)
+    }
+
+    /// Looks at step `step` (shear stage) as `s` shows it.
+    pub(crate) fn observe(&mut self, s: &impl Observed, step: u64) {
+        let face = s.interface();
+        let hot = face.mean_slip_rate.abs() >= self.hot_rate;
+        let mut sample = std::mem::take(&mut self.scratch);
+        sample.clear();
+        sample.extend([
+            step as f64,
+            -face.friction_x / self.area,
+            face.normal / self.area,
+            face.mean_slip,
+            face.mean_slip_rate,
+            face.slipping as f64,
+        ]);
+        sample.extend(self.nodes.iter().map(|&(c, node)| s.kinematic(node, c.quantity)[c.component.axis()]));
+        // Samples older than the margin leave the pending queue: kept if on the quiet grid.
+        while let Some(&front) = self.pending.front()
+            && (front as u64) + self.margin < step
+        {
+            if self.on_grid(front as u64) {
+                self.kept.extend(self.pending.drain(..self.width));
+            } else {
+                self.pending.drain(..self.width);
+            }
+        }
+        if hot {
+            self.kept.extend(self.pending.drain(..));
+            self.kept.extend_from_slice(&sample);
+            self.keep_until = Some(step + self.margin);
+        } else if self.keep_until.is_some_and(|u| step <= u) {
+            self.kept.extend_from_slice(&sample);
+        } else {
+            self.pending.extend(sample.iter().copied());
+        }
+        self.scratch = sample;
+    }
+
+    /// The trace, times from step indices with time step `dt`.
+    pub(crate) fn finish(mut self, dt: f64) -> Trace {
+        self.kept.extend(self.pending.drain(..));
+        let n = self.kept.len() / self.width;
+        let column = |k: usize| (0..n).map(|i| self.kept[i * self.width + k]).collect::<Vec<f64>>();
+        Trace {
+            time_s: (0..n).map(|i| (self.kept[i * self.width] - self.origin as f64) * dt).collect(),
+            shear_stress_pa: column(1),
+            normal_stress_pa: column(2),
+            mean_slip_m: column(3),
+            mean_slip_rate_m_s: column(4),
+            slipping_nodes: column(5),
+            accelerations: self.nodes.iter().enumerate().map(|(k, &(c, _))| (c, column(FIXED + k))).collect(),
+        }
+    }
+}
