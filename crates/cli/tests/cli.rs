@@ -52,8 +52,16 @@ fn run_writes_series_and_control_tables_that_read_back() {
         assert!(dir.join("out").join(f).exists(), "run wrote no {f}");
     }
     let series = read(&dir.join("out/tables/series/seed-0000000007.parquet"));
-    // 0.01 s every 1e-4 s: 101 samples (t = 0 and the end included).
-    assert_eq!(series.height(), 101);
+    // 0.01 s every 1e-4 s taken as a whole number of steps (Δt is the scene's own, not fitted
+    // to the interval): the nearest multiple of Δt, from t = 0 to the last one within the stage.
+    let time = series.column("time_s").unwrap().f64().unwrap().clone();
+    let every = time.get(1).unwrap() - time.get(0).unwrap();
+    assert!((every / 1e-4 - 1.0).abs() < 0.1, "sampled every {every} s");
+    let last = time.get(series.height() - 1).unwrap();
+    assert!(last > 0.01 - every && last < 0.01 + every, "last sample at {last} s");
+    let samples = (last / every).round() as usize + 1;
+    assert_eq!(series.height(), samples);
+    assert!((1..samples).all(|i| ((time.get(i).unwrap() - time.get(i - 1).unwrap()) / every - 1.0).abs() < 1e-6));
     for col in
         ["seed", "time_s", "shear_stress_pa", "normal_stress_pa", "mean_slip_m", "slipping_nodes", "kinetic_energy_j"]
     {
@@ -64,7 +72,7 @@ fn run_writes_series_and_control_tables_that_read_back() {
     let expected = 2400.0 * 9.81 * 0.2; // ρ·g·h
     assert!((sigma / expected - 1.0).abs() < 0.01, "mean σ {sigma} vs ρgh {expected}");
     let control = read(&dir.join("out/tables/control/seed-0000000007.parquet"));
-    assert_eq!(control.height(), 2 * 101, "one node × two components × 101 samples");
+    assert_eq!(control.height(), 2 * samples, "one node × two components × every sample");
     let acc = control.column("acceleration_m_s2").unwrap();
     assert_eq!(acc.null_count(), 0);
     let vel = control.column("velocity_m_s").unwrap();

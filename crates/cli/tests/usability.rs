@@ -287,7 +287,13 @@ fn python_example_reads_the_tables() {
     let (out, err) = text(&o);
     assert!(o.status.success(), "{out}{err}");
     assert!(out.contains("runs.status: large_string") || out.contains("runs.status: string"), "{out}");
-    assert!(out.contains("samples per seed: {7: 16001, 123: 16001, 200: 16001}"), "{out}");
+    // 0.32 s every 2e-5 s taken as two steps of each seed's own Δt (half its critical step):
+    // about 15,000 samples, a few hundred more or fewer from seed to seed.
+    let line = out.lines().find(|l| l.starts_with("samples per seed: {7: ")).unwrap_or_else(|| panic!("{out}"));
+    let counts: Vec<u64> =
+        line.split([':', ',', '}']).filter_map(|x| x.trim().parse::<u64>().ok()).step_by(2).collect();
+    assert_eq!(counts.len(), 3, "{line}");
+    assert!(counts.iter().all(|&n| (14_000..16_100).contains(&n)), "{line}");
     if plot {
         assert!(png.exists());
     }

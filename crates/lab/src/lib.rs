@@ -1,6 +1,7 @@
 //! stickslip lab: how fast and how accurate the product is, measured.
 //!
 //! Owns every benchmark and calibration aid: run time against error ([`accuracy`]), the
+//! statistical convergence of event measures over seeds ([`convergence`]), the
 //! quasi-static skip-ahead against full integration ([`skip`]), what recording costs
 //! ([`recording_cost`]), the LAMMPS side-by-side ([`peer`], with `lammps/compare.sh`), sweeps of
 //! assumed values ([`calibrate`]), and the criterion benchmarks of the kernels and spectra
@@ -10,6 +11,7 @@
 
 pub mod accuracy;
 pub mod calibrate;
+pub mod convergence;
 pub mod kernel_scene;
 pub mod peer;
 pub mod recording_cost;

@@ -26,7 +26,7 @@ pub struct TracePlan {
 impl Default for TracePlan {
     /// The plan for the default detector (1-ms smoothing, 50 µm/s quiet threshold).
     fn default() -> Self {
-        TracePlan { hot_rate_m_s: 2.5e-5, margin_s: 3e-3, quiet_interval_s: 2.5e-4 }
+        TracePlan { hot_rate_m_s: 2.5e-5, margin_s: 2.5e-3, quiet_interval_s: 2.5e-4 }
     }
 }
 

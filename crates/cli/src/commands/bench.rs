@@ -6,6 +6,7 @@ use anyhow::Result;
 use stickslip_config::Pipeline;
 use stickslip_lab::accuracy::{AccuracyPlan, accuracy_figure, accuracy_frame, observed_order, run_accuracy};
 use stickslip_lab::calibrate::sweep;
+use stickslip_lab::convergence::{Cell, Loading, QUANTITIES, compare, convergence_figure, convergence_frame, run_cell};
 use stickslip_lab::peer::peer;
 use stickslip_lab::recording_cost::recording_cost;
 use stickslip_lab::skip::{JumpCheck, SkipBench, compare_skip, jumps_frame, runs_frame};
@@ -27,6 +28,40 @@ pub enum Command {
         /// Lattice refinements (modules per side multiplied, Lc divided).
         #[arg(long, value_delimiter = ',', default_value = "1,2,4")]
         refinements: Vec<u32>,
+        /// Shear duration (s) [default: the pipeline's].
+        #[arg(long, allow_negative_numbers = true)]
+        duration_s: Option<f64>,
+        /// Output folder [default: reports/bench/<pipeline name>].
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Statistical convergence of event measures: N seeds per cell over Δt fractions and lattice
+    /// refinements of the same block, for the pipeline's point driver and a driven patch; means
+    /// and medians with bootstrap 95% intervals, Kolmogorov–Smirnov tests against the finest Δt
+    /// and the finest lattice (table and figure).
+    Convergence {
+        /// Pipeline file (TOML).
+        pipeline: PathBuf,
+        /// Loadings: `point` (the pipeline's driver nodes) and/or `patch` (the trailing-face patch
+        /// 0.1 ≤ z ≤ 0.3 m).
+        #[arg(long, value_delimiter = ',', default_value = "point,patch")]
+        loadings: Vec<String>,
+        /// Lattice refinements (modules per side multiplied, Lc divided), run at
+        /// `--lattice-fraction`.
+        #[arg(long, value_delimiter = ',', default_value = "1,2,4")]
+        refinements: Vec<u32>,
+        /// Seeds per refinement, in the order of `--refinements` (seeds 1…N).
+        #[arg(long, value_delimiter = ',', default_value = "64,24,6")]
+        seeds: Vec<usize>,
+        /// Δt fraction of the lattice sweep [default: the pipeline's].
+        #[arg(long, allow_negative_numbers = true)]
+        lattice_fraction: Option<f64>,
+        /// Δt fractions of the Δt sweep.
+        #[arg(long, value_delimiter = ',', default_value = "0.9,0.5,0.25,0.1", allow_negative_numbers = true)]
+        fractions: Vec<f64>,
+        /// Refinements that get the Δt sweep.
+        #[arg(long, value_delimiter = ',', default_value = "1,2")]
+        dt_refinements: Vec<u32>,
         /// Shear duration (s) [default: the pipeline's].
         #[arg(long, allow_negative_numbers = true)]
         duration_s: Option<f64>,
@@ -99,6 +134,28 @@ pub fn run(c: Command) -> Result<()> {
     match c {
         Command::Accuracy { pipeline, fractions, refinements, duration_s, out } => {
             accuracy(&pipeline, fractions, refinements, duration_s, out)
+        }
+        Command::Convergence {
+            pipeline,
+            loadings,
+            refinements,
+            seeds,
+            lattice_fraction,
+            fractions,
+            dt_refinements,
+            duration_s,
+            out,
+        } => {
+            let plan = ConvergenceArgs {
+                loadings,
+                refinements,
+                seeds,
+                lattice_fraction,
+                fractions,
+                dt_refinements,
+                duration_s,
+            };
+            convergence(&pipeline, plan, out)
         }
         Command::Skip { pipeline, seeds, jumps, window_s, out } => {
             skip(&pipeline, seeds.as_deref(), jumps, window_s, out)
@@ -296,5 +353,113 @@ fn skip(path: &Path, seeds: Option<&str>, jumps: usize, window_s: f64, out: Opti
         checks.len()
     );
     println!("→ {}, {}", runs_path.display(), jumps_path.display());
+    Ok(())
+}
+
+/// The sweep `stickslip bench convergence` was asked for.
+struct ConvergenceArgs {
+    loadings: Vec<String>,
+    refinements: Vec<u32>,
+    seeds: Vec<usize>,
+    lattice_fraction: Option<f64>,
+    fractions: Vec<f64>,
+    dt_refinements: Vec<u32>,
+    duration_s: Option<f64>,
+}
+
+fn convergence(path: &Path, a: ConvergenceArgs, out: Option<PathBuf>) -> Result<()> {
+    let pipeline = Pipeline::load(path)?;
+    let lattice_fraction = a.lattice_fraction.or(pipeline.file.time.dt_fraction).unwrap_or(0.5);
+    for f in a.fractions.iter().chain([&lattice_fraction]) {
+        anyhow::ensure!(
+            *f > 0.0 && *f <= 1.0,
+            "Δt fraction {f} is not allowed: 0 < fraction ≤ 1 (of the critical step)"
+        );
+    }
+    for r in a.refinements.iter().chain(&a.dt_refinements) {
+        anyhow::ensure!((1..=16).contains(r), "refinement {r} is not allowed: 1 ≤ r ≤ 16");
+    }
+    anyhow::ensure!(
+        a.seeds.len() == a.refinements.len(),
+        "--seeds has {} counts for {} refinements: one count per refinement",
+        a.seeds.len(),
+        a.refinements.len()
+    );
+    for n in &a.seeds {
+        anyhow::ensure!(*n >= 5, "--seeds: {n} is not allowed: at least 5 seeds per cell (a KS test needs them)");
+    }
+    for r in &a.dt_refinements {
+        anyhow::ensure!(a.refinements.contains(r), "--dt-refinements: {r} is not among --refinements");
+    }
+    if let Some(d) = a.duration_s {
+        anyhow::ensure!(d > 0.0 && d.is_finite(), "--duration-s = {d} is not allowed: a positive number of seconds");
+    }
+    let loadings = a
+        .loadings
+        .iter()
+        .map(|l| Loading::parse(l).ok_or_else(|| anyhow::anyhow!("--loadings: {l:?} is not allowed: point or patch")))
+        .collect::<Result<Vec<_>>>()?;
+    let mut cells = Vec::new();
+    for &loading in &loadings {
+        for (&r, &n) in a.refinements.iter().zip(&a.seeds) {
+            let mut fs = vec![lattice_fraction];
+            if a.dt_refinements.contains(&r) {
+                fs.extend(a.fractions.iter().copied().filter(|f| *f != lattice_fraction));
+            }
+            fs.sort_by(|x, y| y.total_cmp(x));
+            cells.extend(fs.into_iter().map(|f| Cell { loading, refinement: r, dt_fraction: f, seeds: n }));
+        }
+    }
+    let out = bench_out(&pipeline, out);
+    let started = std::time::Instant::now();
+    let mut results = Vec::new();
+    for c in &cells {
+        eprintln!(
+            "{} loading, refinement {}, Δt = {} of critical, {} seeds …",
+            c.loading.name(),
+            c.refinement,
+            c.dt_fraction,
+            c.seeds
+        );
+        let r = run_cell(&pipeline.file, c, a.duration_s)?;
+        eprintln!("  {}×{}×{}: {:.2} core-s per seed", r.dims[0], r.dims[1], r.dims[2], r.core_s_per_seed);
+        results.push(r);
+    }
+    let rows = compare(&results);
+    let table = out.join("convergence.parquet");
+    write_parquet_atomic(&mut convergence_frame(&results, &rows)?, &table)?;
+    let figure = out.join("convergence.png");
+    convergence_figure(&results, &rows, &figure)?;
+    let shown = ["main_drop_kpa", "main_recurrence_ms", "main_duration_ms", "m_paper", "pga_m_s2", "sigma_swing"];
+    println!(
+        "{:<7} {:>9} {:>5} {:>4} {:>7}  {:<19} {:>26} {:>9} {:>9}",
+        "loading", "lattice", "Δt", "N", "core-s", "quantity", "mean [95% CI]", "KS p Δt", "KS p lat"
+    );
+    for c in rows.iter().filter(|c| shown.contains(&c.quantity)) {
+        let r = &results[c.cell];
+        let p = |x: f64| if x.is_nan() { "–".to_string() } else { format!("{x:.3}") };
+        println!(
+            "{:<7} {:>9} {:>5} {:>4} {:>7.2}  {:<19} {:>9.3} [{:.3}, {:.3}] {:>9} {:>9}",
+            r.cell.loading.name(),
+            format!("{}×{}×{}", r.dims[0], r.dims[1], r.dims[2]),
+            r.cell.dt_fraction,
+            c.n,
+            r.core_s_per_seed,
+            c.quantity,
+            c.mean.0,
+            c.mean.1,
+            c.mean.2,
+            p(c.ks_dt.1),
+            p(c.ks_lattice.1)
+        );
+    }
+    debug_assert_eq!(QUANTITIES.len(), results[0].values.len());
+    println!(
+        "({} cells in {:.0} s) → {} and {}",
+        cells.len(),
+        started.elapsed().as_secs_f64(),
+        table.display(),
+        figure.display()
+    );
     Ok(())
 }
