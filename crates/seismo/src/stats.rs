@@ -224,7 +224,7 @@ mod tests {
     /// within a few percent of its width, and the same seed gives the same interval.
     #[test]
     fn bootstrap_interval_of_the_mean_matches_students() {
-        let x: Vec<f64> = (0..400).map(|i| ((f64::from(i) + 0.5) / 400.0)).map(probit).collect();
+        let x: Vec<f64> = (0..400).map(|i| (f64::from(i) + 0.5) / 400.0).map(probit).collect();
         let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
         let (lo, hi) = bootstrap_ci(&x, mean, 0.95, 4000, 7).unwrap();
         let s = summarize(&x).unwrap();
