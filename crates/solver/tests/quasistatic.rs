@@ -141,15 +141,18 @@ fn slow_loading_is_mostly_skipped_and_sampled_sparsely_when_asked() {
     assert_eq!(out.skip.jumps as usize, out.recording.skips.len());
     let skipped: u64 = out.recording.skips.iter().map(|s| s.steps).sum();
     assert_eq!(skipped, out.skip.skipped_steps);
-    // Inside a jump, one sample per 0.01 s; outside, one per 1e-4 s.
+    // Inside a jump, one sample per 0.01 s; outside, one per 1e-4 s (each the nearest whole
+    // number of steps: 100 times the stride outside).
     let t = &out.recording.time_s;
+    let stride = (1e-4 / out.dt_s).round() as u64;
+    let sparse = 100 * stride;
+    let every = sparse as f64 * out.dt_s;
+    assert!((every / 0.01 - 1.0).abs() < 0.05, "{every} s between samples in a jump");
     let long = out.recording.skips.iter().max_by_key(|s| s.steps).unwrap();
     let inside: Vec<f64> = t.iter().copied().filter(|&x| x > long.from_s + 0.02 && x < long.to_s - 0.02).collect();
     for w in inside.windows(2) {
-        assert!((w[1] - w[0] - 0.01).abs() < 1e-9, "spacing {} inside a jump", w[1] - w[0]);
+        assert!((w[1] - w[0] - every).abs() < 1e-9, "spacing {} inside a jump", w[1] - w[0]);
     }
-    let stride = (1e-4 / out.dt_s).round() as u64;
-    let sparse = (0.01 / out.dt_s).round() as u64;
     let steps_outside = out.shear_steps - out.skip.skipped_steps;
     let bound = steps_outside / stride + out.recording.skips.iter().map(|s| s.steps / sparse + 1).sum::<u64>() + 2;
     assert!(t.len() as u64 <= bound, "{} samples, expected at most {bound}", t.len());

@@ -113,8 +113,19 @@ fn friction_from_zero_to_one_hundred() {
         match mu {
             // No friction: nothing resists, every node in contact slides.
             0.0 => assert!(tau.iter().all(|t| t.abs() < 1e-6 * sigma[0]), "μ = 0 but τ ≠ 0"),
-            // Far above any stress ratio the driver reaches: nothing ever slides.
-            100.0 => assert!(slipping.iter().all(|&s| s == 0.0), "μ = 100 but a node slid"),
+            // Far above the stress ratio of the block: it does not slide (a node whose normal
+            // reaction passes through zero as it lifts may slip an instant, and lifted nodes move
+            // with the block: the mean base displacement stays under 1% of the driver's).
+            100.0 => {
+                let slip = out.recording.get(Channel::MeanSlip).unwrap();
+                let driver = out.recording.get(Channel::DriverDisplacement).unwrap();
+                let (d, u) = (slip.iter().fold(0.0f64, |m, v| m.max(v.abs())), driver[driver.len() - 1]);
+                let most = slipping.iter().fold(0.0f64, |m, &v| m.max(v));
+                assert!(
+                    d < 1e-3 * u,
+                    "μ = 100 but the base slipped {d} m of the driver's {u} m ({most} nodes at once)"
+                );
+            }
             // In between τ never exceeds μ·σ.
             _ => {
                 for (t, s) in tau.iter().zip(sigma) {
