@@ -4,51 +4,10 @@
 //! files are the seismology crate's.
 
 use crate::geometry::NodeId;
-use crate::scene::{ControlChannel, InterfaceQuantity, Kinematic, RecordPlan};
+use crate::observe::Observed;
+use crate::scene::{ControlChannel, InterfaceQuantity, RecordPlan};
 use crate::step::rupture::CrackKind;
-use crate::step::{Energy, Interface, LaneView};
 use crate::trace::{Trace, Tracer};
-
-/// What a recorder reads at one viewed time: a lane of a stepper, or a quasi-static motion
-/// the run skips through.
-pub(crate) trait Observed {
-    /// Interface resultants.
-    fn interface(&self) -> Interface;
-    /// Total driver reaction in x (N).
-    fn driver_force(&self) -> f64;
-    /// Driver displacement (m).
-    fn driver_target(&self) -> f64;
-    /// Energy terms.
-    fn energy(&self) -> Energy;
-    /// Displacement, velocity or acceleration of internal node `node`.
-    fn kinematic(&self, node: usize, q: Kinematic) -> [f64; 3];
-}
-
-impl<const L: usize> Observed for LaneView<'_, '_, L> {
-    fn interface(&self) -> Interface {
-        LaneView::interface(self)
-    }
-
-    fn driver_force(&self) -> f64 {
-        LaneView::driver_force(self)
-    }
-
-    fn driver_target(&self) -> f64 {
-        LaneView::driver_target(self)
-    }
-
-    fn energy(&self) -> Energy {
-        LaneView::energy(self)
-    }
-
-    fn kinematic(&self, node: usize, q: Kinematic) -> [f64; 3] {
-        match q {
-            Kinematic::Displacement => self.displacement(node),
-            Kinematic::Velocity => self.velocity(node),
-            Kinematic::Acceleration => self.acceleration(node),
-        }
-    }
-}
 
 /// A recorded scalar channel (the name carries the unit).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -10,7 +10,6 @@ use crate::dispersion::{DispersionError, LatticeMaterial, UsableBand, usable_ban
 use crate::geometry::{Dims, Lattice, NodeId};
 use crate::laws::{Coulomb, FrictionLaw};
 use crate::rupture::Rupture;
-pub use crate::trace::TracePlan;
 
 /// How Δt is chosen.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -265,6 +264,25 @@ impl RecordPlan {
     /// Whether interface quantity `q` is recorded.
     pub fn has(&self, q: InterfaceQuantity) -> bool {
         self.interface.contains(&q)
+    }
+}
+
+/// What the event trace keeps ([`crate::trace`]; the validated form of what the pipeline's
+/// `[events]` need).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TracePlan {
+    /// A step is hot when `|mean slip rate| ≥` this (m/s).
+    pub hot_rate_m_s: f64,
+    /// Steps within this time of a hot step are kept (s).
+    pub margin_s: f64,
+    /// Between bursts, one step in this interval is kept (s).
+    pub quiet_interval_s: f64,
+}
+
+impl Default for TracePlan {
+    /// The plan for the default detector (1-ms smoothing, 50 µm/s quiet threshold).
+    fn default() -> Self {
+        TracePlan { hot_rate_m_s: 2.5e-5, margin_s: 2.5e-3, quiet_interval_s: 2.5e-4 }
     }
 }
 

@@ -9,26 +9,8 @@
 //! motion on the same grid). A detector that smooths over less than the margin and whose
 //! thresholds are above the hot rate therefore sees exactly what it would see on every step.
 
-use crate::recording::Observed;
-use crate::scene::{ControlChannel, Kinematic};
-
-/// What the event trace keeps (the validated form of the pipeline's `[events]` needs).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TracePlan {
-    /// A step is hot when `|mean slip rate| ≥` this (m/s).
-    pub hot_rate_m_s: f64,
-    /// Steps within this time of a hot step are kept (s).
-    pub margin_s: f64,
-    /// Between bursts, one step in this interval is kept (s).
-    pub quiet_interval_s: f64,
-}
-
-impl Default for TracePlan {
-    /// The plan for the default detector (1-ms smoothing, 50 µm/s quiet threshold).
-    fn default() -> Self {
-        TracePlan { hot_rate_m_s: 2.5e-5, margin_s: 2.5e-3, quiet_interval_s: 2.5e-4 }
-    }
-}
+use crate::observe::Observed;
+use crate::scene::{ControlChannel, Kinematic, TracePlan};
 
 /// The event trace of one run: the shear stage's interface signals at full rate around every
 /// burst of slip and sparsely between them, in time order.

@@ -1,0 +1,45 @@
+//! What recorders read at one viewed time: a lane of a stepper, or a quasi-static motion.
+
+use crate::scene::Kinematic;
+use crate::step::{Energy, Interface, LaneView};
+
+/// What a recorder reads at one viewed time: a lane of a stepper, or a quasi-static motion
+/// the run skips through.
+pub(crate) trait Observed {
+    /// Interface resultants.
+    fn interface(&self) -> Interface;
+    /// Total driver reaction in x (N).
+    fn driver_force(&self) -> f64;
+    /// Driver displacement (m).
+    fn driver_target(&self) -> f64;
+    /// Energy terms.
+    fn energy(&self) -> Energy;
+    /// Displacement, velocity or acceleration of internal node `node`.
+    fn kinematic(&self, node: usize, q: Kinematic) -> [f64; 3];
+}
+
+impl<const L: usize> Observed for LaneView<'_, '_, L> {
+    fn interface(&self) -> Interface {
+        LaneView::interface(self)
+    }
+
+    fn driver_force(&self) -> f64 {
+        LaneView::driver_force(self)
+    }
+
+    fn driver_target(&self) -> f64 {
+        LaneView::driver_target(self)
+    }
+
+    fn energy(&self) -> Energy {
+        LaneView::energy(self)
+    }
+
+    fn kinematic(&self, node: usize, q: Kinematic) -> [f64; 3] {
+        match q {
+            Kinematic::Displacement => self.displacement(node),
+            Kinematic::Velocity => self.velocity(node),
+            Kinematic::Acceleration => self.acceleration(node),
+        }
+    }
+}
