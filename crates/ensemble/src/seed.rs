@@ -50,7 +50,7 @@ pub fn acceleration_channels(model: &Model) -> Vec<ControlChannel> {
 
 /// Detects the events of a run on the solver's event trace (docs/model.md §7): every step around
 /// each burst of slip, whatever the recording interval, so the catalogue does not depend on it.
-pub fn catalogue(rec: &Recording, model: &Model, events: &EventParams) -> Result<Catalogue, String> {
+pub fn catalogue(rec: &Recording, model: &Model, events: &EventParams) -> Catalogue {
     let trace = &rec.trace;
     let accelerations: Vec<&[f64]> = trace.accelerations.iter().map(|(_, v)| v.as_slice()).collect();
     let signals = Signals {
@@ -61,7 +61,7 @@ pub fn catalogue(rec: &Recording, model: &Model, events: &EventParams) -> Result
         slipping_nodes: Some(&trace.slipping_nodes),
         accelerations: &accelerations,
     };
-    Ok(detect(&signals, model.contact().len(), model.lattice().contact_area(), events))
+    detect(&signals, model.contact().len(), model.lattice().contact_area(), events)
 }
 
 /// Every event of `cat` scaled to the pipeline's prototype (docs/model.md §9).
@@ -90,7 +90,7 @@ pub fn scaled_events(cat: &Catalogue, model: &Model, pipeline: &Pipeline) -> Vec
 
 /// Analyses one finished run.
 pub fn analyse(run: RunOutput, model: &Model, pipeline: &Pipeline, plans: &PlanCache) -> Result<Analysed, String> {
-    let catalogue = catalogue(&run.recording, model, &pipeline.events)?;
+    let catalogue = catalogue(&run.recording, model, &pipeline.events);
     let scaled = scaled_events(&catalogue, model, pipeline);
     let records = match &pipeline.accelerograms {
         Some(acc) => Some(

@@ -96,7 +96,7 @@ fn thinning_the_trace_between_bursts_changes_no_event() {
         scene.record.trace = trace;
         let model = Model::new(scene);
         let out = run_seed(&model, 200, RunOptions::default(), &mut |_| std::ops::ControlFlow::Continue(())).unwrap();
-        let cat = catalogue(&out.recording, &model, &p.events).unwrap();
+        let cat = catalogue(&out.recording, &model, &p.events);
         (out.recording.trace.len(), out.shear_steps, cat)
     };
     let (thin_len, steps, thin) = run_with(p.scene.record.trace);

@@ -141,26 +141,42 @@ struct Run {
     cat: Catalogue,
 }
 
-/// The scene of refinement `r` and fraction `f`.
-fn variant(file: &PipelineFile, r: u32, f: f64, duration: Option<f64>) -> Result<Model, LabError> {
+/// `file` as the same block in `r`× finer modules (`r·nx × r·ny × r·nz` of side `Lc/r`), at Δt
+/// fraction `f`, for `duration` if given, settled statically (the exact equilibrium: damped
+/// settling stops at a tolerance that does not shrink with Δt). Drivers, rollers and control
+/// points by position carry over; node numbers do not, so `bench` (the benchmark's name) refuses
+/// a driver given by number.
+pub(crate) fn refined(
+    file: &PipelineFile,
+    r: u32,
+    f: f64,
+    duration: Option<f64>,
+    bench: &str,
+) -> Result<PipelineFile, LabError> {
     let mut file = file.clone();
     let r64 = i64::from(r);
     file.block.nx *= r64;
     file.block.ny *= r64;
     file.block.nz *= r64;
     file.block.lc_m /= f64::from(r);
-    file.material.young_cv = 0.0;
     file.time.dt_fraction = Some(f);
     file.time.dt_s = None;
     if let Some(d) = duration {
         file.shear.duration_s = d;
     }
-    // Drivers, rollers and control points by position carry over; node numbers do not.
     if !file.shear.driver_nodes.is_empty() {
-        return Err(LabError::Setup(
-            "bench accuracy needs the driver given by position (shear.driver_at_m), not by node number".into(),
-        ));
+        return Err(LabError::Setup(format!(
+            "bench {bench} needs the driver given by position (shear.driver_at_m), not by node number"
+        )));
     }
+    file.self_weight.method = SettleMethod::Static.name().into();
+    Ok(file)
+}
+
+/// The scene of refinement `r` and fraction `f`.
+fn variant(file: &PipelineFile, r: u32, f: f64, duration: Option<f64>) -> Result<Model, LabError> {
+    let mut file = refined(file, r, f, duration, "accuracy")?;
+    file.material.young_cv = 0.0;
     file.record.interval_s = None;
     file.record.interface = [
         InterfaceQuantity::ShearStress,
@@ -176,8 +192,6 @@ fn variant(file: &PipelineFile, r: u32, f: f64, duration: Option<f64>) -> Result
     file.record.slip_onsets = false;
     file.record.control.clear();
     file.skip_ahead.enabled = false;
-    // The exact equilibrium: damped settling stops at a tolerance that does not shrink with Δt.
-    file.self_weight.method = SettleMethod::Static.name().into();
     let scene = file.scene().map_err(|e| LabError::Setup(format!("refinement {r}, Δt fraction {f}: {e}")))?;
     Ok(Model::new(scene))
 }
@@ -236,7 +250,7 @@ pub fn run_accuracy(
             let out = run_seed(&model, plan.seed, RunOptions::default(), &mut |_| ControlFlow::Continue(()))
                 .map_err(|e| LabError::Setup(format!("refinement {r}, Δt fraction {f}: {e}")))?;
             let wall_s = start.elapsed().as_secs_f64();
-            let cat = catalogue(&out.recording, &model, events).map_err(LabError::Setup)?;
+            let cat = catalogue(&out.recording, &model, events);
             let first_event = cat.events.first().map(|e| (e.burst.start_s, e.burst.stress_drop_pa));
             let s1 = cat.main_shocks().next().map(|e| (e.burst.start_s, e.burst.stress_drop_pa, e.burst.duration_s()));
             let row = AccuracyRow {

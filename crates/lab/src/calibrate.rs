@@ -72,7 +72,7 @@ pub fn sweep(base: &PipelineFile, grid: &[(String, Vec<f64>)], seeds: &[u64]) ->
             .map(|&s| {
                 let run = run_seed(&model, s, RunOptions::default(), &mut |_| ControlFlow::Continue(()))
                     .map_err(|e| LabError::Setup(format!("seed {s}: {e}")))?;
-                Ok((s, catalogue(&run.recording, &model, &params).map_err(LabError::Setup)?))
+                Ok((s, catalogue(&run.recording, &model, &params)))
             })
             .collect();
         out.push(Combination { values, seeds: results? });

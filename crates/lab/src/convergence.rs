@@ -41,11 +41,11 @@ use stickslip_ensemble::seed::{catalogue, scaled_events};
 use stickslip_report::charts::{Line, Panel, Sheet, draw};
 use stickslip_seismo::similarity::{moment_magnitude, riera_magnitude};
 use stickslip_seismo::stats::{bootstrap_ci, ks_two_sample, median};
-use stickslip_solver::scene::SettleMethod;
 use stickslip_solver::{BATCH, Model, RunOptions, run_batched};
 use stickslip_store::frame::Frame;
 
 use crate::LabError;
+use crate::accuracy::refined;
 
 /// How the block is sheared.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -117,24 +117,9 @@ pub struct CellResult {
 
 /// The scene file of a cell.
 fn variant(file: &PipelineFile, cell: &Cell, duration: Option<f64>) -> Result<Pipeline, LabError> {
-    let mut file = file.clone();
     let r = cell.refinement;
-    let r64 = i64::from(r);
-    file.block.nx *= r64;
-    file.block.ny *= r64;
-    file.block.nz *= r64;
-    let lc = file.block.lc_m / f64::from(r);
-    file.block.lc_m = lc;
-    file.time.dt_fraction = Some(cell.dt_fraction);
-    file.time.dt_s = None;
-    if let Some(d) = duration {
-        file.shear.duration_s = d;
-    }
-    if !file.shear.driver_nodes.is_empty() {
-        return Err(LabError::Setup(
-            "bench convergence needs the driver given by position (shear.driver_at_m), not by node number".into(),
-        ));
-    }
+    let mut file = refined(file, r, cell.dt_fraction, duration, "convergence")?;
+    let lc = file.block.lc_m;
     if cell.loading == Loading::Patch {
         file.shear.driver_face = None;
         file.shear.driver_at_m.clear();
@@ -166,7 +151,6 @@ fn variant(file: &PipelineFile, cell: &Cell, duration: Option<f64>) -> Result<Pi
     file.spectra = None;
     file.set = None;
     file.seeds.target = None;
-    file.self_weight.method = SettleMethod::Static.name().into();
     let name =
         format!("{}-{}-r{}-f{}", file.name.as_deref().unwrap_or("bench"), cell.loading.name(), r, cell.dt_fraction);
     Pipeline::from_file(file, &name).map_err(|e| LabError::Setup(format!("{name}: {e}")))
@@ -196,7 +180,7 @@ pub fn run_cell(file: &PipelineFile, cell: &Cell, duration: Option<f64>) -> Resu
         core_s += wall;
         for out in outs {
             dt_sum += out.dt_s;
-            let cat = catalogue(&out.recording, &model, &pipeline.events).map_err(LabError::Setup)?;
+            let cat = catalogue(&out.recording, &model, &pipeline.events);
             let scaled = scaled_events(&cat, &model, &pipeline);
             let trace = &out.recording.trace;
             let mains: Vec<usize> = (0..cat.events.len()).filter(|&i| cat.events[i].kind.is_main()).collect();

@@ -130,7 +130,7 @@ fn timed(model: &Model, seed: u64, options: RunOptions) -> Result<(RunOutput, f6
 }
 
 fn events_of(model: &Model, out: &RunOutput, events: &EventParams) -> Result<Catalogue, LabError> {
-    catalogue(&out.recording, model, events).map_err(LabError::Setup)
+    Ok(catalogue(&out.recording, model, events))
 }
 
 fn mean_main_drop(cat: &Catalogue) -> f64 {

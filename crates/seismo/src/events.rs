@@ -249,19 +249,23 @@ impl<'a> Piecewise<'a> {
         k
     }
 
-    /// The value at `at` (linear between samples).
-    fn value(&self, at: f64, hint: &mut usize) -> f64 {
-        let k = self.segment(at, hint);
+    /// The value at `at` in segment `k` (linear between its samples).
+    fn value_in(&self, k: usize, at: f64) -> f64 {
         let (t0, t1) = (self.t[k], self.t[k + 1]);
         let f = if t1 > t0 { ((at - t0) / (t1 - t0)).clamp(0.0, 1.0) } else { 0.0 };
         self.x[k] + f * (self.x[k + 1] - self.x[k])
     }
 
+    /// The value at `at` (linear between samples).
+    fn value(&self, at: f64, hint: &mut usize) -> f64 {
+        let k = self.segment(at, hint);
+        self.value_in(k, at)
+    }
+
     /// `∫ x` from the first sample to `at`.
     fn integral_to(&self, at: f64, hint: &mut usize) -> f64 {
         let k = self.segment(at, hint);
-        let x_at = self.value(at, hint);
-        self.integral[k] + 0.5 * (self.x[k] + x_at) * (at - self.t[k]).max(0.0)
+        self.integral[k] + 0.5 * (self.x[k] + self.value_in(k, at)) * (at - self.t[k]).max(0.0)
     }
 
     /// The window `[t − w/2, t + w/2]` of every sample, clipped to the record.

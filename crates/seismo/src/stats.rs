@@ -148,6 +148,43 @@ fn kolmogorov_q(lambda: f64) -> f64 {
     (2.0 * sum).clamp(0.0, 1.0)
 }
 
+/// SplitMix64 (Steele, Lea & Flood 2014): small, seeded, portable.
+pub(crate) struct SplitMix64(pub(crate) u64);
+
+impl SplitMix64 {
+    fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform index in `0..n` (Lemire's multiply-shift).
+    fn index(&mut self, n: usize) -> usize {
+        ((self.next_u64() as u128 * n as u128) >> 64) as usize
+    }
+}
+
+/// `statistic` of `resamples` bootstrap resamples of `x` (non-empty), drawn with SplitMix64
+/// started at `seed`: the finite values, sorted.
+pub(crate) fn bootstrap_sorted(x: &[f64], statistic: impl Fn(&[f64]) -> f64, resamples: usize, seed: u64) -> Vec<f64> {
+    let n = x.len();
+    let mut rng = SplitMix64(seed);
+    let mut sample = vec![0.0; n];
+    let mut stats: Vec<f64> = (0..resamples)
+        .map(|_| {
+            for s in sample.iter_mut() {
+                *s = x[rng.index(n)];
+            }
+            statistic(&sample)
+        })
+        .filter(|v| v.is_finite())
+        .collect();
+    stats.sort_by(f64::total_cmp);
+    stats
+}
+
 /// A percentile-bootstrap interval (Efron & Tibshirani 1993, ch. 13) of `statistic` over the
 /// finite values of `values` at `level` (e.g. 0.95), from `resamples` resamples drawn with a
 /// SplitMix64 generator started at `seed` (reproducible); percentiles of type 7. `None` with
@@ -163,26 +200,7 @@ pub fn bootstrap_ci(
     if x.len() < 2 || resamples == 0 {
         return None;
     }
-    let mut state = seed;
-    let mut next = move || {
-        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    };
-    let n = x.len();
-    let mut sample = vec![0.0; n];
-    let mut stats: Vec<f64> = (0..resamples)
-        .map(|_| {
-            for s in sample.iter_mut() {
-                *s = x[((next() as u128 * n as u128) >> 64) as usize];
-            }
-            statistic(&sample)
-        })
-        .filter(|v| v.is_finite())
-        .collect();
-    stats.sort_by(f64::total_cmp);
+    let stats = bootstrap_sorted(&x, statistic, resamples, seed);
     let tail = 0.5 * (1.0 - level);
     Some((percentile_sorted(&stats, tail), percentile_sorted(&stats, 1.0 - tail)))
 }

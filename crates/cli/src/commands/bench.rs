@@ -39,36 +39,7 @@ pub enum Command {
     /// refinements of the same block, for the pipeline's point driver and a driven patch; means
     /// and medians with bootstrap 95% intervals, Kolmogorov–Smirnov tests against the finest Δt
     /// and the finest lattice (table and figure).
-    Convergence {
-        /// Pipeline file (TOML).
-        pipeline: PathBuf,
-        /// Loadings: `point` (the pipeline's driver nodes) and/or `patch` (the trailing-face patch
-        /// 0.1 ≤ z ≤ 0.3 m).
-        #[arg(long, value_delimiter = ',', default_value = "point,patch")]
-        loadings: Vec<String>,
-        /// Lattice refinements (modules per side multiplied, Lc divided), run at
-        /// `--lattice-fraction`.
-        #[arg(long, value_delimiter = ',', default_value = "1,2,4")]
-        refinements: Vec<u32>,
-        /// Seeds per refinement, in the order of `--refinements` (seeds 1…N).
-        #[arg(long, value_delimiter = ',', default_value = "64,24,6")]
-        seeds: Vec<usize>,
-        /// Δt fraction of the lattice sweep [default: the pipeline's].
-        #[arg(long, allow_negative_numbers = true)]
-        lattice_fraction: Option<f64>,
-        /// Δt fractions of the Δt sweep.
-        #[arg(long, value_delimiter = ',', default_value = "0.9,0.5,0.25,0.1", allow_negative_numbers = true)]
-        fractions: Vec<f64>,
-        /// Refinements that get the Δt sweep.
-        #[arg(long, value_delimiter = ',', default_value = "1,2")]
-        dt_refinements: Vec<u32>,
-        /// Shear duration (s) [default: the pipeline's].
-        #[arg(long, allow_negative_numbers = true)]
-        duration_s: Option<f64>,
-        /// Output folder [default: reports/bench/<pipeline name>].
-        #[arg(long)]
-        out: Option<PathBuf>,
-    },
+    Convergence(ConvergenceArgs),
     /// Quasi-static skip-ahead against full integration: whole runs, and each of the first
     /// jumps against integrating through it from the same state.
     Skip {
@@ -135,28 +106,7 @@ pub fn run(c: Command) -> Result<()> {
         Command::Accuracy { pipeline, fractions, refinements, duration_s, out } => {
             accuracy(&pipeline, fractions, refinements, duration_s, out)
         }
-        Command::Convergence {
-            pipeline,
-            loadings,
-            refinements,
-            seeds,
-            lattice_fraction,
-            fractions,
-            dt_refinements,
-            duration_s,
-            out,
-        } => {
-            let plan = ConvergenceArgs {
-                loadings,
-                refinements,
-                seeds,
-                lattice_fraction,
-                fractions,
-                dt_refinements,
-                duration_s,
-            };
-            convergence(&pipeline, plan, out)
-        }
+        Command::Convergence(args) => convergence(args),
         Command::Skip { pipeline, seeds, jumps, window_s, out } => {
             skip(&pipeline, seeds.as_deref(), jumps, window_s, out)
         }
@@ -356,19 +306,41 @@ fn skip(path: &Path, seeds: Option<&str>, jumps: usize, window_s: f64, out: Opti
     Ok(())
 }
 
-/// The sweep `stickslip bench convergence` was asked for.
-struct ConvergenceArgs {
+/// The sweep `stickslip bench convergence` is asked for.
+#[derive(clap::Args, Debug)]
+pub struct ConvergenceArgs {
+    /// Pipeline file (TOML).
+    pipeline: PathBuf,
+    /// Loadings: `point` (the pipeline's driver nodes) and/or `patch` (the trailing-face patch
+    /// 0.1 ≤ z ≤ 0.3 m).
+    #[arg(long, value_delimiter = ',', default_value = "point,patch")]
     loadings: Vec<String>,
+    /// Lattice refinements (modules per side multiplied, Lc divided), run at
+    /// `--lattice-fraction`.
+    #[arg(long, value_delimiter = ',', default_value = "1,2,4")]
     refinements: Vec<u32>,
+    /// Seeds per refinement, in the order of `--refinements` (seeds 1…N).
+    #[arg(long, value_delimiter = ',', default_value = "64,24,6")]
     seeds: Vec<usize>,
+    /// Δt fraction of the lattice sweep [default: the pipeline's].
+    #[arg(long, allow_negative_numbers = true)]
     lattice_fraction: Option<f64>,
+    /// Δt fractions of the Δt sweep.
+    #[arg(long, value_delimiter = ',', default_value = "0.9,0.5,0.25,0.1", allow_negative_numbers = true)]
     fractions: Vec<f64>,
+    /// Refinements that get the Δt sweep.
+    #[arg(long, value_delimiter = ',', default_value = "1,2")]
     dt_refinements: Vec<u32>,
+    /// Shear duration (s) [default: the pipeline's].
+    #[arg(long, allow_negative_numbers = true)]
     duration_s: Option<f64>,
+    /// Output folder [default: reports/bench/<pipeline name>].
+    #[arg(long)]
+    out: Option<PathBuf>,
 }
 
-fn convergence(path: &Path, a: ConvergenceArgs, out: Option<PathBuf>) -> Result<()> {
-    let pipeline = Pipeline::load(path)?;
+fn convergence(a: ConvergenceArgs) -> Result<()> {
+    let pipeline = Pipeline::load(&a.pipeline)?;
     let lattice_fraction = a.lattice_fraction.or(pipeline.file.time.dt_fraction).unwrap_or(0.5);
     for f in a.fractions.iter().chain([&lattice_fraction]) {
         anyhow::ensure!(
@@ -410,7 +382,7 @@ fn convergence(path: &Path, a: ConvergenceArgs, out: Option<PathBuf>) -> Result<
             cells.extend(fs.into_iter().map(|f| Cell { loading, refinement: r, dt_fraction: f, seeds: n }));
         }
     }
-    let out = bench_out(&pipeline, out);
+    let out = bench_out(&pipeline, a.out);
     let started = std::time::Instant::now();
     let mut results = Vec::new();
     for c in &cells {

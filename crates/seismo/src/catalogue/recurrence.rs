@@ -28,6 +28,7 @@
 use statrs::distribution::{ContinuousCDF, StudentsT};
 
 use crate::catalogue::FitError;
+use crate::stats::{bootstrap_sorted, percentile_sorted};
 
 /// Fewest intervals for any recurrence statistic: 5.
 ///
@@ -96,24 +97,6 @@ pub fn recurrence_statistics(intervals: &[f64]) -> Result<RecurrenceStatistics, 
     Ok(RecurrenceStatistics { n, mean, std, cv: std / mean, mean_ci95: (mean - half, mean + half) })
 }
 
-/// SplitMix64 (Steele, Lea & Flood 2014): small, seeded, portable.
-struct SplitMix64(u64);
-
-impl SplitMix64 {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform index in `0..n` (Lemire's multiply-shift).
-    fn index(&mut self, n: usize) -> usize {
-        ((self.next_u64() as u128 * n as u128) >> 64) as usize
-    }
-}
-
 /// Percentile-bootstrap interval of the CV of `intervals` at `level` (e.g. 0.95), from
 /// `resamples` (at least 100, 1000 is usual) resamples drawn with `seed`. Returns (low, high).
 pub fn cv_bootstrap_ci(intervals: &[f64], level: f64, resamples: usize, seed: u64) -> Result<(f64, f64), FitError> {
@@ -125,32 +108,18 @@ pub fn cv_bootstrap_ci(intervals: &[f64], level: f64, resamples: usize, seed: u6
     }
     let x = usable(intervals, false)?;
     recurrence_statistics(&x)?;
-    let n = x.len();
-    let mut rng = SplitMix64(seed);
-    let mut cvs = Vec::with_capacity(resamples);
-    let mut sample = vec![0.0; n];
-    for _ in 0..resamples {
-        for s in sample.iter_mut() {
-            *s = x[rng.index(n)];
-        }
-        let (m, sd) = mean_std(&sample);
-        if m > 0.0 {
-            cvs.push(sd / m);
-        }
-    }
+    let cv = |sample: &[f64]| {
+        let (m, sd) = mean_std(sample);
+        if m > 0.0 { sd / m } else { f64::NAN }
+    };
+    let cvs = bootstrap_sorted(&x, cv, resamples, seed);
     if cvs.len() < resamples / 2 {
         return Err(FitError::Degenerate {
             what: "CV bootstrap",
             why: format!("{} of {resamples} resamples had a zero mean", resamples - cvs.len()),
         });
     }
-    cvs.sort_by(f64::total_cmp);
-    let q = |p: f64| {
-        let h = p * (cvs.len() - 1) as f64;
-        let (lo, hi) = (h.floor() as usize, h.ceil() as usize);
-        cvs[lo] + (h - lo as f64) * (cvs[hi] - cvs[lo])
-    };
-    Ok((q((1.0 - level) / 2.0), q((1.0 + level) / 2.0)))
+    Ok((percentile_sorted(&cvs, (1.0 - level) / 2.0), percentile_sorted(&cvs, (1.0 + level) / 2.0)))
 }
 
 /// Brownian passage time (inverse Gaussian) fit.
