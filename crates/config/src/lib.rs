@@ -12,6 +12,7 @@
 pub mod accelerograms;
 pub mod check;
 pub mod error;
+pub mod friction_map;
 pub mod pipeline;
 pub mod precision;
 pub mod scene;

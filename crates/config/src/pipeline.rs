@@ -20,8 +20,7 @@ use crate::error::ConfigError;
 use crate::precision::{PrecisionTarget, TargetSection};
 use crate::scene::{
     BlockSection, BoundarySection, FrictionSection, MaterialSection, RecordSection, RuptureSection, SceneSections,
-    SelfWeightSection, ShearSection, SkipAheadSection, TimeSection,
-};
+    SelfWeightSection, ShearSection, SkipAheadSection, TimeSection, LoadingPlateSection};
 use crate::sections::{
     EventsSection, ReportSection, ReportSettings, SimilaritySection, SpectraSection, SpectraSettings,
 };
@@ -95,6 +94,9 @@ pub struct PipelineFile {
     /// `[skip_ahead]`.
     #[serde(default)]
     pub skip_ahead: SkipAheadSection,
+    /// `[loading_plate]`: compliant loading by a plate on springs; absent = drivers only.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub loading_plate: Option<LoadingPlateSection>,
     /// `[rupture]`: bars that crack; absent = every bar elastic.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rupture: Option<RuptureSection>,
@@ -134,6 +136,7 @@ impl Default for PipelineFile {
             boundary: Vec::new(),
             record: RecordSection::default(),
             skip_ahead: SkipAheadSection::default(),
+            loading_plate: None,
             rupture: None,
             events: EventsSection::default(),
             similarity: SimilaritySection::default(),
@@ -193,6 +196,7 @@ impl PipelineFile {
             boundary: &self.boundary,
             record: &self.record,
             skip_ahead: &self.skip_ahead,
+            loading_plate: &self.loading_plate,
             rupture: &self.rupture,
         }
     }
@@ -286,8 +290,13 @@ impl Pipeline {
 
     /// As [`Pipeline::from_file`], with files the pipeline names (a CSV target) read relative to
     /// `base`.
-    pub fn from_file_in(file: PipelineFile, default_name: &str, base: &Path) -> Result<Pipeline, ConfigError> {
+    pub fn from_file_in(mut file: PipelineFile, default_name: &str, base: &Path) -> Result<Pipeline, ConfigError> {
         let mut ck = Checker::default();
+        if let Some(grid) = file.friction.grid.as_mut()
+            && grid.rows.is_empty()
+        {
+            grid.read(base, &mut ck);
+        }
         if file.version != PIPELINE_VERSION {
             ck.push("version", file.version, "1 (the pipeline format this stickslip reads)");
         }

@@ -9,12 +9,13 @@ use stickslip_solver::geometry::{Dims, Face, Lattice, NodeId, NodeSet};
 use stickslip_solver::laws::{Coulomb, FrictionLaw, SlipWeakening, StaticDynamic};
 use stickslip_solver::rupture::{Rupture, kr_from_failure_factor, max_failure_factor};
 use stickslip_solver::scene::{
-    Component, ControlChannel, Friction, InterfaceQuantity, Kinematic, RecordPlan, SelfWeight, SettleMethod, Shear,
-    SkipAhead, TimeStep,
+    Component, ControlChannel, Friction, InterfaceQuantity, Kinematic, LoadingPlate, NormalLoad, RecordPlan, SelfWeight,
+    SettleMethod, Shear, SkipAhead, TimeStep,
 };
 use stickslip_solver::{Scene, TracePlan};
 
 use crate::check::Checker;
+pub use crate::friction_map::{GridSection, PatchSection};
 
 /// `[block]`: the lattice.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
@@ -70,11 +71,61 @@ pub struct FrictionSection {
     /// Coefficient of variation of μ (Weibull, per contact node, its own random stream);
     /// 0 = uniform. Default 0.
     pub mu_cv: f64,
+    /// Regions of the base with their own coefficients (asperities, barriers).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub patches: Vec<PatchSection>,
+    /// Coefficients per base node from a CSV file.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub grid: Option<GridSection>,
 }
 
 impl Default for FrictionSection {
     fn default() -> Self {
-        FrictionSection { mu_static: 5.0, mu_dynamic: None, slip_weakening_m: 0.0, mu_cv: 0.0 }
+        FrictionSection {
+            mu_static: 5.0,
+            mu_dynamic: None,
+            slip_weakening_m: 0.0,
+            mu_cv: 0.0,
+            patches: Vec::new(),
+            grid: None,
+        }
+    }
+}
+
+/// `[loading_plate]`: compliant loading — the nodes of a face tied by springs in x to a rigid
+/// plate that moves by the driver law of `[shear]` (Eq. 12), the spring-block loading; absent =
+/// the drivers of `[shear]` only.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields, default)]
+pub struct LoadingPlateSection {
+    /// The face tied to the plate: `"z_max"` (the top, default), `"x_min"` (the trailing face),
+    /// any face but the base.
+    pub face: String,
+    /// Total stiffness of the springs in N/m, shared by the face's nodes in proportion to their
+    /// area. Exclusive with `modulus_pa` and `thickness_m`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stiffness_n_m: Option<f64>,
+    /// Modulus of an elastic layer between face and plate in Pa (its shear modulus for the top,
+    /// its Young's modulus for a face pushed along its normal): stiffness = modulus·area/thickness.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub modulus_pa: Option<f64>,
+    /// Thickness of that layer in metres.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub thickness_m: Option<f64>,
+    /// Constant pressure on the top face in Pa, pressing the block onto the base in both stages
+    /// (besides gravity). Default 0.
+    pub normal_pressure_pa: f64,
+}
+
+impl Default for LoadingPlateSection {
+    fn default() -> Self {
+        LoadingPlateSection {
+            face: "z_max".into(),
+            stiffness_n_m: None,
+            modulus_pa: None,
+            thickness_m: None,
+            normal_pressure_pa: 0.0,
+        }
     }
 }
 
@@ -355,6 +406,9 @@ pub struct SceneSections<'a> {
     pub record: &'a RecordSection,
     /// `[skip_ahead]`.
     pub skip_ahead: &'a SkipAheadSection,
+    /// `[loading_plate]` (left out of the canonical form when absent).
+    #[serde(skip_serializing_if = "is_absent")]
+    pub loading_plate: &'a Option<LoadingPlateSection>,
     /// `[rupture]` (left out of the canonical form when absent, so the hashes of files without it
     /// do not change).
     #[serde(skip_serializing_if = "is_absent")]
@@ -540,7 +594,11 @@ pub(crate) fn build(file: SceneSections<'_>, ck: &mut Checker) -> Option<Scene> 
         return None;
     }
     let lattice = Lattice::new(dims, b.lc_m);
-    let (driver_ldem, driver_at): (&[i64], Vec<[f64; 3]>) = if sh.driver_nodes.is_empty() && sh.driver_at_m.is_empty() {
+    let no_drivers_given = sh.driver_nodes.is_empty() && sh.driver_at_m.is_empty();
+    let (driver_ldem, driver_at): (&[i64], Vec<[f64; 3]>) = if no_drivers_given && file.loading_plate.is_some() {
+        // The plate loads the block: no default driver node.
+        (&[], Vec::new())
+    } else if no_drivers_given {
         (&[], vec![[0.0, 0.0, 2.0 * b.lc_m]])
     } else {
         (&sh.driver_nodes, sh.driver_at_m.clone())
@@ -578,6 +636,18 @@ pub(crate) fn build(file: SceneSections<'_>, ck: &mut Checker) -> Option<Scene> 
         }
     }
     let control = control_channels(ck, file, &lattice);
+    let map = crate::friction_map::build(ck, &lattice, &law, &f.patches, f.grid.as_ref());
+    let (plate, normal_load) = match file.loading_plate {
+        Some(lp) => loading_plate(ck, lp, &lattice, &fixed),
+        None => (None, None),
+    };
+    if file.loading_plate.is_some() && sk.enabled {
+        ck.push(
+            "skip_ahead.enabled",
+            "true",
+            "false with [loading_plate] (the skip-ahead's quasi-static motion does not include the plate's springs yet)",
+        );
+    }
     Some(Scene {
         dims,
         lc_m: b.lc_m,
@@ -585,7 +655,7 @@ pub(crate) fn build(file: SceneSections<'_>, ck: &mut Checker) -> Option<Scene> 
         density_kg_m3: m.density_kg_m3,
         poisson: m.poisson,
         young_cv: m.young_cv,
-        friction: Friction { law, mu_cv: f.mu_cv },
+        friction: Friction { law, mu_cv: f.mu_cv, map },
         time_step,
         self_weight: SelfWeight {
             gravity_m_s2: s.gravity_m_s2,
@@ -611,6 +681,8 @@ pub(crate) fn build(file: SceneSections<'_>, ck: &mut Checker) -> Option<Scene> 
             control,
             trace: TracePlan::default(),
         },
+        plate,
+        normal_load,
         skip_ahead: SkipAhead {
             enabled: sk.enabled,
             tolerance: sk.tolerance,
@@ -619,6 +691,65 @@ pub(crate) fn build(file: SceneSections<'_>, ck: &mut Checker) -> Option<Scene> 
         },
         rupture,
     })
+}
+
+/// The plate and the normal load of `[loading_plate]`, every refused value recorded in `ck`.
+fn loading_plate(
+    ck: &mut Checker,
+    lp: &LoadingPlateSection,
+    lattice: &Lattice,
+    fixed: &[(NodeId, [bool; 3])],
+) -> (Option<LoadingPlate>, Option<NormalLoad>) {
+    let face = ck.named::<Face>("loading_plate.face", &lp.face);
+    if face == Some(Face::ZMin) {
+        ck.push(
+            "loading_plate.face",
+            "\"z_min\"",
+            "a face other than the base (\"z_max\", \"x_min\", \"x_max\", \"y_min\", \"y_max\"): the base's nodes are held \
+             by friction",
+        );
+    }
+    ck.non_negative("loading_plate.normal_pressure_pa", lp.normal_pressure_pa);
+    let normal_load = (lp.normal_pressure_pa > 0.0 && lp.normal_pressure_pa.is_finite())
+        .then(|| NormalLoad::on_top(lattice, lp.normal_pressure_pa));
+    let face = face.filter(|f| *f != Face::ZMin);
+    let area = face.map(|f| {
+        let e = lattice.extent();
+        let (axis, _) = f.axis();
+        (0..3).filter(|&a| a != axis).map(|a| e[a]).product::<f64>()
+    });
+    let total = match (lp.stiffness_n_m, lp.modulus_pa, lp.thickness_m) {
+        (Some(k), None, None) => ck.positive("loading_plate.stiffness_n_m", k).then_some(k),
+        (None, Some(g), Some(t)) => {
+            let ok = ck.positive("loading_plate.modulus_pa", g) & ck.positive("loading_plate.thickness_m", t);
+            ok.then(|| area.map(|a| g * a / t)).flatten()
+        }
+        (k, g, t) => {
+            ck.push(
+                "loading_plate",
+                format!("stiffness_n_m = {k:?}, modulus_pa = {g:?}, thickness_m = {t:?}"),
+                "either stiffness_n_m (N/m, > 0) or both modulus_pa and thickness_m",
+            );
+            None
+        }
+    };
+    let (Some(face), Some(total)) = (face, total) else { return (None, normal_load) };
+    let area = area.expect("a face has an area");
+    let nodes = face.nodes(lattice);
+    for id in &nodes {
+        if let Ok(i) = fixed.binary_search_by_key(id, |(n, _)| *n)
+            && fixed[i].1[0]
+        {
+            ck.push(
+                "loading_plate.face",
+                format!("\"{}\" (LDEM {} is held in x by a [[boundary]])", face.name(), id.ldem()),
+                "a face whose nodes are free in x (a roller would take the springs' pull)",
+            );
+            break;
+        }
+    }
+    let stiffness_n_m = nodes.iter().map(|&id| total * face.tributary_area(lattice, id) / area).collect();
+    (Some(LoadingPlate { face, nodes, stiffness_n_m }), normal_load)
 }
 
 /// The bilinear law of `[rupture]`, every refused value recorded in `ck`.

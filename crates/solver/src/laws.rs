@@ -5,7 +5,7 @@
 //! sticking and its kinetic coefficient if it was sliding; otherwise it slides with a friction
 //! force `μ_k·N` opposing its trial motion. The laws differ only in the kinetic coefficient as a
 //! function of the slip `s` of the current slide, and all three are one family
-//! ([`FrictionLaw::kinetic`]):
+//! ([`NodeFriction::kinetic`]):
 //!
 //! - **plain Coulomb** (the paper's): `μ_k = μs`;
 //! - **static/dynamic**: `μ_k = μd` from the first step of slip;
@@ -17,19 +17,103 @@
 //! self-weight solve and the quasi-static skip-ahead use the same static strength
 //! [`NodeFriction::mu_static`]`·N`.
 //!
-//! The kinetic coefficient is one formula with `Dc` a value, not one function per law: the lane
-//! kernel then compiles to the same vector loop whatever the law (per-law kernels left the plain
-//! law's loop scalar at 4 seeds, 11% slower per step; `cargo bench -p stickslip-lab --bench step`).
-//! A law outside this family adds a variant here, its arm in [`FrictionLaw::kinetic`] and its
-//! section in the configuration crate, and is checked with the step benchmark.
+//! The kinetic coefficient is one formula with `Dc` a value per node ([`NodeFriction::kinetic`]),
+//! not one function per law: the lane kernel then compiles to the same vector loop whatever the
+//! law (per-law kernels left the plain law's loop scalar at 4 seeds, 11% slower per step;
+//! `cargo bench -p stickslip-lab --bench step`), and a friction map ([`FrictionMap`]) may give
+//! each region of the base its own μs, μd and Dc. A law outside this family adds a variant here,
+//! its parameters to [`NodeFriction`] and its section in the configuration crate, and is checked
+//! with the step benchmark.
 
-/// The coefficients of one contact node (the law's, times the node's random-field factor).
+/// The coefficients of one contact node: the law's (or its friction map's region's), times the
+/// node's random-field factor on μ.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct NodeFriction {
     /// Static coefficient μs: a sticking node holds while `|R_t| ≤ μs·N`.
     pub mu_static: f64,
     /// Dynamic coefficient μd (equal to μs for the plain law).
     pub mu_dynamic: f64,
+    /// Slip-weakening distance Dc (m); 0 = μd from the first step of slip.
+    pub dc_m: f64,
+}
+
+impl NodeFriction {
+    /// Kinetic coefficient of the node after sliding `path` metres in its current slide: μd
+    /// when `Dc = 0`, else `μs − (μs − μd)·min(path/Dc, 1)` (docs/model.md §4). The one formula
+    /// of every law: Coulomb is `μd = μs`, static/dynamic `Dc = 0`.
+    #[inline(always)]
+    pub fn kinetic(&self, path: f64) -> f64 {
+        let (ms, md, dc) = (self.mu_static, self.mu_dynamic, self.dc_m);
+        if dc == 0.0 { md } else { ms - (ms - md) * (path / dc).min(1.0) }
+    }
+
+    /// The coefficient bounding `|R_t|` of the node in contact: μs if it was sticking, its
+    /// kinetic coefficient if it was sliding (`kinetic` is `self.kinetic(path)`, passed in so the
+    /// lane kernel computes it once).
+    #[inline(always)]
+    pub fn holding(&self, sliding: bool, kinetic: f64) -> f64 {
+        if sliding { kinetic } else { self.mu_static }
+    }
+
+    /// These coefficients times a field factor (Dc unchanged).
+    pub fn scaled(&self, factor: f64) -> NodeFriction {
+        NodeFriction { mu_static: self.mu_static * factor, mu_dynamic: self.mu_dynamic * factor, dc_m: self.dc_m }
+    }
+
+    /// Critical stiffness of a slider of normal force `normal` (N) with these coefficients: the
+    /// weakening rate `(μs − μd)·N/Dc`; infinite when μ drops at once, zero when it does not drop.
+    pub fn critical_stiffness(&self, normal: f64) -> f64 {
+        let drop = (self.mu_static - self.mu_dynamic) * normal;
+        if drop <= 0.0 {
+            0.0
+        } else if self.dc_m == 0.0 {
+            f64::INFINITY
+        } else {
+            drop / self.dc_m
+        }
+    }
+}
+
+/// A friction map of the base: base coefficients per contact node (canonical contact order,
+/// [`crate::geometry::Lattice::contact_nodes`]) and the region each node belongs to; the field
+/// factor of each seed multiplies them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FrictionMap {
+    /// Coefficients of each contact node before the field factor.
+    pub nodes: Vec<NodeFriction>,
+    /// Region of each contact node: `None` = the background (the `[friction]` law), `Some(i)` =
+    /// `regions[i]`.
+    pub region: Vec<Option<u16>>,
+    /// The regions, in precedence order as written.
+    pub regions: Vec<Region>,
+}
+
+/// One region of a friction map.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Region {
+    /// Its name (`patch[i]` or the name given).
+    pub name: String,
+    /// What it is as seen from the background (from its μs).
+    pub kind: RegionKind,
+}
+
+/// A region's strength against the background.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RegionKind {
+    /// μs above the background's: a barrier.
+    Barrier,
+    /// μs at most the background's: an asperity where rupture may nucleate.
+    Weak,
+}
+
+impl RegionKind {
+    /// Name as written in tables and messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            RegionKind::Barrier => "barrier",
+            RegionKind::Weak => "weak",
+        }
+    }
 }
 
 /// The plain Coulomb law: one coefficient for sticking and sliding (`μs = μd = μ`).
@@ -72,23 +156,6 @@ pub enum FrictionLaw {
 }
 
 impl FrictionLaw {
-    /// Kinetic coefficient of a node that has slid `path` metres in its current slide: its μd
-    /// (μs for the plain law) when `Dc = 0`, else `μs − (μs − μd)·min(path/Dc, 1)`.
-    #[inline(always)]
-    pub fn kinetic(&self, node: &NodeFriction, path: f64) -> f64 {
-        let dc = self.weakening_distance_m();
-        let (ms, md) = (node.mu_static, node.mu_dynamic);
-        if dc == 0.0 { md } else { ms - (ms - md) * (path / dc).min(1.0) }
-    }
-
-    /// The coefficient bounding `|R_t|` of a node in contact: μs if it was sticking, its kinetic
-    /// coefficient if it was sliding (`kinetic` is `self.kinetic(node, path)`, passed in so the
-    /// lane kernel computes it once).
-    #[inline(always)]
-    pub fn holding(&self, node: &NodeFriction, sliding: bool, kinetic: f64) -> f64 {
-        if sliding { kinetic } else { node.mu_static }
-    }
-
     /// Static coefficient μs (before any field factor).
     pub fn mu_static(&self) -> f64 {
         match self {
@@ -117,7 +184,11 @@ impl FrictionLaw {
 
     /// The coefficients of a node whose random-field factor is `factor`.
     pub fn node(&self, factor: f64) -> NodeFriction {
-        NodeFriction { mu_static: self.mu_static() * factor, mu_dynamic: self.mu_dynamic() * factor }
+        NodeFriction {
+            mu_static: self.mu_static() * factor,
+            mu_dynamic: self.mu_dynamic() * factor,
+            dc_m: self.weakening_distance_m(),
+        }
     }
 
     /// Name as written in tables and messages.
@@ -144,17 +215,20 @@ mod tests {
 
     #[test]
     fn kinetic_coefficients_of_each_law() {
-        let node = NodeFriction { mu_static: 0.6, mu_dynamic: 0.4 };
-        let plain = FrictionLaw::Coulomb(Coulomb { mu: 0.6 });
-        assert_eq!(plain.kinetic(&plain.node(1.0), 1.0), 0.6);
-        let sd = FrictionLaw::StaticDynamic(StaticDynamic { mu_static: 0.6, mu_dynamic: 0.4 });
-        assert_eq!(sd.kinetic(&node, 0.0), 0.4);
-        assert_eq!(sd.kinetic(&node, 1.0), 0.4);
-        let sw = FrictionLaw::SlipWeakening(SlipWeakening { mu_static: 0.6, mu_dynamic: 0.4, dc_m: 1e-3 });
-        assert_eq!(sw.kinetic(&node, 0.0), 0.6);
-        assert!((sw.kinetic(&node, 0.5e-3) - 0.5).abs() < 1e-15);
-        assert_eq!(sw.kinetic(&node, 2e-3), 0.4);
+        let plain = FrictionLaw::Coulomb(Coulomb { mu: 0.6 }).node(1.0);
+        assert_eq!(plain.kinetic(1.0), 0.6);
+        let sd = FrictionLaw::StaticDynamic(StaticDynamic { mu_static: 0.6, mu_dynamic: 0.4 }).node(1.0);
+        assert_eq!(sd.kinetic(0.0), 0.4);
+        assert_eq!(sd.kinetic(1.0), 0.4);
+        let sw = FrictionLaw::SlipWeakening(SlipWeakening { mu_static: 0.6, mu_dynamic: 0.4, dc_m: 1e-3 }).node(1.0);
+        assert_eq!(sw.kinetic(0.0), 0.6);
+        assert!((sw.kinetic(0.5e-3) - 0.5).abs() < 1e-15);
+        assert_eq!(sw.kinetic(2e-3), 0.4);
         // Sticking nodes hold at μs whatever the law.
-        assert_eq!(sw.holding(&node, false, sw.kinetic(&node, 0.5e-3)), 0.6);
+        assert_eq!(sw.holding(false, sw.kinetic(0.5e-3)), 0.6);
+        // The spring-slider's critical stiffness (μs − μd)·N/Dc.
+        assert!((sw.critical_stiffness(1000.0) - 0.2 * 1000.0 / 1e-3).abs() < 1e-6);
+        assert_eq!(sd.critical_stiffness(1000.0), f64::INFINITY);
+        assert_eq!(plain.critical_stiffness(1000.0), 0.0);
     }
 }

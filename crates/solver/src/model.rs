@@ -6,6 +6,7 @@
 
 use crate::error::SolverError;
 use crate::geometry::{Bar, BarFamily, Direction, Lattice, NodeId};
+use crate::laws::NodeFriction;
 use crate::layout::{BarGroup, BarLayout, Segment};
 use crate::material::{STREAM_FRICTION, STREAM_YOUNG, axial_stiffness, weibull_factors};
 use crate::rupture::{crack_area, fracture_energy_factors};
@@ -49,6 +50,10 @@ pub struct Model {
     nominal_k: Vec<f64>,
     contact: Vec<u32>,
     drivers: Vec<u32>,
+    /// Nodes on the loading plate's springs and their stiffness (N/m).
+    plate: Vec<(u32, f64)>,
+    /// Nodes with a constant force in z (N), the normal load.
+    loads: Vec<(u32, f64)>,
     fixed: Vec<(u32, [bool; 3])>,
 }
 
@@ -135,6 +140,12 @@ impl Model {
         let contact = lattice.contact_nodes().iter().map(|id| to_internal[id.index()]).collect();
         let drivers = scene.shear.drivers.iter().map(|id| to_internal[id.index()]).collect();
         let fixed = scene.fixed.iter().map(|(id, m)| (to_internal[id.index()], *m)).collect();
+        let plate = scene.plate.as_ref().map_or_else(Vec::new, |p| {
+            p.nodes.iter().zip(&p.stiffness_n_m).map(|(id, &k)| (to_internal[id.index()], k)).collect()
+        });
+        let loads = scene.normal_load.as_ref().map_or_else(Vec::new, |n| {
+            n.nodes.iter().zip(&n.force_n).map(|(id, &f)| (to_internal[id.index()], -f)).collect()
+        });
         Model {
             scene,
             lattice,
@@ -147,6 +158,8 @@ impl Model {
             nominal_k,
             contact,
             drivers,
+            plate,
+            loads,
             fixed,
         }
     }
@@ -232,6 +245,17 @@ impl Model {
         &self.drivers
     }
 
+    /// The nodes tied to the loading plate (internal indices) and their spring stiffness in x
+    /// (N/m); empty without a plate.
+    pub fn plate(&self) -> &[(u32, f64)] {
+        &self.plate
+    }
+
+    /// Constant forces in z (N) on internal nodes: the normal load; empty without one.
+    pub fn loads(&self) -> &[(u32, f64)] {
+        &self.loads
+    }
+
     /// Nodes with held components (internal indices).
     pub fn fixed(&self) -> &[(u32, [bool; 3])] {
         &self.fixed
@@ -299,5 +323,11 @@ impl Model {
     pub fn friction_factors(&self, seed: u64) -> Result<Vec<f64>, SolverError> {
         let n = self.contact.len();
         Ok(weibull_factors(self.scene.friction.mu_cv, seed, STREAM_FRICTION, n)?.unwrap_or_else(|| vec![1.0; n]))
+    }
+
+    /// Coefficients of contact node `c` (order of [`Model::contact`]) whose field factor is
+    /// `factor`: its region's (or the law's) μs and μd times the factor, and its Dc.
+    pub fn node_friction(&self, c: usize, factor: f64) -> NodeFriction {
+        self.scene.friction.base(c).scaled(factor)
     }
 }

@@ -7,8 +7,8 @@
 //! benchmarks start from.
 
 use crate::dispersion::{DispersionError, LatticeMaterial, UsableBand, usable_band};
-use crate::geometry::{Dims, Lattice, NodeId};
-use crate::laws::{Coulomb, FrictionLaw};
+use crate::geometry::{Dims, Face, Lattice, NodeId};
+use crate::laws::{Coulomb, FrictionLaw, FrictionMap, NodeFriction};
 use crate::rupture::Rupture;
 
 /// How Δt is chosen.
@@ -45,14 +45,27 @@ impl SettleMethod {
     }
 }
 
-/// Friction of the base: the law, and the Weibull field on its coefficients.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// Friction of the base: the law, its map, and the Weibull field on its coefficients.
+#[derive(Clone, Debug, PartialEq)]
 pub struct Friction {
-    /// The law every contact node follows (coefficients scaled by the node's field factor).
+    /// The law of the background (coefficients scaled by the node's field factor).
     pub law: FrictionLaw,
     /// Coefficient of variation of the Weibull field on μ (per contact node, its own random
     /// stream); 0 = uniform.
     pub mu_cv: f64,
+    /// Regions of the base with their own μs, μd and Dc (patches, a grid); `None` = the law
+    /// everywhere.
+    pub map: Option<FrictionMap>,
+}
+
+impl Friction {
+    /// Coefficients of contact node `c` (canonical contact order) before the field factor.
+    pub fn base(&self, c: usize) -> NodeFriction {
+        match &self.map {
+            Some(map) => map.nodes[c],
+            None => self.law.node(1.0),
+        }
+    }
 }
 
 /// Loading stage 1: gravity with heavy damping until static equilibrium (docs/model.md §5).
@@ -103,6 +116,53 @@ impl Shear {
         }
         let t0 = self.rise_time_s;
         if t0 == 0.0 { self.velocity_m_s } else { -self.velocity_m_s * (-t / t0).exp_m1() }
+    }
+}
+
+/// Compliant loading (docs/model.md §5): the nodes of a face tied by springs in x to a rigid
+/// plate that moves by Eq. 12 (the driver law of [`Shear`]) from the start of the shear stage —
+/// the spring-block (Burridge–Knopoff) loading. Each spring pulls its node with
+/// `k_i·(x_plate + x_i⁰ − x_i)`, `x_i⁰` the node's x when shearing starts.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LoadingPlate {
+    /// The face the springs hold.
+    pub face: Face,
+    /// Attached nodes (canonical ids, sorted).
+    pub nodes: Vec<NodeId>,
+    /// Spring stiffness of each attached node in x (N/m), order of `nodes`.
+    pub stiffness_n_m: Vec<f64>,
+}
+
+impl LoadingPlate {
+    /// Total stiffness of the springs (N/m).
+    pub fn stiffness(&self) -> f64 {
+        self.stiffness_n_m.iter().sum()
+    }
+}
+
+/// A constant normal pressure on the top face, pressing the block onto the base: forces in −z on
+/// the top face's nodes in proportion to their share of its area, in both stages (like gravity).
+#[derive(Clone, Debug, PartialEq)]
+pub struct NormalLoad {
+    /// Pressure (Pa).
+    pub pressure_pa: f64,
+    /// Loaded nodes (canonical ids, sorted).
+    pub nodes: Vec<NodeId>,
+    /// Force of each in −z (N), order of `nodes`.
+    pub force_n: Vec<f64>,
+}
+
+impl NormalLoad {
+    /// The pressure `pressure_pa` on the top face of `lattice`.
+    pub fn on_top(lattice: &Lattice, pressure_pa: f64) -> NormalLoad {
+        let nodes = Face::ZMax.nodes(lattice);
+        let force_n = nodes.iter().map(|&id| pressure_pa * Face::ZMax.tributary_area(lattice, id)).collect();
+        NormalLoad { pressure_pa, nodes, force_n }
+    }
+
+    /// Total force (N).
+    pub fn total(&self) -> f64 {
+        self.force_n.iter().sum()
     }
 }
 
@@ -314,6 +374,10 @@ pub struct Scene {
     pub fixed: Vec<(NodeId, [bool; 3])>,
     /// Recording.
     pub record: RecordPlan,
+    /// Compliant loading by a plate on springs, besides (or instead of) the drivers.
+    pub plate: Option<LoadingPlate>,
+    /// Normal pressure on the top face.
+    pub normal_load: Option<NormalLoad>,
     /// Quasi-static skip-ahead.
     pub skip_ahead: SkipAhead,
     /// Bars that crack (the bilinear law of docs/model.md §11); `None`: every bar elastic.
@@ -336,7 +400,7 @@ impl Scene {
             density_kg_m3: 2400.0,
             poisson: 0.2,
             young_cv: 0.05,
-            friction: Friction { law: FrictionLaw::Coulomb(Coulomb { mu: 5.0 }), mu_cv: 0.0 },
+            friction: Friction { law: FrictionLaw::Coulomb(Coulomb { mu: 5.0 }), mu_cv: 0.0, map: None },
             time_step: TimeStep::Fraction(0.5),
             self_weight: SelfWeight {
                 gravity_m_s2: 9.81,
@@ -362,6 +426,8 @@ impl Scene {
                 control: Vec::new(),
                 trace: TracePlan::default(),
             },
+            plate: None,
+            normal_load: None,
             skip_ahead: SkipAhead { enabled: false, tolerance: 1e-4, margin_steps: 20, record_interval_s: None },
             rupture: None,
         }

@@ -53,6 +53,19 @@ impl Face {
         let target = if at_max { 2 * lattice.dims().along(axis) } else { 0 };
         (0..lattice.node_count() as u32).map(NodeId).filter(|&id| lattice.half_units(id)[axis] == target).collect()
     }
+
+    /// The share of the face's area that node `id` of the face stands for (m²): `Lc²`, halved
+    /// for each edge of the face the node lies on; the shares of a face's nodes add up to its
+    /// area.
+    pub fn tributary_area(self, lattice: &Lattice, id: NodeId) -> f64 {
+        let (axis, _) = self.axis();
+        let h = lattice.half_units(id);
+        let lc = lattice.lc();
+        (0..3)
+            .filter(|&a| a != axis)
+            .map(|a| if h[a] == 0 || h[a] == 2 * lattice.dims().along(a) { 0.5 * lc } else { lc })
+            .product()
+    }
 }
 
 /// Named sets of control nodes (corner nodes only).

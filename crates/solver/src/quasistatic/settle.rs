@@ -29,12 +29,14 @@ pub fn settle_statically(
     for i in 0..n {
         loads.c[2][i][0] = -mass[i] * gravity;
     }
+    for &(node, f) in model.loads() {
+        loads.c[2][node as usize][0] += f;
+    }
     let mut prescribed = held_rollers(model, |_, _| 0.0);
     for &node in model.contact() {
         prescribed.extend((0..3).map(|axis| Prescribed { node: node as usize, axis, value: 0.0 }));
     }
     let solution = solve_static(model, stiffness, &loads, &prescribed, CG_TOLERANCE, CG_MAX_ITERATIONS)?;
-    let law = model.scene().friction.law;
     for (ci, &node) in model.contact().iter().enumerate() {
         let p = node as usize;
         let r = [0, 1, 2].map(|c| solution.reactions.c[c][p][0]);
@@ -46,7 +48,7 @@ pub fn settle_statically(
                 r[2]
             )));
         }
-        let (rt, limit) = (r[0].hypot(r[1]), law.node(friction[ci]).mu_static * r[2]);
+        let (rt, limit) = (r[0].hypot(r[1]), model.node_friction(ci, friction[ci]).mu_static * r[2]);
         if rt > limit {
             return Ok(Err(format!(
                 "friction would not hold base node LDEM {} (needs {rt:.3e} N, μs·N = {limit:.3e} N)",

@@ -18,7 +18,7 @@
 //! two are tested bit for bit against each other.
 
 use crate::field::{Field, Lanes};
-use crate::laws::{FrictionLaw, NodeFriction};
+use crate::laws::NodeFriction;
 use crate::step::isa::{Isa, widest};
 use crate::step::params::Params;
 use crate::step::state::{ContactState, SlipLog};
@@ -43,7 +43,6 @@ pub struct Resolved {
 /// give without the base, `now` the node's `(x, y)` before the step, `g = m(1 + DΔt/2)/Δt²`,
 /// `sliding` and `path` its state from the last step.
 pub fn resolve(
-    law: &FrictionLaw,
     node: &NodeFriction,
     g: f64,
     trial: [f64; 3],
@@ -57,8 +56,8 @@ pub fn resolve(
     let normal = -trial[2] * g;
     let (rx, ry) = ((now[0] - trial[0]) * g, (now[1] - trial[1]) * g);
     let need = (rx * rx + ry * ry).sqrt();
-    let mu_k = law.kinetic(node, path);
-    if need <= law.holding(node, sliding, mu_k) * normal {
+    let mu_k = node.kinetic(path);
+    if need <= node.holding(sliding, mu_k) * normal {
         return Resolved {
             position: [now[0], now[1], 0.0],
             reaction: [rx, ry, normal],
@@ -85,6 +84,7 @@ pub(crate) struct ContactArrays<'a, const L: usize> {
     pub cf: &'a Lanes<L>,
     pub mu_s: &'a [Lanes<L>],
     pub mu_d: &'a [Lanes<L>],
+    pub dc: &'a [Lanes<L>],
     /// Trial positions (overwritten with the result).
     pub trial: [&'a mut Vec<Lanes<L>>; 3],
     /// Positions before the step, x and y.
@@ -112,13 +112,14 @@ pub(crate) fn apply<const L: usize>(
         cf: &p.coefficients().cf,
         mu_s: &p.mu_static,
         mu_d: &p.mu_dynamic,
+        dc: &p.dc,
         trial: [tx, ty, tz],
         now: [&now.c[0], &now.c[1]],
         sliding: &mut contact.sliding,
         slip_path: &mut contact.slip_path,
         reaction: &mut contact.reaction,
     };
-    contact_dispatch(Isa::current(), &mut c, p.law);
+    contact_dispatch(Isa::current(), &mut c);
     let Some((log, track_slid, track_onsets, step)) = log else { return };
     if track_slid {
         for (any, now) in log.slid.iter_mut().zip(&contact.sliding) {
@@ -146,19 +147,19 @@ pub(crate) fn apply<const L: usize>(
 
 widest! {
     /// The contact update of every contact node in instruction set `isa`.
-    fn contact_dispatch<const L: usize>(c: &mut ContactArrays<'_, L>, law: FrictionLaw) => contact
+    fn contact_dispatch<const L: usize>(c: &mut ContactArrays<'_, L>) => contact
 }
 
 /// [`resolve`] for every contact node, `L` lanes at once without branches.
 #[inline(always)]
-fn contact<const L: usize>(c: &mut ContactArrays<'_, L>, law: FrictionLaw) {
+fn contact<const L: usize>(c: &mut ContactArrays<'_, L>) {
     for (ci, &node) in c.nodes.iter().enumerate() {
         let p = node as usize;
         let m = c.mass[p];
         let (xt, yt, zt) = (c.trial[0][p], c.trial[1][p], c.trial[2][p]);
         let (xn, yn) = (c.now[0][p], c.now[1][p]);
         let (slipping, path) = (c.sliding[ci], c.slip_path[ci]);
-        let (mu_s, mu_d) = (c.mu_s[ci], c.mu_d[ci]);
+        let (mu_s, mu_d, dc) = (c.mu_s[ci], c.mu_d[ci], c.dc[ci]);
         let (mut ox, mut oy, mut oz) = ([0.0; L], [0.0; L], [0.0; L]);
         let (mut rxo, mut ryo, mut no) = ([0.0; L], [0.0; L], [0.0; L]);
         let (mut slip_o, mut path_o) = ([false; L], [0.0; L]);
@@ -168,9 +169,9 @@ fn contact<const L: usize>(c: &mut ContactArrays<'_, L>, law: FrictionLaw) {
             let normal = -zt[l] * g;
             let (rx, ry) = ((xn[l] - xt[l]) * g, (yn[l] - yt[l]) * g);
             let need = (rx * rx + ry * ry).sqrt();
-            let node = NodeFriction { mu_static: mu_s[l], mu_dynamic: mu_d[l] };
-            let mu_k = law.kinetic(&node, path[l]);
-            let limit = law.holding(&node, slipping[l], mu_k) * normal;
+            let node = NodeFriction { mu_static: mu_s[l], mu_dynamic: mu_d[l], dc_m: dc[l] };
+            let mu_k = node.kinetic(path[l]);
+            let limit = node.holding(slipping[l], mu_k) * normal;
             let stick = need <= limit;
             // Sliding: friction μ_k·N against the trial motion (unused when sticking).
             let scale = mu_k * normal / need;
@@ -231,6 +232,7 @@ mod tests {
         cf: Lanes<L>,
         mu_s: Vec<Lanes<L>>,
         mu_d: Vec<Lanes<L>>,
+        dc: Vec<Lanes<L>>,
         trial: [Vec<Lanes<L>>; 3],
         now: [Vec<Lanes<L>>; 2],
         sliding: Vec<[bool; L]>,
@@ -246,6 +248,10 @@ mod tests {
         let factors: Vec<Lanes<L>> = (0..nodes).map(|_| lanes(0.3, 5.0)).collect();
         let mu_s = factors.iter().map(|f| f.map(|v| law.node(v).mu_static)).collect();
         let mu_d = factors.iter().map(|f| f.map(|v| law.node(v).mu_dynamic)).collect();
+        // A friction map may give nodes their own Dc: half the nodes keep the law's.
+        let dc = (0..nodes)
+            .map(|i| lanes(0.5, 2.0).map(|v| if i % 2 == 0 { law.weakening_distance_m() } else { v * law.weakening_distance_m() }))
+            .collect();
         // Tangential trials a few µm from where the node is, vertical ones ±1 µm about the base:
         // some nodes lift, some stick, some slide.
         let trial = [
@@ -256,7 +262,7 @@ mod tests {
         let now = [(0..nodes).map(|_| lanes(-1e-6, 1e-6)).collect(), (0..nodes).map(|_| lanes(-1e-6, 1e-6)).collect()];
         let sliding = (0..nodes).map(|_| lanes(0.0, 1.0).map(|v| v < 0.5)).collect();
         let path = (0..nodes).map(|_| lanes(0.0, 4e-6)).collect();
-        Case { mass, cf, mu_s, mu_d, trial, now, sliding, path }
+        Case { mass, cf, mu_s, mu_d, dc, trial, now, sliding, path }
     }
 
     /// The lane kernel in build `isa` against [`resolve`] on every node and lane, bit for bit.
@@ -275,22 +281,23 @@ mod tests {
                 cf: &c.cf,
                 mu_s: &c.mu_s,
                 mu_d: &c.mu_d,
+                dc: &c.dc,
                 trial: [tx, ty, tz],
                 now: [&c.now[0], &c.now[1]],
                 sliding: &mut sliding,
                 slip_path: &mut path,
                 reaction: &mut reaction,
             };
-            contact_dispatch(isa, &mut arrays, law);
+            contact_dispatch(isa, &mut arrays);
         }
         let mut outcomes = [0usize; 3];
         for i in 0..nodes.len() {
             for l in 0..L {
-                let node = NodeFriction { mu_static: c.mu_s[i][l], mu_dynamic: c.mu_d[i][l] };
+                let node = NodeFriction { mu_static: c.mu_s[i][l], mu_dynamic: c.mu_d[i][l], dc_m: c.dc[i][l] };
                 let g = c.mass[i] / c.cf[l];
                 let t = [c.trial[0][i][l], c.trial[1][i][l], c.trial[2][i][l]];
                 let now = [c.now[0][i][l], c.now[1][i][l]];
-                let want = resolve(&law, &node, g, t, now, c.sliding[i][l], c.path[i][l]);
+                let want = resolve(&node, g, t, now, c.sliding[i][l], c.path[i][l]);
                 let got = Resolved {
                     position: [trial[0][i][l], trial[1][i][l], trial[2][i][l]],
                     reaction: [reaction[0][i][l], reaction[1][i][l], reaction[2][i][l]],

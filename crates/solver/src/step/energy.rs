@@ -28,9 +28,9 @@ pub struct Energy {
     pub impact: f64,
     /// Dissipated by bars that crack (docs/model.md §11; 0 without rupture).
     pub fracture: f64,
-    /// Work of body forces (gravity, body-force loads).
+    /// Work of body forces (gravity, body-force loads) and of the normal load.
     pub body_work: f64,
-    /// Work of the drivers.
+    /// Work of the drivers and the loading plate's springs.
     pub driver_work: f64,
 }
 
@@ -136,6 +136,19 @@ pub(crate) fn accumulate<const L: usize>(p: &Params<'_, L>, state: &mut State<L>
         let i = node as usize;
         for l in 0..L {
             energy[l].driver_work += 0.5 * drivers.reaction[d][l] * (new.c[0][i][l] - old.c[0][i][l]);
+        }
+    }
+    // The plate's springs are external forces on the block: their work is the loading's.
+    for (j, &(node, _)) in model.plate().iter().enumerate() {
+        let i = node as usize;
+        for l in 0..L {
+            energy[l].driver_work += 0.5 * drivers.plate_force[j][l] * (new.c[0][i][l] - old.c[0][i][l]);
+        }
+    }
+    for &(node, f) in model.loads() {
+        let i = node as usize;
+        for l in 0..L {
+            energy[l].body_work += 0.5 * f * (new.c[2][i][l] - old.c[2][i][l]);
         }
     }
 }

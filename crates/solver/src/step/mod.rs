@@ -5,7 +5,8 @@
 //! [`Params`] (model, stiffness and friction of each seed, time step, damping, body force: what
 //! the step reads) and the [`Stepper`] (scratch memory and what to track).
 //!
-//! One step, in this order: `bar_forces → integrate (trial) → rollers → drivers → contact →
+//! One step, in this order: `bar_forces → integrate (trial) → plate springs and normal load →
+//! rollers → drivers → contact →
 //! energy (if tracked) → commit` (on cache-blocked lattices the first two are one pass: each
 //! node is integrated right after its last bar). The trial update is
 //! `u⁺ = [Δt²(f/m + b) + 2u − (1 − DΔt/2)u⁻] / (1 + DΔt/2)`; every constraint then replaces the
@@ -129,6 +130,7 @@ impl<const L: usize> Stepper<L> {
                 });
             }
         }
+        apply_loads(p, state);
         apply_fixed(m, &mut state.u);
         apply_drivers(p, state);
         let log = (self.tracking.slid || self.tracking.onsets).then_some((
@@ -210,6 +212,29 @@ fn apply_drivers<const L: usize>(p: &Params<'_, L>, state: &mut State<L>) {
     }
 }
 
+/// The loads that are not bars: the loading plate's springs, pulling each tied node in x by
+/// `k·(base + target − x)` with `x` its displacement now (explicit, like the bar forces), and the
+/// constant normal load in z. Each force `F` moves the trial by `F·cf/m` (the update's `cf·f/m`).
+fn apply_loads<const L: usize>(p: &Params<'_, L>, state: &mut State<L>) {
+    let model = p.model;
+    let (mass, cf) = (model.mass(), &p.coefficients().cf);
+    let (d_state, now, trial) = (&mut state.drivers, &state.u.np1, &mut state.u.nm1);
+    for (j, &(node, k)) in model.plate().iter().enumerate() {
+        let i = node as usize;
+        for l in 0..L {
+            let f = if d_state.on[l] { k * (d_state.plate_base[j][l] + d_state.target[l] - now.c[0][i][l]) } else { 0.0 };
+            d_state.plate_force[j][l] = f;
+            trial.c[0][i][l] += f * cf[l] / mass[i];
+        }
+    }
+    for &(node, f) in model.loads() {
+        let i = node as usize;
+        for l in 0..L {
+            trial.c[2][i][l] += f * cf[l] / mass[i];
+        }
+    }
+}
+
 /// Turns on the drivers of lane `l`: from now on their x is held at where they are now (the
 /// newest time level) plus the target of [`state::DriverState::target`].
 pub fn start_drivers<const L: usize>(model: &Model, state: &mut State<L>, l: usize) {
@@ -217,6 +242,9 @@ pub fn start_drivers<const L: usize>(model: &Model, state: &mut State<L>, l: usi
     state.drivers.target[l] = 0.0;
     for (d, &node) in model.drivers().iter().enumerate() {
         state.drivers.base[d][l] = state.u.np1.c[0][node as usize][l];
+    }
+    for (j, &(node, _)) in model.plate().iter().enumerate() {
+        state.drivers.plate_base[j][l] = state.u.np1.c[0][node as usize][l];
     }
 }
 
@@ -243,7 +271,12 @@ impl<'m, const L: usize> Batch<'m, L> {
     pub fn new(model: &'m Model, lanes: &[LaneSetup; L]) -> Self {
         Batch {
             params: Params::new(model, lanes),
-            state: State::at_rest(model.node_count(), model.contact().len(), model.drivers().len()),
+            state: State::at_rest_with_plate(
+                model.node_count(),
+                model.contact().len(),
+                model.drivers().len(),
+                model.plate().len(),
+            ),
             stepper: Stepper::new(model),
         }
         .with_damage()

@@ -66,6 +66,10 @@ pub struct DriverState<const L: usize> {
     pub base: Vec<Lanes<L>>,
     /// Reaction of each driven node in x at the viewed time (N).
     pub reaction: Vec<Lanes<L>>,
+    /// x of each node on the loading plate's springs when the plate started (m).
+    pub plate_base: Vec<Lanes<L>>,
+    /// Force of each plate spring on its node in x at the viewed time (N).
+    pub plate_force: Vec<Lanes<L>>,
 }
 
 /// Slip history of the contact nodes, for recorders and the skip-ahead.
@@ -110,6 +114,11 @@ impl<const L: usize> State<L> {
     /// A state at rest (`u = 0`) for `nodes` nodes, `contacts` contact nodes and `drivers`
     /// driven nodes, drivers off.
     pub fn at_rest(nodes: usize, contacts: usize, drivers: usize) -> Self {
+        Self::at_rest_with_plate(nodes, contacts, drivers, 0)
+    }
+
+    /// [`State::at_rest`] with `plate` nodes on the loading plate's springs.
+    pub fn at_rest_with_plate(nodes: usize, contacts: usize, drivers: usize, plate: usize) -> Self {
         State {
             u: TimeLevels::zeros(nodes),
             contact: ContactState {
@@ -122,6 +131,8 @@ impl<const L: usize> State<L> {
                 target: [0.0; L],
                 base: vec![[0.0; L]; drivers],
                 reaction: vec![[0.0; L]; drivers],
+                plate_base: vec![[0.0; L]; plate],
+                plate_force: vec![[0.0; L]; plate],
             },
             energy: [Energy::default(); L],
             log: SlipLog {
@@ -137,7 +148,7 @@ impl<const L: usize> State<L> {
     /// A state at rest for the parameters `p`: every bar intact when the scene's bars crack.
     pub fn for_params(p: &Params<'_, L>) -> Self {
         let m = p.model;
-        let mut s = State::at_rest(m.node_count(), m.contact().len(), m.drivers().len());
+        let mut s = State::at_rest_with_plate(m.node_count(), m.contact().len(), m.drivers().len(), m.plate().len());
         s.rupture = p.rupture.as_ref().map(|r| RuptureState::intact(&p.k, r));
         s
     }
@@ -154,9 +165,10 @@ impl<const L: usize> State<L> {
         [r[0][ci][l], r[1][ci][l], r[2][ci][l]]
     }
 
-    /// Sum of the driver reactions in x (N) of lane `l` at the viewed time.
+    /// The loading force in x (N) of lane `l` at the viewed time: the drivers' reactions plus
+    /// the plate springs' pull.
     pub fn driver_force(&self, l: usize) -> f64 {
-        self.drivers.reaction.iter().map(|r| r[l]).sum()
+        self.drivers.reaction.iter().chain(&self.drivers.plate_force).map(|r| r[l]).sum()
     }
 
     /// Takes the sustained slip onsets of lane `l` recorded since the last call: `(step,

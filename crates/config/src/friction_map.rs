@@ -1,0 +1,280 @@
+//! Friction maps of the base (`[[friction.patches]]`, `[friction.grid]`): regions with their own
+//! μs, μd and Dc — asperities (weak or strong patches where rupture starts) and barriers (strong
+//! patches where it stops), after Aki (1979) — built into a per-node [`FrictionMap`] that the
+//! Weibull field on μ then multiplies.
+//!
+//! The grid (a CSV file, one row per base node) replaces the `[friction]` law everywhere; patches
+//! are laid over it (or over the law) in order of `priority`. Two patches that share a base node
+//! need different priorities: the higher one holds there. A patch must lie on the base and hold
+//! at least one base node.
+
+use std::path::Path;
+
+use serde::{Deserialize, Serialize};
+use stickslip_solver::geometry::Lattice;
+use stickslip_solver::laws::{FrictionLaw, FrictionMap, NodeFriction, Region, RegionKind};
+
+use crate::check::Checker;
+
+/// `[[friction.patches]]`: a region of the base with its own coefficients.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Default)]
+#[serde(deny_unknown_fields, default)]
+pub struct PatchSection {
+    /// Name shown by `check` and in tables. Default `patch[i]`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// `"rectangle"` (with `x_m`, `y_m`) or `"ellipse"` (with `centre_m`, `semi_axes_m`).
+    pub shape: String,
+    /// Rectangle: `[x_min, x_max]` in metres.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub x_m: Option<[f64; 2]>,
+    /// Rectangle: `[y_min, y_max]` in metres. Default: the whole width.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub y_m: Option<[f64; 2]>,
+    /// Ellipse: centre `[x, y]` in metres.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub centre_m: Option<[f64; 2]>,
+    /// Ellipse: semi-axes `[a_x, a_y]` in metres.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub semi_axes_m: Option<[f64; 2]>,
+    /// μs of the patch.
+    pub mu_static: f64,
+    /// μd ≤ μs of the patch. Default: μs (no weakening).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mu_dynamic: Option<f64>,
+    /// Dc of the patch (m). Default: the `[friction]` law's.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub slip_weakening_m: Option<f64>,
+    /// Which patch holds where two overlap: the higher. Default 0.
+    pub priority: i64,
+}
+
+/// `[friction.grid]`: coefficients per base node from a CSV file with the header
+/// `x_m,y_m,mu_static,mu_dynamic,slip_weakening_m` and one row per base node (any order).
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Default)]
+#[serde(deny_unknown_fields)]
+pub struct GridSection {
+    /// The CSV file, relative to the pipeline file's folder.
+    pub file: String,
+    /// The rows as read (filled in when the pipeline is loaded; part of the results hash, so a
+    /// changed file changes the hash).
+    #[serde(skip_deserializing, default, skip_serializing_if = "Vec::is_empty")]
+    pub rows: Vec<[f64; 5]>,
+}
+
+/// The grid's CSV header.
+pub const GRID_HEADER: &str = "x_m,y_m,mu_static,mu_dynamic,slip_weakening_m";
+
+impl GridSection {
+    /// Reads the CSV file relative to `base` into `rows` (refusals into `ck`).
+    pub fn read(&mut self, base: &Path, ck: &mut Checker) {
+        let field = "friction.grid.file";
+        let path = base.join(&self.file);
+        let text = match std::fs::read_to_string(&path) {
+            Ok(t) => t,
+            Err(e) => {
+                ck.push(field, format!("{:?}", self.file), format!("a readable CSV file ({}: {e})", path.display()));
+                return;
+            }
+        };
+        let mut lines = text.lines().filter(|l| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
+        let header: String = lines.next().unwrap_or("").chars().filter(|c| !c.is_whitespace()).collect();
+        if header != GRID_HEADER {
+            ck.push(field, format!("header {header:?}"), format!("the header {GRID_HEADER:?}"));
+            return;
+        }
+        let mut rows = Vec::new();
+        for (i, line) in lines.enumerate() {
+            let cells: Vec<Option<f64>> = line.split(',').map(|c| c.trim().parse::<f64>().ok()).collect();
+            match cells.as_slice() {
+                [Some(a), Some(b), Some(c), Some(d), Some(e)] if [a, b, c, d, e].iter().all(|v| v.is_finite()) => {
+                    rows.push([*a, *b, *c, *d, *e])
+                }
+                _ => {
+                    ck.push(field, format!("row {} {line:?}", i + 1), "five finite numbers: x_m, y_m, μs, μd, Dc");
+                    return;
+                }
+            }
+        }
+        self.rows = rows;
+    }
+}
+
+fn describe_base(lattice: &Lattice) -> String {
+    let e = lattice.extent();
+    format!("inside the base, 0 ≤ x ≤ {} m and 0 ≤ y ≤ {} m", e[0], e[1])
+}
+
+/// Coefficients of one region, checked; `field` is its section's name.
+fn coefficients(
+    ck: &mut Checker,
+    field: &str,
+    mu_static: f64,
+    mu_dynamic: Option<f64>,
+    dc: Option<f64>,
+    law: &FrictionLaw,
+) -> NodeFriction {
+    ck.non_negative(&format!("{field}.mu_static"), mu_static);
+    let mu_dynamic = mu_dynamic.unwrap_or(mu_static);
+    if mu_static.is_finite() {
+        ck.range(&format!("{field}.mu_dynamic"), mu_dynamic, 0.0, false, mu_static.max(0.0), false);
+    }
+    let dc = dc.unwrap_or(law.weakening_distance_m());
+    ck.non_negative(&format!("{field}.slip_weakening_m"), dc);
+    NodeFriction { mu_static, mu_dynamic, dc_m: dc }
+}
+
+/// Whether the base point `(x, y)` lies in the patch (boundary included, to a part in 10⁹ of Lc).
+fn contains(p: &PatchSection, x: f64, y: f64, width: f64, eps: f64) -> bool {
+    match p.shape.as_str() {
+        "rectangle" => {
+            let [x0, x1] = p.x_m.unwrap_or([0.0, 0.0]);
+            let [y0, y1] = p.y_m.unwrap_or([0.0, width]);
+            x >= x0 - eps && x <= x1 + eps && y >= y0 - eps && y <= y1 + eps
+        }
+        _ => {
+            let [cx, cy] = p.centre_m.unwrap_or([0.0, 0.0]);
+            let [a, b] = p.semi_axes_m.unwrap_or([1.0, 1.0]);
+            let (dx, dy) = ((x - cx) / a, (y - cy) / b);
+            dx * dx + dy * dy <= 1.0 + eps / a.min(b)
+        }
+    }
+}
+
+/// The friction map of `patches` and `grid` on `lattice`'s base, over the background `law`;
+/// `None` when there is neither.
+pub(crate) fn build(
+    ck: &mut Checker,
+    lattice: &Lattice,
+    law: &FrictionLaw,
+    patches: &[PatchSection],
+    grid: Option<&GridSection>,
+) -> Option<FrictionMap> {
+    if patches.is_empty() && grid.is_none() {
+        return None;
+    }
+    let contact = lattice.contact_nodes();
+    let e = lattice.extent();
+    let eps = 1e-9 * lattice.lc();
+    let mut nodes = vec![law.node(1.0); contact.len()];
+    let mut region: Vec<Option<u16>> = vec![None; contact.len()];
+    let mut regions: Vec<Region> = Vec::new();
+    let kind = |c: &NodeFriction| if c.mu_static > law.mu_static() { RegionKind::Barrier } else { RegionKind::Weak };
+    if let Some(g) = grid {
+        let field = "friction.grid.file";
+        if g.rows.len() != contact.len() {
+            ck.push(
+                field,
+                format!("{:?} with {} rows", g.file, g.rows.len()),
+                format!(
+                    "one row per base node: {} rows for this block ({} × {} corner nodes every Lc = {} m)",
+                    contact.len(),
+                    lattice.dims().nx + 1,
+                    lattice.dims().ny + 1,
+                    lattice.lc()
+                ),
+            );
+        } else {
+            let mut seen = vec![false; contact.len()];
+            for (i, row) in g.rows.iter().enumerate() {
+                let c = lattice.node_at([row[0], row[1], 0.0]).map(|id| id.index()).filter(|&c| c < contact.len());
+                let Some(c) = c else {
+                    ck.push(field, format!("row {}: x = {} m, y = {} m", i + 1, row[0], row[1]), describe_base(lattice));
+                    continue;
+                };
+                if std::mem::replace(&mut seen[c], true) {
+                    ck.push(field, format!("row {}: x = {} m, y = {} m", i + 1, row[0], row[1]), "each base node once");
+                }
+                let co = coefficients(ck, &format!("{field} row {}", i + 1), row[2], Some(row[3]), Some(row[4]), law);
+                nodes[c] = co;
+                region[c] = Some(0);
+            }
+            regions.push(Region { name: "grid".into(), kind: RegionKind::Weak });
+        }
+    }
+    let mut members: Vec<Vec<usize>> = Vec::new();
+    for (i, p) in patches.iter().enumerate() {
+        let field = format!("friction.patches[{i}]");
+        let inside = |lo: f64, hi: f64, max: f64| lo >= -eps && hi <= max + eps && lo < hi;
+        match p.shape.as_str() {
+            "rectangle" => match p.x_m {
+                None => ck.push(format!("{field}.x_m"), "(missing)", "[x_min, x_max] in metres for a rectangle"),
+                Some([x0, x1]) => {
+                    let [y0, y1] = p.y_m.unwrap_or([0.0, e[1]]);
+                    if !inside(x0, x1, e[0]) || !inside(y0, y1, e[1]) {
+                        ck.push(
+                            field.clone(),
+                            format!("x_m = [{x0}, {x1}], y_m = [{y0}, {y1}]"),
+                            format!("a rectangle {} (min < max)", describe_base(lattice)),
+                        );
+                    }
+                }
+            },
+            "ellipse" => match (p.centre_m, p.semi_axes_m) {
+                (Some([cx, cy]), Some([a, b])) => {
+                    if !(a > 0.0 && b > 0.0) || !inside(cx - a, cx + a, e[0]) || !inside(cy - b, cy + b, e[1]) {
+                        ck.push(
+                            field.clone(),
+                            format!("centre_m = [{cx}, {cy}], semi_axes_m = [{a}, {b}]"),
+                            format!("an ellipse with positive semi-axes {}", describe_base(lattice)),
+                        );
+                    }
+                }
+                _ => ck.push(
+                    field.clone(),
+                    "an ellipse without centre_m or semi_axes_m",
+                    "centre_m = [x, y] and semi_axes_m = [a_x, a_y] in metres",
+                ),
+            },
+            other => ck.push(format!("{field}.shape"), format!("{other:?}"), "\"rectangle\" or \"ellipse\""),
+        }
+        let co = coefficients(ck, &field, p.mu_static, p.mu_dynamic, p.slip_weakening_m, law);
+        let held: Vec<usize> = contact
+            .iter()
+            .enumerate()
+            .filter(|(_, id)| {
+                let q = lattice.position(**id);
+                contains(p, q[0], q[1], e[1], eps)
+            })
+            .map(|(c, _)| c)
+            .collect();
+        if held.is_empty() && ck.is_clean() {
+            ck.push(
+                field.clone(),
+                "a patch holding no base node",
+                format!("a patch that holds at least one base node (they lie every Lc = {} m)", lattice.lc()),
+            );
+        }
+        let name = p.name.clone().unwrap_or_else(|| format!("patch[{i}]"));
+        regions.push(Region { name, kind: kind(&co) });
+        members.push(held);
+    }
+    // Overlaps need a precedence.
+    for i in 0..patches.len() {
+        for j in i + 1..patches.len() {
+            let shared = members[i].iter().filter(|c| members[j].contains(c)).count();
+            if shared > 0 && patches[i].priority == patches[j].priority {
+                ck.push(
+                    format!("friction.patches[{j}].priority"),
+                    patches[j].priority,
+                    format!(
+                        "a priority other than patches[{i}]'s ({}): the two share {shared} base nodes, and the higher \
+                         priority holds there",
+                        patches[i].priority
+                    ),
+                );
+            }
+        }
+    }
+    let first = usize::from(grid.is_some() && regions.first().is_some_and(|r| r.name == "grid"));
+    let mut order: Vec<usize> = (0..patches.len()).collect();
+    order.sort_by_key(|&i| patches[i].priority);
+    for i in order {
+        let co = coefficients(&mut Checker::default(), "", patches[i].mu_static, patches[i].mu_dynamic, patches[i].slip_weakening_m, law);
+        for &c in &members[i] {
+            nodes[c] = co;
+            region[c] = Some((first + i) as u16);
+        }
+    }
+    Some(FrictionMap { nodes, region, regions })
+}
