@@ -179,7 +179,11 @@ pub(crate) fn build(
             for (i, row) in g.rows.iter().enumerate() {
                 let c = lattice.node_at([row[0], row[1], 0.0]).map(|id| id.index()).filter(|&c| c < contact.len());
                 let Some(c) = c else {
-                    ck.push(field, format!("row {}: x = {} m, y = {} m", i + 1, row[0], row[1]), describe_base(lattice));
+                    ck.push(
+                        field,
+                        format!("row {}: x = {} m, y = {} m", i + 1, row[0], row[1]),
+                        describe_base(lattice),
+                    );
                     continue;
                 };
                 if std::mem::replace(&mut seen[c], true) {
@@ -270,7 +274,14 @@ pub(crate) fn build(
     let mut order: Vec<usize> = (0..patches.len()).collect();
     order.sort_by_key(|&i| patches[i].priority);
     for i in order {
-        let co = coefficients(&mut Checker::default(), "", patches[i].mu_static, patches[i].mu_dynamic, patches[i].slip_weakening_m, law);
+        let co = coefficients(
+            &mut Checker::default(),
+            "",
+            patches[i].mu_static,
+            patches[i].mu_dynamic,
+            patches[i].slip_weakening_m,
+            law,
+        );
         for &c in &members[i] {
             nodes[c] = co;
             region[c] = Some((first + i) as u16);

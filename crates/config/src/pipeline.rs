@@ -19,8 +19,9 @@ use crate::check::Checker;
 use crate::error::ConfigError;
 use crate::precision::{PrecisionTarget, TargetSection};
 use crate::scene::{
-    BlockSection, BoundarySection, FrictionSection, MaterialSection, RecordSection, RuptureSection, SceneSections,
-    SelfWeightSection, ShearSection, SkipAheadSection, TimeSection, LoadingPlateSection};
+    BlockSection, BoundarySection, FrictionSection, LoadingPlateSection, MaterialSection, RecordSection,
+    RuptureSection, SceneSections, SelfWeightSection, ShearSection, SkipAheadSection, TimeSection,
+};
 use crate::sections::{
     EventsSection, ReportSection, ReportSettings, SimilaritySection, SpectraSection, SpectraSettings,
 };

@@ -9,8 +9,8 @@ use stickslip_solver::geometry::{Dims, Face, Lattice, NodeId, NodeSet};
 use stickslip_solver::laws::{Coulomb, FrictionLaw, SlipWeakening, StaticDynamic};
 use stickslip_solver::rupture::{Rupture, kr_from_failure_factor, max_failure_factor};
 use stickslip_solver::scene::{
-    Component, ControlChannel, Friction, InterfaceQuantity, Kinematic, LoadingPlate, NormalLoad, RecordPlan, SelfWeight,
-    SettleMethod, Shear, SkipAhead, TimeStep,
+    Component, ControlChannel, Friction, InterfaceQuantity, Kinematic, LoadingPlate, NormalLoad, RecordPlan,
+    SelfWeight, SettleMethod, Shear, SkipAhead, TimeStep,
 };
 use stickslip_solver::{Scene, TracePlan};
 

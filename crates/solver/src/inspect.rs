@@ -2,8 +2,9 @@
 //! effective stiffness of the built block (for `stickslip check`).
 
 use crate::error::SolverError;
+use crate::field::Field;
 use crate::model::Model;
-use crate::statics::{CriticalStep, EffectiveModuli, critical_time_step, uniaxial_moduli};
+use crate::statics::{CriticalStep, EffectiveModuli, Prescribed, critical_time_step, solve_static, uniaxial_moduli};
 
 /// The facts of a built scene.
 #[derive(Clone, Debug, PartialEq)]
@@ -29,6 +30,86 @@ pub struct Inspection {
     /// Effective moduli along x and along z (static solves of the homogeneous-mean lattice of the
     /// first seed inspected).
     pub moduli: [EffectiveModuli; 2],
+    /// The spring-slider reading of the scene: when stick-slip is expected.
+    pub slider: Slider,
+}
+
+/// The scene read as a spring-slider (docs/model.md §12): a block of mass `M` pressed with `N`
+/// onto the base and loaded through a stiffness `k` — the seated block under its drivers, in
+/// series with the plate's springs — against the friction's weakening rate.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Slider {
+    /// Normal force on the base: weight plus normal load (N).
+    pub normal_n: f64,
+    /// Force the base holds before sliding, μs·N (N).
+    pub strength_n: f64,
+    /// Force in x at which the loading would tip the block about its leading base edge,
+    /// `N·(L/2)/h` with `h` the height the load acts at (N).
+    pub tipping_n: f64,
+    /// Stiffness of the block under the loaded nodes, base held (static solve, N/m).
+    pub block_n_m: f64,
+    /// Stiffness of the plate's springs (N/m); infinite without a plate (rigid drivers).
+    pub plate_n_m: f64,
+    /// The loading stiffness `k`: block and springs in series (N/m).
+    pub k_n_m: f64,
+    /// Critical stiffness `(μs − μd)·N/Dc` (N/m): infinite when μ drops at once, 0 without
+    /// weakening.
+    pub critical_n_m: f64,
+    /// Damping ratio of the slider's swing, `D/(2ω)`, `ω = √(k/M)` (mass-proportional damping
+    /// drags the moving block as a whole).
+    pub damping_ratio: f64,
+    /// Slip speed scale of a dynamic slip, `(μs − μd)·N/k·ω` (m/s).
+    pub slip_speed_m_s: f64,
+    /// Loading speed u̇f (m/s).
+    pub loading_speed_m_s: f64,
+}
+
+impl Slider {
+    /// What the spring-slider reading expects, in words.
+    pub fn verdict(&self) -> String {
+        if self.tipping_n < self.strength_n {
+            return format!(
+                "the block tips before it slides: the load tips it about its leading edge at {:.4e} N, below the \
+                 base's strength μs·N = {:.4e} N (load it lower, e.g. a [loading_plate] on x_min, or lower μs)",
+                self.tipping_n, self.strength_n
+            );
+        }
+        if self.critical_n_m == 0.0 {
+            return "stable sliding expected: μ does not weaken with slip (μd = μs), so a seated block slides steadily \
+                    (give [friction] mu_dynamic < mu_static)"
+                .into();
+        }
+        if self.k_n_m >= self.critical_n_m {
+            return format!(
+                "stable sliding expected: the loading stiffness k = {:.4e} N/m is above the critical stiffness \
+                 (μs − μd)·N/Dc = {:.4e} N/m (softer loading, a larger μs − μd or a shorter Dc make it unstable)",
+                self.k_n_m, self.critical_n_m
+            );
+        }
+        // Underdamped: a slip overshoots and sticks again only if its swing outruns the loading.
+        let overshoot =
+            (-std::f64::consts::PI * self.damping_ratio / (1.0 - self.damping_ratio.powi(2)).max(1e-12).sqrt()).exp();
+        if self.damping_ratio >= 1.0 || self.slip_speed_m_s * overshoot < self.loading_speed_m_s {
+            return format!(
+                "stable sliding expected despite k < k_c: the damping ratio of the block's swing D/(2ω) = {:.3} lets a slip \
+                 overshoot by only {:.2e} m/s, less than the loading speed {:.2e} m/s, so the block never stops again \
+                 (lower [shear] damping_per_s or the loading speed)",
+                self.damping_ratio,
+                self.slip_speed_m_s * overshoot,
+                self.loading_speed_m_s
+            );
+        }
+        format!(
+            "stick-slip expected: k = {:.4e} N/m below k_c = {}, swing damping ratio {:.3}",
+            self.k_n_m,
+            if self.critical_n_m.is_finite() {
+                format!("{:.4e} N/m", self.critical_n_m)
+            } else {
+                "∞ (μ drops at once)".into()
+            },
+            self.damping_ratio
+        )
+    }
 }
 
 impl Inspection {
@@ -56,6 +137,7 @@ pub fn inspect(model: &Model, seeds: &[u64]) -> Result<Inspection, SolverError> 
     let moduli = [uniaxial_moduli(model, &k, 0)?, uniaxial_moduli(model, &k, 2)?];
     let weight = model.total_mass() * scene.self_weight.gravity_m_s2;
     let area = lattice.contact_area();
+    let slider = slider(model, &k, weight)?;
     Ok(Inspection {
         nodes: model.node_count(),
         bars: model.bar_count(),
@@ -67,5 +149,54 @@ pub fn inspect(model: &Model, seeds: &[u64]) -> Result<Inspection, SolverError> 
         critical,
         paper_bound_s: scene.paper_time_step_bound(),
         moduli,
+        slider,
+    })
+}
+
+/// The spring-slider reading of `model` with bar stiffness `k` under `weight`.
+fn slider(model: &Model, k: &[f64], weight: f64) -> Result<Slider, SolverError> {
+    let scene = model.scene();
+    let lattice = model.lattice();
+    let normal = weight + scene.normal_load.as_ref().map_or(0.0, |n| n.total());
+    // The loaded nodes: the drivers and the plate's nodes.
+    let loaded: Vec<usize> =
+        model.drivers().iter().map(|&d| d as usize).chain(model.plate().iter().map(|&(i, _)| i as usize)).collect();
+    let base = scene.friction.law.node(1.0);
+    let strength = base.mu_static * normal;
+    let e = lattice.extent();
+    let h = if loaded.is_empty() {
+        e[2]
+    } else {
+        loaded.iter().map(|&i| lattice.position(model.canonical(i))[2]).sum::<f64>() / loaded.len() as f64
+    };
+    let tipping = if h > 0.0 { normal * 0.5 * e[0] / h } else { f64::INFINITY };
+    // Block stiffness: base held, loaded nodes moved together by δ in x; k = ΣR/δ.
+    let block = if loaded.is_empty() {
+        f64::INFINITY
+    } else {
+        let delta = 1e-6;
+        let mut prescribed = Vec::new();
+        for &c in model.contact() {
+            prescribed.extend((0..3).map(|axis| Prescribed { node: c as usize, axis, value: 0.0 }));
+        }
+        prescribed.extend(loaded.iter().map(|&i| Prescribed { node: i, axis: 0, value: delta }));
+        let sol = solve_static(model, k, &Field::zeros(model.node_count()), &prescribed, 1e-8, 20_000)?;
+        loaded.iter().map(|&i| sol.reactions.c[0][i][0]).sum::<f64>() / delta
+    };
+    let plate = scene.plate.as_ref().map_or(f64::INFINITY, |p| p.stiffness());
+    let k_load = 1.0 / (1.0 / block + 1.0 / plate);
+    let critical = base.critical_stiffness(normal);
+    let omega = (k_load / model.total_mass()).sqrt();
+    Ok(Slider {
+        normal_n: normal,
+        strength_n: strength,
+        tipping_n: tipping,
+        block_n_m: block,
+        plate_n_m: plate,
+        k_n_m: k_load,
+        critical_n_m: critical,
+        damping_ratio: scene.shear.damping_per_s / (2.0 * omega),
+        slip_speed_m_s: (base.mu_static - base.mu_dynamic) * normal / k_load * omega,
+        loading_speed_m_s: scene.shear.velocity_m_s,
     })
 }

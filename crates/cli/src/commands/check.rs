@@ -113,7 +113,75 @@ pub fn run(a: Args) -> Result<()> {
             m.poisson[1]
         );
     }
-    println!("  drivers: {}", scene.shear.drivers.iter().map(|&d| position(&model, d)).collect::<Vec<_>>().join("; "));
+    if scene.shear.drivers.is_empty() {
+        println!("  drivers: none");
+    } else {
+        println!(
+            "  drivers: {}",
+            scene.shear.drivers.iter().map(|&d| position(&model, d)).collect::<Vec<_>>().join("; ")
+        );
+    }
+    if let Some(p) = &scene.plate {
+        println!(
+            "  loading plate: face {} ({} nodes) on springs of {:.4e} N/m in all, moving by Eq. 12 in x",
+            p.face.name(),
+            p.nodes.len(),
+            p.stiffness()
+        );
+    }
+    if let Some(n) = &scene.normal_load {
+        println!("  normal load: {} Pa on the top face ({:.4e} N)", n.pressure_pa, n.total());
+    }
+    if let Some(map) = &scene.friction.map {
+        println!("  friction map ({} base nodes):", map.nodes.len());
+        let background = map.region.iter().filter(|r| r.is_none()).count();
+        if background > 0 {
+            println!("    background ([friction]): {background} nodes");
+        }
+        for (i, r) in map.regions.iter().enumerate() {
+            let members: Vec<usize> = (0..map.nodes.len()).filter(|&c| map.region[c] == Some(i as u16)).collect();
+            let Some(&first) = members.first() else {
+                println!("    {}: no base node (covered by patches of higher priority)", r.name);
+                continue;
+            };
+            let range = |f: fn(&stickslip_solver::laws::NodeFriction) -> f64| {
+                let (lo, hi) = members
+                    .iter()
+                    .map(|&c| f(&map.nodes[c]))
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+                if lo == hi { format!("{lo}") } else { format!("{lo}…{hi}") }
+            };
+            let xs = members.iter().map(|&c| model.lattice().position(model.lattice().contact_nodes()[c])[0]);
+            let (x0, x1) = xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+            let _ = first;
+            println!(
+                "    {} ({}): {} nodes, x {x0}…{x1} m, μs = {}, μd = {}, Dc = {} m",
+                r.name,
+                r.kind.name(),
+                members.len(),
+                range(|n| n.mu_static),
+                range(|n| n.mu_dynamic),
+                range(|n| n.dc_m)
+            );
+        }
+    }
+    let sl = &facts.slider;
+    println!(
+        "  as a spring-slider: N = {:.4e} N, strength μs·N = {:.4e} N, tips at {:.4e} N; k = {:.4e} N/m (block under \
+         the load {:.4e}, plate springs {:.4e}), k_c = (μs − μd)·N/Dc = {:.4e} N/m, swing damping D/(2ω) = {:.3}",
+        sl.normal_n,
+        sl.strength_n,
+        sl.tipping_n,
+        sl.k_n_m,
+        sl.block_n_m,
+        sl.plate_n_m,
+        sl.critical_n_m,
+        sl.damping_ratio
+    );
+    println!(
+        "    → {} (the rigid slider's reading; docs/model.md §12 says where a lattice block differs)",
+        sl.verdict()
+    );
     let sw = &scene.self_weight;
     println!(
         "  self-weight: {}",

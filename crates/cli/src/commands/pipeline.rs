@@ -142,6 +142,19 @@ fn no_events(pipeline: &Pipeline, folder: &Folder) -> String {
             mu * sigma
         ));
     }
+    if let Some(lifted) = largest(Channel::LiftedNodes) {
+        let contacts = pipeline.scene.lattice().contact_nodes().len();
+        if lifted >= 0.5 * contacts as f64 {
+            lines.push(format!(
+                "  up to {lifted:.0} of {contacts} base nodes were lifted at once: the load tips the block over rather than \
+                 sliding it"
+            ));
+        }
+    }
+    let model = stickslip_solver::Model::new(pipeline.scene.clone());
+    if let Ok(facts) = stickslip_solver::inspect::inspect(&model, &pipeline.seeds[..1]) {
+        lines.push(format!("  as a spring-slider (stickslip check): {}", facts.slider.verdict()));
+    }
     lines.push(format!(
         "  the shear stage lasted {} s: the driver moved about {:.3e} m at {} m/s",
         sh.duration_s,

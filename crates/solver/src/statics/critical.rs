@@ -5,7 +5,8 @@
 //! disc exactly when `ω²Δt² ≤ 4`). `ω²_max` is the largest eigenvalue of `M^{-1/2} K M^{-1/2}` of
 //! the free lattice (constraints only remove degrees of freedom, so they cannot raise it). It is
 //! found by Lanczos iteration on the bar kernel, with the Ritz residual added so the result is an
-//! upper bound, and capped by Gershgorin's bound.
+//! upper bound, and capped by Gershgorin's bound. The springs of a loading plate add at most
+//! `max k_i/m_i` (Weyl's inequality), which is added to the bound.
 
 use nalgebra::{DMatrix, SymmetricEigen};
 use rand::SeedableRng;
@@ -55,6 +56,9 @@ pub fn critical_time_step(model: &Model, k: &[f64]) -> Result<CriticalStep, Solv
         }
     };
     let gershgorin = gershgorin_bound(model, k);
+    // The loading plate's springs add `k_i/m_i` to the diagonal of node i's x row: by Weyl's
+    // inequality they raise ω²_max by at most the largest of them.
+    let plate = model.plate().iter().map(|&(i, ks)| ks * model.inv_mass()[i as usize]).fold(0.0, f64::max);
 
     let mut rng = ChaCha8Rng::seed_from_u64(0x5eed_c417);
     let mut q: Vec<f64> = (0..dof).map(|_| StandardUniform.sample(&mut rng)).map(|u: f64| u - 0.5).collect();
@@ -82,7 +86,7 @@ pub fn critical_time_step(model: &Model, k: &[f64]) -> Result<CriticalStep, Solv
             let (theta, residual) = top_ritz(&alphas, &betas);
             best = Some((theta, residual));
             if residual <= 1e-9 * theta || invariant || it == max_iter {
-                let bound = (theta + residual).min(gershgorin);
+                let bound = (theta + residual).min(gershgorin) + plate;
                 if !(bound > 0.0 && bound.is_finite()) {
                     return Err(SolverError::Numerical(format!(
                         "largest stiffness eigenvalue is {bound:e}: the lattice has no positive stiffness"

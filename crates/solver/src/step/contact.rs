@@ -42,14 +42,7 @@ pub struct Resolved {
 /// The contact rule for one node (see the module doc): `trial` is the position the step would
 /// give without the base, `now` the node's `(x, y)` before the step, `g = m(1 + DΔt/2)/Δt²`,
 /// `sliding` and `path` its state from the last step.
-pub fn resolve(
-    node: &NodeFriction,
-    g: f64,
-    trial: [f64; 3],
-    now: [f64; 2],
-    sliding: bool,
-    path: f64,
-) -> Resolved {
+pub fn resolve(node: &NodeFriction, g: f64, trial: [f64; 3], now: [f64; 2], sliding: bool, path: f64) -> Resolved {
     if !(trial[2] < 0.0) {
         return Resolved { position: trial, reaction: [0.0; 3], sliding: false, slip_path: 0.0 };
     }
@@ -250,7 +243,10 @@ mod tests {
         let mu_d = factors.iter().map(|f| f.map(|v| law.node(v).mu_dynamic)).collect();
         // A friction map may give nodes their own Dc: half the nodes keep the law's.
         let dc = (0..nodes)
-            .map(|i| lanes(0.5, 2.0).map(|v| if i % 2 == 0 { law.weakening_distance_m() } else { v * law.weakening_distance_m() }))
+            .map(|i| {
+                lanes(0.5, 2.0)
+                    .map(|v| if i % 2 == 0 { law.weakening_distance_m() } else { v * law.weakening_distance_m() })
+            })
             .collect();
         // Tangential trials a few µm from where the node is, vertical ones ±1 µm about the base:
         // some nodes lift, some stick, some slide.

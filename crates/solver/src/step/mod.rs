@@ -222,7 +222,8 @@ fn apply_loads<const L: usize>(p: &Params<'_, L>, state: &mut State<L>) {
     for (j, &(node, k)) in model.plate().iter().enumerate() {
         let i = node as usize;
         for l in 0..L {
-            let f = if d_state.on[l] { k * (d_state.plate_base[j][l] + d_state.target[l] - now.c[0][i][l]) } else { 0.0 };
+            let f =
+                if d_state.on[l] { k * (d_state.plate_base[j][l] + d_state.target[l] - now.c[0][i][l]) } else { 0.0 };
             d_state.plate_force[j][l] = f;
             trial.c[0][i][l] += f * cf[l] / mass[i];
         }
