@@ -216,7 +216,7 @@ pub(crate) fn build(
             },
             "ellipse" => match (p.centre_m, p.semi_axes_m) {
                 (Some([cx, cy]), Some([a, b])) => {
-                    if !(a > 0.0 && b > 0.0) || !inside(cx - a, cx + a, e[0]) || !inside(cy - b, cy + b, e[1]) {
+                    if !(a > 0.0 && b > 0.0 && inside(cx - a, cx + a, e[0]) && inside(cy - b, cy + b, e[1])) {
                         ck.push(
                             field.clone(),
                             format!("centre_m = [{cx}, {cy}], semi_axes_m = [{a}, {b}]"),
