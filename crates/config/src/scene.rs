@@ -725,9 +725,13 @@ fn loading_plate(
             ok.then(|| area.map(|a| g * a / t)).flatten()
         }
         (k, g, t) => {
+            let given: Vec<String> = [("stiffness_n_m", k), ("modulus_pa", g), ("thickness_m", t)]
+                .iter()
+                .filter_map(|(name, v)| v.map(|v| format!("{name} = {v}")))
+                .collect();
             ck.push(
                 "loading_plate",
-                format!("stiffness_n_m = {k:?}, modulus_pa = {g:?}, thickness_m = {t:?}"),
+                if given.is_empty() { "no stiffness".to_string() } else { given.join(", ") },
                 "either stiffness_n_m (N/m, > 0) or both modulus_pa and thickness_m",
             );
             None
