@@ -196,7 +196,10 @@ pub(crate) fn build(
             regions.push(Region { name: "grid".into(), kind: RegionKind::Weak });
         }
     }
-    let mut members: Vec<Vec<usize>> = Vec::new();
+    // Patch i is region `first + i` (after the grid's, when there is one).
+    let first = regions.len();
+    // Each patch's base nodes and coefficients.
+    let mut members: Vec<(Vec<usize>, NodeFriction)> = Vec::new();
     for (i, p) in patches.iter().enumerate() {
         let field = format!("friction.patches[{i}]");
         let inside = |lo: f64, hi: f64, max: f64| lo >= -eps && hi <= max + eps && lo < hi;
@@ -251,12 +254,12 @@ pub(crate) fn build(
         }
         let name = p.name.clone().unwrap_or_else(|| format!("patch[{i}]"));
         regions.push(Region { name, kind: kind(&co) });
-        members.push(held);
+        members.push((held, co));
     }
     // Overlaps need a precedence.
     for i in 0..patches.len() {
         for j in i + 1..patches.len() {
-            let shared = members[i].iter().filter(|c| members[j].contains(c)).count();
+            let shared = members[i].0.iter().filter(|c| members[j].0.contains(c)).count();
             if shared > 0 && patches[i].priority == patches[j].priority {
                 ck.push(
                     format!("friction.patches[{j}].priority"),
@@ -270,20 +273,12 @@ pub(crate) fn build(
             }
         }
     }
-    let first = usize::from(grid.is_some() && regions.first().is_some_and(|r| r.name == "grid"));
     let mut order: Vec<usize> = (0..patches.len()).collect();
     order.sort_by_key(|&i| patches[i].priority);
     for i in order {
-        let co = coefficients(
-            &mut Checker::default(),
-            "",
-            patches[i].mu_static,
-            patches[i].mu_dynamic,
-            patches[i].slip_weakening_m,
-            law,
-        );
-        for &c in &members[i] {
-            nodes[c] = co;
+        let (held, co) = &members[i];
+        for &c in held {
+            nodes[c] = *co;
             region[c] = Some((first + i) as u16);
         }
     }

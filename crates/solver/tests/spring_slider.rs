@@ -18,29 +18,27 @@ use std::ops::ControlFlow;
 
 use common::scene_with;
 use stickslip_config::scene::LoadingPlateSection;
-use stickslip_solver::laws::{Coulomb, FrictionLaw};
 use stickslip_solver::{Channel, Model, RunOptions, Scene, run_seed};
 
 const K: f64 = 4e6;
 const NX: i64 = 8;
-const MU_S: f64 = 0.6;
-const MU_D: f64 = 0.4;
 
-fn slider(v: f64, duration_s: f64, dc: f64, k: f64) -> Scene {
+/// The 8×1×1 block on a frictionless base, undamped, its top on the plate's springs, the plate
+/// moving at `v` from the start.
+fn slider(v: f64, duration_s: f64) -> Scene {
     scene_with(|f| {
         f.block.nx = NX;
         f.block.ny = 1;
         f.block.nz = 1;
         f.material.young_cv = 0.0;
-        f.friction.mu_static = MU_S;
-        f.friction.mu_dynamic = Some(MU_D);
-        f.friction.slip_weakening_m = dc;
+        f.friction.mu_static = 0.0;
         f.shear.damping_per_s = 0.0;
         f.shear.velocity_m_s = v;
         f.shear.rise_time_s = 0.0;
         f.shear.duration_s = duration_s;
-        f.loading_plate = Some(LoadingPlateSection { stiffness_n_m: Some(k), ..Default::default() });
+        f.loading_plate = Some(LoadingPlateSection { stiffness_n_m: Some(K), ..Default::default() });
         f.record.interface = vec!["driver".into(), "slip_rate".into(), "mean_slip".into()];
+        f.record.energy = true;
     })
 }
 
@@ -49,10 +47,7 @@ fn frictionless_block_on_the_plate_swings_as_a_mass_on_a_spring() {
     // μ = 0: the plate's springs alone move the block, M·ẍ = k·(v·t − x), so from rest
     // x(t) = v·t − (v/ω)·sin ωt with ω = √(k/M) (the block is 10³ times stiffer than the springs).
     let v = 1e-3;
-    let mut scene = slider(v, 0.05, 0.0, K);
-    scene.friction.law = FrictionLaw::Coulomb(Coulomb { mu: 0.0 });
-    scene.record.energy = true;
-    let model = Model::new(scene);
+    let model = Model::new(slider(v, 0.05));
     let mass: f64 = model.mass().iter().sum();
     let omega = (K / mass).sqrt();
     let out = run_seed(&model, 1, RunOptions::default(), &mut |_| ControlFlow::Continue(())).unwrap();

@@ -138,22 +138,21 @@ pub fn run(a: Args) -> Result<()> {
         if background > 0 {
             println!("    background ([friction]): {background} nodes");
         }
+        let span = |values: &mut dyn Iterator<Item = f64>| {
+            values.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)))
+        };
+        let contact = model.lattice().contact_nodes();
         for (i, r) in map.regions.iter().enumerate() {
             let members: Vec<usize> = (0..map.nodes.len()).filter(|&c| map.region[c] == Some(i as u16)).collect();
-            let Some(&first) = members.first() else {
+            if members.is_empty() {
                 println!("    {}: no base node (covered by patches of higher priority)", r.name);
                 continue;
-            };
+            }
             let range = |f: fn(&stickslip_solver::laws::NodeFriction) -> f64| {
-                let (lo, hi) = members
-                    .iter()
-                    .map(|&c| f(&map.nodes[c]))
-                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+                let (lo, hi) = span(&mut members.iter().map(|&c| f(&map.nodes[c])));
                 if lo == hi { format!("{lo}") } else { format!("{lo}…{hi}") }
             };
-            let xs = members.iter().map(|&c| model.lattice().position(model.lattice().contact_nodes()[c])[0]);
-            let (x0, x1) = xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
-            let _ = first;
+            let (x0, x1) = span(&mut members.iter().map(|&c| model.lattice().position(contact[c])[0]));
             println!(
                 "    {} ({}): {} nodes, x {x0}…{x1} m, μs = {}, μd = {}, Dc = {} m",
                 r.name,
