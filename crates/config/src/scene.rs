@@ -366,6 +366,20 @@ pub struct RecordSection {
     /// Record when each contact node starts to slide for good (10 steps in a row): the
     /// hypocentre of an event is its first such onset. Default false.
     pub slip_onsets: bool,
+    /// Record every contact node's slip, slip rate, shear and normal stress with the event trace
+    /// (every step around each burst of slip, sparsely between): the `fault` table, rupture
+    /// fronts read on slip rates, space–time figures. Default false.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub fault: bool,
+    /// Fault stations `[x, y]` (m) on the base, each the nearest contact node: one SEAS-format
+    /// station file per station and seed. Implies `fault`. Default none.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub fault_stations_m: Vec<[f64; 2]>,
+    /// The `fault` table and station files keep one instant per this interval (s) of the event
+    /// trace's. Omitted = every instant (every step through each burst). Rupture fronts are
+    /// read on every instant whatever it says.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fault_interval_s: Option<f64>,
     /// Control nodes.
     pub control: Vec<ControlSection>,
 }
@@ -378,6 +392,9 @@ impl Default for RecordSection {
             energy: false,
             settling: false,
             slip_onsets: false,
+            fault: false,
+            fault_stations_m: Vec::new(),
+            fault_interval_s: None,
             control: Vec::new(),
         }
     }
@@ -459,6 +476,42 @@ fn resolve_nodes(
         }
     }
     out
+}
+
+/// The contact node nearest to each fault station, every station outside the base (or on a node
+/// already taken by another) refused.
+fn fault_stations(ck: &mut Checker, at_m: &[[f64; 2]], lattice: &Lattice) -> Vec<NodeId> {
+    let e = lattice.extent();
+    let lc = lattice.lc();
+    let mut out: Vec<(usize, NodeId)> = Vec::new();
+    for (i, p) in at_m.iter().enumerate() {
+        let field = format!("record.fault_stations_m[{i}]");
+        let inside = (0..2).all(|a| p[a].is_finite() && p[a] >= -1e-9 * e[a] && p[a] <= e[a] * (1.0 + 1e-9));
+        if !inside {
+            ck.push(
+                field,
+                format!("{p:?} m"),
+                format!("a point of the base, 0 ≤ x ≤ {} m and 0 ≤ y ≤ {} m", e[0], e[1]),
+            );
+            continue;
+        }
+        let snap = |v: f64| (v / lc).round() * lc;
+        let Some(id) = lattice.node_at([snap(p[0]), snap(p[1]), 0.0]) else {
+            ck.push(field, format!("{p:?} m"), "a point of the base");
+            continue;
+        };
+        if let Some(&(j, _)) = out.iter().find(|&&(_, o)| o == id) {
+            let q = lattice.position(id);
+            ck.push(
+                field,
+                format!("{p:?} m"),
+                format!("a station on its own node: station {j} is already at the nearest node ({}, {}) m", q[0], q[1]),
+            );
+            continue;
+        }
+        out.push((i, id));
+    }
+    out.into_iter().map(|(_, id)| id).collect()
 }
 
 /// The friction law the section describes.
@@ -678,6 +731,9 @@ pub(crate) fn build(file: SceneSections<'_>, ck: &mut Checker) -> Option<Scene> 
             energy: r.energy,
             settling: r.settling,
             slip_onsets: r.slip_onsets,
+            fault: r.fault || !r.fault_stations_m.is_empty(),
+            fault_stations: fault_stations(ck, &r.fault_stations_m, &lattice),
+            fault_interval_s: r.fault_interval_s.filter(|&v| ck.positive("record.fault_interval_s", v)),
             control,
             trace: TracePlan::default(),
         },

@@ -30,6 +30,14 @@ pub struct EventsSection {
     pub min_drop_pa: f64,
     /// Main shocks have a drop of at least this fraction of the largest. Default 0.5.
     pub main_fraction: f64,
+    /// A fault node has ruptured when its slip rate first reaches this (m/s; with
+    /// `record.fault`). Default 1e-3 (the SCEC dynamic-rupture benchmarks' convention).
+    #[serde(skip_serializing_if = "is_default_rupture_rate")]
+    pub rupture_rate_m_s: f64,
+}
+
+fn is_default_rupture_rate(v: &f64) -> bool {
+    *v == EventParams::default().rupture_rate_m_s
 }
 
 impl Default for EventsSection {
@@ -43,6 +51,7 @@ impl Default for EventsSection {
             merge_gap_s: p.merge_gap_s,
             min_drop_pa: p.min_drop_pa,
             main_fraction: p.main_fraction,
+            rupture_rate_m_s: p.rupture_rate_m_s,
         }
     }
 }
@@ -59,6 +68,7 @@ impl EventsSection {
         ck.non_negative("events.merge_gap_s", self.merge_gap_s);
         ck.non_negative("events.min_drop_pa", self.min_drop_pa);
         ck.range("events.main_fraction", self.main_fraction, 0.0, true, 1.0, false);
+        ck.positive("events.rupture_rate_m_s", self.rupture_rate_m_s);
         EventParams {
             smoothing_s: self.smoothing_s,
             v_on_m_s: self.v_on_m_s,
@@ -67,6 +77,7 @@ impl EventsSection {
             merge_gap_s: self.merge_gap_s,
             min_drop_pa: self.min_drop_pa,
             main_fraction: self.main_fraction,
+            rupture_rate_m_s: self.rupture_rate_m_s,
         }
     }
 }

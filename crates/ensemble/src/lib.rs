@@ -2,7 +2,7 @@
 //!
 //! Owns: running seeds in parallel, batched side by side ([`run`]); analysing each seed — events,
 //! similarity scaling, records and their spectra — and writing its parts and files as it
-//! finishes ([`seed`], [`records`]);
+//! finishes ([`seed`], [`records`]); the rupture front of each event ([`fronts`]);
 //! resuming an interrupted ensemble, shards and their merge ([`merge`]); gathering the tables and
 //! the statistics across seeds ([`gather`], [`summary`]). Must not know: the pipeline file's
 //! syntax (it takes a validated [`stickslip_config::Pipeline`]), figures, the command line.
@@ -10,6 +10,7 @@
 
 pub mod catalogue;
 pub mod error;
+pub mod fronts;
 pub mod gather;
 pub mod merge;
 pub mod precision;

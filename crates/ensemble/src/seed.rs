@@ -8,25 +8,28 @@ use stickslip_seismo::accelerogram::at2_text;
 use stickslip_seismo::accelerogram::sac::{SacMeta, SacUnit, sac_bytes};
 use stickslip_seismo::emission::{Cluster, clusters};
 use stickslip_seismo::events::{Catalogue, EventParams, Signals, detect};
+use stickslip_seismo::seas::{StationHeader, StationSeries, station_file_name, station_text};
 use stickslip_seismo::similarity::{AreaChoice, ModelEvent, Scaled, moment_magnitude, scale};
 use stickslip_solver::scene::{ControlChannel, Kinematic};
 use stickslip_solver::{Model, Recording, RunOutput};
 use stickslip_store::Folder;
 use stickslip_store::io::{write_bytes_atomic, write_parquet_atomic, write_text_atomic};
 use stickslip_store::schema::{
-    ACCELEROGRAMS, ACOUSTIC_EMISSION, ATTENUATION, CONTROL, CRACKS, EVENTS_TABLE, FOURIER, INTENSITY, RECORDS, ROTD,
-    RUNS, SERIES, SIMILARITY, SKIPS, SPECTRA, SUB_EVENTS_TABLE,
+    ACCELEROGRAMS, ACOUSTIC_EMISSION, ATTENUATION, CONTROL, CRACKS, EVENTS_TABLE, FAULT, FOURIER, INTENSITY, RECORDS,
+    ROTD, RUNS, RUPTURE_ONSETS, RUPTURES, SERIES, SIMILARITY, SKIPS, SPECTRA, SUB_EVENTS_TABLE,
 };
 use stickslip_store::tables::cracks::{breaks, cracks_frame, emission_frame};
 use stickslip_store::tables::events::{events_frame, similarity_frame, sub_events_frame};
+use stickslip_store::tables::fronts::{rupture_onsets_frame, ruptures_frame};
 use stickslip_store::tables::records::{
     RecordData, Scale, accelerograms_frame, attenuation_frame, fourier_frame, intensity_frame, records_frame,
     rotd_frame, spectra_frame,
 };
 use stickslip_store::tables::runs::{self, RunFacts, RunRow};
-use stickslip_store::tables::series::{control_frame, series_frame, skips_frame};
+use stickslip_store::tables::series::{control_frame, fault_frame, series_frame, skips_frame};
 
 use crate::error::EnsembleError;
+use crate::fronts::{FaultBase, SeedFronts, fronts};
 use crate::records::{PlanCache, SeedRecords};
 
 /// A seed's run and what was found in it.
@@ -41,6 +44,8 @@ pub struct Analysed {
     pub records: Option<SeedRecords>,
     /// Its bar breaks as acoustic-emission events, when the bars crack.
     pub emission: Option<Vec<Cluster>>,
+    /// The rupture front of each event, when the scene records slip onsets.
+    pub fronts: Option<SeedFronts>,
 }
 
 /// Control acceleration channels recorded by the scene, in table order.
@@ -108,7 +113,15 @@ pub fn analyse(run: RunOutput, model: &Model, pipeline: &Pipeline, plans: &PlanC
         None => None,
     };
     let emission = pipeline.emission.as_ref().map(|p| clusters(&breaks(&run.recording.cracks, model.lattice()), p));
-    Ok(Analysed { run, catalogue, scaled, records, emission })
+    let fronts = fronts(
+        &run.recording,
+        &catalogue,
+        model,
+        &FaultBase::of(model),
+        pipeline.events.smoothing_s,
+        pipeline.events.rupture_rate_m_s,
+    );
+    Ok(Analysed { run, catalogue, scaled, records, emission, fronts })
 }
 
 /// The prototype length ratio λ of the pipeline's block.
@@ -136,8 +149,19 @@ pub fn write_seed(
                 (SUB_EVENTS_TABLE, sub_events_frame(seed, &a.catalogue, &channels)?),
                 (SIMILARITY, similarity_frame(seed, &a.catalogue, &a.scaled)?),
             ];
+            let keep = rec.trace.thinned(model.scene().record.fault_interval_s);
+            if let Some(df) = fault_frame(seed, &rec.trace, &keep, model.lattice())? {
+                frames.push((FAULT, df));
+                write_station_files(out, pipeline, model, seed, &rec.trace, &keep)?;
+            }
             if !rec.skips.is_empty() {
                 frames.insert(2, (SKIPS, skips_frame(seed, rec)?));
+            }
+            if let Some(f) = &a.fronts {
+                let base = FaultBase::of(model);
+                let rows = f.rows(&a.catalogue);
+                frames.push((RUPTURES, ruptures_frame(seed, &rows, &base.nodes(), &f.speeds, f.source)?));
+                frames.push((RUPTURE_ONSETS, rupture_onsets_frame(seed, &rows, &base.nodes())?));
             }
             if let Some(clusters) = &a.emission {
                 frames.push((CRACKS, cracks_frame(seed, &rec.cracks, model.lattice())?));
@@ -170,6 +194,53 @@ pub fn write_seed(
     };
     write_parquet_atomic(&mut runs::frame(&[row], &pipeline.hash)?, &out.part(&RUNS, seed))?;
     Ok(failure)
+}
+
+/// Writes one SEAS-layout station file per fault station of the scene (docs/model.md §13) under
+/// `<out>/fault_stations/seed<seed>/`.
+fn write_station_files(
+    out: &Folder,
+    pipeline: &Pipeline,
+    model: &Model,
+    seed: u64,
+    trace: &stickslip_solver::Trace,
+    keep: &[usize],
+) -> Result<(), EnsembleError> {
+    let Some(f) = &trace.fault else { return Ok(()) };
+    let stations = &model.scene().record.fault_stations;
+    if stations.is_empty() {
+        return Ok(());
+    }
+    let dir = out.fault_stations_dir(seed);
+    let problem = format!("stickslip pipeline {} seed {seed} (hash {})", pipeline.name, pipeline.hash);
+    let code = format!("stickslip {}", env!("CARGO_PKG_VERSION"));
+    for &id in stations {
+        let Some(i) = f.nodes.iter().position(|&n| n == id) else { continue };
+        let p = model.lattice().position(id);
+        let location = format!(
+            "on the base (the fault), x = {} m along strike, y = {} m across; contact node LDEM {}",
+            p[0],
+            p[1],
+            id.ldem()
+        );
+        let header =
+            StationHeader { problem: &problem, code: &code, element_size_m: model.scene().lc_m, location: &location };
+        let pick = |v: &[f64]| keep.iter().map(|&k| v[k]).collect::<Vec<f64>>();
+        let (t, slip, rate) = (pick(&trace.time_s), pick(&f.slip_m[i]), pick(&f.slip_rate_m_s[i]));
+        let (tau, sigma) = (pick(&f.shear_stress_pa[i]), pick(&f.normal_stress_pa[i]));
+        let series = StationSeries {
+            time_s: &t,
+            slip_m: &slip,
+            slip_rate_m_s: &rate,
+            shear_stress_pa: &tau,
+            normal_stress_pa: &sigma,
+        };
+        write_text_atomic(
+            &dir.join(format!("{}.dat", station_file_name(p[0], p[1]))),
+            &station_text(&header, &series),
+        )?;
+    }
+    Ok(())
 }
 
 /// Name of a record's file: pipeline, seed, record and scale.

@@ -24,11 +24,12 @@ use polars::prelude::DataFrame;
 use stickslip_config::Pipeline;
 use stickslip_store::io::{read_parquet_if_present, write_text_atomic};
 use stickslip_store::schema::{
-    ACOUSTIC_EMISSION, ATTENUATION, ATTENUATION_FIT, CRACKS, EVENTS_TABLE, PSA_STATS, RECORDS, RUNS, SIMILARITY,
-    SUMMARY, TableSpec,
+    ACOUSTIC_EMISSION, ATTENUATION, ATTENUATION_FIT, CRACKS, EVENTS_TABLE, PSA_STATS, RECORDS, RUNS, RUPTURE_ONSETS,
+    RUPTURES, SIMILARITY, SUMMARY, TableSpec,
 };
 use stickslip_store::tables::cracks::{AcousticEmission, Cracks};
 use stickslip_store::tables::events::{Events, Similarity};
+use stickslip_store::tables::fronts::{RuptureOnsets, Ruptures};
 use stickslip_store::tables::records::{Attenuation, Records};
 use stickslip_store::tables::runs::Runs;
 use stickslip_store::tables::stats::{AttenuationFit, PsaStats, SummaryTable};
@@ -109,6 +110,10 @@ pub struct ReportInput<'a> {
     pub attenuation_fit: Option<AttenuationFit>,
     /// The per-event records cut by `[accelerograms]` (what, where, usable band).
     pub records: Option<Records>,
+    /// The rupture front of each event (scenes that record the fault or slip onsets).
+    pub ruptures: Option<Ruptures>,
+    /// Each node's rupture time in each event.
+    pub rupture_onsets: Option<RuptureOnsets>,
     /// Bars that softened or broke (scenes with `[rupture]`).
     pub cracks: Option<Cracks>,
     /// Acoustic-emission events (scenes with `[rupture]`).
@@ -152,6 +157,8 @@ impl<'a> ReportInput<'a> {
             attenuation: table(&ATTENUATION)?.as_ref().map(Attenuation::read).transpose()?,
             attenuation_fit: table(&ATTENUATION_FIT)?.as_ref().map(AttenuationFit::read).transpose()?,
             records: table(&RECORDS)?.as_ref().map(Records::read).transpose()?,
+            ruptures: table(&RUPTURES)?.as_ref().map(Ruptures::read).transpose()?,
+            rupture_onsets: table(&RUPTURE_ONSETS)?.as_ref().map(RuptureOnsets::read).transpose()?,
             cracks: table(&CRACKS)?.as_ref().map(Cracks::read).transpose()?,
             emission: table(&ACOUSTIC_EMISSION)?.as_ref().map(AcousticEmission::read).transpose()?,
             mean_dt_s,

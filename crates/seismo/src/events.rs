@@ -36,6 +36,9 @@ pub struct EventParams {
     pub min_drop_pa: f64,
     /// Main shocks have a drop of at least this fraction of the largest. Default 0.5.
     pub main_fraction: f64,
+    /// A fault node has ruptured when its slip rate first reaches this (m/s): its rupture time
+    /// ([`crate::front`]). Default 1e-3, the convention of the SCEC dynamic-rupture benchmarks.
+    pub rupture_rate_m_s: f64,
 }
 
 impl Default for EventParams {
@@ -48,6 +51,7 @@ impl Default for EventParams {
             merge_gap_s: 3e-3,
             min_drop_pa: 500.0,
             main_fraction: 0.5,
+            rupture_rate_m_s: 1e-3,
         }
     }
 }

@@ -5,8 +5,9 @@
 //! ([`similarity`]), statistics of samples across seeds ([`stats`]), least-squares fits
 //! ([`fit`]), response, RotD and Fourier spectra and intensity measures ([`spectra`]),
 //! accelerogram processing and file formats ([`accelerogram`]), design spectra ([`design`]), the
-//! selection of record sets matched to them ([`selection`]) and acoustic-emission clusters of bar
-//! breaks ([`emission`]).
+//! selection of record sets matched to them ([`selection`]), rupture fronts ([`front`]), SEAS fault
+//! station files ([`seas`]) and
+//! acoustic-emission clusters of bar breaks ([`emission`]).
 //!
 //! Must not know: the solver, the pipeline file, tables or figures. Every function takes slices
 //! and plain parameter structs, so it can be used on any record, simulated or recorded; the
@@ -20,6 +21,8 @@ pub mod emission;
 pub mod error;
 pub mod events;
 pub mod fit;
+pub mod front;
+pub mod seas;
 pub mod selection;
 pub mod similarity;
 pub mod spectra;

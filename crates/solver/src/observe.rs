@@ -1,13 +1,19 @@
 //! What recorders read at one viewed time: a lane of a stepper, or a quasi-static motion.
 
 use crate::scene::Kinematic;
-use crate::step::{Energy, Interface, LaneView};
+use crate::step::{Energy, Interface, LaneView, NodeContact};
 
 /// What a recorder reads at one viewed time: a lane of a stepper, or a quasi-static motion
 /// the run skips through.
 pub(crate) trait Observed {
-    /// Interface resultants.
-    fn interface(&self) -> Interface;
+    /// Contact node `ci` (order of [`crate::Model::contact`]).
+    fn node_contact(&self, ci: usize) -> NodeContact;
+    /// Number of contact nodes.
+    fn contacts(&self) -> usize;
+    /// Interface resultants: the contact nodes summed in their order.
+    fn interface(&self) -> Interface {
+        Interface::sum((0..self.contacts()).map(|ci| self.node_contact(ci)))
+    }
     /// Total driver reaction in x (N).
     fn driver_force(&self) -> f64;
     /// Driver displacement (m).
@@ -19,8 +25,12 @@ pub(crate) trait Observed {
 }
 
 impl<const L: usize> Observed for LaneView<'_, '_, L> {
-    fn interface(&self) -> Interface {
-        LaneView::interface(self)
+    fn node_contact(&self, ci: usize) -> NodeContact {
+        LaneView::node_contact(self, ci)
+    }
+
+    fn contacts(&self) -> usize {
+        self.params.model.contact().len()
     }
 
     fn driver_force(&self) -> f64 {

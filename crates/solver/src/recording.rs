@@ -357,12 +357,12 @@ impl Recorder {
 
     /// Finishes: times from step indices, with `origin` the step index of shear time zero, `dt`
     /// the time step and `stride` the steps between two samples of the shear stage.
-    pub(crate) fn finish(mut self, origin: u64, dt: f64, stride: u64) -> Recording {
+    pub(crate) fn finish(mut self, origin: u64, dt: f64, stride: u64, model: &crate::model::Model) -> Recording {
         let shear_start = self.steps.partition_point(|&s| s < origin);
         let uniform = self.steps[shear_start..].windows(2).all(|w| w[1] - w[0] == stride);
         self.records.sampling = Sampling { step_s: dt, stride, shear_start, uniform };
         if let Some(tracer) = self.tracer.take() {
-            self.records.trace = tracer.finish(dt);
+            self.records.trace = tracer.finish(dt, model);
         }
         self.records.time_s = self.steps.iter().map(|&s| (s as f64 - origin as f64) * dt).collect();
         self.records.onsets = self.onset_steps.iter().map(|&(s, n)| ((s as f64 - origin as f64) * dt, n)).collect();

@@ -314,6 +314,13 @@ pub struct RecordPlan {
     pub settling: bool,
     /// Record sustained slip onsets.
     pub slip_onsets: bool,
+    /// Record every contact node's slip, slip rate and stresses with the event trace
+    /// ([`crate::trace::FaultTrace`]).
+    pub fault: bool,
+    /// Fault stations: contact nodes whose series are also written as station files.
+    pub fault_stations: Vec<NodeId>,
+    /// Interval of the fault's written instants (s); `None` = every trace instant.
+    pub fault_interval_s: Option<f64>,
     /// Control channels, sorted and unique.
     pub control: Vec<ControlChannel>,
     /// The event trace, kept whatever the interval (docs/model.md §7).
@@ -423,6 +430,9 @@ impl Scene {
                 energy: false,
                 settling: false,
                 slip_onsets: false,
+                fault: false,
+                fault_stations: Vec::new(),
+                fault_interval_s: None,
                 control: Vec::new(),
                 trace: TracePlan::default(),
             },

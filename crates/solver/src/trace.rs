@@ -8,7 +8,12 @@
 //! every [`TracePlan::quiet_interval_s`] is kept (and, through a quasi-static skip, the skipped
 //! motion on the same grid). A detector that smooths over less than the margin and whose
 //! thresholds are above the hot rate therefore sees exactly what it would see on every step.
+//!
+//! With `record.fault` the trace also holds every contact node's slip, slip rate and stresses at
+//! the same instants ([`FaultTrace`]): the fault in space and time, at the solver's full rate
+//! through every burst.
 
+use crate::geometry::{Face, NodeId};
 use crate::observe::Observed;
 use crate::scene::{ControlChannel, Kinematic, TracePlan};
 
@@ -30,9 +35,43 @@ pub struct Trace {
     pub slipping_nodes: Vec<f64>,
     /// The recorded control acceleration channels, at the same instants.
     pub accelerations: Vec<(ControlChannel, Vec<f64>)>,
+    /// Every contact node at the same instants, when the scene records the fault.
+    pub fault: Option<FaultTrace>,
+}
+
+/// Every contact node of the base through the shear stage, at the trace's instants.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct FaultTrace {
+    /// The contact nodes, canonical contact order.
+    pub nodes: Vec<NodeId>,
+    /// The base area each stands for (m²).
+    pub area_m2: Vec<f64>,
+    /// Slip of each node: its x-displacement since the start of the shear stage (m).
+    pub slip_m: Vec<Vec<f64>>,
+    /// Slip rate: x-velocity (m/s).
+    pub slip_rate_m_s: Vec<Vec<f64>>,
+    /// Shear stress `−F_x/A_i` on the node's area (Pa), positive when the base resists the push.
+    pub shear_stress_pa: Vec<Vec<f64>>,
+    /// Normal stress `N/A_i` (Pa).
+    pub normal_stress_pa: Vec<Vec<f64>>,
 }
 
 impl Trace {
+    /// Indices of the instants at least `interval_s` apart, from the first (each the first
+    /// instant at or past the last kept plus the interval); every instant for `None`.
+    pub fn thinned(&self, interval_s: Option<f64>) -> Vec<usize> {
+        let Some(iv) = interval_s else { return (0..self.len()).collect() };
+        let mut out = Vec::new();
+        let mut next = f64::NEG_INFINITY;
+        for (i, &t) in self.time_s.iter().enumerate() {
+            if t >= next - 1e-9 * iv {
+                out.push(i);
+                next = t + iv;
+            }
+        }
+        out
+    }
+
     /// Samples held.
     pub fn len(&self) -> usize {
         self.time_s.len()
@@ -55,6 +94,8 @@ pub(crate) struct Tracer {
     origin: u64,
     area: f64,
     nodes: Vec<(ControlChannel, usize)>,
+    /// Contact nodes recorded (all or none) and their x-displacement at the first step.
+    fault: Option<(usize, Vec<f64>)>,
     width: usize,
     /// The last `margin` steps not yet kept, flat, `width` values each.
     pending: std::collections::VecDeque<f64>,
@@ -77,7 +118,8 @@ impl Tracer {
             .filter(|c| c.quantity == Kinematic::Acceleration)
             .map(|&c| (c, model.internal(c.node)))
             .collect();
-        let width = FIXED + nodes.len();
+        let fault = model.scene().record.fault.then(|| (model.contact().len(), Vec::new()));
+        let width = FIXED + nodes.len() + fault.as_ref().map_or(0, |(n, _)| 4 * n);
         Tracer {
             hot_rate: plan.hot_rate_m_s,
             margin: (plan.margin_s / dt).ceil().max(1.0) as u64,
@@ -85,6 +127,7 @@ impl Tracer {
             origin,
             area: model.lattice().contact_area(),
             nodes,
+            fault,
             width,
             pending: std::collections::VecDeque::new(),
             kept: Vec::new(),
@@ -113,6 +156,15 @@ impl Tracer {
             face.slipping as f64,
         ]);
         sample.extend(self.nodes.iter().map(|&(c, node)| s.kinematic(node, c.quantity)[c.component.axis()]));
+        if let Some((n, origin)) = self.fault.as_mut() {
+            if origin.is_empty() {
+                origin.extend((0..*n).map(|ci| s.node_contact(ci).slip));
+            }
+            for (ci, u0) in origin.iter().enumerate() {
+                let c = s.node_contact(ci);
+                sample.extend([c.slip - u0, c.slip_rate, c.friction_x, c.normal]);
+            }
+        }
         // Samples older than the margin leave the pending queue: kept if on the quiet grid.
         while let Some(&front) = self.pending.front()
             && (front as u64) + self.margin < step
@@ -135,8 +187,8 @@ impl Tracer {
         self.scratch = sample;
     }
 
-    /// The trace, times from step indices with time step `dt`.
-    pub(crate) fn finish(mut self, dt: f64) -> Trace {
+    /// The trace, times from step indices with time step `dt`; `model` names the fault's nodes.
+    pub(crate) fn finish(mut self, dt: f64, model: &crate::model::Model) -> Trace {
         self.kept.extend(self.pending.drain(..));
         let n = self.kept.len() / self.width;
         let column = |k: usize| (0..n).map(|i| self.kept[i * self.width + k]).collect::<Vec<f64>>();
@@ -148,6 +200,25 @@ impl Tracer {
             mean_slip_rate_m_s: column(4),
             slipping_nodes: column(5),
             accelerations: self.nodes.iter().enumerate().map(|(k, &(c, _))| (c, column(FIXED + k))).collect(),
+            fault: self.fault.as_ref().map(|&(count, _)| {
+                let first = FIXED + self.nodes.len();
+                let lattice = model.lattice();
+                let nodes: Vec<NodeId> = model.contact().iter().map(|&i| model.canonical(i as usize)).collect();
+                let area: Vec<f64> = nodes.iter().map(|&id| Face::ZMin.tributary_area(lattice, id)).collect();
+                let series = |k: usize, f: &dyn Fn(f64, f64) -> f64| -> Vec<Vec<f64>> {
+                    (0..count)
+                        .map(|ci| column(first + 4 * ci + k).into_iter().map(|v| f(v, area[ci])).collect())
+                        .collect()
+                };
+                FaultTrace {
+                    slip_m: series(0, &|v, _| v),
+                    slip_rate_m_s: series(1, &|v, _| v),
+                    shear_stress_pa: series(2, &|v, a| -v / a),
+                    normal_stress_pa: series(3, &|v, a| v / a),
+                    nodes,
+                    area_m2: area,
+                }
+            }),
         }
     }
 }

@@ -72,6 +72,11 @@ impl Folder {
         self.root.join("records")
     }
 
+    /// The fault station files (SEAS layout), one folder per seed.
+    pub fn fault_stations_dir(&self, seed: u64) -> PathBuf {
+        self.root.join("fault_stations").join(format!("seed{seed}"))
+    }
+
     /// A matched set: its scaled record files, table and figure.
     pub fn set_dir(&self) -> PathBuf {
         self.root.join("set")

@@ -90,6 +90,30 @@ pub mod col {
     pub const HYPOCENTRE_NODE: &str = "hypocentre_node";
     pub const HYPOCENTRE_X_M: &str = "hypocentre_x_m";
     pub const DISTANCE_M: &str = "distance_m";
+    pub const HYPOCENTRE_Y_M: &str = "hypocentre_y_m";
+    pub const HYPOCENTRE_REGION: &str = "hypocentre_region";
+    pub const ONSET_S: &str = "onset_s";
+    pub const FRONT_FROM: &str = "front_from";
+    pub const SLIP_RATE_M_S: &str = "slip_rate_m_s";
+    pub const SHEAR_STRESS_PA: &str = "shear_stress_pa";
+    pub const NORMAL_STRESS_PA: &str = "normal_stress_pa";
+    pub const RUPTURED_NODES: &str = "ruptured_nodes";
+    pub const RUPTURED_AREA_M2: &str = "ruptured_area_m2";
+    pub const RUPTURE_X_MIN_M: &str = "rupture_x_min_m";
+    pub const RUPTURE_X_MAX_M: &str = "rupture_x_max_m";
+    pub const RUPTURE_LENGTH_M: &str = "rupture_length_m";
+    pub const SPREAD_S: &str = "spread_s";
+    pub const RUPTURE_SPEED_M_S: &str = "rupture_speed_m_s";
+    pub const FIT_PAIRS: &str = "fit_pairs";
+    pub const SPEED_OVER_S: &str = "speed_over_s";
+    pub const REGIME: &str = "regime";
+    pub const P_SPEED_M_S: &str = "p_speed_m_s";
+    pub const S_SPEED_M_S: &str = "s_speed_m_s";
+    pub const RAYLEIGH_SPEED_M_S: &str = "rayleigh_speed_m_s";
+    pub const ARREST_X_MIN: &str = "arrest_x_min";
+    pub const ARREST_X_MAX: &str = "arrest_x_max";
+    pub const ARREST: &str = "arrest";
+    pub const REGION: &str = "region";
     pub const GROUP: &str = "group";
     pub const QUANTITY: &str = "quantity";
     pub const COUNT: &str = "count";
@@ -263,6 +287,16 @@ pub const CONTROL: TableSpec = TableSpec {
     variable: None,
 };
 
+/// Every contact node of the base through the shear stage at the event trace's instants
+/// (`record.fault`): one row per node and instant.
+pub const FAULT: TableSpec = TableSpec {
+    name: "fault",
+    scope: Scope::PerSeed,
+    key: &[SEED, NODE, TIME_S],
+    columns: &[SEED, NODE, X_M, Y_M, TIME_S, SLIP_M, SLIP_RATE_M_S, SHEAR_STRESS_PA, NORMAL_STRESS_PA],
+    variable: None,
+};
+
 /// One row per quasi-static jump of the skip-ahead.
 pub const SKIPS: TableSpec = TableSpec {
     name: "skips",
@@ -424,6 +458,53 @@ pub const ATTENUATION: TableSpec = TableSpec {
     scope: Scope::Gathered,
     key: &[SEED, EVENT, NODE],
     columns: &[SEED, EVENT, LABEL, HYPOCENTRE_NODE, HYPOCENTRE_X_M, NODE, DISTANCE_M, PGA_M_S2, PGV_M_S],
+    variable: None,
+};
+
+/// How each event started and spread over the base (scenes with `record.slip_onsets`,
+/// docs/model.md §13): hypocentre, ruptured area and extent, rupture speed against the lattice's
+/// wave speeds, arrest at each end along x.
+pub const RUPTURES: TableSpec = TableSpec {
+    name: "ruptures",
+    scope: Scope::Gathered,
+    key: &[SEED, EVENT],
+    columns: &[
+        SEED,
+        EVENT,
+        KIND,
+        LABEL,
+        HYPOCENTRE_NODE,
+        HYPOCENTRE_X_M,
+        HYPOCENTRE_Y_M,
+        HYPOCENTRE_REGION,
+        FRONT_FROM,
+        ONSET_S,
+        RUPTURED_NODES,
+        RUPTURED_AREA_M2,
+        RUPTURE_X_MIN_M,
+        RUPTURE_X_MAX_M,
+        RUPTURE_LENGTH_M,
+        SPREAD_S,
+        RUPTURE_SPEED_M_S,
+        FIT_PAIRS,
+        SPEED_OVER_S,
+        REGIME,
+        P_SPEED_M_S,
+        S_SPEED_M_S,
+        RAYLEIGH_SPEED_M_S,
+        ARREST_X_MIN,
+        ARREST_X_MAX,
+        ARREST,
+    ],
+    variable: None,
+};
+
+/// The onset of every ruptured contact node in every event (scenes with `record.slip_onsets`).
+pub const RUPTURE_ONSETS: TableSpec = TableSpec {
+    name: "rupture_onsets",
+    scope: Scope::Gathered,
+    key: &[SEED, EVENT, NODE],
+    columns: &[SEED, EVENT, NODE, X_M, Y_M, REGION, ONSET_S, DISTANCE_M],
     variable: None,
 };
 
@@ -636,10 +717,11 @@ pub const CATALOGUE: [TableSpec; 6] =
     [MAGNITUDE_FREQUENCY, B_VALUES, RECURRENCE_STATS, AFTERSHOCKS_TABLE, OMORI, SCALING];
 
 /// Every table, in the order the README documents them.
-pub const ALL: [TableSpec; 26] = [
+pub const ALL: [TableSpec; 29] = [
     RUNS,
     SERIES,
     CONTROL,
+    FAULT,
     SKIPS,
     EVENTS_TABLE,
     SUB_EVENTS_TABLE,
@@ -651,6 +733,8 @@ pub const ALL: [TableSpec; 26] = [
     FOURIER,
     INTENSITY,
     ATTENUATION,
+    RUPTURES,
+    RUPTURE_ONSETS,
     CRACKS,
     ACOUSTIC_EMISSION,
     SUMMARY,

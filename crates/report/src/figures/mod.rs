@@ -5,6 +5,8 @@ mod catalogue;
 
 mod cracks;
 
+mod fault;
+
 use std::path::Path;
 
 use plotters::style::{BLACK, RGBColor};
@@ -46,7 +48,7 @@ pub enum Outcome {
 pub type Draw = fn(&ReportInput, &Path) -> Result<Outcome, ReportError>;
 
 /// Every figure, in page order.
-pub const ALL: [(&str, Draw); 22] = [
+pub const ALL: [(&str, Draw); 24] = [
     ("shear_stress.png", shear_stress),
     ("normal_stress.png", normal_stress),
     ("mean_slip.png", mean_slip),
@@ -62,6 +64,8 @@ pub const ALL: [(&str, Draw); 22] = [
     ("magnitude.png", magnitude),
     ("attenuation.png", attenuation),
     ("energy.png", energy),
+    ("friction_map.png", fault::friction_map),
+    ("space_time.png", fault::space_time),
     ("cracks.png", cracks::crack_map),
     ("acoustic_emission.png", cracks::emission),
     ("catalogue.png", catalogue::overview),

@@ -11,8 +11,7 @@ use crate::quasistatic::settle::held_rollers;
 use crate::quasistatic::{CG_MAX_ITERATIONS, CG_TOLERANCE};
 use crate::scene::Kinematic;
 use crate::statics::{Prescribed, StaticSolution, solve_static_from};
-use crate::step::{Energy, Params, State};
-use crate::step::{Interface, NodeContact};
+use crate::step::{Energy, NodeContact, Params, State};
 
 /// What a base node does during a quasi-static motion.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -248,21 +247,23 @@ pub(crate) struct MotionView<'a> {
 }
 
 impl Observed for MotionView<'_> {
-    fn interface(&self) -> Interface {
+    fn contacts(&self) -> usize {
+        self.model.contact().len()
+    }
+
+    fn node_contact(&self, ci: usize) -> NodeContact {
         let m = self.motion;
         let [cm, c, cp] = &self.c;
-        Interface::sum(self.model.contact().iter().enumerate().map(|(ci, &node)| {
-            let p = node as usize;
-            let r = m.contact_reaction(self.model, c, ci);
-            NodeContact {
-                friction_x: r[0],
-                normal: r[2],
-                slip: m.u(c, p, 0),
-                slip_rate: (m.u(cp, p, 0) - m.u(cm, p, 0)) * 0.5 / self.dt,
-                slipping: false,
-                lifted: m.state[ci] == Contact::Lifted,
-            }
-        }))
+        let p = self.model.contact()[ci] as usize;
+        let r = m.contact_reaction(self.model, c, ci);
+        NodeContact {
+            friction_x: r[0],
+            normal: r[2],
+            slip: m.u(c, p, 0),
+            slip_rate: (m.u(cp, p, 0) - m.u(cm, p, 0)) * 0.5 / self.dt,
+            slipping: false,
+            lifted: m.state[ci] == Contact::Lifted,
+        }
     }
 
     fn driver_force(&self) -> f64 {

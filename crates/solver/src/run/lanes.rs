@@ -296,7 +296,7 @@ pub fn run_lanes<const L: usize>(
                 settled_by: lane.settled_by,
                 settle_note: lane.settle_note,
                 skip: lane.skipper.as_ref().map_or_else(SkipStats::default, |s| s.stats),
-                recording: recorder.finish(origin, dt, stride),
+                recording: recorder.finish(origin, dt, stride, model),
                 damage: damage(model, &params, &state, l),
             })
         }

@@ -104,20 +104,22 @@ impl<const L: usize> LaneView<'_, '_, L> {
 
     /// Interface resultants.
     pub fn interface(&self) -> Interface {
+        Interface::sum((0..self.params.model.contact().len()).map(|ci| self.node_contact(ci)))
+    }
+
+    /// Contact node `ci` (order of [`crate::Model::contact`]) at the viewed time.
+    pub fn node_contact(&self, ci: usize) -> NodeContact {
         let (l, u, r) = (self.lane, &self.state.u, &self.state.contact.reaction);
         let h = 0.5 / self.params.dt(l);
-        let contact = self.params.model.contact();
-        Interface::sum(contact.iter().enumerate().map(|(ci, &node)| {
-            let p = node as usize;
-            NodeContact {
-                friction_x: r[0][ci][l],
-                normal: r[2][ci][l],
-                slip: u.n.c[0][p][l],
-                slip_rate: (u.np1.c[0][p][l] - u.nm1.c[0][p][l]) * h,
-                slipping: self.state.contact.sliding[ci][l],
-                lifted: r[2][ci][l] == 0.0,
-            }
-        }))
+        let p = self.params.model.contact()[ci] as usize;
+        NodeContact {
+            friction_x: r[0][ci][l],
+            normal: r[2][ci][l],
+            slip: u.n.c[0][p][l],
+            slip_rate: (u.np1.c[0][p][l] - u.nm1.c[0][p][l]) * h,
+            slipping: self.state.contact.sliding[ci][l],
+            lifted: r[2][ci][l] == 0.0,
+        }
     }
 
     /// Sum of the driver reactions in x (N).

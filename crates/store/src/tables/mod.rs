@@ -4,6 +4,7 @@
 pub mod catalogue;
 pub mod cracks;
 pub mod events;
+pub mod fronts;
 pub mod records;
 pub mod runs;
 pub mod series;

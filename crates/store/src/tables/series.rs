@@ -1,12 +1,13 @@
-//! The recorded series of one seed: the interface channels, the control nodes, the skip log.
+//! The recorded series of one seed: the interface channels, the control nodes, the fault's
+//! nodes, the skip log.
 
 use polars::prelude::*;
-use stickslip_solver::Recording;
 use stickslip_solver::scene::{Component, Kinematic};
+use stickslip_solver::{Lattice, Recording};
 
 use crate::error::StoreError;
-use crate::frame::{Columns, Frame};
-use crate::schema::{CONTROL, SERIES, SKIPS, col};
+use crate::frame::{Columns, Frame, read_back};
+use crate::schema::{CONTROL, FAULT, SERIES, SKIPS, col};
 
 /// The series table of one seed: `seed`, `time_s`, then one column per recorded channel
 /// ([`stickslip_solver::Channel::name`]), f64 except node counts (u32).
@@ -113,4 +114,51 @@ pub fn read_control(
         return Ok(None);
     }
     Ok(Some((idx.iter().map(|&i| t[i]).collect(), idx.iter().map(|&i| v[i].unwrap_or(f64::NAN)).collect())))
+}
+
+/// The fault table of one seed (long: one row per contact node and kept instant, the trace's
+/// instants `keep`): `seed`, `node` u32 (LDEM), `x_m`, `y_m`, `time_s`, `slip_m`,
+/// `slip_rate_m_s`, `shear_stress_pa`, `normal_stress_pa`; `None` when the run did not record
+/// the fault.
+pub fn fault_frame(
+    seed: u64,
+    trace: &stickslip_solver::Trace,
+    keep: &[usize],
+    lattice: &Lattice,
+) -> Result<Option<DataFrame>, StoreError> {
+    let Some(f) = &trace.fault else { return Ok(None) };
+    let n = keep.len();
+    let rows = n * f.nodes.len();
+    let per_node = |g: &dyn Fn(usize) -> f64| -> Vec<f64> {
+        (0..f.nodes.len()).flat_map(|i| std::iter::repeat_n(g(i), n)).collect()
+    };
+    let flat = |v: &[Vec<f64>]| -> Vec<f64> { v.iter().flat_map(|s| keep.iter().map(|&k| s[k])).collect() };
+    Frame::new(rows)
+        .u64(col::SEED, vec![seed; rows])
+        .u32(col::NODE, f.nodes.iter().flat_map(|id| std::iter::repeat_n(id.ldem() as u32, n)).collect())
+        .f64(col::X_M, per_node(&|i| lattice.position(f.nodes[i])[0]))
+        .f64(col::Y_M, per_node(&|i| lattice.position(f.nodes[i])[1]))
+        .f64(col::TIME_S, (0..f.nodes.len()).flat_map(|_| keep.iter().map(|&k| trace.time_s[k])).collect())
+        .f64(col::SLIP_M, flat(&f.slip_m))
+        .f64(col::SLIP_RATE_M_S, flat(&f.slip_rate_m_s))
+        .f64(col::SHEAR_STRESS_PA, flat(&f.shear_stress_pa))
+        .f64(col::NORMAL_STRESS_PA, flat(&f.normal_stress_pa))
+        .finish(FAULT.name)
+        .map(Some)
+}
+
+read_back! {
+    /// The fault table read back.
+    pub struct Fault from FAULT, |c| {
+        /// Node (LDEM) of each row.
+        node: Vec<u64> = c.u64s(col::NODE)?,
+        /// Its x (m).
+        x_m: Vec<f64> = c.f64s(col::X_M)?,
+        /// Its y (m).
+        y_m: Vec<f64> = c.f64s(col::Y_M)?,
+        /// Time (s).
+        time_s: Vec<f64> = c.f64s(col::TIME_S)?,
+        /// Slip rate (m/s).
+        slip_rate_m_s: Vec<f64> = c.f64s(col::SLIP_RATE_M_S)?,
+    }
 }
