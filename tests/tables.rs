@@ -62,9 +62,10 @@ fn every_table_matches_its_declaration_and_reads_back_typed() {
     use stickslip_store::schema::{self, Scope};
     use stickslip_store::tables::cracks::{AcousticEmission, Cracks};
     use stickslip_store::tables::events::{Events, Similarity};
+    use stickslip_store::tables::fronts::{RuptureOnsets, Ruptures};
     use stickslip_store::tables::records::{Accelerograms, Attenuation, Records, SetTable, Spectra, read_fourier};
     use stickslip_store::tables::runs::Runs;
-    use stickslip_store::tables::series::{read_control, read_series_channel};
+    use stickslip_store::tables::series::{Fault, read_control, read_series_channel};
     use stickslip_store::tables::stats::{AttenuationFit, PsaStats, SummaryTable};
 
     let dir = stickslip_support::scratch_dir("registry");
@@ -81,8 +82,15 @@ fn every_table_matches_its_declaration_and_reads_back_typed() {
     let tension = std::fs::read_to_string(stickslip_support::repo_path("pipelines/rupture-tension.toml"))
         .unwrap()
         .replace("list = [1, 2, 3, 4]", "list = [1]");
+    // The asperity fault, one seed: the fault table, its station files and fronts read on slip rates.
+    let fault = std::fs::read_to_string(stickslip_support::repo_path("pipelines/fault-asperity.toml"))
+        .unwrap()
+        .replace("range = { first = 1, count = 8 }", "list = [1]")
+        .replace("duration_s = 0.3", "duration_s = 0.12");
     let mut seen = std::collections::BTreeSet::new();
-    for (name, text) in [("paper", paper.as_str()), ("skip", skip), ("tension", tension.as_str())] {
+    for (name, text) in
+        [("paper", paper.as_str()), ("skip", skip), ("tension", tension.as_str()), ("fault", fault.as_str())]
+    {
         std::fs::write(dir.join(format!("{name}.toml")), text).unwrap();
         let p = Pipeline::load(&dir.join(format!("{name}.toml"))).unwrap();
         let out = dir.join(name);
@@ -121,8 +129,8 @@ fn every_table_matches_its_declaration_and_reads_back_typed() {
                     }
                     "summary" => assert_eq!(
                         SummaryTable::read(&df).unwrap().find("main", "stress_drop_pa").is_some(),
-                        name == "paper",
-                        "main shocks in the paper run only"
+                        name == "paper" || name == "fault",
+                        "main shocks in the paper and fault runs only"
                     ),
                     "psa_stats" => assert!(!PsaStats::read(&df).unwrap().mean.is_empty()),
                     "attenuation" => assert!(!Attenuation::read(&df).unwrap().is_empty()),
@@ -139,6 +147,18 @@ fn every_table_matches_its_declaration_and_reads_back_typed() {
                         read_control(&df, 36, Component::Z, Kinematic::Acceleration).unwrap().is_some(),
                         name == "paper"
                     ),
+                    "ruptures" => {
+                        let r = Ruptures::read(&df).unwrap();
+                        assert!(!r.is_empty(), "{name}: no rupture front");
+                        assert!(r.hypocentre_region.iter().all(|g| !g.is_empty()));
+                    }
+                    "rupture_onsets" => assert!(!RuptureOnsets::read(&df).unwrap().onset_s.is_empty()),
+                    "fault" => {
+                        let f = Fault::read(&df).unwrap();
+                        assert_eq!(f.node.len() % 82, 0, "every contact node at every kept instant");
+                        let stations = folder.fault_stations_dir(1);
+                        assert_eq!(std::fs::read_dir(&stations).unwrap().count(), 4, "{}", stations.display());
+                    }
                     "series" => {
                         assert!(read_series_channel(&df, Channel::ShearStress.name()).unwrap().is_some())
                     }
@@ -148,5 +168,5 @@ fn every_table_matches_its_declaration_and_reads_back_typed() {
         }
     }
     let all: std::collections::BTreeSet<&str> = schema::ALL.iter().map(|t| t.name).collect();
-    assert_eq!(seen, all, "every declared table is written by one of the three pipelines");
+    assert_eq!(seen, all, "every declared table is written by one of the four pipelines");
 }
