@@ -72,6 +72,8 @@ pub struct SeedFronts {
     pub fronts: Vec<(usize, Front)>,
     /// The wave speeds they are classed against.
     pub speeds: WaveSpeeds,
+    /// The base they ran over.
+    pub base: FaultBase,
     /// What the nodes' rupture times were read on: `slip_rate` (the recorded fault's slip rates
     /// reaching `[events] rupture_rate_m_s`) or `slip_onsets` (sustained slip onsets).
     pub source: &'static str,
@@ -96,17 +98,17 @@ pub fn fronts(
     rec: &Recording,
     catalogue: &Catalogue,
     model: &Model,
-    base: &FaultBase,
     smoothing_s: f64,
     rupture_rate_m_s: f64,
 ) -> Option<SeedFronts> {
+    let base = FaultBase::of(model);
     let index: std::collections::HashMap<NodeId, usize> = base.ids.iter().enumerate().map(|(i, &id)| (id, i)).collect();
     let (onsets, source): (Vec<(f64, usize)>, _) = match &rec.trace.fault {
         Some(f) => {
             // The trace's node order is the model's contact order; the base's is canonical.
-            let mut rates = vec![Vec::new(); base.ids.len()];
+            let mut rates: Vec<&[f64]> = vec![&[]; base.ids.len()];
             for (id, r) in f.nodes.iter().zip(&f.slip_rate_m_s) {
-                rates[index[id]] = r.clone();
+                rates[index[id]] = r;
             }
             (rate_onsets(&rec.trace.time_s, &rates, rupture_rate_m_s), "slip_rate")
         }
@@ -122,5 +124,5 @@ pub fn fronts(
         .enumerate()
         .filter_map(|(k, e)| front(&onsets, &fault, e.burst.start_s - smoothing_s, e.burst.end_s).map(|f| (k, f)))
         .collect();
-    Some(SeedFronts { fronts, speeds: wave_speeds(model), source })
+    Some(SeedFronts { fronts, speeds: wave_speeds(model), source, base })
 }

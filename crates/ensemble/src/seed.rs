@@ -29,7 +29,7 @@ use stickslip_store::tables::runs::{self, RunFacts, RunRow};
 use stickslip_store::tables::series::{control_frame, fault_frame, series_frame, skips_frame};
 
 use crate::error::EnsembleError;
-use crate::fronts::{FaultBase, SeedFronts, fronts};
+use crate::fronts::{SeedFronts, fronts};
 use crate::records::{PlanCache, SeedRecords};
 
 /// A seed's run and what was found in it.
@@ -113,14 +113,8 @@ pub fn analyse(run: RunOutput, model: &Model, pipeline: &Pipeline, plans: &PlanC
         None => None,
     };
     let emission = pipeline.emission.as_ref().map(|p| clusters(&breaks(&run.recording.cracks, model.lattice()), p));
-    let fronts = fronts(
-        &run.recording,
-        &catalogue,
-        model,
-        &FaultBase::of(model),
-        pipeline.events.smoothing_s,
-        pipeline.events.rupture_rate_m_s,
-    );
+    let fronts =
+        fronts(&run.recording, &catalogue, model, pipeline.events.smoothing_s, pipeline.events.rupture_rate_m_s);
     Ok(Analysed { run, catalogue, scaled, records, emission, fronts })
 }
 
@@ -158,10 +152,9 @@ pub fn write_seed(
                 frames.insert(2, (SKIPS, skips_frame(seed, rec)?));
             }
             if let Some(f) = &a.fronts {
-                let base = FaultBase::of(model);
                 let rows = f.rows(&a.catalogue);
-                frames.push((RUPTURES, ruptures_frame(seed, &rows, &base.nodes(), &f.speeds, f.source)?));
-                frames.push((RUPTURE_ONSETS, rupture_onsets_frame(seed, &rows, &base.nodes())?));
+                frames.push((RUPTURES, ruptures_frame(seed, &rows, &f.base.nodes(), &f.speeds, f.source)?));
+                frames.push((RUPTURE_ONSETS, rupture_onsets_frame(seed, &rows, &f.base.nodes())?));
             }
             if let Some(clusters) = &a.emission {
                 frames.push((CRACKS, cracks_frame(seed, &rec.cracks, model.lattice())?));

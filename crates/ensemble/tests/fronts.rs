@@ -19,7 +19,7 @@ fn ruptures_start_in_the_asperity_and_run_slower_than_p_waves() {
     for &seed in &p.seeds[..4] {
         let out = run_seed(&model, seed, RunOptions::default(), &mut |_| ControlFlow::Continue(())).unwrap();
         let cat = catalogue(&out.recording, &model, &p.events);
-        let f = fronts(&out.recording, &cat, &model, &base, p.events.smoothing_s, p.events.rupture_rate_m_s).unwrap();
+        let f = fronts(&out.recording, &cat, &model, p.events.smoothing_s, p.events.rupture_rate_m_s).unwrap();
         assert_eq!(f.source, "slip_rate");
         c_s = f.speeds.s_m_s;
         // The fault's series are the trace's instants, one per node.

@@ -193,7 +193,7 @@ impl Front {
 /// The times each node's slip rate reaches `threshold` (m/s) from below, in time order: the
 /// onsets [`front`] reads. `rates[i]` is node `i`'s slip rate at the instants `time_s`; a node
 /// already at or above the threshold at the first instant has no onset then.
-pub fn rate_onsets(time_s: &[f64], rates: &[Vec<f64>], threshold: f64) -> Vec<(f64, usize)> {
+pub fn rate_onsets(time_s: &[f64], rates: &[&[f64]], threshold: f64) -> Vec<(f64, usize)> {
     let mut out: Vec<(f64, usize)> = Vec::new();
     for (i, r) in rates.iter().enumerate() {
         assert_eq!(r.len(), time_s.len(), "one rate per instant");
@@ -317,7 +317,7 @@ mod tests {
     #[test]
     fn rate_onsets_are_upward_crossings() {
         let t = [0.0, 1.0, 2.0, 3.0, 4.0];
-        let rates = vec![vec![0.0, 0.5, 2.0, 0.1, 3.0], vec![5.0, 5.0, 0.0, -2.0, 0.0]];
+        let rates: [&[f64]; 2] = [&[0.0, 0.5, 2.0, 0.1, 3.0], &[5.0, 5.0, 0.0, -2.0, 0.0]];
         assert_eq!(rate_onsets(&t, &rates, 1.0), vec![(2.0, 0), (3.0, 1), (4.0, 0)]);
     }
 

@@ -16,6 +16,7 @@
 use crate::geometry::{Face, NodeId};
 use crate::observe::Observed;
 use crate::scene::{ControlChannel, Kinematic, TracePlan};
+use crate::step::{Interface, NodeContact};
 
 /// The event trace of one run: the shear stage's interface signals at full rate around every
 /// burst of slip and sparsely between them, in time order.
@@ -96,6 +97,8 @@ pub(crate) struct Tracer {
     nodes: Vec<(ControlChannel, usize)>,
     /// Contact nodes recorded (all or none) and their x-displacement at the first step.
     fault: Option<(usize, Vec<f64>)>,
+    /// The contact nodes of the step being looked at (reused).
+    contacts: Vec<NodeContact>,
     width: usize,
     /// The last `margin` steps not yet kept, flat, `width` values each.
     pending: std::collections::VecDeque<f64>,
@@ -128,6 +131,7 @@ impl Tracer {
             area: model.lattice().contact_area(),
             nodes,
             fault,
+            contacts: Vec::new(),
             width,
             pending: std::collections::VecDeque::new(),
             kept: Vec::new(),
@@ -143,7 +147,16 @@ impl Tracer {
 
     /// Looks at step `step` (shear stage) as `s` shows it.
     pub(crate) fn observe(&mut self, s: &impl Observed, step: u64) {
-        let face = s.interface();
+        // With the fault recorded, each contact node is read once: for its own columns and the sums.
+        let mut contacts = std::mem::take(&mut self.contacts);
+        contacts.clear();
+        let face = match &self.fault {
+            Some((n, _)) => {
+                contacts.extend((0..*n).map(|ci| s.node_contact(ci)));
+                Interface::sum(contacts.iter().copied())
+            }
+            None => s.interface(),
+        };
         let hot = face.mean_slip_rate.abs() >= self.hot_rate;
         let mut sample = std::mem::take(&mut self.scratch);
         sample.clear();
@@ -156,15 +169,15 @@ impl Tracer {
             face.slipping as f64,
         ]);
         sample.extend(self.nodes.iter().map(|&(c, node)| s.kinematic(node, c.quantity)[c.component.axis()]));
-        if let Some((n, origin)) = self.fault.as_mut() {
+        if let Some((_, origin)) = self.fault.as_mut() {
             if origin.is_empty() {
-                origin.extend((0..*n).map(|ci| s.node_contact(ci).slip));
+                origin.extend(contacts.iter().map(|c| c.slip));
             }
-            for (ci, u0) in origin.iter().enumerate() {
-                let c = s.node_contact(ci);
+            for (c, u0) in contacts.iter().zip(origin.iter()) {
                 sample.extend([c.slip - u0, c.slip_rate, c.friction_x, c.normal]);
             }
         }
+        self.contacts = contacts;
         // Samples older than the margin leave the pending queue: kept if on the quiet grid.
         while let Some(&front) = self.pending.front()
             && (front as u64) + self.margin < step
