@@ -1,5 +1,7 @@
 //! What recording costs: a pipeline's scene run with everything it records, then with one thing
-//! less at a time (best of a few wall times each, one seed, one thread).
+//! less at a time (best of a few wall times each, one seed, one thread). The fault (every contact
+//! node's slip, slip rate and stresses, `record.fault`) is timed against the same run without it
+//! whichever way the pipeline has it.
 
 use std::ops::ControlFlow;
 use std::time::Instant;
@@ -39,8 +41,20 @@ fn best(file: &PipelineFile, repeats: usize) -> Result<(f64, u64), LabError> {
 pub fn recording_cost(full: &PipelineFile, repeats: usize) -> Result<Vec<VariantTiming>, LabError> {
     let mut variants: Vec<(&'static str, PipelineFile)> = vec![("as in the pipeline", full.clone())];
     let mut f = full.clone();
+    let records_fault = full.record.fault || !full.record.fault_stations_m.is_empty();
+    if records_fault {
+        f.record.fault = false;
+        f.record.fault_stations_m.clear();
+        f.record.fault_interval_s = None;
+        variants.push(("without the fault (per-node slip, rate, stress)", f.clone()));
+    } else {
+        let mut with = full.clone();
+        with.record.fault = true;
+        variants.push(("with the fault (per-node slip, rate, stress)", with));
+    }
     f.record.energy = false;
-    variants.push(("without energy terms", f.clone()));
+    let energy = if records_fault { "… and without energy terms" } else { "without energy terms" };
+    variants.push((energy, f.clone()));
     f.record.control.clear();
     variants.push(("… and without control nodes", f.clone()));
     f.record.slip_onsets = false;

@@ -87,6 +87,68 @@ impl Trace {
 /// Scalars per sample before the accelerations: step, τ, σ, δ, V, slipping.
 const FIXED: usize = 6;
 
+/// Samples of `width` values in a ring, oldest first: the steps that may still become a burst's
+/// leading margin. Rows are copied in and out whole.
+struct Rows {
+    width: usize,
+    buf: Vec<f64>,
+    /// Index of the oldest row.
+    head: usize,
+    len: usize,
+}
+
+impl Rows {
+    fn new(width: usize) -> Rows {
+        Rows { width, buf: Vec::new(), head: 0, len: 0 }
+    }
+
+    fn capacity(&self) -> usize {
+        self.buf.len() / self.width
+    }
+
+    fn row(&self, k: usize) -> &[f64] {
+        let i = (self.head + k) % self.capacity();
+        &self.buf[i * self.width..(i + 1) * self.width]
+    }
+
+    /// The step index of the oldest row.
+    fn front_step(&self) -> Option<u64> {
+        (self.len > 0).then(|| self.row(0)[0] as u64)
+    }
+
+    fn push(&mut self, sample: &[f64]) {
+        if self.len == self.capacity() {
+            // Grow, laying the rows out oldest first.
+            let mut grown = Vec::with_capacity(2 * self.buf.len().max(self.width));
+            for k in 0..self.len {
+                grown.extend_from_slice(self.row(k));
+            }
+            grown.resize(grown.capacity() / self.width * self.width, 0.0);
+            self.buf = grown;
+            self.head = 0;
+        }
+        let i = (self.head + self.len) % self.capacity();
+        self.buf[i * self.width..(i + 1) * self.width].copy_from_slice(sample);
+        self.len += 1;
+    }
+
+    /// Drops the oldest row, appending it to `to` when given.
+    fn pop_front(&mut self, to: Option<&mut Vec<f64>>) {
+        if let Some(to) = to {
+            to.extend_from_slice(self.row(0));
+        }
+        self.head = (self.head + 1) % self.capacity();
+        self.len -= 1;
+    }
+
+    /// Appends every row to `to`, oldest first, and empties the ring.
+    fn drain_into(&mut self, to: &mut Vec<f64>) {
+        while self.len > 0 {
+            self.pop_front(Some(to));
+        }
+    }
+}
+
 /// Builds a [`Trace`] step by step.
 pub(crate) struct Tracer {
     hot_rate: f64,
@@ -100,8 +162,8 @@ pub(crate) struct Tracer {
     /// The contact nodes of the step being looked at (reused).
     contacts: Vec<NodeContact>,
     width: usize,
-    /// The last `margin` steps not yet kept, flat, `width` values each.
-    pending: std::collections::VecDeque<f64>,
+    /// The last `margin` steps not yet kept.
+    pending: Rows,
     kept: Vec<f64>,
     keep_until: Option<u64>,
     scratch: Vec<f64>,
@@ -133,7 +195,7 @@ impl Tracer {
             fault,
             contacts: Vec::new(),
             width,
-            pending: std::collections::VecDeque::new(),
+            pending: Rows::new(width),
             kept: Vec::new(),
             keep_until: None,
             scratch: Vec::with_capacity(width),
@@ -179,34 +241,39 @@ impl Tracer {
         }
         self.contacts = contacts;
         // Samples older than the margin leave the pending queue: kept if on the quiet grid.
-        while let Some(&front) = self.pending.front()
-            && (front as u64) + self.margin < step
+        while let Some(front) = self.pending.front_step()
+            && front + self.margin < step
         {
-            if self.on_grid(front as u64) {
-                self.kept.extend(self.pending.drain(..self.width));
-            } else {
-                self.pending.drain(..self.width);
-            }
+            let keep = self.on_grid(front);
+            self.pending.pop_front(keep.then_some(&mut self.kept));
         }
         if hot {
-            self.kept.extend(self.pending.drain(..));
+            self.pending.drain_into(&mut self.kept);
             self.kept.extend_from_slice(&sample);
             self.keep_until = Some(step + self.margin);
         } else if self.keep_until.is_some_and(|u| step <= u) {
             self.kept.extend_from_slice(&sample);
         } else {
-            self.pending.extend(sample.iter().copied());
+            self.pending.push(&sample);
         }
         self.scratch = sample;
     }
 
     /// The trace, times from step indices with time step `dt`; `model` names the fault's nodes.
     pub(crate) fn finish(mut self, dt: f64, model: &crate::model::Model) -> Trace {
-        self.kept.extend(self.pending.drain(..));
+        self.pending.drain_into(&mut self.kept);
+        // One pass over the rows fills every column.
         let n = self.kept.len() / self.width;
-        let column = |k: usize| (0..n).map(|i| self.kept[i * self.width + k]).collect::<Vec<f64>>();
+        let mut columns: Vec<Vec<f64>> = (0..self.width).map(|_| Vec::with_capacity(n)).collect();
+        for row in self.kept.chunks_exact(self.width) {
+            for (c, &v) in columns.iter_mut().zip(row) {
+                c.push(v);
+            }
+        }
+        let mut column = |k: usize| std::mem::take(&mut columns[k]);
+        let origin = self.origin as f64;
         Trace {
-            time_s: (0..n).map(|i| (self.kept[i * self.width] - self.origin as f64) * dt).collect(),
+            time_s: column(0).into_iter().map(|s| (s - origin) * dt).collect(),
             shear_stress_pa: column(1),
             normal_stress_pa: column(2),
             mean_slip_m: column(3),
@@ -218,9 +285,13 @@ impl Tracer {
                 let lattice = model.lattice();
                 let nodes: Vec<NodeId> = model.contact().iter().map(|&i| model.canonical(i as usize)).collect();
                 let area: Vec<f64> = nodes.iter().map(|&id| Face::ZMin.tributary_area(lattice, id)).collect();
-                let series = |k: usize, f: &dyn Fn(f64, f64) -> f64| -> Vec<Vec<f64>> {
+                let mut series = |k: usize, f: &dyn Fn(f64, f64) -> f64| -> Vec<Vec<f64>> {
                     (0..count)
-                        .map(|ci| column(first + 4 * ci + k).into_iter().map(|v| f(v, area[ci])).collect())
+                        .map(|ci| {
+                            let mut c = column(first + 4 * ci + k);
+                            c.iter_mut().for_each(|v| *v = f(*v, area[ci]));
+                            c
+                        })
                         .collect()
                 };
                 FaultTrace {

@@ -115,9 +115,9 @@ pub fn run(c: Command) -> Result<()> {
             let p = Pipeline::load(&pipeline)?;
             let rows = recording_cost(&p.file, repeats)?;
             let base = rows[0].wall_s;
-            println!("{:<44} {:>10} {:>10} {:>10}", "variant", "steps", "wall (ms)", "speed-up");
+            println!("{:<50} {:>10} {:>10} {:>10}", "variant", "steps", "wall (ms)", "speed-up");
             for r in &rows {
-                println!("{:<44} {:>10} {:>10.1} {:>9.2}×", r.name, r.steps, r.wall_s * 1e3, base / r.wall_s);
+                println!("{:<50} {:>10} {:>10.1} {:>9.2}×", r.name, r.steps, r.wall_s * 1e3, base / r.wall_s);
             }
             Ok(())
         }
