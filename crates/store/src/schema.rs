@@ -104,7 +104,7 @@ pub mod col {
     pub const RUPTURE_LENGTH_M: &str = "rupture_length_m";
     pub const SPREAD_S: &str = "spread_s";
     pub const RUPTURE_SPEED_M_S: &str = "rupture_speed_m_s";
-    pub const FIT_PAIRS: &str = "fit_pairs";
+    pub const FRONT_WINDOWS: &str = "front_windows";
     pub const SPEED_OVER_S: &str = "speed_over_s";
     pub const REGIME: &str = "regime";
     pub const P_SPEED_M_S: &str = "p_speed_m_s";
@@ -486,7 +486,7 @@ pub const RUPTURES: TableSpec = TableSpec {
         RUPTURE_LENGTH_M,
         SPREAD_S,
         RUPTURE_SPEED_M_S,
-        FIT_PAIRS,
+        FRONT_WINDOWS,
         SPEED_OVER_S,
         REGIME,
         P_SPEED_M_S,

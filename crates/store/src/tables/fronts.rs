@@ -8,7 +8,7 @@
 //! `ruptured_nodes` u32, `ruptured_area_m2`, `rupture_x_min_m`, `rupture_x_max_m`,
 //! `rupture_length_m`, `spread_s` (first to last onset) f64, `rupture_speed_m_s` f64 (1/median
 //! local slowness along x; null: fewer than three ruptured columns; +inf: all at once),
-//! `fit_pairs` u32 (neighbouring columns the median was taken over), `speed_over_s` f64, `regime`
+//! `front_windows` u32 (one-way stretches of 5 columns the median was taken over), `speed_over_s` f64, `regime`
 //! str, `p_speed_m_s`, `s_speed_m_s`, `rayleigh_speed_m_s` f64, `arrest_x_min`, `arrest_x_max`,
 //! `arrest` str.
 //!
@@ -78,7 +78,7 @@ pub fn ruptures_frame(
             col::RUPTURE_SPEED_M_S,
             fronts.iter().map(|e| Some(e.front.speed_m_s()).filter(|v| !v.is_nan())).collect(),
         )
-        .u32(col::FIT_PAIRS, fronts.iter().map(|e| e.front.fit_pairs as u32).collect())
+        .u32(col::FRONT_WINDOWS, fronts.iter().map(|e| e.front.windows as u32).collect())
         .opt_f64(
             col::SPEED_OVER_S,
             fronts.iter().map(|e| Some(e.front.speed_m_s() / speeds.s_m_s).filter(|v| !v.is_nan())).collect(),
