@@ -1,4 +1,30 @@
-//! Least-squares fits used across the product: straight lines in log-log space.
+//! Least-squares fits used across the product: straight lines, in linear or log-log space.
+
+/// A least-squares line `y = intercept + slope·x`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LineFit {
+    /// Intercept.
+    pub intercept: f64,
+    /// Slope.
+    pub slope: f64,
+    /// Coefficient of determination.
+    pub r2: f64,
+}
+
+/// Least-squares fit `y = a + b·x` through `pts`, or `None` without points or with no spread in x.
+pub fn line_fit(pts: &[(f64, f64)]) -> Option<LineFit> {
+    let n = pts.len() as f64;
+    let (mx, my) = (pts.iter().map(|p| p.0).sum::<f64>() / n, pts.iter().map(|p| p.1).sum::<f64>() / n);
+    let sxx: f64 = pts.iter().map(|p| (p.0 - mx).powi(2)).sum();
+    let sxy: f64 = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    let syy: f64 = pts.iter().map(|p| (p.1 - my).powi(2)).sum();
+    if !(sxx > 0.0) {
+        return None;
+    }
+    let b = sxy / sxx;
+    let r2 = if syy > 0.0 { sxy * sxy / (sxx * syy) } else { 1.0 };
+    Some(LineFit { intercept: my - b * mx, slope: b, r2 })
+}
 
 /// A least-squares line `log10 y = intercept + slope·log10 x`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -22,17 +48,7 @@ pub fn log_log_fit(points: impl Iterator<Item = (f64, f64)>) -> Option<LogFit> {
     if n < 3 {
         return None;
     }
-    let (mx, my) = (pts.iter().map(|p| p.0).sum::<f64>() / n as f64, pts.iter().map(|p| p.1).sum::<f64>() / n as f64);
-    let sxx: f64 = pts.iter().map(|p| (p.0 - mx).powi(2)).sum();
-    let sxy: f64 = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
-    let syy: f64 = pts.iter().map(|p| (p.1 - my).powi(2)).sum();
-    if sxx == 0.0 {
-        return None;
-    }
-    let b = sxy / sxx;
-    let a = my - b * mx;
-    let r2 = if syy > 0.0 { sxy * sxy / (sxx * syy) } else { 1.0 };
-    Some(LogFit { intercept: a, slope: b, r2, points: n })
+    line_fit(&pts).map(|l| LogFit { intercept: l.intercept, slope: l.slope, r2: l.r2, points: n })
 }
 
 #[cfg(test)]

@@ -263,13 +263,7 @@ fn front_slowness(columns: &[(f64, f64)]) -> (Option<f64>, usize) {
     let slopes: Vec<f64> = columns
         .windows(FRONT_WINDOW)
         .filter(|w| w.windows(2).all(|p| p[1].1 > p[0].1) || w.windows(2).all(|p| p[1].1 < p[0].1))
-        .map(|w| {
-            let n = w.len() as f64;
-            let (mx, mt) = (w.iter().map(|c| c.0).sum::<f64>() / n, w.iter().map(|c| c.1).sum::<f64>() / n);
-            let sxt: f64 = w.iter().map(|c| (c.0 - mx) * (c.1 - mt)).sum();
-            let sxx: f64 = w.iter().map(|c| (c.0 - mx) * (c.0 - mx)).sum();
-            (sxt / sxx).abs()
-        })
+        .filter_map(|w| crate::fit::line_fit(w).map(|l| l.slope.abs()))
         .collect();
     if !slopes.is_empty() {
         return (Some(crate::stats::median(&slopes)), slopes.len());

@@ -153,7 +153,7 @@ fn speed_text(v: Option<f64>, c_s: f64) -> String {
     match v {
         Some(v) if v.is_infinite() => "all at once".into(),
         Some(v) => format!("{:.0} m/s = {:.2} c_s", v, v / c_s),
-        None => "speed not fitted".into(),
+        None => "speed not measured".into(),
     }
 }
 

@@ -7,9 +7,9 @@
 //! sustained slip onsets), `onset_s` f64 (the hypocentre's),
 //! `ruptured_nodes` u32, `ruptured_area_m2`, `rupture_x_min_m`, `rupture_x_max_m`,
 //! `rupture_length_m`, `spread_s` (first to last onset) f64, `rupture_speed_m_s` f64 (1/median
-//! local slowness along x; null: fewer than three ruptured columns; +inf: all at once),
-//! `front_windows` u32 (one-way stretches of 5 columns the median was taken over), `speed_over_s` f64, `regime`
-//! str, `p_speed_m_s`, `s_speed_m_s`, `rayleigh_speed_m_s` f64, `arrest_x_min`, `arrest_x_max`,
+//! slowness of the front's one-way stretches along x; +inf: most columns at once; null: cannot be
+//! told), `front_windows` u32 (the stretches measured), `speed_over_s` f64, `regime` str,
+//! `p_speed_m_s`, `s_speed_m_s`, `rayleigh_speed_m_s` f64, `arrest_x_min`, `arrest_x_max`,
 //! `arrest` str.
 //!
 //! **rupture_onsets**, one row per ruptured node and event: `seed`, `event`, `node` (LDEM),
