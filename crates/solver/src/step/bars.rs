@@ -26,11 +26,11 @@
 use std::ops::Range;
 
 use rayon::prelude::*;
+use stickslip_isa::{Isa, widest};
 
 use crate::field::{Field, Lanes};
 use crate::geometry::Direction;
 use crate::layout::{BarGroup, BarLayout, Segment};
-use crate::step::isa::{Isa, widest};
 
 /// Checks that `k`, `u` and `f` fit `layout` (the kernels index them without bounds checks).
 pub(crate) fn check<const L: usize>(layout: &BarLayout, k: &[Lanes<L>], u: &Field<L>, f: &Field<L>) {

@@ -17,9 +17,10 @@
 //! lane's arithmetic does not depend on its neighbours), compiled for every instruction set; the
 //! two are tested bit for bit against each other.
 
+use stickslip_isa::{Isa, widest};
+
 use crate::field::{Field, Lanes};
 use crate::laws::NodeFriction;
-use crate::step::isa::{Isa, widest};
 use crate::step::params::Params;
 use crate::step::state::{ContactState, SlipLog};
 

@@ -4,9 +4,9 @@
 use std::ops::Range;
 
 use rayon::prelude::*;
+use stickslip_isa::{Isa, widest};
 
 use crate::field::{Field, Lanes};
-use crate::step::isa::{Isa, widest};
 use crate::step::params::Coefficients;
 
 /// What the update reads besides the time levels: inverse masses, the per-lane coefficients and

@@ -19,7 +19,6 @@ pub mod bars;
 pub mod contact;
 pub mod energy;
 pub mod integrate;
-pub mod isa;
 pub mod params;
 pub mod rupture;
 pub mod state;
@@ -32,10 +31,11 @@ pub use params::{LaneSetup, Params};
 pub use state::State;
 pub use view::{Blowup, Interface, LaneView, NodeContact};
 
+use stickslip_isa::Isa;
+
 use crate::model::Model;
 use bars::{bar_forces, bar_forces_finishing, bar_forces_parallel};
 use integrate::{Levels, Update, integrate_all, integrate_range};
-use isa::Isa;
 
 /// What a stepper computes besides the motion.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

@@ -32,13 +32,13 @@
 use std::ops::Range;
 
 use rayon::prelude::*;
+use stickslip_isa::{Isa, widest};
 
 use crate::field::{Field, Lanes};
 use crate::geometry::Direction;
 use crate::layout::{BarGroup, BarLayout, Segment};
 use crate::rupture::law_step;
 use crate::step::bars::{ForcePtr, add_lanes, check, sub_lanes};
-use crate::step::isa::{Isa, widest};
 
 /// The gate of an intact bar sits this fraction below `k·p_peak²`, so round-off in `t·p` never
 /// hides a bar that passed its peak (the exact law decides).
