@@ -11,23 +11,11 @@ use support::random_record;
 
 /// The straightforward way: for every angle, rotate the record and take its (exact) spectrum.
 fn per_angle_by_rotation(plan: &SpectrumPlan, x: &[f64], y: &[f64]) -> Vec<f64> {
-    let mut out = vec![0.0; plan.len() * ANGLES];
-    let (mut scratch, mut sd, mut rotated) = (SpectrumScratch::default(), vec![0.0; plan.len()], vec![0.0; x.len()]);
-    for t in 0..ANGLES {
-        let (s, c) = match t {
-            0 => (0.0, 1.0),
-            90 => (1.0, 0.0),
-            _ => (t as f64 * PI / 180.0).sin_cos(),
-        };
-        for (r, (a, b)) in rotated.iter_mut().zip(x.iter().zip(y)) {
-            *r = c * a + s * b;
-        }
-        plan.compute(&rotated, &mut scratch, &mut sd).unwrap();
-        for o in 0..plan.len() {
-            out[o * ANGLES + t] = sd[o];
-        }
-    }
-    out
+    let (mut scratch, mut sd) = (SpectrumScratch::default(), vec![0.0; plan.len()]);
+    support::per_angle_by_rotation(x, y, |rotated| {
+        plan.compute(rotated, &mut scratch, &mut sd).unwrap();
+        sd.clone()
+    })
 }
 
 fn rotd(plan: &RotDPlan, x: &[f64], y: &[f64]) -> RotDSpectrum {

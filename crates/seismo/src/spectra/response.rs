@@ -21,10 +21,12 @@
 //! exceed the running peak (at least `P_s`) is the step solved exactly
 //! ([`Oscillator::step_peak`]: cheaper bounds first, then the zeros of `u̇` inside the step,
 //! where `|u|` is evaluated). Few steps come near `P_s`, so the work is two vector passes
-//! across oscillators (structure of arrays, compiled for AVX-512, AVX2 or baseline x86-64 and
-//! picked at run time; Rust never fuses a multiply and an add, so all give the same bits) and
-//! a few exact solves per oscillator: about half the time of a plain compiled Nigam–Jennings
-//! loop that reads the peak at the samples only (`benches/response_spectra.rs`).
+//! across oscillators (structure of arrays, compiled for every build of [`stickslip_isa::Isa`]
+//! — AVX-512, AVX2, baseline x86-64 — by `stickslip_isa::widest!`, the widest the CPU has
+//! picked at run time; Rust never fuses a multiply and an add, so all give the same bits,
+//! which `tests/builds.rs` checks build against build and against a plain loop over the
+//! oscillators) and a few exact solves per oscillator: about half the time of a plain compiled
+//! Nigam–Jennings loop that reads the peak at the samples only (`benches/response_spectra.rs`).
 //!
 //! **Accuracy.** The result is the true `max |u(t)|` of the reading, to rounding: within
 //! **1e-12 relative** of a dense reference (RK4 with 2 000 to 8 000 steps per period and a
@@ -63,6 +65,7 @@ use std::sync::Arc;
 
 use rustfft::num_complex::Complex;
 use rustfft::{Fft, FftPlanner};
+use stickslip_isa::{Isa, widest};
 
 use crate::spectra::oscillator::Oscillator;
 pub use crate::spectra::oscillator::free_vibration_peak;
@@ -319,10 +322,10 @@ impl SpectrumPlan {
         }
         let st = &mut scratch.state;
         match self.reading {
-            Reading::Linear => run(&self.bank, accel, self.end == RecordEnd::Ramp, st),
+            Reading::Linear => run(Isa::current(), &self.bank, accel, self.end == RecordEnd::Ramp, st),
             Reading::BandLimited => {
                 let fine = scratch.resampler.resample(accel, self.oversampling, self.end == RecordEnd::Ramp);
-                run(&self.bank, fine, false, st);
+                run(Isa::current(), &self.bank, fine, false, st);
             }
         }
         for (o, (osc, out)) in self.bank.oscillators.iter().zip(sd.iter_mut()).enumerate() {
@@ -354,38 +357,14 @@ pub(crate) fn check_finite(x: &[f64], component: &'static str) -> Result<(), Spe
     }
 }
 
-/// Advances every oscillator of `bank` from rest through `x` (read linearly between samples,
-/// then, if `ramp`, one more step to zero), keeping the exact peak |u|; `st` ends with the final
-/// states and the peaks.
-pub(crate) fn run(bank: &Bank, x: &[f64], ramp: bool, st: &mut State) {
-    #[cfg(target_arch = "x86_64")]
-    {
-        if std::is_x86_feature_detected!("avx512f") {
-            // SAFETY: the CPU has AVX-512F.
-            return unsafe { run_avx512(bank, x, ramp, st) };
-        }
-        if std::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU has AVX2.
-            return unsafe { run_avx2(bank, x, ramp, st) };
-        }
-    }
-    run_any(bank, x, ramp, st)
+widest! {
+    /// Advances every oscillator of `bank` from rest through `x` (read linearly between
+    /// samples, then, if `ramp`, one more step to zero), keeping the exact peak |u|, in
+    /// instruction set `isa`; `st` ends with the final states and the peaks.
+    fn run(bank: &Bank, x: &[f64], ramp: bool, st: &mut State) => run_any
 }
 
-/// [`run_any`] built for AVX-512 (the same bits: Rust never fuses a multiply and an add).
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx512f")]
-fn run_avx512(bank: &Bank, x: &[f64], ramp: bool, st: &mut State) {
-    run_any(bank, x, ramp, st)
-}
-
-/// [`run_any`] built for AVX2 (the same bits).
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-fn run_avx2(bank: &Bank, x: &[f64], ramp: bool, st: &mut State) {
-    run_any(bank, x, ramp, st)
-}
-
+/// The kernel of [`run`], compiled once per instruction set.
 #[inline(always)]
 fn run_any(bank: &Bank, x: &[f64], ramp: bool, st: &mut State) {
     let n = bank.padded;

@@ -34,6 +34,9 @@
 //! angles, and are kept; once the peaks at the samples are complete, each kept step checks
 //! its bounds angle by angle (with the joint `|Z|`, then the angle's own `|z_θ|`) and the
 //! angles still in doubt are solved exactly as one-component steps of the rotated input.
+//! Like the one-component passes, all of this is compiled for every build of
+//! [`stickslip_isa::Isa`] and the widest the CPU has is picked at run time (the same bits;
+//! `tests/builds.rs`).
 //!
 //! About 9× faster than the straightforward computation for a record of 11 800 samples and
 //! 100 periods (`benches/response_spectra.rs`); the steps solved exactly are mostly those of
@@ -45,6 +48,8 @@
 //! reused across records: no allocation once grown to the largest record.
 
 use std::f64::consts::PI;
+
+use stickslip_isa::{Isa, widest};
 
 use crate::spectra::oscillator::Oscillator;
 use crate::spectra::response::{
@@ -284,7 +289,7 @@ impl RotDPlan {
             }
         };
         let w = Work { bank: self.plan.bank(), cos: &self.cos, sin: &self.sin, x: xs, y: ys, ramp: tail };
-        run(&w, sx, sy, ext, hull, inradius, flag, angle_flag, candidates, out);
+        run(Isa::current(), &w, sx, sy, ext, hull, inradius, flag, angle_flag, candidates, out);
         // Summaries.
         for o in 0..n {
             let peaks = &out.per_angle[o * ANGLES..(o + 1) * ANGLES];
@@ -326,71 +331,25 @@ impl Work<'_> {
     }
 }
 
-#[allow(clippy::too_many_arguments)]
-fn run(
-    w: &Work,
-    sx: &mut State,
-    sy: &mut State,
-    ext: &mut Extremes,
-    hull: &mut Vec<Hull>,
-    inradius: &mut Vec<f64>,
-    flag: &mut Vec<u8>,
-    angle_flag: &mut Vec<u8>,
-    candidates: &mut Vec<Step>,
-    out: &mut RotDSpectrum,
-) {
-    #[cfg(target_arch = "x86_64")]
-    {
-        if std::is_x86_feature_detected!("avx512f") {
-            // SAFETY: the CPU has AVX-512F.
-            return unsafe { run_avx512(w, sx, sy, ext, hull, inradius, flag, angle_flag, candidates, out) };
-        }
-        if std::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU has AVX2.
-            return unsafe { run_avx2(w, sx, sy, ext, hull, inradius, flag, angle_flag, candidates, out) };
-        }
-    }
-    run_any(w, sx, sy, ext, hull, inradius, flag, angle_flag, candidates, out)
+widest! {
+    /// Both passes, the refinement and the free vibration of every oscillator of `w`, the 180
+    /// peaks into `out.per_angle`, in instruction set `isa`.
+    #[allow(clippy::too_many_arguments)]
+    fn run(
+        w: &Work,
+        sx: &mut State,
+        sy: &mut State,
+        ext: &mut Extremes,
+        hull: &mut Vec<Hull>,
+        inradius: &mut Vec<f64>,
+        flag: &mut Vec<u8>,
+        angle_flag: &mut Vec<u8>,
+        candidates: &mut Vec<Step>,
+        out: &mut RotDSpectrum,
+    ) => run_any
 }
 
-/// [`run_any`] built for AVX-512 (the same bits: Rust never fuses a multiply and an add).
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx512f")]
-#[allow(clippy::too_many_arguments)]
-fn run_avx512(
-    w: &Work,
-    sx: &mut State,
-    sy: &mut State,
-    ext: &mut Extremes,
-    hull: &mut Vec<Hull>,
-    inradius: &mut Vec<f64>,
-    flag: &mut Vec<u8>,
-    angle_flag: &mut Vec<u8>,
-    candidates: &mut Vec<Step>,
-    out: &mut RotDSpectrum,
-) {
-    run_any(w, sx, sy, ext, hull, inradius, flag, angle_flag, candidates, out)
-}
-
-/// [`run_any`] built for AVX2 (the same bits).
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-#[allow(clippy::too_many_arguments)]
-fn run_avx2(
-    w: &Work,
-    sx: &mut State,
-    sy: &mut State,
-    ext: &mut Extremes,
-    hull: &mut Vec<Hull>,
-    inradius: &mut Vec<f64>,
-    flag: &mut Vec<u8>,
-    angle_flag: &mut Vec<u8>,
-    candidates: &mut Vec<Step>,
-    out: &mut RotDSpectrum,
-) {
-    run_any(w, sx, sy, ext, hull, inradius, flag, angle_flag, candidates, out)
-}
-
+/// The kernel of [`run`], compiled once per instruction set.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn run_any(

@@ -1,12 +1,14 @@
-//! Dense references for the spectra tests: an RK4 integration of the oscillator under the
+//! References for the spectra tests: an RK4 integration of the oscillator under the
 //! straight-line reading with thousands of steps per period, and its peak found between the
-//! steps with the cubic Hermite interpolant of (u, u̇).
+//! steps with the cubic Hermite interpolant of (u, u̇); RotD by rotating the record for every
+//! angle.
 
 #![allow(dead_code)]
 
 use std::f64::consts::PI;
 
 use rand::{RngExt, SeedableRng};
+use stickslip_seismo::spectra::rotd::ANGLES;
 
 /// What the reference feeds the oscillator after the last sample.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -84,6 +86,30 @@ fn hermite_extremum(u0: f64, v0: f64, u1: f64, v1: f64, h: f64) -> f64 {
         }
     }
     best
+}
+
+/// The straightforward RotD: for every angle θ = 0°, 1°, …, 179°, the record rotated by θ,
+/// `cos θ·x + sin θ·y` (cos and sin exact at 0° and 90°), through the one-component spectrum
+/// `sd`; its `m` outputs at `out[o·180 + θ]`.
+pub fn per_angle_by_rotation(x: &[f64], y: &[f64], mut sd: impl FnMut(&[f64]) -> Vec<f64>) -> Vec<f64> {
+    let mut out = vec![];
+    let mut rotated = vec![0.0; x.len()];
+    for t in 0..ANGLES {
+        let (s, c) = match t {
+            0 => (0.0, 1.0),
+            90 => (1.0, 0.0),
+            _ => (t as f64 * PI / 180.0).sin_cos(),
+        };
+        for (r, (a, b)) in rotated.iter_mut().zip(x.iter().zip(y)) {
+            *r = c * a + s * b;
+        }
+        let one = sd(&rotated);
+        out.resize(one.len() * ANGLES, 0.0);
+        for (o, v) in one.into_iter().enumerate() {
+            out[o * ANGLES + t] = v;
+        }
+    }
+    out
 }
 
 /// A uniform random record in [−9, 9).
