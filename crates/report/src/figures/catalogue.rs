@@ -14,7 +14,8 @@ use stickslip_store::schema::{
 };
 use stickslip_store::tables::catalogue::{Aftershocks, BValues, MagnitudeFrequency, Omori, RecurrenceStats, Scaling};
 
-use super::{Outcome, drawn};
+use super::Outcome;
+use super::common::drawn;
 use crate::charts::{Line, Panel, Points, Scale, Sheet};
 use crate::plot::colour;
 use crate::{ReportError, ReportInput};

@@ -10,7 +10,8 @@ use plotters::prelude::*;
 use stickslip_solver::Channel;
 use stickslip_solver::geometry::Lattice;
 
-use super::{Outcome, drawn, main_shocks_with_ends, seeds_text, series};
+use super::Outcome;
+use super::common::{drawn, main_shocks_with_ends, seeds_text, series};
 use crate::charts::{Panel, Points, Sheet};
 use crate::plot::{FONT, HEIGHT, TICK, WIDTH, colour, decimate, fmt_tick, padded_range, plot_err};
 use crate::{ReportError, ReportInput};

@@ -8,7 +8,8 @@ use plotters::style::{BLACK, RGBColor};
 use stickslip_store::schema::FAULT;
 use stickslip_store::tables::series::Fault;
 
-use super::{Outcome, drawn, seeds_text};
+use super::Outcome;
+use super::common::{drawn, seeds_text};
 use crate::charts::{Panel, Points, Sheet};
 use crate::plot::colour;
 use crate::{ReportError, ReportInput};

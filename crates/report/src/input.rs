@@ -1,0 +1,108 @@
+//! What the figures and the page read of an output folder: the pipeline that made it, the tables
+//! across seeds through the store's typed readers, and the per-seed parts on demand.
+
+use std::path::Path;
+
+use polars::prelude::DataFrame;
+use stickslip_config::Pipeline;
+use stickslip_store::Folder;
+use stickslip_store::io::read_parquet_if_present;
+use stickslip_store::schema::{
+    ACOUSTIC_EMISSION, ATTENUATION, ATTENUATION_FIT, CRACKS, EVENTS_TABLE, PSA_STATS, RECORDS, RUNS, RUPTURE_ONSETS,
+    RUPTURES, SIMILARITY, SUMMARY, TableSpec,
+};
+use stickslip_store::tables::cracks::{AcousticEmission, Cracks};
+use stickslip_store::tables::events::{Events, Similarity};
+use stickslip_store::tables::fronts::{RuptureOnsets, Ruptures};
+use stickslip_store::tables::records::{Attenuation, Records};
+use stickslip_store::tables::runs::Runs;
+use stickslip_store::tables::stats::{AttenuationFit, PsaStats, SummaryTable};
+
+use crate::ReportError;
+
+/// What the figures and the page read: the pipeline, the tables across seeds (typed), and the
+/// per-seed parts on demand.
+pub struct ReportInput<'a> {
+    /// The output folder.
+    pub folder: Folder,
+    /// The pipeline that wrote it.
+    pub pipeline: &'a Pipeline,
+    /// Runs of every seed.
+    pub runs: Option<Runs>,
+    /// Every event.
+    pub events: Option<Events>,
+    /// Every event at prototype scale.
+    pub similarity: Option<Similarity>,
+    /// Statistics across seeds.
+    pub summary: Option<SummaryTable>,
+    /// PSA across seeds.
+    pub psa_stats: Option<PsaStats>,
+    /// Peak motions against distance.
+    pub attenuation: Option<Attenuation>,
+    /// Their fits.
+    pub attenuation_fit: Option<AttenuationFit>,
+    /// The per-event records cut by `[accelerograms]` (what, where, usable band).
+    pub records: Option<Records>,
+    /// The rupture front of each event (scenes that record the fault or slip onsets).
+    pub ruptures: Option<Ruptures>,
+    /// Each node's rupture time in each event.
+    pub rupture_onsets: Option<RuptureOnsets>,
+    /// Bars that softened or broke (scenes with `[rupture]`).
+    pub cracks: Option<Cracks>,
+    /// Acoustic-emission events (scenes with `[rupture]`).
+    pub emission: Option<AcousticEmission>,
+    /// Mean Δt over the seeds (s), if any finished.
+    pub mean_dt_s: Option<f64>,
+    /// Seeds drawn one by one (successful, at most four unless the pipeline names them).
+    pub seeds: Vec<u64>,
+}
+
+impl<'a> ReportInput<'a> {
+    /// Reads the tables of `out` that the report uses.
+    pub fn load(out: &Path, pipeline: &'a Pipeline) -> Result<Self, ReportError> {
+        let folder = Folder::new(out);
+        let table = |t: &TableSpec| read_parquet_if_present(&folder.gathered(t));
+        let runs_df = table(&RUNS)?;
+        let runs = runs_df.as_ref().map(Runs::read).transpose()?;
+        let ok = runs.as_ref().map(Runs::ok_seeds).unwrap_or_default();
+        let seeds: Vec<u64> = if pipeline.report.seeds.is_empty() {
+            pipeline.seeds.iter().copied().filter(|s| ok.contains(s)).take(4).collect()
+        } else {
+            pipeline.report.seeds.iter().copied().filter(|s| ok.contains(s)).collect()
+        };
+        let mean_dt_s = match &runs_df {
+            Some(df) => {
+                let dt: Vec<f64> = stickslip_store::frame::Columns::of(df, RUNS.name)
+                    .f64s(stickslip_store::schema::col::DT_S)?
+                    .into_iter()
+                    .filter(|x| x.is_finite())
+                    .collect();
+                (!dt.is_empty()).then(|| dt.iter().sum::<f64>() / dt.len() as f64)
+            }
+            None => None,
+        };
+        Ok(ReportInput {
+            runs,
+            events: table(&EVENTS_TABLE)?.as_ref().map(Events::read).transpose()?,
+            similarity: table(&SIMILARITY)?.as_ref().map(Similarity::read).transpose()?,
+            summary: table(&SUMMARY)?.as_ref().map(SummaryTable::read).transpose()?,
+            psa_stats: table(&PSA_STATS)?.as_ref().map(PsaStats::read).transpose()?,
+            attenuation: table(&ATTENUATION)?.as_ref().map(Attenuation::read).transpose()?,
+            attenuation_fit: table(&ATTENUATION_FIT)?.as_ref().map(AttenuationFit::read).transpose()?,
+            records: table(&RECORDS)?.as_ref().map(Records::read).transpose()?,
+            ruptures: table(&RUPTURES)?.as_ref().map(Ruptures::read).transpose()?,
+            rupture_onsets: table(&RUPTURE_ONSETS)?.as_ref().map(RuptureOnsets::read).transpose()?,
+            cracks: table(&CRACKS)?.as_ref().map(Cracks::read).transpose()?,
+            emission: table(&ACOUSTIC_EMISSION)?.as_ref().map(AcousticEmission::read).transpose()?,
+            mean_dt_s,
+            seeds,
+            folder,
+            pipeline,
+        })
+    }
+
+    /// A per-seed part, if present.
+    pub fn part(&self, table: &TableSpec, seed: u64) -> Result<Option<DataFrame>, ReportError> {
+        Ok(read_parquet_if_present(&self.folder.part(table, seed))?)
+    }
+}
