@@ -63,9 +63,11 @@ fn every_table_matches_its_declaration_and_reads_back_typed() {
     use stickslip_store::tables::cracks::{AcousticEmission, Cracks};
     use stickslip_store::tables::events::{Events, Similarity};
     use stickslip_store::tables::fronts::{RuptureOnsets, Ruptures};
-    use stickslip_store::tables::records::{Accelerograms, Attenuation, Records, SetTable, Spectra, read_fourier};
+    use stickslip_store::tables::records::{Accelerograms, Attenuation, Records};
     use stickslip_store::tables::runs::Runs;
     use stickslip_store::tables::series::{Fault, read_control, read_series_channel};
+    use stickslip_store::tables::set::SetTable;
+    use stickslip_store::tables::spectra::{Spectra, read_fourier};
     use stickslip_store::tables::stats::{AttenuationFit, PsaStats, SummaryTable};
 
     let dir = stickslip_support::scratch_dir("registry");

@@ -18,20 +18,12 @@
 //!   duration `T` (one cycle of the corner frequency fits in the record).
 
 use serde::{Deserialize, Serialize};
+use stickslip_analysis::settings::{AccelerogramSettings, EventChoice, MeanChoice, RecordSpan};
 use stickslip_seismo::accelerogram::processing::USABLE_LOW_FACTOR;
-use stickslip_solver::geometry::NodeId;
+use stickslip_seismo::accelerogram::{At2, FORMATS, RecordFormat, Sac};
 use stickslip_solver::scene::{Kinematic, Scene};
 
 use crate::check::{Checker, Named};
-
-/// Which stretches of the run become records.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum RecordSpan {
-    /// One record per selected event.
-    Events,
-    /// One record of the whole shear stage.
-    WholeRun,
-}
 
 impl Named for RecordSpan {
     const ALL: &'static [Self] = &[RecordSpan::Events, RecordSpan::WholeRun];
@@ -43,15 +35,6 @@ impl Named for RecordSpan {
     }
 }
 
-/// Which events get records.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum EventChoice {
-    /// Main shocks only.
-    Main,
-    /// Every catalogued event whose stress drop is at least `min_drop_pa`.
-    All,
-}
-
 impl Named for EventChoice {
     const ALL: &'static [Self] = &[EventChoice::Main, EventChoice::All];
     fn name(self) -> &'static str {
@@ -60,17 +43,6 @@ impl Named for EventChoice {
             EventChoice::All => "all",
         }
     }
-}
-
-/// How the record's zero level is set before processing.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum MeanChoice {
-    /// The mean of the pre-event window (the whole record when it has none).
-    PreEvent,
-    /// The mean of the whole record.
-    Whole,
-    /// The record's own zero.
-    None,
 }
 
 impl Named for MeanChoice {
@@ -84,36 +56,10 @@ impl Named for MeanChoice {
     }
 }
 
-/// A file format of the records.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum RecordFormat {
-    /// PEER NGA `.AT2` (acceleration in g).
-    At2,
-    /// SAC binary, little-endian (acceleration in m/s²).
-    Sac,
-    /// CSV: time, acceleration, velocity, displacement (SI).
-    Csv,
-}
-
-impl Named for RecordFormat {
-    const ALL: &'static [Self] = &[RecordFormat::At2, RecordFormat::Sac, RecordFormat::Csv];
+impl Named for &'static dyn RecordFormat {
+    const ALL: &'static [Self] = FORMATS;
     fn name(self) -> &'static str {
-        match self {
-            RecordFormat::At2 => "at2",
-            RecordFormat::Sac => "sac",
-            RecordFormat::Csv => "csv",
-        }
-    }
-}
-
-impl RecordFormat {
-    /// File extension.
-    pub fn extension(self) -> &'static str {
-        match self {
-            RecordFormat::At2 => "AT2",
-            RecordFormat::Sac => "SAC",
-            RecordFormat::Csv => "csv",
-        }
+        RecordFormat::name(self)
     }
 }
 
@@ -172,47 +118,9 @@ impl Default for AccelerogramsSection {
             high_corner_hz: 0.0,
             band_tolerance: 0.05,
             baseline_degree: 0,
-            formats: vec![RecordFormat::At2.name().into(), RecordFormat::Sac.name().into()],
+            formats: vec![At2.name().into(), Sac.name().into()],
         }
     }
-}
-
-/// A validated `[accelerograms]`.
-#[derive(Clone, Debug, PartialEq)]
-pub struct AccelerogramSettings {
-    /// Events or the whole run.
-    pub span: RecordSpan,
-    /// Which events.
-    pub events: EventChoice,
-    /// Smallest drop of a non-main event with a record (Pa).
-    pub min_drop_pa: f64,
-    /// Nodes with records; empty = every control node recording acceleration.
-    pub nodes: Vec<NodeId>,
-    /// Window before the start (s).
-    pub pre_event_s: f64,
-    /// Window after the end (s).
-    pub post_event_s: f64,
-    /// Zero level.
-    pub mean: MeanChoice,
-    /// Taper fraction at each end.
-    pub taper: f64,
-    /// Zero pads.
-    pub pad: bool,
-    /// Butterworth order.
-    pub order: u32,
-    /// Low corner (Hz), `None` = `1/T`.
-    pub low_corner_hz: Option<f64>,
-    /// High corner (Hz), `None` = the lattice's `f_max`.
-    pub high_corner_hz: Option<f64>,
-    /// Departure that defines `f_max`.
-    pub band_tolerance: f64,
-    /// The lattice's `f_max` at that departure (Hz, model scale): the highest frequency a record
-    /// can be used at.
-    pub resolved_hz: f64,
-    /// Baseline degree.
-    pub baseline_degree: Option<usize>,
-    /// Files per record.
-    pub formats: Vec<RecordFormat>,
 }
 
 impl AccelerogramsSection {
@@ -317,12 +225,5 @@ impl AccelerogramsSection {
             baseline_degree,
             formats,
         }
-    }
-}
-
-impl AccelerogramSettings {
-    /// Whether control channel `c` gets records.
-    pub fn wants(&self, c: &stickslip_solver::scene::ControlChannel) -> bool {
-        c.quantity == Kinematic::Acceleration && (self.nodes.is_empty() || self.nodes.contains(&c.node))
     }
 }

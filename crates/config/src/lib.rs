@@ -4,8 +4,8 @@
 //! Owns the one input format of the product: the pipeline file ([`PipelineFile`]), its sections
 //! with their documented defaults (the paper scene), one [`Checker`] and one [`ConfigError`] for
 //! every section, and the validated [`Pipeline`] — the solver's [`stickslip_solver::Scene`], the
-//! seismology numerics' parameters, the spectra and report settings — with the hash that stamps
-//! its results. Every refused value names its field, the value and the allowed range, and nothing
+//! analysis's [`stickslip_analysis::Settings`], the record set and the report settings — with the
+//! hash that stamps its results. Every refused value names its field, the value and the allowed range, and nothing
 //! runs. Must not know: how a scene is run, tables, figures.
 #![deny(missing_docs)]
 
@@ -19,9 +19,8 @@ pub mod scene;
 pub mod sections;
 pub mod set;
 
-pub use accelerograms::AccelerogramSettings;
 pub use check::Checker;
 pub use error::{ConfigError, FieldError};
 pub use pipeline::{Pipeline, PipelineFile};
-pub use sections::{ReportSettings, SpectraSettings};
+pub use sections::ReportSettings;
 pub use set::SetSettings;

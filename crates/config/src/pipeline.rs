@@ -9,12 +9,13 @@
 use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
+use stickslip_analysis::{Settings, SpectraSettings};
 use stickslip_seismo::emission::ClusterParams;
 use stickslip_seismo::events::EventParams;
 use stickslip_seismo::similarity::SimilarityParams;
 use stickslip_solver::{Scene, TracePlan};
 
-use crate::accelerograms::{AccelerogramSettings, AccelerogramsSection};
+use crate::accelerograms::AccelerogramsSection;
 use crate::check::Checker;
 use crate::error::ConfigError;
 use crate::precision::{PrecisionTarget, TargetSection};
@@ -22,9 +23,7 @@ use crate::scene::{
     BlockSection, BoundarySection, FrictionSection, LoadingPlateSection, MaterialSection, RecordSection,
     RuptureSection, SceneSections, SelfWeightSection, ShearSection, SkipAheadSection, TimeSection,
 };
-use crate::sections::{
-    EventsSection, ReportSection, ReportSettings, SimilaritySection, SpectraSection, SpectraSettings,
-};
+use crate::sections::{EventsSection, ReportSection, ReportSettings, SimilaritySection, SpectraSection};
 use crate::set::{SetSection, SetSettings};
 
 /// The pipeline-file version this build reads.
@@ -240,18 +239,11 @@ pub struct Pipeline {
     pub target: Option<PrecisionTarget>,
     /// The scene.
     pub scene: Scene,
-    /// Event detection.
-    pub events: EventParams,
-    /// Similarity scaling.
-    pub similarity: SimilarityParams,
-    /// Records, if asked (by `[accelerograms]` or `[spectra]`).
-    pub accelerograms: Option<AccelerogramSettings>,
-    /// Spectra of the records, if asked.
-    pub spectra: Option<SpectraSettings>,
+    /// What the analysis of each seed computes: events, similarity, records, spectra, acoustic
+    /// emission.
+    pub analysis: Settings,
     /// A matched set, if asked.
     pub set: Option<SetSettings>,
-    /// How bar breaks group into acoustic-emission events, when the bars crack.
-    pub emission: Option<ClusterParams>,
     /// Report stage.
     pub report: ReportSettings,
     /// Hash of everything that determines a seed's results (see [`PipelineFile::hash`]).
@@ -362,12 +354,8 @@ impl Pipeline {
                 scene.record.trace = trace_plan(&events, scene.shear.duration_s);
                 scene
             },
-            events,
-            similarity,
-            accelerograms,
-            spectra,
+            analysis: Settings { events, similarity, accelerograms, spectra, emission },
             set,
-            emission,
             report,
             hash: file.hash(),
             source: None,
@@ -391,7 +379,8 @@ fn prototype_grid<'a>(
 impl Pipeline {
     /// What a `[set]` is checked against: the spectra's dampings and prototype-scale period grid.
     pub fn set_grid(&self) -> Option<(&[f64], (f64, f64))> {
-        self.spectra.as_ref().map(|sp| prototype_grid(sp, &self.scene, &self.similarity))
+        let a = &self.analysis;
+        a.spectra.as_ref().map(|sp| prototype_grid(sp, &self.scene, &a.similarity))
     }
 }
 

@@ -3,6 +3,7 @@
 //! the report take.
 
 use serde::{Deserialize, Serialize};
+use stickslip_analysis::SpectraSettings;
 use stickslip_seismo::events::EventParams;
 use stickslip_seismo::similarity::{AreaChoice, SimilarityParams};
 use stickslip_seismo::spectra::fourier::Window;
@@ -204,25 +205,6 @@ impl Default for SpectraSection {
             attenuation: false,
         }
     }
-}
-
-/// What the spectra analysis computes (a validated `[spectra]`).
-#[derive(Clone, Debug, PartialEq)]
-pub struct SpectraSettings {
-    /// Damping ratios.
-    pub dampings: Vec<f64>,
-    /// Model-scale periods (s).
-    pub periods: Vec<f64>,
-    /// Reading of the samples.
-    pub reading: Reading,
-    /// Oversampling of the band-limited reading.
-    pub oversampling: usize,
-    /// Window of the Fourier spectrum.
-    pub window: Window,
-    /// RotD50 and RotD100 of nodes with both horizontal components.
-    pub rotd: bool,
-    /// Attenuation table and fit.
-    pub attenuation: bool,
 }
 
 impl SpectraSection {

@@ -14,15 +14,15 @@ use std::sync::mpsc;
 use std::time::Instant;
 
 use rayon::prelude::*;
+use stickslip_analysis::{AnalysisError, PlanCache, SeedAnalysis, analyse};
 use stickslip_config::Pipeline;
 use stickslip_solver::{BATCH, Model, RunOptions, SolverError, run_batched};
 use stickslip_store::io::write_text_atomic;
-use stickslip_store::{Folder, Manifest};
+use stickslip_store::seed::{Stamp, write_failed, write_seed};
+use stickslip_store::{Folder, Manifest, SeedView};
 
 use crate::error::EnsembleError;
 use crate::gather::gather;
-use crate::records::PlanCache;
-use crate::seed::{Analysed, analyse, write_seed};
 use crate::set::{SetOutcome, select_set};
 
 /// How to run an ensemble.
@@ -86,10 +86,21 @@ pub fn prepare_output(out: &Folder, pipeline: &Pipeline, fresh: bool) -> Result<
     Ok(())
 }
 
+/// Why a seed has no results.
+#[derive(Debug, thiserror::Error)]
+enum SeedFailure {
+    /// The run failed (or was cancelled).
+    #[error(transparent)]
+    Run(#[from] SolverError),
+    /// Its run could not be analysed.
+    #[error("analysis: {0}")]
+    Analysis(#[from] AnalysisError),
+}
+
 /// One seed, simulated and analysed.
 struct SeedResult {
     seed: u64,
-    outcome: Result<Analysed, SolverError>,
+    outcome: Result<SeedAnalysis, SeedFailure>,
     wall_time_s: f64,
 }
 
@@ -118,7 +129,9 @@ fn simulate(
         .zip(runs)
         .map(|(&seed, run)| {
             let start = Instant::now();
-            let outcome = run.and_then(|out| analyse(out, model, pipeline, plans).map_err(SolverError::Numerical));
+            let outcome = run
+                .map_err(SeedFailure::from)
+                .and_then(|out| analyse(out, model, &pipeline.analysis, plans).map_err(SeedFailure::from));
             SeedResult { seed, outcome, wall_time_s: share + start.elapsed().as_secs_f64() }
         })
         .collect()
@@ -185,19 +198,24 @@ pub fn run_ensemble(
                 });
             });
         });
+        let stamp = Stamp { pipeline: &pipeline.name, hash: &pipeline.hash };
         for r in rx {
-            if write_error.is_some() || matches!(r.outcome, Err(SolverError::Cancelled)) {
+            if write_error.is_some() || matches!(r.outcome, Err(SeedFailure::Run(SolverError::Cancelled))) {
                 continue;
             }
-            let outcome = r.outcome.map_err(|e| e.to_string());
-            if let Ok(a) = &outcome {
-                integrated_steps += a.run.integrated_steps();
-            }
-            match write_seed(&out, pipeline, model, r.seed, &outcome, r.wall_time_s) {
-                Ok(failure) => {
-                    if let Some(msg) = failure {
-                        failed.push((r.seed, msg));
-                    }
+            let written = match &r.outcome {
+                Ok(a) => {
+                    integrated_steps += a.run.integrated_steps();
+                    let view = SeedView { seed: r.seed, analysis: a, model, settings: &pipeline.analysis };
+                    write_seed(&out, &view, &stamp, r.wall_time_s)
+                }
+                Err(e) => {
+                    failed.push((r.seed, e.to_string()));
+                    write_failed(&out, r.seed, &e.to_string(), &pipeline.hash, r.wall_time_s)
+                }
+            };
+            match written {
+                Ok(()) => {
                     done += 1;
                     ran += 1;
                     on_seed(done, total);
@@ -210,7 +228,7 @@ pub fn run_ensemble(
         }
     });
     if let Some(e) = write_error {
-        return Err(e);
+        return Err(e.into());
     }
     if cancel.load(Ordering::Relaxed) {
         return Err(EnsembleError::Interrupted { done, total, out: options.out.clone() });

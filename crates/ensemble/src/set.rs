@@ -8,15 +8,14 @@ use std::collections::{BTreeMap, HashMap};
 
 use stickslip_config::set::{SetComponent, SetGroup};
 use stickslip_config::{Pipeline, SetSettings};
-use stickslip_seismo::accelerogram::at2_text;
-use stickslip_seismo::accelerogram::sac::{SacMeta, SacUnit, sac_bytes};
+use stickslip_seismo::accelerogram::{At2, RecordFile, RecordFormat, Sac};
 use stickslip_seismo::selection::{Candidate, Selection, select};
 use stickslip_store::Folder;
-use stickslip_store::io::{
-    read_parquet_if_present, scan_glob, write_bytes_atomic, write_parquet_atomic, write_text_atomic,
-};
+use stickslip_store::io::{read_parquet_if_present, scan_glob, write_bytes_atomic, write_parquet_atomic};
 use stickslip_store::schema::{ACCELEROGRAMS, RECORDS, ROTD, SET, SPECTRA};
-use stickslip_store::tables::records::{Accelerograms, Records, SetRow, Spectra, set_frame};
+use stickslip_store::tables::records::{Accelerograms, Records};
+use stickslip_store::tables::set::{SetRow, set_frame};
+use stickslip_store::tables::spectra::Spectra;
 
 use crate::error::EnsembleError;
 
@@ -149,8 +148,8 @@ pub fn select_set(out: &Folder, pipeline: &Pipeline, settings: &SetSettings) -> 
     Ok(SetOutcome { selection, rows, periods, target, spectra, candidates: candidates.len() })
 }
 
-/// Writes the chosen records, scaled, at prototype scale: AT2 and SAC, one file per component
-/// (both of a RotD50 pair).
+/// Writes the chosen records, scaled, at prototype scale: AT2 and SAC (scale factor and usable
+/// band in `USER0`–`USER2`), one file per component (both of a RotD50 pair).
 fn write_set_files(
     out: &Folder,
     pipeline: &Pipeline,
@@ -193,33 +192,29 @@ fn write_set_files(
                     r.scale_factor,
                     settings.target_name
                 );
-                write_text_atomic(&dir.join(format!("{stem}.AT2")), &at2_text(&a, dt, &description))?;
                 let component = name.rsplit('-').next().unwrap_or("").to_uppercase();
-                let meta = SacMeta {
-                    station: format!("N{}", r.node),
-                    component,
-                    network: "SS".into(),
-                    location: "P".into(),
-                    event: r.label.clone(),
-                    begin: acc.time_s[idx[0]],
-                    user: [
-                        Some(r.scale_factor),
-                        Some(r.usable_hz.0),
-                        Some(r.usable_hz.1),
-                        None,
-                        None,
-                        None,
-                        None,
-                        None,
-                        None,
-                        None,
-                    ],
-                    user_labels: ["SCALE".into(), "USABLE".into(), String::new()],
-                    unit: SacUnit::NanometrePerSecond2,
-                    ..SacMeta::default()
+                let numbers: [(&str, &[f64]); 2] =
+                    [("SCALE", &[r.scale_factor]), ("USABLE", &[r.usable_hz.0, r.usable_hz.1])];
+                let record = RecordFile {
+                    description: &description,
+                    accel_m_s2: &a,
+                    dt_s: dt,
+                    begin_s: acc.time_s[idx[0]],
+                    motion: None,
+                    station: &format!("N{}", r.node),
+                    component: &component,
+                    network: "SS",
+                    location: "P",
+                    event: &r.label,
+                    position_m: None,
+                    orientation: None,
+                    magnitude: None,
+                    numbers: &numbers,
                 };
-                let bytes = sac_bytes(&a, dt, &meta).map_err(EnsembleError::Set)?;
-                write_bytes_atomic(&dir.join(format!("{stem}.SAC")), &bytes)?;
+                for format in [&At2 as &dyn RecordFormat, &Sac] {
+                    let bytes = format.encode(&record).map_err(EnsembleError::Set)?;
+                    write_bytes_atomic(&dir.join(format!("{stem}.{}", format.extension())), &bytes)?;
+                }
             }
         }
     }

@@ -6,8 +6,8 @@
 use std::path::Path;
 use std::sync::atomic::AtomicBool;
 
+use stickslip_analysis::events::catalogue;
 use stickslip_config::Pipeline;
-use stickslip_ensemble::seed::catalogue;
 use stickslip_ensemble::{EnsembleOptions, run_ensemble};
 use stickslip_solver::{Model, RunOptions, TracePlan, run_seed};
 use stickslip_support::{read_table, repo_path, scratch_dir};
@@ -96,7 +96,7 @@ fn thinning_the_trace_between_bursts_changes_no_event() {
         scene.record.trace = trace;
         let model = Model::new(scene);
         let out = run_seed(&model, 200, RunOptions::default(), &mut |_| std::ops::ControlFlow::Continue(())).unwrap();
-        let cat = catalogue(&out.recording, &model, &p.events);
+        let cat = catalogue(&out.recording, &model, &p.analysis.events);
         (out.recording.trace.len(), out.shear_steps, cat)
     };
     let (thin_len, steps, thin) = run_with(p.scene.record.trace);

@@ -24,8 +24,8 @@ use std::path::Path;
 use std::time::Instant;
 
 use polars::prelude::DataFrame;
+use stickslip_analysis::events::catalogue;
 use stickslip_config::PipelineFile;
-use stickslip_ensemble::seed::catalogue;
 use stickslip_report::charts::{Line, Panel, Sheet, draw};
 use stickslip_seismo::events::{Catalogue, EventParams};
 use stickslip_solver::scene::{InterfaceQuantity, SettleMethod};

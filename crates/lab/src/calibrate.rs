@@ -4,8 +4,8 @@
 use std::ops::ControlFlow;
 
 use rayon::prelude::*;
+use stickslip_analysis::events::catalogue;
 use stickslip_config::PipelineFile;
-use stickslip_ensemble::seed::catalogue;
 use stickslip_seismo::events::{Catalogue, EventParams};
 use stickslip_solver::{Model, RunOptions, run_seed};
 

@@ -35,11 +35,10 @@ use std::time::Instant;
 
 use polars::prelude::DataFrame;
 use rayon::prelude::*;
+use stickslip_analysis::events::{catalogue, scaled_events};
 use stickslip_config::scene::ControlSection;
 use stickslip_config::{Pipeline, PipelineFile};
-use stickslip_ensemble::seed::{catalogue, scaled_events};
 use stickslip_report::charts::{Line, Panel, Sheet, draw};
-use stickslip_seismo::similarity::{moment_magnitude, riera_magnitude};
 use stickslip_seismo::stats::{bootstrap_ci, ks_two_sample, median};
 use stickslip_solver::{BATCH, Model, RunOptions, run_batched};
 use stickslip_store::frame::Frame;
@@ -180,8 +179,8 @@ pub fn run_cell(file: &PipelineFile, cell: &Cell, duration: Option<f64>) -> Resu
         core_s += wall;
         for out in outs {
             dt_sum += out.dt_s;
-            let cat = catalogue(&out.recording, &model, &pipeline.events);
-            let scaled = scaled_events(&cat, &model, &pipeline);
+            let cat = catalogue(&out.recording, &model, &pipeline.analysis.events);
+            let scaled = scaled_events(&cat, &model, &pipeline.analysis.similarity);
             let trace = &out.recording.trace;
             let mains: Vec<usize> = (0..cat.events.len()).filter(|&i| cat.events[i].kind.is_main()).collect();
             let mean = |f: &dyn Fn(usize) -> Option<f64>| {
@@ -200,8 +199,8 @@ pub fn run_cell(file: &PipelineFile, cell: &Cell, duration: Option<f64>) -> Resu
                 mean(&|i| Some(burst(i).stress_drop_pa / 1e3)),
                 mean(&|i| Some(burst(i).duration_s() * 1e3)),
                 mean(&|i| cat.events[i].recurrence_s.map(|r| r * 1e3)),
-                mean(&|i| Some(riera_magnitude(scaled[i].1.m0_paper_dyne_cm, false))),
-                mean(&|i| Some(moment_magnitude(scaled[i].1.m0_consistent_dyne_cm))),
+                mean(&|i| Some(scaled[i].magnitudes.riera_paper_interplate)),
+                mean(&|i| Some(scaled[i].magnitudes.mw_consistent)),
                 mains.iter().map(|&i| swing(i)).fold(f64::NAN, f64::max),
                 mean(&|i| burst(i).peak_acceleration.first().copied()),
                 if all.is_empty() { f64::NAN } else { all.iter().sum::<f64>() / all.len() as f64 },

@@ -14,8 +14,8 @@ use std::ops::ControlFlow;
 use std::time::Instant;
 
 use polars::prelude::DataFrame;
+use stickslip_analysis::events::catalogue;
 use stickslip_config::PipelineFile;
-use stickslip_ensemble::seed::catalogue;
 use stickslip_seismo::events::{Catalogue, EventParams};
 use stickslip_solver::recording::Skip;
 use stickslip_solver::{Model, Perturbation, RunOptions, RunOutput, run_seed};

@@ -151,9 +151,9 @@ pub(crate) fn page(d: &ReportInput, figures: &[Figure], skipped: &[(String, Stri
             "similarity",
             format!(
                 "L_p = {} m (λ = {}), u̇_p = {:e} m/s",
-                p.similarity.prototype_length_m,
-                p.similarity.prototype_length_m / e[0],
-                p.similarity.prototype_rate_m_s
+                p.analysis.similarity.prototype_length_m,
+                p.analysis.similarity.prototype_length_m / e[0],
+                p.analysis.similarity.prototype_rate_m_s
             ),
         ),
     ];

@@ -90,6 +90,38 @@ pub fn moment_magnitude(m0_dyne_cm: f64) -> f64 {
     2.0 / 3.0 * m0_dyne_cm.log10() - 10.7
 }
 
+/// The magnitudes of one scaled event, each from one of its two moments.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Magnitudes {
+    /// Riera's magnitude of the paper's moment, interplate (X = 0).
+    pub riera_paper_interplate: f64,
+    /// Riera's magnitude of the paper's moment, intraplate (X = 1).
+    pub riera_paper_intraplate: f64,
+    /// Riera's magnitude of the consistent moment, interplate.
+    pub riera_consistent_interplate: f64,
+    /// Riera's magnitude of the consistent moment, intraplate.
+    pub riera_consistent_intraplate: f64,
+    /// Moment magnitude of the paper's moment.
+    pub mw_paper: f64,
+    /// Moment magnitude of the consistent moment.
+    pub mw_consistent: f64,
+}
+
+impl Scaled {
+    /// The event's magnitudes by both conventions.
+    pub fn magnitudes(&self) -> Magnitudes {
+        let (paper, consistent) = (self.m0_paper_dyne_cm, self.m0_consistent_dyne_cm);
+        Magnitudes {
+            riera_paper_interplate: riera_magnitude(paper, false),
+            riera_paper_intraplate: riera_magnitude(paper, true),
+            riera_consistent_interplate: riera_magnitude(consistent, false),
+            riera_consistent_intraplate: riera_magnitude(consistent, true),
+            mw_paper: moment_magnitude(paper),
+            mw_consistent: moment_magnitude(consistent),
+        }
+    }
+}
+
 /// Scales one model event with the prototype of `p`.
 pub fn scale(e: &ModelEvent, p: &SimilarityParams) -> Scaled {
     let lambda = p.prototype_length_m / e.model_length_m;

@@ -29,6 +29,14 @@ pub enum StoreError {
         /// What is wrong.
         what: String,
     },
+    /// A table holds a value this stickslip does not write (a kind or label it cannot read back).
+    #[error("table {table}: {what}")]
+    Unreadable {
+        /// Which table.
+        table: String,
+        /// What is wrong.
+        what: String,
+    },
     /// A folder that is not an output folder.
     #[error("{}: {what}", path.display())]
     NotAnOutput {

@@ -102,6 +102,11 @@ impl<'a> Columns<'a> {
         Columns { df, table }
     }
 
+    /// The table's name.
+    pub fn table(&self) -> &'a str {
+        self.table
+    }
+
     /// Rows.
     pub fn height(&self) -> usize {
         self.df.height()

@@ -204,7 +204,7 @@ fn accuracy(
     }
     let out = bench_out(&pipeline, out);
     let plan = AccuracyPlan { fractions, refinements, duration_s, seed: pipeline.seeds[0] };
-    let rows = run_accuracy(&pipeline.file, &pipeline.events, &plan, &mut |m| eprintln!("{m}"))?;
+    let rows = run_accuracy(&pipeline.file, &pipeline.analysis.events, &plan, &mut |m| eprintln!("{m}"))?;
     let table = out.join("accuracy.parquet");
     write_parquet_atomic(&mut accuracy_frame(&rows)?, &table)?;
     let figure = out.join("accuracy.png");
@@ -261,7 +261,8 @@ fn skip(path: &Path, seeds: Option<&str>, jumps: usize, window_s: f64, out: Opti
     };
     let out = bench_out(&pipeline, out);
     let bench = SkipBench { jumps_per_seed: jumps, window_s };
-    let (runs, checks) = compare_skip(&pipeline.file, &pipeline.events, &seeds, bench, &mut |m| eprintln!("{m}"))?;
+    let (runs, checks) =
+        compare_skip(&pipeline.file, &pipeline.analysis.events, &seeds, bench, &mut |m| eprintln!("{m}"))?;
     let runs_path = out.join("skip_runs.parquet");
     write_parquet_atomic(&mut runs_frame(&runs)?, &runs_path)?;
     let jumps_path = out.join("skip_jumps.parquet");

@@ -3,8 +3,8 @@
 use std::path::PathBuf;
 
 use anyhow::Result;
+use stickslip_analysis::settings::RecordSpan;
 use stickslip_config::Pipeline;
-use stickslip_config::accelerograms::RecordSpan;
 use stickslip_config::check::Named;
 use stickslip_solver::Model;
 use stickslip_solver::inspect::inspect;
@@ -221,12 +221,12 @@ pub fn run(a: Args) -> Result<()> {
     if groups.len() > 12 {
         println!("  … and {} more control nodes", groups.len() - 12);
     }
-    let ev = &pipeline.events;
+    let ev = &pipeline.analysis.events;
     println!(
         "  events: smoothing {} s, slip rate on {} / off {} m/s for {} s, merge gap {} s, min drop {} Pa, main shocks ≥ {} of the largest",
         ev.smoothing_s, ev.v_on_m_s, ev.v_off_m_s, ev.quiet_s, ev.merge_gap_s, ev.min_drop_pa, ev.main_fraction
     );
-    let si = &pipeline.similarity;
+    let si = &pipeline.analysis.similarity;
     println!(
         "  similarity: L_p = {} m (λ = {}), u̇_p = {:e} m/s, model area: {:?}",
         si.prototype_length_m,
@@ -235,7 +235,7 @@ pub fn run(a: Args) -> Result<()> {
         si.area
     );
     let lambda = si.prototype_length_m / e[0];
-    match &pipeline.accelerograms {
+    match &pipeline.analysis.accelerograms {
         Some(a) => {
             let nodes = if a.nodes.is_empty() {
                 "every control node recording acceleration".to_string()
@@ -266,7 +266,7 @@ pub fn run(a: Args) -> Result<()> {
         }
         None => println!("  records: off (no [accelerograms] or [spectra] section)"),
     }
-    match &pipeline.spectra {
+    match &pipeline.analysis.spectra {
         Some(s) => println!(
             "  spectra: {} periods {:.3e} … {:.3e} s, dampings {:?}, reading {:?}, window {:?}{}{}",
             s.periods.len(),

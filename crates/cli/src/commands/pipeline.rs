@@ -112,7 +112,7 @@ pub fn finish(pipeline: &Pipeline, out: &Path) -> Result<()> {
 /// Why a finished ensemble has no event, from what its seeds recorded, and what to try.
 fn no_events(pipeline: &Pipeline, folder: &Folder) -> String {
     use stickslip_solver::Channel;
-    let ev = &pipeline.events;
+    let ev = &pipeline.analysis.events;
     let sh = &pipeline.scene.shear;
     let series = stickslip_store::io::scan_glob(&folder.part_glob(&stickslip_store::schema::SERIES)).ok().flatten();
     let largest = |c: Channel| -> Option<f64> {

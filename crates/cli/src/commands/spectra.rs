@@ -10,7 +10,7 @@ use stickslip_seismo::spectra::intensity::Baseline;
 use stickslip_seismo::spectra::response::{Reading, log_periods};
 use stickslip_store::describe::{View, describe};
 use stickslip_store::io::write_parquet_atomic;
-use stickslip_store::tables::records::record_frames;
+use stickslip_store::tables::spectra::record_frames;
 
 /// Units of a CSV accelerogram.
 #[derive(clap::ValueEnum, Clone, Copy, Debug)]

@@ -73,7 +73,7 @@ impl NodeChannel {
 pub(super) fn accelerogram_nodes(d: &ReportInput) -> (Vec<NodeChannel>, usize) {
     let control = &d.pipeline.scene.record.control;
     let wanted = |c: &&ControlChannel| {
-        d.pipeline.accelerograms.as_ref().map_or(c.quantity == Kinematic::Acceleration, |a| a.wants(c))
+        d.pipeline.analysis.accelerograms.as_ref().map_or(c.quantity == Kinematic::Acceleration, |a| a.wants(c))
     };
     let mut nodes: Vec<_> = control.iter().filter(wanted).map(|c| c.node).collect();
     nodes.sort();

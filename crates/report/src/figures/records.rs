@@ -189,7 +189,7 @@ pub(super) fn event_records(d: &ReportInput, path: &Path) -> Result<Outcome, Rep
             ..Panel::default()
         })
         .collect();
-    let post_s = d.pipeline.accelerograms.as_ref().map_or(f64::INFINITY, |a| a.post_event_s);
+    let post_s = d.pipeline.analysis.accelerograms.as_ref().map_or(f64::INFINITY, |a| a.post_event_s);
     let mut bands = Vec::new();
     for (k, &i) in rows.iter().enumerate() {
         let (record, label) = (&rec.record[i], &rec.label[i]);
@@ -225,7 +225,7 @@ pub(super) fn event_records(d: &ReportInput, path: &Path) -> Result<Outcome, Rep
     if panels[0].lines.is_empty() {
         return Ok(Outcome::Skipped(format!("no samples of the records of seed {seed}")));
     }
-    let pre_ms = d.pipeline.accelerograms.as_ref().map(|a| a.pre_event_s * 1e3);
+    let pre_ms = d.pipeline.analysis.accelerograms.as_ref().map(|a| a.pre_event_s * 1e3);
     let sheet = accelerogram_sheet(
         format!("Main-shock records of node {} ({cname}), seed {seed}, model scale", node.ldem),
         "time from the start of the main shock (ms)",

@@ -9,7 +9,8 @@ use plotters::style::{BLACK, RGBColor};
 use stickslip_solver::scene::Component;
 use stickslip_store::io::scan_glob;
 use stickslip_store::schema::{FOURIER, ROTD, SET, SPECTRA};
-use stickslip_store::tables::records::{SetTable, Spectra, read_fourier};
+use stickslip_store::tables::set::SetTable;
+use stickslip_store::tables::spectra::{Spectra, read_fourier};
 
 use super::Outcome;
 use super::common::{NodeChannel, accelerogram_nodes, drawn, nodes_short, nodes_text, seeds_text};

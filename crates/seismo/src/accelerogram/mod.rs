@@ -1,30 +1,23 @@
-//! Accelerograms: standard processing ([`processing`]), SAC binary files ([`sac`]), and the text
-//! files handled here: PEER `.AT2` (write and read, both PEER headers) and CSV (read).
+//! Accelerograms: standard processing ([`processing`]) and the file formats of a record.
 //!
-//! AT2 layout written here (the one structural-analysis tools read):
-//! ```text
-//! PEER NGA STRONG MOTION DATABASE RECORD
-//! <description: pipeline, seed, node, component, scale, units>
-//! ACCELERATION TIME SERIES IN UNITS OF G
-//! NPTS=  29803, DT= 1.0738000E-05 SEC
-//!   1.2345678E-03 -2.3456789E-04 …            (5 values per line, E15.7, in g)
-//! ```
-//! The reader accepts line 4 in every form PEER has used:
-//! - NGA-West2: `NPTS=  4096, DT=   .0100 SEC` (keys, `=`, commas, a unit word);
-//! - variants without the comma or unit, in either key order: `NPTS= 4096 DT= .01`;
-//! - the older PEER form, numbers first and names after: `4096    0.0100    NPTS, DT`
-//!   (e.g. the Kobe NIS090 record distributed with pystrata), or the two numbers alone.
-//!
-//! Values may use Fortran `D` exponents. A last line padded with zeros beyond `NPTS` (seen in
-//! some old files) is accepted and the padding dropped; fewer values than `NPTS`, or non-zero
-//! values beyond it, are refused. Values are converted from g to m/s² with g = 9.80665 m/s².
+//! Every format a record can be written in is one file here implementing [`RecordFormat`] and
+//! listed in [`FORMATS`]: PEER `.AT2` ([`at2`]), SAC binary ([`sac`]) and CSV ([`csv`]); a
+//! pipeline names them in `accelerograms.formats` by [`RecordFormat::name`]. The Parquet form of
+//! a record is the output folder's `accelerograms` table. [`read_accelerogram`] reads the three
+//! back (AT2 and SAC by extension or content, anything else as CSV).
 
+pub mod at2;
+pub mod csv;
 pub mod processing;
 pub mod sac;
 
 use std::path::Path;
 
 use crate::error::SeismoError;
+
+pub use at2::{At2, at2_text, parse_at2, parse_npts_dt};
+pub use csv::{Csv, parse_csv};
+pub use sac::Sac;
 
 pub use crate::spectra::intensity::G;
 
@@ -61,253 +54,104 @@ impl AccelUnit {
     }
 }
 
-/// `v` as Fortran E15.7: ` -1.2345678E-03`.
-fn e15_7(v: f64) -> String {
-    if v == 0.0 || !v.is_finite() {
-        return format!("{:>15}", if v.is_finite() { "0.0000000E+00".to_string() } else { format!("{v}") });
-    }
-    let s = format!("{v:.7E}");
-    // `{:.7E}` always prints one `E` followed by an integer exponent.
-    let (mantissa, exp) = s.split_once('E').unwrap_or((&s, "0"));
-    let exp: i32 = exp.parse().unwrap_or(0);
-    let sign = if exp < 0 { '-' } else { '+' };
-    format!("{:>15}", format!("{mantissa}E{sign}{:02}", exp.abs()))
+/// A record as every file format takes it: one component at one scale, SI units.
+#[derive(Clone, Copy, Debug)]
+pub struct RecordFile<'a> {
+    /// One line saying what the record is (pipeline, seed, node, component, scale, band).
+    pub description: &'a str,
+    /// Acceleration (m/s²).
+    pub accel_m_s2: &'a [f64],
+    /// Sampling interval (s).
+    pub dt_s: f64,
+    /// Time of the first sample on the run's clock (s).
+    pub begin_s: f64,
+    /// Velocity (m/s) and displacement (m) of the processed record, when known.
+    pub motion: Option<(&'a [f64], &'a [f64])>,
+    /// Station name, e.g. the node (`N36`).
+    pub station: &'a str,
+    /// Component name (`X`, `Y`, `Z`).
+    pub component: &'a str,
+    /// Network code.
+    pub network: &'a str,
+    /// Location code (`M`: model scale, `P`: prototype scale).
+    pub location: &'a str,
+    /// Event name (`S2`, `E17`, `run`).
+    pub event: &'a str,
+    /// Station position (m, the scale's coordinates), when it is a point of the scene.
+    pub position_m: Option<[f64; 3]>,
+    /// Orientation of the component, when it is an axis of the scene.
+    pub orientation: Option<Orientation>,
+    /// Moment magnitude of the event, when known.
+    pub magnitude: Option<f64>,
+    /// Further numbers in labelled groups (e.g. `("USABLE", [low, high])` in Hz), in order.
+    pub numbers: &'a [(&'a str, &'a [f64])],
 }
 
-/// The text of an AT2 file for `accel` (m/s²) sampled every `dt` seconds.
-pub fn at2_text(accel: &[f64], dt: f64, description: &str) -> String {
-    let mut out = String::with_capacity(accel.len() * 16 + 256);
-    out.push_str("PEER NGA STRONG MOTION DATABASE RECORD\n");
-    out.push_str(description.lines().next().unwrap_or(""));
-    out.push('\n');
-    out.push_str("ACCELERATION TIME SERIES IN UNITS OF G\n");
-    out.push_str(&format!("NPTS= {:>7}, DT= {} SEC\n", accel.len(), e15_7(dt).trim()));
-    for chunk in accel.chunks(5) {
-        for v in chunk {
-            out.push_str(&e15_7(v / G));
-        }
-        out.push('\n');
-    }
-    out
+/// Orientation of a component.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Orientation {
+    /// Incidence from vertical (deg): 0 up, 90 horizontal.
+    pub incidence_deg: f64,
+    /// Azimuth (deg clockwise from north, y being north and x east).
+    pub azimuth_deg: f64,
 }
 
-fn parse_number(s: &str) -> Option<f64> {
-    s.trim().trim_end_matches(',').replace(['D', 'd'], "E").parse().ok()
-}
-
-/// `NPTS` and `DT` from line 4 of an AT2 file, in any of the forms the module doc lists.
-pub fn parse_npts_dt(line: &str) -> Option<(f64, f64)> {
-    let upper = line.to_ascii_uppercase();
-    let tokens: Vec<&str> = upper
-        .split(|c: char| c.is_whitespace() || c == ',' || c == '=' || c == ':')
-        .filter(|t| !t.is_empty())
-        .collect();
-    let number = |t: &str| parse_number(t.strip_suffix("SEC").unwrap_or(t));
-    let (mut npts, mut dt) = (None, None);
-    for w in tokens.windows(2) {
-        match w[0] {
-            "NPTS" => npts = npts.or(number(w[1])),
-            "DT" => dt = dt.or(number(w[1])),
-            _ => {}
+impl Orientation {
+    /// The orientation of axis `x`, `y` or `z` of the scene (x east, y north, z up).
+    pub fn of_axis(axis: &str) -> Option<Orientation> {
+        match axis {
+            "x" => Some(Orientation { incidence_deg: 90.0, azimuth_deg: 90.0 }),
+            "y" => Some(Orientation { incidence_deg: 90.0, azimuth_deg: 0.0 }),
+            "z" => Some(Orientation { incidence_deg: 0.0, azimuth_deg: 0.0 }),
+            _ => None,
         }
-    }
-    match (npts, dt) {
-        (Some(n), Some(d)) => Some((n, d)),
-        (None, None) => {
-            // Numbers first (old PEER form) or numbers alone.
-            let mut nums = tokens.iter().filter_map(|t| number(t));
-            Some((nums.next()?, nums.next()?))
-        }
-        _ => None,
     }
 }
 
-/// Parses the text of an AT2 file; `path` only names it in errors.
-pub fn parse_at2(text: &str, path: &Path) -> Result<Accelerogram, SeismoError> {
-    let corrupt = |what: String| SeismoError::Format { path: path.to_path_buf(), what };
-    let lines: Vec<&str> = text.lines().collect();
-    if lines.len() < 4 {
-        return Err(corrupt("an AT2 file has 4 header lines".into()));
-    }
-    let units = lines[2].to_ascii_uppercase();
-    if !units.contains("UNITS OF G") {
-        return Err(corrupt(format!("line 3 should say the units are g, found {:?}", lines[2])));
-    }
-    let Some((npts, dt)) = parse_npts_dt(lines[3]) else {
-        return Err(corrupt(format!("line 4 should give NPTS and DT, found {:?}", lines[3])));
-    };
-    if !(npts >= 0.0 && npts.fract() == 0.0 && npts <= 1e9) {
-        return Err(corrupt(format!("NPTS = {npts} must be a whole number of samples")));
-    }
-    if !(dt > 0.0 && dt.is_finite()) {
-        return Err(corrupt(format!("DT = {dt} must be positive")));
-    }
-    let npts = npts as usize;
-    let mut accel = Vec::with_capacity(npts);
-    for (k, line) in lines[4..].iter().enumerate() {
-        for token in line.split_whitespace() {
-            let v = parse_number(token).ok_or_else(|| corrupt(format!("line {}: {token:?} is not a number", k + 5)))?;
-            if accel.len() >= npts && v != 0.0 {
-                return Err(corrupt(format!("NPTS = {npts} but non-zero values follow the last one (line {})", k + 5)));
-            }
-            accel.push(v * G);
-        }
-    }
-    if accel.len() < npts {
-        return Err(corrupt(format!("NPTS = {npts} but {} values follow", accel.len())));
-    }
-    accel.truncate(npts);
-    Ok(Accelerogram { dt, accel, description: lines[1].trim().to_string() })
+/// A file format of records: a new format is a file implementing this and its entry in
+/// [`FORMATS`].
+pub trait RecordFormat: std::fmt::Debug + Sync {
+    /// Name in pipeline files (`accelerograms.formats`).
+    fn name(&self) -> &'static str;
+    /// File extension.
+    fn extension(&self) -> &'static str;
+    /// The bytes of the file holding `record`.
+    fn encode(&self, record: &RecordFile<'_>) -> Result<Vec<u8>, SeismoError>;
 }
 
-/// Parses CSV text with a time column (s) and an acceleration column in `unit`; a header line
-/// is skipped if it does not parse as numbers. The time step must be uniform (within 1e-6).
-pub fn parse_csv(text: &str, unit: AccelUnit, path: &Path) -> Result<Accelerogram, SeismoError> {
-    let corrupt = |what: String| SeismoError::Format { path: path.to_path_buf(), what };
-    let mut t = Vec::new();
-    let mut a = Vec::new();
-    for (k, line) in text.lines().enumerate() {
-        let line = line.trim();
-        if line.is_empty() || line.starts_with('#') {
-            continue;
-        }
-        let fields: Vec<&str> = line.split([',', ';', '\t']).map(str::trim).collect();
-        if fields.len() < 2 {
-            return Err(corrupt(format!("line {}: expected time and acceleration columns", k + 1)));
-        }
-        match (parse_number(fields[0]), parse_number(fields[1])) {
-            (Some(ti), Some(ai)) => {
-                t.push(ti);
-                a.push(ai * unit.to_si());
-            }
-            _ if t.is_empty() => continue, // header
-            _ => return Err(corrupt(format!("line {}: {line:?} is not two numbers", k + 1))),
-        }
+impl PartialEq for dyn RecordFormat {
+    fn eq(&self, other: &Self) -> bool {
+        self.name() == other.name()
     }
-    if t.len() < 2 {
-        return Err(corrupt("a record needs at least two samples".into()));
-    }
-    let dt = (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64;
-    for w in t.windows(2) {
-        if ((w[1] - w[0]) - dt).abs() > 1e-6 * dt.abs().max(1e-300) {
-            return Err(corrupt(format!("time step not uniform: {} s between {} and {}", w[1] - w[0], w[0], w[1])));
-        }
-    }
-    if !(dt > 0.0) {
-        return Err(corrupt("time must increase".into()));
-    }
-    Ok(Accelerogram { dt, accel: a, description: path.display().to_string() })
 }
 
-/// Reads an accelerogram file: `.AT2` by extension (or content), otherwise CSV in `csv_unit`.
+/// Every record format, in the order the documentation lists them.
+pub const FORMATS: &[&dyn RecordFormat] = &[&At2, &Sac, &Csv];
+
+/// The format named `name` (as in [`RecordFormat::name`]).
+pub fn format_named(name: &str) -> Option<&'static dyn RecordFormat> {
+    FORMATS.iter().copied().find(|f| f.name() == name)
+}
+
+/// Reads an accelerogram file: SAC by its `.SAC` extension, `.AT2` by extension or content,
+/// otherwise CSV in `csv_unit` (comma, semicolon, tab or whitespace separated).
 pub fn read_accelerogram(path: &Path, csv_unit: AccelUnit) -> Result<Accelerogram, SeismoError> {
-    let text = std::fs::read_to_string(path).map_err(|source| SeismoError::Io { path: path.to_path_buf(), source })?;
+    let bytes = std::fs::read(path).map_err(|source| SeismoError::Io { path: path.to_path_buf(), source })?;
+    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("sac")) {
+        let trace = sac::parse_sac(&bytes, path)?;
+        let m = &trace.meta;
+        let description = [&m.network, &m.station, &m.location, &m.component, &m.event]
+            .iter()
+            .filter(|s| !s.is_empty())
+            .map(|s| s.as_str())
+            .collect::<Vec<_>>()
+            .join(" ");
+        return Ok(Accelerogram { dt: trace.dt, accel: trace.accel_si()?, description });
+    }
+    let text = String::from_utf8(bytes).map_err(|_| SeismoError::Format {
+        path: path.to_path_buf(),
+        what: "not text: AT2 and CSV records are text (a SAC file needs the .SAC extension)".into(),
+    })?;
     let is_at2 = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("at2")) || text.starts_with("PEER");
     if is_at2 { parse_at2(&text, path) } else { parse_csv(&text, csv_unit, path) }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn at2_round_trip_within_printed_precision() {
-        let dt = 1.0738e-5;
-        let accel: Vec<f64> =
-            (0..1234).map(|i| 37.0 * ((i as f64) * 0.37).sin() * (-(i as f64) / 800.0).exp()).collect();
-        let text = at2_text(&accel, dt, "test record, model scale, m/s² written as g");
-        let lines: Vec<&str> = text.lines().collect();
-        assert_eq!(lines[3], "NPTS=    1234, DT= 1.0738000E-05 SEC");
-        assert_eq!(lines[4].len(), 75, "5 values of 15 characters");
-        let back = parse_at2(&text, Path::new("x.AT2")).unwrap();
-        assert_eq!(back.accel.len(), accel.len());
-        assert!((back.dt - dt).abs() < 1e-12);
-        for (a, b) in accel.iter().zip(&back.accel) {
-            // E15.7 keeps 8 significant digits.
-            assert!((a - b).abs() <= 5e-8 * a.abs() + 1e-300, "{a} vs {b}");
-        }
-    }
-
-    /// A record of `npts` values `k·1e-3 g` under the given line 4.
-    fn at2_with_line4(line4: &str, npts: usize) -> String {
-        let mut s =
-            format!("PEER NGA STRONG MOTION DATABASE RECORD\nx\nACCELERATION TIME HISTORY IN UNITS OF G\n{line4}\n");
-        for chunk in (0..npts).collect::<Vec<_>>().chunks(5) {
-            for k in chunk {
-                s.push_str(&format!("{:>15.6E}", *k as f64 * 1e-3));
-            }
-            s.push('\n');
-        }
-        s
-    }
-
-    #[test]
-    fn every_peer_form_of_line_4_is_read() {
-        let forms = [
-            ("4096    0.0100    NPTS, DT", 4096, 0.01), // old PEER (Kobe NIS090, pystrata)
-            ("NPTS=  4096, DT=   .0100 SEC", 4096, 0.01), // NGA-West2
-            ("NPTS= 4096 DT= .01", 4096, 0.01),
-            ("NPTS=4096,DT=.0050SEC", 4096, 0.005),
-            ("DT= .0200 SEC, NPTS= 1000", 1000, 0.02),
-            ("  1000   .0050", 1000, 0.005),
-            ("npts= 12, dt= 1.0D-02 sec", 12, 0.01),
-        ];
-        for (line4, npts, dt) in forms {
-            let r =
-                parse_at2(&at2_with_line4(line4, npts), Path::new("f.at2")).unwrap_or_else(|e| panic!("{line4}: {e}"));
-            assert_eq!(r.accel.len(), npts, "{line4}");
-            assert!((r.dt - dt).abs() < 1e-15, "{line4}: dt {}", r.dt);
-            assert!((r.accel[7] - 7e-3 * G).abs() < 1e-12, "{line4}");
-        }
-        for bad in ["NPTS= 4096, DT= SEC", "4096 NPTS", "NPTS= 40.5, DT= .01", "NPTS= 10, DT= -0.01"] {
-            let e = parse_at2(&at2_with_line4(bad, 10), Path::new("bad.at2")).unwrap_err().to_string();
-            assert!(
-                e.contains("bad.at2") && (e.contains("line 4") || e.contains("NPTS") || e.contains("DT")),
-                "{bad}: {e}"
-            );
-        }
-    }
-
-    #[test]
-    fn first_lines_of_kobe_nis090_as_distributed_with_pystrata() {
-        // The first 4 + 2 lines of pystrata's tests/data/NIS090.AT2, NPTS cut to the 10 values shown.
-        let text = "PEER NGA STRONG MOTION DATABASE RECORD\n\
-                    KOBE 01/16/95 2046, NISHI-AKASHI, 090 (CUE)\n\
-                    ACCELERATION TIME HISTORY IN UNITS OF G\n\
-                    10    0.0100    NPTS, DT\n   \
-                    0.233833E-06   0.299033E-06   0.515835E-06   0.667785E-06   0.490847E-06\n  \
-                    -0.377832E-06  -0.127271E-05  -0.110085E-05  -0.163851E-05  -0.447914E-05\n";
-        let r = parse_at2(text, Path::new("NIS090.AT2")).unwrap();
-        assert_eq!(r.accel.len(), 10);
-        assert_eq!(r.dt, 0.01);
-        assert!((r.accel[9] + 0.447914e-5 * G).abs() < 1e-15);
-        assert_eq!(r.description, "KOBE 01/16/95 2046, NISHI-AKASHI, 090 (CUE)");
-    }
-
-    #[test]
-    fn zero_padding_past_npts_is_dropped_other_surplus_refused() {
-        let text =
-            "PEER\nx\nACCELERATION TIME SERIES IN UNITS OF G\nNPTS= 3, DT= 0.01 SEC\n0.1D+00 -0.2D+00 0.5E-1 0.0 0.0\n";
-        let r = parse_at2(text, Path::new("o.at2")).unwrap();
-        assert_eq!(r.accel.len(), 3);
-        assert!((r.accel[1] + 0.2 * G).abs() < 1e-12);
-        let text = text.replace("0.0 0.0", "0.0 0.1");
-        let e = parse_at2(&text, Path::new("o.at2")).unwrap_err().to_string();
-        assert!(e.contains("non-zero values follow"), "{e}");
-        let short = parse_at2(
-            "PEER\nx\nACCELERATION TIME SERIES IN UNITS OF G\nNPTS= 4, DT= 0.01 SEC\n1 2 3\n",
-            Path::new("s"),
-        );
-        assert!(short.unwrap_err().to_string().contains("NPTS = 4 but 3 values"));
-    }
-
-    #[test]
-    fn csv_with_header_and_units() {
-        let csv = "time_s,acc_gal\n0.0,1.0\n0.02,-2.0\n0.04,3.5\n";
-        let r = parse_csv(csv, AccelUnit::CentimetrePerSecond2, Path::new("r.csv")).unwrap();
-        assert_eq!(r.accel, vec![0.01, -0.02, 0.035]);
-        assert!((r.dt - 0.02).abs() < 1e-15);
-        let bad = parse_csv("0,1\n0.01,2\n0.03,3\n", AccelUnit::G, Path::new("b.csv")).unwrap_err().to_string();
-        assert!(bad.contains("not uniform"), "{bad}");
-    }
 }

@@ -421,6 +421,62 @@ pub fn sac_bytes(accel: &[f64], dt: f64, meta: &SacMeta) -> Result<Vec<u8>, Seis
     Ok(out)
 }
 
+/// The SAC format: acceleration in nm/s² (`IDEP = IACC`), the record's names in `KSTNM`,
+/// `KCMPNM`, `KNETWK`, `KHOLE`, `KEVNM`; its position in `STLA`/`STLO`/`STEL` (plain coordinates
+/// of the scene in metres, not degrees); the component's orientation in `CMPINC`/`CMPAZ`; the
+/// magnitude in `MAG`; the labelled number groups in `USER0`… in order, each group's label in
+/// the next of `KUSER0`–`KUSER2`.
+#[derive(Clone, Copy, Debug)]
+pub struct Sac;
+
+impl super::RecordFormat for Sac {
+    fn name(&self) -> &'static str {
+        "sac"
+    }
+
+    fn extension(&self) -> &'static str {
+        "SAC"
+    }
+
+    fn encode(&self, r: &super::RecordFile<'_>) -> Result<Vec<u8>, SeismoError> {
+        let mut user = [None; 10];
+        let mut user_labels: [String; 3] = Default::default();
+        if r.numbers.len() > user_labels.len() {
+            return Err(SeismoError::parameter("numbers", r.numbers.len(), "at most 3 labelled groups (KUSER0–2)"));
+        }
+        let mut k = 0;
+        for (g, (label, values)) in r.numbers.iter().enumerate() {
+            user_labels[g] = label.to_string();
+            for &v in values.iter() {
+                let slot = user
+                    .get_mut(k)
+                    .ok_or_else(|| SeismoError::parameter("numbers", k + 1, "at most 10 numbers in all (USER0–9)"))?;
+                *slot = Some(v);
+                k += 1;
+            }
+        }
+        let meta = SacMeta {
+            station: r.station.to_string(),
+            component: r.component.to_string(),
+            network: r.network.to_string(),
+            location: r.location.to_string(),
+            event: r.event.to_string(),
+            begin: r.begin_s,
+            station_lat: r.position_m.map(|p| p[0]),
+            station_lon: r.position_m.map(|p| p[1]),
+            station_elevation: r.position_m.map(|p| p[2]),
+            component_incidence: r.orientation.map(|o| o.incidence_deg),
+            component_azimuth: r.orientation.map(|o| o.azimuth_deg),
+            magnitude: r.magnitude,
+            user,
+            user_labels,
+            unit: SacUnit::NanometrePerSecond2,
+            ..SacMeta::default()
+        };
+        sac_bytes(r.accel_m_s2, r.dt_s, &meta)
+    }
+}
+
 /// Writes a SAC file (see [`sac_bytes`]).
 pub fn write_sac(path: &Path, accel: &[f64], dt: f64, meta: &SacMeta) -> Result<(), SeismoError> {
     let bytes = sac_bytes(accel, dt, meta)?;

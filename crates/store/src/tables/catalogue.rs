@@ -8,9 +8,152 @@ use stickslip_seismo::catalogue::magnitude_frequency::GutenbergRichterFit;
 use stickslip_seismo::catalogue::recurrence::{BptFit, ExponentialFit, RecurrenceStatistics, WeibullFit};
 use stickslip_seismo::catalogue::scaling::ScalingFit;
 
+use crate::col;
 use crate::error::StoreError;
 use crate::frame::{Frame, read_back};
-use crate::schema::{AFTERSHOCKS_TABLE, B_VALUES, MAGNITUDE_FREQUENCY, OMORI, RECURRENCE_STATS, SCALING, col};
+use crate::spec::{Scope, TableSpec};
+
+/// Magnitude–frequency distributions (magnitudes in bins of 0.1; moment and stress drop in
+/// logarithmic bins), per seed and pooled (`seed` null), with the Gutenberg–Richter fit's
+/// expected cumulative count above its Mc.
+pub const MAGNITUDE_FREQUENCY: TableSpec = TableSpec {
+    name: "magnitude_frequency",
+    scope: Scope::AcrossSeeds,
+    key: &[col::SEED, col::QUANTITY, col::BIN_CENTRE],
+    columns: &[
+        col::SEED,
+        col::QUANTITY,
+        col::BIN_LOW,
+        col::BIN_CENTRE,
+        col::BIN_HIGH,
+        col::INCREMENTAL,
+        col::CUMULATIVE,
+        col::FIT_CUMULATIVE,
+    ],
+    variable: None,
+};
+
+/// Gutenberg–Richter fits: completeness magnitude (maximum curvature + 0.2, goodness of fit 90%)
+/// and b-value (Aki–Utsu, Shi–Bolt σ), or the reason none could be made.
+pub const B_VALUES: TableSpec = TableSpec {
+    name: "b_values",
+    scope: Scope::AcrossSeeds,
+    key: &[col::SEED, col::QUANTITY],
+    columns: &[
+        col::SEED,
+        col::QUANTITY,
+        col::EVENTS,
+        col::MC_MAXC,
+        col::MC_GOF,
+        col::GOF_PERCENT,
+        col::MC,
+        col::EVENTS_ABOVE_MC,
+        col::B,
+        col::B_SIGMA,
+        col::B_BINNED,
+        col::A_VALUE,
+        col::REASON,
+    ],
+    variable: None,
+};
+
+/// Recurrence statistics of main shocks and of all events (model-scale seconds): mean, CV and
+/// the BPT, Weibull and exponential renewal fits, or the reason none could be made.
+pub const RECURRENCE_STATS: TableSpec = TableSpec {
+    name: "recurrence_stats",
+    scope: Scope::AcrossSeeds,
+    key: &[col::SEED, col::SEQUENCE],
+    columns: &[
+        col::SEED,
+        col::SEQUENCE,
+        col::INTERVALS,
+        col::MEAN_S,
+        col::STD_S,
+        col::CV,
+        col::MEAN_CI95_LOW_S,
+        col::MEAN_CI95_HIGH_S,
+        col::CV_CI95_LOW,
+        col::CV_CI95_HIGH,
+        col::BPT_MEAN_S,
+        col::BPT_APERIODICITY,
+        col::BPT_AIC,
+        col::WEIBULL_SCALE_S,
+        col::WEIBULL_SHAPE,
+        col::WEIBULL_AIC,
+        col::EXPONENTIAL_AIC,
+        col::REASON,
+    ],
+    variable: None,
+};
+
+/// Aftershock rate per main shock against time since it, stacked over main shocks (per seed and
+/// pooled), with the Omori–Utsu fit's rate where one could be made.
+pub const AFTERSHOCKS_TABLE: TableSpec = TableSpec {
+    name: "aftershocks",
+    scope: Scope::AcrossSeeds,
+    key: &[col::SEED, col::START_S],
+    columns: &[
+        col::SEED,
+        col::START_S,
+        col::END_S,
+        col::CENTRE_S,
+        col::COUNT,
+        col::EXPOSURE_S,
+        col::RATE_PER_S,
+        col::RATE_ERROR_PER_S,
+        col::OMORI_RATE_PER_S,
+    ],
+    variable: None,
+};
+
+/// Omori–Utsu fits `K/(t + c)^p` of the stacked aftershocks, or the reason none could be made.
+pub const OMORI: TableSpec = TableSpec {
+    name: "omori",
+    scope: Scope::AcrossSeeds,
+    key: &[col::SEED],
+    columns: &[
+        col::SEED,
+        col::MAIN_SHOCKS,
+        col::AFTERSHOCKS,
+        col::K,
+        col::C_S,
+        col::P,
+        col::K_SE,
+        col::C_SE_S,
+        col::P_SE,
+        col::FIT_START_S,
+        col::FIT_END_S,
+        col::REASON,
+    ],
+    variable: None,
+};
+
+/// Scaling relations (moment–area, moment–duration, stress drop–magnitude): fitted exponent with
+/// its 95% interval beside the self-similar one, or the reason none could be made.
+pub const SCALING: TableSpec = TableSpec {
+    name: "scaling",
+    scope: Scope::AcrossSeeds,
+    key: &[col::SEED, col::RELATION],
+    columns: &[
+        col::SEED,
+        col::RELATION,
+        col::POINTS,
+        col::EXPONENT,
+        col::EXPONENT_SE,
+        col::EXPONENT_CI95_LOW,
+        col::EXPONENT_CI95_HIGH,
+        col::INTERCEPT,
+        col::R2,
+        col::RESIDUAL_STD,
+        col::SELF_SIMILAR_EXPONENT,
+        col::REASON,
+    ],
+    variable: None,
+};
+
+/// The catalogue tables, written together by the gathering step.
+pub const CATALOGUE: [TableSpec; 6] =
+    [MAGNITUDE_FREQUENCY, B_VALUES, RECURRENCE_STATS, AFTERSHOCKS_TABLE, OMORI, SCALING];
 
 /// A fit or the reason it could not be made.
 pub type Outcome<T> = Result<T, String>;

@@ -14,27 +14,74 @@
 //! (`(log10 E − 4.8)/1.5`).
 
 use polars::prelude::DataFrame;
-use stickslip_seismo::emission::{Break, Cluster};
+use stickslip_seismo::emission::Cluster;
 use stickslip_solver::Crack;
 use stickslip_solver::geometry::Lattice;
 use stickslip_solver::step::rupture::CrackKind;
 
+use crate::col;
 use crate::error::StoreError;
 use crate::frame::{Frame, read_back};
-use crate::schema::{ACOUSTIC_EMISSION, CRACKS, col};
+use crate::spec::{Scope, SeedTable, TableSpec};
 
-/// The bar breaks of a crack list as the acoustic-emission clustering takes them.
-pub fn breaks(cracks: &[Crack], lattice: &Lattice) -> Vec<Break> {
-    cracks
-        .iter()
-        .filter(|c| c.kind == CrackKind::Break)
-        .map(|c| Break {
-            time_s: c.time_s,
-            position: lattice.bar_midpoint(&lattice.bars()[c.bar as usize]),
-            energy_j: c.energy_j,
-        })
-        .collect()
-}
+/// Every bar that started softening or broke (scenes with `[rupture]`, docs/model.md §11).
+pub const CRACKS: TableSpec = TableSpec {
+    name: "cracks",
+    scope: Scope::Gathered,
+    key: &[col::SEED, col::TIME_S, col::BAR, col::KIND],
+    columns: &[
+        col::SEED,
+        col::TIME_S,
+        col::KIND,
+        col::BAR,
+        col::FAMILY,
+        col::DIRECTION,
+        col::X_M,
+        col::Y_M,
+        col::Z_M,
+        col::STRAIN,
+        col::ENERGY_J,
+    ],
+    variable: None,
+};
+
+/// Bar breaks grouped into acoustic-emission events, with their magnitudes (docs/model.md §11).
+pub const ACOUSTIC_EMISSION: TableSpec = TableSpec {
+    name: "acoustic_emission",
+    scope: Scope::Gathered,
+    key: &[col::SEED, col::CLUSTER],
+    columns: &[
+        col::SEED,
+        col::CLUSTER,
+        col::START_S,
+        col::END_S,
+        col::DURATION_S,
+        col::BREAKS,
+        col::X_M,
+        col::Y_M,
+        col::Z_M,
+        col::CENTROID_X_M,
+        col::CENTROID_Y_M,
+        col::CENTROID_Z_M,
+        col::ENERGY_J,
+        col::MAGNITUDE,
+    ],
+    variable: None,
+};
+
+/// The `cracks` part of a seed whose bars crack.
+pub const CRACKS_PART: SeedTable = SeedTable {
+    spec: CRACKS,
+    write: |s| match &s.analysis.emission {
+        Some(_) => cracks_frame(s.seed, &s.analysis.run.recording.cracks, s.model.lattice()).map(Some),
+        None => Ok(None),
+    },
+};
+/// The `acoustic_emission` part of a seed whose bars crack.
+pub const ACOUSTIC_EMISSION_PART: SeedTable = SeedTable {
+    spec: ACOUSTIC_EMISSION,
+    write: |s| s.analysis.emission.as_ref().map(|c| emission_frame(s.seed, c)).transpose(),
+};
 
 /// The cracks table of one seed.
 pub fn cracks_frame(seed: u64, cracks: &[Crack], lattice: &Lattice) -> Result<DataFrame, StoreError> {

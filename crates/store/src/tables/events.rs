@@ -6,13 +6,106 @@
 //! control acceleration.
 
 use polars::prelude::DataFrame;
+use stickslip_analysis::ScaledEvent;
+use stickslip_analysis::events::acceleration_channels;
 use stickslip_seismo::events::{Burst, Catalogue, EventKind};
-use stickslip_seismo::similarity::{ModelEvent, SECONDS_PER_YEAR, Scaled, moment_magnitude, riera_magnitude};
+use stickslip_seismo::similarity::SECONDS_PER_YEAR;
 use stickslip_solver::scene::ControlChannel;
 
+use crate::col;
 use crate::error::StoreError;
 use crate::frame::{Columns, Frame, read_back};
-use crate::schema::{EVENTS_TABLE, SIMILARITY, SUB_EVENTS_TABLE, col};
+use crate::spec::{Scope, SeedTable, TableSpec};
+
+const BURST: [&str; 9] = [
+    col::START_S,
+    col::END_S,
+    col::DURATION_S,
+    col::DROP_TIME_S,
+    col::STRESS_DROP_PA,
+    col::SLIP_M,
+    col::PEAK_SLIP_RATE_M_S,
+    col::PEAK_SLIPPING_NODES,
+    col::RUPTURE_AREA_M2,
+];
+
+/// Stick-slip events.
+pub const EVENTS_TABLE: TableSpec = TableSpec {
+    name: "events",
+    scope: Scope::Gathered,
+    key: &[col::SEED, col::EVENT],
+    columns: &[
+        col::SEED,
+        col::EVENT,
+        col::KIND,
+        col::LABEL,
+        BURST[0],
+        BURST[1],
+        BURST[2],
+        BURST[3],
+        BURST[4],
+        BURST[5],
+        BURST[6],
+        BURST[7],
+        BURST[8],
+        col::RECURRENCE_S,
+        col::SUB_EVENTS,
+    ],
+    variable: Some(
+        "one peak_abs_accel_n<LDEM>_<component>_m_s2 per recorded control acceleration, after rupture_area_m2",
+    ),
+};
+
+/// The bursts of slip each event is made of.
+pub const SUB_EVENTS_TABLE: TableSpec = TableSpec {
+    name: "sub_events",
+    scope: Scope::Gathered,
+    key: &[col::SEED, col::EVENT, col::SUB_EVENT],
+    columns: &[
+        col::SEED,
+        col::EVENT,
+        col::SUB_EVENT,
+        BURST[0],
+        BURST[1],
+        BURST[2],
+        BURST[3],
+        BURST[4],
+        BURST[5],
+        BURST[6],
+        BURST[7],
+        BURST[8],
+    ],
+    variable: Some("one peak_abs_accel_n<LDEM>_<component>_m_s2 per recorded control acceleration"),
+};
+
+/// Every event at prototype scale.
+pub const SIMILARITY: TableSpec = TableSpec {
+    name: "similarity",
+    scope: Scope::Gathered,
+    key: &[col::SEED, col::EVENT],
+    columns: &[
+        col::SEED,
+        col::EVENT,
+        col::KIND,
+        col::LABEL,
+        col::LAMBDA,
+        col::STRESS_DROP_PA,
+        col::MODEL_AREA_M2,
+        col::PROTOTYPE_AREA_M2,
+        col::PROTOTYPE_DURATION_S,
+        col::PROTOTYPE_RECURRENCE_S,
+        col::PROTOTYPE_RECURRENCE_YEARS,
+        col::M0_PAPER_DYNE_CM,
+        col::M0_CONSISTENT_DYNE_CM,
+        col::M_RIERA_PAPER_INTERPLATE,
+        col::M_RIERA_PAPER_INTRAPLATE,
+        col::M_RIERA_CONSISTENT_INTERPLATE,
+        col::M_RIERA_CONSISTENT_INTRAPLATE,
+        col::MW_PAPER,
+        col::MW_CONSISTENT,
+    ],
+    variable: None,
+};
 
 /// Column name of the peak |acceleration| of a control channel.
 pub fn peak_accel_column(c: &ControlChannel) -> String {
@@ -39,6 +132,22 @@ fn burst_columns(mut f: Frame, bursts: &[&Burst], channels: &[ControlChannel]) -
     }
     f
 }
+
+/// The `events` part of a seed.
+pub const EVENTS_PART: SeedTable = SeedTable {
+    spec: EVENTS_TABLE,
+    write: |s| events_frame(s.seed, &s.analysis.catalogue, &acceleration_channels(s.model)).map(Some),
+};
+/// The `sub_events` part of a seed.
+pub const SUB_EVENTS_PART: SeedTable = SeedTable {
+    spec: SUB_EVENTS_TABLE,
+    write: |s| sub_events_frame(s.seed, &s.analysis.catalogue, &acceleration_channels(s.model)).map(Some),
+};
+/// The `similarity` part of a seed.
+pub const SIMILARITY_PART: SeedTable = SeedTable {
+    spec: SIMILARITY,
+    write: |s| similarity_frame(s.seed, &s.analysis.catalogue, &s.analysis.scaled).map(Some),
+};
 
 /// The events table of one seed.
 pub fn events_frame(seed: u64, cat: &Catalogue, channels: &[ControlChannel]) -> Result<DataFrame, StoreError> {
@@ -71,42 +180,54 @@ pub fn sub_events_frame(seed: u64, cat: &Catalogue, channels: &[ControlChannel])
     burst_columns(f, &bursts, channels).finish(SUB_EVENTS_TABLE.name)
 }
 
-/// The similarity table of one seed: every event of `cat` with its model-scale input and its
-/// prototype-scale numbers (`scaled[i]` belongs to `cat.events[i]`).
-pub fn similarity_frame(seed: u64, cat: &Catalogue, scaled: &[(ModelEvent, Scaled)]) -> Result<DataFrame, StoreError> {
+/// The similarity table of one seed: every event of `cat` with its model-scale input, its
+/// prototype-scale numbers and its magnitudes (`scaled[i]` belongs to `cat.events[i]`).
+pub fn similarity_frame(seed: u64, cat: &Catalogue, scaled: &[ScaledEvent]) -> Result<DataFrame, StoreError> {
     let n = cat.events.len();
     assert_eq!(scaled.len(), n, "one scaled row per event");
-    let col = |g: &dyn Fn(&ModelEvent, &Scaled) -> f64| -> Vec<f64> { scaled.iter().map(|(i, s)| g(i, s)).collect() };
+    let col = |g: &dyn Fn(&ScaledEvent) -> f64| -> Vec<f64> { scaled.iter().map(g).collect() };
     Frame::new(n)
         .u64(col::SEED, vec![seed; n])
         .u32(col::EVENT, (0..n as u32).collect())
         .static_str(col::KIND, cat.events.iter().map(|e| e.kind.name()).collect())
         .str(col::LABEL, cat.events.iter().map(|e| e.kind.label()).collect())
-        .f64(col::LAMBDA, col(&|_, s| s.lambda))
-        .f64(col::STRESS_DROP_PA, col(&|i, _| i.stress_drop_pa))
-        .f64(col::MODEL_AREA_M2, col(&|i, _| i.model_area_m2))
-        .f64(col::PROTOTYPE_AREA_M2, col(&|_, s| s.prototype_area_m2))
-        .f64(col::PROTOTYPE_DURATION_S, col(&|_, s| s.prototype_duration_s.unwrap_or(f64::NAN)))
-        .opt_f64(col::PROTOTYPE_RECURRENCE_S, scaled.iter().map(|(_, s)| s.prototype_recurrence_s).collect())
+        .f64(col::LAMBDA, col(&|e| e.scaled.lambda))
+        .f64(col::STRESS_DROP_PA, col(&|e| e.input.stress_drop_pa))
+        .f64(col::MODEL_AREA_M2, col(&|e| e.input.model_area_m2))
+        .f64(col::PROTOTYPE_AREA_M2, col(&|e| e.scaled.prototype_area_m2))
+        .f64(col::PROTOTYPE_DURATION_S, col(&|e| e.scaled.prototype_duration_s.unwrap_or(f64::NAN)))
+        .opt_f64(col::PROTOTYPE_RECURRENCE_S, scaled.iter().map(|e| e.scaled.prototype_recurrence_s).collect())
         .opt_f64(
             col::PROTOTYPE_RECURRENCE_YEARS,
-            scaled.iter().map(|(_, s)| s.prototype_recurrence_s.map(|r| r / SECONDS_PER_YEAR)).collect(),
+            scaled.iter().map(|e| e.scaled.prototype_recurrence_s.map(|r| r / SECONDS_PER_YEAR)).collect(),
         )
-        .f64(col::M0_PAPER_DYNE_CM, col(&|_, s| s.m0_paper_dyne_cm))
-        .f64(col::M0_CONSISTENT_DYNE_CM, col(&|_, s| s.m0_consistent_dyne_cm))
-        .f64(col::M_RIERA_PAPER_INTERPLATE, col(&|_, s| riera_magnitude(s.m0_paper_dyne_cm, false)))
-        .f64(col::M_RIERA_PAPER_INTRAPLATE, col(&|_, s| riera_magnitude(s.m0_paper_dyne_cm, true)))
-        .f64(col::M_RIERA_CONSISTENT_INTERPLATE, col(&|_, s| riera_magnitude(s.m0_consistent_dyne_cm, false)))
-        .f64(col::M_RIERA_CONSISTENT_INTRAPLATE, col(&|_, s| riera_magnitude(s.m0_consistent_dyne_cm, true)))
-        .f64(col::MW_PAPER, col(&|_, s| moment_magnitude(s.m0_paper_dyne_cm)))
-        .f64(col::MW_CONSISTENT, col(&|_, s| moment_magnitude(s.m0_consistent_dyne_cm)))
+        .f64(col::M0_PAPER_DYNE_CM, col(&|e| e.scaled.m0_paper_dyne_cm))
+        .f64(col::M0_CONSISTENT_DYNE_CM, col(&|e| e.scaled.m0_consistent_dyne_cm))
+        .f64(col::M_RIERA_PAPER_INTERPLATE, col(&|e| e.magnitudes.riera_paper_interplate))
+        .f64(col::M_RIERA_PAPER_INTRAPLATE, col(&|e| e.magnitudes.riera_paper_intraplate))
+        .f64(col::M_RIERA_CONSISTENT_INTERPLATE, col(&|e| e.magnitudes.riera_consistent_interplate))
+        .f64(col::M_RIERA_CONSISTENT_INTRAPLATE, col(&|e| e.magnitudes.riera_consistent_intraplate))
+        .f64(col::MW_PAPER, col(&|e| e.magnitudes.mw_paper))
+        .f64(col::MW_CONSISTENT, col(&|e| e.magnitudes.mw_consistent))
         .finish(SIMILARITY.name)
 }
 
 /// What an event is, read back from its `kind` and `label` columns.
 fn kinds(c: &Columns<'_>) -> Result<Vec<EventKind>, StoreError> {
     let (kind, label) = (c.strs(col::KIND)?, c.strs(col::LABEL)?);
-    Ok(kind.iter().zip(&label).map(|(k, l)| EventKind::parse(k, l).unwrap_or(EventKind::Minor)).collect())
+    kind.iter()
+        .zip(&label)
+        .map(|(k, l)| {
+            EventKind::parse(k, l).ok_or_else(|| StoreError::Unreadable {
+                table: c.table().to_string(),
+                what: format!(
+                    "kind {k:?} with label {l:?} (columns {}, {}) is not an event this stickslip writes",
+                    col::KIND,
+                    col::LABEL
+                ),
+            })
+        })
+        .collect()
 }
 
 read_back! {

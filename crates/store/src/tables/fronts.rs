@@ -16,47 +16,80 @@
 //! `x_m`, `y_m`, `region`, `onset_s`, `distance_m` (from the hypocentre, in the base plane).
 
 use polars::prelude::DataFrame;
-use stickslip_seismo::events::EventKind;
-use stickslip_seismo::front::{Front, WaveSpeeds};
-use stickslip_solver::geometry::NodeId;
+use stickslip_analysis::SeedFronts;
+use stickslip_seismo::events::Catalogue;
+use stickslip_seismo::front::Front;
 
+use crate::col;
 use crate::error::StoreError;
 use crate::frame::{Frame, read_back};
-use crate::schema::{RUPTURE_ONSETS, RUPTURES, col};
+use crate::spec::{Scope, SeedTable, TableSpec};
 
-/// The base as the front tables name it: each fault node's id, position and region name.
-#[derive(Clone, Copy, Debug)]
-pub struct FaultNodes<'a> {
-    /// Node ids, in the fault's node order.
-    pub ids: &'a [NodeId],
-    /// `(x, y)` of each (m).
-    pub position_m: &'a [[f64; 2]],
-    /// Region of each (`background` or the friction map's region name).
-    pub region: &'a [String],
-}
+/// How each event started and spread over the base (scenes with `record.slip_onsets`,
+/// docs/model.md §13): hypocentre, ruptured area and extent, rupture speed against the lattice's
+/// wave speeds, arrest at each end along x.
+pub const RUPTURES: TableSpec = TableSpec {
+    name: "ruptures",
+    scope: Scope::Gathered,
+    key: &[col::SEED, col::EVENT],
+    columns: &[
+        col::SEED,
+        col::EVENT,
+        col::KIND,
+        col::LABEL,
+        col::HYPOCENTRE_NODE,
+        col::HYPOCENTRE_X_M,
+        col::HYPOCENTRE_Y_M,
+        col::HYPOCENTRE_REGION,
+        col::FRONT_FROM,
+        col::ONSET_S,
+        col::RUPTURED_NODES,
+        col::RUPTURED_AREA_M2,
+        col::RUPTURE_X_MIN_M,
+        col::RUPTURE_X_MAX_M,
+        col::RUPTURE_LENGTH_M,
+        col::SPREAD_S,
+        col::RUPTURE_SPEED_M_S,
+        col::FRONT_WINDOWS,
+        col::SPEED_OVER_S,
+        col::REGIME,
+        col::P_SPEED_M_S,
+        col::S_SPEED_M_S,
+        col::RAYLEIGH_SPEED_M_S,
+        col::ARREST_X_MIN,
+        col::ARREST_X_MAX,
+        col::ARREST,
+    ],
+    variable: None,
+};
 
-/// The front of event `event` of kind `kind`.
-#[derive(Clone, Copy, Debug)]
-pub struct EventFront<'a> {
-    /// Index of the event in the seed's catalogue.
-    pub event: u32,
-    /// Its kind.
-    pub kind: EventKind,
-    /// Its front.
-    pub front: &'a Front,
-}
+/// The onset of every ruptured contact node in every event (scenes with `record.slip_onsets`).
+pub const RUPTURE_ONSETS: TableSpec = TableSpec {
+    name: "rupture_onsets",
+    scope: Scope::Gathered,
+    key: &[col::SEED, col::EVENT, col::NODE],
+    columns: &[col::SEED, col::EVENT, col::NODE, col::X_M, col::Y_M, col::REGION, col::ONSET_S, col::DISTANCE_M],
+    variable: None,
+};
+
+/// The `ruptures` part of a seed whose scene records slip onsets or the fault.
+pub const RUPTURES_PART: SeedTable = SeedTable {
+    spec: RUPTURES,
+    write: |s| s.analysis.fronts.as_ref().map(|f| ruptures_frame(s.seed, f, &s.analysis.catalogue)).transpose(),
+};
+/// The `rupture_onsets` part of a seed whose scene records slip onsets or the fault.
+pub const RUPTURE_ONSETS_PART: SeedTable = SeedTable {
+    spec: RUPTURE_ONSETS,
+    write: |s| s.analysis.fronts.as_ref().map(|f| rupture_onsets_frame(s.seed, f, &s.analysis.catalogue)).transpose(),
+};
 
 /// The ruptures table of one seed.
-pub fn ruptures_frame(
-    seed: u64,
-    fronts: &[EventFront<'_>],
-    nodes: &FaultNodes<'_>,
-    speeds: &WaveSpeeds,
-    source: &'static str,
-) -> Result<DataFrame, StoreError> {
+pub fn ruptures_frame(seed: u64, seed_fronts: &SeedFronts, catalogue: &Catalogue) -> Result<DataFrame, StoreError> {
+    let fronts = seed_fronts.rows(catalogue);
+    let (nodes, speeds, source) = (&seed_fronts.base, &seed_fronts.speeds, seed_fronts.source);
     let n = fronts.len();
     let f64s = |g: &dyn Fn(&Front) -> f64| fronts.iter().map(|e| g(e.front)).collect::<Vec<f64>>();
-    let hypo = |e: &EventFront<'_>| e.front.hypocentre.0;
+    let hypo = |e: &stickslip_analysis::fronts::EventFront<'_>| e.front.hypocentre.0;
     Frame::new(n)
         .u64(col::SEED, vec![seed; n])
         .u32(col::EVENT, fronts.iter().map(|e| e.event).collect())
@@ -96,9 +129,11 @@ pub fn ruptures_frame(
 /// The rupture onsets table of one seed.
 pub fn rupture_onsets_frame(
     seed: u64,
-    fronts: &[EventFront<'_>],
-    nodes: &FaultNodes<'_>,
+    seed_fronts: &SeedFronts,
+    catalogue: &Catalogue,
 ) -> Result<DataFrame, StoreError> {
+    let fronts = seed_fronts.rows(catalogue);
+    let nodes = &seed_fronts.base;
     let rows: Vec<(u32, usize, f64, f64)> = fronts
         .iter()
         .flat_map(|e| {

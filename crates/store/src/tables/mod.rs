@@ -1,5 +1,7 @@
-//! Writers (typed values → frames) and readers (frames → typed columns) of every table of
-//! [`crate::schema`].
+//! Every table of the output folder, one module per subject: each declares its tables
+//! ([`crate::spec::TableSpec`]), writes them from typed values and reads them back with their
+//! types; a per-seed table's declaration carries its writer ([`crate::spec::SeedTable`]), and
+//! [`SEED_TABLES`] lists them in the order a seed's parts are written.
 
 pub mod catalogue;
 pub mod cracks;
@@ -8,4 +10,31 @@ pub mod fronts;
 pub mod records;
 pub mod runs;
 pub mod series;
+pub mod set;
+pub mod spectra;
 pub mod stats;
+
+use crate::spec::SeedTable;
+
+/// Every per-seed table but `runs` (written last, from the seed's outcome: see
+/// [`crate::seed::write_seed`]), in the order of [`crate::schema::ALL`].
+pub const SEED_TABLES: [SeedTable; 18] = [
+    series::SERIES_PART,
+    series::CONTROL_PART,
+    series::FAULT_PART,
+    series::SKIPS_PART,
+    events::EVENTS_PART,
+    events::SUB_EVENTS_PART,
+    events::SIMILARITY_PART,
+    records::RECORDS_PART,
+    records::ACCELEROGRAMS_PART,
+    spectra::SPECTRA_PART,
+    spectra::ROTD_PART,
+    spectra::FOURIER_PART,
+    records::INTENSITY_PART,
+    records::ATTENUATION_PART,
+    fronts::RUPTURES_PART,
+    fronts::RUPTURE_ONSETS_PART,
+    cracks::CRACKS_PART,
+    cracks::ACOUSTIC_EMISSION_PART,
+];

@@ -1,24 +1,113 @@
-//! Tables of the accelerograms of one seed: the records and their metadata, the processed time
-//! series, spectra, RotD spectra, Fourier spectra, intensity measures, and attenuation.
+//! The records of one seed: what each record is and its band, the processed time series, the
+//! intensity measures, and the attenuation of peak motions with distance.
 //!
 //! A record is one control node and component over one event's window (or the whole run),
 //! processed (docs/model.md §8); `record` names it within its seed (`S2-n36-x`: main shock S2,
 //! LDEM node 36, component x). `scale` is `model` or `prototype`. Prototype scale (docs/model.md
-//! §9): periods, times and durations ×λ, frequencies ÷λ, SD and displacements ×λ, PSV and
-//! velocities unchanged, PSA and accelerations ÷λ, Arias ÷λ; the Fourier amplitude is unchanged
-//! at f/λ. `in_band` says whether a period lies in the record's usable band.
+//! §9): times and durations ×λ, frequencies ÷λ, displacements ×λ, velocities unchanged,
+//! accelerations ÷λ, Arias ÷λ. The spectra are in [`crate::tables::spectra`].
 
 use polars::prelude::DataFrame;
-use stickslip_seismo::accelerogram::processing::{Processed, RecordBand};
-use stickslip_seismo::spectra::fourier::FourierSpectrum;
-use stickslip_seismo::spectra::intensity::Intensity;
-use stickslip_solver::geometry::{Lattice, NodeId};
-use stickslip_solver::scene::ControlChannel;
+use stickslip_analysis::RecordData;
+use stickslip_analysis::attenuation::AttenuationRow;
+use stickslip_seismo::accelerogram::processing::RecordBand;
+use stickslip_solver::geometry::Lattice;
 
+use crate::col;
 use crate::error::StoreError;
-use crate::frame::{Columns, Frame, read_back};
-use crate::schema::{ACCELEROGRAMS, ATTENUATION, FOURIER, INTENSITY, RECORDS, ROTD, SET, SPECTRA, col};
-use crate::tables::series::Trace;
+use crate::frame::{Frame, read_back};
+use crate::spec::{Scope, SeedTable, SeedView, TableSpec};
+
+/// One row per record and scale: what it is (event, node, component), where it was cut from the
+/// run, its sampling, filter corners and usable band (docs/model.md §8).
+pub const RECORDS: TableSpec = TableSpec {
+    name: "records",
+    scope: Scope::Gathered,
+    key: &[col::SEED, col::RECORD, col::SCALE],
+    columns: &[
+        col::SEED,
+        col::RECORD,
+        col::EVENT,
+        col::LABEL,
+        col::NODE,
+        col::COMPONENT,
+        col::SCALE,
+        col::X_M,
+        col::Y_M,
+        col::Z_M,
+        col::START_S,
+        col::PRE_EVENT_S,
+        col::DT_S,
+        col::SAMPLES,
+        col::FIRST_SAMPLE_S,
+        col::F_LOW_HZ,
+        col::F_HIGH_HZ,
+        col::USABLE_LOW_HZ,
+        col::USABLE_HIGH_HZ,
+    ],
+    variable: None,
+};
+
+/// The processed records (acceleration, velocity, displacement), both scales.
+pub const ACCELEROGRAMS: TableSpec = TableSpec {
+    name: "accelerograms",
+    scope: Scope::PerSeed,
+    key: &[col::SEED, col::RECORD, col::SCALE, col::TIME_S],
+    columns: &[
+        col::SEED,
+        col::RECORD,
+        col::SCALE,
+        col::TIME_S,
+        col::ACCELERATION_M_S2,
+        col::VELOCITY_M_S,
+        col::DISPLACEMENT_M,
+    ],
+    variable: None,
+};
+
+/// Intensity measures of every processed record, both scales.
+pub const INTENSITY: TableSpec = TableSpec {
+    name: "intensity",
+    scope: Scope::Gathered,
+    key: &[col::SEED, col::RECORD, col::SCALE],
+    columns: &[
+        col::SEED,
+        col::RECORD,
+        col::EVENT,
+        col::LABEL,
+        col::NODE,
+        col::COMPONENT,
+        col::SCALE,
+        col::PGA_M_S2,
+        col::PGV_M_S,
+        col::PGD_M,
+        col::ARIAS_M_S,
+        col::D5_95_S,
+        col::T5_S,
+        col::T95_S,
+    ],
+    variable: None,
+};
+
+/// Peak motions of every control node in every main shock, with the distance from its
+/// hypocentre.
+pub const ATTENUATION: TableSpec = TableSpec {
+    name: "attenuation",
+    scope: Scope::Gathered,
+    key: &[col::SEED, col::EVENT, col::NODE],
+    columns: &[
+        col::SEED,
+        col::EVENT,
+        col::LABEL,
+        col::HYPOCENTRE_NODE,
+        col::HYPOCENTRE_X_M,
+        col::NODE,
+        col::DISTANCE_M,
+        col::PGA_M_S2,
+        col::PGV_M_S,
+    ],
+    variable: None,
+};
 
 /// The two scales every table of the accelerograms is written at.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -48,79 +137,6 @@ impl Scale {
             Scale::Prototype => lambda,
         }
     }
-}
-
-/// One processed record and what was computed of it (model scale).
-#[derive(Clone, Debug)]
-pub struct RecordData {
-    /// Name within the seed, e.g. `S2-n36-x`.
-    pub id: String,
-    /// Index of the event in the seed's catalogue (`None` for a whole-run record).
-    pub event: Option<u32>,
-    /// The event's label (`S2`, `E17`) or `run`.
-    pub label: String,
-    /// The control channel.
-    pub channel: ControlChannel,
-    /// Node position (m).
-    pub position: [f64; 3],
-    /// Run time of the window's first sample (s, shear stage).
-    pub start_s: f64,
-    /// Length of the window before the event's start (s).
-    pub pre_event_s: f64,
-    /// The processed record (padded acceleration, velocity, displacement).
-    pub processed: Processed,
-    /// Filter corners and usable band.
-    pub band: RecordBand,
-    /// Intensity measures of the processed record.
-    pub intensity: Intensity,
-    /// SD (m), damping-major over the spectra's periods; empty without spectra.
-    pub sd: Vec<f64>,
-    /// Fourier amplitude spectrum of the processed record, without spectra `None`.
-    pub fourier: Option<FourierSpectrum>,
-}
-
-/// RotD50 and RotD100 of a node's two horizontal records of one window (model scale).
-#[derive(Clone, Debug)]
-pub struct RotdData {
-    /// Name within the seed, e.g. `S2-n36-xy`.
-    pub id: String,
-    /// Index of the event (`None` for the whole run).
-    pub event: Option<u32>,
-    /// The event's label or `run`.
-    pub label: String,
-    /// The node.
-    pub node: NodeId,
-    /// The band both components can be used in.
-    pub band: RecordBand,
-    /// RotD50 SD (m), damping-major.
-    pub sd50: Vec<f64>,
-    /// RotD100 SD (m), damping-major.
-    pub sd100: Vec<f64>,
-}
-
-/// Peak motions of one node during one main shock.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct AttenuationRow {
-    /// Index of the event in the seed.
-    pub event: u32,
-    /// Main-shock rank (1 for S1).
-    pub rank: u32,
-    /// Hypocentre: the first contact node to slide for good in the event.
-    pub hypocentre: NodeId,
-    /// The control node.
-    pub node: NodeId,
-    /// Distance from the hypocentre (m).
-    pub distance_m: f64,
-    /// Peak magnitude of the recorded acceleration components during the event (m/s²).
-    pub pga_m_s2: f64,
-    /// Peak magnitude of the recorded velocity components (m/s), NaN without velocity.
-    pub pgv_m_s: f64,
-}
-
-/// `(PSV, PSA)` of SD `v` at period `t`.
-fn pseudo(v: f64, t: f64) -> (f64, f64) {
-    let w = 2.0 * std::f64::consts::PI / t;
-    (w * v, w * w * v)
 }
 
 /// The records table of one seed: one row per record and scale.
@@ -184,124 +200,6 @@ pub fn accelerograms_frame(seed: u64, records: &[RecordData], lambda: f64) -> Re
         .finish(ACCELEROGRAMS.name)
 }
 
-/// The spectra table of one seed (both scales).
-pub fn spectra_frame(
-    seed: u64,
-    records: &[RecordData],
-    periods: &[f64],
-    dampings: &[f64],
-    lambda: f64,
-) -> Result<DataFrame, StoreError> {
-    let mut t = SpectrumColumns::default();
-    for r in records {
-        t.push(&r.id, r.channel.node, r.channel.component.name(), &r.band, &r.sd, periods, dampings, lambda);
-    }
-    t.frame(seed, SPECTRA.name)
-}
-
-/// The RotD table of one seed (both scales): `rotd50` rows then `rotd100` rows per record, in the
-/// `component` column.
-pub fn rotd_frame(
-    seed: u64,
-    rotd: &[RotdData],
-    periods: &[f64],
-    dampings: &[f64],
-    lambda: f64,
-) -> Result<DataFrame, StoreError> {
-    let mut t = SpectrumColumns::default();
-    for r in rotd {
-        for (name, sd) in [("rotd50", &r.sd50), ("rotd100", &r.sd100)] {
-            t.push(&r.id, r.node, name, &r.band, sd, periods, dampings, lambda);
-        }
-    }
-    t.frame(seed, ROTD.name)
-}
-
-/// Columns of a spectra-shaped table, filled record by record.
-#[derive(Default)]
-struct SpectrumColumns {
-    id: Vec<String>,
-    node: Vec<u32>,
-    comp: Vec<&'static str>,
-    scale: Vec<&'static str>,
-    damping: Vec<f64>,
-    period: Vec<f64>,
-    sd: Vec<f64>,
-    psv: Vec<f64>,
-    psa: Vec<f64>,
-    in_band: Vec<bool>,
-}
-
-impl SpectrumColumns {
-    #[allow(clippy::too_many_arguments)]
-    fn push(
-        &mut self,
-        id: &str,
-        node: NodeId,
-        comp: &'static str,
-        band: &RecordBand,
-        sd: &[f64],
-        periods: &[f64],
-        dampings: &[f64],
-        lambda: f64,
-    ) {
-        for sc in Scale::ALL {
-            let l = sc.factor(lambda);
-            for (di, &d) in dampings.iter().enumerate() {
-                for (pi, &t) in periods.iter().enumerate() {
-                    let v = sd[di * periods.len() + pi];
-                    let (psv, psa) = pseudo(v, t);
-                    self.id.push(id.to_string());
-                    self.node.push(node.ldem() as u32);
-                    self.comp.push(comp);
-                    self.scale.push(sc.name());
-                    self.damping.push(d);
-                    self.period.push(t * l);
-                    self.sd.push(v * l);
-                    self.psv.push(psv);
-                    self.psa.push(psa / l);
-                    self.in_band.push(band.holds_period(t));
-                }
-            }
-        }
-    }
-
-    fn frame(self, seed: u64, table: &str) -> Result<DataFrame, StoreError> {
-        let n = self.id.len();
-        Frame::new(n)
-            .u64(col::SEED, vec![seed; n])
-            .str(col::RECORD, self.id)
-            .u32(col::NODE, self.node)
-            .static_str(col::COMPONENT, self.comp)
-            .static_str(col::SCALE, self.scale)
-            .f64(col::DAMPING, self.damping)
-            .f64(col::PERIOD_S, self.period)
-            .f64(col::SD_M, self.sd)
-            .f64(col::PSV_M_S, self.psv)
-            .f64(col::PSA_M_S2, self.psa)
-            .bool(col::IN_BAND, self.in_band)
-            .finish(table)
-    }
-}
-
-/// The Fourier table of one seed (model scale).
-pub fn fourier_frame(seed: u64, records: &[RecordData]) -> Result<DataFrame, StoreError> {
-    let (mut id, mut f, mut a) = (vec![], vec![], vec![]);
-    for r in records {
-        let Some(fs) = &r.fourier else { continue };
-        id.extend(std::iter::repeat_n(r.id.clone(), fs.frequency_hz.len()));
-        f.extend_from_slice(&fs.frequency_hz);
-        a.extend_from_slice(&fs.amplitude);
-    }
-    let n = id.len();
-    Frame::new(n)
-        .u64(col::SEED, vec![seed; n])
-        .str(col::RECORD, id)
-        .f64(col::FREQUENCY_HZ, f)
-        .f64(col::AMPLITUDE_M_S, a)
-        .finish(FOURIER.name)
-}
-
 /// The intensity table of one seed (both scales).
 pub fn intensity_frame(seed: u64, records: &[RecordData], lambda: f64) -> Result<DataFrame, StoreError> {
     let mut rows = Vec::new();
@@ -348,6 +246,30 @@ pub fn attenuation_frame(seed: u64, rows: &[AttenuationRow], lattice: &Lattice) 
         .finish(ATTENUATION.name)
 }
 
+/// The `records` part of a seed with records.
+pub const RECORDS_PART: SeedTable = SeedTable { spec: RECORDS, write: |s| with_records(s, records_frame) };
+/// The `accelerograms` part of a seed with records.
+pub const ACCELEROGRAMS_PART: SeedTable =
+    SeedTable { spec: ACCELEROGRAMS, write: |s| with_records(s, accelerograms_frame) };
+/// The `intensity` part of a seed with records.
+pub const INTENSITY_PART: SeedTable = SeedTable { spec: INTENSITY, write: |s| with_records(s, intensity_frame) };
+/// The `attenuation` part of a seed whose spectra ask for it.
+pub const ATTENUATION_PART: SeedTable = SeedTable {
+    spec: ATTENUATION,
+    write: |s| match (&s.analysis.records, &s.settings.spectra) {
+        (Some(r), Some(sp)) if sp.attenuation => attenuation_frame(s.seed, &r.attenuation, s.model.lattice()).map(Some),
+        _ => Ok(None),
+    },
+};
+
+/// `frame(seed, records, λ)` of a seed with records.
+fn with_records(
+    s: &SeedView<'_>,
+    frame: fn(u64, &[RecordData], f64) -> Result<DataFrame, StoreError>,
+) -> Result<Option<DataFrame>, StoreError> {
+    s.analysis.records.as_ref().map(|r| frame(s.seed, &r.records, s.analysis.lambda)).transpose()
+}
+
 read_back! {
     /// The records table read back (one or many seeds).
     pub struct Records from RECORDS, |c| {
@@ -379,30 +301,6 @@ read_back! {
 }
 
 read_back! {
-    /// The spectra (or RotD) table read back (one or many seeds).
-    pub struct Spectra from SPECTRA, |c| {
-        /// Seed of each row.
-        seed: Vec<u64> = c.u64s(col::SEED)?,
-        /// Record name within its seed.
-        record: Vec<String> = c.strs(col::RECORD)?,
-        /// Node (LDEM number).
-        node: Vec<u64> = c.u64s(col::NODE)?,
-        /// Component (`rotd50`, `rotd100` in the RotD table).
-        component: Vec<String> = c.strs(col::COMPONENT)?,
-        /// Scale.
-        scale: Vec<String> = c.strs(col::SCALE)?,
-        /// Damping ratio.
-        damping: Vec<f64> = c.f64s(col::DAMPING)?,
-        /// Period (s).
-        period_s: Vec<f64> = c.f64s(col::PERIOD_S)?,
-        /// PSA (m/s²).
-        psa_m_s2: Vec<f64> = c.f64s(col::PSA_M_S2)?,
-        /// Whether the period is in the record's usable band.
-        in_band: Vec<bool> = c.bools(col::IN_BAND)?,
-    }
-}
-
-read_back! {
     /// The processed records read back (one or many seeds).
     pub struct Accelerograms from ACCELEROGRAMS, |c| {
         /// Seed of each row.
@@ -420,18 +318,6 @@ read_back! {
         /// Displacement (m).
         displacement_m: Vec<f64> = c.f64s(col::DISPLACEMENT_M)?,
     }
-}
-
-/// One record's Fourier spectrum from a fourier part: (frequency, amplitude), if present.
-pub fn read_fourier(df: &DataFrame, record: &str) -> Result<Option<Trace>, StoreError> {
-    let c = Columns::of(df, FOURIER.name);
-    let ids = c.strs(col::RECORD)?;
-    let (f, a) = (c.f64s(col::FREQUENCY_HZ)?, c.f64s(col::AMPLITUDE_M_S)?);
-    let idx: Vec<usize> = (0..c.height()).filter(|&i| ids[i] == record).collect();
-    if idx.is_empty() {
-        return Ok(None);
-    }
-    Ok(Some((idx.iter().map(|&i| f[i]).collect(), idx.iter().map(|&i| a[i]).collect())))
 }
 
 read_back! {
@@ -457,106 +343,5 @@ impl Attenuation {
     /// Whether there is none.
     pub fn is_empty(&self) -> bool {
         self.label.is_empty()
-    }
-}
-
-/// The spectra, Fourier and intensity tables of one external record (`stickslip spectra`):
-/// the pipeline's columns without `seed`, `record`, `node`, `component`, `scale`, `in_band` —
-/// **spectra** `damping`, `period_s`, `sd_m`, `psv_m_s`, `psa_m_s2`; **fourier** `frequency_hz`,
-/// `amplitude_m_s`; **intensity** one row of `pga_m_s2`, `pgv_m_s`, `pgd_m`, `arias_m_s`,
-/// `d5_95_s`, `t5_s`, `t95_s`.
-pub fn record_frames(
-    periods: &[f64],
-    dampings: &[f64],
-    sd: &[f64],
-    fourier: &FourierSpectrum,
-    i: &Intensity,
-) -> Result<[DataFrame; 3], StoreError> {
-    let (mut d, mut p, mut psv, mut psa) = (vec![], vec![], vec![], vec![]);
-    for (di, &xi) in dampings.iter().enumerate() {
-        for (pi, &t) in periods.iter().enumerate() {
-            let (v, a) = pseudo(sd[di * periods.len() + pi], t);
-            d.push(xi);
-            p.push(t);
-            psv.push(v);
-            psa.push(a);
-        }
-    }
-    let n = d.len();
-    let spectra = Frame::new(n)
-        .f64(col::DAMPING, d)
-        .f64(col::PERIOD_S, p)
-        .f64(col::SD_M, sd.to_vec())
-        .f64(col::PSV_M_S, psv)
-        .f64(col::PSA_M_S2, psa)
-        .finish(SPECTRA.name)?;
-    let m = fourier.frequency_hz.len();
-    let fourier = Frame::new(m)
-        .f64(col::FREQUENCY_HZ, fourier.frequency_hz.clone())
-        .f64(col::AMPLITUDE_M_S, fourier.amplitude.clone())
-        .finish(FOURIER.name)?;
-    let intensity = Frame::new(1)
-        .f64(col::PGA_M_S2, vec![i.pga])
-        .f64(col::PGV_M_S, vec![i.pgv])
-        .f64(col::PGD_M, vec![i.pgd])
-        .f64(col::ARIAS_M_S, vec![i.arias])
-        .f64(col::D5_95_S, vec![i.d5_95()])
-        .f64(col::T5_S, vec![i.t5])
-        .f64(col::T95_S, vec![i.t95])
-        .finish(INTENSITY.name)?;
-    Ok([spectra, fourier, intensity])
-}
-
-/// One record of a matched set.
-#[derive(Clone, Debug, PartialEq)]
-pub struct SetRow {
-    /// Seed.
-    pub seed: u64,
-    /// Record name within its seed (`S2-n36-x`, or `S2-n36-xy` for a RotD50 pair).
-    pub record: String,
-    /// Event label.
-    pub label: String,
-    /// Node (LDEM number).
-    pub node: u32,
-    /// Component (`x`, `y`, `z` or `rotd50`).
-    pub component: String,
-    /// Amplitude scale factor.
-    pub scale_factor: f64,
-    /// Mean squared log residual of the scaled record over the range.
-    pub misfit: f64,
-    /// Usable band at prototype scale (Hz).
-    pub usable_hz: (f64, f64),
-}
-
-/// The set table, in the order the records were chosen.
-pub fn set_frame(rows: &[SetRow]) -> Result<DataFrame, StoreError> {
-    let n = rows.len();
-    Frame::new(n)
-        .u32(col::RANK, (1..=n as u32).collect())
-        .u64(col::SEED, rows.iter().map(|r| r.seed).collect())
-        .str(col::RECORD, rows.iter().map(|r| r.record.clone()).collect())
-        .str(col::LABEL, rows.iter().map(|r| r.label.clone()).collect())
-        .u32(col::NODE, rows.iter().map(|r| r.node).collect())
-        .str(col::COMPONENT, rows.iter().map(|r| r.component.clone()).collect())
-        .f64(col::SCALE_FACTOR, rows.iter().map(|r| r.scale_factor).collect())
-        .f64(col::MISFIT, rows.iter().map(|r| r.misfit).collect())
-        .f64(col::USABLE_LOW_HZ, rows.iter().map(|r| r.usable_hz.0).collect())
-        .f64(col::USABLE_HIGH_HZ, rows.iter().map(|r| r.usable_hz.1).collect())
-        .finish(SET.name)
-}
-
-read_back! {
-    /// The set table read back.
-    pub struct SetTable from SET, |c| {
-        /// Seed of each record.
-        seed: Vec<u64> = c.u64s(col::SEED)?,
-        /// Record name within its seed.
-        record: Vec<String> = c.strs(col::RECORD)?,
-        /// Component.
-        component: Vec<String> = c.strs(col::COMPONENT)?,
-        /// Scale factor.
-        scale_factor: Vec<f64> = c.f64s(col::SCALE_FACTOR)?,
-        /// Misfit.
-        misfit: Vec<f64> = c.f64s(col::MISFIT)?,
     }
 }

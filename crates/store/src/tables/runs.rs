@@ -4,9 +4,35 @@ use polars::prelude::DataFrame;
 use stickslip_seismo::events::Catalogue;
 use stickslip_solver::RunOutput;
 
+use crate::col;
 use crate::error::StoreError;
 use crate::frame::{Frame, read_back};
-use crate::schema::{RUNS, col};
+use crate::spec::{Scope, TableSpec};
+
+/// One row per seed: status, steps, times, Δt, events.
+pub const RUNS: TableSpec = TableSpec {
+    name: "runs",
+    scope: Scope::Gathered,
+    key: &[col::SEED],
+    columns: &[
+        col::SEED,
+        col::STATUS,
+        col::MESSAGE,
+        col::STEPS,
+        col::SETTLE_STEPS,
+        col::SETTLE_TIME_S,
+        col::SETTLED_BY,
+        col::SKIPPED_STEPS,
+        col::SIMULATED_TIME_S,
+        col::WALL_TIME_S,
+        col::DT_S,
+        col::CRITICAL_DT_S,
+        col::EVENTS,
+        col::MAIN_SHOCKS,
+        col::PIPELINE_HASH,
+    ],
+    variable: None,
+};
 
 /// Whether a seed ran to the end.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

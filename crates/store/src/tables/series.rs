@@ -5,9 +5,89 @@ use polars::prelude::*;
 use stickslip_solver::scene::{Component, Kinematic};
 use stickslip_solver::{Lattice, Recording};
 
+use crate::col;
 use crate::error::StoreError;
 use crate::frame::{Columns, Frame, read_back};
-use crate::schema::{CONTROL, FAULT, SERIES, SKIPS, col};
+use crate::spec::{Scope, SeedTable, TableSpec};
+
+/// One row per recorded instant.
+pub const SERIES: TableSpec = TableSpec {
+    name: "series",
+    scope: Scope::PerSeed,
+    key: &[col::SEED, col::TIME_S],
+    columns: &[col::SEED, col::TIME_S],
+    variable: Some("one column per recorded channel (record.interface, record.energy)"),
+};
+
+/// One row per control node, component and instant.
+pub const CONTROL: TableSpec = TableSpec {
+    name: "control",
+    scope: Scope::PerSeed,
+    key: &[col::SEED, col::NODE, col::COMPONENT, col::TIME_S],
+    columns: &[
+        col::SEED,
+        col::NODE,
+        col::COMPONENT,
+        col::TIME_S,
+        "displacement_m",
+        "velocity_m_s",
+        col::ACCELERATION_M_S2,
+    ],
+    variable: None,
+};
+
+/// Every contact node of the base through the shear stage at the event trace's instants
+/// (`record.fault`): one row per node and instant.
+pub const FAULT: TableSpec = TableSpec {
+    name: "fault",
+    scope: Scope::PerSeed,
+    key: &[col::SEED, col::NODE, col::TIME_S],
+    columns: &[
+        col::SEED,
+        col::NODE,
+        col::X_M,
+        col::Y_M,
+        col::TIME_S,
+        col::SLIP_M,
+        col::SLIP_RATE_M_S,
+        col::SHEAR_STRESS_PA,
+        col::NORMAL_STRESS_PA,
+    ],
+    variable: None,
+};
+
+/// One row per quasi-static jump of the skip-ahead.
+pub const SKIPS: TableSpec = TableSpec {
+    name: "skips",
+    scope: Scope::PerSeed,
+    key: &[col::SEED, col::FROM_S],
+    columns: &[col::SEED, col::FROM_S, col::TO_S, col::STEPS, col::NEXT, col::NODE],
+    variable: None,
+};
+
+/// The `series` part of a seed.
+pub const SERIES_PART: SeedTable =
+    SeedTable { spec: SERIES, write: |s| series_frame(s.seed, &s.analysis.run.recording).map(Some) };
+/// The `control` part of a seed.
+pub const CONTROL_PART: SeedTable =
+    SeedTable { spec: CONTROL, write: |s| control_frame(s.seed, &s.analysis.run.recording).map(Some) };
+/// The `skips` part of a seed that skipped ahead.
+pub const SKIPS_PART: SeedTable = SeedTable {
+    spec: SKIPS,
+    write: |s| {
+        let rec = &s.analysis.run.recording;
+        if rec.skips.is_empty() { Ok(None) } else { skips_frame(s.seed, rec).map(Some) }
+    },
+};
+/// The `fault` part of a seed that recorded the fault, at the instants of `record.fault_interval_s`.
+pub const FAULT_PART: SeedTable = SeedTable {
+    spec: FAULT,
+    write: |s| {
+        let trace = &s.analysis.run.recording.trace;
+        let keep = trace.thinned(s.model.scene().record.fault_interval_s);
+        fault_frame(s.seed, trace, &keep, s.model.lattice())
+    },
+};
 
 /// The series table of one seed: `seed`, `time_s`, then one column per recorded channel
 /// ([`stickslip_solver::Channel::name`]), f64 except node counts (u32).

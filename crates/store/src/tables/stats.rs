@@ -4,9 +4,66 @@ use polars::prelude::DataFrame;
 use stickslip_seismo::fit::LogFit;
 use stickslip_seismo::stats::Summary;
 
+use crate::col;
 use crate::error::StoreError;
 use crate::frame::{Frame, read_back};
-use crate::schema::{ATTENUATION_FIT, PSA_STATS, SUMMARY, col};
+use crate::spec::{Scope, TableSpec};
+
+/// Statistics across seeds of the events and similarity tables.
+pub const SUMMARY: TableSpec = TableSpec {
+    name: "summary",
+    scope: Scope::AcrossSeeds,
+    key: &[col::GROUP, col::QUANTITY],
+    columns: &[
+        col::GROUP,
+        col::QUANTITY,
+        col::COUNT,
+        col::MEAN,
+        col::STD,
+        col::CV,
+        col::MIN,
+        col::P5,
+        col::P50,
+        col::P95,
+        col::MAX,
+        col::CI95_LOW,
+        col::CI95_HIGH,
+        col::GEOMETRIC_MEAN,
+        col::LOG_STD,
+    ],
+    variable: None,
+};
+
+/// PSA across seeds.
+pub const PSA_STATS: TableSpec = TableSpec {
+    name: "psa_stats",
+    scope: Scope::AcrossSeeds,
+    key: &[col::SCALE, col::NODE, col::COMPONENT, col::DAMPING, col::PERIOD_S],
+    columns: &[
+        col::SCALE,
+        col::NODE,
+        col::COMPONENT,
+        col::DAMPING,
+        col::PERIOD_S,
+        col::COUNT,
+        col::MEAN_M_S2,
+        col::GEOMETRIC_MEAN_M_S2,
+        col::P5_M_S2,
+        col::P50_M_S2,
+        col::P95_M_S2,
+        col::IN_BAND,
+    ],
+    variable: None,
+};
+
+/// Log-log fits of peak motions against distance.
+pub const ATTENUATION_FIT: TableSpec = TableSpec {
+    name: "attenuation_fit",
+    scope: Scope::AcrossSeeds,
+    key: &[col::GROUP, col::MEASURE],
+    columns: &[col::GROUP, col::MEASURE, col::POINTS, col::INTERCEPT, col::SLOPE, col::R2],
+    variable: None,
+};
 
 /// One row of the summary: the statistics of `quantity` over the events of `group`.
 #[derive(Clone, Debug, PartialEq)]

@@ -4,8 +4,8 @@
 
 use std::ops::ControlFlow;
 
+use stickslip_analysis::events::catalogue;
 use stickslip_config::Pipeline;
-use stickslip_ensemble::seed::catalogue;
 use stickslip_solver::inspect::inspect;
 use stickslip_solver::{Model, RunOptions, run_seed};
 use stickslip_support::repo_path;
@@ -19,7 +19,7 @@ fn rock_like_friction_on_a_loading_plate_gives_repeated_stick_slip_in_every_seed
     let mut recurrences = Vec::new();
     for &seed in &p.seeds[..4] {
         let out = run_seed(&model, seed, RunOptions::default(), &mut |_| ControlFlow::Continue(())).unwrap();
-        let cat = catalogue(&out.recording, &model, &p.events);
+        let cat = catalogue(&out.recording, &model, &p.analysis.events);
         let mains: Vec<_> = cat.main_shocks().collect();
         // 0.3 s at 1 mm/s: the springs reload 2.3 kPa in about 46 ms, so at least four main shocks.
         assert!(mains.len() >= 4, "seed {seed}: {} main shocks", mains.len());
@@ -61,7 +61,7 @@ fn the_seated_paper_block_recurs_like_the_paper_without_lifting() {
     let (mut drops, mut s2, mut recurrences) = (Vec::new(), Vec::new(), Vec::new());
     for &seed in &p.seeds[..2] {
         let out = run_seed(&model, seed, RunOptions::default(), &mut |_| ControlFlow::Continue(())).unwrap();
-        let cat = catalogue(&out.recording, &model, &p.events);
+        let cat = catalogue(&out.recording, &model, &p.analysis.events);
         let rec = &out.recording;
         let lifted = rec.get(stickslip_solver::Channel::LiftedNodes).unwrap();
         for e in cat.main_shocks() {

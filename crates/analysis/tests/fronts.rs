@@ -4,9 +4,9 @@
 
 use std::ops::ControlFlow;
 
+use stickslip_analysis::events::catalogue;
+use stickslip_analysis::fronts::{FaultBase, SeedFronts, fronts};
 use stickslip_config::Pipeline;
-use stickslip_ensemble::fronts::{FaultBase, fronts};
-use stickslip_ensemble::seed::catalogue;
 use stickslip_seismo::front::{Arrest, Front, Regime};
 use stickslip_solver::{Model, RunOptions, run_seed};
 use stickslip_support::repo_path;
@@ -21,8 +21,9 @@ fn ruptures_start_in_the_asperity_and_run_slower_than_p_waves() {
     for &seed in &p.seeds[..4] {
         let (mains_before, in_before) = (mains, in_asperity);
         let out = run_seed(&model, seed, RunOptions::default(), &mut |_| ControlFlow::Continue(())).unwrap();
-        let cat = catalogue(&out.recording, &model, &p.events);
-        let f = fronts(&out.recording, &cat, &model, p.events.smoothing_s, p.events.rupture_rate_m_s).unwrap();
+        let cat = catalogue(&out.recording, &model, &p.analysis.events);
+        let f = fronts(&out.recording, &cat, &model, p.analysis.events.smoothing_s, p.analysis.events.rupture_rate_m_s)
+            .unwrap();
         assert_eq!(f.source, "slip_rate");
         c_s = f.speeds.s_m_s;
         // The fault's series are the trace's instants, one per node.
@@ -61,13 +62,14 @@ fn ruptures_start_in_the_asperity_and_run_slower_than_p_waves() {
 }
 
 /// The main shocks' fronts of `seeds` of `p`, with the seeds' fronts (for the base and speeds).
-fn main_fronts(p: &Pipeline, seeds: &[u64]) -> Vec<(u64, Front, stickslip_ensemble::fronts::SeedFronts)> {
+fn main_fronts(p: &Pipeline, seeds: &[u64]) -> Vec<(u64, Front, SeedFronts)> {
     let model = Model::new(p.scene.clone());
     let mut out = Vec::new();
     for &seed in seeds {
         let run = run_seed(&model, seed, RunOptions::default(), &mut |_| ControlFlow::Continue(())).unwrap();
-        let cat = catalogue(&run.recording, &model, &p.events);
-        let f = fronts(&run.recording, &cat, &model, p.events.smoothing_s, p.events.rupture_rate_m_s).unwrap();
+        let cat = catalogue(&run.recording, &model, &p.analysis.events);
+        let f = fronts(&run.recording, &cat, &model, p.analysis.events.smoothing_s, p.analysis.events.rupture_rate_m_s)
+            .unwrap();
         for (k, front) in &f.fronts {
             if cat.events[*k].kind.is_main() {
                 out.push((seed, front.clone(), f.clone()));

@@ -9,20 +9,21 @@
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 
+use crate::attenuation::{AttenuationRow, attenuation};
+use crate::settings::{AccelerogramSettings, EventChoice, MeanChoice, RecordSpan, SpectraSettings};
 use rustfft::FftPlanner;
-use stickslip_config::accelerograms::{EventChoice, MeanChoice, RecordSpan};
-use stickslip_config::{AccelerogramSettings, SpectraSettings};
 use stickslip_seismo::SeismoError;
-use stickslip_seismo::accelerogram::processing::{MeanRemoval, Padding, ProcessingOptions, RecordBand, process};
+use stickslip_seismo::accelerogram::processing::{
+    MeanRemoval, Padding, Processed, ProcessingOptions, RecordBand, process,
+};
 use stickslip_seismo::events::Catalogue;
-use stickslip_seismo::spectra::fourier::fourier_amplitude;
-use stickslip_seismo::spectra::intensity::{Baseline, intensity};
+use stickslip_seismo::spectra::fourier::{FourierSpectrum, fourier_amplitude};
+use stickslip_seismo::spectra::intensity::{Baseline, Intensity, intensity};
 use stickslip_seismo::spectra::response::{SpectrumError, SpectrumPlan, SpectrumScratch};
 use stickslip_seismo::spectra::rotd::{RotDPlan, RotDScratch, RotDSpectrum};
 use stickslip_solver::geometry::NodeId;
-use stickslip_solver::scene::{Component, Kinematic};
+use stickslip_solver::scene::{Component, ControlChannel};
 use stickslip_solver::{Model, Recording};
-use stickslip_store::tables::records::{AttenuationRow, RecordData, RotdData};
 
 /// What the analysis produced for one seed.
 #[derive(Clone, Debug, Default)]
@@ -36,6 +37,54 @@ pub struct SeedRecords {
     pub left_out: Vec<String>,
     /// Attenuation rows (if asked).
     pub attenuation: Vec<AttenuationRow>,
+}
+
+/// One processed record and what was computed of it (model scale).
+#[derive(Clone, Debug)]
+pub struct RecordData {
+    /// Name within the seed, e.g. `S2-n36-x`.
+    pub id: String,
+    /// Index of the event in the seed's catalogue (`None` for a whole-run record).
+    pub event: Option<u32>,
+    /// The event's label (`S2`, `E17`) or `run`.
+    pub label: String,
+    /// The control channel.
+    pub channel: ControlChannel,
+    /// Node position (m).
+    pub position: [f64; 3],
+    /// Run time of the window's first sample (s, shear stage).
+    pub start_s: f64,
+    /// Length of the window before the event's start (s).
+    pub pre_event_s: f64,
+    /// The processed record (padded acceleration, velocity, displacement).
+    pub processed: Processed,
+    /// Filter corners and usable band.
+    pub band: RecordBand,
+    /// Intensity measures of the processed record.
+    pub intensity: Intensity,
+    /// SD (m), damping-major over the spectra's periods; empty without spectra.
+    pub sd: Vec<f64>,
+    /// Fourier amplitude spectrum of the processed record, without spectra `None`.
+    pub fourier: Option<FourierSpectrum>,
+}
+
+/// RotD50 and RotD100 of a node's two horizontal records of one window (model scale).
+#[derive(Clone, Debug)]
+pub struct RotdData {
+    /// Name within the seed, e.g. `S2-n36-xy`.
+    pub id: String,
+    /// Index of the event (`None` for the whole run).
+    pub event: Option<u32>,
+    /// The event's label or `run`.
+    pub label: String,
+    /// The node.
+    pub node: NodeId,
+    /// The band both components can be used in.
+    pub band: RecordBand,
+    /// RotD50 SD (m), damping-major.
+    pub sd50: Vec<f64>,
+    /// RotD100 SD (m), damping-major.
+    pub sd100: Vec<f64>,
 }
 
 /// Plans shared by the workers, one per sampling interval.
@@ -252,49 +301,4 @@ pub fn compute(
         }
     }
     Ok(out)
-}
-
-/// Peak motions of every control node in every main shock, with the distance from the shock's
-/// hypocentre (its first sustained slip onset in `[start − smoothing, end]`).
-fn attenuation(rec: &Recording, catalogue: &Catalogue, model: &Model, smoothing_s: f64) -> Vec<AttenuationRow> {
-    let lattice = model.lattice();
-    let t = &rec.time_s;
-    let mut nodes: Vec<NodeId> = rec.control.iter().map(|(c, _)| c.node).collect();
-    nodes.sort();
-    nodes.dedup();
-    let series = |node: NodeId, q: Kinematic| -> Vec<&[f64]> {
-        rec.control.iter().filter(|(c, _)| c.node == node && c.quantity == q).map(|(_, v)| v.as_slice()).collect()
-    };
-    let mut rows = Vec::new();
-    for (k, e) in catalogue.events.iter().enumerate() {
-        let Some(rank) = e.kind.rank().filter(|_| e.kind.is_main()) else { continue };
-        let Some(hypo) = hypocentre(rec, e.burst.start_s - smoothing_s, e.burst.end_s) else { continue };
-        let h = lattice.position(hypo);
-        let (a, b) = (t.partition_point(|&x| x < e.burst.start_s), t.partition_point(|&x| x <= e.burst.end_s));
-        for &node in &nodes {
-            let p = lattice.position(node);
-            let distance = ((p[0] - h[0]).powi(2) + (p[1] - h[1]).powi(2) + (p[2] - h[2]).powi(2)).sqrt();
-            let peak = |comps: &[&[f64]]| -> f64 {
-                if comps.is_empty() {
-                    return f64::NAN;
-                }
-                (a..b).map(|i| comps.iter().map(|c| c[i] * c[i]).sum::<f64>().sqrt()).fold(0.0, f64::max)
-            };
-            rows.push(AttenuationRow {
-                event: k as u32,
-                rank,
-                hypocentre: hypo,
-                node,
-                distance_m: distance,
-                pga_m_s2: peak(&series(node, Kinematic::Acceleration)),
-                pgv_m_s: peak(&series(node, Kinematic::Velocity)),
-            });
-        }
-    }
-    rows
-}
-
-/// The first contact node to slide for good in `[from, to]` (s), if slip onsets were recorded.
-pub fn hypocentre(rec: &Recording, from: f64, to: f64) -> Option<NodeId> {
-    rec.onsets.iter().find(|(time, _)| *time >= from && *time <= to).map(|&(_, n)| n)
 }

@@ -3,12 +3,12 @@
 //! and [`stickslip_seismo::front::front`] applied to each event's window.
 
 use stickslip_seismo::events::Catalogue;
+use stickslip_seismo::events::EventKind;
 use stickslip_seismo::front::{Fault, Front, WaveSpeeds, front, rate_onsets};
 use stickslip_solver::dispersion::LatticeMaterial;
 use stickslip_solver::geometry::Face;
 use stickslip_solver::laws::RegionKind;
 use stickslip_solver::{Model, NodeId, Recording};
-use stickslip_store::tables::fronts::{EventFront, FaultNodes};
 
 /// The base of a scene seen as a fault.
 #[derive(Clone, Debug, PartialEq)]
@@ -43,11 +43,6 @@ impl FaultBase {
         }
     }
 
-    /// As the front tables name it.
-    pub fn nodes(&self) -> FaultNodes<'_> {
-        FaultNodes { ids: &self.ids, position_m: &self.position_m, region: &self.region }
-    }
-
     /// As the front analysis reads it.
     pub fn fault(&self) -> Fault<'_> {
         Fault { position_m: &self.position_m, area_m2: &self.area_m2, barrier: &self.barrier }
@@ -63,6 +58,17 @@ pub fn wave_speeds(model: &Model) -> WaveSpeeds {
         .map(|m| m.long_wave_speeds_m_s())
         .unwrap_or((f64::NAN, f64::NAN));
     WaveSpeeds::new(c_p, c_s)
+}
+
+/// The front of event `event` of kind `kind`, as the tables take it.
+#[derive(Clone, Copy, Debug)]
+pub struct EventFront<'a> {
+    /// Index of the event in the seed's catalogue.
+    pub event: u32,
+    /// Its kind.
+    pub kind: EventKind,
+    /// Its front.
+    pub front: &'a Front,
 }
 
 /// The fronts of one seed's events.

@@ -1,0 +1,89 @@
+//! stickslip analysis: one seed's recording analysed into a typed result.
+//!
+//! Owns: the analysis of one finished run, [`analyse`] — its events and sub-events on the
+//! solver's event trace ([`events`]), each at prototype scale with its magnitudes, the records
+//! cut around the events with their processing, intensity, response, Fourier and RotD spectra
+//! ([`records`]), the attenuation of peak motions with distance ([`attenuation`]), the rupture
+//! front of each event ([`fronts`]) and the bar breaks as acoustic emission ([`emission`]) — and
+//! what it is asked to do ([`settings`]). It is a pure function of the run, the model and the
+//! settings: it can be tested without files.
+//!
+//! Must not know: files, tables or figures (the store writes a [`SeedAnalysis`]), the pipeline
+//! file's syntax (the configuration crate builds the [`Settings`]), how seeds are scheduled.
+#![deny(missing_docs)]
+
+pub mod attenuation;
+pub mod emission;
+pub mod events;
+pub mod fronts;
+pub mod records;
+pub mod settings;
+
+use stickslip_seismo::emission::Cluster;
+use stickslip_seismo::events::Catalogue;
+use stickslip_solver::{Model, RunOutput};
+
+pub use events::ScaledEvent;
+pub use fronts::SeedFronts;
+pub use records::{PlanCache, RecordData, RecordFailure, RotdData, SeedRecords};
+pub use settings::{AccelerogramSettings, Settings, SpectraSettings};
+
+/// Why a seed's run could not be analysed.
+#[derive(Debug, thiserror::Error)]
+pub enum AnalysisError {
+    /// Its records could not be made.
+    #[error(transparent)]
+    Records(#[from] RecordFailure),
+}
+
+/// One seed's run and everything found in it.
+pub struct SeedAnalysis {
+    /// The run.
+    pub run: RunOutput,
+    /// Its events.
+    pub catalogue: Catalogue,
+    /// Every event at prototype scale, in catalogue order.
+    pub scaled: Vec<ScaledEvent>,
+    /// The prototype length ratio λ the records scale with.
+    pub lambda: f64,
+    /// Its records (and their spectra), if asked.
+    pub records: Option<SeedRecords>,
+    /// Its bar breaks as acoustic-emission events, when the bars crack.
+    pub emission: Option<Vec<Cluster>>,
+    /// The rupture front of each event, when the scene records slip onsets or the fault.
+    pub fronts: Option<SeedFronts>,
+}
+
+/// Analyses one finished run of `model` as `settings` ask; `plans` holds the spectra's plans,
+/// shared by every seed of an ensemble.
+pub fn analyse(
+    run: RunOutput,
+    model: &Model,
+    settings: &Settings,
+    plans: &PlanCache,
+) -> Result<SeedAnalysis, AnalysisError> {
+    let catalogue = events::catalogue(&run.recording, model, &settings.events);
+    let scaled = events::scaled_events(&catalogue, model, &settings.similarity);
+    let records = match &settings.accelerograms {
+        Some(acc) => Some(records::compute(
+            &run.recording,
+            &catalogue,
+            model,
+            acc,
+            settings.spectra.as_ref(),
+            settings.events.smoothing_s,
+            plans,
+        )?),
+        None => None,
+    };
+    let emission = settings.emission.as_ref().map(|p| emission::emission(&run.recording.cracks, model.lattice(), p));
+    let fronts = fronts::fronts(
+        &run.recording,
+        &catalogue,
+        model,
+        settings.events.smoothing_s,
+        settings.events.rupture_rate_m_s,
+    );
+    let lambda = events::lambda(model, &settings.similarity);
+    Ok(SeedAnalysis { run, catalogue, scaled, lambda, records, emission, fronts })
+}

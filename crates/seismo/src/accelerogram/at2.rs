@@ -1,0 +1,237 @@
+//! PEER NGA `.AT2` files: the writer the product's records use and a reader of every PEER form.
+//!
+//! Layout written (the one structural-analysis tools read):
+//! ```text
+//! PEER NGA STRONG MOTION DATABASE RECORD
+//! <description: pipeline, seed, node, component, scale, units>
+//! ACCELERATION TIME SERIES IN UNITS OF G
+//! NPTS=  29803, DT= 1.0738000E-05 SEC
+//!   1.2345678E-03 -2.3456789E-04 …            (5 values per line, E15.7, in g)
+//! ```
+//! The reader accepts line 4 in every form PEER has used:
+//! - NGA-West2: `NPTS=  4096, DT=   .0100 SEC` (keys, `=`, commas, a unit word);
+//! - variants without the comma or unit, in either key order: `NPTS= 4096 DT= .01`;
+//! - the older PEER form, numbers first and names after: `4096    0.0100    NPTS, DT`
+//!   (e.g. the Kobe NIS090 record distributed with pystrata), or the two numbers alone.
+//!
+//! Values may use Fortran `D` exponents. A last line padded with zeros beyond `NPTS` (seen in
+//! some old files) is accepted and the padding dropped; fewer values than `NPTS`, or non-zero
+//! values beyond it, are refused. Values are converted from g to m/s² with g = 9.80665 m/s².
+
+use std::path::Path;
+
+use super::{Accelerogram, G, RecordFile, RecordFormat};
+use crate::error::SeismoError;
+
+/// The `.AT2` format: acceleration in g, the description on line 2.
+#[derive(Clone, Copy, Debug)]
+pub struct At2;
+
+impl RecordFormat for At2 {
+    fn name(&self) -> &'static str {
+        "at2"
+    }
+
+    fn extension(&self) -> &'static str {
+        "AT2"
+    }
+
+    fn encode(&self, r: &RecordFile<'_>) -> Result<Vec<u8>, SeismoError> {
+        Ok(at2_text(r.accel_m_s2, r.dt_s, r.description).into_bytes())
+    }
+}
+
+/// `v` as Fortran E15.7: ` -1.2345678E-03`.
+fn e15_7(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return format!("{:>15}", if v.is_finite() { "0.0000000E+00".to_string() } else { format!("{v}") });
+    }
+    let s = format!("{v:.7E}");
+    // `{:.7E}` always prints one `E` followed by an integer exponent.
+    let (mantissa, exp) = s.split_once('E').unwrap_or((&s, "0"));
+    let exp: i32 = exp.parse().unwrap_or(0);
+    let sign = if exp < 0 { '-' } else { '+' };
+    format!("{:>15}", format!("{mantissa}E{sign}{:02}", exp.abs()))
+}
+
+/// The text of an AT2 file for `accel` (m/s²) sampled every `dt` seconds.
+pub fn at2_text(accel: &[f64], dt: f64, description: &str) -> String {
+    let mut out = String::with_capacity(accel.len() * 16 + 256);
+    out.push_str("PEER NGA STRONG MOTION DATABASE RECORD\n");
+    out.push_str(description.lines().next().unwrap_or(""));
+    out.push('\n');
+    out.push_str("ACCELERATION TIME SERIES IN UNITS OF G\n");
+    out.push_str(&format!("NPTS= {:>7}, DT= {} SEC\n", accel.len(), e15_7(dt).trim()));
+    for chunk in accel.chunks(5) {
+        for v in chunk {
+            out.push_str(&e15_7(v / G));
+        }
+        out.push('\n');
+    }
+    out
+}
+
+pub(crate) fn parse_number(s: &str) -> Option<f64> {
+    s.trim().trim_end_matches(',').replace(['D', 'd'], "E").parse().ok()
+}
+
+/// `NPTS` and `DT` from line 4 of an AT2 file, in any of the forms the module doc lists.
+pub fn parse_npts_dt(line: &str) -> Option<(f64, f64)> {
+    let upper = line.to_ascii_uppercase();
+    let tokens: Vec<&str> = upper
+        .split(|c: char| c.is_whitespace() || c == ',' || c == '=' || c == ':')
+        .filter(|t| !t.is_empty())
+        .collect();
+    let number = |t: &str| parse_number(t.strip_suffix("SEC").unwrap_or(t));
+    let (mut npts, mut dt) = (None, None);
+    for w in tokens.windows(2) {
+        match w[0] {
+            "NPTS" => npts = npts.or(number(w[1])),
+            "DT" => dt = dt.or(number(w[1])),
+            _ => {}
+        }
+    }
+    match (npts, dt) {
+        (Some(n), Some(d)) => Some((n, d)),
+        (None, None) => {
+            // Numbers first (old PEER form) or numbers alone.
+            let mut nums = tokens.iter().filter_map(|t| number(t));
+            Some((nums.next()?, nums.next()?))
+        }
+        _ => None,
+    }
+}
+
+/// Parses the text of an AT2 file; `path` only names it in errors.
+pub fn parse_at2(text: &str, path: &Path) -> Result<Accelerogram, SeismoError> {
+    let corrupt = |what: String| SeismoError::Format { path: path.to_path_buf(), what };
+    let lines: Vec<&str> = text.lines().collect();
+    if lines.len() < 4 {
+        return Err(corrupt("an AT2 file has 4 header lines".into()));
+    }
+    let units = lines[2].to_ascii_uppercase();
+    if !units.contains("UNITS OF G") {
+        return Err(corrupt(format!("line 3 should say the units are g, found {:?}", lines[2])));
+    }
+    let Some((npts, dt)) = parse_npts_dt(lines[3]) else {
+        return Err(corrupt(format!("line 4 should give NPTS and DT, found {:?}", lines[3])));
+    };
+    if !(npts >= 0.0 && npts.fract() == 0.0 && npts <= 1e9) {
+        return Err(corrupt(format!("NPTS = {npts} must be a whole number of samples")));
+    }
+    if !(dt > 0.0 && dt.is_finite()) {
+        return Err(corrupt(format!("DT = {dt} must be positive")));
+    }
+    let npts = npts as usize;
+    let mut accel = Vec::with_capacity(npts);
+    for (k, line) in lines[4..].iter().enumerate() {
+        for token in line.split_whitespace() {
+            let v = parse_number(token).ok_or_else(|| corrupt(format!("line {}: {token:?} is not a number", k + 5)))?;
+            if accel.len() >= npts && v != 0.0 {
+                return Err(corrupt(format!("NPTS = {npts} but non-zero values follow the last one (line {})", k + 5)));
+            }
+            accel.push(v * G);
+        }
+    }
+    if accel.len() < npts {
+        return Err(corrupt(format!("NPTS = {npts} but {} values follow", accel.len())));
+    }
+    accel.truncate(npts);
+    Ok(Accelerogram { dt, accel, description: lines[1].trim().to_string() })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn at2_round_trip_within_printed_precision() {
+        let dt = 1.0738e-5;
+        let accel: Vec<f64> =
+            (0..1234).map(|i| 37.0 * ((i as f64) * 0.37).sin() * (-(i as f64) / 800.0).exp()).collect();
+        let text = at2_text(&accel, dt, "test record, model scale, m/s² written as g");
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines[3], "NPTS=    1234, DT= 1.0738000E-05 SEC");
+        assert_eq!(lines[4].len(), 75, "5 values of 15 characters");
+        let back = parse_at2(&text, Path::new("x.AT2")).unwrap();
+        assert_eq!(back.accel.len(), accel.len());
+        assert!((back.dt - dt).abs() < 1e-12);
+        for (a, b) in accel.iter().zip(&back.accel) {
+            // E15.7 keeps 8 significant digits.
+            assert!((a - b).abs() <= 5e-8 * a.abs() + 1e-300, "{a} vs {b}");
+        }
+    }
+
+    /// A record of `npts` values `k·1e-3 g` under the given line 4.
+    fn at2_with_line4(line4: &str, npts: usize) -> String {
+        let mut s =
+            format!("PEER NGA STRONG MOTION DATABASE RECORD\nx\nACCELERATION TIME HISTORY IN UNITS OF G\n{line4}\n");
+        for chunk in (0..npts).collect::<Vec<_>>().chunks(5) {
+            for k in chunk {
+                s.push_str(&format!("{:>15.6E}", *k as f64 * 1e-3));
+            }
+            s.push('\n');
+        }
+        s
+    }
+
+    #[test]
+    fn every_peer_form_of_line_4_is_read() {
+        let forms = [
+            ("4096    0.0100    NPTS, DT", 4096, 0.01), // old PEER (Kobe NIS090, pystrata)
+            ("NPTS=  4096, DT=   .0100 SEC", 4096, 0.01), // NGA-West2
+            ("NPTS= 4096 DT= .01", 4096, 0.01),
+            ("NPTS=4096,DT=.0050SEC", 4096, 0.005),
+            ("DT= .0200 SEC, NPTS= 1000", 1000, 0.02),
+            ("  1000   .0050", 1000, 0.005),
+            ("npts= 12, dt= 1.0D-02 sec", 12, 0.01),
+        ];
+        for (line4, npts, dt) in forms {
+            let r =
+                parse_at2(&at2_with_line4(line4, npts), Path::new("f.at2")).unwrap_or_else(|e| panic!("{line4}: {e}"));
+            assert_eq!(r.accel.len(), npts, "{line4}");
+            assert!((r.dt - dt).abs() < 1e-15, "{line4}: dt {}", r.dt);
+            assert!((r.accel[7] - 7e-3 * G).abs() < 1e-12, "{line4}");
+        }
+        for bad in ["NPTS= 4096, DT= SEC", "4096 NPTS", "NPTS= 40.5, DT= .01", "NPTS= 10, DT= -0.01"] {
+            let e = parse_at2(&at2_with_line4(bad, 10), Path::new("bad.at2")).unwrap_err().to_string();
+            assert!(
+                e.contains("bad.at2") && (e.contains("line 4") || e.contains("NPTS") || e.contains("DT")),
+                "{bad}: {e}"
+            );
+        }
+    }
+
+    #[test]
+    fn first_lines_of_kobe_nis090_as_distributed_with_pystrata() {
+        // The first 4 + 2 lines of pystrata's tests/data/NIS090.AT2, NPTS cut to the 10 values shown.
+        let text = "PEER NGA STRONG MOTION DATABASE RECORD\n\
+                    KOBE 01/16/95 2046, NISHI-AKASHI, 090 (CUE)\n\
+                    ACCELERATION TIME HISTORY IN UNITS OF G\n\
+                    10    0.0100    NPTS, DT\n   \
+                    0.233833E-06   0.299033E-06   0.515835E-06   0.667785E-06   0.490847E-06\n  \
+                    -0.377832E-06  -0.127271E-05  -0.110085E-05  -0.163851E-05  -0.447914E-05\n";
+        let r = parse_at2(text, Path::new("NIS090.AT2")).unwrap();
+        assert_eq!(r.accel.len(), 10);
+        assert_eq!(r.dt, 0.01);
+        assert!((r.accel[9] + 0.447914e-5 * G).abs() < 1e-15);
+        assert_eq!(r.description, "KOBE 01/16/95 2046, NISHI-AKASHI, 090 (CUE)");
+    }
+
+    #[test]
+    fn zero_padding_past_npts_is_dropped_other_surplus_refused() {
+        let text =
+            "PEER\nx\nACCELERATION TIME SERIES IN UNITS OF G\nNPTS= 3, DT= 0.01 SEC\n0.1D+00 -0.2D+00 0.5E-1 0.0 0.0\n";
+        let r = parse_at2(text, Path::new("o.at2")).unwrap();
+        assert_eq!(r.accel.len(), 3);
+        assert!((r.accel[1] + 0.2 * G).abs() < 1e-12);
+        let text = text.replace("0.0 0.0", "0.0 0.1");
+        let e = parse_at2(&text, Path::new("o.at2")).unwrap_err().to_string();
+        assert!(e.contains("non-zero values follow"), "{e}");
+        let short = parse_at2(
+            "PEER\nx\nACCELERATION TIME SERIES IN UNITS OF G\nNPTS= 4, DT= 0.01 SEC\n1 2 3\n",
+            Path::new("s"),
+        );
+        assert!(short.unwrap_err().to_string().contains("NPTS = 4 but 3 values"));
+    }
+}

@@ -1,0 +1,40 @@
+//! Writing one seed: its fault station files and record files, every per-seed table from its
+//! analysis ([`crate::tables::SEED_TABLES`]), then its `runs` row last — a seed counts as
+//! finished when that part exists.
+
+use crate::error::StoreError;
+use crate::files;
+use crate::io::write_parquet_atomic;
+use crate::layout::Folder;
+use crate::spec::SeedView;
+use crate::tables::SEED_TABLES;
+use crate::tables::runs::{self, RUNS, RunFacts, RunRow};
+
+/// What names a seed's files: the pipeline's name and the hash of what determines its results.
+#[derive(Clone, Copy, Debug)]
+pub struct Stamp<'a> {
+    /// The pipeline's name (it starts every record file's name).
+    pub pipeline: &'a str,
+    /// The pipeline's hash.
+    pub hash: &'a str,
+}
+
+/// Writes every part and file of a seed that ran, `runs` last.
+pub fn write_seed(out: &Folder, view: &SeedView<'_>, stamp: &Stamp<'_>, wall_time_s: f64) -> Result<(), StoreError> {
+    files::stations::write(out, view, stamp)?;
+    files::records::write(out, view, stamp)?;
+    for table in &SEED_TABLES {
+        if let Some(mut df) = (table.write)(view)? {
+            write_parquet_atomic(&mut df, &out.part(&table.spec, view.seed))?;
+        }
+    }
+    let a = view.analysis;
+    let row = RunRow { seed: view.seed, outcome: Ok(RunFacts::of(&a.run, &a.catalogue)), wall_time_s };
+    write_parquet_atomic(&mut runs::frame(&[row], stamp.hash)?, &out.part(&RUNS, view.seed))
+}
+
+/// Writes the `runs` row of a seed that failed with `message`.
+pub fn write_failed(out: &Folder, seed: u64, message: &str, hash: &str, wall_time_s: f64) -> Result<(), StoreError> {
+    let row = RunRow { seed, outcome: Err(message.to_string()), wall_time_s };
+    write_parquet_atomic(&mut runs::frame(&[row], hash)?, &out.part(&RUNS, seed))
+}
