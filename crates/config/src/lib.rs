@@ -6,13 +6,15 @@
 //! every section, and the validated [`Pipeline`] — the solver's [`stickslip_solver::Scene`], the
 //! seismology numerics' parameters, the spectra and report settings — with the hash that stamps
 //! its results. Every refused value names its field, the value and the allowed range, and nothing
-//! runs. Must not know: how a scene is run, tables, figures.
+//! runs; the solver's messages name physical quantities and [`keys`] names the keys behind them.
+//! Must not know: how a scene is run, tables, figures.
 #![deny(missing_docs)]
 
 pub mod accelerograms;
 pub mod check;
 pub mod error;
 pub mod friction_map;
+pub mod keys;
 pub mod pipeline;
 pub mod precision;
 pub mod scene;

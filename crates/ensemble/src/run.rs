@@ -189,7 +189,8 @@ pub fn run_ensemble(
             if write_error.is_some() || matches!(r.outcome, Err(SolverError::Cancelled)) {
                 continue;
             }
-            let outcome = r.outcome.map_err(|e| e.to_string());
+            // The solver's message with the pipeline keys behind its advice.
+            let outcome = r.outcome.map_err(|e| stickslip_config::keys::describe(&e));
             if let Ok(a) = &outcome {
                 integrated_steps += a.run.integrated_steps();
             }
