@@ -5,14 +5,16 @@
 //! with their documented defaults (the paper scene), one [`Checker`] and one [`ConfigError`] for
 //! every section, and the validated [`Pipeline`] — the solver's [`stickslip_solver::Scene`], the
 //! analysis's [`stickslip_analysis::Settings`], the record set and the report settings — with the
-//! hash that stamps its results. Every refused value names its field, the value and the allowed range, and nothing
-//! runs. Must not know: how a scene is run, tables, figures.
+//! hash that stamps its results. Every refused value names its field, the value and the allowed
+//! range, and nothing runs; the solver's messages name physical quantities and [`keys`] names the
+//! keys behind them. Must not know: how a scene is run, tables, figures.
 #![deny(missing_docs)]
 
 pub mod accelerograms;
 pub mod check;
 pub mod error;
 pub mod friction_map;
+pub mod keys;
 pub mod pipeline;
 pub mod precision;
 pub mod scene;

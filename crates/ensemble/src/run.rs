@@ -210,8 +210,14 @@ pub fn run_ensemble(
                     write_seed(&out, &view, &stamp, r.wall_time_s)
                 }
                 Err(e) => {
-                    failed.push((r.seed, e.to_string()));
-                    write_failed(&out, r.seed, &e.to_string(), &pipeline.hash, r.wall_time_s)
+                    // The solver's message with the pipeline keys behind its advice.
+                    let msg = match e {
+                        SeedFailure::Run(e) => stickslip_config::keys::describe(e),
+                        other => other.to_string(),
+                    };
+                    let written = write_failed(&out, r.seed, &msg, &pipeline.hash, r.wall_time_s);
+                    failed.push((r.seed, msg));
+                    written
                 }
             };
             match written {

@@ -1,4 +1,7 @@
 //! Errors of the solver: numerical failures, unstable runs, cancelled runs.
+//!
+//! Messages name physical quantities (the time step, the settling damping), never the keys of a
+//! pipeline file: whoever reads those files maps the quantities to their keys.
 
 /// Everything that can go wrong in the solver.
 #[derive(Debug, thiserror::Error)]
@@ -6,8 +9,8 @@ pub enum SolverError {
     /// The requested time step is above the critical step of the lattice actually built.
     #[error(
         "time step {dt_s:.6e} s is above the critical step {critical_s:.6e} s of this lattice \
-         (seed {seed}: stiffest bar and lightest node included); use time.dt_fraction ≤ 1 or a \
-         smaller time.dt_s"
+         (seed {seed}: stiffest bar and lightest node included); use a time step at most the critical \
+         one"
     )]
     TimeStepAboveCritical {
         /// Requested step.
@@ -43,7 +46,7 @@ pub enum SolverError {
     /// The self-weight stage did not reach static equilibrium within its time limit.
     #[error(
         "self-weight stage did not settle within {max_s} s (out-of-balance force ratio {residual:.3e} > \
-         tolerance {tolerance:.1e}); raise self_weight.damping_per_s or self_weight.max_duration_s"
+         tolerance {tolerance:.1e}); raise the settling damping or the stage's time limit"
     )]
     NotSettled {
         /// The stage's time limit.

@@ -64,51 +64,80 @@ pub struct Slider {
     pub loading_speed_m_s: f64,
 }
 
+/// What the spring-slider reading expects, by kind: the verdict without its numbers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Regime {
+    /// The load tips the block about its leading edge before the base slides.
+    Tips,
+    /// Stable sliding: μ does not weaken with slip.
+    NoWeakening,
+    /// Stable sliding: the loading is stiffer than the critical stiffness.
+    StiffLoading,
+    /// Stable sliding: the swing is damped too much for a slip to outrun the loading.
+    Overdamped,
+    /// Stick-slip.
+    StickSlip,
+}
+
 impl Slider {
-    /// What the spring-slider reading expects, in words.
-    pub fn verdict(&self) -> String {
+    /// What the spring-slider reading expects.
+    pub fn regime(&self) -> Regime {
         if self.tipping_n < self.strength_n {
-            return format!(
+            Regime::Tips
+        } else if self.critical_n_m == 0.0 {
+            Regime::NoWeakening
+        } else if self.k_n_m >= self.critical_n_m {
+            Regime::StiffLoading
+        } else if self.damping_ratio >= 1.0 || self.slip_speed_m_s * self.overshoot() < self.loading_speed_m_s {
+            // Underdamped: a slip overshoots and sticks again only if its swing outruns the loading.
+            Regime::Overdamped
+        } else {
+            Regime::StickSlip
+        }
+    }
+
+    /// The fraction of its speed a slip's swing overshoots by, `exp(−πζ/√(1 − ζ²))`.
+    fn overshoot(&self) -> f64 {
+        (-std::f64::consts::PI * self.damping_ratio / (1.0 - self.damping_ratio.powi(2)).max(1e-12).sqrt()).exp()
+    }
+
+    /// What the spring-slider reading expects, in words: the [`Regime`], its numbers and what would
+    /// change it, in physical quantities.
+    pub fn verdict(&self) -> String {
+        match self.regime() {
+            Regime::Tips => format!(
                 "the block tips before it slides: the load tips it about its leading edge at {:.4e} N, below the \
-                 base's strength μs·N = {:.4e} N (load it lower, e.g. a [loading_plate] on x_min, or lower μs)",
+                 base's strength μs·N = {:.4e} N (load it lower, e.g. through springs on the trailing face, or lower \
+                 μs)",
                 self.tipping_n, self.strength_n
-            );
-        }
-        if self.critical_n_m == 0.0 {
-            return "stable sliding expected: μ does not weaken with slip (μd = μs), so a seated block slides steadily \
-                    (give [friction] mu_dynamic < mu_static)"
-                .into();
-        }
-        if self.k_n_m >= self.critical_n_m {
-            return format!(
+            ),
+            Regime::NoWeakening => "stable sliding expected: μ does not weaken with slip (μd = μs), so a seated block \
+                                    slides steadily (make the dynamic friction coefficient lower than the static one)"
+                .into(),
+            Regime::StiffLoading => format!(
                 "stable sliding expected: the loading stiffness k = {:.4e} N/m is above the critical stiffness \
                  (μs − μd)·N/Dc = {:.4e} N/m (softer loading, a larger μs − μd or a shorter Dc make it unstable)",
                 self.k_n_m, self.critical_n_m
-            );
-        }
-        // Underdamped: a slip overshoots and sticks again only if its swing outruns the loading.
-        let overshoot =
-            (-std::f64::consts::PI * self.damping_ratio / (1.0 - self.damping_ratio.powi(2)).max(1e-12).sqrt()).exp();
-        if self.damping_ratio >= 1.0 || self.slip_speed_m_s * overshoot < self.loading_speed_m_s {
-            return format!(
+            ),
+            Regime::Overdamped => format!(
                 "stable sliding expected despite k < k_c: the damping ratio of the block's swing D/(2ω) = {:.3} lets a slip \
                  overshoot by only {:.2e} m/s, less than the loading speed {:.2e} m/s, so the block never stops again \
-                 (lower [shear] damping_per_s or the loading speed)",
+                 (lower the shear stage's damping or the loading speed)",
                 self.damping_ratio,
-                self.slip_speed_m_s * overshoot,
+                self.slip_speed_m_s * self.overshoot(),
                 self.loading_speed_m_s
-            );
+            ),
+            Regime::StickSlip => format!(
+                "stick-slip expected: k = {:.4e} N/m below k_c = {}, swing damping ratio {:.3}",
+                self.k_n_m,
+                if self.critical_n_m.is_finite() {
+                    format!("{:.4e} N/m", self.critical_n_m)
+                } else {
+                    "∞ (μ drops at once)".into()
+                },
+                self.damping_ratio
+            ),
         }
-        format!(
-            "stick-slip expected: k = {:.4e} N/m below k_c = {}, swing damping ratio {:.3}",
-            self.k_n_m,
-            if self.critical_n_m.is_finite() {
-                format!("{:.4e} N/m", self.critical_n_m)
-            } else {
-                "∞ (μ drops at once)".into()
-            },
-            self.damping_ratio
-        )
     }
 }
 

@@ -179,7 +179,7 @@ pub fn run(a: Args) -> Result<()> {
     );
     println!(
         "    → {} (the rigid slider's reading; docs/model.md §12 says where a lattice block differs)",
-        sl.verdict()
+        stickslip_config::keys::verdict(sl)
     );
     let sw = &scene.self_weight;
     println!(

@@ -153,7 +153,10 @@ fn no_events(pipeline: &Pipeline, folder: &Folder) -> String {
     }
     let model = stickslip_solver::Model::new(pipeline.scene.clone());
     if let Ok(facts) = stickslip_solver::inspect::inspect(&model, &pipeline.seeds[..1]) {
-        lines.push(format!("  as a spring-slider (stickslip check): {}", facts.slider.verdict()));
+        lines.push(format!(
+            "  as a spring-slider (stickslip check): {}",
+            stickslip_config::keys::verdict(&facts.slider)
+        ));
     }
     lines.push(format!(
         "  the shear stage lasted {} s: the driver moved about {:.3e} m at {} m/s",

@@ -1,0 +1,81 @@
+//! `[block]` and `[material]` checked, the lattice built, and the nodes a file names found on it.
+
+use stickslip_solver::geometry::{Dims, Lattice, NodeId};
+
+use super::{BlockSection, MaterialSection};
+use crate::check::Checker;
+
+/// Largest node count the solver accepts (node indices are 32-bit).
+pub const MAX_NODES: u64 = 1 << 31;
+
+/// The module counts of `[block]` (`None` where refused), its `lc_m` checked too.
+pub(super) fn counts(ck: &mut Checker, b: &BlockSection) -> [Option<usize>; 3] {
+    let blurb = " (a block needs at least one module per axis)";
+    let nx = ck.count("block.nx", b.nx, 1, 1_000_000, blurb);
+    let ny = ck.count("block.ny", b.ny, 1, 1_000_000, blurb);
+    let nz = ck.count("block.nz", b.nz, 1, 1_000_000, blurb);
+    ck.positive("block.lc_m", b.lc_m);
+    [nx, ny, nz]
+}
+
+/// Checks `[material]`.
+pub(super) fn check_material(ck: &mut Checker, m: &MaterialSection) {
+    ck.positive("material.young_pa", m.young_pa);
+    ck.positive("material.density_kg_m3", m.density_kg_m3);
+    ck.range("material.poisson", m.poisson, 0.0, true, 0.5, true);
+    ck.range("material.young_cv", m.young_cv, 0.0, false, 1.0, false);
+}
+
+/// The lattice of `[block]` from its checked `counts`; `None` when a count or `lc_m` was refused
+/// or the block has more than [`MAX_NODES`] nodes (recorded in `ck`).
+pub(super) fn lattice(ck: &mut Checker, b: &BlockSection, counts: [Option<usize>; 3]) -> Option<Lattice> {
+    let [Some(nx), Some(ny), Some(nz)] = counts else { return None };
+    let dims = Dims::new(nx, ny, nz);
+    let nodes = dims.node_count() as u64;
+    if nodes > MAX_NODES {
+        ck.push("block", format!("{nx}×{ny}×{nz} modules ({nodes} nodes)"), format!("at most {MAX_NODES} nodes"));
+    }
+    if !(b.lc_m > 0.0 && b.lc_m.is_finite()) || nodes > MAX_NODES {
+        return None;
+    }
+    Some(Lattice::new(dims, b.lc_m))
+}
+
+fn describe_block(lattice: &Lattice) -> String {
+    let e = lattice.extent();
+    format!(
+        "a node of the block (0..{} × 0..{} × 0..{} m; corner nodes every Lc = {} m, centre nodes at module centres)",
+        e[0],
+        e[1],
+        e[2],
+        lattice.lc()
+    )
+}
+
+/// Resolves nodes given by LDEM number (field `ldem_field`) and by position (`at_field`).
+pub(super) fn resolve_nodes(
+    ck: &mut Checker,
+    lattice: &Lattice,
+    (ldem_field, at_field): (&str, &str),
+    ldem: &[i64],
+    at_m: &[[f64; 3]],
+) -> Vec<NodeId> {
+    let mut out = Vec::new();
+    for (i, &n) in ldem.iter().enumerate() {
+        match u64::try_from(n).ok().and_then(|n| lattice.node_by_ldem(n)) {
+            Some(id) => out.push(id),
+            None => ck.push(
+                format!("{ldem_field}[{i}]"),
+                n,
+                format!("an LDEM node number, 1 ≤ n ≤ {} for this block", lattice.node_count()),
+            ),
+        }
+    }
+    for (i, p) in at_m.iter().enumerate() {
+        match lattice.node_at(*p) {
+            Some(id) => out.push(id),
+            None => ck.push(format!("{at_field}[{i}]"), format!("{p:?} m"), describe_block(lattice)),
+        }
+    }
+    out
+}

@@ -1,0 +1,114 @@
+//! The scene sections of a pipeline file and their validation into a [`Scene`].
+//!
+//! Every field has a default (the paper scene, docs/model.md §6), carries its unit in its name,
+//! and is checked before anything runs: a refused value names its field, the value and the
+//! allowed range.
+//!
+//! The sections are declared in `sections.rs` (the body and its time step) and
+//! `stage_sections.rs` (the loading stages and what they record); each part of the scene is
+//! checked and built by its own module, in the order `build` calls them — the order in which a
+//! refused file's errors are listed.
+
+mod block;
+mod boundary;
+mod friction;
+mod loading;
+mod record;
+mod rupture;
+mod sections;
+mod stage_sections;
+mod time;
+
+use serde::Serialize;
+use stickslip_solver::Scene;
+
+use crate::check::Checker;
+pub use crate::friction_map::{GridSection, PatchSection};
+pub use block::MAX_NODES;
+pub use sections::*;
+pub use stage_sections::*;
+
+/// The scene sections of a pipeline file, borrowed: what a scene is built from, and the canonical
+/// form its hash is taken of (the layout results folders of earlier versions were stamped with,
+/// so they stay valid).
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct SceneSections<'a> {
+    /// `[block]`.
+    pub block: &'a BlockSection,
+    /// `[material]`.
+    pub material: &'a MaterialSection,
+    /// `[friction]`.
+    pub friction: &'a FrictionSection,
+    /// `[time]`.
+    pub time: &'a TimeSection,
+    /// `[self_weight]`.
+    pub self_weight: &'a SelfWeightSection,
+    /// `[shear]`.
+    pub shear: &'a ShearSection,
+    /// `[[boundary]]`.
+    pub boundary: &'a Vec<BoundarySection>,
+    /// `[record]`.
+    pub record: &'a RecordSection,
+    /// `[skip_ahead]`.
+    pub skip_ahead: &'a SkipAheadSection,
+    /// `[loading_plate]` (left out of the canonical form when absent).
+    #[serde(skip_serializing_if = "is_absent")]
+    pub loading_plate: &'a Option<LoadingPlateSection>,
+    /// `[rupture]` (left out of the canonical form when absent, so the hashes of files without it
+    /// do not change).
+    #[serde(skip_serializing_if = "is_absent")]
+    pub rupture: &'a Option<RuptureSection>,
+}
+
+fn is_absent<T>(x: &&Option<T>) -> bool {
+    x.is_none()
+}
+
+/// Validates the scene sections `file` into a [`Scene`]; `None` when something was refused
+/// (recorded in `ck`).
+pub(crate) fn build(file: SceneSections<'_>, ck: &mut Checker) -> Option<Scene> {
+    // The checks that need no lattice, section by section.
+    let counts = block::counts(ck, file.block);
+    block::check_material(ck, file.material);
+    let law = friction::law(ck, file.friction);
+    let time_step = time::time_step(ck, file.time);
+    let self_weight = loading::self_weight(ck, file.self_weight);
+    loading::check_shear(ck, file.shear, file.material);
+    record::check_interval(ck, file.record);
+    let skip_ahead = time::skip_ahead(ck, file.skip_ahead, file.record);
+    let rupture = file.rupture.as_ref().map(|r| rupture::rupture(ck, r, file.material, file.block.lc_m));
+    time::refuse_skip_ahead_with(ck, file.skip_ahead, rupture.is_some(), time::WITH_RUPTURE);
+    let interface = record::interface(ck, file.record);
+    // Everything below needs the lattice.
+    let lattice = block::lattice(ck, file.block, counts)?;
+    let drivers = loading::drivers(ck, file, &lattice);
+    let fixed = boundary::rollers(ck, file, &lattice);
+    loading::refuse_held_drivers(ck, &drivers, &fixed);
+    let control = record::control_channels(ck, file.record, &lattice);
+    let friction = friction::friction(ck, file.friction, law, &lattice);
+    let (plate, normal_load) = match file.loading_plate {
+        Some(lp) => boundary::loading_plate(ck, lp, &lattice, &fixed),
+        None => (None, None),
+    };
+    time::refuse_skip_ahead_with(ck, file.skip_ahead, file.loading_plate.is_some(), time::WITH_PLATE);
+    let record = record::plan(ck, file.record, interface, control, &lattice);
+    let (b, m) = (file.block, file.material);
+    Some(Scene {
+        dims: lattice.dims(),
+        lc_m: b.lc_m,
+        young_pa: m.young_pa,
+        density_kg_m3: m.density_kg_m3,
+        poisson: m.poisson,
+        young_cv: m.young_cv,
+        friction,
+        time_step,
+        self_weight,
+        shear: loading::shear(file.shear, drivers),
+        fixed,
+        record,
+        plate,
+        normal_load,
+        skip_ahead,
+        rupture,
+    })
+}
