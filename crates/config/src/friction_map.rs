@@ -119,9 +119,9 @@ fn coefficients(
     if mu_static.is_finite() {
         ck.range(&format!("{field}.mu_dynamic"), mu_dynamic, 0.0, false, mu_static.max(0.0), false);
     }
-    let dc = dc.unwrap_or(law.weakening_distance_m());
+    let dc = dc.unwrap_or(law.node(1.0).weakening_distance_m());
     ck.non_negative(&format!("{field}.slip_weakening_m"), dc);
-    NodeFriction { mu_static, mu_dynamic, dc_m: dc }
+    NodeFriction::new(mu_static, mu_dynamic, dc)
 }
 
 /// Whether the base point `(x, y)` lies in the patch (boundary included, to a part in 10⁹ of Lc).
@@ -159,7 +159,9 @@ pub(crate) fn build(
     let mut nodes = vec![law.node(1.0); contact.len()];
     let mut region: Vec<Option<u16>> = vec![None; contact.len()];
     let mut regions: Vec<Region> = Vec::new();
-    let kind = |c: &NodeFriction| if c.mu_static > law.mu_static() { RegionKind::Barrier } else { RegionKind::Weak };
+    let background = law.node(1.0).static_coefficient();
+    let kind =
+        |c: &NodeFriction| if c.static_coefficient() > background { RegionKind::Barrier } else { RegionKind::Weak };
     if let Some(g) = grid {
         let field = "friction.grid.file";
         if g.rows.len() != contact.len() {

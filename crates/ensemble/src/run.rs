@@ -17,8 +17,9 @@ use rayon::prelude::*;
 use stickslip_analysis::{AnalysisError, PlanCache, SeedAnalysis, analyse};
 use stickslip_config::Pipeline;
 use stickslip_solver::{BATCH, Model, RunOptions, SolverError, run_batched};
+use stickslip_store::files::Stamp;
 use stickslip_store::io::write_text_atomic;
-use stickslip_store::seed::{Stamp, write_failed, write_seed};
+use stickslip_store::seed::{write_failed, write_seed};
 use stickslip_store::{Folder, Manifest, SeedView};
 
 use crate::error::EnsembleError;

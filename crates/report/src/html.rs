@@ -5,6 +5,7 @@
 
 use std::fmt::Write as _;
 
+use stickslip_solver::laws::describe;
 use stickslip_store::schema::{col, seed_tables};
 use stickslip_store::tables::runs::RunStatus;
 
@@ -112,10 +113,8 @@ pub(crate) fn page(d: &ReportInput, figures: &[Figure], skipped: &[(String, Stri
         (
             "friction",
             format!(
-                "μs = {}, μd = {}, Dc = {} m, CV of μ = {}",
-                s.friction.law.mu_static(),
-                s.friction.law.mu_dynamic(),
-                s.friction.law.weakening_distance_m(),
+                "{}, CV of μ = {}",
+                describe(&s.friction.law.node(1.0).coefficients(), |_, c| c.value.to_string()),
                 s.friction.mu_cv
             ),
         ),

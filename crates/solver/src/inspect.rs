@@ -174,7 +174,7 @@ pub fn inspect(model: &Model, seeds: &[u64]) -> Result<Inspection, SolverError> 
         mass_kg: model.total_mass(),
         contact_area_m2: area,
         self_weight_stress_pa: weight / area,
-        strength_pa: scene.friction.law.mu_static() * weight / area,
+        strength_pa: scene.friction.law.node(1.0).static_coefficient() * weight / area,
         critical,
         paper_bound_s: scene.paper_time_step_bound(),
         moduli,
@@ -191,7 +191,7 @@ fn slider(model: &Model, k: &[f64], weight: f64) -> Result<Slider, SolverError> 
     let loaded: Vec<usize> =
         model.drivers().iter().map(|&d| d as usize).chain(model.plate().iter().map(|&(i, _)| i as usize)).collect();
     let base = scene.friction.law.node(1.0);
-    let strength = base.mu_static * normal;
+    let strength = base.static_coefficient() * normal;
     let e = lattice.extent();
     let h = if loaded.is_empty() {
         e[2]
@@ -225,7 +225,7 @@ fn slider(model: &Model, k: &[f64], weight: f64) -> Result<Slider, SolverError> 
         k_n_m: k_load,
         critical_n_m: critical,
         damping_ratio: scene.shear.damping_per_s / (2.0 * omega),
-        slip_speed_m_s: (base.mu_static - base.mu_dynamic) * normal / k_load * omega,
+        slip_speed_m_s: (base.static_coefficient() - base.residual_coefficient()) * normal / k_load * omega,
         loading_speed_m_s: scene.shear.velocity_m_s,
     })
 }

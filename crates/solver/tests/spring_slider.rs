@@ -25,7 +25,7 @@ use std::ops::ControlFlow;
 
 use common::scene_with;
 use stickslip_config::scene::LoadingPlateSection;
-use stickslip_solver::laws::NodeFriction;
+use stickslip_solver::laws::{NodeFriction, Weakening};
 use stickslip_solver::step::contact::resolve;
 use stickslip_solver::{Channel, Model, RunOptions, Scene, run_seed};
 
@@ -114,13 +114,13 @@ impl RigidSlider {
             let force = self.preload + self.k * (self.v * i as f64 * self.dt - x);
             // Pressed with n from z = 0 at rest: the trial falls by n/g, so the base pushes back n.
             let trial = [2.0 * x - x_prev + force / g, 0.0, -self.n / g];
-            let r = resolve(law, g, trial, [x, 0.0], sliding, path);
+            let r = resolve::<Weakening>(law, g, trial, [x, 0.0], sliding, path);
             out.force.push(force);
             out.velocity.push((r.position[0] - x_prev) / (2.0 * self.dt));
             out.sliding.push(sliding);
             x_prev = x;
             x = r.position[0];
-            (sliding, path) = (r.sliding, r.slip_path);
+            (sliding, path) = (r.sliding, r.state);
         }
         out
     }
@@ -146,10 +146,10 @@ fn slips(s: &Slide) -> Vec<(usize, usize)> {
 #[test]
 fn rigid_slider_with_static_dynamic_friction_drops_twice_the_strength_excess() {
     // M = 2.4 kg pressed with N = 1 kN, μs 0.6 → μd 0.4, k = 10⁶ N/m (ω = 645 rad/s), v = 5 mm/s.
-    let law = NodeFriction { mu_static: 0.6, mu_dynamic: 0.4, dc_m: 0.0 };
+    let law = NodeFriction::new(0.6, 0.4, 0.0);
     let s = RigidSlider { m: 2.4, n: 1000.0, k: 1e6, v: 5e-3, dt: 1e-6, preload: 0.0 };
     let omega = s.omega();
-    let dmu_n = (law.mu_static - law.mu_dynamic) * s.n;
+    let dmu_n = (law.static_coefficient() - law.residual_coefficient()) * s.n;
     let a = dmu_n * omega / s.k;
     let theta = 2.0 * (std::f64::consts::PI - (a / s.v).atan());
     let drop = dmu_n * (1.0 - theta.cos()) - s.k * s.v / omega * theta.sin();
@@ -169,7 +169,7 @@ fn rigid_slider_with_static_dynamic_friction_drops_twice_the_strength_excess() {
         let low = run.force[b];
         let slip_s = (b - a) as f64 * s.dt;
         println!("slip {j}: let go at {peak:.2} N, drop {:.2} N, slid {:.3} ms", peak - low, slip_s * 1e3);
-        assert!((peak / (law.mu_static * s.n) - 1.0).abs() < 0.005, "lets go at μs·N: {peak:.2} N");
+        assert!((peak / (law.static_coefficient() * s.n) - 1.0).abs() < 0.005, "lets go at μs·N: {peak:.2} N");
         assert!(((peak - low) / drop - 1.0).abs() < 0.01, "drop {:.2} N against {drop:.2} N", peak - low);
         assert!((slip_s / duration - 1.0).abs() < 0.01, "slip lasts θ/ω: {slip_s:.5} s against {duration:.5} s");
     }
@@ -186,11 +186,12 @@ fn rigid_slider_with_static_dynamic_friction_drops_twice_the_strength_excess() {
 /// slip's drop (spring force when it lets go less when it sticks again) and its peak slip rate
 /// over the plate speed.
 fn weakening_slip(k: f64) -> (f64, f64, NodeFriction, RigidSlider) {
-    let law = NodeFriction { mu_static: 0.6, mu_dynamic: 0.4, dc_m: 1e-4 };
+    let law = NodeFriction::new(0.6, 0.4, 1e-4);
     let n = 1000.0;
-    let s = RigidSlider { m: 2.4, n, k, v: 1e-5, dt: 2e-6, preload: 0.99 * law.mu_static * n };
+    let s = RigidSlider { m: 2.4, n, k, v: 1e-5, dt: 2e-6, preload: 0.99 * law.static_coefficient() * n };
     // Up to μs·N, then as long again as the slide at the plate's speed over 2·Dc.
-    let steps = ((0.01 * law.mu_static * n / (k * s.v) + 2.0 * law.dc_m / s.v) / s.dt) as usize;
+    let steps =
+        ((0.01 * law.static_coefficient() * n / (k * s.v) + 2.0 * law.weakening_distance_m() / s.v) / s.dt) as usize;
     let run = s.run(&law, steps);
     let first = run.sliding.iter().position(|&b| b).expect("it slides");
     let peak = run.force[first];
@@ -208,8 +209,8 @@ fn rigid_slider_with_slip_weakening_is_unstable_below_the_critical_stiffness_onl
         let (drop, rate, law, s) = weakening_slip(ratio * k_c);
         // Energy balance from rest to rest: (Δμ·N)·D − k·D²/2 − Δμ·N·Dc/2 = 0, drop k·D, which is
         // more than Δμ·N by Δμ·N·√(1 − k/k_c).
-        let dmu_n = (law.mu_static - law.mu_dynamic) * s.n;
-        let want = dmu_n + (dmu_n * dmu_n - s.k * dmu_n * law.dc_m).sqrt();
+        let dmu_n = (law.static_coefficient() - law.residual_coefficient()) * s.n;
+        let want = dmu_n + (dmu_n * dmu_n - s.k * dmu_n * law.weakening_distance_m()).sqrt();
         println!("k = {ratio}·k_c: drop {drop:.2} N against {want:.2} N, peak slip rate {rate:.0}·v");
         assert!((drop / want - 1.0).abs() < 0.03, "k = {ratio}·k_c: drop {drop:.2} N against {want:.2} N");
         assert!(rate > 1000.0, "k = {ratio}·k_c jumps: peak slip rate {rate:.1}·v");
@@ -220,7 +221,7 @@ fn rigid_slider_with_slip_weakening_is_unstable_below_the_critical_stiffness_onl
         // stiffness k − k_c, so from rest it slides s = u·t − (u/ω')·sin ω't, ω' = √((k − k_c)/M),
         // and comes to rest (sticks and heals) after one period having slid 2π·u/ω' < Dc: a creep
         // step whose drop k_c·2π·u/ω' is a fraction of Δμ·N, at a peak rate 2u.
-        let dmu_n = (law.mu_static - law.mu_dynamic) * s.n;
+        let dmu_n = (law.static_coefficient() - law.residual_coefficient()) * s.n;
         let u = s.v * ratio / (ratio - 1.0);
         let omega = ((s.k - k_c) / s.m).sqrt();
         let creep = 2.0 * std::f64::consts::PI * u / omega;
@@ -229,7 +230,7 @@ fn rigid_slider_with_slip_weakening_is_unstable_below_the_critical_stiffness_onl
             "k = {ratio}·k_c: drop {drop:.3} N against {want:.3} N (Δμ·N = {dmu_n:.0} N), peak slip rate {rate:.2}·v against {:.2}·v",
             2.0 * u / s.v
         );
-        assert!(creep < law.dc_m, "the closed form holds while the creep step stays within Dc");
+        assert!(creep < law.weakening_distance_m(), "the closed form holds while the creep step stays within Dc");
         assert!((drop / want - 1.0).abs() < 0.03, "k = {ratio}·k_c: drop {drop:.3} N against {want:.3} N");
         assert!((rate * s.v / (2.0 * u) - 1.0).abs() < 0.03, "k = {ratio}·k_c: peak slip rate {rate:.2}·v");
         assert!(drop < 0.2 * dmu_n, "k = {ratio}·k_c creeps: drop {drop:.2} N against Δμ·N = {dmu_n:.0} N");

@@ -3,21 +3,12 @@
 //! finished when that part exists.
 
 use crate::error::StoreError;
-use crate::files;
+use crate::files::{self, Stamp};
 use crate::io::write_parquet_atomic;
 use crate::layout::Folder;
 use crate::spec::SeedView;
 use crate::tables::SEED_TABLES;
 use crate::tables::runs::{self, RUNS, RunFacts, RunRow};
-
-/// What names a seed's files: the pipeline's name and the hash of what determines its results.
-#[derive(Clone, Copy, Debug)]
-pub struct Stamp<'a> {
-    /// The pipeline's name (it starts every record file's name).
-    pub pipeline: &'a str,
-    /// The pipeline's hash.
-    pub hash: &'a str,
-}
 
 /// Writes every part and file of a seed that ran, `runs` last.
 pub fn write_seed(out: &Folder, view: &SeedView<'_>, stamp: &Stamp<'_>, wall_time_s: f64) -> Result<(), StoreError> {

@@ -8,6 +8,7 @@ use stickslip_config::Pipeline;
 use stickslip_config::check::Named;
 use stickslip_solver::Model;
 use stickslip_solver::inspect::inspect;
+use stickslip_solver::laws::describe;
 use stickslip_solver::scene::{SettleMethod, TimeStep};
 
 /// Arguments of `stickslip check`.
@@ -62,11 +63,9 @@ pub fn run(a: Args) -> Result<()> {
     );
     let law = scene.friction.law;
     println!(
-        "  friction: {} (μs = {}, μd = {}, Dc = {} m), CV of μ {}",
+        "  friction: {} ({}), CV of μ {}",
         law.name(),
-        law.mu_static(),
-        law.mu_dynamic(),
-        law.weakening_distance_m(),
+        describe(&law.node(1.0).coefficients(), |_, c| c.value.to_string()),
         scene.friction.mu_cv
     );
     println!(
@@ -148,19 +147,17 @@ pub fn run(a: Args) -> Result<()> {
                 println!("    {}: no base node (covered by patches of higher priority)", r.name);
                 continue;
             }
-            let range = |f: fn(&stickslip_solver::laws::NodeFriction) -> f64| {
-                let (lo, hi) = span(&mut members.iter().map(|&c| f(&map.nodes[c])));
+            let range = |k: usize| {
+                let (lo, hi) = span(&mut members.iter().map(|&c| map.nodes[c].coefficients()[k].value));
                 if lo == hi { format!("{lo}") } else { format!("{lo}…{hi}") }
             };
             let (x0, x1) = span(&mut members.iter().map(|&c| model.lattice().position(contact[c])[0]));
             println!(
-                "    {} ({}): {} nodes, x {x0}…{x1} m, μs = {}, μd = {}, Dc = {} m",
+                "    {} ({}): {} nodes, x {x0}…{x1} m, {}",
                 r.name,
                 r.kind.name(),
                 members.len(),
-                range(|n| n.mu_static),
-                range(|n| n.mu_dynamic),
-                range(|n| n.dc_m)
+                describe(&map.nodes[members[0]].coefficients(), |k, _| range(k)),
             );
         }
     }

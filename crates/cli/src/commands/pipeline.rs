@@ -136,7 +136,7 @@ fn no_events(pipeline: &Pipeline, folder: &Folder) -> String {
     if let Some(tau) = largest(Channel::ShearStress) {
         let model = stickslip_solver::Model::new(pipeline.scene.clone());
         let sigma = model.total_mass() * pipeline.scene.self_weight.gravity_m_s2 / model.lattice().contact_area();
-        let mu = pipeline.scene.friction.law.mu_static();
+        let mu = pipeline.scene.friction.law.node(1.0).static_coefficient();
         lines.push(format!(
             "  largest shear stress τ: {tau:.4e} Pa; sliding needs about μs·σ = {:.4e} Pa (μs = {mu}, self-weight σ = {sigma:.4e} Pa)",
             mu * sigma

@@ -37,7 +37,7 @@ pub(super) fn friction_map(d: &ReportInput, path: &Path) -> Result<Outcome, Repo
         let Some(&c0) = nodes.first() else { continue };
         let f = map.nodes[c0];
         plan.points.push(Points {
-            label: format!("{name}: μs {:.3}, μd {:.3}", f.mu_static, f.mu_dynamic),
+            label: format!("{name}: μs {:.3}, μd {:.3}", f.static_coefficient(), f.residual_coefficient()),
             points: nodes.iter().map(|&c| (pos[c][0], pos[c][1])).collect(),
             colour: region_colour(k),
             size: 5,
@@ -51,7 +51,10 @@ pub(super) fn friction_map(d: &ReportInput, path: &Path) -> Result<Outcome, Repo
     along.title = "μs and μd of the nodes along x (before the seed's Weibull factor)".into();
     let row: Vec<usize> = (0..ids.len()).filter(|&c| pos[c][1] == 0.0).collect();
     for (k, (label, get)) in [("μs", 0usize), ("μd", 1usize)].iter().enumerate() {
-        let v = |c: usize| if *get == 0 { map.nodes[c].mu_static } else { map.nodes[c].mu_dynamic };
+        let v = |c: usize| {
+            let n = &map.nodes[c];
+            if *get == 0 { n.static_coefficient() } else { n.residual_coefficient() }
+        };
         along.points.push(Points {
             label: label.to_string(),
             points: row.iter().map(|&c| (pos[c][0], v(c))).collect(),

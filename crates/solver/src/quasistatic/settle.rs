@@ -48,7 +48,7 @@ pub fn settle_statically(
                 r[2]
             )));
         }
-        let (rt, limit) = (r[0].hypot(r[1]), model.node_friction(ci, friction[ci]).mu_static * r[2]);
+        let (rt, limit) = (r[0].hypot(r[1]), model.node_friction(ci, friction[ci]).static_coefficient() * r[2]);
         if rt > limit {
             return Ok(Err(format!(
                 "friction would not hold base node LDEM {} (needs {rt:.3e} N, μs·N = {limit:.3e} N)",

@@ -99,7 +99,7 @@ impl Skipper {
     /// The skip-ahead of one lane with bar stiffness `stiffness` and friction factors `friction`.
     pub(crate) fn new(model: &Model, stiffness: Vec<f64>, friction: &[f64]) -> Skipper {
         let scene = model.scene();
-        let mu_s = friction.iter().enumerate().map(|(c, &f)| model.node_friction(c, f).mu_static).collect();
+        let mu_s = friction.iter().enumerate().map(|(c, &f)| model.node_friction(c, f).static_coefficient()).collect();
         Skipper {
             stiffness,
             mu_s,

@@ -1,5 +1,5 @@
 //! Contact of the base nodes with the rigid base (docs/model.md §4): unilateral in z, friction in
-//! x and y by the scene's [`FrictionLaw`].
+//! x and y by the scene's friction [`Law`].
 //!
 //! Per contact node, from its trial position `(x_t, y_t, z_t)` (the step's update without the
 //! base) and its position now `(x_n, y_n)`, with `g = m(1 + DΔt/2)/Δt²` the stiffness of the
@@ -9,8 +9,12 @@
 //!   still is `R = (x_n − x_t, y_n − y_t)·g`. It **sticks** (stays at `(x_n, y_n)`, reaction `R`)
 //!   if `|R| ≤ μ_hold·N`, `μ_hold` being μs if it was sticking and its kinetic coefficient if it
 //!   was sliding; else it **slides** with friction `μ_k·N` along `R` (against the trial motion),
-//!   to `(x_t, y_t) + F/g`, and its slip path grows by the distance it moved. A sliding node whose
-//!   needed reaction falls within `μ_k·N` would reverse within the step, so it sticks (and heals).
+//!   to `(x_t, y_t) + F/g`, and the law advances its state by the distance it moved. A sliding
+//!   node whose needed reaction falls within `μ_k·N` would reverse within the step, so it sticks
+//!   (its state resets: it heals).
+//!
+//! The law is asked, never read: its holding and kinetic coefficients, its state after a slide
+//! ([`Law`]). The kernel is generic over it and picked once per step ([`FrictionLaws::dispatch`]).
 //!
 //! [`resolve`] is this rule for one node in plain scalar code; [`apply`] runs it for every contact
 //! node and `L` seeds side by side without branches (each lane takes its result by selection, so a
@@ -20,7 +24,7 @@
 use stickslip_isa::{Isa, widest};
 
 use crate::field::{Field, Lanes};
-use crate::laws::NodeFriction;
+use crate::laws::{Law, WithLaw};
 use crate::step::params::Params;
 use crate::step::state::{ContactState, SlipLog};
 
@@ -36,28 +40,24 @@ pub struct Resolved {
     pub reaction: [f64; 3],
     /// Whether the node slides.
     pub sliding: bool,
-    /// Slip of the current slide (m), zero unless sliding.
-    pub slip_path: f64,
+    /// The law's state variable after the step (the slip of the current slide for slip
+    /// weakening), zero unless sliding.
+    pub state: f64,
 }
 
-/// The contact rule for one node (see the module doc): `trial` is the position the step would
-/// give without the base, `now` the node's `(x, y)` before the step, `g = m(1 + DΔt/2)/Δt²`,
-/// `sliding` and `path` its state from the last step.
-pub fn resolve(node: &NodeFriction, g: f64, trial: [f64; 3], now: [f64; 2], sliding: bool, path: f64) -> Resolved {
+/// The contact rule for one node under law `W` (see the module doc): `trial` is the position the
+/// step would give without the base, `now` the node's `(x, y)` before the step,
+/// `g = m(1 + DΔt/2)/Δt²`, `sliding` and `state` its state from the last step.
+pub fn resolve<W: Law>(node: &W::Node, g: f64, trial: [f64; 3], now: [f64; 2], sliding: bool, state: f64) -> Resolved {
     if !(trial[2] < 0.0) {
-        return Resolved { position: trial, reaction: [0.0; 3], sliding: false, slip_path: 0.0 };
+        return Resolved { position: trial, reaction: [0.0; 3], sliding: false, state: 0.0 };
     }
     let normal = -trial[2] * g;
     let (rx, ry) = ((now[0] - trial[0]) * g, (now[1] - trial[1]) * g);
     let need = (rx * rx + ry * ry).sqrt();
-    let mu_k = node.kinetic(path);
-    if need <= node.holding(sliding, mu_k) * normal {
-        return Resolved {
-            position: [now[0], now[1], 0.0],
-            reaction: [rx, ry, normal],
-            sliding: false,
-            slip_path: 0.0,
-        };
+    let mu_k = W::kinetic(node, state);
+    if need <= W::holding(node, sliding, mu_k) * normal {
+        return Resolved { position: [now[0], now[1], 0.0], reaction: [rx, ry, normal], sliding: false, state: 0.0 };
     }
     let scale = mu_k * normal / need;
     let (fx, fy) = (rx * scale, ry * scale);
@@ -67,25 +67,32 @@ pub fn resolve(node: &NodeFriction, g: f64, trial: [f64; 3], now: [f64; 2], slid
         position: [x1, y1, 0.0],
         reaction: [fx, fy, normal],
         sliding: true,
-        slip_path: path + (sx * sx + sy * sy).sqrt(),
+        state: W::advance(node, state, (sx * sx + sy * sy).sqrt()),
     }
 }
 
-/// What the lane kernel reads and writes.
+/// What the lane kernel reads and writes, the law's coefficients aside.
 pub(crate) struct ContactArrays<'a, const L: usize> {
     pub mass: &'a [f64],
     pub nodes: &'a [u32],
     pub cf: &'a Lanes<L>,
-    pub mu_s: &'a [Lanes<L>],
-    pub mu_d: &'a [Lanes<L>],
-    pub dc: &'a [Lanes<L>],
     /// Trial positions (overwritten with the result).
     pub trial: [&'a mut Vec<Lanes<L>>; 3],
     /// Positions before the step, x and y.
     pub now: [&'a Vec<Lanes<L>>; 2],
     pub sliding: &'a mut [[bool; L]],
-    pub slip_path: &'a mut [Lanes<L>],
+    /// The law's state variable of each node.
+    pub state: &'a mut [Lanes<L>],
     pub reaction: &'a mut [Vec<Lanes<L>>; 3],
+}
+
+impl<const L: usize> WithLaw<L> for (Isa, &mut ContactArrays<'_, L>) {
+    type Out = ();
+
+    fn run<W: Law>(self, law: &[W::Lanes<L>]) {
+        let (isa, arrays) = self;
+        contact_dispatch(isa, arrays, law, W::default());
+    }
 }
 
 /// Applies the contact rule to every contact node and lane: `trial` holds the trial positions
@@ -104,16 +111,13 @@ pub(crate) fn apply<const L: usize>(
         mass: model.mass(),
         nodes: model.contact(),
         cf: &p.coefficients().cf,
-        mu_s: &p.mu_static,
-        mu_d: &p.mu_dynamic,
-        dc: &p.dc,
         trial: [tx, ty, tz],
         now: [&now.c[0], &now.c[1]],
         sliding: &mut contact.sliding,
-        slip_path: &mut contact.slip_path,
+        state: &mut contact.state,
         reaction: &mut contact.reaction,
     };
-    contact_dispatch(Isa::current(), &mut c);
+    p.friction.dispatch((Isa::current(), &mut c));
     let Some((log, track_slid, track_onsets, step)) = log else { return };
     if track_slid {
         for (any, now) in log.slid.iter_mut().zip(&contact.sliding) {
@@ -140,32 +144,32 @@ pub(crate) fn apply<const L: usize>(
 }
 
 widest! {
-    /// The contact update of every contact node in instruction set `isa`.
-    fn contact_dispatch<const L: usize>(c: &mut ContactArrays<'_, L>) => contact
+    /// The contact update of every contact node in instruction set `isa`, under law `W`.
+    fn contact_dispatch<const L: usize, W: Law>(c: &mut ContactArrays<'_, L>, law: &[W::Lanes<L>], kind: W) => contact
 }
 
 /// [`resolve`] for every contact node, `L` lanes at once without branches.
 #[inline(always)]
-fn contact<const L: usize>(c: &mut ContactArrays<'_, L>) {
+fn contact<const L: usize, W: Law>(c: &mut ContactArrays<'_, L>, law: &[W::Lanes<L>], _: W) {
     for (ci, &node) in c.nodes.iter().enumerate() {
         let p = node as usize;
         let m = c.mass[p];
         let (xt, yt, zt) = (c.trial[0][p], c.trial[1][p], c.trial[2][p]);
         let (xn, yn) = (c.now[0][p], c.now[1][p]);
-        let (slipping, path) = (c.sliding[ci], c.slip_path[ci]);
-        let (mu_s, mu_d, dc) = (c.mu_s[ci], c.mu_d[ci], c.dc[ci]);
+        let (slipping, state) = (c.sliding[ci], c.state[ci]);
+        let coefficients = &law[ci];
         let (mut ox, mut oy, mut oz) = ([0.0; L], [0.0; L], [0.0; L]);
         let (mut rxo, mut ryo, mut no) = ([0.0; L], [0.0; L], [0.0; L]);
-        let (mut slip_o, mut path_o) = ([false; L], [0.0; L]);
+        let (mut slip_o, mut state_o) = ([false; L], [0.0; L]);
         for l in 0..L {
             let g = m / c.cf[l];
             let touching = zt[l] < 0.0;
             let normal = -zt[l] * g;
             let (rx, ry) = ((xn[l] - xt[l]) * g, (yn[l] - yt[l]) * g);
             let need = (rx * rx + ry * ry).sqrt();
-            let node = NodeFriction { mu_static: mu_s[l], mu_dynamic: mu_d[l], dc_m: dc[l] };
-            let mu_k = node.kinetic(path[l]);
-            let limit = node.holding(slipping[l], mu_k) * normal;
+            let node = W::lane(coefficients, l);
+            let mu_k = W::kinetic(&node, state[l]);
+            let limit = W::holding(&node, slipping[l], mu_k) * normal;
             let stick = need <= limit;
             // Sliding: friction μ_k·N against the trial motion (unused when sticking).
             let scale = mu_k * normal / need;
@@ -204,11 +208,11 @@ fn contact<const L: usize>(c: &mut ContactArrays<'_, L>) {
             };
             no[l] = if touching { normal } else { 0.0 };
             slip_o[l] = slides;
-            path_o[l] = if slides { path[l] + (sx * sx + sy * sy).sqrt() } else { 0.0 };
+            state_o[l] = if slides { W::advance(&node, state[l], (sx * sx + sy * sy).sqrt()) } else { 0.0 };
         }
         (c.trial[0][p], c.trial[1][p], c.trial[2][p]) = (ox, oy, oz);
         (c.reaction[0][ci], c.reaction[1][ci], c.reaction[2][ci]) = (rxo, ryo, no);
-        (c.sliding[ci], c.slip_path[ci]) = (slip_o, path_o);
+        (c.sliding[ci], c.state[ci]) = (slip_o, state_o);
     }
 }
 
@@ -217,16 +221,14 @@ mod tests {
     use rand::{RngExt, SeedableRng};
 
     use super::*;
-    use crate::laws::{Coulomb, FrictionLaw, SlipWeakening, StaticDynamic};
+    use crate::laws::{Coulomb, FrictionLaw, NodeFriction, SlipWeakening, StaticDynamic, Weakening};
 
     /// Random contact states of `nodes` nodes and `L` lanes: trial positions below and above the
     /// base, nodes that were sliding with some slip path, coefficients varying per node and lane.
     struct Case<const L: usize> {
         mass: Vec<f64>,
         cf: Lanes<L>,
-        mu_s: Vec<Lanes<L>>,
-        mu_d: Vec<Lanes<L>>,
-        dc: Vec<Lanes<L>>,
+        law: Vec<[NodeFriction; L]>,
         trial: [Vec<Lanes<L>>; 3],
         now: [Vec<Lanes<L>>; 2],
         sliding: Vec<[bool; L]>,
@@ -238,15 +240,16 @@ mod tests {
         let mut lanes = |lo: f64, hi: f64| -> Lanes<L> { std::array::from_fn(|_| rng.random_range(lo..hi)) };
         let mass: Vec<f64> = (0..nodes).map(|_| lanes(1.0, 3.0)[0]).collect();
         let cf = lanes(1e-11, 1e-10);
-        // The law's coefficients times a random-field factor per node and lane.
-        let factors: Vec<Lanes<L>> = (0..nodes).map(|_| lanes(0.3, 5.0)).collect();
-        let mu_s = factors.iter().map(|f| f.map(|v| law.node(v).mu_static)).collect();
-        let mu_d = factors.iter().map(|f| f.map(|v| law.node(v).mu_dynamic)).collect();
-        // A friction map may give nodes their own Dc: half the nodes keep the law's.
-        let dc = (0..nodes)
+        // The law's coefficients times a random-field factor per node and lane; a friction map may
+        // give nodes their own Dc: half the nodes keep the law's.
+        let law = (0..nodes)
             .map(|i| {
-                lanes(0.5, 2.0)
-                    .map(|v| if i % 2 == 0 { law.weakening_distance_m() } else { v * law.weakening_distance_m() })
+                let (factor, dc) = (lanes(0.3, 5.0), lanes(0.5, 2.0));
+                std::array::from_fn(|l| {
+                    let n = law.node(factor[l]);
+                    let dc = n.weakening_distance_m() * if i % 2 == 0 { 1.0 } else { dc[l] };
+                    NodeFriction::new(n.static_coefficient(), n.residual_coefficient(), dc)
+                })
             })
             .collect();
         // Tangential trials a few µm from where the node is, vertical ones ±1 µm about the base:
@@ -259,7 +262,7 @@ mod tests {
         let now = [(0..nodes).map(|_| lanes(-1e-6, 1e-6)).collect(), (0..nodes).map(|_| lanes(-1e-6, 1e-6)).collect()];
         let sliding = (0..nodes).map(|_| lanes(0.0, 1.0).map(|v| v < 0.5)).collect();
         let path = (0..nodes).map(|_| lanes(0.0, 4e-6)).collect();
-        Case { mass, cf, mu_s, mu_d, dc, trial, now, sliding, path }
+        Case { mass, cf, law, trial, now, sliding, path }
     }
 
     /// The lane kernel in build `isa` against [`resolve`] on every node and lane, bit for bit.
@@ -270,39 +273,36 @@ mod tests {
         let mut sliding = c.sliding.clone();
         let mut path = c.path.clone();
         let mut reaction = [vec![[0.0; L]; nodes.len()], vec![[0.0; L]; nodes.len()], vec![[0.0; L]; nodes.len()]];
+        let coefficients: Vec<_> = c.law.iter().map(|n| Weakening::lanes(*n)).collect();
         {
             let [tx, ty, tz] = &mut trial;
             let mut arrays = ContactArrays {
                 mass: &c.mass,
                 nodes: &nodes,
                 cf: &c.cf,
-                mu_s: &c.mu_s,
-                mu_d: &c.mu_d,
-                dc: &c.dc,
                 trial: [tx, ty, tz],
                 now: [&c.now[0], &c.now[1]],
                 sliding: &mut sliding,
-                slip_path: &mut path,
+                state: &mut path,
                 reaction: &mut reaction,
             };
-            contact_dispatch(isa, &mut arrays);
+            contact_dispatch(isa, &mut arrays, &coefficients, Weakening);
         }
         let mut outcomes = [0usize; 3];
         for i in 0..nodes.len() {
             for l in 0..L {
-                let node = NodeFriction { mu_static: c.mu_s[i][l], mu_dynamic: c.mu_d[i][l], dc_m: c.dc[i][l] };
                 let g = c.mass[i] / c.cf[l];
                 let t = [c.trial[0][i][l], c.trial[1][i][l], c.trial[2][i][l]];
                 let now = [c.now[0][i][l], c.now[1][i][l]];
-                let want = resolve(&node, g, t, now, c.sliding[i][l], c.path[i][l]);
+                let want = resolve::<Weakening>(&c.law[i][l], g, t, now, c.sliding[i][l], c.path[i][l]);
                 let got = Resolved {
                     position: [trial[0][i][l], trial[1][i][l], trial[2][i][l]],
                     reaction: [reaction[0][i][l], reaction[1][i][l], reaction[2][i][l]],
                     sliding: sliding[i][l],
-                    slip_path: path[i][l],
+                    state: path[i][l],
                 };
                 let bits = |r: &Resolved| {
-                    (r.position.map(f64::to_bits), r.reaction.map(f64::to_bits), r.sliding, r.slip_path.to_bits())
+                    (r.position.map(f64::to_bits), r.reaction.map(f64::to_bits), r.sliding, r.state.to_bits())
                 };
                 assert_eq!(bits(&got), bits(&want), "{law:?}, {isa:?}, node {i}, lane {l}: {got:?} vs {want:?}");
                 outcomes[if want.reaction[2] == 0.0 {

@@ -2,6 +2,7 @@
 //! friction coefficients, and the per-lane time step, damping and body force.
 
 use crate::field::Lanes;
+use crate::laws::FrictionLaws;
 use crate::model::Model;
 use crate::step::rupture::RuptureParams;
 
@@ -37,12 +38,8 @@ pub struct Params<'m, const L: usize> {
     pub model: &'m Model,
     /// Kernel stiffness per bar and lane (see [`crate::step::bars`]).
     pub k: Vec<Lanes<L>>,
-    /// Static coefficient μs of each contact node, per lane (field factor applied).
-    pub mu_static: Vec<Lanes<L>>,
-    /// Dynamic coefficient μd of each contact node, per lane.
-    pub mu_dynamic: Vec<Lanes<L>>,
-    /// Slip-weakening distance Dc of each contact node (m), per lane.
-    pub dc: Vec<Lanes<L>>,
+    /// The friction law's coefficients of each contact node, per lane (field factor applied).
+    pub friction: FrictionLaws<L>,
     /// The bilinear law's peaks and `Kr` when bars crack (docs/model.md §11).
     pub rupture: Option<RuptureParams<L>>,
     dt: Lanes<L>,
@@ -64,17 +61,7 @@ impl<'m, const L: usize> Params<'m, L> {
                 kb[l] = v;
             }
         }
-        let mut mu_static = vec![[0.0; L]; nc];
-        let mut mu_dynamic = vec![[0.0; L]; nc];
-        let mut dc = vec![[0.0; L]; nc];
-        for (l, lane) in lanes.iter().enumerate() {
-            for c in 0..nc {
-                let node = model.node_friction(c, lane.friction[c]);
-                mu_static[c][l] = node.mu_static;
-                mu_dynamic[c][l] = node.mu_dynamic;
-                dc[c][l] = node.dc_m;
-            }
-        }
+        let friction = FrictionLaws::new(nc, |c, l| model.node_friction(c, lanes[l].friction[c]));
         let rupture = match (lanes.iter().all(|l| l.strength.is_some()), lanes.iter().all(|l| l.strength.is_none())) {
             (true, _) => {
                 let kr = model.scene().rupture.as_ref().expect("lanes with a strength need a scene with [rupture]").kr;
@@ -94,9 +81,7 @@ impl<'m, const L: usize> Params<'m, L> {
         let mut p = Params {
             model,
             k,
-            mu_static,
-            mu_dynamic,
-            dc,
+            friction,
             rupture,
             dt: lanes.each_ref().map(|lane| lane.dt_s),
             damping: [0.0; L],

@@ -48,8 +48,9 @@ impl<const L: usize> TimeLevels<L> {
 pub struct ContactState<const L: usize> {
     /// Whether the node slid in the last step.
     pub sliding: Vec<[bool; L]>,
-    /// Slip of the current slide (m), zero when sticking: the state variable of slip weakening.
-    pub slip_path: Vec<Lanes<L>>,
+    /// The friction law's state variable of each node (the slip of the current slide for slip
+    /// weakening), zero when sticking.
+    pub state: Vec<Lanes<L>>,
     /// Reactions at the viewed time (N): friction x, friction y, normal.
     pub reaction: [Vec<Lanes<L>>; 3],
 }
@@ -123,7 +124,7 @@ impl<const L: usize> State<L> {
             u: TimeLevels::zeros(nodes),
             contact: ContactState {
                 sliding: vec![[false; L]; contacts],
-                slip_path: vec![[0.0; L]; contacts],
+                state: vec![[0.0; L]; contacts],
                 reaction: [vec![[0.0; L]; contacts], vec![[0.0; L]; contacts], vec![[0.0; L]; contacts]],
             },
             drivers: DriverState {
@@ -203,7 +204,7 @@ impl<const L: usize> State<L> {
                 self.contact.reaction[c][ci][l] = r[c];
             }
             self.contact.sliding[ci][l] = false;
-            self.contact.slip_path[ci][l] = 0.0;
+            self.contact.state[ci][l] = 0.0;
             self.log.run[ci][l] = 0;
             self.log.slid[ci][l] = false;
         }

@@ -3,3 +3,12 @@
 
 pub mod records;
 pub mod stations;
+
+/// What names a seed's files: the pipeline's name and the hash of what determines its results.
+#[derive(Clone, Copy, Debug)]
+pub struct Stamp<'a> {
+    /// The pipeline's name (it starts every record file's name).
+    pub pipeline: &'a str,
+    /// The pipeline's hash.
+    pub hash: &'a str,
+}

@@ -5,9 +5,9 @@ use stickslip_analysis::RecordData;
 use stickslip_seismo::accelerogram::{Orientation, RecordFile, RecordFormat};
 
 use crate::error::StoreError;
+use crate::files::Stamp;
 use crate::io::write_bytes_atomic;
 use crate::layout::Folder;
-use crate::seed::Stamp;
 use crate::spec::SeedView;
 use crate::tables::records::Scale;
 

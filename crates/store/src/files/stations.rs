@@ -4,9 +4,9 @@
 use stickslip_seismo::seas::{StationHeader, StationSeries, station_file_name, station_text};
 
 use crate::error::StoreError;
+use crate::files::Stamp;
 use crate::io::write_text_atomic;
 use crate::layout::Folder;
-use crate::seed::Stamp;
 use crate::spec::SeedView;
 
 /// Writes the station files of a seed that recorded the fault (nothing otherwise).
