@@ -10,6 +10,7 @@ pub fn for_error(e: &SolverError) -> Option<&'static str> {
     match e {
         SolverError::TimeStepAboveCritical { .. } => Some("time.dt_fraction, time.dt_s"),
         SolverError::NotSettled { .. } => Some("self_weight.damping_per_s, self_weight.max_duration_s"),
+        SolverError::Unsupported(_) => Some("skip_ahead.enabled"),
         SolverError::Unstable { .. } | SolverError::Numerical(_) | SolverError::Cancelled => None,
     }
 }

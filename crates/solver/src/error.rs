@@ -56,6 +56,10 @@ pub enum SolverError {
         /// Requested tolerance.
         tolerance: f64,
     },
+    /// The scene asks for something the solver cannot do (e.g. the skip-ahead with a boundary
+    /// condition its quasi-static motion does not include).
+    #[error("not supported: {0}")]
+    Unsupported(String),
     /// A numerical procedure found no answer.
     #[error("numerical failure: {0}")]
     Numerical(String),

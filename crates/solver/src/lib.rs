@@ -12,7 +12,8 @@
 //! - [`rupture`]: the bilinear softening law of bars that crack (opt-in), crack areas, the
 //!   fields on the fracture energy;
 //! - [`scene`]: the validated scene; [`model`]: it built into flat arrays, shared by all seeds,
-//!   with its bars in kernel order ([`layout`]);
+//!   with its bars in kernel order ([`layout`]) and its boundary conditions ([`boundary`]:
+//!   rollers, drivers, the loading plate, a normal pressure);
 //! - [`field`]: vector fields over the nodes, `L` seeds side by side; [`step`]: one explicit
 //!   step of `L` seeds (state, parameters and scratch apart; bar, integrate and contact kernels);
 //! - [`statics`]: static solves, the critical time step, effective moduli;
@@ -21,6 +22,7 @@
 //!   builds, for `stickslip check`.
 #![deny(missing_docs)]
 
+pub mod boundary;
 pub mod dispersion;
 pub mod error;
 pub mod field;
@@ -28,6 +30,7 @@ pub mod geometry;
 pub mod inspect;
 pub mod laws;
 pub mod layout;
+pub mod ledger;
 pub mod material;
 pub mod model;
 mod observe;

@@ -1,9 +1,10 @@
 //! A built scene: the lattice in the stepper's internal order, masses, nominal bar stiffness,
-//! and the node sets (contact, drivers, rollers, control) the stepper works on.
+//! the contact nodes and the boundary conditions the stepper works on.
 //!
 //! Built once per scene and shared (read-only) by every seed of an ensemble; a seed only adds its
 //! random factors ([`Model::bar_stiffness`], [`Model::friction_factors`]).
 
+use crate::boundary::Boundaries;
 use crate::error::SolverError;
 use crate::geometry::{Bar, BarFamily, Direction, Lattice, NodeId};
 use crate::laws::NodeFriction;
@@ -49,12 +50,7 @@ pub struct Model {
     /// applied), divided by 3 for diagonals (see [`crate::step::bars`]).
     nominal_k: Vec<f64>,
     contact: Vec<u32>,
-    drivers: Vec<u32>,
-    /// Nodes on the loading plate's springs and their stiffness (N/m).
-    plate: Vec<(u32, f64)>,
-    /// Nodes with a constant force in z (N), the normal load.
-    loads: Vec<(u32, f64)>,
-    fixed: Vec<(u32, [bool; 3])>,
+    boundaries: Boundaries,
 }
 
 impl Model {
@@ -138,14 +134,7 @@ impl Model {
             })
             .collect();
         let contact = lattice.contact_nodes().iter().map(|id| to_internal[id.index()]).collect();
-        let drivers = scene.shear.drivers.iter().map(|id| to_internal[id.index()]).collect();
-        let fixed = scene.fixed.iter().map(|(id, m)| (to_internal[id.index()], *m)).collect();
-        let plate = scene.plate.as_ref().map_or_else(Vec::new, |p| {
-            p.nodes.iter().zip(&p.stiffness_n_m).map(|(id, &k)| (to_internal[id.index()], k)).collect()
-        });
-        let loads = scene.normal_load.as_ref().map_or_else(Vec::new, |n| {
-            n.nodes.iter().zip(&n.force_n).map(|(id, &f)| (to_internal[id.index()], -f)).collect()
-        });
+        let boundaries = Boundaries::new(&scene, |id| to_internal[id.index()]);
         Model {
             scene,
             lattice,
@@ -157,10 +146,7 @@ impl Model {
             bar_canonical,
             nominal_k,
             contact,
-            drivers,
-            plate,
-            loads,
-            fixed,
+            boundaries,
         }
     }
 
@@ -240,25 +226,20 @@ impl Model {
         &self.contact
     }
 
+    /// The boundary conditions (rollers, drivers, plate, pressure).
+    pub fn boundaries(&self) -> &Boundaries {
+        &self.boundaries
+    }
+
     /// Driven nodes (internal indices).
     pub fn drivers(&self) -> &[u32] {
-        &self.drivers
+        &self.boundaries.drivers.nodes
     }
 
     /// The nodes tied to the loading plate (internal indices) and their spring stiffness in x
     /// (N/m); empty without a plate.
     pub fn plate(&self) -> &[(u32, f64)] {
-        &self.plate
-    }
-
-    /// Constant forces in z (N) on internal nodes: the normal load; empty without one.
-    pub fn loads(&self) -> &[(u32, f64)] {
-        &self.loads
-    }
-
-    /// Nodes with held components (internal indices).
-    pub fn fixed(&self) -> &[(u32, [bool; 3])] {
-        &self.fixed
+        &self.boundaries.plate.springs
     }
 
     /// Kernel stiffness of every bar for `seed`: nominal times the Weibull factor of E drawn in

@@ -123,3 +123,19 @@ fn the_parallel_step_of_a_large_lattice_gives_the_serial_numbers() {
     assert!(serial.c[2].iter().any(|v| v[0] != 0.0));
     assert_eq!(serial, parallel, "the parallel step must give the serial numbers bit for bit");
 }
+
+#[test]
+fn the_skip_ahead_is_refused_with_a_boundary_its_motion_leaves_out() {
+    use stickslip_solver::geometry::Face;
+    use stickslip_solver::scene::LoadingPlate;
+    let mut scene = short_paper(0.01);
+    let lattice = scene.lattice();
+    let nodes = Face::XMin.nodes(&lattice);
+    scene.plate = Some(LoadingPlate { face: Face::XMin, stiffness_n_m: vec![1e6; nodes.len()], nodes });
+    scene.skip_ahead.enabled = true;
+    let err = run_seed(&Model::new(scene), 1, RunOptions::default(), &mut go).unwrap_err();
+    assert!(
+        matches!(&err, SolverError::Unsupported(why) if why.contains("plate")),
+        "a plate with the skip-ahead is refused, naming the plate: {err}"
+    );
+}

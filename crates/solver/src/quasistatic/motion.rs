@@ -7,7 +7,6 @@ use crate::error::SolverError;
 use crate::field::Field;
 use crate::model::Model;
 use crate::observe::Observed;
-use crate::quasistatic::settle::held_rollers;
 use crate::quasistatic::{CG_MAX_ITERATIONS, CG_TOLERANCE};
 use crate::scene::Kinematic;
 use crate::statics::{Prescribed, StaticSolution, solve_static_from};
@@ -88,7 +87,7 @@ pub(crate) fn configuration<const L: usize>(
             contacts.push(Contact::Held);
         }
     }
-    key.extend((0..model.drivers().len()).map(|d| state.drivers.base[d][l].to_bits()));
+    key.extend((0..model.drivers().len()).map(|d| state.loading.base[d][l].to_bits()));
     key.extend(params.body_acceleration(l).map(f64::to_bits));
     key.push(params.damping(l).to_bits());
     Some((key, contacts))
@@ -110,7 +109,7 @@ pub(crate) fn build_motion<const L: usize>(
     // Held components at their place (`now`) or at zero, the driver at its base (`now`) or at
     // `driver`.
     let constraints = |now: bool, driver: f64| {
-        let mut p = held_rollers(model, |i, a| if now { state.displacement(i, l)[a] } else { 0.0 });
+        let mut p = model.boundaries().rollers.held(|i, a| if now { state.displacement(i, l)[a] } else { 0.0 });
         for (ci, &node) in model.contact().iter().enumerate() {
             let u = state.displacement(node as usize, l);
             let axes = match contacts[ci] {
@@ -124,7 +123,7 @@ pub(crate) fn build_motion<const L: usize>(
             }));
         }
         for (d, &node) in model.drivers().iter().enumerate() {
-            let value = if now { state.drivers.base[d][l] } else { driver };
+            let value = if now { state.loading.base[d][l] } else { driver };
             p.push(Prescribed { node: node as usize, axis: 0, value });
         }
         p
@@ -161,7 +160,7 @@ pub(crate) fn build_motion<const L: usize>(
         None => (solve(&Field::<1>::zeros(n), &constraints(false, 1.0), previous.map(|m| &m.basis[1]))?, None),
     };
     // The actual displacement is close to u_p + d·g.
-    let d_now = state.drivers.target[l];
+    let d_now = state.loading.target[l];
     let mut guess = Field::<1>::zeros(n);
     for c in 0..3 {
         for i in 0..n {

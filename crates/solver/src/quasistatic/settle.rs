@@ -29,10 +29,8 @@ pub fn settle_statically(
     for i in 0..n {
         loads.c[2][i][0] = -mass[i] * gravity;
     }
-    for &(node, f) in model.loads() {
-        loads.c[2][node as usize][0] += f;
-    }
-    let mut prescribed = held_rollers(model, |_, _| 0.0);
+    model.boundaries().pressure.add_static(&mut loads);
+    let mut prescribed = model.boundaries().rollers.held(|_, _| 0.0);
     for &node in model.contact() {
         prescribed.extend((0..3).map(|axis| Prescribed { node: node as usize, axis, value: 0.0 }));
     }
@@ -57,15 +55,4 @@ pub fn settle_statically(
         }
     }
     Ok(Ok(StaticSettle { u: solution.u, reactions: solution.reactions }))
-}
-
-/// The roller components of the scene, held at `value(node, axis)`.
-pub(crate) fn held_rollers(model: &Model, value: impl Fn(usize, usize) -> f64) -> Vec<Prescribed> {
-    let mut out = Vec::new();
-    for &(node, mask) in model.fixed() {
-        for axis in (0..3).filter(|&a| mask[a]) {
-            out.push(Prescribed { node: node as usize, axis, value: value(node as usize, axis) });
-        }
-    }
-    out
 }

@@ -70,6 +70,11 @@ pub fn run_lanes<const L: usize>(
     progress: &mut dyn FnMut(f64) -> ControlFlow<()>,
 ) -> [Result<RunOutput, SolverError>; L] {
     let scene = model.scene();
+    if scene.skip_ahead.enabled
+        && let Err(why) = model.boundaries().skip_ahead()
+    {
+        return seeds.map(|_| Err(SolverError::Unsupported(format!("the quasi-static skip-ahead: {why}"))));
+    }
     let prepared = seeds.map(|seed| prepare(model, seed, options));
     // Failed lanes still occupy a lane: give them a harmless set-up and park them.
     let fallback = prepared.iter().find_map(|p| p.as_ref().ok().map(|(s, _)| s.clone()));
@@ -144,7 +149,7 @@ pub fn run_lanes<const L: usize>(
         for (l, lane) in lanes.iter().enumerate() {
             if let Stage::Shearing { origin, .. } = lane.stage {
                 let t = (next - origin) as f64 * params.dt(l);
-                state.drivers.target[l] = scene.shear.driver_displacement(t);
+                state.loading.target[l] = scene.shear.driver_displacement(t);
             }
         }
         stepper.step(&params, &mut state);

@@ -1,21 +1,11 @@
 //! Static equilibrium `K·u = f` with prescribed displacement components, by Jacobi-preconditioned
 //! conjugate gradients on the bar kernel (matrix-free).
 
+pub use crate::boundary::Prescribed;
 use crate::error::SolverError;
 use crate::field::Field;
 use crate::model::Model;
 use crate::step::bars::{bar_forces, stiffness_diagonal};
-
-/// A prescribed displacement component.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Prescribed {
-    /// Internal node index.
-    pub node: usize,
-    /// Axis 0, 1, 2.
-    pub axis: usize,
-    /// Value (m).
-    pub value: f64,
-}
 
 /// Result of a static solve.
 #[derive(Clone, Debug)]

@@ -56,9 +56,9 @@ pub fn critical_time_step(model: &Model, k: &[f64]) -> Result<CriticalStep, Solv
         }
     };
     let gershgorin = gershgorin_bound(model, k);
-    // The loading plate's springs add `k_i/m_i` to the diagonal of node i's x row: by Weyl's
-    // inequality they raise ω²_max by at most the largest of them.
-    let plate = model.plate().iter().map(|&(i, ks)| ks * model.inv_mass()[i as usize]).fold(0.0, f64::max);
+    // Boundary conditions with springs (the loading plate's) add `k_i/m_i` to the diagonal of
+    // node i's row: by Weyl's inequality they raise ω²_max by at most what they say.
+    let plate = model.boundaries().stiffening(model.inv_mass());
 
     let mut rng = ChaCha8Rng::seed_from_u64(0x5eed_c417);
     let mut q: Vec<f64> = (0..dof).map(|_| StandardUniform.sample(&mut rng)).map(|u: f64| u - 0.5).collect();

@@ -6,6 +6,7 @@
 //! exactly. Bars that crack keep that pairing with the stiffness each bar has at step n, and the
 //! rupture kernel books what they dissipate ([`crate::step::rupture`]).
 
+use crate::boundary;
 use crate::field::{Field, Lanes};
 use crate::geometry::Direction;
 use crate::layout::BarLayout;
@@ -13,39 +14,7 @@ use crate::model::Model;
 use crate::step::params::Params;
 use crate::step::state::State;
 
-/// Cumulative energy terms of one lane (J), all measured from the start of the run.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Energy {
-    /// `½ Σ m|uₙ₊₁ − uₙ|²/Δt²`.
-    pub kinetic: f64,
-    /// `½ uₙᵀ K uₙ₊₁`.
-    pub elastic: f64,
-    /// Dissipated by mass-proportional damping.
-    pub damping: f64,
-    /// Dissipated by base friction.
-    pub friction: f64,
-    /// Lost in inelastic landings on the base.
-    pub impact: f64,
-    /// Dissipated by bars that crack (docs/model.md §11; 0 without rupture).
-    pub fracture: f64,
-    /// Work of body forces (gravity, body-force loads) and of the normal load.
-    pub body_work: f64,
-    /// Work of the drivers and the loading plate's springs.
-    pub driver_work: f64,
-}
-
-impl Energy {
-    /// Body plus driver work.
-    pub fn external_work(&self) -> f64 {
-        self.body_work + self.driver_work
-    }
-
-    /// External work minus everything stored and dissipated (zero up to round-off).
-    pub fn residual(&self) -> f64 {
-        self.external_work()
-            - (self.kinetic + self.elastic + self.damping + self.friction + self.impact + self.fracture)
-    }
-}
+pub use crate::ledger::Energy;
 
 /// `½ Σ_b k_b·e_b(a)·e_b(b)` for lane `l`: the strain energy `½aᵀKb` (J). With `a = b` it is the
 /// strain energy of one state; with `a = uₙ`, `b = uₙ₊₁` it is the energy the central-difference
@@ -100,7 +69,7 @@ pub fn kinetic_energy<const L: usize>(model: &Model, a: &Field<L>, b: &Field<L>,
 /// accumulators. Called before the commit, when `state.u.nm1` holds the new uₙ₊₁ and `state.u.n`
 /// holds uₙ₋₁.
 pub(crate) fn accumulate<const L: usize>(p: &Params<'_, L>, state: &mut State<L>) {
-    let State { u, contact, drivers, energy, .. } = state;
+    let State { u, contact, loading, energy, .. } = state;
     let (new, old) = (&u.nm1, &u.n);
     let model = p.model;
     let mass = model.mass();
@@ -132,23 +101,5 @@ pub(crate) fn accumulate<const L: usize>(p: &Params<'_, L>, state: &mut State<L>
             e.impact -= 0.5 * reaction[2][ci][l] * d2(2);
         }
     }
-    for (d, &node) in model.drivers().iter().enumerate() {
-        let i = node as usize;
-        for l in 0..L {
-            energy[l].driver_work += 0.5 * drivers.reaction[d][l] * (new.c[0][i][l] - old.c[0][i][l]);
-        }
-    }
-    // The plate's springs are external forces on the block: their work is the loading's.
-    for (j, &(node, _)) in model.plate().iter().enumerate() {
-        let i = node as usize;
-        for l in 0..L {
-            energy[l].driver_work += 0.5 * drivers.plate_force[j][l] * (new.c[0][i][l] - old.c[0][i][l]);
-        }
-    }
-    for &(node, f) in model.loads() {
-        let i = node as usize;
-        for l in 0..L {
-            energy[l].body_work += 0.5 * f * (new.c[2][i][l] - old.c[2][i][l]);
-        }
-    }
+    model.boundaries().work(&mut boundary::Work { new, old, loading, energy });
 }

@@ -5,9 +5,8 @@
 //! [`Params`] (model, stiffness and friction of each seed, time step, damping, body force: what
 //! the step reads) and the [`Stepper`] (scratch memory and what to track).
 //!
-//! One step, in this order: `bar_forces → integrate (trial) → plate springs and normal load →
-//! rollers → drivers → contact →
-//! energy (if tracked) → commit` (on cache-blocked lattices the first two are one pass: each
+//! One step, in this order: `bar_forces → integrate (trial) → boundary conditions (plate springs,
+//! pressure, rollers, drivers: [`crate::boundary`]) → contact → energy (if tracked) → commit` (on cache-blocked lattices the first two are one pass: each
 //! node is integrated right after its last bar). The trial update is
 //! `u⁺ = [Δt²(f/m + b) + 2u − (1 − DΔt/2)u⁻] / (1 + DΔt/2)`; every constraint then replaces the
 //! trial value of its component and its reaction `R = m(1 + DΔt/2)/Δt² · (u_constrained − u⁺)` is
@@ -33,6 +32,7 @@ pub use view::{Blowup, Interface, LaneView, NodeContact};
 
 use stickslip_isa::Isa;
 
+use crate::boundary;
 use crate::model::Model;
 use bars::{bar_forces, bar_forces_finishing, bar_forces_parallel};
 use integrate::{Levels, Update, integrate_all, integrate_range};
@@ -130,9 +130,13 @@ impl<const L: usize> Stepper<L> {
                 });
             }
         }
-        apply_loads(p, state);
-        apply_fixed(m, &mut state.u);
-        apply_drivers(p, state);
+        m.boundaries().apply(&mut boundary::Step {
+            mass: m.mass(),
+            cf: &p.coefficients().cf,
+            now: &state.u.np1,
+            trial: &mut state.u.nm1,
+            loading: &mut state.loading,
+        });
         let log = (self.tracking.slid || self.tracking.onsets).then_some((
             &mut state.log,
             self.tracking.slid,
@@ -181,72 +185,14 @@ impl<const L: usize> Stepper<L> {
     }
 }
 
-/// Rollers: held components keep the value they had (`uₙ₊₁` of the trial ← `uₙ`).
-fn apply_fixed<const L: usize>(m: &Model, u: &mut state::TimeLevels<L>) {
-    for &(node, mask) in m.fixed() {
-        for c in 0..3 {
-            if mask[c] {
-                u.nm1.c[c][node as usize] = u.np1.c[c][node as usize];
-            }
-        }
-    }
-}
-
-/// Drivers: x of each driven node set to its base plus the target; the reaction is the force that
-/// takes the trial there.
-fn apply_drivers<const L: usize>(p: &Params<'_, L>, state: &mut State<L>) {
-    let mass = p.model.mass();
-    let cf = &p.coefficients().cf;
-    let (d_state, trial) = (&mut state.drivers, &mut state.u.nm1);
-    for (d, &node) in p.model.drivers().iter().enumerate() {
-        let i = node as usize;
-        for l in 0..L {
-            if !d_state.on[l] {
-                d_state.reaction[d][l] = 0.0;
-                continue;
-            }
-            let target = d_state.base[d][l] + d_state.target[l];
-            d_state.reaction[d][l] = (target - trial.c[0][i][l]) * mass[i] / cf[l];
-            trial.c[0][i][l] = target;
-        }
-    }
-}
-
-/// The loads that are not bars: the loading plate's springs, pulling each tied node in x by
-/// `k·(base + target − x)` with `x` its displacement now (explicit, like the bar forces), and the
-/// constant normal load in z. Each force `F` moves the trial by `F·cf/m` (the update's `cf·f/m`).
-fn apply_loads<const L: usize>(p: &Params<'_, L>, state: &mut State<L>) {
-    let model = p.model;
-    let (mass, cf) = (model.mass(), &p.coefficients().cf);
-    let (d_state, now, trial) = (&mut state.drivers, &state.u.np1, &mut state.u.nm1);
-    for (j, &(node, k)) in model.plate().iter().enumerate() {
-        let i = node as usize;
-        for l in 0..L {
-            let f =
-                if d_state.on[l] { k * (d_state.plate_base[j][l] + d_state.target[l] - now.c[0][i][l]) } else { 0.0 };
-            d_state.plate_force[j][l] = f;
-            trial.c[0][i][l] += f * cf[l] / mass[i];
-        }
-    }
-    for &(node, f) in model.loads() {
-        let i = node as usize;
-        for l in 0..L {
-            trial.c[2][i][l] += f * cf[l] / mass[i];
-        }
-    }
-}
-
 /// Turns on the drivers of lane `l`: from now on their x is held at where they are now (the
 /// newest time level) plus the target of [`state::DriverState::target`].
 pub fn start_drivers<const L: usize>(model: &Model, state: &mut State<L>, l: usize) {
-    state.drivers.on[l] = true;
-    state.drivers.target[l] = 0.0;
-    for (d, &node) in model.drivers().iter().enumerate() {
-        state.drivers.base[d][l] = state.u.np1.c[0][node as usize][l];
-    }
-    for (j, &(node, _)) in model.plate().iter().enumerate() {
-        state.drivers.plate_base[j][l] = state.u.np1.c[0][node as usize][l];
-    }
+    let (loading, now) = (&mut state.loading, &state.u.np1);
+    loading.on[l] = true;
+    loading.target[l] = 0.0;
+    model.boundaries().drivers.start(loading, now, l);
+    model.boundaries().plate.start(loading, now, l);
 }
 
 /// Stops lane `l` from doing anything (a failed lane): zero displacements, drivers off, no body

@@ -10,8 +10,9 @@
 //! The state is plain data: the quasi-static skip-ahead reads it and, when it jumps, writes a
 //! whole new lane state along the motion it followed ([`State::set_lane`]).
 
+use crate::boundary::LoadingState;
 use crate::field::{Field, Lanes};
-use crate::step::energy::Energy;
+pub use crate::ledger::Energy;
 use crate::step::params::Params;
 use crate::step::rupture::RuptureState;
 
@@ -55,24 +56,6 @@ pub struct ContactState<const L: usize> {
     pub reaction: [Vec<Lanes<L>>; 3],
 }
 
-/// The drivers of the shear stage.
-#[derive(Clone, Debug, PartialEq)]
-pub struct DriverState<const L: usize> {
-    /// Whether the drivers of each lane are on.
-    pub on: [bool; L],
-    /// Driver displacement (m) relative to `base`, for the step about to be taken (or used in the
-    /// last one).
-    pub target: Lanes<L>,
-    /// x of each driven node when the drivers started (m).
-    pub base: Vec<Lanes<L>>,
-    /// Reaction of each driven node in x at the viewed time (N).
-    pub reaction: Vec<Lanes<L>>,
-    /// x of each node on the loading plate's springs when the plate started (m).
-    pub plate_base: Vec<Lanes<L>>,
-    /// Force of each plate spring on its node in x at the viewed time (N).
-    pub plate_force: Vec<Lanes<L>>,
-}
-
 /// Slip history of the contact nodes, for recorders and the skip-ahead.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SlipLog<const L: usize> {
@@ -99,7 +82,7 @@ pub struct State<const L: usize> {
     /// Contact of the base nodes.
     pub contact: ContactState<L>,
     /// Drivers.
-    pub drivers: DriverState<L>,
+    pub loading: LoadingState<L>,
     /// Work and dissipation accumulated from the start of each lane's run (J); kinetic and
     /// elastic energy are functions of the time levels.
     pub energy: [Energy; L],
@@ -127,7 +110,7 @@ impl<const L: usize> State<L> {
                 state: vec![[0.0; L]; contacts],
                 reaction: [vec![[0.0; L]; contacts], vec![[0.0; L]; contacts], vec![[0.0; L]; contacts]],
             },
-            drivers: DriverState {
+            loading: LoadingState {
                 on: [false; L],
                 target: [0.0; L],
                 base: vec![[0.0; L]; drivers],
@@ -169,7 +152,7 @@ impl<const L: usize> State<L> {
     /// The loading force in x (N) of lane `l` at the viewed time: the drivers' reactions plus
     /// the plate springs' pull.
     pub fn driver_force(&self, l: usize) -> f64 {
-        self.drivers.reaction.iter().chain(&self.drivers.plate_force).map(|r| r[l]).sum()
+        self.loading.reaction.iter().chain(&self.loading.plate_force).map(|r| r[l]).sum()
     }
 
     /// Takes the sustained slip onsets of lane `l` recorded since the last call: `(step,
@@ -208,10 +191,10 @@ impl<const L: usize> State<L> {
             self.log.run[ci][l] = 0;
             self.log.slid[ci][l] = false;
         }
-        for d in 0..self.drivers.reaction.len() {
-            self.drivers.reaction[d][l] = driver_reaction(d);
+        for d in 0..self.loading.reaction.len() {
+            self.loading.reaction[d][l] = driver_reaction(d);
         }
-        self.drivers.target[l] = driver_target;
+        self.loading.target[l] = driver_target;
         self.steps = steps;
     }
 
@@ -228,6 +211,6 @@ impl<const L: usize> State<L> {
         for field in self.u.all_mut() {
             field.set_lane(l, |_, _| 0.0);
         }
-        self.drivers.on[l] = false;
+        self.loading.on[l] = false;
     }
 }

@@ -129,7 +129,7 @@ impl<const L: usize> LaneView<'_, '_, L> {
 
     /// Driver target displacement (m) used in the last step.
     pub fn driver_target(&self) -> f64 {
-        self.state.drivers.target[self.lane]
+        self.state.loading.target[self.lane]
     }
 
     /// Kinetic energy `½m|uₙ₊₁ − uₙ|²/Δt²` (J), one pass over the nodes.

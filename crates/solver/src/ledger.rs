@@ -1,0 +1,36 @@
+//! The energy ledger of a run (docs/model.md §2): the cumulative work and dissipation terms of one
+//! lane, which the step, the boundary conditions and the rupture kernel add to.
+
+/// Cumulative energy terms of one lane (J), all measured from the start of the run.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Energy {
+    /// `½ Σ m|uₙ₊₁ − uₙ|²/Δt²`.
+    pub kinetic: f64,
+    /// `½ uₙᵀ K uₙ₊₁`.
+    pub elastic: f64,
+    /// Dissipated by mass-proportional damping.
+    pub damping: f64,
+    /// Dissipated by base friction.
+    pub friction: f64,
+    /// Lost in inelastic landings on the base.
+    pub impact: f64,
+    /// Dissipated by bars that crack (docs/model.md §11; 0 without rupture).
+    pub fracture: f64,
+    /// Work of body forces (gravity, body-force loads) and of the normal load.
+    pub body_work: f64,
+    /// Work of the drivers and the loading plate's springs.
+    pub driver_work: f64,
+}
+
+impl Energy {
+    /// Body plus driver work.
+    pub fn external_work(&self) -> f64 {
+        self.body_work + self.driver_work
+    }
+
+    /// External work minus everything stored and dissipated (zero up to round-off).
+    pub fn residual(&self) -> f64 {
+        self.external_work()
+            - (self.kinetic + self.elastic + self.damping + self.friction + self.impact + self.fracture)
+    }
+}
