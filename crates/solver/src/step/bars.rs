@@ -191,31 +191,80 @@ unsafe fn diagonal<const L: usize, const NX: bool, const NY: bool>(
     u: &Field<L>,
     f: ForcePtr<L>,
 ) {
-    // Multiplying by ±1 is exact, so this is the same arithmetic as negating.
-    let sx = if NX { -1.0 } else { 1.0 };
-    let sy = if NY { -1.0 } else { 1.0 };
+    let (sx, sy) = signs(NX, NY);
     let (ux, uy, uz) = (u.c[0].as_ptr(), u.c[1].as_ptr(), u.c[2].as_ptr());
-    let [fx, fy, fz] = f.0;
     for (e, kb) in ends.iter().zip(k) {
         let (i, j) = (e[0] as usize, e[1] as usize);
         // SAFETY: i, j are node indices below the arrays' length (checked layout), and i ≠ j.
         unsafe {
-            let (xi, xj, yi, yj, zi, zj) =
-                (&*ux.add(i), &*ux.add(j), &*uy.add(i), &*uy.add(j), &*uz.add(i), &*uz.add(j));
+            let p = project(sx, sy, [&*ux.add(i), &*uy.add(i), &*uz.add(i)], [&*ux.add(j), &*uy.add(j), &*uz.add(j)]);
             let mut t = [0.0; L];
             for l in 0..L {
-                t[l] = kb[l] * (sx * (xj[l] - xi[l]) + sy * (yj[l] - yi[l]) + (zj[l] - zi[l]));
+                t[l] = kb[l] * p[l];
             }
-            // One array per loop: the compiler cannot tell the force arrays apart, so loops
-            // that write only one of them are the ones it can turn into vector operations.
-            let (tx, ty) = (t.map(|v| sx * v), t.map(|v| sy * v));
-            add_lanes(&mut *fx.add(i), &tx);
-            add_lanes(&mut *fy.add(i), &ty);
-            add_lanes(&mut *fz.add(i), &t);
-            sub_lanes(&mut *fx.add(j), &tx);
-            sub_lanes(&mut *fy.add(j), &ty);
-            sub_lanes(&mut *fz.add(j), &t);
+            scatter_diagonal(f, i, j, sx, sy, &t);
         }
+    }
+}
+
+/// The x and y signs of a diagonal's direction `(sx, sy, 1)` (multiplying by ±1 is exact, so
+/// this is the same arithmetic as negating).
+#[inline(always)]
+pub(crate) fn signs(neg_x: bool, neg_y: bool) -> (f64, f64) {
+    (if neg_x { -1.0 } else { 1.0 }, if neg_y { -1.0 } else { 1.0 })
+}
+
+/// A diagonal's elongation in kernel units, `s·(u_j − u_i)` with `s = (sx, sy, 1)`, for `L`
+/// lanes from the displacements `[x, y, z]` of its two ends.
+#[inline(always)]
+pub(crate) fn project<const L: usize>(sx: f64, sy: f64, ui: [&Lanes<L>; 3], uj: [&Lanes<L>; 3]) -> Lanes<L> {
+    let mut p = [0.0; L];
+    for l in 0..L {
+        p[l] = sx * (uj[0][l] - ui[0][l]) + sy * (uj[1][l] - ui[1][l]) + (uj[2][l] - ui[2][l]);
+    }
+    p
+}
+
+/// The elongation in kernel units of bar `(i, j)` of direction `direction` in lane `l`: `e·Δu`
+/// (axial) or `s·Δu` (diagonal, √3 times the elongation).
+#[inline(always)]
+pub(crate) fn elongation<const L: usize>(direction: Direction, u: &Field<L>, i: usize, j: usize, l: usize) -> f64 {
+    let d = |c: usize| u.c[c][j][l] - u.c[c][i][l];
+    match direction {
+        Direction::Axis(a) => d(a as usize),
+        Direction::Diagonal { neg_x, neg_y } => {
+            let (sx, sy) = signs(neg_x, neg_y);
+            sx * d(0) + sy * d(1) + d(2)
+        }
+    }
+}
+
+/// Adds a diagonal's force `t·s` to end `i` and subtracts it from end `j`.
+///
+/// # Safety
+/// `i` and `j` are node indices below the force arrays' length, `i ≠ j`, and no other thread
+/// writes them.
+#[inline(always)]
+pub(crate) unsafe fn scatter_diagonal<const L: usize>(
+    f: ForcePtr<L>,
+    i: usize,
+    j: usize,
+    sx: f64,
+    sy: f64,
+    t: &Lanes<L>,
+) {
+    let [fx, fy, fz] = f.0;
+    // One array per loop: the compiler cannot tell the force arrays apart, so loops that write
+    // only one of them are the ones it can turn into vector operations.
+    let (tx, ty) = (t.map(|v| sx * v), t.map(|v| sy * v));
+    // SAFETY: forwarded contract.
+    unsafe {
+        add_lanes(&mut *fx.add(i), &tx);
+        add_lanes(&mut *fy.add(i), &ty);
+        add_lanes(&mut *fz.add(i), t);
+        sub_lanes(&mut *fx.add(j), &tx);
+        sub_lanes(&mut *fy.add(j), &ty);
+        sub_lanes(&mut *fz.add(j), t);
     }
 }
 

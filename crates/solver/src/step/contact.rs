@@ -157,7 +157,7 @@ fn contact<const L: usize, W: Law>(c: &mut ContactArrays<'_, L>, law: &[W::Lanes
         let (xt, yt, zt) = (c.trial[0][p], c.trial[1][p], c.trial[2][p]);
         let (xn, yn) = (c.now[0][p], c.now[1][p]);
         let (slipping, state) = (c.sliding[ci], c.state[ci]);
-        let coefficients = &law[ci];
+        let coefficients = law[ci];
         let (mut ox, mut oy, mut oz) = ([0.0; L], [0.0; L], [0.0; L]);
         let (mut rxo, mut ryo, mut no) = ([0.0; L], [0.0; L], [0.0; L]);
         let (mut slip_o, mut state_o) = ([false; L], [0.0; L]);
@@ -167,7 +167,7 @@ fn contact<const L: usize, W: Law>(c: &mut ContactArrays<'_, L>, law: &[W::Lanes
             let normal = -zt[l] * g;
             let (rx, ry) = ((xn[l] - xt[l]) * g, (yn[l] - yt[l]) * g);
             let need = (rx * rx + ry * ry).sqrt();
-            let node = W::lane(coefficients, l);
+            let node = W::lane(&coefficients, l);
             let mu_k = W::kinetic(&node, state[l]);
             let limit = W::holding(&node, slipping[l], mu_k) * normal;
             let stick = need <= limit;

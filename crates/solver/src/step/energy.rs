@@ -8,9 +8,9 @@
 
 use crate::boundary;
 use crate::field::{Field, Lanes};
-use crate::geometry::Direction;
 use crate::layout::BarLayout;
 use crate::model::Model;
+use crate::step::bars::elongation;
 use crate::step::params::Params;
 use crate::step::state::State;
 
@@ -20,31 +20,26 @@ pub use crate::ledger::Energy;
 /// strain energy of one state; with `a = uₙ`, `b = uₙ₊₁` it is the energy the central-difference
 /// scheme conserves exactly.
 pub fn strain_energy<const L: usize>(layout: &BarLayout, k: &[Lanes<L>], a: &Field<L>, b: &Field<L>, l: usize) -> f64 {
+    strain_energy_with(layout, a, b, l, |bar, _| k[bar][l])
+}
+
+/// `½ Σ_b k_b·e_b(a)·e_b(b)` for lane `l` with `k_b = stiffness(bar, e_b(a))`, summed group by
+/// group in kernel order (so every caller gets the same bits for the same stiffness).
+pub(crate) fn strain_energy_with<const L: usize>(
+    layout: &BarLayout,
+    a: &Field<L>,
+    b: &Field<L>,
+    l: usize,
+    stiffness: impl Fn(usize, f64) -> f64,
+) -> f64 {
     let ends = layout.ends();
     let mut total = 0.0;
     for g in layout.groups() {
-        let range = g.start..g.end;
         let mut sum = 0.0;
-        match g.direction {
-            Direction::Axis(ax) => {
-                let (ca, cb) = (&a.c[ax as usize], &b.c[ax as usize]);
-                for (e, kb) in ends[range.clone()].iter().zip(&k[range]) {
-                    let (i, j) = (e[0] as usize, e[1] as usize);
-                    sum += kb[l] * (ca[j][l] - ca[i][l]) * (cb[j][l] - cb[i][l]);
-                }
-            }
-            Direction::Diagonal { neg_x, neg_y } => {
-                let (sx, sy) = (if neg_x { -1.0 } else { 1.0 }, if neg_y { -1.0 } else { 1.0 });
-                let proj = |u: &Field<L>, i: usize, j: usize| {
-                    sx * (u.c[0][j][l] - u.c[0][i][l])
-                        + sy * (u.c[1][j][l] - u.c[1][i][l])
-                        + (u.c[2][j][l] - u.c[2][i][l])
-                };
-                for (e, kb) in ends[range.clone()].iter().zip(&k[range]) {
-                    let (i, j) = (e[0] as usize, e[1] as usize);
-                    sum += kb[l] * proj(a, i, j) * proj(b, i, j);
-                }
-            }
+        for bar in g.start..g.end {
+            let (i, j) = (ends[bar][0] as usize, ends[bar][1] as usize);
+            let pa = elongation(g.direction, a, i, j, l);
+            sum += stiffness(bar, pa) * pa * elongation(g.direction, b, i, j, l);
         }
         total += sum;
     }

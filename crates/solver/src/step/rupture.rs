@@ -38,7 +38,8 @@ use crate::field::{Field, Lanes};
 use crate::geometry::Direction;
 use crate::layout::{BarGroup, BarLayout, Segment};
 use crate::rupture::law_step;
-use crate::step::bars::{ForcePtr, add_lanes, check, sub_lanes};
+use crate::step::bars::{ForcePtr, add_lanes, check, elongation, project, scatter_diagonal, signs, sub_lanes};
+use crate::step::energy::strain_energy_with;
 
 /// The gate of an intact bar sits this fraction below `k·p_peak²`, so round-off in `t·p` never
 /// hides a bar that passed its peak (the exact law decides).
@@ -403,42 +404,27 @@ unsafe fn diagonal<const L: usize, const NX: bool, const NY: bool>(
     s: Shared<L>,
     out: &mut SegmentOut<L>,
 ) {
-    // Multiplying by ±1 is exact, so this is the same arithmetic as negating.
-    let sx = if NX { -1.0 } else { 1.0 };
-    let sy = if NY { -1.0 } else { 1.0 };
+    let (sx, sy) = signs(NX, NY);
     let (ux, uy, uz) = (u.c[0].as_ptr(), u.c[1].as_ptr(), u.c[2].as_ptr());
     let (ox, oy, oz) = (older.c[0].as_ptr(), older.c[1].as_ptr(), older.c[2].as_ptr());
-    let [fx, fy, fz] = f.0;
     for b in bars {
         // SAFETY: b is below the bar count, i, j below the node count (checked pass), i ≠ j.
         unsafe {
             let e = *ends.get_unchecked(b);
             let (i, j) = (e[0] as usize, e[1] as usize);
-            let (xi, xj, yi, yj, zi, zj) =
-                (&*ux.add(i), &*ux.add(j), &*uy.add(i), &*uy.add(j), &*uz.add(i), &*uz.add(j));
+            let p = project(sx, sy, [&*ux.add(i), &*uy.add(i), &*uz.add(i)], [&*ux.add(j), &*uy.add(j), &*uz.add(j)]);
             let ks = *s.secant.add(b);
-            let mut p = [0.0; L];
             let mut t = [0.0; L];
             for l in 0..L {
-                p[l] = sx * (xj[l] - xi[l]) + sy * (yj[l] - yi[l]) + (zj[l] - zi[l]);
                 t[l] = ks[l] * p[l];
             }
             if gated(&t, &p, *s.gate.add(b)) {
                 let before = || {
-                    let (xi, xj, yi, yj, zi, zj) =
-                        (&*ox.add(i), &*ox.add(j), &*oy.add(i), &*oy.add(j), &*oz.add(i), &*oz.add(j));
-                    std::array::from_fn(|l| sx * (xj[l] - xi[l]) + sy * (yj[l] - yi[l]) + (zj[l] - zi[l]))
+                    project(sx, sy, [&*ox.add(i), &*oy.add(i), &*oz.add(i)], [&*ox.add(j), &*oy.add(j), &*oz.add(j)])
                 };
                 t = exact(b, p, t, before, s, out);
             }
-            // One array per loop (see the elastic kernel).
-            let (tx, ty) = (t.map(|v| sx * v), t.map(|v| sy * v));
-            add_lanes(&mut *fx.add(i), &tx);
-            add_lanes(&mut *fy.add(i), &ty);
-            add_lanes(&mut *fz.add(i), &t);
-            sub_lanes(&mut *fx.add(j), &tx);
-            sub_lanes(&mut *fy.add(j), &ty);
-            sub_lanes(&mut *fz.add(j), &t);
+            scatter_diagonal(f, i, j, sx, sy, &t);
         }
     }
 }
@@ -498,8 +484,9 @@ unsafe fn exact<const L: usize>(
 
 /// `½ Σ_b k_b·p_b(a)·p_b(b)` for lane `l` with `k_b` the stiffness each bar has at `a`'s
 /// elongation (secant in tension, undamaged in compression): the strain energy the rupture
-/// kernel's ledger pairs with (see the module doc). The same sums in the same order as
-/// [`crate::step::energy::strain_energy`], so the two agree bit for bit while nothing is damaged.
+/// kernel's ledger pairs with (see the module doc). The sums of
+/// [`crate::step::energy::strain_energy`] with that stiffness, so the two agree bit for bit while
+/// nothing is damaged.
 pub fn strain_energy<const L: usize>(
     layout: &BarLayout,
     k0: &[Lanes<L>],
@@ -508,37 +495,7 @@ pub fn strain_energy<const L: usize>(
     b: &Field<L>,
     l: usize,
 ) -> f64 {
-    let ends = layout.ends();
-    let stiffness = |bar: usize, pa: f64| if pa > 0.0 { secant[bar][l] } else { k0[bar][l] };
-    let mut total = 0.0;
-    for g in layout.groups() {
-        let mut sum = 0.0;
-        match g.direction {
-            Direction::Axis(ax) => {
-                let (ca, cb) = (&a.c[ax as usize], &b.c[ax as usize]);
-                for bar in g.start..g.end {
-                    let (i, j) = (ends[bar][0] as usize, ends[bar][1] as usize);
-                    let pa = ca[j][l] - ca[i][l];
-                    sum += stiffness(bar, pa) * pa * (cb[j][l] - cb[i][l]);
-                }
-            }
-            Direction::Diagonal { neg_x, neg_y } => {
-                let (sx, sy) = (if neg_x { -1.0 } else { 1.0 }, if neg_y { -1.0 } else { 1.0 });
-                let proj = |u: &Field<L>, i: usize, j: usize| {
-                    sx * (u.c[0][j][l] - u.c[0][i][l])
-                        + sy * (u.c[1][j][l] - u.c[1][i][l])
-                        + (u.c[2][j][l] - u.c[2][i][l])
-                };
-                for bar in g.start..g.end {
-                    let (i, j) = (ends[bar][0] as usize, ends[bar][1] as usize);
-                    let pa = proj(a, i, j);
-                    sum += stiffness(bar, pa) * pa * proj(b, i, j);
-                }
-            }
-        }
-        total += sum;
-    }
-    0.5 * total
+    strain_energy_with(layout, a, b, l, |bar, pa| if pa > 0.0 { secant[bar][l] } else { k0[bar][l] })
 }
 
 /// Elongation of every bar in kernel units for lane `l` (axial: `e·Δu`; diagonal: `s·Δu`, √3
@@ -548,14 +505,7 @@ pub fn elongations<const L: usize>(layout: &BarLayout, u: &Field<L>, l: usize) -
     let mut out = vec![0.0; ends.len()];
     for g in layout.groups() {
         for bar in g.start..g.end {
-            let (i, j) = (ends[bar][0] as usize, ends[bar][1] as usize);
-            let d = |c: usize| u.c[c][j][l] - u.c[c][i][l];
-            out[bar] = match g.direction {
-                Direction::Axis(a) => d(a as usize),
-                Direction::Diagonal { neg_x, neg_y } => {
-                    (if neg_x { -1.0 } else { 1.0 }) * d(0) + (if neg_y { -1.0 } else { 1.0 }) * d(1) + d(2)
-                }
-            };
+            out[bar] = elongation(g.direction, u, ends[bar][0] as usize, ends[bar][1] as usize, l);
         }
     }
     out
