@@ -3,12 +3,11 @@
 
 mod commands;
 mod progress;
-mod seeds;
 mod text;
 
 use clap::{Parser, Subcommand};
 
-use commands::{bench, catalogue, check, compare, merge, per_seed, pipeline, run, select, show, similarity, spectra};
+use commands::{catalogue, check, compare, merge, per_seed, pipeline, run, select, show, similarity, spectra};
 
 /// Earthquake stick-slip with the Lattice Discrete Element Method: simulate ensembles of seeds and
 /// turn them into event catalogues, accelerograms, spectra, statistics and scaled magnitudes.
@@ -50,9 +49,6 @@ enum Command {
     /// Catalogue statistics of an ensemble: Gutenberg–Richter b-values, recurrence CV and
     /// renewal fits, Omori–Utsu aftershock decay, scaling exponents (rewrites their tables).
     Catalogue(catalogue::Args),
-    /// Benchmarks (tables and figures under reports/bench/).
-    #[command(subcommand)]
-    Bench(bench::Command),
 }
 
 fn main() {
@@ -75,7 +71,6 @@ fn main() {
         Command::Spectra(a) => spectra::run(a),
         Command::Select(a) => select::run(a),
         Command::Catalogue(a) => catalogue::run(a),
-        Command::Bench(c) => bench::run(c),
     };
     if let Err(e) = result {
         eprintln!("error: {e:#}");

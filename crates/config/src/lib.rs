@@ -19,6 +19,7 @@ pub mod pipeline;
 pub mod precision;
 pub mod scene;
 pub mod sections;
+pub mod seeds;
 pub mod set;
 
 pub use check::Checker;

@@ -20,7 +20,7 @@ for size in "10 1 5 40000" "40 20 4 1000" "100 50 10 100"; do
     # Best of three runs for each side, alternating, both pinned to core 0.
     ours1=0; ours8=0; lmp_rate=0
     for _ in 1 2 3; do
-        out=$(taskset -c 0 target/release/stickslip bench peer "$1" "$2" "$3" "$steps" "$dir")
+        out=$(taskset -c 0 target/release/stickslip-bench peer "$1" "$2" "$3" "$steps" "$dir")
         bars=$(awk '/^bars/ { print $2 }' <<<"$out")
         ours1=$(awk -v a="$ours1" '/^ours_1 / { print ($2 > a ? $2 : a) }' <<<"$out")
         ours8=$(awk -v a="$ours8" '/^ours_8 / { print ($2 > a ? $2 : a) }' <<<"$out")

@@ -2,7 +2,7 @@
 //! input script, and times our stepper on the same lattice, time step and step count.
 //!
 //! Both sides: homogeneous lattice (CV = 0), no contact forces, mass-proportional damping
-//! D = 400/s, Δt = 0.5 of our critical step, small initial displacements. `stickslip bench peer
+//! D = 400/s, Δt = 0.5 of our critical step, small initial displacements. `stickslip-bench peer
 //! NX NY NZ STEPS OUT_DIR` runs it; `crates/lab/lammps/compare.sh` runs both codes and prints
 //! the ratios.
 

@@ -1,6 +1,5 @@
 //! One file per subcommand: its arguments and what it does.
 
-pub mod bench;
 pub mod catalogue;
 pub mod check;
 pub mod compare;

@@ -14,7 +14,7 @@ use stickslip_ensemble::{EnsembleOptions, EnsembleReport, run_ensemble, shard};
 use stickslip_store::Folder;
 
 use crate::progress;
-use crate::seeds::{parse_seeds, parse_shard};
+use stickslip_config::seeds::{parse_seeds, parse_shard};
 
 /// Arguments of `stickslip pipeline`.
 #[derive(clap::Args, Debug)]
@@ -181,6 +181,7 @@ pub fn run(a: Args) -> Result<()> {
         "--fresh with --shard would discard the other shards' results: clear the folder by hand"
     );
     anyhow::ensure!(a.threads != Some(0), "--threads 0: give at least 1 (or leave it out for one per core)");
+    let given = a.seeds.as_deref().map(parse_seeds).transpose().map_err(anyhow::Error::msg)?;
     // Validate every file before running any.
     let pipelines = a.pipelines.iter().map(|p| Pipeline::load(p)).collect::<Result<Vec<_>, _>>()?;
     for p in &pipelines {
@@ -192,10 +193,7 @@ pub fn run(a: Args) -> Result<()> {
     }
     let cancel = cancel_on_ctrl_c()?;
     for pipeline in &pipelines {
-        let mut seeds = match &a.seeds {
-            Some(s) => parse_seeds(s)?,
-            None => pipeline.seeds.clone(),
-        };
+        let mut seeds = given.clone().unwrap_or_else(|| pipeline.seeds.clone());
         if let Some((k, n)) = a.shard {
             seeds = shard(&seeds, k, n);
         }

@@ -1,4 +1,6 @@
-//! `stickslip bench …`: the benchmarks of the lab crate, printed.
+//! `stickslip-bench`: the benchmarks of the lab crate, printed (tables and figures under
+//! `reports/bench/`). A developers' tool beside the product's `stickslip` binary, which does not
+//! link the lab: `cargo run --release -p stickslip-lab --bin stickslip-bench -- <command>`.
 
 use std::path::{Path, PathBuf};
 
@@ -12,11 +14,20 @@ use stickslip_lab::recording_cost::recording_cost;
 use stickslip_lab::skip::{JumpCheck, SkipBench, compare_skip, jumps_frame, runs_frame};
 use stickslip_store::io::write_parquet_atomic;
 
-use crate::seeds::parse_seeds;
+use stickslip_config::seeds::parse_seeds;
+
+/// Benchmarks of stickslip: accuracy, convergence, skip-ahead, recording cost, the LAMMPS peer,
+/// calibration sweeps (tables and figures under reports/bench/).
+#[derive(clap::Parser, Debug)]
+#[command(name = "stickslip-bench", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
 
 /// The benchmarks.
 #[derive(clap::Subcommand, Debug)]
-pub enum Command {
+enum Command {
     /// Run time against error: the pipeline's scene over Δt fractions and lattice refinements
     /// of the same block, each against the finest run.
     Accuracy {
@@ -100,8 +111,15 @@ fn bench_out(pipeline: &Pipeline, out: Option<PathBuf>) -> PathBuf {
     out.unwrap_or_else(|| PathBuf::from("reports").join("bench").join(&pipeline.name))
 }
 
-/// `stickslip bench …`.
-pub fn run(c: Command) -> Result<()> {
+fn main() {
+    if let Err(e) = run(<Cli as clap::Parser>::parse().command) {
+        eprintln!("error: {e:#}");
+        std::process::exit(1);
+    }
+}
+
+/// Runs one benchmark.
+fn run(c: Command) -> Result<()> {
     match c {
         Command::Accuracy { pipeline, fractions, refinements, duration_s, out } => {
             accuracy(&pipeline, fractions, refinements, duration_s, out)
@@ -143,7 +161,7 @@ pub fn run(c: Command) -> Result<()> {
                     .collect::<Result<Vec<f64>>>()?;
                 grid.push((k.to_string(), vals));
             }
-            for combo in sweep(&p.file, &grid, &parse_seeds(&seeds)?)? {
+            for combo in sweep(&p.file, &grid, &parse_seeds(&seeds).map_err(anyhow::Error::msg)?)? {
                 println!("== {:?}", combo.values);
                 let mut s2 = Vec::new();
                 for (s, cat) in &combo.seeds {
@@ -256,7 +274,7 @@ fn skip(path: &Path, seeds: Option<&str>, jumps: usize, window_s: f64, out: Opti
         "--window-s = {window_s} is not allowed: a positive number of seconds"
     );
     let seeds = match seeds {
-        Some(s) => parse_seeds(s)?,
+        Some(s) => parse_seeds(s).map_err(anyhow::Error::msg)?,
         None => pipeline.seeds.clone(),
     };
     let out = bench_out(&pipeline, out);
@@ -307,9 +325,9 @@ fn skip(path: &Path, seeds: Option<&str>, jumps: usize, window_s: f64, out: Opti
     Ok(())
 }
 
-/// The sweep `stickslip bench convergence` is asked for.
+/// The sweep `stickslip-bench convergence` is asked for.
 #[derive(clap::Args, Debug)]
-pub struct ConvergenceArgs {
+struct ConvergenceArgs {
     /// Pipeline file (TOML).
     pipeline: PathBuf,
     /// Loadings: `point` (the pipeline's driver nodes) and/or `patch` (the trailing-face patch
