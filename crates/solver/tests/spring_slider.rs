@@ -114,7 +114,7 @@ impl RigidSlider {
             let force = self.preload + self.k * (self.v * i as f64 * self.dt - x);
             // Pressed with n from z = 0 at rest: the trial falls by n/g, so the base pushes back n.
             let trial = [2.0 * x - x_prev + force / g, 0.0, -self.n / g];
-            let r = resolve::<Weakening>(law, g, trial, [x, 0.0], sliding, path);
+            let r = resolve::<Weakening>(law, (g, self.dt), trial, [x, 0.0], sliding, path);
             out.force.push(force);
             out.velocity.push((r.position[0] - x_prev) / (2.0 * self.dt));
             out.sliding.push(sliding);

@@ -45,13 +45,16 @@ pub trait Law: Copy + Debug + Default + Send + Sync + 'static {
     fn lane<const L: usize>(lanes: &Self::Lanes<L>, l: usize) -> Self::Node;
     /// The static coefficient: a node at rest holds while `|R_t| ≤ μ·N`.
     fn static_coefficient(node: &Self::Node) -> f64;
-    /// The kinetic coefficient of a sliding node whose state variable is `state`.
-    fn kinetic(node: &Self::Node, state: f64) -> f64;
+    /// The kinetic coefficient of a node sliding this step whose state variable is `state`;
+    /// `trial` says what the node would do without friction (what a rate-dependent law solves
+    /// its slip rate from).
+    fn kinetic(node: &Self::Node, state: f64, trial: &Trial) -> f64;
     /// The coefficient bounding `|R_t|` of a node in contact: the static one if it was sticking,
     /// `kinetic` (its kinetic coefficient, computed once by the caller) if it was sliding.
     fn holding(node: &Self::Node, sliding: bool, kinetic: f64) -> f64;
-    /// The state variable of a sliding node after it moved `slid_m` metres in one step.
-    fn advance(node: &Self::Node, state: f64, slid_m: f64) -> f64;
+    /// The state variable of a sliding node after it moved `slid_m` metres in a step of `dt_s`
+    /// seconds.
+    fn advance(node: &Self::Node, state: f64, slid_m: f64, dt_s: f64) -> f64;
     /// The coefficient once fully weakened (steady sliding).
     fn residual_coefficient(node: &Self::Node) -> f64;
     /// Critical stiffness of a spring-slider of normal force `normal_n` on this node: loading
@@ -59,6 +62,20 @@ pub trait Law: Copy + Debug + Default + Send + Sync + 'static {
     fn critical_stiffness(node: &Self::Node, normal_n: f64) -> f64;
     /// Its coefficients with their symbols and units, as `check` and the report print them.
     fn coefficients(node: &Self::Node) -> Vec<Coefficient>;
+}
+
+/// A contact node's step without friction: what a rate-dependent law needs to find its slip rate
+/// (with `g` the update's stiffness, the node slides at `(need − μ·N)/(g·Δt)`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Trial {
+    /// The tangential reaction that would hold the node still (N).
+    pub need_n: f64,
+    /// The normal reaction (N).
+    pub normal_n: f64,
+    /// The update's stiffness `m(1 + DΔt/2)/Δt²` (N/m).
+    pub g_n_m: f64,
+    /// The time step (s).
+    pub dt_s: f64,
 }
 
 /// One named coefficient of a law.

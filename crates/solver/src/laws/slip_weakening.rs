@@ -11,7 +11,7 @@
 //! whatever the case (per-case kernels left the plain law's loop scalar at 4 seeds, 11% slower per
 //! step), and a friction map may give each region its own μs, μd and Dc.
 
-use super::{Coefficient, Law};
+use super::{Coefficient, Law, Trial};
 
 /// The slip-weakening family as a [`Law`]: its state variable is the slip of the current slide.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -58,7 +58,7 @@ impl NodeFriction {
 
     /// Kinetic coefficient after sliding `path` metres in the current slide.
     pub fn kinetic(&self, path: f64) -> f64 {
-        Weakening::kinetic(self, path)
+        kinetic(self, path)
     }
 
     /// Slip-weakening distance Dc (m).
@@ -75,6 +75,13 @@ impl NodeFriction {
     pub fn coefficients(&self) -> Vec<Coefficient> {
         Weakening::coefficients(self)
     }
+}
+
+/// `μs − (μs − μd)·min(path/Dc, 1)`, μd when `Dc = 0`.
+#[inline(always)]
+fn kinetic(node: &NodeFriction, path: f64) -> f64 {
+    let (ms, md, dc) = (node.mu_static, node.mu_dynamic, node.dc_m);
+    if dc == 0.0 { md } else { ms - (ms - md) * (path / dc).min(1.0) }
 }
 
 impl Law for Weakening {
@@ -99,11 +106,10 @@ impl Law for Weakening {
         node.mu_static
     }
 
-    /// μd when `Dc = 0`, else `μs − (μs − μd)·min(path/Dc, 1)`.
+    /// μd when `Dc = 0`, else `μs − (μs − μd)·min(path/Dc, 1)`: rate-independent.
     #[inline(always)]
-    fn kinetic(node: &NodeFriction, path: f64) -> f64 {
-        let (ms, md, dc) = (node.mu_static, node.mu_dynamic, node.dc_m);
-        if dc == 0.0 { md } else { ms - (ms - md) * (path / dc).min(1.0) }
+    fn kinetic(node: &NodeFriction, path: f64, _: &Trial) -> f64 {
+        kinetic(node, path)
     }
 
     #[inline(always)]
@@ -113,7 +119,7 @@ impl Law for Weakening {
 
     /// The slip path grows by the distance slid.
     #[inline(always)]
-    fn advance(_: &NodeFriction, path: f64, slid_m: f64) -> f64 {
+    fn advance(_: &NodeFriction, path: f64, slid_m: f64, _: f64) -> f64 {
         path + slid_m
     }
 

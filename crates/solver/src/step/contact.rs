@@ -24,7 +24,7 @@
 use stickslip_isa::{Isa, widest};
 
 use crate::field::{Field, Lanes};
-use crate::laws::{Law, WithLaw};
+use crate::laws::{Law, Trial, WithLaw};
 use crate::step::params::Params;
 use crate::step::state::{ContactState, SlipLog};
 
@@ -47,15 +47,23 @@ pub struct Resolved {
 
 /// The contact rule for one node under law `W` (see the module doc): `trial` is the position the
 /// step would give without the base, `now` the node's `(x, y)` before the step,
-/// `g = m(1 + DΔt/2)/Δt²`, `sliding` and `state` its state from the last step.
-pub fn resolve<W: Law>(node: &W::Node, g: f64, trial: [f64; 3], now: [f64; 2], sliding: bool, state: f64) -> Resolved {
+/// `g = m(1 + DΔt/2)/Δt²`, `dt` the time step, `sliding` and `state` its state from the last
+/// step.
+pub fn resolve<W: Law>(
+    node: &W::Node,
+    (g, dt): (f64, f64),
+    trial: [f64; 3],
+    now: [f64; 2],
+    sliding: bool,
+    state: f64,
+) -> Resolved {
     if !(trial[2] < 0.0) {
         return Resolved { position: trial, reaction: [0.0; 3], sliding: false, state: 0.0 };
     }
     let normal = -trial[2] * g;
     let (rx, ry) = ((now[0] - trial[0]) * g, (now[1] - trial[1]) * g);
     let need = (rx * rx + ry * ry).sqrt();
-    let mu_k = W::kinetic(node, state);
+    let mu_k = W::kinetic(node, state, &Trial { need_n: need, normal_n: normal, g_n_m: g, dt_s: dt });
     if need <= W::holding(node, sliding, mu_k) * normal {
         return Resolved { position: [now[0], now[1], 0.0], reaction: [rx, ry, normal], sliding: false, state: 0.0 };
     }
@@ -67,7 +75,7 @@ pub fn resolve<W: Law>(node: &W::Node, g: f64, trial: [f64; 3], now: [f64; 2], s
         position: [x1, y1, 0.0],
         reaction: [fx, fy, normal],
         sliding: true,
-        state: W::advance(node, state, (sx * sx + sy * sy).sqrt()),
+        state: W::advance(node, state, (sx * sx + sy * sy).sqrt(), dt),
     }
 }
 
@@ -76,6 +84,7 @@ pub(crate) struct ContactArrays<'a, const L: usize> {
     pub mass: &'a [f64],
     pub nodes: &'a [u32],
     pub cf: &'a Lanes<L>,
+    pub dt: &'a Lanes<L>,
     /// Trial positions (overwritten with the result).
     pub trial: [&'a mut Vec<Lanes<L>>; 3],
     /// Positions before the step, x and y.
@@ -111,6 +120,7 @@ pub(crate) fn apply<const L: usize>(
         mass: model.mass(),
         nodes: model.contact(),
         cf: &p.coefficients().cf,
+        dt: p.dts(),
         trial: [tx, ty, tz],
         now: [&now.c[0], &now.c[1]],
         sliding: &mut contact.sliding,
@@ -168,7 +178,7 @@ fn contact<const L: usize, W: Law>(c: &mut ContactArrays<'_, L>, law: &[W::Lanes
             let (rx, ry) = ((xn[l] - xt[l]) * g, (yn[l] - yt[l]) * g);
             let need = (rx * rx + ry * ry).sqrt();
             let node = W::lane(&coefficients, l);
-            let mu_k = W::kinetic(&node, state[l]);
+            let mu_k = W::kinetic(&node, state[l], &Trial { need_n: need, normal_n: normal, g_n_m: g, dt_s: c.dt[l] });
             let limit = W::holding(&node, slipping[l], mu_k) * normal;
             let stick = need <= limit;
             // Sliding: friction μ_k·N against the trial motion (unused when sticking).
@@ -208,7 +218,7 @@ fn contact<const L: usize, W: Law>(c: &mut ContactArrays<'_, L>, law: &[W::Lanes
             };
             no[l] = if touching { normal } else { 0.0 };
             slip_o[l] = slides;
-            state_o[l] = if slides { W::advance(&node, state[l], (sx * sx + sy * sy).sqrt()) } else { 0.0 };
+            state_o[l] = if slides { W::advance(&node, state[l], (sx * sx + sy * sy).sqrt(), c.dt[l]) } else { 0.0 };
         }
         (c.trial[0][p], c.trial[1][p], c.trial[2][p]) = (ox, oy, oz);
         (c.reaction[0][ci], c.reaction[1][ci], c.reaction[2][ci]) = (rxo, ryo, no);
@@ -228,6 +238,7 @@ mod tests {
     struct Case<const L: usize> {
         mass: Vec<f64>,
         cf: Lanes<L>,
+        dt: Lanes<L>,
         law: Vec<[NodeFriction; L]>,
         trial: [Vec<Lanes<L>>; 3],
         now: [Vec<Lanes<L>>; 2],
@@ -240,6 +251,7 @@ mod tests {
         let mut lanes = |lo: f64, hi: f64| -> Lanes<L> { std::array::from_fn(|_| rng.random_range(lo..hi)) };
         let mass: Vec<f64> = (0..nodes).map(|_| lanes(1.0, 3.0)[0]).collect();
         let cf = lanes(1e-11, 1e-10);
+        let dt = cf.map(f64::sqrt);
         // The law's coefficients times a random-field factor per node and lane; a friction map may
         // give nodes their own Dc: half the nodes keep the law's.
         let law = (0..nodes)
@@ -262,7 +274,7 @@ mod tests {
         let now = [(0..nodes).map(|_| lanes(-1e-6, 1e-6)).collect(), (0..nodes).map(|_| lanes(-1e-6, 1e-6)).collect()];
         let sliding = (0..nodes).map(|_| lanes(0.0, 1.0).map(|v| v < 0.5)).collect();
         let path = (0..nodes).map(|_| lanes(0.0, 4e-6)).collect();
-        Case { mass, cf, law, trial, now, sliding, path }
+        Case { mass, cf, dt, law, trial, now, sliding, path }
     }
 
     /// The lane kernel in build `isa` against [`resolve`] on every node and lane, bit for bit.
@@ -280,6 +292,7 @@ mod tests {
                 mass: &c.mass,
                 nodes: &nodes,
                 cf: &c.cf,
+                dt: &c.dt,
                 trial: [tx, ty, tz],
                 now: [&c.now[0], &c.now[1]],
                 sliding: &mut sliding,
@@ -294,7 +307,7 @@ mod tests {
                 let g = c.mass[i] / c.cf[l];
                 let t = [c.trial[0][i][l], c.trial[1][i][l], c.trial[2][i][l]];
                 let now = [c.now[0][i][l], c.now[1][i][l]];
-                let want = resolve::<Weakening>(&c.law[i][l], g, t, now, c.sliding[i][l], c.path[i][l]);
+                let want = resolve::<Weakening>(&c.law[i][l], (g, c.dt[l]), t, now, c.sliding[i][l], c.path[i][l]);
                 let got = Resolved {
                     position: [trial[0][i][l], trial[1][i][l], trial[2][i][l]],
                     reaction: [reaction[0][i][l], reaction[1][i][l], reaction[2][i][l]],
