@@ -12,7 +12,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 use stickslip_solver::geometry::Lattice;
-use stickslip_solver::laws::{FrictionLaw, FrictionMap, NodeFriction, Region, RegionKind};
+use stickslip_solver::laws::{FrictionLaw, FrictionMap, NodeFriction, Region, RegionKind, WeakeningNode};
 
 use crate::check::Checker;
 
@@ -119,9 +119,10 @@ fn coefficients(
     if mu_static.is_finite() {
         ck.range(&format!("{field}.mu_dynamic"), mu_dynamic, 0.0, false, mu_static.max(0.0), false);
     }
-    let dc = dc.unwrap_or(law.node(1.0).weakening_distance_m());
+    let NodeFriction::Weakening(background) = law.node(1.0);
+    let dc = dc.unwrap_or(background.weakening_distance_m());
     ck.non_negative(&format!("{field}.slip_weakening_m"), dc);
-    NodeFriction::new(mu_static, mu_dynamic, dc)
+    NodeFriction::Weakening(WeakeningNode::new(mu_static, mu_dynamic, dc))
 }
 
 /// Whether the base point `(x, y)` lies in the patch (boundary included, to a part in 10⁹ of Lc).

@@ -25,7 +25,7 @@ use std::ops::ControlFlow;
 
 use common::scene_with;
 use stickslip_config::scene::LoadingPlateSection;
-use stickslip_solver::laws::{NodeFriction, Weakening};
+use stickslip_solver::laws::{Law, Weakening, WeakeningNode};
 use stickslip_solver::step::contact::resolve;
 use stickslip_solver::{Channel, Model, RunOptions, Scene, run_seed};
 
@@ -105,7 +105,7 @@ impl RigidSlider {
 
     /// Central differences without damping, as the solver steps a node (`u⁺ = 2u − u⁻ + Δt²·F/m`),
     /// the base deciding each step by the solver's contact rule with `g = m/Δt²`.
-    fn run(&self, law: &NodeFriction, steps: usize) -> Slide {
+    fn run(&self, law: &WeakeningNode, steps: usize) -> Slide {
         let g = self.m / (self.dt * self.dt);
         let (mut x, mut x_prev) = (0.0_f64, 0.0_f64);
         let (mut sliding, mut path) = (false, 0.0);
@@ -146,10 +146,10 @@ fn slips(s: &Slide) -> Vec<(usize, usize)> {
 #[test]
 fn rigid_slider_with_static_dynamic_friction_drops_twice_the_strength_excess() {
     // M = 2.4 kg pressed with N = 1 kN, μs 0.6 → μd 0.4, k = 10⁶ N/m (ω = 645 rad/s), v = 5 mm/s.
-    let law = NodeFriction::new(0.6, 0.4, 0.0);
+    let law = WeakeningNode::new(0.6, 0.4, 0.0);
     let s = RigidSlider { m: 2.4, n: 1000.0, k: 1e6, v: 5e-3, dt: 1e-6, preload: 0.0 };
     let omega = s.omega();
-    let dmu_n = (law.static_coefficient() - law.residual_coefficient()) * s.n;
+    let dmu_n = (Weakening::static_coefficient(&law) - Weakening::residual_coefficient(&law)) * s.n;
     let a = dmu_n * omega / s.k;
     let theta = 2.0 * (std::f64::consts::PI - (a / s.v).atan());
     let drop = dmu_n * (1.0 - theta.cos()) - s.k * s.v / omega * theta.sin();
@@ -169,7 +169,10 @@ fn rigid_slider_with_static_dynamic_friction_drops_twice_the_strength_excess() {
         let low = run.force[b];
         let slip_s = (b - a) as f64 * s.dt;
         println!("slip {j}: let go at {peak:.2} N, drop {:.2} N, slid {:.3} ms", peak - low, slip_s * 1e3);
-        assert!((peak / (law.static_coefficient() * s.n) - 1.0).abs() < 0.005, "lets go at μs·N: {peak:.2} N");
+        assert!(
+            (peak / (Weakening::static_coefficient(&law) * s.n) - 1.0).abs() < 0.005,
+            "lets go at μs·N: {peak:.2} N"
+        );
         assert!(((peak - low) / drop - 1.0).abs() < 0.01, "drop {:.2} N against {drop:.2} N", peak - low);
         assert!((slip_s / duration - 1.0).abs() < 0.01, "slip lasts θ/ω: {slip_s:.5} s against {duration:.5} s");
     }
@@ -185,13 +188,13 @@ fn rigid_slider_with_static_dynamic_friction_drops_twice_the_strength_excess() {
 /// The slider with linear slip weakening at stiffness `k`, loaded slowly from 0.99·μs·N: its first
 /// slip's drop (spring force when it lets go less when it sticks again) and its peak slip rate
 /// over the plate speed.
-fn weakening_slip(k: f64) -> (f64, f64, NodeFriction, RigidSlider) {
-    let law = NodeFriction::new(0.6, 0.4, 1e-4);
+fn weakening_slip(k: f64) -> (f64, f64, WeakeningNode, RigidSlider) {
+    let law = WeakeningNode::new(0.6, 0.4, 1e-4);
     let n = 1000.0;
-    let s = RigidSlider { m: 2.4, n, k, v: 1e-5, dt: 2e-6, preload: 0.99 * law.static_coefficient() * n };
+    let s = RigidSlider { m: 2.4, n, k, v: 1e-5, dt: 2e-6, preload: 0.99 * Weakening::static_coefficient(&law) * n };
     // Up to μs·N, then as long again as the slide at the plate's speed over 2·Dc.
-    let steps =
-        ((0.01 * law.static_coefficient() * n / (k * s.v) + 2.0 * law.weakening_distance_m() / s.v) / s.dt) as usize;
+    let steps = ((0.01 * Weakening::static_coefficient(&law) * n / (k * s.v) + 2.0 * law.weakening_distance_m() / s.v)
+        / s.dt) as usize;
     let run = s.run(&law, steps);
     let first = run.sliding.iter().position(|&b| b).expect("it slides");
     let peak = run.force[first];
@@ -209,7 +212,7 @@ fn rigid_slider_with_slip_weakening_is_unstable_below_the_critical_stiffness_onl
         let (drop, rate, law, s) = weakening_slip(ratio * k_c);
         // Energy balance from rest to rest: (Δμ·N)·D − k·D²/2 − Δμ·N·Dc/2 = 0, drop k·D, which is
         // more than Δμ·N by Δμ·N·√(1 − k/k_c).
-        let dmu_n = (law.static_coefficient() - law.residual_coefficient()) * s.n;
+        let dmu_n = (Weakening::static_coefficient(&law) - Weakening::residual_coefficient(&law)) * s.n;
         let want = dmu_n + (dmu_n * dmu_n - s.k * dmu_n * law.weakening_distance_m()).sqrt();
         println!("k = {ratio}·k_c: drop {drop:.2} N against {want:.2} N, peak slip rate {rate:.0}·v");
         assert!((drop / want - 1.0).abs() < 0.03, "k = {ratio}·k_c: drop {drop:.2} N against {want:.2} N");
@@ -221,7 +224,7 @@ fn rigid_slider_with_slip_weakening_is_unstable_below_the_critical_stiffness_onl
         // stiffness k − k_c, so from rest it slides s = u·t − (u/ω')·sin ω't, ω' = √((k − k_c)/M),
         // and comes to rest (sticks and heals) after one period having slid 2π·u/ω' < Dc: a creep
         // step whose drop k_c·2π·u/ω' is a fraction of Δμ·N, at a peak rate 2u.
-        let dmu_n = (law.static_coefficient() - law.residual_coefficient()) * s.n;
+        let dmu_n = (Weakening::static_coefficient(&law) - Weakening::residual_coefficient(&law)) * s.n;
         let u = s.v * ratio / (ratio - 1.0);
         let omega = ((s.k - k_c) / s.m).sqrt();
         let creep = 2.0 * std::f64::consts::PI * u / omega;

@@ -29,7 +29,7 @@ pub mod slip_weakening;
 use std::fmt::Debug;
 
 pub use map::{FrictionMap, Region, RegionKind};
-pub use slip_weakening::{Coulomb, NodeFriction, SlipWeakening, StaticDynamic, Weakening, WeakeningLanes};
+pub use slip_weakening::{Coulomb, SlipWeakening, StaticDynamic, Weakening, WeakeningLanes, WeakeningNode};
 
 /// A friction law of the base: its coefficients at one contact node, its one state variable
 /// there, and the answers the contact rule, the static solves and `check` ask of it.
@@ -55,6 +55,8 @@ pub trait Law: Copy + Debug + Default + Send + Sync + 'static {
     /// The state variable of a sliding node after it moved `slid_m` metres in a step of `dt_s`
     /// seconds.
     fn advance(node: &Self::Node, state: f64, slid_m: f64, dt_s: f64) -> f64;
+    /// The coefficients times a random-field factor (the Weibull field on μ).
+    fn scaled(node: &Self::Node, factor: f64) -> Self::Node;
     /// The coefficient once fully weakened (steady sliding).
     fn residual_coefficient(node: &Self::Node) -> f64;
     /// Critical stiffness of a spring-slider of normal force `normal_n` on this node: loading
@@ -102,6 +104,55 @@ pub fn describe(coefficients: &[Coefficient], value: impl Fn(usize, &Coefficient
         .join(", ")
 }
 
+/// A contact node's coefficients under the scene's law, whatever the law: what the scene, its
+/// friction map, `check` and the figures hold and ask.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum NodeFriction {
+    /// The slip-weakening family.
+    Weakening(WeakeningNode),
+}
+
+/// Runs `$body` with `$n` bound to the law's node and `$W` to the law's type.
+macro_rules! with_node {
+    ($node:expr, |$n:ident: $W:ident| $body:expr) => {
+        match $node {
+            NodeFriction::Weakening($n) => {
+                type $W = Weakening;
+                $body
+            }
+        }
+    };
+}
+
+impl NodeFriction {
+    /// The static coefficient ([`Law::static_coefficient`]).
+    pub fn static_coefficient(&self) -> f64 {
+        with_node!(self, |n: W| W::static_coefficient(n))
+    }
+
+    /// The coefficient once fully weakened ([`Law::residual_coefficient`]).
+    pub fn residual_coefficient(&self) -> f64 {
+        with_node!(self, |n: W| W::residual_coefficient(n))
+    }
+
+    /// The spring-slider's critical stiffness at normal force `normal_n` ([`Law::critical_stiffness`]).
+    pub fn critical_stiffness(&self, normal_n: f64) -> f64 {
+        with_node!(self, |n: W| W::critical_stiffness(n, normal_n))
+    }
+
+    /// The named coefficients ([`Law::coefficients`]).
+    pub fn coefficients(&self) -> Vec<Coefficient> {
+        with_node!(self, |n: W| W::coefficients(n))
+    }
+
+    /// The coefficients times a random-field factor ([`Law::scaled`]).
+    pub fn scaled(&self, factor: f64) -> NodeFriction {
+        match self {
+            NodeFriction::Weakening(n) => NodeFriction::Weakening(Weakening::scaled(n, factor)),
+        }
+    }
+}
+
 /// The per-node, per-lane coefficients of the scene's law for `L` seeds, chosen once before the
 /// run: the contact kernel is monomorphised for the law in [`FrictionLaws::dispatch`].
 #[derive(Clone, Debug, PartialEq)]
@@ -120,10 +171,13 @@ pub trait WithLaw<const L: usize> {
 
 impl<const L: usize> FrictionLaws<L> {
     /// The coefficients of every contact node for `L` seeds: `node(c, l)` gives contact node `c`'s
-    /// coefficients in lane `l`.
+    /// coefficients in lane `l` (every node under the one law of the scene).
     pub fn new(contacts: usize, node: impl Fn(usize, usize) -> NodeFriction) -> Self {
+        let weakening = |c: usize, l: usize| match node(c, l) {
+            NodeFriction::Weakening(n) => n,
+        };
         FrictionLaws::Weakening(
-            (0..contacts).map(|c| Weakening::lanes::<L>(std::array::from_fn(|l| node(c, l)))).collect(),
+            (0..contacts).map(|c| Weakening::lanes::<L>(std::array::from_fn(|l| weakening(c, l)))).collect(),
         )
     }
 
@@ -132,13 +186,6 @@ impl<const L: usize> FrictionLaws<L> {
     pub fn dispatch<F: WithLaw<L>>(&self, f: F) -> F::Out {
         match self {
             FrictionLaws::Weakening(v) => f.run::<Weakening>(v),
-        }
-    }
-
-    /// The static coefficient of contact node `c` in lane `l`.
-    pub fn static_coefficient(&self, c: usize, l: usize) -> f64 {
-        match self {
-            FrictionLaws::Weakening(v) => Weakening::static_coefficient(&Weakening::lane(&v[c], l)),
         }
     }
 }
@@ -183,7 +230,11 @@ impl FrictionLaw {
 
     /// The coefficients of a node whose random-field factor is `factor`.
     pub fn node(&self, factor: f64) -> NodeFriction {
-        NodeFriction::new(self.mu_static() * factor, self.mu_dynamic() * factor, self.weakening_distance_m())
+        NodeFriction::Weakening(WeakeningNode::new(
+            self.mu_static() * factor,
+            self.mu_dynamic() * factor,
+            self.weakening_distance_m(),
+        ))
     }
 
     /// Name as written in tables and messages.
@@ -210,20 +261,23 @@ mod tests {
 
     #[test]
     fn kinetic_coefficients_of_each_law() {
-        let plain = FrictionLaw::Coulomb(Coulomb { mu: 0.6 }).node(1.0);
+        let weakening = |law: FrictionLaw| match law.node(1.0) {
+            NodeFriction::Weakening(n) => n,
+        };
+        let plain = weakening(FrictionLaw::Coulomb(Coulomb { mu: 0.6 }));
         assert_eq!(plain.kinetic(1.0), 0.6);
-        let sd = FrictionLaw::StaticDynamic(StaticDynamic { mu_static: 0.6, mu_dynamic: 0.4 }).node(1.0);
+        let sd = weakening(FrictionLaw::StaticDynamic(StaticDynamic { mu_static: 0.6, mu_dynamic: 0.4 }));
         assert_eq!(sd.kinetic(0.0), 0.4);
         assert_eq!(sd.kinetic(1.0), 0.4);
-        let sw = FrictionLaw::SlipWeakening(SlipWeakening { mu_static: 0.6, mu_dynamic: 0.4, dc_m: 1e-3 }).node(1.0);
+        let sw = weakening(FrictionLaw::SlipWeakening(SlipWeakening { mu_static: 0.6, mu_dynamic: 0.4, dc_m: 1e-3 }));
         assert_eq!(sw.kinetic(0.0), 0.6);
         assert!((sw.kinetic(0.5e-3) - 0.5).abs() < 1e-15);
         assert_eq!(sw.kinetic(2e-3), 0.4);
         // Sticking nodes hold at μs whatever the law.
         assert_eq!(Weakening::holding(&sw, false, sw.kinetic(0.5e-3)), 0.6);
         // The spring-slider's critical stiffness (μs − μd)·N/Dc.
-        assert!((sw.critical_stiffness(1000.0) - 0.2 * 1000.0 / 1e-3).abs() < 1e-6);
-        assert_eq!(sd.critical_stiffness(1000.0), f64::INFINITY);
-        assert_eq!(plain.critical_stiffness(1000.0), 0.0);
+        assert!((Weakening::critical_stiffness(&sw, 1000.0) - 0.2 * 1000.0 / 1e-3).abs() < 1e-6);
+        assert_eq!(Weakening::critical_stiffness(&sd, 1000.0), f64::INFINITY);
+        assert_eq!(Weakening::critical_stiffness(&plain, 1000.0), 0.0);
     }
 }

@@ -17,16 +17,16 @@ use super::{Coefficient, Law, Trial};
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Weakening;
 
-/// The coefficients of one contact node: the law's (or its friction map's region's), times the
-/// node's random-field factor on μ.
+/// The coefficients of one contact node under the slip-weakening family: the law's (or its
+/// friction map's region's), times the node's random-field factor on μ.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct NodeFriction {
+pub struct WeakeningNode {
     mu_static: f64,
     mu_dynamic: f64,
     dc_m: f64,
 }
 
-/// [`NodeFriction`] of `L` seeds side by side.
+/// [`WeakeningNode`] of `L` seeds side by side.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct WeakeningLanes<const L: usize> {
     mu_static: [f64; L],
@@ -34,31 +34,11 @@ pub struct WeakeningLanes<const L: usize> {
     dc_m: [f64; L],
 }
 
-impl NodeFriction {
+impl WeakeningNode {
     /// Static coefficient μs, dynamic μd ≤ μs (μs for the plain law) and slip-weakening
     /// distance Dc (m; 0 = μd from the first step of slip).
-    pub fn new(mu_static: f64, mu_dynamic: f64, dc_m: f64) -> NodeFriction {
-        NodeFriction { mu_static, mu_dynamic, dc_m }
-    }
-
-    /// These coefficients times a field factor (Dc unchanged).
-    pub fn scaled(&self, factor: f64) -> NodeFriction {
-        NodeFriction { mu_static: self.mu_static * factor, mu_dynamic: self.mu_dynamic * factor, dc_m: self.dc_m }
-    }
-
-    /// Static coefficient μs.
-    pub fn static_coefficient(&self) -> f64 {
-        Weakening::static_coefficient(self)
-    }
-
-    /// Coefficient once fully weakened, μd.
-    pub fn residual_coefficient(&self) -> f64 {
-        Weakening::residual_coefficient(self)
-    }
-
-    /// Kinetic coefficient after sliding `path` metres in the current slide.
-    pub fn kinetic(&self, path: f64) -> f64 {
-        kinetic(self, path)
+    pub fn new(mu_static: f64, mu_dynamic: f64, dc_m: f64) -> WeakeningNode {
+        WeakeningNode { mu_static, mu_dynamic, dc_m }
     }
 
     /// Slip-weakening distance Dc (m).
@@ -66,29 +46,24 @@ impl NodeFriction {
         self.dc_m
     }
 
-    /// See [`Law::critical_stiffness`].
-    pub fn critical_stiffness(&self, normal_n: f64) -> f64 {
-        Weakening::critical_stiffness(self, normal_n)
-    }
-
-    /// See [`Law::coefficients`].
-    pub fn coefficients(&self) -> Vec<Coefficient> {
-        Weakening::coefficients(self)
+    /// Kinetic coefficient after sliding `path` metres in the current slide.
+    pub fn kinetic(&self, path: f64) -> f64 {
+        kinetic(self, path)
     }
 }
 
 /// `μs − (μs − μd)·min(path/Dc, 1)`, μd when `Dc = 0`.
 #[inline(always)]
-fn kinetic(node: &NodeFriction, path: f64) -> f64 {
+fn kinetic(node: &WeakeningNode, path: f64) -> f64 {
     let (ms, md, dc) = (node.mu_static, node.mu_dynamic, node.dc_m);
     if dc == 0.0 { md } else { ms - (ms - md) * (path / dc).min(1.0) }
 }
 
 impl Law for Weakening {
-    type Node = NodeFriction;
+    type Node = WeakeningNode;
     type Lanes<const L: usize> = WeakeningLanes<L>;
 
-    fn lanes<const L: usize>(nodes: [NodeFriction; L]) -> WeakeningLanes<L> {
+    fn lanes<const L: usize>(nodes: [WeakeningNode; L]) -> WeakeningLanes<L> {
         WeakeningLanes {
             mu_static: nodes.map(|n| n.mu_static),
             mu_dynamic: nodes.map(|n| n.mu_dynamic),
@@ -97,38 +72,43 @@ impl Law for Weakening {
     }
 
     #[inline(always)]
-    fn lane<const L: usize>(lanes: &WeakeningLanes<L>, l: usize) -> NodeFriction {
-        NodeFriction { mu_static: lanes.mu_static[l], mu_dynamic: lanes.mu_dynamic[l], dc_m: lanes.dc_m[l] }
+    fn lane<const L: usize>(lanes: &WeakeningLanes<L>, l: usize) -> WeakeningNode {
+        WeakeningNode { mu_static: lanes.mu_static[l], mu_dynamic: lanes.mu_dynamic[l], dc_m: lanes.dc_m[l] }
     }
 
     #[inline(always)]
-    fn static_coefficient(node: &NodeFriction) -> f64 {
+    fn static_coefficient(node: &WeakeningNode) -> f64 {
         node.mu_static
     }
 
     /// μd when `Dc = 0`, else `μs − (μs − μd)·min(path/Dc, 1)`: rate-independent.
     #[inline(always)]
-    fn kinetic(node: &NodeFriction, path: f64, _: &Trial) -> f64 {
+    fn kinetic(node: &WeakeningNode, path: f64, _: &Trial) -> f64 {
         kinetic(node, path)
     }
 
     #[inline(always)]
-    fn holding(node: &NodeFriction, sliding: bool, kinetic: f64) -> f64 {
+    fn holding(node: &WeakeningNode, sliding: bool, kinetic: f64) -> f64 {
         if sliding { kinetic } else { node.mu_static }
     }
 
     /// The slip path grows by the distance slid.
     #[inline(always)]
-    fn advance(_: &NodeFriction, path: f64, slid_m: f64, _: f64) -> f64 {
+    fn advance(_: &WeakeningNode, path: f64, slid_m: f64, _: f64) -> f64 {
         path + slid_m
     }
 
-    fn residual_coefficient(node: &NodeFriction) -> f64 {
+    /// μs and μd times the factor, Dc unchanged.
+    fn scaled(node: &WeakeningNode, factor: f64) -> WeakeningNode {
+        WeakeningNode { mu_static: node.mu_static * factor, mu_dynamic: node.mu_dynamic * factor, dc_m: node.dc_m }
+    }
+
+    fn residual_coefficient(node: &WeakeningNode) -> f64 {
         node.mu_dynamic
     }
 
     /// The weakening rate `(μs − μd)·N/Dc`.
-    fn critical_stiffness(node: &NodeFriction, normal_n: f64) -> f64 {
+    fn critical_stiffness(node: &WeakeningNode, normal_n: f64) -> f64 {
         let drop = (node.mu_static - node.mu_dynamic) * normal_n;
         if drop <= 0.0 {
             0.0
@@ -139,7 +119,7 @@ impl Law for Weakening {
         }
     }
 
-    fn coefficients(node: &NodeFriction) -> Vec<Coefficient> {
+    fn coefficients(node: &WeakeningNode) -> Vec<Coefficient> {
         vec![
             Coefficient { symbol: "μs", value: node.mu_static, unit: "" },
             Coefficient { symbol: "μd", value: node.mu_dynamic, unit: "" },

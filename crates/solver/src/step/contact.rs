@@ -231,7 +231,7 @@ mod tests {
     use rand::{RngExt, SeedableRng};
 
     use super::*;
-    use crate::laws::{Coulomb, FrictionLaw, NodeFriction, SlipWeakening, StaticDynamic, Weakening};
+    use crate::laws::{Coulomb, FrictionLaw, NodeFriction, SlipWeakening, StaticDynamic, Weakening, WeakeningNode};
 
     /// Random contact states of `nodes` nodes and `L` lanes: trial positions below and above the
     /// base, nodes that were sliding with some slip path, coefficients varying per node and lane.
@@ -239,7 +239,7 @@ mod tests {
         mass: Vec<f64>,
         cf: Lanes<L>,
         dt: Lanes<L>,
-        law: Vec<[NodeFriction; L]>,
+        law: Vec<[WeakeningNode; L]>,
         trial: [Vec<Lanes<L>>; 3],
         now: [Vec<Lanes<L>>; 2],
         sliding: Vec<[bool; L]>,
@@ -258,9 +258,9 @@ mod tests {
             .map(|i| {
                 let (factor, dc) = (lanes(0.3, 5.0), lanes(0.5, 2.0));
                 std::array::from_fn(|l| {
-                    let n = law.node(factor[l]);
+                    let NodeFriction::Weakening(n) = law.node(factor[l]);
                     let dc = n.weakening_distance_m() * if i % 2 == 0 { 1.0 } else { dc[l] };
-                    NodeFriction::new(n.static_coefficient(), n.residual_coefficient(), dc)
+                    WeakeningNode::new(Weakening::static_coefficient(&n), Weakening::residual_coefficient(&n), dc)
                 })
             })
             .collect();
