@@ -5,11 +5,15 @@
 # fix nve + fix viscous (γ = D·m per type), the same Δt and number of steps, one core each.
 #   crates/lab/lammps/compare.sh [steps scale, default 1]
 # Prints bond-updates per second of LAMMPS, ours with one seed and ours with 8 seeds side by side,
-# and the ratios.
+# and the ratios. BENCH names another build's benchmark command (e.g. an older commit's binary),
+# to compare two builds against the same LAMMPS runs.
 set -euo pipefail
 cd "$(dirname "$0")/../../.."
 command -v lmp >/dev/null || { echo "LAMMPS (lmp) not found: install Debian's lammps package (apt-get install lammps)" >&2; exit 1; }
-cargo build --release -q -p stickslip
+if [ -z "${BENCH:-}" ]; then
+    cargo build --release -q -p stickslip-lab --bin stickslip-bench
+    BENCH="${CARGO_TARGET_DIR:-target}/release/stickslip-bench"
+fi
 scale=${1:-1}
 work=$(mktemp -d)
 printf '%-12s %10s %8s %14s %14s %14s %9s %9s\n' lattice bars steps lammps ours_1seed ours_8seeds ratio_1 ratio_8
@@ -20,7 +24,7 @@ for size in "10 1 5 40000" "40 20 4 1000" "100 50 10 100"; do
     # Best of three runs for each side, alternating, both pinned to core 0.
     ours1=0; ours8=0; lmp_rate=0
     for _ in 1 2 3; do
-        out=$(taskset -c 0 target/release/stickslip-bench peer "$1" "$2" "$3" "$steps" "$dir")
+        out=$(taskset -c 0 $BENCH peer "$1" "$2" "$3" "$steps" "$dir")
         bars=$(awk '/^bars/ { print $2 }' <<<"$out")
         ours1=$(awk -v a="$ours1" '/^ours_1 / { print ($2 > a ? $2 : a) }' <<<"$out")
         ours8=$(awk -v a="$ours8" '/^ours_8 / { print ($2 > a ? $2 : a) }' <<<"$out")
