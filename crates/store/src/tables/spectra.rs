@@ -20,24 +20,27 @@ use crate::spec::{Scope, SeedTable, SeedView, TableSpec};
 use crate::tables::records::{INTENSITY, Scale};
 use crate::tables::series::Trace;
 
+/// The columns of a spectra-shaped table (`spectra`, `rotd`).
+const SPECTRUM_COLUMNS: &[&str] = &[
+    col::SEED,
+    col::RECORD,
+    col::NODE,
+    col::COMPONENT,
+    col::SCALE,
+    col::DAMPING,
+    col::PERIOD_S,
+    col::SD_M,
+    col::PSV_M_S,
+    col::PSA_M_S2,
+    col::IN_BAND,
+];
+
 /// Response spectra of every record, both scales, with whether each period is in its band.
 pub const SPECTRA: TableSpec = TableSpec {
     name: "spectra",
     scope: Scope::PerSeed,
     key: &[col::SEED, col::RECORD, col::SCALE, col::DAMPING, col::PERIOD_S],
-    columns: &[
-        col::SEED,
-        col::RECORD,
-        col::NODE,
-        col::COMPONENT,
-        col::SCALE,
-        col::DAMPING,
-        col::PERIOD_S,
-        col::SD_M,
-        col::PSV_M_S,
-        col::PSA_M_S2,
-        col::IN_BAND,
-    ],
+    columns: SPECTRUM_COLUMNS,
     variable: None,
 };
 
@@ -46,19 +49,7 @@ pub const ROTD: TableSpec = TableSpec {
     name: "rotd",
     scope: Scope::PerSeed,
     key: &[col::SEED, col::RECORD, col::COMPONENT, col::SCALE, col::DAMPING, col::PERIOD_S],
-    columns: &[
-        col::SEED,
-        col::RECORD,
-        col::NODE,
-        col::COMPONENT,
-        col::SCALE,
-        col::DAMPING,
-        col::PERIOD_S,
-        col::SD_M,
-        col::PSV_M_S,
-        col::PSA_M_S2,
-        col::IN_BAND,
-    ],
+    columns: SPECTRUM_COLUMNS,
     variable: None,
 };
 
