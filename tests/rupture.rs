@@ -109,13 +109,13 @@ fn tension(text: &str, seed: u64) -> Tension {
         .cracks
         .iter()
         .filter(|c| c.kind == CrackKind::Break)
-        .map(|c| model.lattice().bar_midpoint(&model.lattice().bars()[c.bar as usize])[0])
+        .map(|c| model.lattice().bar_midpoint(&model.lattice().bar(c.bar as usize))[0])
         .collect();
     let closed: f64 = out.damage.iter().map(|d| d.dissipated_j).sum();
     let s = model.scene();
     let lattice = model.lattice();
     let share = |bar: u32| {
-        let b = &lattice.bars()[bar as usize];
+        let b = &lattice.bar(bar as usize);
         let ea = b.surface_factor * axial_stiffness(b.family, s.young_pa, s.poisson, s.lc_m);
         crack_area(ea, b.length_factor() * s.lc_m, s.young_pa, s.poisson, s.lc_m)
     };
@@ -126,7 +126,7 @@ fn tension(text: &str, seed: u64) -> Tension {
             .map(|c| share(c.bar))
             .sum()
     });
-    let mid = |bar: u32| lattice.bar_midpoint(&lattice.bars()[bar as usize])[0];
+    let mid = |bar: u32| lattice.bar_midpoint(&lattice.bar(bar as usize))[0];
     let best_band = |items: &[(u32, f64)]| {
         (0..=(200.0 * extent[0] / s.lc_m) as usize)
             .map(|k| {
@@ -300,7 +300,7 @@ fn explore_stick_slip() {
     let tau = out.recording.get(Channel::ShearStress).unwrap();
     println!("max shear stress {:.4e} Pa", tau.iter().cloned().fold(0.0, f64::max));
     for c in &out.recording.cracks {
-        let b = &lattice.bars()[c.bar as usize];
+        let b = &lattice.bar(c.bar as usize);
         let m = lattice.bar_midpoint(b);
         println!(
             "  t {:.5} {} {} {} at [{:.3}, {:.3}, {:.3}] strain {:.3e}",

@@ -13,7 +13,7 @@ pub fn breaks(cracks: &[Crack], lattice: &Lattice) -> Vec<Break> {
         .filter(|c| c.kind == CrackKind::Break)
         .map(|c| Break {
             time_s: c.time_s,
-            position: lattice.bar_midpoint(&lattice.bars()[c.bar as usize]),
+            position: lattice.bar_midpoint(&lattice.bar(c.bar as usize)),
             energy_j: c.energy_j,
         })
         .collect()

@@ -6,7 +6,7 @@ use std::ops::ControlFlow;
 
 use stickslip_analysis::events::catalogue;
 use stickslip_config::Pipeline;
-use stickslip_solver::inspect::inspect;
+use stickslip_solver::inspect::{Statics, inspect};
 use stickslip_solver::{Model, RunOptions, run_seed};
 use stickslip_support::repo_path;
 
@@ -14,7 +14,7 @@ use stickslip_support::repo_path;
 fn rock_like_friction_on_a_loading_plate_gives_repeated_stick_slip_in_every_seed() {
     let p = Pipeline::load(&repo_path("pipelines/plate-stickslip.toml")).unwrap();
     let model = Model::new(p.scene.clone());
-    let facts = inspect(&model, &p.seeds[..1]).unwrap();
+    let facts = inspect(&model, &p.seeds[..1], Statics::Full).unwrap();
     assert!(facts.slider.verdict().starts_with("stick-slip expected"), "{}", facts.slider.verdict());
     let mut recurrences = Vec::new();
     for &seed in &p.seeds[..4] {
@@ -42,7 +42,7 @@ fn the_paper_damping_makes_the_plate_scene_slide_stably_and_check_says_so() {
     file.shear.damping_per_s = 400.0;
     let scene = file.scene().unwrap();
     let model = Model::new(scene);
-    let facts = inspect(&model, &[1]).unwrap();
+    let facts = inspect(&model, &[1], Statics::Full).unwrap();
     let verdict = facts.slider.verdict();
     assert!(verdict.starts_with("stable sliding expected despite k < k_c"), "{verdict}");
     assert!((facts.slider.damping_ratio - 0.70).abs() < 0.02, "D/(2ω) = {}", facts.slider.damping_ratio);
@@ -56,7 +56,7 @@ fn the_paper_damping_makes_the_plate_scene_slide_stably_and_check_says_so() {
 fn the_seated_paper_block_recurs_like_the_paper_without_lifting() {
     let p = Pipeline::load(&repo_path("pipelines/paper-seated.toml")).unwrap();
     let model = Model::new(p.scene.clone());
-    let facts = inspect(&model, &p.seeds[..1]).unwrap();
+    let facts = inspect(&model, &p.seeds[..1], Statics::Full).unwrap();
     assert!(facts.slider.verdict().starts_with("stick-slip expected"), "{}", facts.slider.verdict());
     let (mut drops, mut s2, mut recurrences) = (Vec::new(), Vec::new(), Vec::new());
     for &seed in &p.seeds[..2] {

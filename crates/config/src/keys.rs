@@ -22,7 +22,7 @@ pub fn for_regime(regime: Regime) -> Option<&'static str> {
         Regime::Tips => Some("loading_plate.face, friction.mu_static"),
         Regime::NoWeakening => Some("friction.mu_dynamic, friction.mu_static"),
         Regime::Overdamped => Some("shear.damping_per_s, shear.velocity_m_s"),
-        Regime::StiffLoading | Regime::StickSlip => None,
+        Regime::StiffLoading | Regime::StickSlip | Regime::Undetermined => None,
     }
 }
 

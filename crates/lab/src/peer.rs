@@ -40,7 +40,7 @@ pub fn peer(nx: i64, ny: i64, nz: i64, steps: usize, out: &Path) -> Result<PeerT
     f.material.young_cv = 0.0;
     f.shear.driver_at_m = vec![[0.0, 0.0, 0.1]];
     let model = Model::new(f.scene()?);
-    let k = model.nominal_stiffness().to_vec();
+    let k = model.nominal_stiffness();
     let dt = 0.5 * critical_time_step(&model, &k).map_err(|e| LabError::Setup(e.to_string()))?.dt_s;
     let damping = 400.0;
 
@@ -65,7 +65,7 @@ pub fn peer(nx: i64, ny: i64, nz: i64, steps: usize, out: &Path) -> Result<PeerT
     let mut types: Vec<(f64, f64)> = Vec::new();
     let mut bonds = String::new();
     for (b, e) in model.ends().iter().enumerate() {
-        let bar = &lattice.bars()[model.bar_canonical()[b] as usize];
+        let bar = &lattice.bar(model.bar_canonical()[b] as usize);
         let kk = k[b] * if bar.family == BarFamily::Diagonal { 3.0 } else { 1.0 };
         let r0 = bar.length_factor() * lattice.lc();
         let t = match types.iter().position(|&(x, r)| (x - kk).abs() < 1e-9 * kk && (r - r0).abs() < 1e-12) {

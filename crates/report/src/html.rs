@@ -100,7 +100,7 @@ pub(crate) fn page(d: &ReportInput, figures: &[Figure], skipped: &[(String, Stri
                 e[1],
                 e[2],
                 lattice.node_count(),
-                lattice.bars().len()
+                lattice.bar_count()
             ),
         ),
         (

@@ -3,6 +3,7 @@
 
 use crate::error::SolverError;
 use crate::field::Field;
+use crate::geometry::Dims;
 use crate::model::Model;
 use crate::statics::{CriticalStep, EffectiveModuli, Prescribed, critical_time_step, solve_static, uniaxial_moduli};
 
@@ -27,9 +28,12 @@ pub struct Inspection {
     pub critical: Vec<(u64, CriticalStep)>,
     /// The paper's bound `0.6·Lc/Cp` (Eq. 5, s).
     pub paper_bound_s: f64,
-    /// Effective moduli along x and along z (static solves of the homogeneous-mean lattice of the
-    /// first seed inspected).
+    /// Effective moduli along x and along z (static solves of the lattice of the first seed
+    /// inspected, or of a sample block of the same material: see `moduli_of`).
     pub moduli: [EffectiveModuli; 2],
+    /// The block the moduli were solved on: the scene's, or a sample of at most
+    /// [`SAMPLE_MODULES`] modules per axis when the scene's is too large ([`Statics::Sample`]).
+    pub moduli_of: Dims,
     /// The spring-slider reading of the scene: when stick-slip is expected.
     pub slider: Slider,
 }
@@ -46,7 +50,8 @@ pub struct Slider {
     /// Force in x at which the loading would tip the block about its leading base edge,
     /// `N·(L/2)/h` with `h` the height the load acts at (N).
     pub tipping_n: f64,
-    /// Stiffness of the block under the loaded nodes, base held (static solve, N/m).
+    /// Stiffness of the block under the loaded nodes, base held (static solve, N/m); NaN when not
+    /// solved ([`Statics::Sample`]).
     pub block_n_m: f64,
     /// Stiffness of the plate's springs (N/m); infinite without a plate (rigid drivers).
     pub plate_n_m: f64,
@@ -77,6 +82,8 @@ pub enum Regime {
     Overdamped,
     /// Stick-slip.
     StickSlip,
+    /// Not decided: the block's stiffness under its load was not solved.
+    Undetermined,
 }
 
 impl Slider {
@@ -86,6 +93,8 @@ impl Slider {
             Regime::Tips
         } else if self.critical_n_m == 0.0 {
             Regime::NoWeakening
+        } else if self.k_n_m.is_nan() {
+            Regime::Undetermined
         } else if self.k_n_m >= self.critical_n_m {
             Regime::StiffLoading
         } else if self.damping_ratio >= 1.0 || self.slip_speed_m_s * self.overshoot() < self.loading_speed_m_s {
@@ -127,6 +136,11 @@ impl Slider {
                 self.slip_speed_m_s * self.overshoot(),
                 self.loading_speed_m_s
             ),
+            Regime::Undetermined => format!(
+                "not assessed: the reading needs the block's stiffness under its load, a static solve of the whole \
+                 lattice, left out for a block this large (the critical stiffness (μs − μd)·N/Dc = {:.4e} N/m)",
+                self.critical_n_m
+            ),
             Regime::StickSlip => format!(
                 "stick-slip expected: k = {:.4e} N/m below k_c = {}, swing damping ratio {:.3}",
                 self.k_n_m,
@@ -151,9 +165,34 @@ impl Inspection {
     }
 }
 
+/// Modules per axis of the sample block of [`Statics::Sample`].
+pub const SAMPLE_MODULES: usize = 16;
+
+/// Lattices with more bars than this get [`Statics::Sample`] by default: a static solve costs
+/// thousands of steps' worth of bar passes (the condition number grows with the block).
+pub const FULL_STATICS_MAX_BARS: usize = 500_000;
+
+/// Which static solves [`inspect`] makes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Statics {
+    /// The effective moduli and the block's stiffness under its load, on the whole lattice.
+    Full,
+    /// The effective moduli on a sample block of the same material, seed and Lc, at most
+    /// [`SAMPLE_MODULES`] modules per axis; the block's stiffness is not solved.
+    Sample,
+}
+
+impl Statics {
+    /// [`Statics::Full`] up to [`FULL_STATICS_MAX_BARS`] bars, [`Statics::Sample`] above.
+    pub fn for_model(model: &Model) -> Statics {
+        if model.bar_count() <= FULL_STATICS_MAX_BARS { Statics::Full } else { Statics::Sample }
+    }
+}
+
 /// Inspects `model` for `seeds` (at least one): the critical step of each, the moduli of the
-/// first.
-pub fn inspect(model: &Model, seeds: &[u64]) -> Result<Inspection, SolverError> {
+/// first (on the whole lattice or a sample block, as `statics` says) and the spring-slider
+/// reading.
+pub fn inspect(model: &Model, seeds: &[u64], statics: Statics) -> Result<Inspection, SolverError> {
     assert!(!seeds.is_empty(), "inspect at least one seed");
     let scene = model.scene();
     let lattice = model.lattice();
@@ -163,10 +202,19 @@ pub fn inspect(model: &Model, seeds: &[u64]) -> Result<Inspection, SolverError> 
         critical.push((seed, critical_time_step(model, &k)?));
     }
     let k = model.bar_stiffness(seeds[0])?;
-    let moduli = [uniaxial_moduli(model, &k, 0)?, uniaxial_moduli(model, &k, 2)?];
+    let (moduli, moduli_of) = match statics {
+        Statics::Full => ([uniaxial_moduli(model, &k, 0)?, uniaxial_moduli(model, &k, 2)?], scene.dims),
+        Statics::Sample => {
+            let d = scene.dims;
+            let dims = Dims::new(d.nx.min(SAMPLE_MODULES), d.ny.min(SAMPLE_MODULES), d.nz.min(SAMPLE_MODULES));
+            let sample = Model::new(scene.sample(dims));
+            let ks = sample.bar_stiffness(seeds[0])?;
+            ([uniaxial_moduli(&sample, &ks, 0)?, uniaxial_moduli(&sample, &ks, 2)?], dims)
+        }
+    };
     let weight = model.total_mass() * scene.self_weight.gravity_m_s2;
     let area = lattice.contact_area();
-    let slider = slider(model, &k, weight)?;
+    let slider = slider(model, (statics == Statics::Full).then_some(&k[..]), weight)?;
     Ok(Inspection {
         nodes: model.node_count(),
         bars: model.bar_count(),
@@ -178,12 +226,14 @@ pub fn inspect(model: &Model, seeds: &[u64]) -> Result<Inspection, SolverError> 
         critical,
         paper_bound_s: scene.paper_time_step_bound(),
         moduli,
+        moduli_of,
         slider,
     })
 }
 
-/// The spring-slider reading of `model` with bar stiffness `k` under `weight`.
-fn slider(model: &Model, k: &[f64], weight: f64) -> Result<Slider, SolverError> {
+/// The spring-slider reading of `model` with bar stiffness `k` under `weight`; without `k` the
+/// block's stiffness is not solved (NaN).
+fn slider(model: &Model, k: Option<&[f64]>, weight: f64) -> Result<Slider, SolverError> {
     let scene = model.scene();
     let lattice = model.lattice();
     let normal = weight + scene.normal_load.as_ref().map_or(0.0, |n| n.total());
@@ -202,7 +252,7 @@ fn slider(model: &Model, k: &[f64], weight: f64) -> Result<Slider, SolverError> 
     // Block stiffness: base held, loaded nodes moved together by δ in x; k = ΣR/δ.
     let block = if loaded.is_empty() {
         f64::INFINITY
-    } else {
+    } else if let Some(k) = k {
         let delta = 1e-6;
         let mut prescribed = Vec::new();
         for &c in model.contact() {
@@ -211,6 +261,8 @@ fn slider(model: &Model, k: &[f64], weight: f64) -> Result<Slider, SolverError> 
         prescribed.extend(loaded.iter().map(|&i| Prescribed { node: i, axis: 0, value: delta }));
         let sol = solve_static(model, k, &Field::zeros(model.node_count()), &prescribed, 1e-8, 20_000)?;
         loaded.iter().map(|&i| sol.reactions.c[0][i][0]).sum::<f64>() / delta
+    } else {
+        f64::NAN
     };
     let plate = scene.plate.as_ref().map_or(f64::INFINITY, |p| p.stiffness());
     let k_load = 1.0 / (1.0 / block + 1.0 / plate);

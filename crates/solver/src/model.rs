@@ -13,9 +13,41 @@ use crate::material::{STREAM_FRICTION, STREAM_YOUNG, axial_stiffness, weibull_fa
 use crate::rupture::{crack_area, fracture_energy_factors};
 use crate::scene::Scene;
 
-/// Where a bar goes in kernel order: (segment (phase, index), cache block, direction, internal
-/// ends, canonical index).
-type BarKey = ((u8, usize), (usize, usize), Direction, [u32; 2], u32);
+/// The group a bar belongs to in kernel order: its segment (phase, slab), its cache block
+/// (module layer, band of y) and its direction class, packed into 48 bits in the same order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct GroupKey {
+    segment: (u8, usize),
+    block: (usize, usize),
+    direction: Direction,
+}
+
+impl GroupKey {
+    /// Bits of each field: segment 5 (phase × 16 + slab, slab < [`SLABS`] ≤ 16), block layer 20
+    /// and band 20 (below 2²⁰, a million modules along z and y at most), direction 3.
+    fn pack(self) -> u64 {
+        let (phase, slab) = self.segment;
+        debug_assert!(slab < 16 && self.block.0 < 1 << 20 && self.block.1 < 1 << 20);
+        let d = match self.direction {
+            Direction::Axis(a) => u64::from(a),
+            Direction::Diagonal { neg_x, neg_y } => 3 + 2 * u64::from(neg_x) + u64::from(neg_y),
+        };
+        ((u64::from(phase) * 16 + slab as u64) << 43) | ((self.block.0 as u64) << 23) | ((self.block.1 as u64) << 3) | d
+    }
+
+    fn unpack(key: u64) -> GroupKey {
+        let segment = ((key >> 43) / 16, (key >> 43) % 16);
+        let direction = match key & 7 {
+            d @ 0..=2 => Direction::Axis(d as u8),
+            d => Direction::Diagonal { neg_x: (d - 3) >= 2, neg_y: (d - 3) % 2 == 1 },
+        };
+        GroupKey {
+            segment: (segment.0 as u8, segment.1 as usize),
+            block: (((key >> 23) & ((1 << 20) - 1)) as usize, ((key >> 3) & ((1 << 20) - 1)) as usize),
+            direction,
+        }
+    }
+}
 
 /// Lattices with at least this many bars are cut into z-slabs (see [`BarLayout`]).
 pub const SLAB_MIN_BARS: usize = 100_000;
@@ -46,9 +78,6 @@ pub struct Model {
     layout: BarLayout,
     /// internal bar → canonical bar index.
     bar_canonical: Vec<u32>,
-    /// Kernel stiffness of each internal bar for a homogeneous field: `EA/L` (surface reduction
-    /// applied), divided by 3 for diagonals (see [`crate::step::bars`]).
-    nominal_k: Vec<f64>,
     contact: Vec<u32>,
     boundaries: Boundaries,
 }
@@ -73,7 +102,7 @@ impl Model {
 
         // Bars: internal ends, by segment, then direction, then ends.
         let dims = lattice.dims();
-        let slabs = if lattice.bars().len() >= SLAB_MIN_BARS { SLABS.min(dims.nz) } else { 1 };
+        let slabs = if lattice.bar_count() >= SLAB_MIN_BARS { SLABS.min(dims.nz) } else { 1 };
         // z-slab of a node: bands of (2nz+1)/slabs ≥ 2 half-units, so a bar (which spans at most
         // two half-units in z) joins at most two neighbouring slabs.
         let slab = |id: NodeId| lattice.half_units(id)[2] * slabs / (2 * dims.nz + 1);
@@ -97,57 +126,43 @@ impl Model {
             let h = lattice.half_units(bar.ends[0]);
             (h[2] / 2, h[1] / (2 * band))
         };
-        let mut order: Vec<BarKey> = lattice
-            .bars()
-            .iter()
-            .enumerate()
-            .map(|(b, bar)| {
+        // Kernel order: by segment, block, direction class, then lower internal end (unique within
+        // a direction class), sorted as 16-byte records (group key, lower end, canonical index).
+        let mut order: Vec<(u64, u32, u32)> = (0..lattice.bar_count())
+            .map(|b| {
+                let bar = lattice.bar(b);
                 let e = bar.ends.map(|id| to_internal[id.index()]);
-                (segment_of(bar), block_of(bar), bar.direction, e, b as u32)
+                (
+                    GroupKey { segment: segment_of(&bar), block: block_of(&bar), direction: bar.direction }.pack(),
+                    e[0].min(e[1]),
+                    b as u32,
+                )
             })
             .collect();
-        order.sort_by_key(|&(seg, block, d, e, _)| (seg, block, d, e[0].min(e[1]), e[0].max(e[1])));
+        order.sort_unstable_by_key(|&(key, low, _)| (key, low));
         let mut segments: Vec<((u8, usize), Segment)> = Vec::new();
         let mut last_block = None;
-        for (i, (seg, block, d, _, _)) in order.iter().enumerate() {
-            if segments.last().is_none_or(|(s, _)| s != seg) {
-                segments.push((*seg, Segment { phase: seg.0, groups: Vec::new() }));
+        for (i, &(key, _, _)) in order.iter().enumerate() {
+            let GroupKey { segment: seg, block, direction: d } = GroupKey::unpack(key);
+            if segments.last().is_none_or(|(s, _)| *s != seg) {
+                segments.push((seg, Segment { phase: seg.0, groups: Vec::new() }));
                 last_block = None;
             }
             let groups = &mut segments.last_mut().expect("just pushed").1.groups;
             match groups.last_mut() {
-                Some(g) if g.direction == *d && last_block == Some(*block) => g.end = i + 1,
-                _ => groups.push(BarGroup { direction: *d, start: i, end: i + 1 }),
+                Some(g) if g.direction == d && last_block == Some(block) => g.end = i + 1,
+                _ => groups.push(BarGroup { direction: d, start: i, end: i + 1 }),
             }
-            last_block = Some(*block);
+            last_block = Some(block);
         }
-        let ends = order.iter().map(|&(_, _, _, e, _)| e).collect();
+        let bar_canonical: Vec<u32> = order.iter().map(|&(_, _, b)| b).collect();
+        drop(order);
+        let ends =
+            bar_canonical.iter().map(|&b| lattice.bar(b as usize).ends.map(|id| to_internal[id.index()])).collect();
         let layout = BarLayout::new(segments.into_iter().map(|(_, s)| s).collect(), ends, n);
-        let bar_canonical: Vec<u32> = order.iter().map(|&(_, _, _, _, b)| b).collect();
-        let nominal_k = bar_canonical
-            .iter()
-            .map(|&b| {
-                let bar = &lattice.bars()[b as usize];
-                let ea = axial_stiffness(bar.family, scene.young_pa, scene.poisson, scene.lc_m);
-                let k = bar.surface_factor * ea / (bar.length_factor() * scene.lc_m);
-                if bar.family == BarFamily::Diagonal { k / 3.0 } else { k }
-            })
-            .collect();
         let contact = lattice.contact_nodes().iter().map(|id| to_internal[id.index()]).collect();
         let boundaries = Boundaries::new(&scene, |id| to_internal[id.index()]);
-        Model {
-            scene,
-            lattice,
-            to_canonical,
-            to_internal,
-            mass,
-            inv_mass,
-            layout,
-            bar_canonical,
-            nominal_k,
-            contact,
-            boundaries,
-        }
+        Model { scene, lattice, to_canonical, to_internal, mass, inv_mass, layout, bar_canonical, contact, boundaries }
     }
 
     /// The scene.
@@ -216,9 +231,19 @@ impl Model {
         &self.bar_canonical
     }
 
-    /// Homogeneous kernel stiffness per internal bar (N/m; diagonals divided by 3).
-    pub fn nominal_stiffness(&self) -> &[f64] {
-        &self.nominal_k
+    /// Homogeneous kernel stiffness of internal bar `b` (N/m): `EA/L` with the surface reduction,
+    /// divided by 3 for diagonals (see [`crate::step::bars`]).
+    pub fn nominal_bar_stiffness(&self, b: usize) -> f64 {
+        let s = &self.scene;
+        let bar = self.lattice.bar(self.bar_canonical[b] as usize);
+        let ea = axial_stiffness(bar.family, s.young_pa, s.poisson, s.lc_m);
+        let k = bar.surface_factor * ea / (bar.length_factor() * s.lc_m);
+        if bar.family == BarFamily::Diagonal { k / 3.0 } else { k }
+    }
+
+    /// Homogeneous kernel stiffness of every bar, internal order (N/m; diagonals divided by 3).
+    pub fn nominal_stiffness(&self) -> Vec<f64> {
+        (0..self.bar_count()).map(|b| self.nominal_bar_stiffness(b)).collect()
     }
 
     /// Contact nodes (internal indices).
@@ -245,7 +270,7 @@ impl Model {
     /// Kernel stiffness of every bar for `seed`: nominal times the Weibull factor of E drawn in
     /// canonical bar order from the seed's E stream (none drawn when CV = 0).
     pub fn bar_stiffness(&self, seed: u64) -> Result<Vec<f64>, SolverError> {
-        let mut k = self.nominal_k.clone();
+        let mut k = self.nominal_stiffness();
         if let Some(phi) = weibull_factors(self.scene.young_cv, seed, STREAM_YOUNG, self.bar_count())? {
             for (kb, &canon) in k.iter_mut().zip(&self.bar_canonical) {
                 *kb *= phi[canon as usize];
@@ -272,7 +297,7 @@ impl Model {
                 .iter()
                 .map(|&c| {
                     let c = c as usize;
-                    let bar = &self.lattice.bars()[c];
+                    let bar = &self.lattice.bar(c);
                     if r.stays_elastic(&self.lattice, bar) {
                         return f64::INFINITY;
                     }
@@ -291,7 +316,7 @@ impl Model {
         self.bar_canonical
             .iter()
             .map(|&c| {
-                let bar = &self.lattice.bars()[c as usize];
+                let bar = &self.lattice.bar(c as usize);
                 let ea = bar.surface_factor * axial_stiffness(bar.family, s.young_pa, s.poisson, s.lc_m);
                 crack_area(ea, bar.length_factor() * s.lc_m, s.young_pa, s.poisson, s.lc_m)
             })

@@ -443,6 +443,22 @@ impl Scene {
         }
     }
 
+    /// A block of `dims` modules of this scene's module side and material (mean modulus, density,
+    /// Poisson's ratio, Weibull field), with nothing else: no drivers, rollers, plate, load or
+    /// records (a sample for static solves of a block too large to solve whole).
+    pub fn sample(&self, dims: Dims) -> Scene {
+        let mut s = Scene::paper();
+        s.dims = dims;
+        s.lc_m = self.lc_m;
+        s.young_pa = self.young_pa;
+        s.density_kg_m3 = self.density_kg_m3;
+        s.poisson = self.poisson;
+        s.young_cv = self.young_cv;
+        s.shear.drivers.clear();
+        s.record.interface.clear();
+        s
+    }
+
     /// The lattice of this scene.
     pub fn lattice(&self) -> Lattice {
         Lattice::new(self.dims, self.lc_m)

@@ -7,7 +7,7 @@ use stickslip_analysis::settings::RecordSpan;
 use stickslip_config::Pipeline;
 use stickslip_config::check::Named;
 use stickslip_solver::Model;
-use stickslip_solver::inspect::inspect;
+use stickslip_solver::inspect::{Statics, inspect};
 use stickslip_solver::laws::describe;
 use stickslip_solver::scene::{SettleMethod, TimeStep};
 
@@ -19,6 +19,11 @@ pub struct Args {
     /// Compute the critical step for at most this many of the pipeline's seeds.
     #[arg(long, default_value_t = 16)]
     pub seeds: usize,
+    /// Solve the effective stiffness and the block's stiffness under its load on the whole
+    /// lattice even when it is large (by default a lattice of more than 500 000 bars gets them
+    /// on a 16×16×16 sample block and no block stiffness: each solve costs thousands of steps).
+    #[arg(long)]
+    pub full_statics: bool,
 }
 
 fn position(model: &Model, id: stickslip_solver::NodeId) -> String {
@@ -38,7 +43,8 @@ pub fn run(a: Args) -> Result<()> {
     let scene = &pipeline.scene;
     let model = Model::new(scene.clone());
     let seeds: Vec<u64> = pipeline.seeds.iter().copied().take(a.seeds).collect();
-    let facts = inspect(&model, &seeds)?;
+    let statics = if a.full_statics { Statics::Full } else { Statics::for_model(&model) };
+    let facts = inspect(&model, &seeds, statics)?;
     let e = model.lattice().extent();
     println!("pipeline {} ({}), hash {}", pipeline.name, a.pipeline.display(), pipeline.hash);
     println!(
@@ -94,11 +100,20 @@ pub fn run(a: Args) -> Result<()> {
         let steps = if k_lo == k_hi { format!("{k_lo}") } else { format!("{k_lo}–{k_hi}") };
         println!("  recorded every {steps} steps (the nearest whole number to {iv} s; Δt does not depend on it)");
     }
+    let on = if facts.moduli_of == scene.dims {
+        String::new()
+    } else {
+        let d = facts.moduli_of;
+        format!(
+            " of a {}×{}×{} sample block of this material (--full-statics solves the whole block)",
+            d.nx, d.ny, d.nz
+        )
+    };
     for m in &facts.moduli {
         let name = |a: usize| ["x", "y", "z"][a];
         let others: Vec<usize> = (0..3).filter(|&a| a != m.axis).collect();
         println!(
-            "  effective stiffness along {} (static solve, uniaxial stress, seed {}): E = {:.4e} Pa ({:.3} of E), \
+            "  effective stiffness along {}{on} (static solve, uniaxial stress, seed {}): E = {:.4e} Pa ({:.3} of E), \
              ν_{}{} = {:.3}, ν_{}{} = {:.3}",
             name(m.axis),
             seeds[0],
@@ -162,18 +177,27 @@ pub fn run(a: Args) -> Result<()> {
         }
     }
     let sl = &facts.slider;
-    println!(
-        "  as a spring-slider: N = {:.4e} N, strength μs·N = {:.4e} N, tips at {:.4e} N; k = {:.4e} N/m (block under \
-         the load {:.4e}, plate springs {:.4e}), k_c = (μs − μd)·N/Dc = {:.4e} N/m, swing damping D/(2ω) = {:.3}",
-        sl.normal_n,
-        sl.strength_n,
-        sl.tipping_n,
-        sl.k_n_m,
-        sl.block_n_m,
-        sl.plate_n_m,
-        sl.critical_n_m,
-        sl.damping_ratio
-    );
+    if sl.block_n_m.is_nan() {
+        println!(
+            "  as a spring-slider: N = {:.4e} N, strength μs·N = {:.4e} N, tips at {:.4e} N; k not solved (the block's \
+             stiffness under its load needs a static solve of all {} bars: --full-statics), plate springs {:.4e} N/m, \
+             k_c = (μs − μd)·N/Dc = {:.4e} N/m",
+            sl.normal_n, sl.strength_n, sl.tipping_n, facts.bars, sl.plate_n_m, sl.critical_n_m
+        );
+    } else {
+        println!(
+            "  as a spring-slider: N = {:.4e} N, strength μs·N = {:.4e} N, tips at {:.4e} N; k = {:.4e} N/m (block under \
+             the load {:.4e}, plate springs {:.4e}), k_c = (μs − μd)·N/Dc = {:.4e} N/m, swing damping D/(2ω) = {:.3}",
+            sl.normal_n,
+            sl.strength_n,
+            sl.tipping_n,
+            sl.k_n_m,
+            sl.block_n_m,
+            sl.plate_n_m,
+            sl.critical_n_m,
+            sl.damping_ratio
+        );
+    }
     println!(
         "    → {} (the rigid slider's reading; docs/model.md §12 says where a lattice block differs)",
         stickslip_config::keys::verdict(sl)

@@ -152,7 +152,11 @@ fn no_events(pipeline: &Pipeline, folder: &Folder) -> String {
         }
     }
     let model = stickslip_solver::Model::new(pipeline.scene.clone());
-    if let Ok(facts) = stickslip_solver::inspect::inspect(&model, &pipeline.seeds[..1]) {
+    if let Ok(facts) = stickslip_solver::inspect::inspect(
+        &model,
+        &pipeline.seeds[..1],
+        stickslip_solver::inspect::Statics::for_model(&model),
+    ) {
         lines.push(format!(
             "  as a spring-slider (stickslip check): {}",
             stickslip_config::keys::verdict(&facts.slider)

@@ -239,13 +239,13 @@ fn draw_projection(
         .build_cartesian_2d(-pad..e[h] + pad, -pad..e[v] + pad)
         .map_err(|e| err(e.to_string()))?;
     let seg = |bar: usize| {
-        let b = &lattice.bars()[bar];
+        let b = &lattice.bar(bar);
         let (p, q) = (lattice.position(b.ends[0]), lattice.position(b.ends[1]));
         vec![(p[h], p[v]), (q[h], q[v])]
     };
-    if lattice.bars().len() <= LATTICE_DRAWN_UP_TO {
+    if lattice.bar_count() <= LATTICE_DRAWN_UP_TO {
         chart
-            .draw_series((0..lattice.bars().len()).map(|b| PathElement::new(seg(b), INTACT.stroke_width(1))))
+            .draw_series((0..lattice.bar_count()).map(|b| PathElement::new(seg(b), INTACT.stroke_width(1))))
             .map_err(|e| err(e.to_string()))?;
     } else {
         let outline = vec![(0.0, 0.0), (e[h], 0.0), (e[h], e[v]), (0.0, e[v]), (0.0, 0.0)];

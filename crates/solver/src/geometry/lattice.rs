@@ -189,114 +189,119 @@ impl Bar {
 }
 
 /// The lattice of a block of `nx × ny × nz` cubic modules of side `Lc`.
+///
+/// Nothing per node or per bar is stored: a node's kind and a bar's ends, family, direction and
+/// surface reduction follow from its canonical index ([`Lattice::kind`], [`Lattice::bar`]), so a
+/// lattice of any size costs a few words.
 #[derive(Clone, Debug)]
 pub struct Lattice {
     dims: Dims,
     lc: f64,
-    kinds: Vec<NodeKind>,
-    bars: Vec<Bar>,
+}
+
+/// A block of the canonical bar order: `count` bars indexed `i` fastest over `extent[0]`, then
+/// `j` over `extent[1]`, then `k` over `extent[2]`.
+#[derive(Clone, Copy)]
+struct BarRun {
+    extent: [usize; 3],
+}
+
+impl BarRun {
+    fn count(&self) -> usize {
+        self.extent[0] * self.extent[1] * self.extent[2]
+    }
+
+    fn cell(&self, r: usize) -> [usize; 3] {
+        let [e0, e1, _] = self.extent;
+        [r % e0, (r / e0) % e1, r / (e0 * e1)]
+    }
 }
 
 impl Lattice {
     /// Builds the lattice of `dims` modules of side `lc_m` metres.
     pub fn new(dims: Dims, lc_m: f64) -> Self {
         assert!(lc_m > 0.0 && lc_m.is_finite(), "module side must be positive");
-        let Dims { nx, ny, nz } = dims;
-        let mut kinds = Vec::with_capacity(dims.node_count());
-        for k in 0..=nz {
-            for j in 0..=ny {
-                for i in 0..=nx {
-                    kinds.push(NodeKind::Corner([i, j, k]));
-                }
-            }
-        }
-        for k in 0..nz {
-            for j in 0..ny {
-                for i in 0..nx {
-                    kinds.push(NodeKind::Centre([i, j, k]));
-                }
-            }
-        }
-        let mut lattice = Lattice { dims, lc: lc_m, kinds, bars: Vec::with_capacity(dims.bar_count()) };
-        lattice.build_bars();
-        debug_assert_eq!(lattice.bars.len(), dims.bar_count());
-        lattice
+        Lattice { dims, lc: lc_m }
     }
 
-    fn build_bars(&mut self) {
-        let Dims { nx, ny, nz } = self.dims;
-        let n = [nx, ny, nz];
-        // Edge bars, axis by axis.
+    /// The edge bars along axis `a`: their lower corners, every corner but those on the far face.
+    fn edge_run(&self, a: usize) -> BarRun {
+        let n = [self.dims.nx, self.dims.ny, self.dims.nz];
+        let mut extent = n.map(|v| v + 1);
+        extent[a] = n[a];
+        BarRun { extent }
+    }
+
+    /// The centre bars along axis `a`: their lower modules, every module but the last along `a`.
+    fn centre_run(&self, a: usize) -> BarRun {
+        let n = [self.dims.nx, self.dims.ny, self.dims.nz];
+        let mut extent = n;
+        extent[a] = n[a] - 1;
+        BarRun { extent }
+    }
+
+    /// Bar `b` of the canonical order (see the module doc).
+    pub fn bar(&self, b: usize) -> Bar {
+        assert!(b < self.bar_count(), "bar {b} of a lattice of {}", self.bar_count());
+        let n = [self.dims.nx, self.dims.ny, self.dims.nz];
+        let mut r = b;
         for a in 0..3 {
-            for k in 0..=nz {
-                for j in 0..=ny {
-                    for i in 0..=nx {
-                        let c = [i, j, k];
-                        if c[a] == n[a] {
-                            continue;
-                        }
-                        let mut c1 = c;
-                        c1[a] += 1;
-                        // Outer planes the bar lies in: those perpendicular to the other two axes.
-                        let planes = (0..3).filter(|&b| b != a && (c[b] == 0 || c[b] == n[b])).count() as i32;
-                        self.bars.push(Bar {
-                            ends: [self.corner(c), self.corner(c1)],
-                            family: BarFamily::Edge,
-                            direction: Direction::Axis(a as u8),
-                            surface_factor: 0.5f64.powi(planes),
-                        });
-                    }
-                }
+            let run = self.edge_run(a);
+            if r < run.count() {
+                let c = run.cell(r);
+                let mut c1 = c;
+                c1[a] += 1;
+                // Outer planes the bar lies in: those perpendicular to the other two axes.
+                let planes = (0..3).filter(|&p| p != a && (c[p] == 0 || c[p] == n[p])).count() as i32;
+                return Bar {
+                    ends: [self.corner(c), self.corner(c1)],
+                    family: BarFamily::Edge,
+                    direction: Direction::Axis(a as u8),
+                    surface_factor: 0.5f64.powi(planes),
+                };
             }
+            r -= run.count();
         }
-        // Diagonals, module by module, corners x fastest.
-        for k in 0..nz {
-            for j in 0..ny {
-                for i in 0..nx {
-                    let centre = self.centre([i, j, k]);
-                    for dk in 0..2 {
-                        for dj in 0..2 {
-                            for di in 0..2 {
-                                let corner = self.corner([i + di, j + dj, k + dk]);
-                                // Orient so the z component is positive.
-                                let (ends, sx, sy) = if dk == 1 {
-                                    ([centre, corner], di == 1, dj == 1)
-                                } else {
-                                    ([corner, centre], di == 0, dj == 0)
-                                };
-                                self.bars.push(Bar {
-                                    ends,
-                                    family: BarFamily::Diagonal,
-                                    direction: Direction::Diagonal { neg_x: !sx, neg_y: !sy },
-                                    surface_factor: 1.0,
-                                });
-                            }
-                        }
-                    }
-                }
-            }
+        let diagonals = 8 * self.dims.modules();
+        if r < diagonals {
+            // Module by module, corners x fastest.
+            let m = BarRun { extent: n }.cell(r / 8);
+            let o = r % 8;
+            let (di, dj, dk) = (o & 1, (o >> 1) & 1, o >> 2);
+            let centre = self.centre(m);
+            let corner = self.corner([m[0] + di, m[1] + dj, m[2] + dk]);
+            // Oriented so the z component is positive.
+            let (ends, sx, sy) =
+                if dk == 1 { ([centre, corner], di == 1, dj == 1) } else { ([corner, centre], di == 0, dj == 0) };
+            return Bar {
+                ends,
+                family: BarFamily::Diagonal,
+                direction: Direction::Diagonal { neg_x: !sx, neg_y: !sy },
+                surface_factor: 1.0,
+            };
         }
-        // Centre bars, axis by axis.
+        r -= diagonals;
         for a in 0..3 {
-            for k in 0..nz {
-                for j in 0..ny {
-                    for i in 0..nx {
-                        let m = [i, j, k];
-                        if m[a] + 1 == n[a] {
-                            continue;
-                        }
-                        let mut m1 = m;
-                        m1[a] += 1;
-                        self.bars.push(Bar {
-                            ends: [self.centre(m), self.centre(m1)],
-                            family: BarFamily::Centre,
-                            direction: Direction::Axis(a as u8),
-                            surface_factor: 1.0,
-                        });
-                    }
-                }
+            let run = self.centre_run(a);
+            if r < run.count() {
+                let m = run.cell(r);
+                let mut m1 = m;
+                m1[a] += 1;
+                return Bar {
+                    ends: [self.centre(m), self.centre(m1)],
+                    family: BarFamily::Centre,
+                    direction: Direction::Axis(a as u8),
+                    surface_factor: 1.0,
+                };
             }
+            r -= run.count();
         }
+        unreachable!("bar {b} is below the bar count")
+    }
+
+    /// Number of bars.
+    pub fn bar_count(&self) -> usize {
+        self.dims.bar_count()
     }
 
     /// Module counts.
@@ -311,17 +316,25 @@ impl Lattice {
 
     /// Number of nodes.
     pub fn node_count(&self) -> usize {
-        self.kinds.len()
+        self.dims.node_count()
     }
 
     /// All bars in canonical order.
-    pub fn bars(&self) -> &[Bar] {
-        &self.bars
+    pub fn bars(&self) -> impl ExactSizeIterator<Item = Bar> + '_ {
+        (0..self.bar_count()).map(|b| self.bar(b))
     }
 
     /// What node `id` is.
     pub fn kind(&self, id: NodeId) -> NodeKind {
-        self.kinds[id.index()]
+        let Dims { nx, ny, .. } = self.dims;
+        let i = id.index();
+        let corners = self.dims.corner_nodes();
+        if i < corners {
+            NodeKind::Corner([i % (nx + 1), (i / (nx + 1)) % (ny + 1), i / ((nx + 1) * (ny + 1))])
+        } else {
+            let m = i - corners;
+            NodeKind::Centre([m % nx, (m / nx) % ny, m / (nx * ny)])
+        }
     }
 
     /// Block extent in metres `(nx·Lc, ny·Lc, nz·Lc)`.
@@ -440,7 +453,8 @@ mod tests {
     fn paper_block_counts() {
         let l = Lattice::new(Dims::new(10, 1, 5), 0.1);
         assert_eq!(l.node_count(), 182);
-        assert_eq!(l.bars().len(), 781);
+        assert_eq!(l.bar_count(), 781);
+        assert_eq!(l.bar_count(), 781);
         assert_eq!(l.contact_nodes().len(), 22);
     }
 
@@ -458,6 +472,111 @@ mod tests {
         assert_eq!(l.node_at([1.2, 0.0, 0.0]), None);
         assert_eq!(l.node_by_ldem(0), None);
         assert_eq!(l.node_by_ldem(183), None);
+    }
+
+    /// The canonical bar order built by loops over the block, as the module doc states it.
+    fn bars_by_loops(l: &Lattice) -> Vec<Bar> {
+        let Dims { nx, ny, nz } = l.dims();
+        let n = [nx, ny, nz];
+        let mut bars = Vec::new();
+        for a in 0..3 {
+            for k in 0..=nz {
+                for j in 0..=ny {
+                    for i in 0..=nx {
+                        let c = [i, j, k];
+                        if c[a] == n[a] {
+                            continue;
+                        }
+                        let mut c1 = c;
+                        c1[a] += 1;
+                        let planes = (0..3).filter(|&b| b != a && (c[b] == 0 || c[b] == n[b])).count() as i32;
+                        bars.push(Bar {
+                            ends: [l.corner(c), l.corner(c1)],
+                            family: BarFamily::Edge,
+                            direction: Direction::Axis(a as u8),
+                            surface_factor: 0.5f64.powi(planes),
+                        });
+                    }
+                }
+            }
+        }
+        for k in 0..nz {
+            for j in 0..ny {
+                for i in 0..nx {
+                    let centre = l.centre([i, j, k]);
+                    for dk in 0..2 {
+                        for dj in 0..2 {
+                            for di in 0..2 {
+                                let corner = l.corner([i + di, j + dj, k + dk]);
+                                let (ends, sx, sy) = if dk == 1 {
+                                    ([centre, corner], di == 1, dj == 1)
+                                } else {
+                                    ([corner, centre], di == 0, dj == 0)
+                                };
+                                bars.push(Bar {
+                                    ends,
+                                    family: BarFamily::Diagonal,
+                                    direction: Direction::Diagonal { neg_x: !sx, neg_y: !sy },
+                                    surface_factor: 1.0,
+                                });
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        for a in 0..3 {
+            for k in 0..nz {
+                for j in 0..ny {
+                    for i in 0..nx {
+                        let m = [i, j, k];
+                        if m[a] + 1 == n[a] {
+                            continue;
+                        }
+                        let mut m1 = m;
+                        m1[a] += 1;
+                        bars.push(Bar {
+                            ends: [l.centre(m), l.centre(m1)],
+                            family: BarFamily::Centre,
+                            direction: Direction::Axis(a as u8),
+                            surface_factor: 1.0,
+                        });
+                    }
+                }
+            }
+        }
+        bars
+    }
+
+    #[test]
+    fn bars_and_nodes_computed_from_their_index_are_the_canonical_order() {
+        for dims in
+            [Dims::new(10, 1, 5), Dims::new(3, 2, 4), Dims::new(1, 1, 1), Dims::new(1, 5, 2), Dims::new(4, 3, 1)]
+        {
+            let l = Lattice::new(dims, 0.1);
+            let by_loops = bars_by_loops(&l);
+            assert_eq!(by_loops.len(), l.bar_count(), "{dims:?}: the closed-form count");
+            assert!(l.bars().eq(by_loops.iter().copied()), "{dims:?}: bar(b) is the b-th bar of the loops");
+            let Dims { nx, ny, nz } = dims;
+            let mut id = 0;
+            for k in 0..=nz {
+                for j in 0..=ny {
+                    for i in 0..=nx {
+                        assert_eq!(l.kind(NodeId(id)), NodeKind::Corner([i, j, k]));
+                        id += 1;
+                    }
+                }
+            }
+            for k in 0..nz {
+                for j in 0..ny {
+                    for i in 0..nx {
+                        assert_eq!(l.kind(NodeId(id)), NodeKind::Centre([i, j, k]));
+                        id += 1;
+                    }
+                }
+            }
+            assert_eq!(id as usize, l.node_count());
+        }
     }
 
     #[test]

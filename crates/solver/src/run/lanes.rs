@@ -12,7 +12,7 @@ use crate::rupture::BarLaw;
 use crate::scene::SettleMethod;
 use crate::statics::CriticalStep;
 use crate::step::rupture::{CrackKind, CrackLog, elongations};
-use crate::step::{LaneView, Params, State, Stepper, Tracking, park, start_drivers};
+use crate::step::{LaneSetup, LaneView, Params, State, Stepper, Tracking, park, start_drivers};
 use crate::trace::Tracer;
 
 /// Steps between two blow-up checks.
@@ -77,12 +77,24 @@ pub fn run_lanes<const L: usize>(
     }
     let prepared = seeds.map(|seed| prepare(model, seed, options));
     // Failed lanes still occupy a lane: give them a harmless set-up and park them.
-    let fallback = prepared.iter().find_map(|p| p.as_ref().ok().map(|(s, _)| s.clone()));
-    let Some(fallback) = fallback else {
+    let Some(fallback) = prepared.iter().find_map(|p| p.as_ref().ok().map(|(s, _)| s)) else {
         return prepared.map(|p| p.map(|_| unreachable!("every lane failed")));
     };
-    let setups = prepared.each_ref().map(|p| p.as_ref().map(|(s, _)| s.clone()).unwrap_or_else(|_| fallback.clone()));
-    let mut params = Params::<L>::new(model, &setups);
+    let fallback = prepared.iter().any(|p| p.is_err()).then(|| fallback.clone());
+    let (mut setups, prepared): (Vec<LaneSetup>, Vec<Result<CriticalStep, SolverError>>) = prepared
+        .into_iter()
+        .map(|p| match p {
+            Ok((setup, critical)) => (setup, Ok(critical)),
+            Err(e) => (fallback.clone().expect("a lane failed"), Err(e)),
+        })
+        .unzip();
+    let mut params = Params::<L>::new(model, setups.as_slice().try_into().expect("one set-up per lane"));
+    // The stiffness is the params' now: the lanes' own copies go before the state is allocated
+    // (a static settle or the skip-ahead takes its lane's back from the params).
+    let dts: Vec<f64> = setups.iter().map(|s| s.dt_s).collect();
+    for s in &mut setups {
+        s.stiffness = Vec::new();
+    }
     let mut state = State::<L>::for_params(&params);
     let mut stepper = Stepper::<L>::new(model);
     let skipping = scene.skip_ahead.enabled && L == 1;
@@ -92,7 +104,7 @@ pub fn run_lanes<const L: usize>(
     let weight_norm: f64 = model.mass().iter().map(|m| m * m).sum::<f64>().sqrt() * sw.gravity_m_s2;
     let mut lanes: [Lane; L] = std::array::from_fn(|l| Lane {
         seed: seeds[l],
-        stage: Stage::Settling { max_steps: (sw.max_duration_s / setups[l].dt_s).ceil() as u64 },
+        stage: Stage::Settling { max_steps: (sw.max_duration_s / dts[l]).ceil() as u64 },
         critical: None,
         recorder: None,
         settle_steps: 0,
@@ -100,10 +112,10 @@ pub fn run_lanes<const L: usize>(
         settle_note: None,
         skipper: None,
     });
-    for (l, p) in prepared.into_iter().enumerate() {
+    for (l, (p, setup)) in prepared.into_iter().zip(setups).enumerate() {
         let lane = &mut lanes[l];
         match p {
-            Ok((setup, critical)) => {
+            Ok(critical) => {
                 lane.critical = Some(critical);
                 let dt = setup.dt_s;
                 let stride = stride(scene.record.interval_s, dt);
@@ -114,10 +126,10 @@ pub fn run_lanes<const L: usize>(
                 params.set_damping(l, sw.damping_per_s);
                 params.set_body_acceleration(l, [0.0, 0.0, -sw.gravity_m_s2]);
                 if skipping {
-                    lane.skipper = Some(Skipper::new(model, setup.stiffness.clone(), &setup.friction));
+                    lane.skipper = Some(Skipper::new(model, params.lane_stiffness(l), &setup.friction));
                 }
                 if sw.method == SettleMethod::Static && sw.gravity_m_s2 > 0.0 {
-                    match settle_statically(model, &setup.stiffness, &setup.friction, sw.gravity_m_s2) {
+                    match settle_statically(model, &params.lane_stiffness(l), &setup.friction, sw.gravity_m_s2) {
                         Ok(Ok(st)) if let Some(why) = beyond_peak(model, setup.strength.as_deref(), &st.u) => {
                             lane.settle_note = Some(why)
                         }
@@ -318,7 +330,7 @@ fn damage<const L: usize>(model: &Model, params: &Params<'_, L>, state: &State<L
         .filter(|&b| d.secant[b][l] != params.k[b][l])
         .map(|b| {
             let canonical = model.bar_canonical()[b];
-            let bar = &model.lattice().bars()[canonical as usize];
+            let bar = &model.lattice().bar(canonical as usize);
             let kernel = if bar.family == crate::geometry::BarFamily::Diagonal { 3f64.sqrt() } else { 1.0 };
             let length = bar.length_factor() * model.scene().lc_m;
             let bar_law = BarLaw { k: params.k[b][l], peak: law.peak[b][l], kr: law.kr };
@@ -339,7 +351,7 @@ fn damage<const L: usize>(model: &Model, params: &Params<'_, L>, state: &State<L
 fn crack<const L: usize>(model: &Model, params: &Params<'_, L>, l: usize, c: &CrackLog) -> Crack {
     let b = c.bar as usize;
     let canonical = model.bar_canonical()[b];
-    let bar = &model.lattice().bars()[canonical as usize];
+    let bar = &model.lattice().bar(canonical as usize);
     // Kernel units: a diagonal's elongation is stored √3 times, its stiffness a third.
     let kernel = if bar.family == crate::geometry::BarFamily::Diagonal { 3f64.sqrt() } else { 1.0 };
     let length = bar.length_factor() * model.scene().lc_m;
@@ -358,7 +370,7 @@ fn beyond_peak(model: &Model, strength: Option<&[f64]>, u: &Field<1>) -> Option<
     let peak = strength?;
     let p = elongations(model.layout(), u, 0);
     let b = (0..p.len()).find(|&b| p[b] > peak[b])?;
-    let bar = &model.lattice().bars()[model.bar_canonical()[b] as usize];
+    let bar = &model.lattice().bar(model.bar_canonical()[b] as usize);
     let at = model.lattice().bar_midpoint(bar);
     Some(format!(
         "the static self-weight would load a {} bar at ({:.3}, {:.3}, {:.3}) m past its peak strain; settled dynamically \

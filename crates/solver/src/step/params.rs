@@ -102,6 +102,11 @@ impl<'m, const L: usize> Params<'m, L> {
         self.coef.cp[l] = (1.0 - a) / (1.0 + a);
     }
 
+    /// The kernel stiffness of every bar of lane `l` (internal order).
+    pub fn lane_stiffness(&self, l: usize) -> Vec<f64> {
+        self.k.iter().map(|k| k[l]).collect()
+    }
+
     /// Time step of lane `l` (s).
     pub fn dt(&self, l: usize) -> f64 {
         self.dt[l]

@@ -86,7 +86,7 @@ pub const ACOUSTIC_EMISSION_PART: SeedTable = SeedTable {
 /// The cracks table of one seed.
 pub fn cracks_frame(seed: u64, cracks: &[Crack], lattice: &Lattice) -> Result<DataFrame, StoreError> {
     let n = cracks.len();
-    let bars: Vec<_> = cracks.iter().map(|c| lattice.bars()[c.bar as usize]).collect();
+    let bars: Vec<_> = cracks.iter().map(|c| lattice.bar(c.bar as usize)).collect();
     let mid: Vec<[f64; 3]> = bars.iter().map(|b| lattice.bar_midpoint(b)).collect();
     Frame::new(n)
         .u64(col::SEED, vec![seed; n])
