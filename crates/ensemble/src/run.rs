@@ -183,10 +183,8 @@ pub fn run_ensemble(
         } else {
             1
         };
-        let options = RunOptions {
-            parallel_step: pending.len() < threads && model.layout().segments().len() > 1,
-            ..RunOptions::default()
-        };
+        let options =
+            RunOptions { parallel_step: pending.len() < threads && model.layout().splits(), ..RunOptions::default() };
         scope.spawn(move || {
             pool.install(|| {
                 pending.par_chunks(batch).for_each_with(tx, |tx, chunk| {

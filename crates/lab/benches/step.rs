@@ -82,7 +82,7 @@ fn benches(c: &mut Criterion) {
         stepping::<1>(c, &m, &name);
         stepping::<4>(c, &m, &name);
         stepping::<8>(c, &m, &name);
-        if m.layout().segments().len() > 1 {
+        if m.layout().splits() {
             stepping_parallel(c, &m, &name, 1);
             stepping_parallel(c, &m, &name, 2);
         }

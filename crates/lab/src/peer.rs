@@ -64,8 +64,11 @@ pub fn peer(nx: i64, ny: i64, nz: i64, steps: usize, out: &Path) -> Result<PeerT
     }
     let mut types: Vec<(f64, f64)> = Vec::new();
     let mut bonds = String::new();
-    for (b, e) in model.ends().iter().enumerate() {
-        let bar = &lattice.bar(model.bar_canonical()[b] as usize);
+    let canonical = model.canonical_bars();
+    let mut ends = vec![[0usize; 2]; model.bar_count()];
+    model.layout().visit(|b, i, j, _| ends[b] = [i, j]);
+    for (b, e) in ends.iter().enumerate() {
+        let bar = &lattice.bar(canonical[b] as usize);
         let kk = k[b] * if bar.family == BarFamily::Diagonal { 3.0 } else { 1.0 };
         let r0 = bar.length_factor() * lattice.lc();
         let t = match types.iter().position(|&(x, r)| (x - kk).abs() < 1e-9 * kk && (r - r0).abs() < 1e-12) {

@@ -1,5 +1,7 @@
-//! The bars in the order the kernels run them: segments of a large lattice that can run on
-//! several threads, direction groups, and which nodes each group finishes.
+//! The bars in the order the kernels run them ([`Bars`]): a list of bars with their ends
+//! ([`BarLayout`]: segments of a large lattice that can run on several threads, direction groups,
+//! and which nodes each group finishes), or, for a large elastic lattice, a structured stencil
+//! whose ends follow from its runs ([`crate::stencil::StencilLayout`]).
 //!
 //! Built once per model ([`crate::Model`]): bars are grouped by direction class (three axes, four
 //! body diagonals) so each group runs one monomorphised kernel; a large lattice is cut into
@@ -9,6 +11,66 @@
 use std::ops::Range;
 
 use crate::geometry::Direction;
+use crate::stencil::StencilLayout;
+
+/// The bars of a model in kernel order, listed or as a stencil.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Bars {
+    /// Every bar with its ends (small lattices, bars that crack).
+    Listed(BarLayout),
+    /// Runs of a structured stencil (large elastic lattices).
+    Stencil(StencilLayout),
+}
+
+impl Bars {
+    /// Number of bars.
+    pub fn bar_count(&self) -> usize {
+        match self {
+            Bars::Listed(l) => l.ends().len(),
+            Bars::Stencil(s) => s.bars(),
+        }
+    }
+
+    /// Number of nodes.
+    pub fn nodes(&self) -> usize {
+        match self {
+            Bars::Listed(l) => l.nodes(),
+            Bars::Stencil(s) => s.nodes(),
+        }
+    }
+
+    /// The listed layout; panics for a stencil (callers that need ends are the kernels of bars
+    /// that crack, which are always listed).
+    pub fn listed(&self) -> &BarLayout {
+        match self {
+            Bars::Listed(l) => l,
+            Bars::Stencil(_) => panic!("a stencil lattice has no bar list"),
+        }
+    }
+
+    /// Whether a step can be split over several threads (a large lattice).
+    pub fn splits(&self) -> bool {
+        match self {
+            Bars::Listed(l) => l.segments().len() > 1,
+            Bars::Stencil(s) => s.slabs().count() > 1,
+        }
+    }
+
+    /// Calls `visit(bar, first end, second end, direction)` for every bar in kernel order, the
+    /// direction being from the first end to the second.
+    pub fn visit(&self, mut visit: impl FnMut(usize, usize, usize, Direction)) {
+        match self {
+            Bars::Listed(l) => {
+                for g in l.groups() {
+                    for (b, e) in l.ends()[g.start..g.end].iter().enumerate() {
+                        visit(g.start + b, e[0] as usize, e[1] as usize, g.direction);
+                    }
+                }
+            }
+            Bars::Stencil(s) => s.visit(visit),
+        }
+    }
+}
 
 /// A run of bars sharing one direction class, `bars[start..end]` in kernel order.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -40,6 +40,7 @@ pub mod run;
 pub mod rupture;
 pub mod scene;
 pub mod statics;
+pub mod stencil;
 pub mod step;
 pub mod trace;
 

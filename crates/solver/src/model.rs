@@ -8,10 +8,11 @@ use crate::boundary::Boundaries;
 use crate::error::SolverError;
 use crate::geometry::{Bar, BarFamily, Direction, Lattice, NodeId};
 use crate::laws::NodeFriction;
-use crate::layout::{BarGroup, BarLayout, Segment};
+use crate::layout::{BarGroup, BarLayout, Bars, Segment};
 use crate::material::{STREAM_FRICTION, STREAM_YOUNG, axial_stiffness, weibull_factors};
 use crate::rupture::{crack_area, fracture_energy_factors};
 use crate::scene::Scene;
+use crate::stencil::StencilLayout;
 
 /// The group a bar belongs to in kernel order: its segment (phase, slab), its cache block
 /// (module layer, band of y) and its direction class, packed into 48 bits in the same order.
@@ -49,6 +50,9 @@ impl GroupKey {
     }
 }
 
+/// Elastic lattices with at least this many bars run as a stencil ([`StencilLayout`]): their
+/// bars' ends follow from the runs, and each run is one vector loop.
+pub const STENCIL_MIN_BARS: usize = 100_000;
 /// Lattices with at least this many bars are cut into z-slabs (see [`BarLayout`]).
 pub const SLAB_MIN_BARS: usize = 100_000;
 /// Number of z-slabs of a large lattice (at most one per module layer).
@@ -75,7 +79,7 @@ pub struct Model {
     to_internal: Vec<u32>,
     mass: Vec<f64>,
     inv_mass: Vec<f64>,
-    layout: BarLayout,
+    layout: Bars,
     /// internal bar → canonical bar index.
     bar_canonical: Vec<u32>,
     contact: Vec<u32>,
@@ -85,6 +89,17 @@ pub struct Model {
 impl Model {
     /// Builds the lattice of `scene` and everything the stepper needs.
     pub fn new(scene: Scene) -> Model {
+        let stencil = scene.rupture.is_none() && scene.dims.bar_count() >= STENCIL_MIN_BARS;
+        Model::build(scene, stencil)
+    }
+
+    /// As [`Model::new`] with the bars listed whatever the size (for the listed kernels' tests and
+    /// comparisons of the two layouts).
+    pub fn with_listed_bars(scene: Scene) -> Model {
+        Model::build(scene, false)
+    }
+
+    fn build(scene: Scene, stencil: bool) -> Model {
         let lattice = scene.lattice();
         let n = lattice.node_count();
         let mut to_canonical: Vec<NodeId> = (0..n as u32).map(NodeId).collect();
@@ -100,66 +115,13 @@ impl Model {
         let mass: Vec<f64> = to_canonical.iter().map(|&id| lattice.mass_fraction(id) * rho_lc3).collect();
         let inv_mass = mass.iter().map(|m| 1.0 / m).collect();
 
-        // Bars: internal ends, by segment, then direction, then ends.
-        let dims = lattice.dims();
-        let slabs = if lattice.bar_count() >= SLAB_MIN_BARS { SLABS.min(dims.nz) } else { 1 };
-        // z-slab of a node: bands of (2nz+1)/slabs ≥ 2 half-units, so a bar (which spans at most
-        // two half-units in z) joins at most two neighbouring slabs.
-        let slab = |id: NodeId| lattice.half_units(id)[2] * slabs / (2 * dims.nz + 1);
-        let segment_of = |bar: &Bar| -> (u8, usize) {
-            let (a, b) = (slab(bar.ends[0]), slab(bar.ends[1]));
-            if a == b {
-                (0, a)
-            } else {
-                let low = a.min(b);
-                (1 + (low % 2) as u8, low)
-            }
+        // Bars: a stencil for a large elastic lattice, else listed in kernel order.
+        let (layout, bar_canonical) = if stencil {
+            (Bars::Stencil(StencilLayout::new(lattice.dims())), Vec::new())
+        } else {
+            let (listed, canonical) = listed_bars(&lattice, &to_internal);
+            (Bars::Listed(listed), canonical)
         };
-        // Cache blocks (lattices of BLOCK_MIN_NODES nodes or more): all the bars whose first node
-        // lies in one module layer and one band of y, so the seven direction groups of a block
-        // reuse its node data from cache instead of sweeping the whole lattice seven times.
-        let band = if n >= BLOCK_MIN_NODES { (BLOCK_NODES / (2 * dims.nx + 1)).max(1) } else { usize::MAX };
-        let block_of = |bar: &Bar| -> (usize, usize) {
-            if band == usize::MAX {
-                return (0, 0);
-            }
-            let h = lattice.half_units(bar.ends[0]);
-            (h[2] / 2, h[1] / (2 * band))
-        };
-        // Kernel order: by segment, block, direction class, then lower internal end (unique within
-        // a direction class), sorted as 16-byte records (group key, lower end, canonical index).
-        let mut order: Vec<(u64, u32, u32)> = (0..lattice.bar_count())
-            .map(|b| {
-                let bar = lattice.bar(b);
-                let e = bar.ends.map(|id| to_internal[id.index()]);
-                (
-                    GroupKey { segment: segment_of(&bar), block: block_of(&bar), direction: bar.direction }.pack(),
-                    e[0].min(e[1]),
-                    b as u32,
-                )
-            })
-            .collect();
-        order.sort_unstable_by_key(|&(key, low, _)| (key, low));
-        let mut segments: Vec<((u8, usize), Segment)> = Vec::new();
-        let mut last_block = None;
-        for (i, &(key, _, _)) in order.iter().enumerate() {
-            let GroupKey { segment: seg, block, direction: d } = GroupKey::unpack(key);
-            if segments.last().is_none_or(|(s, _)| *s != seg) {
-                segments.push((seg, Segment { phase: seg.0, groups: Vec::new() }));
-                last_block = None;
-            }
-            let groups = &mut segments.last_mut().expect("just pushed").1.groups;
-            match groups.last_mut() {
-                Some(g) if g.direction == d && last_block == Some(block) => g.end = i + 1,
-                _ => groups.push(BarGroup { direction: d, start: i, end: i + 1 }),
-            }
-            last_block = Some(block);
-        }
-        let bar_canonical: Vec<u32> = order.iter().map(|&(_, _, b)| b).collect();
-        drop(order);
-        let ends =
-            bar_canonical.iter().map(|&b| lattice.bar(b as usize).ends.map(|id| to_internal[id.index()])).collect();
-        let layout = BarLayout::new(segments.into_iter().map(|(_, s)| s).collect(), ends, n);
         let contact = lattice.contact_nodes().iter().map(|id| to_internal[id.index()]).collect();
         let boundaries = Boundaries::new(&scene, |id| to_internal[id.index()]);
         Model { scene, lattice, to_canonical, to_internal, mass, inv_mass, layout, bar_canonical, contact, boundaries }
@@ -182,7 +144,7 @@ impl Model {
 
     /// Number of bars.
     pub fn bar_count(&self) -> usize {
-        self.layout.ends().len()
+        self.layout.bar_count()
     }
 
     /// Internal index of a canonical node.
@@ -216,26 +178,32 @@ impl Model {
         self.layout.nodes() >= BLOCK_MIN_NODES
     }
 
-    /// The bars in kernel order, with their segments and direction groups.
-    pub fn layout(&self) -> &BarLayout {
+    /// The bars in kernel order: listed, or a stencil.
+    pub fn layout(&self) -> &Bars {
         &self.layout
     }
 
-    /// Bar end nodes (internal indices), internal bar order.
-    pub fn ends(&self) -> &[[u32; 2]] {
-        self.layout.ends()
-    }
-
-    /// Canonical index of each internal bar.
+    /// Canonical index of each internal bar (order of every bar `b` of the kernel's list), for a
+    /// listed layout; empty for a stencil (see [`Model::canonical_bars`]).
     pub fn bar_canonical(&self) -> &[u32] {
         &self.bar_canonical
     }
 
-    /// Homogeneous kernel stiffness of internal bar `b` (N/m): `EA/L` with the surface reduction,
-    /// divided by 3 for diagonals (see [`crate::step::bars`]).
-    pub fn nominal_bar_stiffness(&self, b: usize) -> f64 {
+    /// The canonical index of every bar, kernel order.
+    pub fn canonical_bars(&self) -> Vec<u32> {
+        match &self.layout {
+            Bars::Listed(_) => self.bar_canonical.clone(),
+            Bars::Stencil(s) => {
+                s.runs().iter().flat_map(|r| (0..r.len as usize).map(move |m| r.canonical(m) as u32)).collect()
+            }
+        }
+    }
+
+    /// Homogeneous kernel stiffness of the bar of canonical index `c` (N/m): `EA/L` with the
+    /// surface reduction, divided by 3 for diagonals (see [`crate::step::bars`]).
+    fn nominal_of_canonical(&self, c: usize) -> f64 {
         let s = &self.scene;
-        let bar = self.lattice.bar(self.bar_canonical[b] as usize);
+        let bar = self.lattice.bar(c);
         let ea = axial_stiffness(bar.family, s.young_pa, s.poisson, s.lc_m);
         let k = bar.surface_factor * ea / (bar.length_factor() * s.lc_m);
         if bar.family == BarFamily::Diagonal { k / 3.0 } else { k }
@@ -243,7 +211,7 @@ impl Model {
 
     /// Homogeneous kernel stiffness of every bar, internal order (N/m; diagonals divided by 3).
     pub fn nominal_stiffness(&self) -> Vec<f64> {
-        (0..self.bar_count()).map(|b| self.nominal_bar_stiffness(b)).collect()
+        self.canonical_bars().into_iter().map(|c| self.nominal_of_canonical(c as usize)).collect()
     }
 
     /// Contact nodes (internal indices).
@@ -270,13 +238,17 @@ impl Model {
     /// Kernel stiffness of every bar for `seed`: nominal times the Weibull factor of E drawn in
     /// canonical bar order from the seed's E stream (none drawn when CV = 0).
     pub fn bar_stiffness(&self, seed: u64) -> Result<Vec<f64>, SolverError> {
-        let mut k = self.nominal_stiffness();
-        if let Some(phi) = weibull_factors(self.scene.young_cv, seed, STREAM_YOUNG, self.bar_count())? {
-            for (kb, &canon) in k.iter_mut().zip(&self.bar_canonical) {
-                *kb *= phi[canon as usize];
+        let phi = weibull_factors(self.scene.young_cv, seed, STREAM_YOUNG, self.bar_count())?;
+        let k = |c: u32| {
+            let k = self.nominal_of_canonical(c as usize);
+            phi.as_ref().map_or(k, |phi| k * phi[c as usize])
+        };
+        Ok(match &self.layout {
+            Bars::Listed(_) => self.bar_canonical.iter().map(|&c| k(c)).collect(),
+            Bars::Stencil(s) => {
+                s.runs().iter().flat_map(|r| (0..r.len as usize).map(move |m| r.canonical(m) as u32)).map(k).collect()
             }
-        }
-        Ok(k)
+        })
     }
 
     /// Peak elongation of every bar for `seed` when the scene's bars crack (docs/model.md §11), in
@@ -336,4 +308,68 @@ impl Model {
     pub fn node_friction(&self, c: usize, factor: f64) -> NodeFriction {
         self.scene.friction.base(c).scaled(factor)
     }
+}
+
+/// The bars of `lattice` listed in kernel order (see [`Model`]), with the canonical index of each.
+fn listed_bars(lattice: &Lattice, to_internal: &[u32]) -> (BarLayout, Vec<u32>) {
+    let n = lattice.node_count();
+    // Bars: internal ends, by segment, then direction, then ends.
+    let dims = lattice.dims();
+    let slabs = if lattice.bar_count() >= SLAB_MIN_BARS { SLABS.min(dims.nz) } else { 1 };
+    // z-slab of a node: bands of (2nz+1)/slabs ≥ 2 half-units, so a bar (which spans at most
+    // two half-units in z) joins at most two neighbouring slabs.
+    let slab = |id: NodeId| lattice.half_units(id)[2] * slabs / (2 * dims.nz + 1);
+    let segment_of = |bar: &Bar| -> (u8, usize) {
+        let (a, b) = (slab(bar.ends[0]), slab(bar.ends[1]));
+        if a == b {
+            (0, a)
+        } else {
+            let low = a.min(b);
+            (1 + (low % 2) as u8, low)
+        }
+    };
+    // Cache blocks (lattices of BLOCK_MIN_NODES nodes or more): all the bars whose first node
+    // lies in one module layer and one band of y, so the seven direction groups of a block
+    // reuse its node data from cache instead of sweeping the whole lattice seven times.
+    let band = if n >= BLOCK_MIN_NODES { (BLOCK_NODES / (2 * dims.nx + 1)).max(1) } else { usize::MAX };
+    let block_of = |bar: &Bar| -> (usize, usize) {
+        if band == usize::MAX {
+            return (0, 0);
+        }
+        let h = lattice.half_units(bar.ends[0]);
+        (h[2] / 2, h[1] / (2 * band))
+    };
+    // Kernel order: by segment, block, direction class, then lower internal end (unique within
+    // a direction class), sorted as 16-byte records (group key, lower end, canonical index).
+    let mut order: Vec<(u64, u32, u32)> = (0..lattice.bar_count())
+        .map(|b| {
+            let bar = lattice.bar(b);
+            let e = bar.ends.map(|id| to_internal[id.index()]);
+            (
+                GroupKey { segment: segment_of(&bar), block: block_of(&bar), direction: bar.direction }.pack(),
+                e[0].min(e[1]),
+                b as u32,
+            )
+        })
+        .collect();
+    order.sort_unstable_by_key(|&(key, low, _)| (key, low));
+    let mut segments: Vec<((u8, usize), Segment)> = Vec::new();
+    let mut last_block = None;
+    for (i, &(key, _, _)) in order.iter().enumerate() {
+        let GroupKey { segment: seg, block, direction: d } = GroupKey::unpack(key);
+        if segments.last().is_none_or(|(s, _)| *s != seg) {
+            segments.push((seg, Segment { phase: seg.0, groups: Vec::new() }));
+            last_block = None;
+        }
+        let groups = &mut segments.last_mut().expect("just pushed").1.groups;
+        match groups.last_mut() {
+            Some(g) if g.direction == d && last_block == Some(block) => g.end = i + 1,
+            _ => groups.push(BarGroup { direction: d, start: i, end: i + 1 }),
+        }
+        last_block = Some(block);
+    }
+    let bar_canonical: Vec<u32> = order.iter().map(|&(_, _, b)| b).collect();
+    drop(order);
+    let ends = bar_canonical.iter().map(|&b| lattice.bar(b as usize).ends.map(|id| to_internal[id.index()])).collect();
+    (BarLayout::new(segments.into_iter().map(|(_, s)| s).collect(), ends, n), bar_canonical)
 }

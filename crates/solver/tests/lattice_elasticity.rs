@@ -113,7 +113,8 @@ fn cell_stress(model: &Model, eps: [[f64; 3]; 3]) -> [[f64; 3]; 3] {
     let corners: Vec<_> =
         (0..8).map(|c| lattice.corner([1 + (c & 1), 1 + ((c >> 1) & 1), 1 + ((c >> 2) & 1)])).collect();
     let mut sigma = [[0.0; 3]; 3];
-    for (b, &canon) in model.bar_canonical().iter().enumerate() {
+    let nominal = model.nominal_stiffness();
+    for (b, &canon) in model.canonical_bars().iter().enumerate() {
         let bar = lattice.bar(canon as usize);
         let weight = match bar.family {
             BarFamily::Diagonal if bar.ends.contains(&centre) => 1.0,
@@ -121,7 +122,7 @@ fn cell_stress(model: &Model, eps: [[f64; 3]; 3]) -> [[f64; 3]; 3] {
             BarFamily::Edge if bar.ends.iter().all(|e| corners.contains(e)) => 0.25,
             _ => continue,
         };
-        let k = model.nominal_bar_stiffness(b) * if bar.family == BarFamily::Diagonal { 3.0 } else { 1.0 };
+        let k = nominal[b] * if bar.family == BarFamily::Diagonal { 3.0 } else { 1.0 };
         let e = bar.direction.unit();
         let len = bar.length_factor() * lc;
         let strain: f64 = (0..3).map(|i| (0..3).map(|j| e[i] * eps[i][j] * e[j]).sum::<f64>()).sum();

@@ -368,7 +368,7 @@ fn crack<const L: usize>(model: &Model, params: &Params<'_, L>, l: usize, c: &Cr
 /// past its peak elongation (the static solve is linear elastic).
 fn beyond_peak(model: &Model, strength: Option<&[f64]>, u: &Field<1>) -> Option<String> {
     let peak = strength?;
-    let p = elongations(model.layout(), u, 0);
+    let p = elongations(model.layout().listed(), u, 0);
     let b = (0..p.len()).find(|&b| p[b] > peak[b])?;
     let bar = &model.lattice().bar(model.bar_canonical()[b] as usize);
     let at = model.lattice().bar_midpoint(bar);

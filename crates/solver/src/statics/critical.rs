@@ -142,24 +142,22 @@ pub fn gershgorin_bound(model: &Model, k: &[f64]) -> f64 {
     let n = model.node_count();
     let inv_sqrt_m: Vec<f64> = model.inv_mass().iter().map(|v| v.sqrt()).collect();
     let mut rows = vec![0.0; 3 * n];
-    for g in model.layout().groups() {
-        for (e, &kb) in model.ends()[g.start..g.end].iter().zip(&k[g.start..g.end]) {
-            let (i, j) = (e[0] as usize, e[1] as usize);
-            // Block k·s⊗s (axial: one entry; diagonal: stored k/3, |s_c s_d| = 1).
-            for (a, b) in [(i, j), (j, i)] {
-                let scale_self = inv_sqrt_m[a] * inv_sqrt_m[a];
-                let scale_other = inv_sqrt_m[a] * inv_sqrt_m[b];
-                match g.direction {
-                    Direction::Axis(ax) => rows[ax as usize * n + a] += kb * (scale_self + scale_other),
-                    Direction::Diagonal { .. } => {
-                        for c in 0..3 {
-                            rows[c * n + a] += 3.0 * kb * (scale_self + scale_other);
-                        }
+    model.layout().visit(|b, i, j, direction| {
+        let kb = k[b];
+        // Block k·s⊗s (axial: one entry; diagonal: stored k/3, |s_c s_d| = 1).
+        for (a, b) in [(i, j), (j, i)] {
+            let scale_self = inv_sqrt_m[a] * inv_sqrt_m[a];
+            let scale_other = inv_sqrt_m[a] * inv_sqrt_m[b];
+            match direction {
+                Direction::Axis(ax) => rows[ax as usize * n + a] += kb * (scale_self + scale_other),
+                Direction::Diagonal { .. } => {
+                    for c in 0..3 {
+                        rows[c * n + a] += 3.0 * kb * (scale_self + scale_other);
                     }
                 }
             }
         }
-    }
+    });
     rows.into_iter().fold(0.0, f64::max)
 }
 

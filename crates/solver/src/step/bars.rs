@@ -30,7 +30,7 @@ use stickslip_isa::{Isa, widest};
 
 use crate::field::{Field, Lanes};
 use crate::geometry::Direction;
-use crate::layout::{BarGroup, BarLayout, Segment};
+use crate::layout::{BarGroup, BarLayout, Bars, Segment};
 
 /// Checks that `k`, `u` and `f` fit `layout` (the kernels index them without bounds checks).
 pub(crate) fn check<const L: usize>(layout: &BarLayout, k: &[Lanes<L>], u: &Field<L>, f: &Field<L>) {
@@ -48,8 +48,16 @@ pub(crate) struct ForcePtr<const L: usize>(pub(crate) [*mut Lanes<L>; 3]);
 unsafe impl<const L: usize> Send for ForcePtr<L> {}
 unsafe impl<const L: usize> Sync for ForcePtr<L> {}
 
-/// Adds the internal bar forces `−K·u` to `f`, on the calling thread.
-pub fn bar_forces<const L: usize>(layout: &BarLayout, k: &[Lanes<L>], u: &Field<L>, f: &mut Field<L>) {
+/// Adds the internal bar forces `−K·u` to `f`, on the calling thread, whatever the layout.
+pub fn bar_forces<const L: usize>(bars: &Bars, k: &[Lanes<L>], u: &Field<L>, f: &mut Field<L>) {
+    match bars {
+        Bars::Listed(layout) => listed_forces(layout, k, u, f),
+        Bars::Stencil(layout) => crate::step::stencil::forces(layout, k, u, f),
+    }
+}
+
+/// Adds the internal bar forces `−K·u` of a listed layout to `f`, on the calling thread.
+pub fn listed_forces<const L: usize>(layout: &BarLayout, k: &[Lanes<L>], u: &Field<L>, f: &mut Field<L>) {
     check(layout, k, u, f);
     let isa = Isa::current();
     let fp = ForcePtr(f.c.each_mut().map(|c| c.as_mut_ptr()));
@@ -269,23 +277,21 @@ pub(crate) unsafe fn scatter_diagonal<const L: usize>(
 }
 
 /// Diagonal of the stiffness matrix per node and component, for one lane of `k`.
-pub fn stiffness_diagonal<const L: usize>(layout: &BarLayout, k: &[Lanes<L>], l: usize) -> Field<1> {
-    let mut d = Field::<1>::zeros(layout.nodes());
-    let ends = layout.ends();
-    for g in layout.groups() {
-        for (e, kb) in ends[g.start..g.end].iter().zip(&k[g.start..g.end]) {
-            for &node in e {
-                match g.direction {
-                    Direction::Axis(a) => d.c[a as usize][node as usize][0] += kb[l],
-                    Direction::Diagonal { .. } => {
-                        for a in 0..3 {
-                            d.c[a][node as usize][0] += kb[l];
-                        }
+pub fn stiffness_diagonal<const L: usize>(bars: &Bars, k: &[Lanes<L>], l: usize) -> Field<1> {
+    let mut d = Field::<1>::zeros(bars.nodes());
+    bars.visit(|b, i, j, direction| {
+        for node in [i, j] {
+            match direction {
+                Direction::Axis(a) => d.c[a as usize][node][0] += k[b][l],
+                // k stored as k/3 and s_c² = 1: each component's diagonal gains k/3.
+                Direction::Diagonal { .. } => {
+                    for c in 0..3 {
+                        d.c[c][node][0] += k[b][l];
                     }
                 }
             }
         }
-    }
+    });
     d
 }
 
@@ -312,7 +318,7 @@ mod tests {
             let mut seen = Field::<2>::zeros(n);
             let mut times = vec![0u32; n];
             let mut f = Field::<2>::zeros(n);
-            bar_forces_finishing(m.layout(), &k, &u, &mut f, |r, f| {
+            bar_forces_finishing(m.layout().listed(), &k, &u, &mut f, |r, f| {
                 for i in r {
                     times[i] += 1;
                     for c in 0..3 {
@@ -375,12 +381,13 @@ mod tests {
     }
 
     fn model(nx: usize, ny: usize, nz: usize) -> crate::Model {
-        crate::Model::new(crate::Scene { dims: crate::geometry::Dims::new(nx, ny, nz), ..crate::Scene::paper() })
+        let scene = crate::Scene { dims: crate::geometry::Dims::new(nx, ny, nz), ..crate::Scene::paper() };
+        crate::Model::with_listed_bars(scene)
     }
 
     fn every_pass_agrees<const L: usize>(m: &crate::Model, seed: u64) {
         let (k, u) = random_state::<L>(m, seed);
-        let want = reference(m.layout(), &k, &u);
+        let want = reference(m.layout().listed(), &k, &u);
         let n = m.node_count();
         let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
         for isa in Isa::available() {
@@ -389,10 +396,10 @@ mod tests {
                 bar_forces(m.layout(), &k, &u, &mut f);
                 assert_eq!(f, want, "plain pass, {isa:?}, {L} lanes");
                 let mut f = Field::<L>::zeros(n);
-                bar_forces_finishing(m.layout(), &k, &u, &mut f, |_, _| {});
+                bar_forces_finishing(m.layout().listed(), &k, &u, &mut f, |_, _| {});
                 assert_eq!(f, want, "finishing pass, {isa:?}, {L} lanes");
                 let mut f = Field::<L>::zeros(n);
-                pool.install(|| bar_forces_parallel(m.layout(), &k, &u, &mut f));
+                pool.install(|| bar_forces_parallel(m.layout().listed(), &k, &u, &mut f));
                 assert_eq!(f, want, "parallel pass, {isa:?}, {L} lanes");
             });
         }
@@ -406,7 +413,7 @@ mod tests {
             every_pass_agrees::<1>(&m, 1);
             every_pass_agrees::<8>(&m, 2);
         }
-        assert!(model(40, 20, 10).layout().segments().len() > 1, "the last lattice is cut into slabs");
+        assert!(model(40, 20, 10).layout().listed().segments().len() > 1, "the last lattice is cut into slabs");
     }
 
     #[test]
@@ -425,7 +432,7 @@ mod tests {
         let body = [[0.0; 4], [0.0; 4], [-9.81, -9.81, -1.0, 0.0]];
         let update = Update { inv_mass: m.inv_mass(), coef: &coef, body: &body };
         // The trial written plainly.
-        let f = reference(m.layout(), &k, &u);
+        let f = reference(m.layout().listed(), &k, &u);
         let mut want = Field::<4>::zeros(m.node_count());
         for c in 0..3 {
             for i in 0..m.node_count() {
@@ -446,7 +453,7 @@ mod tests {
                 assert!(f.c.iter().all(|c| c.iter().all(|v| *v == [0.0; 4])), "the force field is cleared");
                 let mut f = Field::<4>::zeros(m.node_count());
                 let mut fused = Field::<4>::zeros(m.node_count());
-                bar_forces_finishing(m.layout(), &k, &u, &mut f, |r, f| {
+                bar_forces_finishing(m.layout().listed(), &k, &u, &mut f, |r, f| {
                     integrate_range(isa, r, &update, f, Levels { u: &u, up: &up, out: &mut fused });
                 });
                 assert_eq!(fused, want, "fused pass, {isa:?}");

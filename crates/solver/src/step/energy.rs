@@ -9,7 +9,7 @@
 use crate::boundary;
 use crate::field::{Field, Lanes};
 use crate::geometry::Direction;
-use crate::layout::BarLayout;
+use crate::layout::{BarLayout, Bars};
 use crate::model::Model;
 use crate::step::bars::signs;
 use crate::step::params::Params;
@@ -20,8 +20,44 @@ pub use crate::ledger::Energy;
 /// `½ Σ_b k_b·e_b(a)·e_b(b)` for lane `l`: the strain energy `½aᵀKb` (J). With `a = b` it is the
 /// strain energy of one state; with `a = uₙ`, `b = uₙ₊₁` it is the energy the central-difference
 /// scheme conserves exactly.
-pub fn strain_energy<const L: usize>(layout: &BarLayout, k: &[Lanes<L>], a: &Field<L>, b: &Field<L>, l: usize) -> f64 {
-    strain_energy_with(layout, a, b, l, |bar, _| k[bar][l])
+pub fn strain_energy<const L: usize>(bars: &Bars, k: &[Lanes<L>], a: &Field<L>, b: &Field<L>, l: usize) -> f64 {
+    match bars {
+        Bars::Listed(layout) => strain_energy_with(layout, a, b, l, |bar, _| k[bar][l]),
+        Bars::Stencil(layout) => {
+            let mut total = 0.0;
+            for r in layout.runs() {
+                let (lo, off) = (r.start as usize, r.offset as usize);
+                let bars = r.bars();
+                let sum = match r.direction {
+                    Direction::Axis(axis) => {
+                        let (ca, cb) = (&a.c[axis as usize], &b.c[axis as usize]);
+                        let mut sum = 0.0;
+                        for (m, bar) in bars.enumerate() {
+                            let (i, j) = (lo + m, lo + m + off);
+                            sum += k[bar][l] * (ca[j][l] - ca[i][l]) * (cb[j][l] - cb[i][l]);
+                        }
+                        sum
+                    }
+                    Direction::Diagonal { neg_x, neg_y } => {
+                        let (sx, sy) = signs(neg_x, neg_y);
+                        let e = |u: &Field<L>, i: usize, j: usize| {
+                            sx * (u.c[0][j][l] - u.c[0][i][l])
+                                + sy * (u.c[1][j][l] - u.c[1][i][l])
+                                + (u.c[2][j][l] - u.c[2][i][l])
+                        };
+                        let mut sum = 0.0;
+                        for (m, bar) in bars.enumerate() {
+                            let (i, j) = (lo + m, lo + m + off);
+                            sum += k[bar][l] * e(a, i, j) * e(b, i, j);
+                        }
+                        sum
+                    }
+                };
+                total += sum;
+            }
+            0.5 * total
+        }
+    }
 }
 
 /// `½ Σ_b k_b·e_b(a)·e_b(b)` for lane `l` with `k_b = stiffness(bar, e_b(a))`, summed group by

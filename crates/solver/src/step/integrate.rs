@@ -79,6 +79,36 @@ pub fn integrate_range<const L: usize>(
     }
 }
 
+/// As [`integrate_range`], on fields shared with other threads: `f` the forces, `levels` the
+/// time levels.
+///
+/// # Safety
+/// `range` lies inside every array, and no other thread reads or writes the nodes of `range` of
+/// `f` and `levels.out` meanwhile.
+pub(crate) unsafe fn integrate_raw<const L: usize>(
+    isa: Isa,
+    range: Range<usize>,
+    up: &Update<'_, L>,
+    f: [*mut Lanes<L>; 3],
+    levels: crate::step::stencil::LevelsPtr<L>,
+) {
+    let (start, n) = (range.start, range.len());
+    for c in 0..3 {
+        let one = One { inv_mass: &up.inv_mass[range.clone()], coef: up.coef, body: up.body[c] };
+        // SAFETY: forwarded contract.
+        unsafe {
+            integrate_dispatch(
+                isa,
+                &one,
+                std::slice::from_raw_parts_mut(f[c].add(start), n),
+                std::slice::from_raw_parts(levels.u[c].add(start), n),
+                std::slice::from_raw_parts(levels.up[c].add(start), n),
+                std::slice::from_raw_parts_mut(levels.out[c].add(start), n),
+            );
+        }
+    }
+}
+
 /// The update of one component over a run of nodes.
 #[derive(Clone, Copy)]
 struct One<'a, const L: usize> {

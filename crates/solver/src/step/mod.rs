@@ -21,6 +21,7 @@ pub mod integrate;
 pub mod params;
 pub mod rupture;
 pub mod state;
+pub mod stencil;
 mod view;
 
 pub use crate::field::{Field, Lanes};
@@ -33,8 +34,9 @@ pub use view::{Blowup, Interface, LaneView, NodeContact};
 use stickslip_isa::Isa;
 
 use crate::boundary;
+use crate::layout::Bars;
 use crate::model::Model;
-use bars::{bar_forces, bar_forces_finishing, bar_forces_parallel};
+use bars::{bar_forces_finishing, bar_forces_parallel, listed_forces};
 use integrate::{Levels, Update, integrate_all, integrate_range};
 
 /// What a stepper computes besides the motion.
@@ -51,8 +53,11 @@ pub struct Tracking {
 /// Which bar kernel a stepper runs, chosen once from the scene.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Kernel {
-    /// Linear-elastic bars ([`bars`]): every scene without `[rupture]`.
+    /// Linear-elastic bars listed with their ends ([`bars`]): scenes without `[rupture]` below
+    /// [`crate::model::STENCIL_MIN_BARS`] bars.
     Elastic,
+    /// Linear-elastic bars as a stencil ([`stencil`]): larger scenes without `[rupture]`.
+    Stencil,
     /// Bars that crack ([`rupture`]).
     Rupture,
 }
@@ -71,7 +76,11 @@ impl<const L: usize> Stepper<L> {
     /// A stepper for `model`, serial, tracking nothing; its kernel is the rupture kernel when the
     /// scene's bars crack, the elastic one otherwise.
     pub fn new(model: &Model) -> Self {
-        let kernel = if model.scene().rupture.is_some() { Kernel::Rupture } else { Kernel::Elastic };
+        let kernel = match model.layout() {
+            _ if model.scene().rupture.is_some() => Kernel::Rupture,
+            Bars::Stencil(_) => Kernel::Stencil,
+            Bars::Listed(_) => Kernel::Elastic,
+        };
         Stepper {
             force: Field::zeros(model.node_count()),
             parallel: false,
@@ -108,16 +117,21 @@ impl<const L: usize> Stepper<L> {
         let update = Update { inv_mass: m.inv_mass(), coef: p.coefficients(), body: p.body() };
         if self.kernel == Kernel::Rupture {
             self.rupture_forces_and_trial(p, state, &update);
+        } else if let Bars::Stencil(layout) = m.layout() {
+            let u = &mut state.u;
+            let levels = Levels { u: &u.np1, up: &u.n, out: &mut u.nm1 };
+            stencil::forces_and_trial(layout, &p.k, &update, &mut self.force, levels, self.parallel);
         } else {
             let u = &mut state.u;
+            let layout = m.layout().listed();
             // The force field is zero here: the integration clears it as it consumes it. The trial
             // `uₙ₊₂` is written over `uₙ₋₁`, no longer needed.
             if self.parallel {
-                bar_forces_parallel(m.layout(), &p.k, &u.np1, &mut self.force);
+                bar_forces_parallel(layout, &p.k, &u.np1, &mut self.force);
                 integrate_all(&update, &mut self.force, Levels { u: &u.np1, up: &u.n, out: &mut u.nm1 }, true);
             } else if !m.cache_blocked() {
                 // A small lattice stays in cache: two plain sweeps beat handing over short runs.
-                bar_forces(m.layout(), &p.k, &u.np1, &mut self.force);
+                listed_forces(layout, &p.k, &u.np1, &mut self.force);
                 integrate_all(&update, &mut self.force, Levels { u: &u.np1, up: &u.n, out: &mut u.nm1 }, false);
             } else {
                 // Each node is integrated as soon as its last bar has run, while its data is still in
@@ -125,7 +139,7 @@ impl<const L: usize> Stepper<L> {
                 // same bits).
                 let isa = Isa::current();
                 let (now, before, out) = (&u.np1, &u.n, &mut u.nm1);
-                bar_forces_finishing(m.layout(), &p.k, now, &mut self.force, |r, f| {
+                bar_forces_finishing(layout, &p.k, now, &mut self.force, |r, f| {
                     integrate_range(isa, r, &update, f, Levels { u: now, up: before, out: &mut *out });
                 });
             }
@@ -162,7 +176,8 @@ impl<const L: usize> Stepper<L> {
         let damage = damage.as_mut().expect("the rupture kernel runs on a state with damage");
         let params = p.rupture.as_ref().expect("the rupture kernel runs with the law's parameters");
         let (now, before, out) = (&u.np1, &u.n, &mut u.nm1);
-        let pass = rupture::Pass { layout: m.layout(), k0: &p.k, params, state: &mut *damage, u: now, older: before };
+        let pass =
+            rupture::Pass { layout: m.layout().listed(), k0: &p.k, params, state: &mut *damage, u: now, older: before };
         if self.parallel {
             rupture::forces_parallel(pass, &mut self.force, &mut self.outs);
             integrate_all(update, &mut self.force, Levels { u: now, up: before, out }, true);

@@ -517,7 +517,8 @@ mod tests {
     use crate::rupture::{BarHistory, BarLaw};
 
     fn model(nx: usize, ny: usize, nz: usize) -> crate::Model {
-        crate::Model::new(crate::Scene { dims: crate::geometry::Dims::new(nx, ny, nz), ..crate::Scene::paper() })
+        let scene = crate::Scene { dims: crate::geometry::Dims::new(nx, ny, nz), ..crate::Scene::paper() };
+        crate::Model::with_listed_bars(scene)
     }
 
     /// A state with bars in every regime: displacements large enough that many bars pass their
@@ -546,7 +547,7 @@ mod tests {
         // A history: apply the law once at an earlier state (some bars damaged, some broken).
         let earlier = field(&mut rng, 2e-6);
         for l in 0..L {
-            for (b, p) in elongations(m.layout(), &earlier, l).into_iter().enumerate() {
+            for (b, p) in elongations(m.layout().listed(), &earlier, l).into_iter().enumerate() {
                 let law = BarLaw { k: k0[b][l], peak: params.peak[b][l], kr: params.kr };
                 let h = BarHistory { secant: state.secant[b][l], reach: state.reach[b][l] };
                 let (_, h, _) = law.force(h, p);
@@ -570,7 +571,7 @@ mod tests {
         u: &Field<L>,
         older: &Field<L>,
     ) -> (Field<L>, [f64; L], Vec<(u32, usize, CrackKind)>) {
-        let layout = m.layout();
+        let layout = m.layout().listed();
         let mut f = Field::<L>::zeros(layout.nodes());
         let mut dissipated = [0.0; L];
         let mut cracks = Vec::new();
@@ -631,8 +632,14 @@ mod tests {
                     let mut state = state0.clone();
                     let mut f = Field::<L>::zeros(m.node_count());
                     let mut outs = Vec::new();
-                    let p =
-                        Pass { layout: m.layout(), k0: &k0, params: &params, state: &mut state, u: &u, older: &older };
+                    let p = Pass {
+                        layout: m.layout().listed(),
+                        k0: &k0,
+                        params: &params,
+                        state: &mut state,
+                        u: &u,
+                        older: &older,
+                    };
                     match pass {
                         0 => forces(p, &mut f, &mut outs),
                         1 => forces_finishing(p, &mut f, &mut outs, |_, _| {}),
@@ -696,13 +703,13 @@ mod tests {
         let mut batch = state.clone();
         let (mut f4, mut outs4) = (Field::<4>::zeros(m.node_count()), Vec::new());
         forces(
-            Pass { layout: m.layout(), k0: &k0, params: &params, state: &mut batch, u: &u, older: &older },
+            Pass { layout: m.layout().listed(), k0: &k0, params: &params, state: &mut batch, u: &u, older: &older },
             &mut f4,
             &mut outs4,
         );
         let (mut f1, mut outs1) = (Field::<1>::zeros(m.node_count()), Vec::new());
         forces(
-            Pass { layout: m.layout(), k0: &k1, params: &params1, state: &mut alone, u: &u1, older: &o1 },
+            Pass { layout: m.layout().listed(), k0: &k1, params: &params1, state: &mut alone, u: &u1, older: &o1 },
             &mut f1,
             &mut outs1,
         );
@@ -729,14 +736,14 @@ mod tests {
             let mut f = Field::<8>::zeros(m.node_count());
             let mut outs = Vec::new();
             forces(
-                Pass { layout: m.layout(), k0: &k0, params: &params, state: &mut state, u: &u, older: &older },
+                Pass { layout: m.layout().listed(), k0: &k0, params: &params, state: &mut state, u: &u, older: &older },
                 &mut f,
                 &mut outs,
             );
             assert_eq!(f, want);
             for l in 0..8 {
                 assert_eq!(
-                    strain_energy(m.layout(), &k0, &state.secant, &u, &older, l).to_bits(),
+                    strain_energy(m.layout().listed(), &k0, &state.secant, &u, &older, l).to_bits(),
                     crate::step::energy::strain_energy(m.layout(), &k0, &u, &older, l).to_bits()
                 );
             }

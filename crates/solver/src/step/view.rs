@@ -146,7 +146,9 @@ impl<const L: usize> LaneView<'_, '_, L> {
         let layout = self.params.model.layout();
         e.elastic = match &self.state.rupture {
             None => strain_energy(layout, &self.params.k, &u.n, &u.np1, self.lane),
-            Some(r) => crate::step::rupture::strain_energy(layout, &self.params.k, &r.secant, &u.n, &u.np1, self.lane),
+            Some(r) => {
+                crate::step::rupture::strain_energy(layout.listed(), &self.params.k, &r.secant, &u.n, &u.np1, self.lane)
+            }
         };
         e
     }

@@ -1,0 +1,265 @@
+//! The bars of a large elastic lattice as a structured stencil: runs of bars along the rows of the
+//! internal node order, whose ends follow from the run (no end list, no canonical index list).
+//!
+//! Internal node order (as [`crate::Model`] sorts it: by `z`, then `y`, then `x`): layer `k` is
+//! corner layer `k` — rows `j = 0..=ny` of `nx + 1` corner nodes — then centre layer `k` — rows
+//! `j = 0..ny` of `nx` centre nodes (none above the top corner layer). With `Cc = (nx+1)(ny+1)`
+//! and `Cm = nx·ny`, corner `(i, j, k)` is node `k(Cc+Cm) + j(nx+1) + i` and centre `(i, j, k)` is
+//! node `k(Cc+Cm) + Cc + j·nx + i`.
+//!
+//! Every bar joins a lower end to an upper end `offset` nodes further, and the bars of one
+//! direction class whose lower ends lie along one row form a run of consecutive lower ends:
+//! x, y and z edge bars from corner row `(j, k)`; from centre row `(j, k)` the x, y and z centre
+//! bars, and the diagonals — four from the corners of rows `j` and `j + 1` down in the module's
+//! layer to the centres (offset `Cc − j − dj(nx+1) − di`), four from the centres up to the corners
+//! of layer `k + 1` (offset `Cm + j + dj(nx+1) + di`). Runs come layer by layer and, in a layer,
+//! row by row, so a row's data is reused from cache by all its runs.
+//!
+//! A run's bar `m` is bar `canonical_start + m·canonical_stride` of the canonical order
+//! ([`crate::geometry::Lattice::bar`]): stride 1 along axes, 8 for diagonals (one per module).
+//!
+//! **Slabs.** The layers are cut into slabs of at least two layers. A layer's bars write its own
+//! nodes and the layer above's, so the bars of every layer but a slab's top one can run for all
+//! slabs at once (phase 0), then the top layers' (phase 1, each writing two layers no other top
+//! layer writes). The partition depends only on the block, so every thread count gives the same
+//! bits.
+
+use std::ops::Range;
+
+use crate::geometry::{Dims, Direction};
+
+/// Most slabs of a lattice (the parallelism of one step).
+pub const MAX_SLABS: usize = 16;
+
+/// Bars of one direction class whose lower ends are `start..start + len`, upper ends `offset`
+/// nodes further.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Run {
+    /// Direction from lower to upper end.
+    pub direction: Direction,
+    /// First lower end (internal node).
+    pub start: u32,
+    /// Bars.
+    pub len: u32,
+    /// Upper end minus lower end.
+    pub offset: u32,
+    /// Kernel index of the first bar.
+    pub first_bar: u32,
+    /// Canonical index of the first bar.
+    pub canonical_start: u32,
+    /// Canonical index step from one bar of the run to the next.
+    pub canonical_stride: u32,
+}
+
+impl Run {
+    /// Kernel indices of its bars.
+    pub fn bars(&self) -> Range<usize> {
+        self.first_bar as usize..(self.first_bar + self.len) as usize
+    }
+
+    /// Canonical index of its bar `m`.
+    pub fn canonical(&self, m: usize) -> usize {
+        self.canonical_start as usize + m * self.canonical_stride as usize
+    }
+}
+
+/// The runs of a lattice, by layer, with its slabs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StencilLayout {
+    runs: Vec<Run>,
+    /// Runs of layer `k`: `runs[layer_runs[k]..layer_runs[k + 1]]`.
+    layer_runs: Vec<usize>,
+    /// Nodes of layer `k`: `layer_nodes[k]..layer_nodes[k + 1]`.
+    layer_nodes: Vec<usize>,
+    /// Layers of slab `s`: `slabs[s]..slabs[s + 1]`.
+    slabs: Vec<usize>,
+    bars: usize,
+}
+
+impl StencilLayout {
+    /// The stencil of a block of `dims` modules.
+    pub fn new(dims: Dims) -> StencilLayout {
+        let Dims { nx, ny, nz } = dims;
+        let (cc, cm) = ((nx + 1) * (ny + 1), nx * ny);
+        let layer = |k: usize| k * (cc + cm);
+        let corner = |i: usize, j: usize, k: usize| layer(k) + j * (nx + 1) + i;
+        let centre = |i: usize, j: usize, k: usize| layer(k) + cc + j * nx + i;
+        // Canonical blocks: edges along x, y, z; diagonals; centre bars along x, y, z.
+        let ex = nx * (ny + 1) * (nz + 1);
+        let ey = (nx + 1) * ny * (nz + 1);
+        let ez = (nx + 1) * (ny + 1) * nz;
+        let diag = ex + ey + ez;
+        let c0 = diag + 8 * nx * ny * nz;
+        let cx = (nx - 1) * ny * nz;
+        let cy = nx * (ny - 1) * nz;
+        let mut runs = Vec::new();
+        let mut layer_runs = vec![0];
+        let mut bars = 0usize;
+        let mut push =
+            |runs: &mut Vec<Run>, direction, start: usize, len: usize, offset: usize, canon: usize, stride| {
+                if len == 0 {
+                    return;
+                }
+                runs.push(Run {
+                    direction,
+                    start: start as u32,
+                    len: len as u32,
+                    offset: offset as u32,
+                    first_bar: bars as u32,
+                    canonical_start: canon as u32,
+                    canonical_stride: stride,
+                });
+                bars += len;
+            };
+        let (x, y, z) = (Direction::Axis(0), Direction::Axis(1), Direction::Axis(2));
+        for k in 0..=nz {
+            for j in 0..=ny {
+                let c = corner(0, j, k);
+                push(&mut runs, x, c, nx, 1, nx * (j + (ny + 1) * k), 1);
+                if j < ny {
+                    push(&mut runs, y, c, nx + 1, nx + 1, ex + (nx + 1) * (j + ny * k), 1);
+                }
+                if k < nz {
+                    push(&mut runs, z, c, nx + 1, cc + cm, ex + ey + (nx + 1) * (j + (ny + 1) * k), 1);
+                }
+                if j == ny || k == nz {
+                    continue;
+                }
+                let module0 = diag + 8 * nx * (j + ny * k);
+                for (dj, di) in [(0, 0), (0, 1), (1, 0), (1, 1)] {
+                    let d = Direction::Diagonal { neg_x: di == 1, neg_y: dj == 1 };
+                    push(
+                        &mut runs,
+                        d,
+                        corner(di, j + dj, k),
+                        nx,
+                        cc - j - dj * (nx + 1) - di,
+                        module0 + 2 * dj + di,
+                        8,
+                    );
+                }
+                let m = centre(0, j, k);
+                push(&mut runs, x, m, nx - 1, 1, c0 + (nx - 1) * (j + ny * k), 1);
+                if j + 1 < ny {
+                    push(&mut runs, y, m, nx, nx, c0 + cx + nx * (j + (ny - 1) * k), 1);
+                }
+                if k + 1 < nz {
+                    push(&mut runs, z, m, nx, cc + cm, c0 + cx + cy + nx * (j + ny * k), 1);
+                }
+                for (dj, di) in [(0, 0), (0, 1), (1, 0), (1, 1)] {
+                    let d = Direction::Diagonal { neg_x: di == 0, neg_y: dj == 0 };
+                    push(&mut runs, d, m, nx, cm + j + dj * (nx + 1) + di, module0 + 4 + 2 * dj + di, 8);
+                }
+            }
+            layer_runs.push(runs.len());
+        }
+        let layer_nodes = (0..=nz).map(layer).chain([dims.node_count()]).collect();
+        let layers = nz + 1;
+        let count = (layers / 2).clamp(1, MAX_SLABS);
+        let slabs = (0..=count).map(|s| s * layers / count).collect();
+        StencilLayout { runs, layer_runs, layer_nodes, slabs, bars }
+    }
+
+    /// Every run, in kernel order.
+    pub fn runs(&self) -> &[Run] {
+        &self.runs
+    }
+
+    /// Number of bars.
+    pub fn bars(&self) -> usize {
+        self.bars
+    }
+
+    /// Number of nodes.
+    pub fn nodes(&self) -> usize {
+        *self.layer_nodes.last().expect("at least one layer")
+    }
+
+    /// Number of layers.
+    pub fn layers(&self) -> usize {
+        self.layer_nodes.len() - 1
+    }
+
+    /// The runs of layer `k`.
+    pub fn layer_runs(&self, k: usize) -> &[Run] {
+        &self.runs[self.layer_runs[k]..self.layer_runs[k + 1]]
+    }
+
+    /// The nodes of layer `k` (internal indices).
+    pub fn layer_nodes(&self, k: usize) -> Range<usize> {
+        self.layer_nodes[k]..self.layer_nodes[k + 1]
+    }
+
+    /// The layers of each slab, bottom up.
+    pub fn slabs(&self) -> impl Iterator<Item = Range<usize>> + '_ {
+        self.slabs.windows(2).map(|w| w[0]..w[1])
+    }
+
+    /// Longest run (bars).
+    pub fn longest_run(&self) -> usize {
+        self.runs.iter().map(|r| r.len as usize).max().unwrap_or(0)
+    }
+
+    /// Calls `visit(bar, lower end, upper end, direction)` for every bar in kernel order.
+    pub fn visit(&self, mut visit: impl FnMut(usize, usize, usize, Direction)) {
+        for r in &self.runs {
+            let (lo, off) = (r.start as usize, r.offset as usize);
+            for (m, b) in r.bars().enumerate() {
+                visit(b, lo + m, lo + m + off, r.direction);
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Model;
+    use crate::scene::Scene;
+
+    #[test]
+    fn every_bar_once_with_the_ends_and_canonical_index_of_the_lattice() {
+        for dims in
+            [Dims::new(10, 1, 5), Dims::new(3, 2, 4), Dims::new(1, 1, 1), Dims::new(1, 4, 2), Dims::new(5, 3, 1)]
+        {
+            let model = Model::new(Scene::paper().sample(dims));
+            let lattice = model.lattice();
+            let s = StencilLayout::new(dims);
+            assert_eq!(s.bars(), dims.bar_count(), "{dims:?}");
+            assert_eq!(s.nodes(), dims.node_count(), "{dims:?}");
+            let mut seen = vec![false; s.bars()];
+            let mut next = 0;
+            for r in s.runs() {
+                assert_eq!(r.first_bar as usize, next, "{dims:?}: runs are consecutive in kernel order");
+                next += r.len as usize;
+                for m in 0..r.len as usize {
+                    let c = r.canonical(m);
+                    assert!(!seen[c], "{dims:?}: canonical bar {c} twice");
+                    seen[c] = true;
+                    let bar = lattice.bar(c);
+                    let (lo, hi) = (r.start as usize + m, (r.start + r.offset) as usize + m);
+                    assert_eq!(
+                        [lo, hi],
+                        bar.ends.map(|id| model.internal(id)),
+                        "{dims:?}: run {r:?} bar {m} is canonical bar {c} {bar:?}"
+                    );
+                    assert_eq!(r.direction, bar.direction, "{dims:?}");
+                }
+            }
+            assert!(seen.iter().all(|&s| s), "{dims:?}: every bar");
+            // Layers hold consecutive nodes; slabs at least two layers each.
+            assert_eq!(s.layer_nodes(0).start, 0);
+            assert_eq!(s.layer_nodes(s.layers() - 1).end, s.nodes());
+            assert!(s.slabs().all(|sl| sl.len() >= 2));
+            // A layer's bars start in it and end in it or the next.
+            for k in 0..s.layers() {
+                for r in s.layer_runs(k) {
+                    let (lo, hi) = (r.start as usize, (r.start + r.offset + r.len - 1) as usize);
+                    assert!(s.layer_nodes(k).contains(&lo), "{dims:?}: layer {k} run {r:?}");
+                    let upper = s.layer_nodes(k).start..s.layer_nodes((k + 1).min(s.layers() - 1)).end;
+                    assert!(upper.contains(&hi), "{dims:?}: layer {k} run {r:?} ends beyond the next layer");
+                }
+            }
+        }
+    }
+}

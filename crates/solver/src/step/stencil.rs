@@ -1,0 +1,397 @@
+//! The bar kernel of a stencil lattice ([`crate::stencil::StencilLayout`]): each run is a few
+//! vector loops over consecutive bars and nodes, `L` seeds side by side as one flat array.
+//!
+//! For a run of lower ends `lo..lo+n`, upper ends `+off`, stiffness `k` (stored `k/3` for
+//! diagonals, as the listed kernel):
+//! - axial along `a`: `t = k·(u_a[hi] − u_a[lo])`, then `f_a[lo] += t` over the run, then
+//!   `f_a[hi] −= t` over the run;
+//! - diagonal `s = (sx, sy, 1)`: `t = k·(sx·Δx + sy·Δy + Δz)`, then `f[lo] += t·s` and
+//!   `f[hi] −= t·s`, one component per loop.
+//!
+//! So a node receives its contributions in the order of the runs, and within a run first the
+//! `+t` of the bar it is the lower end of, after all the run's `+t`, the `−t` of the bar it is
+//! the upper end of; [`reference`] is this order written plainly and every build of the kernel is
+//! tested against it bit for bit.
+//!
+//! The layers run slab by slab (see the layout's doc): in phase 0 every slab's layers but its top
+//! one, integrating each layer as soon as its forces are complete; in phase 1 each slab's top
+//! layer, integrating it and the layer above. On one thread the same slabs and phases run in
+//! order, so the result does not depend on the thread count.
+
+use std::ops::Range;
+
+use rayon::prelude::*;
+use stickslip_isa::{Isa, widest};
+
+use crate::field::{Field, Lanes};
+use crate::geometry::Direction;
+use crate::stencil::{Run, StencilLayout};
+use crate::step::bars::signs;
+use crate::step::integrate::{Update, integrate_raw};
+
+/// Raw views of the arrays one pass reads and writes, shared by the slab tasks of one phase
+/// (which write disjoint layers).
+#[derive(Clone, Copy)]
+pub(crate) struct Pass<const L: usize> {
+    /// Stiffness, `L` per bar.
+    k: *const f64,
+    /// Displacements now, per component, `L` per node.
+    u: [*const f64; 3],
+    /// Forces, per component, `L` per node.
+    f: [*mut f64; 3],
+}
+
+// SAFETY: the tasks of one phase write disjoint nodes (see the module doc).
+unsafe impl<const L: usize> Send for Pass<L> {}
+unsafe impl<const L: usize> Sync for Pass<L> {}
+
+/// The three time levels the fused integration reads and writes, shared like [`Pass`].
+#[derive(Clone, Copy)]
+pub(crate) struct LevelsPtr<const L: usize> {
+    /// `uₙ`.
+    pub u: [*const Lanes<L>; 3],
+    /// `uₙ₋₁`.
+    pub up: [*const Lanes<L>; 3],
+    /// The trial, written.
+    pub out: [*mut Lanes<L>; 3],
+}
+
+// SAFETY: as `Pass`.
+unsafe impl<const L: usize> Send for LevelsPtr<L> {}
+unsafe impl<const L: usize> Sync for LevelsPtr<L> {}
+
+fn check<const L: usize>(layout: &StencilLayout, k: &[Lanes<L>], u: &Field<L>, f: &Field<L>) {
+    assert_eq!(k.len(), layout.bars(), "one stiffness per bar");
+    for c in 0..3 {
+        assert!(u.c[c].len() == layout.nodes() && f.c[c].len() == layout.nodes(), "fields over the layout's nodes");
+    }
+}
+
+fn pass<const L: usize>(k: &[Lanes<L>], u: &Field<L>, f: &mut Field<L>) -> Pass<L> {
+    Pass {
+        k: k.as_flattened().as_ptr(),
+        u: [0, 1, 2].map(|c| u.c[c].as_flattened().as_ptr()),
+        f: f.c.each_mut().map(|c| c.as_flattened_mut().as_mut_ptr()),
+    }
+}
+
+/// Adds the internal bar forces `−K·u` to `f`, on the calling thread, in slab and phase order.
+pub fn forces<const L: usize>(layout: &StencilLayout, k: &[Lanes<L>], u: &Field<L>, f: &mut Field<L>) {
+    check(layout, k, u, f);
+    let (isa, p) = (Isa::current(), pass(k, u, f));
+    let mut t = vec![0.0; layout.longest_run() * L];
+    for slab in layout.slabs() {
+        // SAFETY: checked arrays, one thread.
+        unsafe { layers_dispatch(isa, layout, slab.start..slab.end - 1, p, &mut t) };
+    }
+    for slab in layout.slabs() {
+        // SAFETY: as above.
+        unsafe { layers_dispatch(isa, layout, slab.end - 1..slab.end, p, &mut t) };
+    }
+}
+
+/// As [`forces`], and each node integrated by `update` as soon as its forces are complete (the
+/// force field is cleared as it is consumed); with `parallel`, the slabs of a phase on the current
+/// rayon pool. The same bits either way.
+pub fn forces_and_trial<const L: usize>(
+    layout: &StencilLayout,
+    k: &[Lanes<L>],
+    update: &Update<'_, L>,
+    f: &mut Field<L>,
+    levels: crate::step::integrate::Levels<'_, L>,
+    parallel: bool,
+) {
+    check(layout, k, levels.u, f);
+    let (isa, p) = (Isa::current(), pass(k, levels.u, f));
+    let lv = LevelsPtr {
+        u: [0, 1, 2].map(|c| levels.u.c[c].as_ptr()),
+        up: [0, 1, 2].map(|c| levels.up.c[c].as_ptr()),
+        out: levels.out.c.each_mut().map(|c| c.as_mut_ptr()),
+    };
+    let f_lanes: [*mut Lanes<L>; 3] = f.c.each_mut().map(|c| c.as_mut_ptr());
+    let fp = FieldPtr(f_lanes);
+    let slabs: Vec<Range<usize>> = layout.slabs().collect();
+    let last = slabs.len() - 1;
+    let run = |s: usize, phase: u8, t: &mut Vec<f64>| {
+        let slab = &slabs[s];
+        let top = slab.end - 1;
+        // SAFETY: checked arrays; the tasks of one phase touch disjoint layers (module doc).
+        unsafe {
+            if phase == 0 {
+                layers_dispatch(isa, layout, slab.start..top, p, t);
+                // A slab's bottom layer is complete once the layer below has run (phase 1), but
+                // for the lattice's first layer.
+                let first = if s == 0 { slab.start } else { slab.start + 1 };
+                for layer in first..top {
+                    integrate_raw(isa, layout.layer_nodes(layer), update, fp.get(), lv);
+                }
+            } else {
+                layers_dispatch(isa, layout, top..top + 1, p, t);
+                integrate_raw(isa, layout.layer_nodes(top), update, fp.get(), lv);
+                if s < last {
+                    integrate_raw(isa, layout.layer_nodes(top + 1), update, fp.get(), lv);
+                }
+            }
+        }
+    };
+    let scratch = || vec![0.0; layout.longest_run() * L];
+    for phase in 0..2u8 {
+        if parallel {
+            (0..slabs.len()).into_par_iter().for_each_init(scratch, |t, s| run(s, phase, t));
+        } else {
+            let mut t = scratch();
+            for s in 0..slabs.len() {
+                run(s, phase, &mut t);
+            }
+        }
+    }
+}
+
+/// Raw force field shared by the slab tasks.
+#[derive(Clone, Copy)]
+struct FieldPtr<const L: usize>([*mut Lanes<L>; 3]);
+
+impl<const L: usize> FieldPtr<L> {
+    /// The pointers (a method, so closures capture the whole `Sync` wrapper).
+    fn get(self) -> [*mut Lanes<L>; 3] {
+        self.0
+    }
+}
+
+// SAFETY: as `Pass`.
+unsafe impl<const L: usize> Send for FieldPtr<L> {}
+unsafe impl<const L: usize> Sync for FieldPtr<L> {}
+
+widest! {
+    /// The runs of layers `layers`, in instruction set `isa`.
+    ///
+    /// # Safety
+    /// The arrays of `p` fit the layout, and no other thread touches the nodes these layers'
+    /// bars write.
+    unsafe fn layers_dispatch<const L: usize>(
+        layout: &StencilLayout,
+        span: Range<usize>,
+        p: Pass<L>,
+        t: &mut [f64],
+    ) => layers
+}
+
+/// See [`layers_dispatch`].
+#[inline(always)]
+unsafe fn layers<const L: usize>(layout: &StencilLayout, span: Range<usize>, p: Pass<L>, t: &mut [f64]) {
+    for layer in span {
+        for r in layout.layer_runs(layer) {
+            // SAFETY: forwarded contract.
+            unsafe { run::<L>(r, p, t) };
+        }
+    }
+}
+
+/// One run.
+///
+/// # Safety
+/// As [`layers_dispatch`].
+#[inline(always)]
+unsafe fn run<const L: usize>(r: &Run, p: Pass<L>, t: &mut [f64]) {
+    let n = r.len as usize * L;
+    let (lo, hi, kb) = (r.start as usize * L, (r.start + r.offset) as usize * L, r.first_bar as usize * L);
+    let t = &mut t[..n];
+    // SAFETY: the ranges lie inside the checked arrays; each mutable slice is dropped before the
+    // next (lower and upper runs of an x run overlap) and no other thread writes them.
+    unsafe {
+        let k = std::slice::from_raw_parts(p.k.add(kb), n);
+        let read = |c: usize, at: usize| std::slice::from_raw_parts(p.u[c].add(at), n);
+        match r.direction {
+            Direction::Axis(a) => {
+                let a = a as usize;
+                let (ul, uh) = (read(a, lo), read(a, hi));
+                for m in 0..n {
+                    t[m] = k[m] * (uh[m] - ul[m]);
+                }
+                add(std::slice::from_raw_parts_mut(p.f[a].add(lo), n), t, 1.0);
+                sub(std::slice::from_raw_parts_mut(p.f[a].add(hi), n), t, 1.0);
+            }
+            Direction::Diagonal { neg_x, neg_y } => {
+                let (sx, sy) = signs(neg_x, neg_y);
+                let (xl, xh, yl, yh, zl, zh) =
+                    (read(0, lo), read(0, hi), read(1, lo), read(1, hi), read(2, lo), read(2, hi));
+                for m in 0..n {
+                    t[m] = k[m] * (sx * (xh[m] - xl[m]) + sy * (yh[m] - yl[m]) + (zh[m] - zl[m]));
+                }
+                // One array per loop (see the listed kernel).
+                add(std::slice::from_raw_parts_mut(p.f[0].add(lo), n), t, sx);
+                add(std::slice::from_raw_parts_mut(p.f[1].add(lo), n), t, sy);
+                add(std::slice::from_raw_parts_mut(p.f[2].add(lo), n), t, 1.0);
+                sub(std::slice::from_raw_parts_mut(p.f[0].add(hi), n), t, sx);
+                sub(std::slice::from_raw_parts_mut(p.f[1].add(hi), n), t, sy);
+                sub(std::slice::from_raw_parts_mut(p.f[2].add(hi), n), t, 1.0);
+            }
+        }
+    }
+}
+
+/// `f += s·t` (the product by ±1 is exact, so `s·t` is `t` or `−t`).
+#[inline(always)]
+fn add(f: &mut [f64], t: &[f64], s: f64) {
+    for (f, t) in f.iter_mut().zip(t) {
+        *f += s * t;
+    }
+}
+
+/// `f −= s·t`.
+#[inline(always)]
+fn sub(f: &mut [f64], t: &[f64], s: f64) {
+    for (f, t) in f.iter_mut().zip(t) {
+        *f -= s * t;
+    }
+}
+
+/// The kernel's order written plainly, one bar and one lane at a time: run by run in slab and
+/// phase order, first every bar's `+t` at its lower end, then every bar's `−t` at its upper end.
+pub fn reference<const L: usize>(layout: &StencilLayout, k: &[Lanes<L>], u: &Field<L>, f: &mut Field<L>) {
+    let mut order: Vec<usize> = Vec::new();
+    for phase in 0..2 {
+        for slab in layout.slabs() {
+            let layers = if phase == 0 { slab.start..slab.end - 1 } else { slab.end - 1..slab.end };
+            order.extend(layers);
+        }
+    }
+    for layer in order {
+        for r in layout.layer_runs(layer) {
+            let (lo, off) = (r.start as usize, r.offset as usize);
+            let ts: Vec<Lanes<L>> = r
+                .bars()
+                .enumerate()
+                .map(|(m, b)| {
+                    let (i, j) = (lo + m, lo + m + off);
+                    std::array::from_fn(|l| {
+                        let d = |c: usize| u.c[c][j][l] - u.c[c][i][l];
+                        let e = match r.direction {
+                            Direction::Axis(a) => d(a as usize),
+                            Direction::Diagonal { neg_x, neg_y } => {
+                                let (sx, sy) = signs(neg_x, neg_y);
+                                sx * d(0) + sy * d(1) + d(2)
+                            }
+                        };
+                        k[b][l] * e
+                    })
+                })
+                .collect();
+            let scale = |c: usize| match r.direction {
+                Direction::Axis(a) => (c == a as usize).then_some(1.0),
+                Direction::Diagonal { neg_x, neg_y } => {
+                    let (sx, sy) = signs(neg_x, neg_y);
+                    Some([sx, sy, 1.0][c])
+                }
+            };
+            for c in 0..3 {
+                let Some(s) = scale(c) else { continue };
+                for (m, t) in ts.iter().enumerate() {
+                    for l in 0..L {
+                        f.c[c][lo + m][l] += s * t[l];
+                    }
+                }
+                for (m, t) in ts.iter().enumerate() {
+                    for l in 0..L {
+                        f.c[c][lo + m + off][l] -= s * t[l];
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use rand::{RngExt, SeedableRng};
+
+    use super::*;
+    use crate::geometry::Dims;
+    use crate::step::integrate::{Levels, integrate_all};
+    use crate::step::params::Coefficients;
+
+    fn random<const L: usize>(layout: &StencilLayout, seed: u64) -> (Vec<Lanes<L>>, Field<L>) {
+        let mut rng = rand::rngs::ChaCha8Rng::seed_from_u64(seed);
+        let k = (0..layout.bars()).map(|_| std::array::from_fn(|_| rng.random_range(0.5..2.0))).collect();
+        let mut u = Field::<L>::zeros(layout.nodes());
+        for c in &mut u.c {
+            for v in c.iter_mut() {
+                *v = std::array::from_fn(|_| rng.random_range(-1.0..1.0));
+            }
+        }
+        (k, u)
+    }
+
+    fn bits<const L: usize>(f: &Field<L>) -> Vec<u64> {
+        f.c.iter().flat_map(|c| c.iter().flat_map(|v| v.map(f64::to_bits))).collect()
+    }
+
+    fn agrees<const L: usize>(dims: Dims, seed: u64) {
+        let layout = StencilLayout::new(dims);
+        let (k, u) = random::<L>(&layout, seed);
+        let mut want = Field::<L>::zeros(layout.nodes());
+        reference(&layout, &k, &u, &mut want);
+        for isa in Isa::available() {
+            let mut f = Field::<L>::zeros(layout.nodes());
+            Isa::pinned(isa, || forces(&layout, &k, &u, &mut f));
+            assert_eq!(bits(&f), bits(&want), "{dims:?} L = {L} {isa:?}: the kernel against its plain order");
+        }
+        // Fused with the integration, serial and on two threads: the forces, then the update.
+        let n = layout.nodes();
+        let inv_mass: Vec<f64> = (0..n).map(|i| 1.0 / (1.0 + (i % 7) as f64)).collect();
+        let coef = Coefficients { cf: [1e-3; L], c2: [1.9; L], cp: [0.9; L] };
+        let body = [[0.0; L], [0.0; L], [-9.81; L]];
+        let update = Update { inv_mass: &inv_mass, coef: &coef, body: &body };
+        let up = Field::<L>::zeros(n);
+        let mut plain_f = want.clone();
+        let mut plain = Field::<L>::zeros(n);
+        integrate_all(&update, &mut plain_f, Levels { u: &u, up: &up, out: &mut plain }, false);
+        for threads in [1, 2] {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            let (mut f, mut out) = (Field::<L>::zeros(n), Field::<L>::zeros(n));
+            pool.install(|| {
+                forces_and_trial(&layout, &k, &update, &mut f, Levels { u: &u, up: &up, out: &mut out }, threads > 1)
+            });
+            assert_eq!(bits(&out), bits(&plain), "{dims:?} L = {L}, {threads} threads: fused pass");
+            assert!(f.c.iter().all(|c| c.iter().all(|v| *v == [0.0; L])), "the forces are consumed");
+        }
+    }
+
+    #[test]
+    fn every_build_and_thread_count_agrees_with_the_plain_order() {
+        for (dims, seed) in
+            [(Dims::new(10, 1, 5), 1), (Dims::new(7, 5, 9), 2), (Dims::new(1, 1, 1), 3), (Dims::new(3, 4, 40), 4)]
+        {
+            agrees::<1>(dims, seed);
+            agrees::<4>(dims, seed);
+            agrees::<8>(dims, seed);
+        }
+    }
+
+    #[test]
+    fn the_stencil_gives_the_listed_forces_to_round_off() {
+        let dims = Dims::new(9, 6, 7);
+        let model = crate::Model::new(crate::Scene::paper().sample(dims));
+        let layout = StencilLayout::new(dims);
+        let (k, u) = random::<1>(&layout, 9);
+        let mut f = Field::<1>::zeros(layout.nodes());
+        forces(&layout, &k, &u, &mut f);
+        // The same bars listed: each stencil bar's stiffness moved to its listed place.
+        let canonical = model.canonical_bars();
+        let mut by_canonical = vec![[0.0; 1]; k.len()];
+        for r in layout.runs() {
+            for (m, b) in r.bars().enumerate() {
+                by_canonical[r.canonical(m)] = k[b];
+            }
+        }
+        let listed_k: Vec<[f64; 1]> = canonical.iter().map(|&c| by_canonical[c as usize]).collect();
+        let mut g = Field::<1>::zeros(layout.nodes());
+        crate::step::bars::bar_forces(model.layout(), &listed_k, &u, &mut g);
+        let scale = g.c.iter().flat_map(|c| c.iter().map(|v| v[0].abs())).fold(0.0, f64::max);
+        for c in 0..3 {
+            for i in 0..layout.nodes() {
+                assert!((f.c[c][i][0] - g.c[c][i][0]).abs() <= 1e-13 * scale, "node {i} component {c}");
+            }
+        }
+    }
+}
