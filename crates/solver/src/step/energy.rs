@@ -6,11 +6,16 @@
 //! exactly. Bars that crack keep that pairing with the stiffness each bar has at step n, and the
 //! rupture kernel books what they dissipate ([`crate::step::rupture`]).
 
+use std::ops::Range;
+
+use rayon::prelude::*;
+
 use crate::boundary;
 use crate::field::{Field, Lanes};
 use crate::geometry::Direction;
 use crate::layout::{BarLayout, Bars};
 use crate::model::Model;
+use crate::stencil::{Run, StencilLayout};
 use crate::step::bars::signs;
 use crate::step::params::Params;
 use crate::step::state::State;
@@ -24,40 +29,63 @@ pub fn strain_energy<const L: usize>(bars: &Bars, k: &[Lanes<L>], a: &Field<L>, 
     match bars {
         Bars::Listed(layout) => strain_energy_with(layout, a, b, l, |bar, _| k[bar][l]),
         Bars::Stencil(layout) => {
-            let mut total = 0.0;
-            for r in layout.runs() {
-                let (lo, off) = (r.start as usize, r.offset as usize);
-                let bars = r.bars();
-                let sum = match r.direction {
-                    Direction::Axis(axis) => {
-                        let (ca, cb) = (&a.c[axis as usize], &b.c[axis as usize]);
-                        let mut sum = 0.0;
-                        for (m, bar) in bars.enumerate() {
-                            let (i, j) = (lo + m, lo + m + off);
-                            sum += k[bar][l] * (ca[j][l] - ca[i][l]) * (cb[j][l] - cb[i][l]);
-                        }
-                        sum
+            let slab_sums = per_slab(layout, false, |layers| {
+                let mut sum = 0.0;
+                for layer in layers {
+                    for r in layout.layer_runs(layer) {
+                        sum += run_strain_energy(r, k, a, b, l);
                     }
-                    Direction::Diagonal { neg_x, neg_y } => {
-                        let (sx, sy) = signs(neg_x, neg_y);
-                        let e = |u: &Field<L>, i: usize, j: usize| {
-                            sx * (u.c[0][j][l] - u.c[0][i][l])
-                                + sy * (u.c[1][j][l] - u.c[1][i][l])
-                                + (u.c[2][j][l] - u.c[2][i][l])
-                        };
-                        let mut sum = 0.0;
-                        for (m, bar) in bars.enumerate() {
-                            let (i, j) = (lo + m, lo + m + off);
-                            sum += k[bar][l] * e(a, i, j) * e(b, i, j);
-                        }
-                        sum
-                    }
-                };
-                total += sum;
-            }
-            0.5 * total
+                }
+                sum
+            });
+            0.5 * slab_sums.into_iter().sum::<f64>()
         }
     }
+}
+
+/// `Σ k·e(a)·e(b)` over the bars of one run, lane `l`, in eight partial sums.
+fn run_strain_energy<const L: usize>(r: &Run, k: &[Lanes<L>], a: &Field<L>, b: &Field<L>, l: usize) -> f64 {
+    let (lo, hi, n, kb) = (r.start as usize, (r.start + r.offset) as usize, r.len as usize, r.first_bar as usize);
+    let k = &k[kb..kb + n];
+    match r.direction {
+        Direction::Axis(axis) => {
+            let (ca, cb) = (&a.c[axis as usize], &b.c[axis as usize]);
+            let (al, ah, bl, bh) = (&ca[lo..lo + n], &ca[hi..hi + n], &cb[lo..lo + n], &cb[hi..hi + n]);
+            sum8(n, |m| k[m][l] * (ah[m][l] - al[m][l]) * (bh[m][l] - bl[m][l]))
+        }
+        Direction::Diagonal { neg_x, neg_y } => {
+            let (sx, sy) = signs(neg_x, neg_y);
+            let e = |u: &Field<L>, m: usize| {
+                let (i, j) = (lo + m, hi + m);
+                sx * (u.c[0][j][l] - u.c[0][i][l]) + sy * (u.c[1][j][l] - u.c[1][i][l]) + (u.c[2][j][l] - u.c[2][i][l])
+            };
+            sum8(n, |m| k[m][l] * e(a, m) * e(b, m))
+        }
+    }
+}
+
+/// `Σ term(i)` for `i < n` in a fixed order: eight partial sums `i mod 8` (a vector register of
+/// them), combined pairwise; the order does not depend on anything but `n`.
+#[inline(always)]
+fn sum8(n: usize, term: impl Fn(usize) -> f64) -> f64 {
+    let mut acc = [0.0; 8];
+    let full = n - n % 8;
+    for base in (0..full).step_by(8) {
+        for q in 0..8 {
+            acc[q] += term(base + q);
+        }
+    }
+    for i in full..n {
+        acc[i - full] += term(i);
+    }
+    ((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7]))
+}
+
+/// `sum(layers)` for each slab of a stencil lattice, in slab order; with `parallel`, the slabs on
+/// the current rayon pool (the same partial sums whatever the thread count).
+fn per_slab<T: Send>(layout: &StencilLayout, parallel: bool, sum: impl Fn(Range<usize>) -> T + Sync) -> Vec<T> {
+    let slabs: Vec<Range<usize>> = layout.slabs().collect();
+    if parallel { slabs.into_par_iter().map(&sum).collect() } else { slabs.into_iter().map(&sum).collect() }
 }
 
 /// `½ Σ_b k_b·e_b(a)·e_b(b)` for lane `l` with `k_b = stiffness(bar, e_b(a))`, summed group by
@@ -128,6 +156,21 @@ fn group_sum<const L: usize>(
 /// `½ Σ m|a − b|²/Δt²` for lane `l` (J).
 pub fn kinetic_energy<const L: usize>(model: &Model, a: &Field<L>, b: &Field<L>, l: usize, dt: f64) -> f64 {
     let mass = model.mass();
+    if let Bars::Stencil(layout) = model.layout() {
+        let sums = per_slab(layout, false, |layers| {
+            let nodes = layout.layer_nodes(layers.start).start..layout.layer_nodes(layers.end - 1).end;
+            let mut ke = 0.0;
+            for c in 0..3 {
+                let (a, b, m) = (&a.c[c][nodes.clone()], &b.c[c][nodes.clone()], &mass[nodes.clone()]);
+                ke += sum8(m.len(), |i| {
+                    let v = a[i][l] - b[i][l];
+                    m[i] * v * v
+                });
+            }
+            ke
+        });
+        return 0.5 * sums.into_iter().sum::<f64>() / (dt * dt);
+    }
     let mut ke = 0.0;
     for c in 0..3 {
         let (a, b) = (&a.c[c], &b.c[c]);
@@ -142,21 +185,47 @@ pub fn kinetic_energy<const L: usize>(model: &Model, a: &Field<L>, b: &Field<L>,
 /// Adds the work and dissipation of step n, `F·(uₙ₊₁ − uₙ₋₁)/2` for every force, to the
 /// accumulators. Called before the commit, when `state.u.nm1` holds the new uₙ₊₁ and `state.u.n`
 /// holds uₙ₋₁.
-pub(crate) fn accumulate<const L: usize>(p: &Params<'_, L>, state: &mut State<L>) {
+pub(crate) fn accumulate<const L: usize>(p: &Params<'_, L>, state: &mut State<L>, parallel: bool) {
     let State { u, contact, loading, energy, .. } = state;
     let (new, old) = (&u.nm1, &u.n);
     let model = p.model;
     let mass = model.mass();
     let mut damp = [0.0; L];
     let mut body = [0.0; L];
-    for c in 0..3 {
-        let (new, old) = (&new.c[c], &old.c[c]);
-        let bc = p.body()[c];
-        for i in 0..mass.len() {
+    if let Bars::Stencil(layout) = model.layout() {
+        // Slab by slab, each in eight partial sums per lane: the same sums on any thread count.
+        let sums = per_slab(layout, parallel, |layers| {
+            let nodes = layout.layer_nodes(layers.start).start..layout.layer_nodes(layers.end - 1).end;
+            let m = &mass[nodes.clone()];
+            let mut out = [[0.0; L]; 2];
+            for c in 0..3 {
+                let (new, old, bc) = (&new.c[c][nodes.clone()], &old.c[c][nodes.clone()], p.body()[c]);
+                for l in 0..L {
+                    out[0][l] += sum8(m.len(), |i| {
+                        let d2 = new[i][l] - old[i][l];
+                        m[i] * d2 * d2
+                    });
+                    out[1][l] += sum8(m.len(), |i| m[i] * bc[l] * (new[i][l] - old[i][l]));
+                }
+            }
+            out
+        });
+        for [d, b] in sums {
             for l in 0..L {
-                let d2 = new[i][l] - old[i][l];
-                damp[l] += mass[i] * d2 * d2;
-                body[l] += mass[i] * bc[l] * d2;
+                damp[l] += d[l];
+                body[l] += b[l];
+            }
+        }
+    } else {
+        for c in 0..3 {
+            let (new, old) = (&new.c[c], &old.c[c]);
+            let bc = p.body()[c];
+            for i in 0..mass.len() {
+                for l in 0..L {
+                    let d2 = new[i][l] - old[i][l];
+                    damp[l] += mass[i] * d2 * d2;
+                    body[l] += mass[i] * bc[l] * d2;
+                }
             }
         }
     }

@@ -159,7 +159,7 @@ impl<const L: usize> Stepper<L> {
         ));
         contact::apply(p, &mut state.u.nm1, &state.u.np1, &mut state.contact, log);
         if self.tracking.energy {
-            energy::accumulate(p, state);
+            energy::accumulate(p, state, self.parallel);
         }
         state.u.commit();
         state.steps += 1;
