@@ -222,6 +222,7 @@ pub fn trace_plan(events: &EventParams, shear_duration_s: f64) -> TracePlan {
         hot_rate_m_s: 0.5 * events.v_off_m_s,
         margin_s: 2.0 * events.smoothing_s + events.quiet_s,
         quiet_interval_s: (0.25 * events.smoothing_s).max(shear_duration_s / 200_000.0),
+        rupture_rate_m_s: events.rupture_rate_m_s,
     }
 }
 

@@ -110,5 +110,7 @@ pub(crate) fn build(file: SceneSections<'_>, ck: &mut Checker) -> Option<Scene> 
         normal_load,
         skip_ahead,
         rupture,
+        fault: None,
+        absorbing: Vec::new(),
     })
 }
