@@ -341,7 +341,7 @@ impl Model {
     /// Coefficients of contact node `c` (order of [`Model::contact`]) whose field factor is
     /// `factor`: its region's (or the law's) μs and μd times the factor, and its Dc.
     pub fn node_friction(&self, c: usize, factor: f64) -> NodeFriction {
-        self.scene.friction.base(c).scaled(factor)
+        self.scene.friction.base(c).scaled(factor).healing(self.scene.friction.heals)
     }
 }
 

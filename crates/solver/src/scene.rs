@@ -57,6 +57,9 @@ pub struct Friction {
     /// Regions of the base with their own μs, μd and Dc (patches, a grid); `None` = the law
     /// everywhere.
     pub map: Option<FrictionMap>,
+    /// Whether a node that sticks heals to μs (the paper's cycles) or keeps its slip (the
+    /// dynamic-rupture benchmarks' slip weakening, over the whole run).
+    pub heals: bool,
 }
 
 impl Friction {
@@ -400,6 +403,18 @@ pub struct Scene {
     /// Faces whose nodes carry Lysmer–Kuhlemeyer dashpots, so that waves leave the block
     /// ([`crate::boundary::absorbing`]); never the base.
     pub absorbing: Vec<Face>,
+    /// Named stations: nodes whose displacement, velocity and acceleration (three components)
+    /// are recorded (as control channels of `record.control`), sorted by node.
+    pub stations: Vec<Station>,
+}
+
+/// A named station: a corner node whose motion is recorded in full.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Station {
+    /// Name (unique in the scene).
+    pub name: String,
+    /// The node.
+    pub node: NodeId,
 }
 
 impl Scene {
@@ -418,7 +433,7 @@ impl Scene {
             density_kg_m3: 2400.0,
             poisson: 0.2,
             young_cv: 0.05,
-            friction: Friction { law: FrictionLaw::Coulomb(Coulomb { mu: 5.0 }), mu_cv: 0.0, map: None },
+            friction: Friction { law: FrictionLaw::Coulomb(Coulomb { mu: 5.0 }), mu_cv: 0.0, map: None, heals: true },
             time_step: TimeStep::Fraction(0.5),
             self_weight: SelfWeight {
                 gravity_m_s2: 9.81,
@@ -453,6 +468,7 @@ impl Scene {
             rupture: None,
             fault: None,
             absorbing: Vec::new(),
+            stations: Vec::new(),
         }
     }
 

@@ -7,11 +7,12 @@
 //! - **lifted** if `z_t ≥ 0`: the trial stands, no reaction;
 //! - otherwise put back on the base, `N = −z_t·g`, and the tangential reaction needed to hold it
 //!   still is `R = (x_n − x_t, y_n − y_t)·g`. It **sticks** (stays at `(x_n, y_n)`, reaction `R`)
-//!   if `|R| ≤ μ_hold·N`, `μ_hold` being μs if it was sticking and its kinetic coefficient if it
-//!   was sliding; else it **slides** with friction `μ_k·N` along `R` (against the trial motion),
-//!   to `(x_t, y_t) + F/g`, and the law advances its state by the distance it moved. A sliding
-//!   node whose needed reaction falls within `μ_k·N` would reverse within the step, so it sticks
-//!   (its state resets: it heals).
+//!   if `|R| ≤ μ_hold·N`, `μ_hold` being μs if it was sticking (its weakened coefficient, for a
+//!   law that does not heal and a node that has slipped) and its kinetic coefficient if it was
+//!   sliding; else it **slides** with friction `μ_k·N` along `R` (against the trial motion), to
+//!   `(x_t, y_t) + F/g`, and the law advances its state by the distance it moved. A sliding node
+//!   whose needed reaction falls within `μ_k·N` would reverse within the step, so it sticks (a law
+//!   that heals resets its state; see [`Law::stuck`]).
 //!
 //! **On a fault** (docs/model.md §15) the face is one side of a planar fault between identical
 //! media: there is no base to lift from or land on. The normal force is the prescribed `N_i`
@@ -48,7 +49,7 @@ pub struct Resolved {
     /// Whether the node slides.
     pub sliding: bool,
     /// The law's state variable after the step (the slip of the current slide for slip
-    /// weakening), zero unless sliding.
+    /// weakening); after a stick or a lift, what the law keeps of it ([`Law::stuck`]).
     pub state: f64,
 }
 
@@ -65,14 +66,19 @@ pub fn resolve<W: Law>(
     state: f64,
 ) -> Resolved {
     if !(trial[2] < 0.0) {
-        return Resolved { position: trial, reaction: [0.0; 3], sliding: false, state: 0.0 };
+        return Resolved { position: trial, reaction: [0.0; 3], sliding: false, state: W::stuck(node, state) };
     }
     let normal = -trial[2] * g;
     let (rx, ry) = ((now[0] - trial[0]) * g, (now[1] - trial[1]) * g);
     let need = (rx * rx + ry * ry).sqrt();
     let mu_k = W::kinetic(node, state, &Trial { need_n: need, normal_n: normal, g_n_m: g, dt_s: dt });
-    if need <= W::holding(node, sliding, mu_k) * normal {
-        return Resolved { position: [now[0], now[1], 0.0], reaction: [rx, ry, normal], sliding: false, state: 0.0 };
+    if need <= W::holding(node, sliding, mu_k, state) * normal {
+        return Resolved {
+            position: [now[0], now[1], 0.0],
+            reaction: [rx, ry, normal],
+            sliding: false,
+            state: W::stuck(node, state),
+        };
     }
     let scale = mu_k * normal / need;
     let (fx, fy) = (rx * scale, ry * scale);
@@ -101,12 +107,12 @@ pub fn resolve_fault<W: Law>(
     let (rx, ry) = ((now[0] - trial[0]) * g, (now[1] - trial[1]) * g);
     let need = (rx * rx + ry * ry).sqrt();
     let mu_k = W::kinetic(node, state, &Trial { need_n: need, normal_n: normal, g_n_m: g, dt_s: dt });
-    if need <= W::holding(node, sliding, mu_k) * normal {
+    if need <= W::holding(node, sliding, mu_k, state) * normal {
         return Resolved {
             position: [now[0], now[1], trial[2]],
             reaction: [rx, ry, normal],
             sliding: false,
-            state: 0.0,
+            state: W::stuck(node, state),
         };
     }
     let scale = mu_k * normal / need;
@@ -228,7 +234,7 @@ fn contact<const L: usize, W: Law>(c: &mut ContactArrays<'_, L>, law: &[W::Lanes
             let need = (rx * rx + ry * ry).sqrt();
             let node = W::lane(&coefficients, l);
             let mu_k = W::kinetic(&node, state[l], &Trial { need_n: need, normal_n: normal, g_n_m: g, dt_s: c.dt[l] });
-            let limit = W::holding(&node, slipping[l], mu_k) * normal;
+            let limit = W::holding(&node, slipping[l], mu_k, state[l]) * normal;
             let stick = need <= limit;
             // Sliding: friction μ_k·N against the trial motion (unused when sticking).
             let scale = mu_k * normal / need;
@@ -267,7 +273,11 @@ fn contact<const L: usize, W: Law>(c: &mut ContactArrays<'_, L>, law: &[W::Lanes
             };
             no[l] = if touching { normal } else { 0.0 };
             slip_o[l] = slides;
-            state_o[l] = if slides { W::advance(&node, state[l], (sx * sx + sy * sy).sqrt(), c.dt[l]) } else { 0.0 };
+            state_o[l] = if slides {
+                W::advance(&node, state[l], (sx * sx + sy * sy).sqrt(), c.dt[l])
+            } else {
+                W::stuck(&node, state[l])
+            };
         }
         (c.trial[0][p], c.trial[1][p], c.trial[2][p]) = (ox, oy, oz);
         (c.reaction[0][ci], c.reaction[1][ci], c.reaction[2][ci]) = (rxo, ryo, no);
@@ -301,7 +311,7 @@ fn fault<const L: usize, W: Law>(c: &mut ContactArrays<'_, L>, law: &[W::Lanes<L
             let node = W::lane(&coefficients, l);
             let mu_k =
                 W::kinetic(&node, state[l], &Trial { need_n: need, normal_n: normal[l], g_n_m: g, dt_s: c.dt[l] });
-            let stick = need <= W::holding(&node, slipping[l], mu_k) * normal[l];
+            let stick = need <= W::holding(&node, slipping[l], mu_k, state[l]) * normal[l];
             let scale = mu_k * normal[l] / need;
             let (fx, fy) = (rx * scale, ry * scale);
             let (x1, y1) = (xt[l] + fx / g, yt[l] + fy / g);
@@ -311,8 +321,11 @@ fn fault<const L: usize, W: Law>(c: &mut ContactArrays<'_, L>, law: &[W::Lanes<L
             rxo[l] = if stick { rx } else { fx };
             ryo[l] = if stick { ry } else { fy };
             slip_o[l] = !stick;
-            state_o[l] =
-                if stick { 0.0 } else { W::advance(&node, state[l], 2.0 * (sx * sx + sy * sy).sqrt(), c.dt[l]) };
+            state_o[l] = if stick {
+                W::stuck(&node, state[l])
+            } else {
+                W::advance(&node, state[l], 2.0 * (sx * sx + sy * sy).sqrt(), c.dt[l])
+            };
         }
         (c.trial[0][p], c.trial[1][p]) = (ox, oy);
         (c.reaction[0][ci], c.reaction[1][ci], c.reaction[2][ci]) = (rxo, ryo, normal);
@@ -354,7 +367,9 @@ mod tests {
                 std::array::from_fn(|l| {
                     let NodeFriction::Weakening(n) = law.node(factor[l]);
                     let dc = n.weakening_distance_m() * if i % 2 == 0 { 1.0 } else { dc[l] };
+                    // A third of the nodes keep their slip when they stick (no healing).
                     WeakeningNode::new(Weakening::static_coefficient(&n), Weakening::residual_coefficient(&n), dc)
+                        .with_healing(i % 3 != 0)
                 })
             })
             .collect();
