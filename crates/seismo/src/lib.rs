@@ -6,7 +6,7 @@
 //! ([`fit`]), response, RotD and Fourier spectra and intensity measures ([`spectra`]),
 //! accelerogram processing and file formats ([`accelerogram`]), design spectra ([`design`]), the
 //! selection of record sets matched to them ([`selection`]), rupture fronts ([`front`]), SEAS fault
-//! station files ([`seas`]) and
+//! station files ([`seas`]), SCEC dynamic-rupture benchmark files ([`scec`]) and
 //! acoustic-emission clusters of bar breaks ([`emission`]).
 //!
 //! Must not know: the solver, the pipeline file, tables or figures. Every function takes slices
@@ -22,6 +22,7 @@ pub mod error;
 pub mod events;
 pub mod fit;
 pub mod front;
+pub mod scec;
 pub mod seas;
 pub mod selection;
 pub mod similarity;

@@ -40,6 +40,9 @@ pub struct Fault {
     pub normal_pa: Vec<f64>,
     /// A random field added to the shear traction along x, drawn per seed.
     pub stochastic: Option<StochasticStress>,
+    /// The point of the fault `(x, y)` that benchmark files measure along strike and down dip
+    /// from (m).
+    pub origin_m: [f64; 2],
 }
 
 /// A random field on the initial shear traction with a von Kármán spectrum (docs/model.md §15):

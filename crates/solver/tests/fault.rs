@@ -41,8 +41,12 @@ fn column(nz: usize, tau0: f64) -> Scene {
     s.friction.law = FrictionLaw::StaticDynamic(StaticDynamic { mu_static: MU_S, mu_dynamic: MU_D });
     let lattice = s.lattice();
     let contacts = lattice.contact_nodes().len();
-    s.fault =
-        Some(Fault { shear_pa: vec![[tau0, 0.0]; contacts], normal_pa: vec![SIGMA_N; contacts], stochastic: None });
+    s.fault = Some(Fault {
+        shear_pa: vec![[tau0, 0.0]; contacts],
+        normal_pa: vec![SIGMA_N; contacts],
+        stochastic: None,
+        origin_m: [0.0; 2],
+    });
     let mut fixed = std::collections::BTreeMap::<NodeId, [bool; 3]>::new();
     for face in [Face::XMin, Face::XMax, Face::YMin, Face::YMax] {
         for id in face.nodes(&lattice) {

@@ -36,6 +36,14 @@ pub struct FaultSection {
     /// A random field on the shear traction, drawn per seed.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stochastic: Option<StochasticSection>,
+    /// The point `[x, y]` of the fault that benchmark files measure along strike and down dip
+    /// from (m), e.g. mid-strike at the surface for TPV5. Default `[0, 0]`.
+    #[serde(default, skip_serializing_if = "is_origin")]
+    pub origin_m: [f64; 2],
+}
+
+fn is_origin(v: &[f64; 2]) -> bool {
+    *v == [0.0, 0.0]
 }
 
 fn is_zero(v: &f64) -> bool {
@@ -276,7 +284,16 @@ pub(super) fn fault(ck: &mut Checker, file: SceneSections<'_>, lattice: &Lattice
         ck.range("fault.stochastic.hurst", s.hurst, 0.0, true, 1.0, false);
         StochasticStress { std_pa: s.std_pa, correlation_length_m: s.correlation_length_m, hurst: s.hurst }
     });
-    Some(Fault { shear_pa: shear, normal_pa: normal, stochastic })
+    let e = lattice.extent();
+    let on_fault = (0..2).all(|a| f.origin_m[a].is_finite() && f.origin_m[a] >= 0.0 && f.origin_m[a] <= e[a]);
+    if !on_fault {
+        ck.push(
+            "fault.origin_m",
+            format!("{:?} m", f.origin_m),
+            format!("a point of the fault, 0 ≤ x ≤ {} m and 0 ≤ y ≤ {} m", e[0], e[1]),
+        );
+    }
+    Some(Fault { shear_pa: shear, normal_pa: normal, stochastic, origin_m: f.origin_m })
 }
 
 /// The grid's tractions laid on `shear` and `normal`, every row checked.

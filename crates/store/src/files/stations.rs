@@ -13,7 +13,7 @@ use crate::spec::SeedView;
 pub fn write(out: &Folder, view: &SeedView<'_>, stamp: &Stamp<'_>) -> Result<(), StoreError> {
     let (model, seed) = (view.model, view.seed);
     let trace = &view.analysis.run.recording.trace;
-    if trace.stations.is_empty() {
+    if trace.stations.is_empty() || model.scene().is_fault() {
         return Ok(());
     }
     let keep = trace.thinned(model.scene().record.fault_interval_s);
