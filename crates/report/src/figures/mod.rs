@@ -49,7 +49,7 @@ pub enum Outcome {
 pub type Draw = fn(&ReportInput, &Path) -> Result<Outcome, ReportError>;
 
 /// Every figure, in page order.
-pub const ALL: [(&str, Draw); 25] = [
+pub const ALL: [(&str, Draw); 26] = [
     ("shear_stress.png", interface::shear_stress),
     ("normal_stress.png", interface::normal_stress),
     ("mean_slip.png", interface::mean_slip),
@@ -68,6 +68,7 @@ pub const ALL: [(&str, Draw); 25] = [
     ("friction_map.png", fault::friction_map),
     ("space_time.png", fault::space_time),
     ("rupture_time.png", rupture::rupture_time),
+    ("ground_motion.png", rupture::ground_motion),
     ("cracks.png", cracks::crack_map),
     ("acoustic_emission.png", cracks::emission),
     ("catalogue.png", catalogue::overview),

@@ -1,12 +1,13 @@
 //! A fault scene's rupture (docs/model.md §15): the fault seen from the side, every node coloured
-//! by its final slip, with the rupture front every second (contours of the rupture time).
+//! by its final slip, with the rupture front every second (contours of the rupture time); and the
+//! stations' peak ground motion against their distance to the rupture.
 
 use std::path::Path;
 
 use plotters::style::RGBColor;
 
-use stickslip_store::schema::FAULT_NODES;
-use stickslip_store::tables::source::FaultNodes;
+use stickslip_store::schema::{FAULT_NODES, STATIONS};
+use stickslip_store::tables::source::{FaultNodes, Stations};
 
 use super::Outcome;
 use super::common::{drawn, seeds_text};
@@ -99,4 +100,47 @@ fn shade(b: usize) -> RGBColor {
         RGBColor(128, 0, 38),
     ];
     C[b.min(C.len() - 1)]
+}
+
+/// Peak horizontal ground motion of every station against its rupture distance, one point per
+/// station and seed (fault scenes with `[[stations]]`).
+pub(super) fn ground_motion(d: &ReportInput, path: &Path) -> Result<Outcome, ReportError> {
+    if d.pipeline.scene.fault.is_none() {
+        return Ok(Outcome::Skipped("not a fault scene ([fault])".into()));
+    }
+    let Some(df) = stickslip_store::io::read_parquet_if_present(&d.folder.gathered(&STATIONS))? else {
+        return Ok(Outcome::Skipped("no stations table ([[stations]])".into()));
+    };
+    let s = Stations::read(&df)?;
+    if s.seed.is_empty() {
+        return Ok(Outcome::Skipped("no station recorded".into()));
+    }
+    let km: Vec<f64> = s.r_rup_m.iter().map(|r| (r / 1e3).max(0.1)).collect();
+    let mut pga = Panel::loglog("rupture distance R_rup (km)", "PGA, horizontal (m/s²)");
+    pga.points.push(Points {
+        label: "stations".into(),
+        points: km.iter().copied().zip(s.pga_m_s2.iter().copied()).filter(|p| p.1 > 0.0).collect(),
+        colour: crate::plot::colour(0),
+        size: 4,
+    });
+    let mut pgv = Panel::loglog("rupture distance R_rup (km)", "PGV, horizontal (m/s)");
+    pgv.points.push(Points {
+        label: "stations".into(),
+        points: km.iter().copied().zip(s.pgv_m_s.iter().copied()).filter(|p| p.1 > 0.0).collect(),
+        colour: crate::plot::colour(1),
+        size: 4,
+    });
+    let mut seeds: Vec<u64> = s.seed.clone();
+    seeds.sort();
+    seeds.dedup();
+    let sheet = Sheet::new("Peak ground motion against distance", 2, vec![pga, pgv]);
+    drawn(
+        path,
+        &sheet,
+        format!("Peak ground motion against distance ({})", seeds_text(&seeds)),
+        "Every station of every seed: the largest horizontal (x and z) acceleration and velocity over the run \
+         against the station's rupture distance (to the nearest node whose slip rate reached [events] \
+         rupture_rate_m_s; docs/model.md §15)."
+            .into(),
+    )
 }

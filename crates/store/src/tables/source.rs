@@ -236,3 +236,38 @@ impl FaultNodes {
         })
     }
 }
+
+/// The `stations` table read back: each station's distances and peaks, per seed.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Stations {
+    /// Seed of each row.
+    pub seed: Vec<u64>,
+    /// Station name.
+    pub station: Vec<String>,
+    /// Rupture distance (m).
+    pub r_rup_m: Vec<f64>,
+    /// Joyner–Boore distance (m).
+    pub r_jb_m: Vec<f64>,
+    /// Azimuth from the strike (degrees).
+    pub azimuth_deg: Vec<f64>,
+    /// Peak horizontal acceleration (m/s²).
+    pub pga_m_s2: Vec<f64>,
+    /// Peak horizontal velocity (m/s).
+    pub pgv_m_s: Vec<f64>,
+}
+
+impl Stations {
+    /// Reads a `stations` frame.
+    pub fn read(df: &DataFrame) -> Result<Stations, StoreError> {
+        let c = crate::frame::Columns::of(df, STATIONS.name);
+        Ok(Stations {
+            seed: c.u64s(col::SEED)?,
+            station: c.opt_strs(col::STATION)?.into_iter().map(Option::unwrap_or_default).collect(),
+            r_rup_m: c.f64s(col::R_RUP_M)?,
+            r_jb_m: c.f64s(col::R_JB_M)?,
+            azimuth_deg: c.f64s(col::AZIMUTH_DEG)?,
+            pga_m_s2: c.f64s(col::PGA_M_S2)?,
+            pgv_m_s: c.f64s(col::PGV_M_S)?,
+        })
+    }
+}
