@@ -35,14 +35,16 @@
 //! ```text
 //! φ_A(M) = s1 (M < 4); s1 + (s2 − s1)(M − 4)/2 (4 ≤ M ≤ 6); s2 (M > 6)   (s1m, s2m measured V_S30; s1e, s2e inferred)
 //! τ_A(M) = s3 (M < 5); s3 + (s4 − s3)(M − 5)/2 (5 ≤ M ≤ 7); s4 (M > 7)
-//! φ_B = √(φ_A² − φ_amp²), φ_amp = 0.4,  τ_B = τ_A
+//! φ_B² = φ_A² − φ_amp², φ_amp = 0.4,  τ_B = τ_A
 //! ∂ = 0 (V_S30 ≥ V_lin); −b·Sa1180/(Sa1180 + c) + b·Sa1180/(Sa1180 + c(V_S30/V_lin)^n) otherwise
 //! φ = √(φ_B²(1 + ∂)² + φ_amp²),  τ = τ_B(1 + ∂)
 //! ```
+//! φ_B² is used as a square: where φ_A < φ_amp (the small-magnitude s1 at T ≥ 6 s, where b = 0
+//! and so ∂ = 0) φ is then φ_A, not the 0.4 a clipped √ would give.
 //! Coefficients: `tables.rs` (source named there). Ranges (the paper's): M 3–8.5, R_rup 0–300 km,
 //! V_S30 180–1000 m/s.
 
-use super::tables::{Ask14Row, ASK14};
+use super::tables::{ASK14, Ask14Row};
 use super::{Estimate, Limits, Mechanism, Quantity, Range, Rupture, Site};
 
 const M2: f64 = 5.0;
@@ -194,13 +196,15 @@ fn sigma(c: &Ask14Row, m: f64, vs30: f64, measured: bool, sa1180: f64) -> (f64, 
     let (s1, s2) = if measured { (c.s1m, c.s2m) } else { (c.s1e, c.s2e) };
     let phi_a = s1 + (s2 - s1) * ((m - 4.0) / 2.0).clamp(0.0, 1.0);
     let tau_a = c.s3 + (c.s4 - c.s3) * ((m - 5.0) / 2.0).clamp(0.0, 1.0);
-    let phi_b = (phi_a * phi_a - PHI_AMP * PHI_AMP).max(0.0).sqrt();
+    // φ_B² = φ_A² − φ_amp², negative where φ_A < φ_amp (s1 at T ≥ 6 s): kept as a square so that
+    // φ = φ_A wherever ∂ = 0, as the authors' decomposition intends (OpenQuake does the same).
+    let phi_b2 = phi_a * phi_a - PHI_AMP * PHI_AMP;
     let d = if vs30 >= c.v_lin {
         0.0
     } else {
         -c.b * sa1180 / (sa1180 + c.c) + c.b * sa1180 / (sa1180 + c.c * (vs30 / c.v_lin).powf(N))
     };
-    let phi = ((phi_b * (1.0 + d)).powi(2) + PHI_AMP * PHI_AMP).sqrt();
+    let phi = (phi_b2 * (1.0 + d).powi(2) + PHI_AMP * PHI_AMP).sqrt();
     (tau_a * (1.0 + d), phi)
 }
 

@@ -28,7 +28,7 @@
 //! Coefficients: `tables.rs` (source named there). Ranges (the paper's): M 3–8.5 for strike-slip
 //! and reverse, 3–7 for normal faults; R_JB 0–400 km; V_S30 150–1500 m/s.
 
-use super::tables::{Bssa14Row, BSSA14};
+use super::tables::{BSSA14, Bssa14Row};
 use super::{Estimate, Limits, Mechanism, Quantity, Range, Rupture, Site};
 
 const M_REF: f64 = 4.5;
@@ -87,11 +87,7 @@ fn site_term(c: &Bssa14Row, vs30: f64, z1_km: Option<f64>, pga_r: f64) -> f64 {
     let f_dz1 = match z1_km {
         Some(z1) if c.t >= 0.65 => {
             let dz1 = z1 - super::z1_cy14_california_km(vs30);
-            if dz1 <= c.f7 / c.f6 {
-                c.f6 * dz1
-            } else {
-                c.f7
-            }
+            if dz1 <= c.f7 / c.f6 { c.f6 * dz1 } else { c.f7 }
         }
         _ => 0.0,
     };

@@ -76,14 +76,7 @@ impl PlanarFault {
         if !(width_km > 0.0 && width_km.is_finite()) {
             return Err(SeismoError::parameter("width_km", format!("{width_km} km"), "a finite W > 0 km"));
         }
-        Ok(PlanarFault {
-            top_start,
-            strike: [dx / length_km, dy / length_km],
-            length_km,
-            dip_deg,
-            ztor_km,
-            width_km,
-        })
+        Ok(PlanarFault { top_start, strike: [dx / length_km, dy / length_km], length_km, dip_deg, ztor_km, width_km })
     }
 
     /// Length along strike (km).

@@ -366,11 +366,7 @@ impl Model {
                 .filter(|(range, v)| !range.contains(*v))
                 .map(|(range, value)| Excursion { range, value })
                 .collect();
-        if excursions.is_empty() {
-            Applicability::Inside
-        } else {
-            Applicability::Outside(excursions)
-        }
+        if excursions.is_empty() { Applicability::Inside } else { Applicability::Outside(excursions) }
     }
 
     fn at_row(self, row: usize, rupture: &Rupture, site: &Site) -> Estimate {
@@ -436,11 +432,7 @@ fn bracket(periods: &[f64], t: f64) -> Option<Bracket> {
 
 fn check_inputs(rupture: &Rupture, site: &Site) -> Result<(), SeismoError> {
     let finite = |name: &str, v: f64, unit: &str, ok: bool, allowed: &str| {
-        if v.is_finite() && ok {
-            Ok(())
-        } else {
-            Err(SeismoError::parameter(name, format!("{v}{unit}"), allowed))
-        }
+        if v.is_finite() && ok { Ok(()) } else { Err(SeismoError::parameter(name, format!("{v}{unit}"), allowed)) }
     };
     let r = rupture;
     finite("mw", r.mw, "", (0.0..=10.0).contains(&r.mw), "0 ≤ M_w ≤ 10")?;

@@ -141,8 +141,7 @@ fn bias_of(simulated: &[f64], ln_median: &[f64], sigma: &[f64]) -> Bias {
     let residual_ln: Vec<f64> = simulated.iter().zip(ln_median).map(|(y, m)| y.ln() - m).collect();
     let residual_sigma: Vec<f64> = residual_ln.iter().zip(sigma).map(|(r, s)| r / s).collect();
     let mean = residual_ln.iter().sum::<f64>() / n as f64;
-    let std = (n > 1)
-        .then(|| (residual_ln.iter().map(|r| (r - mean).powi(2)).sum::<f64>() / (n - 1) as f64).sqrt());
+    let std = (n > 1).then(|| (residual_ln.iter().map(|r| (r - mean).powi(2)).sum::<f64>() / (n - 1) as f64).sqrt());
     let ci90 = std.map(|s| {
         let h = t_quantile(0.95, n - 1) * s / (n as f64).sqrt();
         [mean - h, mean + h]
@@ -294,8 +293,7 @@ mod tests {
         let sim = [1.0, 2.0, 3.0];
         let lo: Vec<f64> = sim.iter().map(|s| s * (-0.2f64).exp()).collect();
         let hi: Vec<f64> = sim.iter().map(|s| s * 0.2f64.exp()).collect();
-        let models =
-            [ModelColumn { median: &lo, sigma: &[0.5; 3] }, ModelColumn { median: &hi, sigma: &[0.7; 3] }];
+        let models = [ModelColumn { median: &lo, sigma: &[0.5; 3] }, ModelColumn { median: &hi, sigma: &[0.7; 3] }];
         let v = validate_period(&sim, &models).unwrap();
         assert!((v.per_model[0].mean - 0.2).abs() < 1e-12 && (v.per_model[1].mean + 0.2).abs() < 1e-12);
         assert!(v.average.mean.abs() < 1e-12);
