@@ -44,7 +44,7 @@
 //! Coefficients: `tables.rs` (source named there). Ranges (the paper's): M 3–8.5, R_rup 0–300 km,
 //! V_S30 180–1000 m/s.
 
-use super::tables::{ASK14, Ask14Row};
+use super::tables::{ASK14, ASK14_PERIODS, Ask14Row};
 use super::{Estimate, Limits, Mechanism, Quantity, Range, Rupture, Site};
 
 const M2: f64 = 5.0;
@@ -72,18 +72,10 @@ pub const LIMITS: Limits = Limits {
     periods_s: [0.01, 10.0],
 };
 
-const N_PSA: usize = ASK14.len() - 2;
+const N_PSA: usize = ASK14_PERIODS.len();
 
 /// The tabulated PSA periods (s).
-pub const PERIODS: [f64; N_PSA] = {
-    let mut p = [0.0; N_PSA];
-    let mut i = 0;
-    while i < N_PSA {
-        p[i] = ASK14[i].t;
-        i += 1;
-    }
-    p
-};
+pub const PERIODS: [f64; N_PSA] = ASK14_PERIODS;
 
 /// f1: magnitude and distance scaling.
 fn f1(c: &Ask14Row, m: f64, r_rup: f64) -> f64 {
@@ -226,7 +218,9 @@ mod tests {
     fn the_table_has_pga_then_pgv_after_increasing_periods() {
         assert_eq!(ASK14[N_PSA].t, 0.0);
         assert_eq!(ASK14[N_PSA + 1].t, -1.0);
+        assert_eq!(ASK14.len(), N_PSA + 2);
         assert!(PERIODS.windows(2).all(|w| w[0] < w[1]));
+        assert!(PERIODS.iter().zip(&ASK14).all(|(p, c)| *p == c.t));
         assert_eq!((PERIODS[0], PERIODS[N_PSA - 1], N_PSA), (0.01, 10.0, 22));
         // Reference rock is above V_lin for every row, so Sa1180 never needs itself.
         assert!(ASK14.iter().all(|c| c.v_lin < V_REF));

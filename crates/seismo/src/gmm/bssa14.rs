@@ -28,7 +28,7 @@
 //! Coefficients: `tables.rs` (source named there). Ranges (the paper's): M 3–8.5 for strike-slip
 //! and reverse, 3–7 for normal faults; R_JB 0–400 km; V_S30 150–1500 m/s.
 
-use super::tables::{BSSA14, Bssa14Row};
+use super::tables::{BSSA14, BSSA14_PERIODS, Bssa14Row};
 use super::{Estimate, Limits, Mechanism, Quantity, Range, Rupture, Site};
 
 const M_REF: f64 = 4.5;
@@ -51,18 +51,10 @@ pub const LIMITS: Limits = Limits {
     periods_s: [0.01, 10.0],
 };
 
-const N_PSA: usize = BSSA14.len() - 2;
+const N_PSA: usize = BSSA14_PERIODS.len();
 
 /// The tabulated PSA periods (s).
-pub const PERIODS: [f64; N_PSA] = {
-    let mut p = [0.0; N_PSA];
-    let mut i = 0;
-    while i < N_PSA {
-        p[i] = BSSA14[i].t;
-        i += 1;
-    }
-    p
-};
+pub const PERIODS: [f64; N_PSA] = BSSA14_PERIODS;
 
 const PGA_ROW: usize = N_PSA;
 
@@ -122,7 +114,9 @@ mod tests {
     fn the_table_has_pga_then_pgv_after_increasing_periods() {
         assert_eq!(BSSA14[PGA_ROW].t, 0.0);
         assert_eq!(BSSA14[PGA_ROW + 1].t, -1.0);
+        assert_eq!(BSSA14.len(), N_PSA + 2);
         assert!(PERIODS.windows(2).all(|w| w[0] < w[1]));
+        assert!(PERIODS.iter().zip(&BSSA14).all(|(p, c)| *p == c.t));
         assert_eq!((PERIODS[0], PERIODS[N_PSA - 1], N_PSA), (0.01, 10.0, 105));
         // The basin coefficients are tabulated (not the −9.9 placeholder) exactly where the basin
         // term applies.
@@ -134,6 +128,25 @@ mod tests {
         // At V_S30 = 760 m/s both F_lin and F_nl vanish, whatever PGA_r.
         for c in &BSSA14 {
             assert!(site_term(c, 760.0, None, 0.5).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn the_basin_term_is_linear_in_delta_z1_up_to_its_cap_from_0_65_s() {
+        let vs30 = 400.0;
+        let mu = super::super::z1_cy14_california_km(vs30);
+        let c = BSSA14.iter().find(|c| c.t == 2.0).unwrap();
+        let basin = |z1: Option<f64>| site_term(c, vs30, z1, 0.1) - site_term(c, vs30, None, 0.1);
+        // On the relation's centre, and without Z_1.0: no basin term.
+        assert!(basin(Some(mu)).abs() < 1e-12);
+        // A shallower basin: f6·δz1 (f6 > 0 at 2 s, so negative).
+        assert!(c.f6 > 0.0);
+        assert!((basin(Some(mu * 0.5)) - c.f6 * (-0.5 * mu)).abs() < 1e-12);
+        // A deep basin: capped at f7.
+        assert!((basin(Some(mu + 2.0 * c.f7 / c.f6)) - c.f7).abs() < 1e-12);
+        // Below 0.65 s (and for PGA, PGV) Z_1.0 changes nothing.
+        for c in BSSA14.iter().filter(|c| c.t < 0.65) {
+            assert_eq!(site_term(c, vs30, Some(1.0), 0.1), site_term(c, vs30, None, 0.1));
         }
     }
 
