@@ -31,6 +31,12 @@ pub enum CompareError {
     Figure(String),
 }
 
+/// A point of a rupture-time field: its (x, y) on the fault (m) and its rupture time (s).
+pub type FieldPoint = ([f64; 2], f64);
+
+/// A field on its grid: the distinct x and y (m) and the value at each (x, y) index.
+type Grid = (Vec<f64>, Vec<f64>, BTreeMap<(i64, i64), f64>);
+
 /// One station of the reference.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ReferenceStation {
@@ -52,7 +58,7 @@ pub struct Reference {
     /// Its stations.
     pub stations: Vec<ReferenceStation>,
     /// Rupture time over the fault: `(along strike, down dip)` (km) and time (s; NaN: never).
-    pub rupture_times: Vec<([f64; 2], f64)>,
+    pub rupture_times: Vec<FieldPoint>,
     /// Each station's horizontal slip rate: times (s) and values (m/s).
     pub slip_rates: BTreeMap<String, (Vec<f64>, Vec<f64>)>,
 }
@@ -130,7 +136,7 @@ impl RunStation {
 }
 
 /// The on-fault stations and the rupture-time field a run wrote in `scec_dir`.
-pub fn read_run(scec_dir: &Path) -> Result<(Vec<RunStation>, Vec<([f64; 2], f64)>), CompareError> {
+pub fn read_run(scec_dir: &Path) -> Result<(Vec<RunStation>, Vec<FieldPoint>), CompareError> {
     let err = |path: &Path, why: String| CompareError::File { path: path.into(), why };
     let mut stations = Vec::new();
     let entries = std::fs::read_dir(scec_dir).map_err(|e| err(scec_dir, e.to_string()))?;
@@ -206,7 +212,7 @@ fn interpolate(xs: &[f64], ys: &[f64], v: &dyn Fn(usize, usize) -> f64, p: [f64;
 }
 
 /// The run's rupture-time field as a grid: sorted x's, sorted y's and the value lookup.
-fn grid(field: &[([f64; 2], f64)]) -> (Vec<f64>, Vec<f64>, BTreeMap<(i64, i64), f64>) {
+fn grid(field: &[FieldPoint]) -> Grid {
     let key = |v: f64| (v * 1e6).round() as i64;
     let mut xs: Vec<f64> = field.iter().map(|(p, _)| p[0]).collect();
     let mut ys: Vec<f64> = field.iter().map(|(p, _)| p[1]).collect();
@@ -219,7 +225,7 @@ fn grid(field: &[([f64; 2], f64)]) -> (Vec<f64>, Vec<f64>, BTreeMap<(i64, i64), 
 }
 
 /// Compares a run's benchmark files with the reference.
-pub fn compare(stations: &[RunStation], field: &[([f64; 2], f64)], reference: &Reference) -> Comparison {
+pub fn compare(stations: &[RunStation], field: &[FieldPoint], reference: &Reference) -> Comparison {
     let out = reference
         .stations
         .iter()
@@ -300,7 +306,7 @@ pub fn figure(
     path: &Path,
     label: &str,
     stations: &[RunStation],
-    field: &[([f64; 2], f64)],
+    field: &[FieldPoint],
     reference: &Reference,
 ) -> Result<(), CompareError> {
     let mut map = Panel::linear("along strike (km)", "−depth (km)");

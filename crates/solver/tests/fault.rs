@@ -80,7 +80,7 @@ fn a_prestress_below_the_strength_is_held_exactly() {
         b.step();
     }
     let v = b.view(0);
-    let moved = (0..model.node_count()).map(|i| v.displacement(i)).flatten().fold(0.0f64, |m, u| m.max(u.abs()));
+    let moved = (0..model.node_count()).flat_map(|i| v.displacement(i)).fold(0.0f64, |m, u| m.max(u.abs()));
     assert_eq!(moved, 0.0, "a held fault moved the block by {moved} m");
     for ci in 0..model.contact().len() {
         let c = v.node_contact(ci);
