@@ -10,7 +10,7 @@ use crate::model::Model;
 use crate::quasistatic::SkipStats;
 use crate::recording::Recording;
 use crate::scene::{SettleMethod, TimeStep};
-use crate::statics::{CriticalStep, critical_time_step};
+use crate::statics::{CriticalStep, critical_step};
 use crate::step::LaneSetup;
 
 pub use lanes::run_lanes;
@@ -144,10 +144,10 @@ pub fn run_seed(
 }
 
 pub(crate) fn prepare(model: &Model, seed: u64, options: RunOptions) -> Result<(LaneSetup, CriticalStep), SolverError> {
-    let stiffness = model.bar_stiffness(seed)?;
+    let stiffness = model.lane_stiffness(seed)?;
     let friction = model.friction_factors(seed)?;
     let strength = model.bar_strength(seed)?;
-    let critical = critical_time_step(model, &stiffness)?;
+    let critical = critical_step(model, &stiffness)?;
     // Δt never depends on the recording interval (which samples every `round(interval/Δt)`
     // steps): the same seed gives the same run whatever it records.
     let dt_s = match model.scene().time_step {
