@@ -259,6 +259,16 @@ pub fn probe_step_time(model: &Model, seed: u64, dt: f64, parallel: bool, budget
     Ok(start.elapsed().as_secs_f64() / f64::from(steps))
 }
 
+/// The spring-slider reading of `model` for `seed` without the critical step ([`inspect`] gives
+/// it with the rest): the block's stiffness under its load solved only with [`Statics::Full`].
+pub fn spring_slider(model: &Model, seed: u64, statics: Statics) -> Result<Slider, SolverError> {
+    let weight = model.total_mass() * model.scene().self_weight.gravity_m_s2;
+    match statics {
+        Statics::Full => slider(model, Some(&model.bar_stiffness(seed)?), weight),
+        Statics::Sample => slider(model, None, weight),
+    }
+}
+
 /// The spring-slider reading of `model` with bar stiffness `k` under `weight`; without `k` the
 /// block's stiffness is not solved (NaN).
 fn slider(model: &Model, k: Option<&[f64]>, weight: f64) -> Result<Slider, SolverError> {

@@ -6,9 +6,9 @@
 //!
 //! The estimate counts the arrays of [`crate::Model`] (shared by every seed), those of one batch
 //! of `L` seeds advanced side by side (time levels, forces, bar stiffness, the static solves and
-//! the skip-ahead when the scene asks for them, the recorded series) and the set-up transients
-//! (the critical step's per-node bound or Lanczos vectors, each lane's stiffness before it is
-//! interleaved, the sort of a listed lattice's bars), of which the largest counts once. The
+//! the skip-ahead when the scene asks for them, the recorded series) and what setting a batch up
+//! holds before its state exists (the lanes' stiffness, the critical step's Lanczos vectors, the
+//! sort of a listed lattice's bars). The
 //! recording of the fault through bursts of slip (`record.fault`) grows with the events and is
 //! not counted; nor are the tables written after the run, which are a few times the recording.
 
@@ -63,9 +63,10 @@ pub struct MemoryEstimate {
     pub model: u64,
     /// One batch while it steps (state, forces, stiffness, recording, static solves).
     pub batch: u64,
-    /// The largest set-up transient (held once, while a batch is set up).
+    /// Setting up one batch, before its state exists.
     pub setup: u64,
-    /// The whole process: [`PROCESS_BYTES`], the model, `concurrent` batches and the set-up.
+    /// The whole process: [`PROCESS_BYTES`], the model, `concurrent − 1` batches stepping and one
+    /// more stepping or being set up, whichever is larger.
     pub total: u64,
 }
 
@@ -149,18 +150,23 @@ pub fn estimate(scene: &Scene, batches: Batches, samples: u64) -> Result<MemoryE
         (samples.saturating_mul(l), 8 * channels),
     ])?;
 
-    // Set-up transients: each lane's own stiffness before it is interleaved, and the critical
-    // step (a stencil's node bound: six sums per node; Lanczos: five vectors per node and a copy
-    // of the stiffness); a listed lattice's sort of its bars (16 bytes each) while it is built.
+    // Setting up a batch, before its state exists: each lane's own stiffness (and, listed, the
+    // Weibull factors it is drawn from), the critical step of one lane at a time (Lanczos: four
+    // vectors per node and the inverse square roots of the masses), then the lanes' stiffness interleaved while theirs still exist; a listed
+    // lattice's sort of its bars (16 bytes each, and 4 for the canonical index) while the model
+    // is built.
     let lane_k = if stencil { per_bar_k / l.max(1) } else { 8 };
-    let critical = if stencil { sum(&[(n, 48)])? } else { sum(&[(n, 5 * 24 + 8), (b, 16)])? };
-    let setup = sum(&[(b, lane_k * l), (1, critical)])?.max(if stencil { 0 } else { sum(&[(b, 20)])? });
+    let critical = sum(&[(n, 4 * 24 + 8)])?.max(if stencil { 0 } else { sum(&[(b, 8)])? });
+    let lanes_k = sum(&[(b, lane_k * l)])?;
+    let setup =
+        lanes_k.checked_add(critical.max(lanes_k)).ok_or_else(over)?.max(if stencil { 0 } else { sum(&[(b, 20)])? });
 
+    // The model, the batches running while one more is set up or steps.
     let concurrent = batches.concurrent as u64;
     let total = batch
-        .checked_mul(concurrent)
+        .checked_mul(concurrent.saturating_sub(1))
+        .and_then(|v| v.checked_add(batch.max(setup)))
         .and_then(|v| v.checked_add(model))
-        .and_then(|v| v.checked_add(setup))
         .and_then(|v| v.checked_add(PROCESS_BYTES))
         .ok_or_else(over)?;
     Ok(MemoryEstimate { nodes: n, bars: b, model, batch, setup, total })
@@ -240,6 +246,8 @@ mod tests {
         assert_eq!(weibull.batch - one.batch, 4 * one.bars, "f32 factors: 4 bytes per bar");
         let two = estimate(&scene, Batches { lanes: 1, concurrent: 2 }, 0).unwrap();
         assert_eq!(two.total - weibull.total, weibull.batch);
+        // One seed, process included: under 60 bytes per bar.
+        assert!(weibull.bytes_per_bar() < 60.0, "{weibull:?}");
         assert_eq!(Batches::of_ensemble(16, 2, false), Batches { lanes: 8, concurrent: 2 });
         assert_eq!(Batches::of_ensemble(1, 2, false), Batches { lanes: 1, concurrent: 1 });
         assert_eq!(Batches::of_ensemble(6, 2, false), Batches { lanes: 1, concurrent: 2 });

@@ -96,20 +96,22 @@ pub fn lanczos(model: &Model, k: StiffnessRef<'_, 1>, max_iter: usize, cap: f64)
     let k1 = k;
     let gershgorin = cap;
     let inv_sqrt_m: Vec<f64> = model.inv_mass().iter().map(|v| v.sqrt()).collect();
-    let mut x = Field::<1>::zeros(n);
+    // Four vectors of 3n: q, q_prev (flat, component-major), w and the forces (fields); w holds
+    // M^{-1/2}q while the bar pass reads it, then M^{-1/2} K M^{-1/2} q.
+    let mut w = Field::<1>::zeros(n);
     let mut f = Field::<1>::zeros(n);
-    // y = M^{-1/2} K M^{-1/2} q (K·u = −internal force).
-    let mut apply = |q: &[f64], y: &mut [f64]| {
+    // w = M^{-1/2} K M^{-1/2} q (K·u = −internal force).
+    let apply = |q: &[f64], w: &mut Field<1>, f: &mut Field<1>| {
         for c in 0..3 {
             for i in 0..n {
-                x.c[c][i][0] = q[c * n + i] * inv_sqrt_m[i];
+                w.c[c][i][0] = q[c * n + i] * inv_sqrt_m[i];
             }
         }
         f.fill_zero();
-        bar_forces(model.layout(), k1, &x, &mut f);
+        bar_forces(model.layout(), k1, w, f);
         for c in 0..3 {
             for i in 0..n {
-                y[c * n + i] = -f.c[c][i][0] * inv_sqrt_m[i];
+                w.c[c][i][0] = -f.c[c][i][0] * inv_sqrt_m[i];
             }
         }
     };
@@ -121,21 +123,24 @@ pub fn lanczos(model: &Model, k: StiffnessRef<'_, 1>, max_iter: usize, cap: f64)
     let mut q: Vec<f64> = (0..dof).map(|_| StandardUniform.sample(&mut rng)).map(|u: f64| u - 0.5).collect();
     normalize(&mut q);
     let mut q_prev = vec![0.0; dof];
-    let mut w = vec![0.0; dof];
     let (mut alphas, mut betas) = (Vec::new(), Vec::new());
     let max_iter = dof.min(max_iter);
     let mut best: Option<(f64, f64)> = None;
     for it in 1..=max_iter {
-        apply(&q, &mut w);
+        apply(&q, &mut w, &mut f);
         let beta_prev = betas.last().copied().unwrap_or(0.0);
-        for i in 0..dof {
-            w[i] -= beta_prev * q_prev[i];
+        for c in 0..3 {
+            for i in 0..n {
+                w.c[c][i][0] -= beta_prev * q_prev[c * n + i];
+            }
         }
-        let alpha = dot(&w, &q);
-        for i in 0..dof {
-            w[i] -= alpha * q[i];
+        let alpha = field_dot(&w, &q);
+        for c in 0..3 {
+            for i in 0..n {
+                w.c[c][i][0] -= alpha * q[c * n + i];
+            }
         }
-        let beta = dot(&w, &w).sqrt();
+        let beta = field_norm2(&w).sqrt();
         alphas.push(alpha);
         betas.push(beta);
         let invariant = beta <= 1e-12 * alpha.abs().max(1e-300);
@@ -159,8 +164,10 @@ pub fn lanczos(model: &Model, k: StiffnessRef<'_, 1>, max_iter: usize, cap: f64)
             }
         }
         std::mem::swap(&mut q_prev, &mut q);
-        for i in 0..dof {
-            q[i] = w[i] / beta;
+        for c in 0..3 {
+            for i in 0..n {
+                q[c * n + i] = w.c[c][i][0] / beta;
+            }
         }
     }
     let (theta, residual) = best.unwrap_or((gershgorin, 0.0));
@@ -246,7 +253,7 @@ pub fn node_bound(inv_mass: &[f64], bars: impl FnOnce(&mut dyn FnMut(usize, usiz
             }
         }
     });
-    let top = a.iter().map(|m| sym3_max_eigenvalue(m)).fold(0.0, f64::max);
+    let top = a.iter().map(sym3_max_eigenvalue).fold(0.0, f64::max);
     // The closed form's round-off, a few ulps of the largest entry: covered many times over.
     top * (1.0 + 1e-12)
 }
@@ -267,6 +274,16 @@ fn sym3_max_eigenvalue(m: &[f64; 6]) -> f64 {
     let det = ba * (bb * bc - bf * bf) - bd * (bd * bc - bf * be) + be * (bd * bf - bb * be);
     let r = (det / 2.0).clamp(-1.0, 1.0);
     q + 2.0 * p * (r.acos() / 3.0).cos()
+}
+
+/// `w·q` with `w` read component-major, in the order and with the sum of [`dot`].
+fn field_dot(w: &Field<1>, q: &[f64]) -> f64 {
+    w.c.iter().flat_map(|c| c.iter().map(|v| v[0])).zip(q).map(|(x, y)| x * y).sum()
+}
+
+/// `w·w`, as [`field_dot`].
+fn field_norm2(w: &Field<1>) -> f64 {
+    w.c.iter().flat_map(|c| c.iter().map(|v| v[0] * v[0])).sum()
 }
 
 fn dot(a: &[f64], b: &[f64]) -> f64 {

@@ -73,7 +73,7 @@ fn check<const L: usize>(layout: &StencilLayout, k: StiffnessRef<'_, L>, u: &Fie
     if let StiffnessRef::Factored { runs, .. } = k {
         assert_eq!(runs.len(), layout.runs().len(), "one nominal stiffness per run");
     }
-    if let Some(n) = k.len() {
+    if let Some(n) = k.bars() {
         assert_eq!(n, layout.bars(), "one stiffness per bar");
     }
     for c in 0..3 {

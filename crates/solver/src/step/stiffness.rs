@@ -151,7 +151,7 @@ impl<const L: usize> StiffnessRef<'_, L> {
     }
 
     /// Number of bars it covers (`None` for a homogeneous stencil, which stores none).
-    pub fn len(&self) -> Option<usize> {
+    pub fn bars(&self) -> Option<usize> {
         match self {
             StiffnessRef::PerBar(k) => Some(k.len()),
             StiffnessRef::Factored { factors, .. } => factors.map(|f| f.len()),
