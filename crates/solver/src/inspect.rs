@@ -5,7 +5,7 @@ use crate::error::SolverError;
 use crate::field::Field;
 use crate::geometry::Dims;
 use crate::model::Model;
-use crate::statics::{CriticalStep, EffectiveModuli, Prescribed, critical_step, solve_static, uniaxial_moduli};
+use crate::statics::{CriticalStep, EffectiveModuli, Prescribed, critical_step_on, solve_static, uniaxial_moduli};
 
 /// The facts of a built scene.
 #[derive(Clone, Debug, PartialEq)]
@@ -198,7 +198,8 @@ pub fn inspect(model: &Model, seeds: &[u64], statics: Statics) -> Result<Inspect
     let lattice = model.lattice();
     let mut critical = Vec::with_capacity(seeds.len());
     for &seed in seeds {
-        critical.push((seed, critical_step(model, &model.lane_stiffness(seed)?)?));
+        // `check` runs alone: the pool is its.
+        critical.push((seed, critical_step_on(model, &model.lane_stiffness_on(seed, true)?, true)?));
     }
     // The per-bar stiffness only for the static solves on the whole block.
     let k = if statics == Statics::Full { model.bar_stiffness(seeds[0])? } else { Vec::new() };

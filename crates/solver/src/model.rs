@@ -275,9 +275,16 @@ impl Model {
     /// ([`Model::bar_stiffness`]), the Weibull factors as `f32` for a stencil
     /// ([`Model::stencil_factors`]).
     pub fn lane_stiffness(&self, seed: u64) -> Result<LaneStiffness, SolverError> {
+        self.lane_stiffness_on(seed, false)
+    }
+
+    /// [`Model::lane_stiffness`], a stencil's factors drawn on the current rayon pool with
+    /// `parallel` (the same factors either way; not from inside a pool whose other tasks are
+    /// other seeds: a waiting worker could start one of them).
+    pub fn lane_stiffness_on(&self, seed: u64, parallel: bool) -> Result<LaneStiffness, SolverError> {
         Ok(match &self.layout {
             Bars::Listed(_) => LaneStiffness::PerBar(self.bar_stiffness(seed)?),
-            Bars::Stencil(_) => LaneStiffness::Factored(self.stencil_factors(seed)?),
+            Bars::Stencil(_) => LaneStiffness::Factored(self.stencil_factors_on(seed, parallel)?),
         })
     }
 
@@ -291,15 +298,20 @@ impl Model {
 
     /// The Weibull factors of E of `seed` for a stencil lattice, kernel order, rounded to `f32`:
     /// factor `c` of the seed's E stream for the bar of canonical index `c` (the same draws as
-    /// [`Model::bar_stiffness`]), drawn layer by layer on the current rayon pool by seeking the
-    /// stream to each run; `None` when CV = 0.
+    /// [`Model::bar_stiffness`]), drawn layer by layer by seeking the stream to each run; `None`
+    /// when CV = 0.
     pub fn stencil_factors(&self, seed: u64) -> Result<Option<Vec<f32>>, SolverError> {
+        self.stencil_factors_on(seed, false)
+    }
+
+    /// [`Model::stencil_factors`], the layers on the current rayon pool with `parallel`.
+    pub fn stencil_factors_on(&self, seed: u64, parallel: bool) -> Result<Option<Vec<f32>>, SolverError> {
         let Bars::Stencil(s) = &self.layout else { panic!("stencil factors of a listed lattice") };
         if self.scene.young_cv == 0.0 {
             return Ok(None);
         }
         let draw = crate::material::SeekableWeibull::new(self.scene.young_cv, seed, STREAM_YOUNG)?;
-        Ok(Some(crate::stencil::draw_factors(s, &draw)))
+        Ok(Some(crate::stencil::draw_factors(s, &draw, parallel)))
     }
 
     /// Kernel stiffness of every bar for `seed`: nominal times the Weibull factor of E drawn in

@@ -247,10 +247,10 @@ impl StencilLayout {
 }
 
 /// Factor `c` of `draw` for every bar (kernel order) of canonical index `c`, rounded to `f32`,
-/// layer by layer on the current rayon pool. A layer's axial runs are stretches of consecutive
+/// layer by layer (on the current rayon pool with `parallel`). A layer's axial runs are stretches of consecutive
 /// canonical indices; its diagonal runs of one row share the row's modules, whose `8·nx` factors
 /// are drawn once and dealt to the eight runs.
-pub fn draw_factors(layout: &StencilLayout, draw: &SeekableWeibull) -> Vec<f32> {
+pub fn draw_factors(layout: &StencilLayout, draw: &SeekableWeibull, parallel: bool) -> Vec<f32> {
     let mut out = vec![0.0f32; layout.bars()];
     // Split the output by layer (each layer's bars are consecutive in kernel order).
     let mut chunks = Vec::with_capacity(layout.layers());
@@ -262,7 +262,7 @@ pub fn draw_factors(layout: &StencilLayout, draw: &SeekableWeibull) -> Vec<f32> 
         chunks.push((runs, chunk));
         rest = tail;
     }
-    chunks.into_par_iter().for_each(|(runs, chunk)| {
+    let layer = |(runs, chunk): (&[Run], &mut [f32])| {
         let base = runs.first().map_or(0, |r| r.first_bar as usize);
         let mut buf = Vec::new();
         // The diagonal factors of the current row: canonical indices `row..row + row_buf.len()`.
@@ -290,7 +290,12 @@ pub fn draw_factors(layout: &StencilLayout, draw: &SeekableWeibull) -> Vec<f32> 
                 }
             }
         }
-    });
+    };
+    if parallel {
+        chunks.into_par_iter().for_each(layer);
+    } else {
+        chunks.into_iter().for_each(layer);
+    }
     out
 }
 
@@ -334,7 +339,8 @@ mod tests {
             // stiffness is every bar's.
             let draws = crate::material::weibull_factors(0.05, 7, 0, s.bars()).unwrap().unwrap();
             let seek = SeekableWeibull::new(0.05, 7, 0).unwrap();
-            let factors = draw_factors(&s, &seek);
+            let factors = draw_factors(&s, &seek, true);
+            assert_eq!(factors, draw_factors(&s, &seek, false), "{dims:?}: serial and parallel draws");
             let nominal = Model::with_listed_bars(model.scene().clone());
             let stencil_model = Model::with_stencil(model.scene().clone());
             let listed_k: Vec<f64> = {

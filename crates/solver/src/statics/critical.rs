@@ -40,12 +40,19 @@ pub struct CriticalStep {
 /// [`STENCIL_LANCZOS_ITERATIONS`] passes reading the factored stiffness, or the node bound if it
 /// has not converged by then.
 pub fn critical_step(model: &Model, k: &LaneStiffness) -> Result<CriticalStep, SolverError> {
+    critical_step_on(model, k, false)
+}
+
+/// [`critical_step`], a stencil's bar passes split over the current rayon pool with `parallel`
+/// (the same numbers either way; not from inside a pool whose other tasks are other seeds).
+pub fn critical_step_on(model: &Model, k: &LaneStiffness, parallel: bool) -> Result<CriticalStep, SolverError> {
     match k {
         LaneStiffness::PerBar(k) if !matches!(model.layout(), Bars::Stencil(_)) => critical_time_step(model, k),
-        LaneStiffness::PerBar(k) => bounded_step(model, StiffnessRef::<1>::PerBar(k.as_chunks::<1>().0)),
+        LaneStiffness::PerBar(k) => bounded_step(model, StiffnessRef::<1>::PerBar(k.as_chunks::<1>().0), parallel),
         LaneStiffness::Factored(f) => bounded_step(
             model,
             StiffnessRef::Factored { runs: model.run_stiffness(), factors: f.as_deref().map(|f| f.as_chunks::<1>().0) },
+            parallel,
         ),
     }
 }
@@ -58,10 +65,10 @@ pub const STENCIL_LANCZOS_ITERATIONS: usize = 100;
 /// bars reading the stiffness as the kernel does) capped by the node bound ([`node_bound`]); the
 /// node bound alone when Lanczos has not converged to 1e-9 by then (its `θ + residual` is an upper
 /// bound only once converged: after 20 iterations it can still be 1% low).
-fn bounded_step(model: &Model, k: StiffnessRef<'_, 1>) -> Result<CriticalStep, SolverError> {
+fn bounded_step(model: &Model, k: StiffnessRef<'_, 1>, parallel: bool) -> Result<CriticalStep, SolverError> {
     let inv_mass = model.inv_mass();
     let nodes = node_bound(inv_mass, |f| k.visit(model.layout(), 0, f));
-    let l = lanczos(model, k, STENCIL_LANCZOS_ITERATIONS, nodes)?;
+    let l = lanczos_with(model, k, Lanczos { max_iter: STENCIL_LANCZOS_ITERATIONS, check_every: 5, parallel }, nodes)?;
     if l.relative_residual <= LANCZOS_TOLERANCE {
         return Ok(l);
     }
@@ -91,30 +98,34 @@ pub const LANCZOS_TOLERANCE: f64 = 1e-9;
 /// (fewer once the top Ritz residual is below 1e-9 of its value): `θ + residual` capped by `cap`,
 /// plus the boundary conditions' stiffening.
 pub fn lanczos(model: &Model, k: StiffnessRef<'_, 1>, max_iter: usize, cap: f64) -> Result<CriticalStep, SolverError> {
+    lanczos_with(model, k, Lanczos { max_iter, check_every: 10, parallel: false }, cap)
+}
+
+/// How [`lanczos_with`] runs.
+#[derive(Clone, Copy, Debug)]
+struct Lanczos {
+    /// Most iterations.
+    max_iter: usize,
+    /// Iterations between two looks at the top Ritz pair (the result depends on it: it stops at
+    /// the first look that finds it converged).
+    check_every: usize,
+    /// The bar passes of a stencil on the current rayon pool (the same numbers).
+    parallel: bool,
+}
+
+fn lanczos_with(model: &Model, k: StiffnessRef<'_, 1>, how: Lanczos, cap: f64) -> Result<CriticalStep, SolverError> {
+    let Lanczos { max_iter, check_every, parallel } = how;
     let n = model.node_count();
     let dof = 3 * n;
     let k1 = k;
     let gershgorin = cap;
     let inv_sqrt_m: Vec<f64> = model.inv_mass().iter().map(|v| v.sqrt()).collect();
-    // Four vectors of 3n: q, q_prev (flat, component-major), w and the forces (fields); w holds
-    // M^{-1/2}q while the bar pass reads it, then M^{-1/2} K M^{-1/2} q.
-    let mut w = Field::<1>::zeros(n);
+    // Four vectors of 3n: q, q_prev (flat, component-major), x = M^{-1/2}q and the forces
+    // (fields), x then holding w. Each iteration: the bar pass, then two fused passes over the
+    // nodes (w and α = w·q; w −= αq and β² = w·w), then q = w/β with the next x: the same
+    // arithmetic, in the same order, as one pass per operation.
+    let mut x = Field::<1>::zeros(n);
     let mut f = Field::<1>::zeros(n);
-    // w = M^{-1/2} K M^{-1/2} q (K·u = −internal force).
-    let apply = |q: &[f64], w: &mut Field<1>, f: &mut Field<1>| {
-        for c in 0..3 {
-            for i in 0..n {
-                w.c[c][i][0] = q[c * n + i] * inv_sqrt_m[i];
-            }
-        }
-        f.fill_zero();
-        bar_forces(model.layout(), k1, w, f);
-        for c in 0..3 {
-            for i in 0..n {
-                w.c[c][i][0] = -f.c[c][i][0] * inv_sqrt_m[i];
-            }
-        }
-    };
     // Boundary conditions with springs (the loading plate's) add `k_i/m_i` to the diagonal of
     // node i's row: by Weyl's inequality they raise ω²_max by at most what they say.
     let plate = model.boundaries().stiffening(model.inv_mass());
@@ -122,29 +133,49 @@ pub fn lanczos(model: &Model, k: StiffnessRef<'_, 1>, max_iter: usize, cap: f64)
     let mut rng = ChaCha8Rng::seed_from_u64(0x5eed_c417);
     let mut q: Vec<f64> = (0..dof).map(|_| StandardUniform.sample(&mut rng)).map(|u: f64| u - 0.5).collect();
     normalize(&mut q);
+    for c in 0..3 {
+        for i in 0..n {
+            x.c[c][i][0] = q[c * n + i] * inv_sqrt_m[i];
+        }
+    }
     let mut q_prev = vec![0.0; dof];
     let (mut alphas, mut betas) = (Vec::new(), Vec::new());
     let max_iter = dof.min(max_iter);
     let mut best: Option<(f64, f64)> = None;
     for it in 1..=max_iter {
-        apply(&q, &mut w, &mut f);
+        // f = −K·M^{-1/2}q.
+        f.fill_zero();
+        match (model.layout(), parallel) {
+            (Bars::Stencil(layout), true) => crate::step::stencil::forces_parallel(layout, k1, &x, &mut f),
+            _ => bar_forces(model.layout(), k1, &x, &mut f),
+        }
+        // w = −M^{-1/2}f − β_prev·q_prev (into x), α = w·q.
         let beta_prev = betas.last().copied().unwrap_or(0.0);
+        let mut alpha = -0.0;
         for c in 0..3 {
+            let (w, fc) = (&mut x.c[c], &f.c[c]);
+            let (qc, qp) = (&q[c * n..(c + 1) * n], &q_prev[c * n..(c + 1) * n]);
             for i in 0..n {
-                w.c[c][i][0] -= beta_prev * q_prev[c * n + i];
+                let v = -fc[i][0] * inv_sqrt_m[i] - beta_prev * qp[i];
+                w[i][0] = v;
+                alpha += v * qc[i];
             }
         }
-        let alpha = field_dot(&w, &q);
+        // w −= α·q, β² = w·w.
+        let mut beta2 = -0.0;
         for c in 0..3 {
+            let (w, qc) = (&mut x.c[c], &q[c * n..(c + 1) * n]);
             for i in 0..n {
-                w.c[c][i][0] -= alpha * q[c * n + i];
+                let v = w[i][0] - alpha * qc[i];
+                w[i][0] = v;
+                beta2 += v * v;
             }
         }
-        let beta = field_norm2(&w).sqrt();
+        let beta: f64 = beta2.sqrt();
         alphas.push(alpha);
         betas.push(beta);
         let invariant = beta <= 1e-12 * alpha.abs().max(1e-300);
-        if it % 10 == 0 || it == max_iter || invariant {
+        if it % check_every == 0 || it == max_iter || invariant {
             let (theta, residual) = top_ritz(&alphas, &betas);
             best = Some((theta, residual));
             if residual <= LANCZOS_TOLERANCE * theta || invariant || it == max_iter {
@@ -163,10 +194,14 @@ pub fn lanczos(model: &Model, k: StiffnessRef<'_, 1>, max_iter: usize, cap: f64)
                 });
             }
         }
+        // q_prev ← q, q ← w/β, x ← M^{-1/2}q.
         std::mem::swap(&mut q_prev, &mut q);
         for c in 0..3 {
+            let (w, qc) = (&mut x.c[c], &mut q[c * n..(c + 1) * n]);
             for i in 0..n {
-                q[c * n + i] = w.c[c][i][0] / beta;
+                let v = w[i][0] / beta;
+                qc[i] = v;
+                w[i][0] = v * inv_sqrt_m[i];
             }
         }
     }
@@ -274,16 +309,6 @@ fn sym3_max_eigenvalue(m: &[f64; 6]) -> f64 {
     let det = ba * (bb * bc - bf * bf) - bd * (bd * bc - bf * be) + be * (bd * bf - bb * be);
     let r = (det / 2.0).clamp(-1.0, 1.0);
     q + 2.0 * p * (r.acos() / 3.0).cos()
-}
-
-/// `w·q` with `w` read component-major, in the order and with the sum of [`dot`].
-fn field_dot(w: &Field<1>, q: &[f64]) -> f64 {
-    w.c.iter().flat_map(|c| c.iter().map(|v| v[0])).zip(q).map(|(x, y)| x * y).sum()
-}
-
-/// `w·w`, as [`field_dot`].
-fn field_norm2(w: &Field<1>) -> f64 {
-    w.c.iter().flat_map(|c| c.iter().map(|v| v[0] * v[0])).sum()
 }
 
 fn dot(a: &[f64], b: &[f64]) -> f64 {

@@ -115,6 +115,23 @@ pub fn forces<'k, const L: usize>(
     }
 }
 
+/// As [`forces`], the slabs of each phase on the current rayon pool: the same bits.
+pub fn forces_parallel<const L: usize>(layout: &StencilLayout, k: StiffnessRef<'_, L>, u: &Field<L>, f: &mut Field<L>) {
+    check(layout, k, u, f);
+    let (isa, p) = (Isa::current(), pass(k, u, f));
+    let slabs: Vec<Range<usize>> = layout.slabs().collect();
+    for phase in 0..2 {
+        slabs.par_iter().for_each_init(
+            || vec![0.0; layout.longest_run() * L],
+            |t, slab| {
+                let layers = if phase == 0 { slab.start..slab.end - 1 } else { slab.end - 1..slab.end };
+                // SAFETY: checked arrays; the slabs of one phase write disjoint layers.
+                unsafe { layers_dispatch(isa, layout, layers, p, t) };
+            },
+        );
+    }
+}
+
 /// As [`forces`], and each node integrated by `update` as soon as its forces are complete (the
 /// force field is cleared as it is consumed); with `parallel`, the slabs of a phase on the current
 /// rayon pool. The same bits either way.
@@ -456,6 +473,10 @@ mod tests {
                 Isa::pinned(isa, || forces(&layout, kref, &u, &mut f));
                 assert_eq!(bits(&f), bits(&want), "{dims:?} L = {L} {isa:?}: factored kernel against its plain order");
             }
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
+            let mut f = Field::<L>::zeros(layout.nodes());
+            pool.install(|| forces_parallel(&layout, kref, &u, &mut f));
+            assert_eq!(bits(&f), bits(&want), "{dims:?} L = {L}: on two threads");
         }
         let mut want = Field::<L>::zeros(layout.nodes());
         reference(&layout, &k, &u, &mut want);
