@@ -28,6 +28,17 @@ impl Frame {
         self
     }
 
+    /// A single-precision float column (NaN written as null, like [`Frame::f64`]).
+    pub fn f32(mut self, name: &str, v: Vec<f32>) -> Self {
+        if v.iter().any(|x| x.is_nan()) {
+            let v: Vec<Option<f32>> = v.into_iter().map(|x| (!x.is_nan()).then_some(x)).collect();
+            self.cols.push(Column::new(name.into(), v));
+        } else {
+            self.cols.push(Column::new(name.into(), v));
+        }
+        self
+    }
+
     /// A float column with nulls (NaN also written as null).
     pub fn opt_f64(mut self, name: &str, v: Vec<Option<f64>>) -> Self {
         let v: Vec<Option<f64>> = v.into_iter().map(|x| x.filter(|x| !x.is_nan())).collect();

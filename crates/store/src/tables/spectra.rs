@@ -9,6 +9,7 @@
 use polars::prelude::DataFrame;
 use stickslip_analysis::{RecordData, RotdData};
 use stickslip_seismo::accelerogram::processing::RecordBand;
+use stickslip_seismo::similarity::RecordScale;
 use stickslip_seismo::spectra::fourier::FourierSpectrum;
 use stickslip_seismo::spectra::intensity::Intensity;
 use stickslip_solver::geometry::NodeId;
@@ -163,7 +164,8 @@ impl SpectrumColumns {
         lambda: f64,
     ) {
         for sc in Scale::ALL {
-            let l = sc.factor(lambda);
+            // Computed once at model scale, scaled by the similarity rules (PSA_p(λT) = PSA_m(T)/λ).
+            let s = RecordScale { lambda: sc.factor(lambda) };
             for (di, &d) in dampings.iter().enumerate() {
                 for (pi, &t) in periods.iter().enumerate() {
                     let v = sd[di * periods.len() + pi];
@@ -173,10 +175,10 @@ impl SpectrumColumns {
                     self.comp.push(comp);
                     self.scale.push(sc.name());
                     self.damping.push(d);
-                    self.period.push(t * l);
-                    self.sd.push(v * l);
-                    self.psv.push(psv);
-                    self.psa.push(psa / l);
+                    self.period.push(s.time(t));
+                    self.sd.push(s.length(v));
+                    self.psv.push(s.velocity(psv));
+                    self.psa.push(s.acceleration(psa));
                     self.in_band.push(band.holds_period(t));
                 }
             }
