@@ -16,7 +16,7 @@ use std::time::Instant;
 use rayon::prelude::*;
 use stickslip_analysis::{AnalysisError, PlanCache, SeedAnalysis, analyse, thread_cpu_s};
 use stickslip_config::Pipeline;
-use stickslip_solver::{BATCH, Model, RunOptions, SolverError, run_batched};
+use stickslip_solver::{Model, RunOptions, SolverError, run_batched};
 use stickslip_store::files::Stamp;
 use stickslip_store::io::write_text_atomic;
 use stickslip_store::seed::{write_failed, write_seed};
@@ -207,16 +207,13 @@ pub fn run_ensemble(
         let pending = &pending;
         let plans = &plans;
         // Batches of seeds share each pass over the lattice (lanes); a scene too large for
-        // that, with fewer seeds than threads, splits each step over the threads instead.
+        // that, with fewer seeds than threads, splits each step over the threads instead. Four
+        // lanes: as fast per bar-update as eight on every lattice of the step benchmark
+        // (BENCHMARKS.md §1; the same CPU time for paper-100 measured), and twice as many
+        // batches to share among the threads, so the last ones end closer together.
         let threads = pool.current_num_threads();
         let per_thread = pending.len().div_ceil(threads.max(1));
-        let batch = if per_thread >= BATCH {
-            BATCH
-        } else if per_thread >= 4 {
-            4
-        } else {
-            1
-        };
+        let batch = if per_thread >= 4 { 4 } else { 1 };
         let options =
             RunOptions { parallel_step: pending.len() < threads && model.layout().splits(), ..RunOptions::default() };
         scope.spawn(move || {

@@ -88,6 +88,12 @@ impl Frame {
         self
     }
 
+    /// A string column of borrowed texts (no string allocated per row).
+    pub fn str_ref(mut self, name: &str, v: Vec<&str>) -> Self {
+        self.cols.push(Column::new(name.into(), v));
+        self
+    }
+
     /// A string column of static texts.
     pub fn static_str(mut self, name: &str, v: Vec<&'static str>) -> Self {
         self.cols.push(Column::new(name.into(), v));

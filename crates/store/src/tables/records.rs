@@ -187,7 +187,7 @@ pub fn accelerograms_frame(seed: u64, records: &[RecordData], _lambda: f64) -> R
     for r in records {
         let p = &r.processed;
         let w = window(p);
-        id.extend(std::iter::repeat_n(r.id.clone(), w.len()));
+        id.extend(std::iter::repeat_n(r.id.as_str(), w.len()));
         time.extend(w.clone().map(|i| r.start_s + p.t_first + i as f64 * p.dt));
         acc.extend(p.accel[w.clone()].iter().map(|&a| a as f32));
         vel.extend(p.vel[w.clone()].iter().map(|&v| v as f32));
@@ -196,7 +196,7 @@ pub fn accelerograms_frame(seed: u64, records: &[RecordData], _lambda: f64) -> R
     let n = id.len();
     Frame::new(n)
         .u64(col::SEED, vec![seed; n])
-        .str(col::RECORD, id)
+        .str_ref(col::RECORD, id)
         .f64(col::TIME_S, time)
         .f32(col::ACCELERATION_M_S2, acc)
         .f32(col::VELOCITY_M_S, vel)

@@ -137,8 +137,8 @@ pub fn rotd_frame(
 
 /// Columns of a spectra-shaped table, filled record by record.
 #[derive(Default)]
-struct SpectrumColumns {
-    id: Vec<String>,
+struct SpectrumColumns<'a> {
+    id: Vec<&'a str>,
     node: Vec<u32>,
     comp: Vec<&'static str>,
     scale: Vec<&'static str>,
@@ -150,11 +150,11 @@ struct SpectrumColumns {
     in_band: Vec<bool>,
 }
 
-impl SpectrumColumns {
+impl<'a> SpectrumColumns<'a> {
     #[allow(clippy::too_many_arguments)]
     fn push(
         &mut self,
-        id: &str,
+        id: &'a str,
         node: NodeId,
         comp: &'static str,
         band: &RecordBand,
@@ -170,7 +170,7 @@ impl SpectrumColumns {
                 for (pi, &t) in periods.iter().enumerate() {
                     let v = sd[di * periods.len() + pi];
                     let (psv, psa) = pseudo(v, t);
-                    self.id.push(id.to_string());
+                    self.id.push(id);
                     self.node.push(node.ldem() as u32);
                     self.comp.push(comp);
                     self.scale.push(sc.name());
@@ -189,7 +189,7 @@ impl SpectrumColumns {
         let n = self.id.len();
         Frame::new(n)
             .u64(col::SEED, vec![seed; n])
-            .str(col::RECORD, self.id)
+            .str_ref(col::RECORD, self.id)
             .u32(col::NODE, self.node)
             .static_str(col::COMPONENT, self.comp)
             .static_str(col::SCALE, self.scale)
@@ -208,14 +208,14 @@ pub fn fourier_frame(seed: u64, records: &[RecordData]) -> Result<DataFrame, Sto
     let (mut id, mut f, mut a) = (vec![], vec![], vec![]);
     for r in records {
         let Some(fs) = &r.fourier else { continue };
-        id.extend(std::iter::repeat_n(r.id.clone(), fs.frequency_hz.len()));
+        id.extend(std::iter::repeat_n(r.id.as_str(), fs.frequency_hz.len()));
         f.extend_from_slice(&fs.frequency_hz);
         a.extend_from_slice(&fs.amplitude);
     }
     let n = id.len();
     Frame::new(n)
         .u64(col::SEED, vec![seed; n])
-        .str(col::RECORD, id)
+        .str_ref(col::RECORD, id)
         .f64(col::FREQUENCY_HZ, f)
         .f64(col::AMPLITUDE_M_S, a)
         .finish(FOURIER.name)
