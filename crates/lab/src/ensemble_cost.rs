@@ -29,9 +29,14 @@ pub struct Build {
     pub binary: PathBuf,
 }
 
-/// Runs `build pipeline <pipeline> --fresh --threads <threads> --out <out> --quiet` and returns
-/// its wall time (s) and what it printed.
+/// Runs `build pipeline <pipeline> --fresh --threads <threads> --out <out> --quiet` into an empty
+/// `out` (removed first: `--fresh` discards only another pipeline's results, and a finished
+/// folder of the same pipeline would be resumed, not run) and returns its wall time (s) and what
+/// it printed.
 pub fn time_pipeline(build: &Build, pipeline: &Path, threads: usize, out: &Path) -> Result<(f64, String)> {
+    if out.exists() {
+        std::fs::remove_dir_all(out).map_err(|e| setup(format!("clearing {}: {e}", out.display())))?;
+    }
     let start = Instant::now();
     let o = Command::new(&build.binary)
         .args(["pipeline", &pipeline.display().to_string(), "--fresh", "--quiet", "--threads"])

@@ -573,7 +573,7 @@ fn ensemble(
         let alone = prof.spectra_s / prof.alone as f64;
         let pair = prof.rotd_s / prof.pairs as f64;
         println!(
-            "RotD: {:.2} ms per pair with both components' spectra ({} pairs), against {:.2} ms for the spectra of one              record alone ({} records): RotD itself costs {:.2} ms per pair ({:.2}× two records' spectra)",
+            "RotD: {:.2} ms per pair with both components' spectra ({} pairs), against {:.2} ms for the spectra of one record alone ({} records): RotD itself costs {:.2} ms per pair ({:.2}× two records' spectra)",
             pair * 1e3,
             prof.pairs,
             alone * 1e3,
