@@ -97,7 +97,7 @@ pub fn sizes(dir: &Path) -> (u64, Vec<(String, u64)>) {
             parts.push((name, walk(&p)));
         }
     }
-    parts.sort_by(|a, b| b.1.cmp(&a.1));
+    parts.sort_by_key(|p| std::cmp::Reverse(p.1));
     (walk(dir), parts)
 }
 
