@@ -17,6 +17,7 @@ pub mod ensemble_cost;
 pub mod kernel_scene;
 pub mod peer;
 pub mod recording_cost;
+pub mod scec;
 pub mod skip;
 
 use stickslip_config::ConfigError;

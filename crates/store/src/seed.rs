@@ -22,6 +22,7 @@ pub fn write_seed(
     keep: &mut dyn FnMut(&TableSpec, DataFrame),
 ) -> Result<(), StoreError> {
     files::stations::write(out, view, stamp)?;
+    files::scec::write(out, view, stamp)?;
     files::records::write(out, view, stamp)?;
     for table in &SEED_TABLES {
         if let Some(mut df) = (table.write)(view)? {
