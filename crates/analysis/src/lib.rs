@@ -23,7 +23,7 @@ use stickslip_seismo::emission::Cluster;
 use stickslip_seismo::events::Catalogue;
 use stickslip_solver::{Model, RunOutput};
 
-pub use events::ScaledEvent;
+pub use events::{Diagnosis, ScaledEvent, SlipRegime};
 pub use fronts::SeedFronts;
 pub use records::{PlanCache, RecordData, RecordFailure, RotdData, SeedRecords};
 pub use settings::{AccelerogramSettings, Settings, SpectraSettings};
@@ -42,6 +42,8 @@ pub struct SeedAnalysis {
     pub run: RunOutput,
     /// Its events.
     pub catalogue: Catalogue,
+    /// What the base did: stick-slip, stable sliding or no slip.
+    pub diagnosis: events::Diagnosis,
     /// Every event at prototype scale, in catalogue order.
     pub scaled: Vec<ScaledEvent>,
     /// The prototype length ratio λ the records scale with.
@@ -63,6 +65,7 @@ pub fn analyse(
     plans: &PlanCache,
 ) -> Result<SeedAnalysis, AnalysisError> {
     let catalogue = events::catalogue(&run.recording, model, &settings.events);
+    let diagnosis = events::diagnose(&run.recording, &catalogue, model);
     let scaled = events::scaled_events(&catalogue, model, &settings.similarity);
     let records = match &settings.accelerograms {
         Some(acc) => Some(records::compute(
@@ -85,5 +88,5 @@ pub fn analyse(
         settings.events.rupture_rate_m_s,
     );
     let lambda = events::lambda(model, &settings.similarity);
-    Ok(SeedAnalysis { run, catalogue, scaled, lambda, records, emission, fronts })
+    Ok(SeedAnalysis { run, catalogue, diagnosis, scaled, lambda, records, emission, fronts })
 }

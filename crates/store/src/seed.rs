@@ -20,7 +20,7 @@ pub fn write_seed(out: &Folder, view: &SeedView<'_>, stamp: &Stamp<'_>, wall_tim
         }
     }
     let a = view.analysis;
-    let row = RunRow { seed: view.seed, outcome: Ok(RunFacts::of(&a.run, &a.catalogue)), wall_time_s };
+    let row = RunRow { seed: view.seed, outcome: Ok(RunFacts::of(&a.run, &a.catalogue, &a.diagnosis)), wall_time_s };
     write_parquet_atomic(&mut runs::frame(&[row], stamp.hash)?, &out.part(&RUNS, view.seed))
 }
 
