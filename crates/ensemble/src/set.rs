@@ -124,7 +124,9 @@ pub fn select_set(out: &Folder, pipeline: &Pipeline, settings: &SetSettings) -> 
         full.push(values);
         metas.push(Meta { seed, record, label: label.clone(), node, component, usable_hz: (lo, hi) });
     }
-    let selection = select(&periods, &target, &candidates, &settings.options).map_err(EnsembleError::Set)?;
+    let mut selection = select(&periods, &target, &candidates, &settings.options).map_err(EnsembleError::Set)?;
+    // Ranked by misfit, best first: the set table's rank, the files' numbers and the printout.
+    selection.records.sort_by(|a, b| a.misfit.total_cmp(&b.misfit).then(a.index.cmp(&b.index)));
     let rows: Vec<SetRow> = selection
         .records
         .iter()
