@@ -4,7 +4,8 @@
 //! statistical convergence of event measures over seeds ([`convergence`]), the
 //! quasi-static skip-ahead against full integration ([`skip`]), what recording costs
 //! ([`recording_cost`]), the LAMMPS side-by-side ([`peer`], with `lammps/compare.sh`), sweeps of
-//! assumed values ([`calibrate`]), and the criterion benchmarks of the kernels and spectra
+//! assumed values ([`calibrate`]), the README's generated outputs, tables and measured numbers
+//! ([`readme`]), and the criterion benchmarks of the kernels and spectra
 //! (`benches/`). Speed is measured here, never asserted in tests. Must not know: the command
 //! line (it returns rows and writes tables and figures where it is told).
 #![deny(missing_docs)]
@@ -14,6 +15,7 @@ pub mod calibrate;
 pub mod convergence;
 pub mod kernel_scene;
 pub mod peer;
+pub mod readme;
 pub mod recording_cost;
 pub mod skip;
 

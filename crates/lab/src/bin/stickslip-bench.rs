@@ -105,6 +105,22 @@ enum Command {
         #[arg(long, default_value = "123,200,7,1,2,3")]
         seeds: String,
     },
+    /// Rewrites the README's generated blocks (its printed outputs, tables, wall times and disk
+    /// use) from real runs of the product's `stickslip` binary, from the repository's root into
+    /// reports/ (minutes: it runs the main command, paper-precise, slow-loading and paper-100
+    /// twice more, timed).
+    Readme {
+        /// Compare instead of writing: exit 1 when a block that does not depend on the machine
+        /// differs.
+        #[arg(long)]
+        check: bool,
+        /// Only these blocks (comma separated keys).
+        #[arg(long, value_delimiter = ',')]
+        only: Vec<String>,
+        /// The `stickslip` binary [default: $STICKSLIP, or the one beside this binary].
+        #[arg(long)]
+        binary: Option<PathBuf>,
+    },
 }
 
 fn bench_out(pipeline: &Pipeline, out: Option<PathBuf>) -> PathBuf {
@@ -148,6 +164,7 @@ fn run(c: Command) -> Result<()> {
             println!("ours_8 {:e}", t.eight_seeds);
             Ok(())
         }
+        Command::Readme { check, only, binary } => readme(check, &only, binary),
         Command::Calibrate { pipeline, values, seeds } => {
             let p = Pipeline::load(&pipeline)?;
             let mut grid = Vec::new();
@@ -162,7 +179,8 @@ fn run(c: Command) -> Result<()> {
                 grid.push((k.to_string(), vals));
             }
             for combo in sweep(&p.file, &grid, &parse_seeds(&seeds).map_err(anyhow::Error::msg)?)? {
-                println!("== {:?}", combo.values);
+                let values: Vec<String> = combo.values.iter().map(|(k, v)| format!("{k} = {v}")).collect();
+                println!("== {}", values.join(", "));
                 let mut s2 = Vec::new();
                 for (s, cat) in &combo.seeds {
                     let mains: Vec<_> = cat.main_shocks().collect();
@@ -184,15 +202,22 @@ fn run(c: Command) -> Result<()> {
                         s2.push((e.burst.stress_drop_pa, e.burst.drop_time_s(), e.recurrence_s.unwrap_or(f64::NAN)));
                     }
                 }
-                let mean = |f: &dyn Fn(&(f64, f64, f64)) -> f64| {
-                    if s2.is_empty() { f64::NAN } else { s2.iter().map(f).sum::<f64>() / s2.len() as f64 }
+                if s2.is_empty() {
+                    println!("  S2: none in any seed (fewer than two main shocks)");
+                    continue;
+                }
+                let mean = |f: &dyn Fn(&(f64, f64, f64)) -> Option<f64>| {
+                    let v: Vec<f64> = s2.iter().filter_map(f).collect();
+                    (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64)
                 };
+                let ms = |v: Option<f64>| v.map_or("–".into(), |v| format!("{:.1} ms", v * 1e3));
                 println!(
-                    "  S2 (n = {}): drop {:.0} Pa, stress falls in {:.2} ms, S1→S2 {:.1} ms",
+                    "  S2 in {} of {} seeds: drop {:.0} Pa, stress falls in {:.2} ms, S1→S2 {}",
                     s2.len(),
-                    mean(&|v| v.0),
-                    mean(&|v| v.1) * 1e3,
-                    mean(&|v| v.2) * 1e3
+                    combo.seeds.len(),
+                    mean(&|v| Some(v.0)).unwrap_or(f64::NAN),
+                    mean(&|v| Some(v.1)).unwrap_or(f64::NAN) * 1e3,
+                    ms(mean(&|v| v.2.is_finite().then_some(v.2)))
                 );
             }
             Ok(())
@@ -452,5 +477,38 @@ fn convergence(a: ConvergenceArgs) -> Result<()> {
         table.display(),
         figure.display()
     );
+    Ok(())
+}
+
+/// `stickslip-bench readme`.
+fn readme(check: bool, only: &[String], binary: Option<PathBuf>) -> Result<()> {
+    use stickslip_lab::readme::{Runner, rewrite};
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..").canonicalize()?;
+    let binary = binary
+        .or_else(|| std::env::var_os("STICKSLIP").map(PathBuf::from))
+        .or_else(|| std::env::current_exe().ok().and_then(|e| Some(e.parent()?.join("stickslip"))))
+        .filter(|b| b.is_file())
+        .ok_or_else(|| {
+            anyhow::anyhow!("no stickslip binary: build it (cargo build --release -p stickslip) or give --binary")
+        })?;
+    let path = root.join("README.md");
+    let old = std::fs::read_to_string(&path)?;
+    let (new, outcomes) = rewrite(&old, &Runner::new(binary, root), only)?;
+    for o in &outcomes {
+        println!(
+            "{:<14} {}{}",
+            o.key,
+            if o.changed { "changed" } else { "as before" },
+            if o.measured { " (measured on this machine)" } else { "" }
+        );
+    }
+    if check {
+        let stale: Vec<&str> = outcomes.iter().filter(|o| o.changed && !o.measured).map(|o| o.key).collect();
+        anyhow::ensure!(stale.is_empty(), "the README is stale in: {} (run stickslip-bench readme)", stale.join(", "));
+        println!("README blocks current (measured ones may differ from machine to machine)");
+    } else {
+        std::fs::write(&path, new)?;
+        println!("README.md rewritten");
+    }
     Ok(())
 }
