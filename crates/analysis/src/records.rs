@@ -14,7 +14,7 @@ use crate::settings::{AccelerogramSettings, EventChoice, MeanChoice, RecordSpan,
 use rustfft::FftPlanner;
 use stickslip_seismo::SeismoError;
 use stickslip_seismo::accelerogram::processing::{
-    MeanRemoval, Padding, Processed, ProcessingOptions, RecordBand, process,
+    MeanRemoval, Padding, Processed, ProcessingOptions, RecordBand, process, record_interval,
 };
 use stickslip_seismo::events::Catalogue;
 use stickslip_seismo::spectra::fourier::{FourierSpectrum, fourier_amplitude};
@@ -210,15 +210,22 @@ pub fn compute(
     if t.len() < 2 {
         return Ok(out);
     }
-    let dt = (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64;
+    // The seed's own interval (a whole number of its steps, so it differs from seed to seed) and
+    // the one every record is written at: the pipeline's `record.interval_s`, or a round one
+    // below the usable band (docs/model.md §8).
+    let dt_recorded = (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64;
+    let dt = record_interval(model.scene().record.interval_s, acc.resolved_hz);
     let lattice = model.lattice();
     for w in windows(t, span.start, catalogue, acc) {
         let mut horizontal: HashMap<NodeId, [Option<usize>; 2]> = HashMap::new();
         for (ch, accel) in rec.control.iter().filter(|(c, _)| acc.wants(c)) {
             let id = format!("{}-n{}-{}", w.label, ch.node.ldem(), ch.component.name());
             let raw = &accel[w.samples.clone()];
-            let duration = (raw.len() - 1) as f64 * dt;
-            let band = match RecordBand::new(duration, dt, acc.resolved_hz, acc.low_corner_hz, acc.high_corner_hz) {
+            let duration = (raw.len() - 1) as f64 * dt_recorded;
+            // The band's high corner within 80% of the Nyquist frequency of both intervals.
+            let coarser = dt_recorded.max(dt);
+            let band = match RecordBand::new(duration, coarser, acc.resolved_hz, acc.low_corner_hz, acc.high_corner_hz)
+            {
                 Ok(b) => b,
                 Err(e) => {
                     out.left_out.push(format!("{id}: {e}"));
@@ -241,7 +248,7 @@ pub fn compute(
                 order: acc.order,
                 baseline_degree: acc.baseline_degree,
             };
-            let processed = process(raw, dt, &opts).map_err(numerics)?;
+            let processed = process(raw, dt_recorded, &opts).map_err(numerics)?.resampled(dt);
             let intensity = intensity(&processed.accel, dt, Baseline::None);
             let (mut sd, mut fourier) = (Vec::new(), None);
             if let Some(s) = spectra {
