@@ -182,6 +182,11 @@ impl Runner {
     }
 }
 
+/// `v` to `digits` decimals with a typographic minus, as the README writes numbers.
+fn minus(v: f64, digits: usize) -> String {
+    format!("{v:.digits$}").replace('-', "−")
+}
+
 fn fenced(lines: &[&str]) -> String {
     format!("```\n{}\n```\n", lines.join("\n"))
 }
@@ -355,7 +360,7 @@ fn slow_loading(r: &Runner) -> Result<String, LabError> {
     let o = pooled(&om.seed).into_iter().next().ok_or_else(|| setup("no pooled Omori row"))?;
     let (omori, omori_reading) = match (om.p[o], om.p_se[o]) {
         (Some(p), Some(se)) => (
-            format!("{p:.2} ± {se:.2} ({} events after {} main shocks)", om.aftershocks[o], om.main_shocks[o]),
+            format!("{} ± {se:.2} ({} events after {} main shocks)", minus(p, 2), om.aftershocks[o], om.main_shocks[o]),
             if p + 2.0 * se < 0.5 {
                 "no aftershock decay: activity after a main shock does not fall (it grows toward the next one when p < 0) — the small events are precursory slips of the next main shock, not aftershocks"
             } else {
@@ -368,7 +373,7 @@ fn slow_loading(r: &Runner) -> Result<String, LabError> {
         match pooled(&sc.seed).into_iter().find(|&i| sc.relation[i] == name) {
             Some(i) => match (sc.exponent[i], sc.exponent_low[i], sc.exponent_high[i]) {
                 (Some(e), Some(lo), Some(hi)) => {
-                    format!("{e:.2} [{lo:.2}, {hi:.2}] (self-similar {})", sc.self_similar[i])
+                    format!("{} [{}, {}] (self-similar {})", minus(e, 2), minus(lo, 2), minus(hi, 2), sc.self_similar[i])
                 }
                 _ => format!("no fit: {}", sc.reason[i].clone().unwrap_or_default()),
             },
