@@ -148,7 +148,7 @@ fn two_seeds_records_share_one_round_interval() {
         assert_eq!(dt[i], 2e-5, "seed {}: record dt {} s", seeds[i], dt[i]);
     }
     // The samples of the accelerograms table are that far apart.
-    let folder = stickslip_store::Folder::new(&dir.join("out"));
+    let folder = stickslip_store::Folder::new(dir.join("out"));
     let acc = read_table(&folder.part(&stickslip_store::schema::ACCELEROGRAMS, 7));
     let t: Vec<f64> = acc.column("time_s").unwrap().f64().unwrap().into_no_null_iter().take(50).collect();
     assert!(t.windows(2).all(|w| ((w[1] - w[0]) / 2e-5 - 1.0).abs() < 1e-6), "{:?}", &t[..4]);

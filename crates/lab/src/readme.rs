@@ -178,7 +178,7 @@ impl Runner {
 
     /// An output folder of the runs, under the repository's root.
     pub fn folder(&self, rel: &str) -> Folder {
-        Folder::new(&self.root.join(rel))
+        Folder::new(self.root.join(rel))
     }
 }
 
@@ -373,7 +373,13 @@ fn slow_loading(r: &Runner) -> Result<String, LabError> {
         match pooled(&sc.seed).into_iter().find(|&i| sc.relation[i] == name) {
             Some(i) => match (sc.exponent[i], sc.exponent_low[i], sc.exponent_high[i]) {
                 (Some(e), Some(lo), Some(hi)) => {
-                    format!("{} [{}, {}] (self-similar {})", minus(e, 2), minus(lo, 2), minus(hi, 2), sc.self_similar[i])
+                    format!(
+                        "{} [{}, {}] (self-similar {})",
+                        minus(e, 2),
+                        minus(lo, 2),
+                        minus(hi, 2),
+                        sc.self_similar[i]
+                    )
                 }
                 _ => format!("no fit: {}", sc.reason[i].clone().unwrap_or_default()),
             },

@@ -159,7 +159,7 @@ impl Regimes {
     }
 
     /// The range of the sliding onsets, "from t = 0.067 … 0.068 s".
-    fn from_text(&self, seeds: &[u64]) -> String {
+    fn onset_text(&self, seeds: &[u64]) -> String {
         let t: Vec<f64> = self.sliding_from.iter().filter(|(s, _)| seeds.contains(s)).map(|p| p.1).collect();
         let (lo, hi) = t.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
         let (a, b) = (format!("{lo:.3}"), format!("{hi:.3}"));
@@ -182,10 +182,10 @@ impl Regimes {
                 .to_string(),
         ];
         if !sliding.is_empty() {
-            lines.push(format!("  sliding only {}{}", self.among(sliding), self.from_text(sliding)));
+            lines.push(format!("  sliding only {}{}", self.among(sliding), self.onset_text(sliding)));
         }
         if !then.is_empty() {
-            lines.push(format!("  stick-slip, then sliding to the end {}{}", self.among(then), self.from_text(then)));
+            lines.push(format!("  stick-slip, then sliding to the end {}{}", self.among(then), self.onset_text(then)));
         }
         Some(lines.join("\n"))
     }
@@ -221,7 +221,7 @@ fn no_events(pipeline: &Pipeline, folder: &Folder, regimes: &Regimes) -> String 
             "no events: the base slid stably {}{} — it kept up with its loading without stopping, so there is no \
              stick-slip to catalogue (stable sliding is not an earthquake).",
             regimes.among(sliding),
-            regimes.from_text(sliding)
+            regimes.onset_text(sliding)
         ));
     }
     let held = regimes.seeds(SlipRegime::NoSlip);

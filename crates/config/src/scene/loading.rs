@@ -71,7 +71,7 @@ pub(super) fn drivers(ck: &mut Checker, file: SceneSections<'_>, lattice: &Latti
             ck.push(
                 "shear.driver",
                 format!("LDEM {} at {} m", d.ldem(), {
-                    let p = lattice.position(*d).map(|v| stickslip_seismo::catalogue::compact(v));
+                    let p = lattice.position(*d).map(stickslip_seismo::catalogue::compact);
                     format!("({}, {}, {})", p[0], p[1], p[2])
                 }),
                 "a node above the base (z > 0): base nodes are held by friction (any node, without gravity and \

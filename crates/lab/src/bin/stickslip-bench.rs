@@ -206,7 +206,7 @@ fn run(c: Command) -> Result<()> {
                     println!("  S2: none in any seed (fewer than two main shocks)");
                     continue;
                 }
-                let mean = |f: &dyn Fn(&(f64, f64, f64)) -> Option<f64>| {
+                let mean = |f: &dyn Fn(&S2) -> Option<f64>| {
                     let v: Vec<f64> = s2.iter().filter_map(f).collect();
                     (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64)
                 };
@@ -479,6 +479,9 @@ fn convergence(a: ConvergenceArgs) -> Result<()> {
     );
     Ok(())
 }
+
+/// An S2's stress drop (Pa), the time its stress falls in (s) and its recurrence (s, NaN if none).
+type S2 = (f64, f64, f64);
 
 /// `stickslip-bench readme`.
 fn readme(check: bool, only: &[String], binary: Option<PathBuf>) -> Result<()> {
