@@ -20,8 +20,9 @@ use crate::check::Checker;
 use crate::error::ConfigError;
 use crate::precision::{PrecisionTarget, TargetSection};
 use crate::scene::{
-    BlockSection, BoundarySection, FrictionSection, LoadingPlateSection, MaterialSection, RecordSection,
-    RuptureSection, SceneSections, SelfWeightSection, ShearSection, SkipAheadSection, TimeSection,
+    AbsorbingSection, BlockSection, BoundarySection, FaultSection, FrictionSection, LoadingPlateSection,
+    MaterialSection, RecordSection, RuptureSection, SceneSections, SelfWeightSection, ShearSection, SkipAheadSection,
+    StationSection, TimeSection,
 };
 use crate::sections::{EventsSection, ReportSection, ReportSettings, SimilaritySection, SpectraSection};
 use crate::set::{SetSection, SetSettings};
@@ -100,6 +101,16 @@ pub struct PipelineFile {
     /// `[rupture]`: bars that crack; absent = every bar elastic.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rupture: Option<RuptureSection>,
+    /// `[fault]`: the base as one side of a planar fault with its tractions; absent = the
+    /// paper's rigid base.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fault: Option<FaultSection>,
+    /// `[absorbing]`: faces that let waves leave; absent = none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub absorbing: Option<AbsorbingSection>,
+    /// `[[stations]]`: named points whose motion is recorded.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub stations: Vec<StationSection>,
     /// `[events]`: event detection thresholds.
     #[serde(default)]
     pub events: EventsSection,
@@ -138,6 +149,9 @@ impl Default for PipelineFile {
             skip_ahead: SkipAheadSection::default(),
             loading_plate: None,
             rupture: None,
+            fault: None,
+            absorbing: None,
+            stations: Vec::new(),
             events: EventsSection::default(),
             similarity: SimilaritySection::default(),
             accelerograms: None,
@@ -198,6 +212,9 @@ impl PipelineFile {
             skip_ahead: &self.skip_ahead,
             loading_plate: &self.loading_plate,
             rupture: &self.rupture,
+            fault: &self.fault,
+            absorbing: &self.absorbing,
+            stations: &self.stations,
         }
     }
 
@@ -222,6 +239,7 @@ pub fn trace_plan(events: &EventParams, shear_duration_s: f64) -> TracePlan {
         hot_rate_m_s: 0.5 * events.v_off_m_s,
         margin_s: 2.0 * events.smoothing_s + events.quiet_s,
         quiet_interval_s: (0.25 * events.smoothing_s).max(shear_duration_s / 200_000.0),
+        rupture_rate_m_s: events.rupture_rate_m_s,
     }
 }
 
@@ -286,6 +304,11 @@ impl Pipeline {
     pub fn from_file_in(mut file: PipelineFile, default_name: &str, base: &Path) -> Result<Pipeline, ConfigError> {
         let mut ck = Checker::default();
         if let Some(grid) = file.friction.grid.as_mut()
+            && grid.rows.is_empty()
+        {
+            grid.read(base, &mut ck);
+        }
+        if let Some(grid) = file.fault.as_mut().and_then(|f| f.grid.as_mut())
             && grid.rows.is_empty()
         {
             grid.read(base, &mut ck);

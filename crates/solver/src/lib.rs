@@ -25,6 +25,7 @@
 pub mod boundary;
 pub mod dispersion;
 pub mod error;
+pub mod fault;
 pub mod field;
 pub mod geometry;
 pub mod inspect;
@@ -32,6 +33,7 @@ pub mod laws;
 pub mod layout;
 pub mod ledger;
 pub mod material;
+pub mod memory;
 pub mod model;
 mod observe;
 pub mod quasistatic;

@@ -11,9 +11,14 @@ use stickslip_seismo::similarity::AreaChoice;
 use stickslip_seismo::spectra::fourier::Window;
 use stickslip_seismo::spectra::response::Reading;
 use stickslip_solver::Model;
-use stickslip_solver::inspect::{Statics, inspect};
+use stickslip_solver::boundary::absorbing::impedances;
+use stickslip_solver::fault::FaultReading;
+use stickslip_solver::inspect::{Statics, inspect, probe_step_time};
 use stickslip_solver::laws::describe;
+use stickslip_solver::memory::{Batches, LONG_RUN_BAR_UPDATES, estimate, human, run_steps, samples};
 use stickslip_solver::scene::{SettleMethod, TimeStep};
+
+use crate::budget;
 
 /// Arguments of `stickslip check`.
 #[derive(clap::Args, Debug)]
@@ -28,6 +33,9 @@ pub struct Args {
     /// on a 16×16×16 sample block and no block stiffness: each solve costs thousands of steps).
     #[arg(long)]
     pub full_statics: bool,
+    /// Accept a run of more than 10¹¹ bar-updates per seed (refused otherwise, as by `pipeline`).
+    #[arg(long)]
+    pub allow_long: bool,
 }
 
 fn position(model: &Model, id: stickslip_solver::NodeId) -> String {
@@ -45,6 +53,11 @@ pub fn run(a: Args) -> Result<()> {
     anyhow::ensure!(a.seeds >= 1, "--seeds = 0 is not allowed: at least 1");
     let pipeline = Pipeline::load(&a.pipeline)?;
     let scene = &pipeline.scene;
+    // The memory of one seed (what check itself builds and steps) is checked before the lattice
+    // is built; the ensemble's is printed below.
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let one = budget::check_memory(scene, 1, 1, "one seed of this scene")?;
+    let available = budget::available_memory()?;
     let model = Model::new(scene.clone());
     let seeds: Vec<u64> = pipeline.seeds.iter().copied().take(a.seeds).collect();
     let statics = if a.full_statics { Statics::Full } else { Statics::for_model(&model) };
@@ -78,22 +91,74 @@ pub fn run(a: Args) -> Result<()> {
         describe(&law.node(1.0).coefficients(), |_, c| c.value.to_string()),
         scene.friction.mu_cv
     );
-    println!(
-        "  self-weight normal stress {:.1} Pa, sliding strength μs·σ = {:.1} Pa",
-        facts.self_weight_stress_pa, facts.strength_pa
-    );
+    if scene.is_fault() {
+        print_fault(&model);
+    } else {
+        println!(
+            "  self-weight normal stress {:.1} Pa, sliding strength μs·σ = {:.1} Pa",
+            facts.self_weight_stress_pa, facts.strength_pa
+        );
+    }
     let (lo, hi) = facts.critical_range_s();
     let which = if facts.critical.len() == pipeline.seeds.len() {
         format!("over the pipeline's {} seeds", facts.critical.len())
     } else {
         format!("over its first {} of {} seeds (--seeds N for more)", facts.critical.len(), pipeline.seeds.len())
     };
-    println!("  critical step {lo:.4e} … {hi:.4e} s {which}; paper's 0.6·Lc/Cp = {:.4e} s", facts.paper_bound_s);
+    let how = if facts.critical.iter().all(|(_, c)| c.iterations == 0) {
+        " (the bound from each node's bars, docs/model.md §2)"
+    } else {
+        ""
+    };
+    println!("  critical step {lo:.4e} … {hi:.4e} s {which}{how}; paper's 0.6·Lc/Cp = {:.4e} s", facts.paper_bound_s);
     match scene.time_step {
         TimeStep::Fraction(f) => {
             println!("  time step: {f} of each seed's critical step ({:.4e} … {:.4e} s)", f * lo, f * hi)
         }
         TimeStep::Fixed(dt) => println!("  time step: {dt:e} s ({:.3} of the smallest critical step)", dt / lo),
+    }
+    // Run length at the smallest Δt over the seeds inspected, and a timed probe of its steps.
+    let dt = match scene.time_step {
+        TimeStep::Fraction(f) => f * lo,
+        TimeStep::Fixed(dt) => dt,
+    };
+    let (settle, shear) = run_steps(scene, dt);
+    let parallel = pipeline.seeds.len() < threads && model.layout().splits();
+    let per_step = probe_step_time(&model, seeds[0], dt, parallel, 0.5)?;
+    let rate = Some(facts.bars as f64 / per_step);
+    let updates = budget::check_length(scene, facts.bars as u64, dt, rate, a.allow_long, "this scene")?;
+    let on = if parallel { format!("{threads} threads") } else { "one thread".into() };
+    println!(
+        "  run: {} steps per seed ({}shear {shear}), {updates:.3e} bar-updates; about {} per seed on {on} \
+         (a timed probe: {:.3e} s per step, {:.3e} bar-updates/s){}",
+        settle + shear,
+        if settle > 0 { format!("self-weight up to {settle} + ") } else { String::new() },
+        budget::duration(per_step * (settle + shear) as f64),
+        per_step,
+        facts.bars as f64 / per_step,
+        if updates > LONG_RUN_BAR_UPDATES { " — a long run, accepted with --allow-long" } else { "" }
+    );
+    let batches = Batches::of_ensemble(pipeline.seeds.len(), threads, scene.skip_ahead.enabled);
+    let all = estimate(scene, batches, samples(scene, dt)).ok();
+    println!(
+        "  memory: about {} for one seed ({:.0} bytes per bar){}; available {}",
+        human(one.total),
+        one.bytes_per_bar(),
+        all.map_or(String::new(), |e| format!(
+            ", {} for its {} seeds on {threads} threads ({} at once in batches of {})",
+            human(e.total),
+            pipeline.seeds.len(),
+            batches.concurrent,
+            batches.lanes
+        )),
+        available.as_ref().map_or("unknown".into(), |(b, source)| format!("{} ({source})", human(*b)))
+    );
+    if let (Some(e), Some((limit, _))) = (all, &available)
+        && e.total > *limit
+    {
+        println!(
+            "    → the pipeline's seeds do not fit at once: `stickslip pipeline` refuses them; give it fewer --threads"
+        );
     }
     if let Some(iv) = scene.record.interval_s {
         let k = |dt: f64| (iv / dt).round().max(1.0);
@@ -181,49 +246,62 @@ pub fn run(a: Args) -> Result<()> {
             );
         }
     }
-    let sl = &facts.slider;
-    if sl.block_n_m.is_nan() {
+    // A fault has no weight on a base: the spring-slider reading is the rigid base's.
+    if !scene.is_fault() {
+        let sl = &facts.slider;
+        if sl.block_n_m.is_nan() {
+            println!(
+                "  as a spring-slider: N = {:.4e} N, strength μs·N = {:.4e} N, tips at {:.4e} N; k not solved (the block's \
+                 stiffness under its load needs a static solve of all {} bars: --full-statics), plate springs {:.4e} N/m, \
+                 k_c = (μs − μd)·N/Dc = {:.4e} N/m",
+                sl.normal_n, sl.strength_n, sl.tipping_n, facts.bars, sl.plate_n_m, sl.critical_n_m
+            );
+        } else {
+            println!(
+                "  as a spring-slider: N = {:.4e} N, strength μs·N = {:.4e} N, tips at {:.4e} N; k = {:.4e} N/m (block under \
+                 the load {:.4e}, plate springs {:.4e}), k_c = (μs − μd)·N/Dc = {:.4e} N/m, swing damping D/(2ω) = {:.3}",
+                sl.normal_n,
+                sl.strength_n,
+                sl.tipping_n,
+                sl.k_n_m,
+                sl.block_n_m,
+                sl.plate_n_m,
+                sl.critical_n_m,
+                sl.damping_ratio
+            );
+        }
         println!(
-            "  as a spring-slider: N = {:.4e} N, strength μs·N = {:.4e} N, tips at {:.4e} N; k not solved (the block's \
-             stiffness under its load needs a static solve of all {} bars: --full-statics), plate springs {:.4e} N/m, \
-             k_c = (μs − μd)·N/Dc = {:.4e} N/m",
-            sl.normal_n, sl.strength_n, sl.tipping_n, facts.bars, sl.plate_n_m, sl.critical_n_m
+            "    → {} (the rigid slider's reading; docs/model.md §12 says where a lattice block differs)",
+            stickslip_config::keys::verdict(sl)
+        );
+    }
+    let sw = &scene.self_weight;
+    let sh = &scene.shear;
+    if scene.is_fault() {
+        println!(
+            "  run: {} s from the prestressed state at rest, D = {} 1/s, no self-weight stage{}",
+            sh.duration_s,
+            sh.damping_per_s,
+            if sh.drivers.is_empty() { ", no driver" } else { "" }
         );
     } else {
         println!(
-            "  as a spring-slider: N = {:.4e} N, strength μs·N = {:.4e} N, tips at {:.4e} N; k = {:.4e} N/m (block under \
-             the load {:.4e}, plate springs {:.4e}), k_c = (μs − μd)·N/Dc = {:.4e} N/m, swing damping D/(2ω) = {:.3}",
-            sl.normal_n,
-            sl.strength_n,
-            sl.tipping_n,
-            sl.k_n_m,
-            sl.block_n_m,
-            sl.plate_n_m,
-            sl.critical_n_m,
-            sl.damping_ratio
+            "  self-weight: {}",
+            match sw.method {
+                SettleMethod::Static =>
+                    "solved statically (falls back to damped settling if friction cannot hold it)".into(),
+                SettleMethod::Dynamic => format!(
+                    "damped settling, D = {} 1/s, until out-of-balance/weight < {:e}",
+                    sw.damping_per_s, sw.settle_tolerance
+                ),
+            }
+        );
+        let sh = &scene.shear;
+        println!(
+            "  shear: u̇f = {} m/s (t0 = {} s), D = {} 1/s, for {} s",
+            sh.velocity_m_s, sh.rise_time_s, sh.damping_per_s, sh.duration_s
         );
     }
-    println!(
-        "    → {} (the rigid slider's reading; docs/model.md §12 says where a lattice block differs)",
-        stickslip_config::keys::verdict(sl)
-    );
-    let sw = &scene.self_weight;
-    println!(
-        "  self-weight: {}",
-        match sw.method {
-            SettleMethod::Static =>
-                "solved statically (falls back to damped settling if friction cannot hold it)".into(),
-            SettleMethod::Dynamic => format!(
-                "damped settling, D = {} 1/s, until out-of-balance/weight < {:e}",
-                sw.damping_per_s, sw.settle_tolerance
-            ),
-        }
-    );
-    let sh = &scene.shear;
-    println!(
-        "  shear: u̇f = {} m/s (t0 = {} s), D = {} 1/s, for {} s",
-        sh.velocity_m_s, sh.rise_time_s, sh.damping_per_s, sh.duration_s
-    );
     let r = &scene.record;
     println!(
         "  record: {}, interface {}{}{}{}",
@@ -260,17 +338,21 @@ pub fn run(a: Args) -> Result<()> {
         ev.smoothing_s, ev.v_on_m_s, ev.v_off_m_s, ev.quiet_s, ev.merge_gap_s, ev.min_drop_pa, ev.main_fraction
     );
     let si = &pipeline.analysis.similarity;
-    println!(
-        "  similarity: L_p = {} m (λ = {}), u̇_p = {:e} m/s, model area: {}",
-        si.prototype_length_m,
-        compact(si.prototype_length_m / e[0]),
-        si.prototype_rate_m_s,
-        match si.area {
-            AreaChoice::Contact => "the whole contact area (the paper's)",
-            AreaChoice::Rupture => "each event's rupture area",
-        }
-    );
-    let lambda = si.prototype_length_m / e[0];
+    let lambda = if scene.is_fault() { 1.0 } else { si.prototype_length_m / e[0] };
+    if scene.is_fault() {
+        println!("  scale: its own (λ = 1); each event's Mw from its slip, M0 = μ·A·ΔD̄");
+    } else {
+        println!(
+            "  similarity: L_p = {} m (λ = {}), u̇_p = {:e} m/s, model area: {}",
+            si.prototype_length_m,
+            compact(lambda),
+            si.prototype_rate_m_s,
+            match si.area {
+                AreaChoice::Contact => "the whole contact area (the paper's)",
+                AreaChoice::Rupture => "each event's rupture area",
+            }
+        );
+    }
     match &pipeline.analysis.accelerograms {
         Some(a) => {
             let nodes = if a.nodes.is_empty() {
@@ -351,4 +433,62 @@ pub fn run(a: Args) -> Result<()> {
     }
     println!("  report: {}", if pipeline.report.enabled { "on" } else { "off" });
     Ok(())
+}
+
+/// What `check` says of a fault scene (docs/model.md §15): tractions, where rupture starts, the
+/// cohesive zone against the lattice, the absorbing faces and the lattice's wave speeds.
+fn print_fault(model: &Model) {
+    let scene = model.scene();
+    let Some(r) = FaultReading::of(model) else { return };
+    let mpa = |(a, b): (f64, f64)| {
+        if a == b { format!("{:.2} MPa", a / 1e6) } else { format!("{:.2} … {:.2} MPa", a / 1e6, b / 1e6) }
+    };
+    println!(
+        "  fault (the base as one side of a planar fault, slip = 2 × the face's displacement; friction heals: {}): \
+         normal stress {}, initial shear stress {}",
+        scene.friction.heals,
+        mpa(r.normal_pa),
+        mpa(r.shear_pa)
+    );
+    if r.overstressed.0 == 0 {
+        println!(
+            "  ⚠ no node starts above its static strength μs·σn: nothing nucleates unless a random field or a patch \
+             overstresses some ([[fault.patches]] with shear_stress_pa above μs·normal_stress_pa)"
+        );
+    } else {
+        println!(
+            "  nucleation: {} nodes ({:.4e} m²) start above their static strength μs·σn and slide from the first step; \
+             {} nodes can slip (above μd·σn){}",
+            r.overstressed.0,
+            r.overstressed.1,
+            r.can_slip,
+            r.median_s.map_or(String::new(), |s| format!(", median strength excess S = (τs − τ0)/(τ0 − τd) = {s:.2}"))
+        );
+    }
+    if let Some(l) = r.cohesive_zone_m {
+        let per = l / scene.lc_m;
+        println!(
+            "  cohesive zone Λ0 = (9π/32)·μ·Dc/(τs − τd) ≥ {l:.4e} m = {per:.1} × Lc{}",
+            if per < 3.0 {
+                " ⚠ under-resolved (fewer than 3 nodes): rupture speed and slip rates depend on Lc"
+            } else {
+                ""
+            }
+        );
+    }
+    let (zp, zs) = impedances(scene);
+    let rho = scene.density_kg_m3;
+    if !scene.absorbing.is_empty() {
+        println!(
+            "  absorbing faces {} (dashpots ρCp = {:.4e} and ρCs = {:.4e} Pa·s/m per m² of face)",
+            scene.absorbing.iter().map(|f| f.name()).collect::<Vec<_>>().join(", "),
+            zp,
+            zs
+        );
+    }
+    let band = scene
+        .usable_band(0.05)
+        .map(|b| format!(", waves within 5% of these speeds up to {:.3} Hz", b.f_max_hz))
+        .unwrap_or_default();
+    println!("  lattice wave speeds Cp = {:.1} m/s, Cs = {:.1} m/s{band}", zp / rho, zs / rho);
 }

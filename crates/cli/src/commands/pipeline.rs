@@ -45,6 +45,10 @@ pub struct Args {
     /// No progress bar.
     #[arg(long, short)]
     pub quiet: bool,
+    /// Accept runs of more than 10¹¹ bar-updates per seed (refused otherwise: `stickslip check`
+    /// prints a run's length and time).
+    #[arg(long)]
+    pub allow_long: bool,
 }
 
 /// Stops the running seeds at the first Ctrl-C (finished ones are kept), at once at the second.
@@ -194,12 +198,9 @@ impl Regimes {
 /// What `stickslip check` expects of the scene, as a spring-slider.
 fn slider_verdict(pipeline: &Pipeline) -> String {
     let model = stickslip_solver::Model::new(pipeline.scene.clone());
-    match stickslip_solver::inspect::inspect(
-        &model,
-        &pipeline.seeds[..1],
-        stickslip_solver::inspect::Statics::for_model(&model),
-    ) {
-        Ok(facts) => stickslip_config::keys::verdict(&facts.slider),
+    let statics = stickslip_solver::inspect::Statics::for_model(&model);
+    match stickslip_solver::inspect::spring_slider(&model, pipeline.seeds[0], statics) {
+        Ok(slider) => stickslip_config::keys::verdict(&slider),
         Err(e) => format!("not assessed ({e})"),
     }
 }
@@ -311,12 +312,20 @@ pub fn run(a: Args) -> Result<()> {
             p.name
         );
     }
-    let cancel = cancel_on_ctrl_c()?;
+    // Memory and run length of every pipeline before any is built.
+    let threads = a.threads.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    let mut runs = Vec::new();
     for pipeline in &pipelines {
         let mut seeds = given.clone().unwrap_or_else(|| pipeline.seeds.clone());
         if let Some((k, n)) = a.shard {
             seeds = shard(&seeds, k, n);
         }
+        let what = format!("{}: {} seed{}", pipeline.name, seeds.len(), if seeds.len() == 1 { "" } else { "s" });
+        crate::budget::check_before_build(&pipeline.scene, seeds.len(), threads, a.allow_long, &what)?;
+        runs.push(seeds);
+    }
+    let cancel = cancel_on_ctrl_c()?;
+    for (pipeline, seeds) in pipelines.iter().zip(runs) {
         let out = a.out.clone().unwrap_or_else(|| PathBuf::from("reports").join(&pipeline.name));
         let options = EnsembleOptions {
             out: out.clone(),

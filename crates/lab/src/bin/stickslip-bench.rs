@@ -11,6 +11,8 @@ use stickslip_lab::calibrate::sweep;
 use stickslip_lab::convergence::{Cell, Loading, QUANTITIES, compare, convergence_figure, convergence_frame, run_cell};
 use stickslip_lab::peer::peer;
 use stickslip_lab::recording_cost::recording_cost;
+use stickslip_lab::scec::{self, Reference, read_run};
+use stickslip_lab::setup_cost::setup_cost;
 use stickslip_lab::skip::{JumpCheck, SkipBench, compare_skip, jumps_frame, runs_frame};
 use stickslip_store::io::write_parquet_atomic;
 
@@ -93,6 +95,21 @@ enum Command {
         /// Folder for lattice.data and in.lattice.
         out: PathBuf,
     },
+    /// What a run does before its first step against a step: the pipeline's scene at the given
+    /// size (e.g. `large-block.toml 500 150 48`), its first seed, on one thread and on all of them.
+    Setup {
+        /// Pipeline file (TOML).
+        pipeline: PathBuf,
+        /// Modules along x [default: the pipeline's].
+        nx: Option<usize>,
+        /// Modules along y.
+        ny: Option<usize>,
+        /// Modules along z.
+        nz: Option<usize>,
+        /// Steps timed.
+        #[arg(long, default_value_t = 20)]
+        steps: usize,
+    },
     /// Sweeps assumed values of a pipeline's scene over seeds and prints the main shocks of each
     /// combination, e.g. `d2=100,400,900 t0=0.002,0.02` (keys: z, y, d2, d1, t0, frac, dur, vel,
     /// mud, dc).
@@ -121,6 +138,24 @@ enum Command {
         #[arg(long)]
         binary: Option<PathBuf>,
     },
+    /// A fault scene's run against a reference solution of a SCEC dynamic-rupture benchmark
+    /// (TPV5): rupture time, final slip and peak slip rate at every on-fault station, the
+    /// rupture-time field, and figures (written beside each run's files, in <run>/scec/).
+    DynamicRupture(RuptureArgs),
+}
+
+/// `stickslip-bench dynamic-rupture`'s arguments.
+#[derive(clap::Args, Debug)]
+struct RuptureArgs {
+    /// Output folders of runs of the benchmark (e.g. reports/tpv5 and reports/tpv5-100m).
+    #[arg(required = true)]
+    runs: Vec<PathBuf>,
+    /// Seed of the runs.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// The reference solution's folder.
+    #[arg(long, default_value = "pipelines/reference/tpv5")]
+    reference: PathBuf,
 }
 
 fn bench_out(pipeline: &Pipeline, out: Option<PathBuf>) -> PathBuf {
@@ -155,6 +190,7 @@ fn run(c: Command) -> Result<()> {
             }
             Ok(())
         }
+        Command::DynamicRupture(a) => dynamic_rupture(&a),
         Command::Peer { nx, ny, nz, steps, out } => {
             anyhow::ensure!(nx >= 1 && ny >= 1 && nz >= 1, "NX NY NZ must be at least 1");
             let t = peer(nx, ny, nz, steps, &out)?;
@@ -165,6 +201,49 @@ fn run(c: Command) -> Result<()> {
             Ok(())
         }
         Command::Readme { check, only, binary } => readme(check, &only, binary),
+        Command::Setup { pipeline, nx, ny, nz, steps } => {
+            let p = Pipeline::load(&pipeline)?;
+            let mut scene = p.scene.clone();
+            let d = scene.dims;
+            scene.dims = stickslip_solver::Dims::new(nx.unwrap_or(d.nx), ny.unwrap_or(d.ny), nz.unwrap_or(d.nz));
+            let seed = p.seeds[0];
+            println!(
+                "{:>8} {:>11} {:>8} {:>8} {:>8} {:>4} {:>8} {:>8} {:>9} {:>9} {:>11}",
+                "threads",
+                "bars",
+                "model_s",
+                "stiff_s",
+                "crit_s",
+                "its",
+                "state_s",
+                "setup_s",
+                "step_s",
+                "setup/step",
+                "updates/s"
+            );
+            let all = std::thread::available_parallelism().map_or(1, |n| n.get());
+            for threads in [1, all] {
+                let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build()?;
+                let c = pool.install(|| setup_cost(scene.clone(), seed, steps, threads > 1))?;
+                println!(
+                    "{threads:>8} {:>11} {:>8.3} {:>8.3} {:>8.3} {:>4} {:>8.3} {:>8.3} {:>9.4} {:>9.1} {:>11.3e}",
+                    c.bars,
+                    c.model_s,
+                    c.stiffness_s,
+                    c.critical_s,
+                    c.iterations,
+                    c.state_s,
+                    c.setup_s(),
+                    c.step_s,
+                    c.setup_s() / c.step_s,
+                    c.bars as f64 / c.step_s
+                );
+                if all == 1 {
+                    break;
+                }
+            }
+            Ok(())
+        }
         Command::Calibrate { pipeline, values, seeds } => {
             let p = Pipeline::load(&pipeline)?;
             let mut grid = Vec::new();
@@ -512,6 +591,23 @@ fn readme(check: bool, only: &[String], binary: Option<PathBuf>) -> Result<()> {
     } else {
         std::fs::write(&path, new)?;
         println!("README.md rewritten");
+    }
+    Ok(())
+}
+
+/// Each run against the reference, printed as Markdown, with its figures.
+fn dynamic_rupture(a: &RuptureArgs) -> Result<()> {
+    let reference = Reference::load(&a.reference)?;
+    for run in &a.runs {
+        let dir = run.join("scec").join(format!("seed{}", a.seed));
+        let (stations, field) = read_run(&dir)?;
+        let c = scec::compare(&stations, &field, &reference);
+        let label = run.file_name().and_then(|s| s.to_str()).unwrap_or("run").to_string();
+        println!("## {label} against {}\n", a.reference.display());
+        println!("{}", scec::table(&c));
+        let png = run.join("scec").join(format!("comparison_seed{}.png", a.seed));
+        scec::figure(&png, &label, &stations, &field, &reference)?;
+        println!("figures: {} and its _slip_rates companion\n", png.display());
     }
     Ok(())
 }

@@ -1,23 +1,28 @@
 //! The parameters of `L` seeds advancing together: the model, each seed's bar stiffness and
 //! friction coefficients, and the per-lane time step, damping and body force.
 
+use crate::fault::{FaultLanes, FaultLoads};
 use crate::field::Lanes;
 use crate::laws::FrictionLaws;
 use crate::model::Model;
 use crate::step::rupture::RuptureParams;
+use crate::step::stiffness::{LaneStiffness, Stiffness, StiffnessRef};
 
 /// Per-lane set-up of a batch.
 #[derive(Clone, Debug)]
 pub struct LaneSetup {
     /// Time step (s).
     pub dt_s: f64,
-    /// Kernel stiffness per bar (internal order), e.g. [`Model::bar_stiffness`].
-    pub stiffness: Vec<f64>,
+    /// Bar stiffness (internal order), e.g. [`Model::lane_stiffness`].
+    pub stiffness: LaneStiffness,
     /// Friction factor per contact node, e.g. [`Model::friction_factors`].
     pub friction: Vec<f64>,
     /// Peak elongation per bar (kernel units) when the scene's bars crack, e.g.
     /// [`Model::bar_strength`]; `None`: elastic bars. Every lane of a batch has it or none does.
     pub strength: Option<Vec<f64>>,
+    /// The fault's loads on every contact node when the base is a fault (docs/model.md §15),
+    /// e.g. [`Model::fault_loads`]; every lane of a batch has them or none does.
+    pub fault: Option<FaultLoads>,
 }
 
 /// Per-lane coefficients of the trial update `u⁺ = cf·(f/m + b) + c2·u − cp·u⁻`.
@@ -36,12 +41,14 @@ pub struct Coefficients<const L: usize> {
 pub struct Params<'m, const L: usize> {
     /// The model.
     pub model: &'m Model,
-    /// Kernel stiffness per bar and lane (see [`crate::step::bars`]).
-    pub k: Vec<Lanes<L>>,
+    /// Bar stiffness per lane (see [`crate::step::bars`] and [`crate::step::stiffness`]).
+    pub k: Stiffness<L>,
     /// The friction law's coefficients of each contact node, per lane (field factor applied).
     pub friction: FrictionLaws<L>,
     /// The bilinear law's peaks and `Kr` when bars crack (docs/model.md §11).
     pub rupture: Option<RuptureParams<L>>,
+    /// Each lane's fault loads when the base is a fault (docs/model.md §15).
+    pub fault: Option<FaultLanes<L>>,
     dt: Lanes<L>,
     damping: Lanes<L>,
     body: [Lanes<L>; 3],
@@ -53,14 +60,17 @@ impl<'m, const L: usize> Params<'m, L> {
     pub fn new(model: &'m Model, lanes: &[LaneSetup; L]) -> Self {
         let nb = model.bar_count();
         let nc = model.contact().len();
-        let mut k = vec![[0.0; L]; nb];
-        for (l, lane) in lanes.iter().enumerate() {
-            assert_eq!(lane.stiffness.len(), nb, "one stiffness per bar");
+        for lane in lanes {
             assert_eq!(lane.friction.len(), nc, "one friction factor per contact node");
-            for (kb, &v) in k.iter_mut().zip(&lane.stiffness) {
-                kb[l] = v;
-            }
         }
+        let k = Stiffness::interleave(nb, lanes.each_ref().map(|lane| &lane.stiffness));
+        assert!(
+            matches!(
+                (&k, model.layout()),
+                (Stiffness::PerBar(_), _) | (Stiffness::Factored(_), crate::layout::Bars::Stencil(_))
+            ),
+            "factored stiffness is for a stencil lattice"
+        );
         let friction = FrictionLaws::new(nc, |c, l| model.node_friction(c, lanes[l].friction[c]));
         let rupture = match (lanes.iter().all(|l| l.strength.is_some()), lanes.iter().all(|l| l.strength.is_none())) {
             (true, _) => {
@@ -78,11 +88,24 @@ impl<'m, const L: usize> Params<'m, L> {
             (_, true) => None,
             _ => panic!("every lane of a batch has a strength, or none does"),
         };
+        let fault = match lanes.iter().map(|l| l.fault.as_ref()).collect::<Option<Vec<&FaultLoads>>>() {
+            Some(loads) => {
+                for f in &loads {
+                    assert_eq!(f.normal_n.len(), nc, "one fault load per contact node");
+                }
+                Some(FaultLanes::new(loads.try_into().expect("one load per lane")))
+            }
+            None => {
+                assert!(lanes.iter().all(|l| l.fault.is_none()), "every lane of a batch has fault loads, or none does");
+                None
+            }
+        };
         let mut p = Params {
             model,
             k,
             friction,
             rupture,
+            fault,
             dt: lanes.each_ref().map(|lane| lane.dt_s),
             damping: [0.0; L],
             body: [[0.0; L]; 3],
@@ -102,9 +125,15 @@ impl<'m, const L: usize> Params<'m, L> {
         self.coef.cp[l] = (1.0 - a) / (1.0 + a);
     }
 
-    /// The kernel stiffness of every bar of lane `l` (internal order).
+    /// What the kernels read of the bar stiffness.
+    pub fn stiffness(&self) -> StiffnessRef<'_, L> {
+        self.k.view(self.model.run_stiffness())
+    }
+
+    /// The kernel stiffness of every bar of lane `l` (internal order; a stencil's computed from
+    /// its runs and factors).
     pub fn lane_stiffness(&self, l: usize) -> Vec<f64> {
-        self.k.iter().map(|k| k[l]).collect()
+        self.stiffness().lane(self.model.layout(), l)
     }
 
     /// Time step of lane `l` (s).

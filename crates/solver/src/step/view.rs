@@ -24,17 +24,25 @@ pub struct Interface {
     pub lifted: usize,
 }
 
-/// One contact node as the interface sums see it.
+/// One contact node as the interface sums see it. On a fault (docs/model.md §15) its slip and
+/// slip rate are across the fault, twice the face's displacement and velocity, and its normal
+/// reaction is the prescribed normal force.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct NodeContact {
     /// Friction reaction in x (N).
     pub friction_x: f64,
+    /// Friction reaction in y (N).
+    pub friction_y: f64,
     /// Normal reaction (N).
     pub normal: f64,
-    /// x-displacement (m).
+    /// Slip in x: the x-displacement (m).
     pub slip: f64,
-    /// x-velocity (m/s).
+    /// Slip in y (m).
+    pub slip_y: f64,
+    /// Slip rate in x: the x-velocity (m/s).
     pub slip_rate: f64,
+    /// Slip rate in y (m/s).
+    pub slip_rate_y: f64,
     /// Sliding.
     pub slipping: bool,
     /// Off the base.
@@ -110,13 +118,17 @@ impl<const L: usize> LaneView<'_, '_, L> {
     /// Contact node `ci` (order of [`crate::Model::contact`]) at the viewed time.
     pub fn node_contact(&self, ci: usize) -> NodeContact {
         let (l, u, r) = (self.lane, &self.state.u, &self.state.contact.reaction);
-        let h = 0.5 / self.params.dt(l);
+        let factor = self.params.model.scene().slip_factor();
+        let h = 0.5 / self.params.dt(l) * factor;
         let p = self.params.model.contact()[ci] as usize;
         NodeContact {
             friction_x: r[0][ci][l],
+            friction_y: r[1][ci][l],
             normal: r[2][ci][l],
-            slip: u.n.c[0][p][l],
+            slip: u.n.c[0][p][l] * factor,
+            slip_y: u.n.c[1][p][l] * factor,
             slip_rate: (u.np1.c[0][p][l] - u.nm1.c[0][p][l]) * h,
+            slip_rate_y: (u.np1.c[1][p][l] - u.nm1.c[1][p][l]) * h,
             slipping: self.state.contact.sliding[ci][l],
             lifted: r[2][ci][l] == 0.0,
         }
@@ -145,10 +157,15 @@ impl<const L: usize> LaneView<'_, '_, L> {
         e.kinetic = self.kinetic_energy();
         let layout = self.params.model.layout();
         e.elastic = match &self.state.rupture {
-            None => strain_energy(layout, &self.params.k, &u.n, &u.np1, self.lane),
-            Some(r) => {
-                crate::step::rupture::strain_energy(layout.listed(), &self.params.k, &r.secant, &u.n, &u.np1, self.lane)
-            }
+            None => strain_energy(layout, self.params.stiffness(), &u.n, &u.np1, self.lane),
+            Some(r) => crate::step::rupture::strain_energy(
+                layout.listed(),
+                self.params.k.per_bar(),
+                &r.secant,
+                &u.n,
+                &u.np1,
+                self.lane,
+            ),
         };
         e
     }
@@ -174,26 +191,35 @@ impl<const L: usize> LaneView<'_, '_, L> {
     /// A blow-up in the last step: a non-finite displacement, or a node that moved more than
     /// `0.01·Lc` in one step (a particle speed no linear-elastic rock reaches).
     pub fn check_blowup(&self) -> Option<Blowup> {
+        self.check_blowup_on(false)
+    }
+
+    /// [`LaneView::check_blowup`], the nodes scanned on the current rayon pool with `parallel`
+    /// (the same first node found either way).
+    pub fn check_blowup_on(&self, parallel: bool) -> Option<Blowup> {
+        use rayon::prelude::*;
         let (l, u) = (self.lane, &self.state.u);
         let bound = 0.01 * self.params.model.scene().lc_m;
         for c in 0..3 {
             let (a, b) = (&u.np1.c[c], &u.n.c[c]);
-            for i in 0..a.len() {
-                let (x, y) = (a[i][l], b[i][l]);
-                if !x.is_finite() {
-                    return Some(Blowup { node: i, what: format!("non-finite {} displacement", ["x", "y", "z"][c]) });
-                }
-                let jump = (x - y).abs();
-                if jump > bound {
-                    return Some(Blowup {
-                        node: i,
-                        what: format!(
-                            "{} displacement changed by {jump:.3e} m in one step (bound 0.01·Lc = {bound:.3e} m)",
-                            ["x", "y", "z"][c]
-                        ),
-                    });
-                }
-            }
+            let bad = |i: usize| !a[i][l].is_finite() || (a[i][l] - b[i][l]).abs() > bound;
+            let first = if parallel {
+                (0..a.len()).into_par_iter().with_min_len(1 << 14).find_first(|&i| bad(i))
+            } else {
+                (0..a.len()).find(|&i| bad(i))
+            };
+            let Some(i) = first else { continue };
+            let (x, y) = (a[i][l], b[i][l]);
+            let what = if !x.is_finite() {
+                format!("non-finite {} displacement", ["x", "y", "z"][c])
+            } else {
+                format!(
+                    "{} displacement changed by {:.3e} m in one step (bound 0.01·Lc = {bound:.3e} m)",
+                    ["x", "y", "z"][c],
+                    (x - y).abs()
+                )
+            };
+            return Some(Blowup { node: i, what });
         }
         None
     }
