@@ -479,7 +479,9 @@ pub fn detect(signals: &Signals<'_>, contact_nodes: usize, contact_area_m2: f64,
             let sliding = Sliding { burst, loading_rate_pa_s };
             let lasted = sliding.burst.end_s - sliding.burst.start_s;
             let outlasted = sliding.restore_s().is_some_and(|r| lasted > r) && lasted > longest_finished;
-            if outlasted || lasted > 0.5 * record_s {
+            // Without a loading rate (no stuck stretch rising: a fault loaded by its initial
+            // stress, whose one rupture may last most of a short run) it is an event.
+            if outlasted || (sliding.loading_rate_pa_s.is_some() && lasted > 0.5 * record_s) {
                 catalogue.sliding = Some(sliding);
                 continue;
             }
