@@ -80,3 +80,84 @@ pub fn scaled_events(cat: &Catalogue, model: &Model, similarity: &SimilarityPara
         })
         .collect()
 }
+
+/// What the base did over a seed's shear stage.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SlipRegime {
+    /// Bursts of slip with stress drops, the base stuck between them.
+    StickSlip,
+    /// Stick-slip, then stable sliding to the end of the run.
+    StickSlipThenSliding,
+    /// The base slid along with its loading, without an earthquake.
+    StableSliding,
+    /// No event, and the base did not keep up with its loading: it held (or the block tipped).
+    NoSlip,
+}
+
+impl SlipRegime {
+    /// Every regime.
+    pub const ALL: [SlipRegime; 4] =
+        [SlipRegime::StickSlip, SlipRegime::StickSlipThenSliding, SlipRegime::StableSliding, SlipRegime::NoSlip];
+
+    /// `"stick_slip"`, `"stick_slip_then_sliding"`, `"stable_sliding"`, `"no_slip"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            SlipRegime::StickSlip => "stick_slip",
+            SlipRegime::StickSlipThenSliding => "stick_slip_then_sliding",
+            SlipRegime::StableSliding => "stable_sliding",
+            SlipRegime::NoSlip => "no_slip",
+        }
+    }
+
+    /// The regime written as `name`.
+    pub fn parse(name: &str) -> Option<SlipRegime> {
+        SlipRegime::ALL.into_iter().find(|r| r.name() == name)
+    }
+}
+
+/// The run's diagnosis: its regime, when it started sliding for good, and how closely the base
+/// followed its loading over the second half of the shear stage.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Diagnosis {
+    /// The regime.
+    pub regime: SlipRegime,
+    /// Start of the slip episode that never stopped, if the run ended in one (s).
+    pub sliding_from_s: Option<f64>,
+    /// Slip of the base over the second half of the shear stage divided by the loading's
+    /// displacement over it: about 1 for a base that slides with its loading (steadily or in
+    /// bursts), near 0 for one that holds.
+    pub followed: f64,
+}
+
+/// The share of its loading's displacement the base must have slipped over the second half of
+/// the shear stage, without an event, to be read as sliding stably.
+pub const FOLLOWS: f64 = 0.5;
+
+/// Reads what the base did from the catalogue and the event trace: stick-slip when it has
+/// events; stable sliding when a slip episode never stopped ([`Catalogue::sliding`]) or, with no
+/// event, when the base slipped at least [`FOLLOWS`] of its loading's displacement over the
+/// second half of the shear stage (as with a rigid driver whose slips stay slower than the
+/// detector's threshold); no slip otherwise.
+pub fn diagnose(rec: &Recording, cat: &Catalogue, model: &Model) -> Diagnosis {
+    let trace = &rec.trace;
+    let shear = &model.scene().shear;
+    let followed = match (trace.time_s.first(), trace.time_s.last()) {
+        (Some(&t0), Some(&t1)) if t1 > t0 => {
+            let mid = 0.5 * (t0 + t1);
+            let i = trace.time_s.partition_point(|&t| t < mid).min(trace.time_s.len() - 1);
+            let slip = trace.mean_slip_m[trace.mean_slip_m.len() - 1] - trace.mean_slip_m[i];
+            let load = shear.driver_displacement(t1) - shear.driver_displacement(trace.time_s[i]);
+            if load > 0.0 { slip / load } else { 0.0 }
+        }
+        _ => 0.0,
+    };
+    let sliding_from_s = cat.sliding.as_ref().map(|s| s.burst.start_s);
+    let regime = match (cat.events.is_empty(), sliding_from_s.is_some()) {
+        (false, false) => SlipRegime::StickSlip,
+        (false, true) => SlipRegime::StickSlipThenSliding,
+        (true, true) => SlipRegime::StableSliding,
+        (true, false) if followed >= FOLLOWS => SlipRegime::StableSliding,
+        (true, false) => SlipRegime::NoSlip,
+    };
+    Diagnosis { regime, sliding_from_s, followed }
+}

@@ -25,7 +25,7 @@ use stickslip_seismo::emission::Cluster;
 use stickslip_seismo::events::Catalogue;
 use stickslip_solver::{Model, RunOutput};
 
-pub use events::ScaledEvent;
+pub use events::{Diagnosis, ScaledEvent, SlipRegime};
 pub use fronts::SeedFronts;
 pub use records::{PlanCache, RecordData, RecordFailure, RecordTimings, RotdData, SeedRecords};
 pub use settings::{AccelerogramSettings, Settings, SpectraSettings};
@@ -61,6 +61,8 @@ pub struct SeedAnalysis {
     pub run: RunOutput,
     /// Its events.
     pub catalogue: Catalogue,
+    /// What the base did: stick-slip, stable sliding or no slip.
+    pub diagnosis: events::Diagnosis,
     /// Every event at prototype scale, in catalogue order.
     pub scaled: Vec<ScaledEvent>,
     /// The prototype length ratio λ the records scale with.
@@ -91,6 +93,7 @@ pub fn analyse(
 ) -> Result<SeedAnalysis, AnalysisError> {
     let started = thread_cpu_s();
     let catalogue = events::catalogue(&run.recording, model, &settings.events);
+    let diagnosis = events::diagnose(&run.recording, &catalogue, model);
     let scaled = events::scaled_events(&catalogue, model, &settings.similarity);
     let mut events_s = thread_cpu_s() - started;
     let records = match &settings.accelerograms {
@@ -118,5 +121,17 @@ pub fn analyse(
     let source = source::source(&run.recording, model);
     let stations = source.as_ref().map_or_else(Vec::new, |s| source::stations(&run.recording, model, s));
     events_s += thread_cpu_s() - started;
-    Ok(SeedAnalysis { run, catalogue, scaled, lambda, records, emission, fronts, events_s, source, stations })
+    Ok(SeedAnalysis {
+        run,
+        catalogue,
+        diagnosis,
+        scaled,
+        lambda,
+        records,
+        emission,
+        fronts,
+        events_s,
+        source,
+        stations,
+    })
 }

@@ -15,7 +15,7 @@ use crate::thread_cpu_s;
 use rustfft::FftPlanner;
 use stickslip_seismo::SeismoError;
 use stickslip_seismo::accelerogram::processing::{
-    MeanRemoval, Padding, Processed, ProcessingOptions, RecordBand, process,
+    MeanRemoval, Padding, Processed, ProcessingOptions, RecordBand, process, record_interval,
 };
 use stickslip_seismo::events::Catalogue;
 use stickslip_seismo::spectra::fourier::{FourierSpectrum, fourier_amplitude};
@@ -76,6 +76,11 @@ pub struct RecordData {
     pub start_s: f64,
     /// Length of the window before the event's start (s).
     pub pre_event_s: f64,
+    /// The seed's own sampling interval (s) and the samples of the window as recorded, before
+    /// the record was resampled to the pipeline's interval.
+    pub recorded_dt_s: f64,
+    /// Samples of the window as recorded (its raw window in the `control` table).
+    pub recorded_samples: u32,
     /// The processed record (padded acceleration, velocity, displacement).
     pub processed: Processed,
     /// Filter corners and usable band.
@@ -258,7 +263,11 @@ pub fn compute(
     if t.len() < 2 {
         return Ok(out);
     }
-    let dt = (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64;
+    // The seed's own interval (a whole number of its steps, so it differs from seed to seed) and
+    // the one every record is written at: the pipeline's `record.interval_s`, or a round one
+    // below the usable band (docs/model.md §8).
+    let dt_recorded = (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64;
+    let dt = record_interval(model.scene().record.interval_s, acc.resolved_hz);
     let lattice = model.lattice();
     for w in windows(t, span.start, catalogue, acc) {
         let started = thread_cpu_s();
@@ -267,8 +276,11 @@ pub fn compute(
         for (ch, accel) in rec.control.iter().filter(|(c, _)| acc.wants(c)) {
             let id = format!("{}-n{}-{}", w.label, ch.node.ldem(), ch.component.name());
             let raw = &accel[w.samples.clone()];
-            let duration = (raw.len() - 1) as f64 * dt;
-            let band = match RecordBand::new(duration, dt, acc.resolved_hz, acc.low_corner_hz, acc.high_corner_hz) {
+            let duration = (raw.len() - 1) as f64 * dt_recorded;
+            // The band's high corner within 80% of the Nyquist frequency of both intervals.
+            let coarser = dt_recorded.max(dt);
+            let band = match RecordBand::new(duration, coarser, acc.resolved_hz, acc.low_corner_hz, acc.high_corner_hz)
+            {
                 Ok(b) => b,
                 Err(e) => {
                     out.left_out.push(format!("{id}: {e}"));
@@ -277,7 +289,7 @@ pub fn compute(
             };
             let numerics = |source: SeismoError| RecordFailure::Numerics { record: id.clone(), source };
             let opts = processing_options(acc, band.f_low_hz, band.f_high_hz, w.pre_event_s);
-            let processed = process(raw, dt, &opts).map_err(numerics)?;
+            let processed = process(raw, dt_recorded, &opts).map_err(numerics)?.resampled(dt);
             let intensity = intensity(&processed.accel, dt, Baseline::None);
             // The response spectra come below: a node's x and y records from the passes of
             // their RotD, the others alone.
@@ -297,6 +309,8 @@ pub fn compute(
                 position: lattice.position(ch.node),
                 start_s: t[w.samples.start - span.start],
                 pre_event_s: w.pre_event_s,
+                recorded_dt_s: dt_recorded,
+                recorded_samples: raw.len() as u32,
                 processed,
                 band,
                 intensity,

@@ -14,9 +14,46 @@ pub fn pad(s: &str, w: usize) -> String {
     format!("{s}{}", " ".repeat(w.saturating_sub(width(s))))
 }
 
+/// Seeds as a compact list: runs of consecutive seeds as ranges, "1–100, 123, 200".
+pub fn seed_list(seeds: &[u64]) -> String {
+    let mut v = seeds.to_vec();
+    v.sort_unstable();
+    v.dedup();
+    let mut parts: Vec<String> = Vec::new();
+    let mut i = 0;
+    while i < v.len() {
+        let mut j = i;
+        while j + 1 < v.len() && v[j + 1] == v[j] + 1 {
+            j += 1;
+        }
+        parts.push(match j - i {
+            0 => v[i].to_string(),
+            1 => format!("{}, {}", v[i], v[j]),
+            _ => format!("{}–{}", v[i], v[j]),
+        });
+        i = j + 1;
+    }
+    parts.join(", ")
+}
+
+/// `n` and the noun, singular or plural: "1 seed", "3 seeds".
+pub fn count(n: usize, singular: &str, plural: &str) -> String {
+    format!("{n} {}", if n == 1 { singular } else { plural })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn seed_lists_are_compact() {
+        let hundred: Vec<u64> = (1..=100).rev().collect();
+        assert_eq!(seed_list(&hundred), "1–100");
+        assert_eq!(seed_list(&[200, 7, 123, 8, 1, 2, 3]), "1–3, 7, 8, 123, 200");
+        assert_eq!(seed_list(&[]), "");
+        assert_eq!(count(1, "seed", "seeds"), "1 seed");
+        assert_eq!(count(2, "figure", "figures"), "2 figures");
+    }
 
     #[test]
     fn combining_dots_take_no_column() {

@@ -22,6 +22,7 @@ pub fn for_regime(regime: Regime) -> Option<&'static str> {
         Regime::Tips => Some("loading_plate.face, friction.mu_static"),
         Regime::NoWeakening => Some("friction.mu_dynamic, friction.mu_static"),
         Regime::Overdamped => Some("shear.damping_per_s, shear.velocity_m_s"),
+        Regime::LetsGoEarly | Regime::Marginal => Some("loading_plate, friction.mu_dynamic, shear.damping_per_s"),
         Regime::StiffLoading | Regime::StickSlip | Regime::Undetermined => None,
     }
 }
@@ -68,6 +69,8 @@ mod tests {
             damping_ratio,
             slip_speed_m_s: 1.0,
             loading_speed_m_s: 1e-4,
+            sliding_n: 40.0,
+            let_go: None,
         }
     }
 
@@ -98,6 +101,15 @@ mod tests {
             (slider(1e3, 1e7, 2.0), Regime::Overdamped, true),
             (slider(1e3, 1e7, 0.1), Regime::StickSlip, false),
         ];
+        // The same slider under rigid drivers: it must hold its base to 0.80·μs·N (a drop of
+        // 10 N to μd·N swings it at 1 m/s; 1.4 mN suffices against 0.1 mm/s).
+        let driven = |let_go| Slider { let_go: Some(let_go), ..slider(1e3, f64::INFINITY, 0.1) };
+        assert!((driven((0.73, 0.81)).holds_until().unwrap() - 0.80).abs() < 1e-3);
+        let cases = cases.into_iter().chain([
+            (driven((0.73, 0.81)), Regime::Marginal, true),
+            (driven((0.5, 0.7)), Regime::LetsGoEarly, true),
+            (driven((0.85, 0.95)), Regime::StickSlip, false),
+        ]);
         for (s, regime, keyed) in cases {
             assert_eq!(s.regime(), regime);
             let text = s.verdict();

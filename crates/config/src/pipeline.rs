@@ -405,6 +405,51 @@ impl Pipeline {
         let a = &self.analysis;
         a.spectra.as_ref().map(|sp| prototype_grid(sp, &self.scene, &a.similarity))
     }
+
+    /// Whether the report compares this pipeline with the paper (its figure numbers and its
+    /// reference values: M = 6.77, 25.8 ms, 7.6 kPa): `Ok(true)` with `[report] paper_figures`
+    /// on the paper's block — its modules, Lc, material, gravity, driver speed and prototype
+    /// length (λ = 10⁴), whatever its friction and loading —, `Ok(false)` without the flag, and
+    /// `Err(why)` with the flag on another block (a copy of `paper.toml` made into one's own
+    /// scene), where the paper's numbers would mislead.
+    pub fn paper_references(&self) -> Result<bool, String> {
+        if !self.report.paper_figures {
+            return Ok(false);
+        }
+        let paper = Pipeline::from_file(PipelineFile::default(), "paper").expect("the default pipeline is valid");
+        let (s, p) = (&self.scene, &paper.scene);
+        let lambda = |x: &Pipeline| x.analysis.similarity.prototype_length_m;
+        let mut differs = Vec::new();
+        if s.dims != p.dims || s.lc_m != p.lc_m {
+            differs.push(format!(
+                "block {}×{}×{} modules of {} m (the paper's: {}×{}×{} of {} m)",
+                s.dims.nx, s.dims.ny, s.dims.nz, s.lc_m, p.dims.nx, p.dims.ny, p.dims.nz, p.lc_m
+            ));
+        }
+        if (s.young_pa, s.density_kg_m3, s.poisson, s.young_cv) != (p.young_pa, p.density_kg_m3, p.poisson, p.young_cv)
+        {
+            differs.push("material".into());
+        }
+        if s.self_weight.gravity_m_s2 != p.self_weight.gravity_m_s2 {
+            differs.push("gravity".into());
+        }
+        if s.shear.velocity_m_s != p.shear.velocity_m_s {
+            differs
+                .push(format!("driver speed {} m/s (the paper's: {} m/s)", s.shear.velocity_m_s, p.shear.velocity_m_s));
+        }
+        if lambda(self) != lambda(&paper) {
+            differs.push(format!("prototype length {} m (the paper's: {} m)", lambda(self), lambda(&paper)));
+        }
+        if differs.is_empty() {
+            Ok(true)
+        } else {
+            Err(format!(
+                "[report] paper_figures is on, but this is not the paper's scene ({}): the paper's figure numbers and \
+                 reference values are left out",
+                differs.join(", ")
+            ))
+        }
+    }
 }
 
 #[cfg(test)]
@@ -430,6 +475,24 @@ mod tests {
         assert_eq!(a.hash, d.hash, "the seed list is not part of the hash");
         let e = Pipeline::from_toml("version = 1\n[events]\nmin_drop_pa = 100.0\n", "e").unwrap();
         assert_ne!(a.hash, e.hash, "event thresholds are");
+    }
+
+    #[test]
+    fn the_paper_is_cited_only_on_its_own_block() {
+        let flag = "[report]\npaper_figures = true\n";
+        let on = |extra: &str| Pipeline::from_toml(&format!("version = 1\n{flag}{extra}"), "p").unwrap();
+        assert_eq!(on("").paper_references(), Ok(true));
+        // Its friction and loading may change (paper-seated.toml): the block is the paper's.
+        assert_eq!(
+            on("[friction]\nmu_static = 0.7\nmu_dynamic = 0.1\nslip_weakening_m = 8e-7\n").paper_references(),
+            Ok(true)
+        );
+        // A copy of paper.toml made into one's own scene: a bigger block, or λ = 100.
+        let bigger = on("[block]\nnx = 20\nny = 2\nnz = 6\n").paper_references().unwrap_err();
+        assert!(bigger.contains("block 20×2×6 modules"), "{bigger}");
+        let small = on("[similarity]\nprototype_length_m = 100.0\n").paper_references().unwrap_err();
+        assert!(small.contains("prototype length 100 m"), "{small}");
+        assert_eq!(Pipeline::from_toml("version = 1\n", "p").unwrap().paper_references(), Ok(false));
     }
 
     #[test]

@@ -20,6 +20,7 @@ use stickslip_seismo::design::{Asce7, DesignSpectrum, Ec8, Ec8Type, GroundType, 
 use stickslip_seismo::selection::{PeriodRange, SelectionOptions};
 
 use crate::check::{Checker, Named};
+use crate::error::{ConfigError, FieldError};
 
 /// Which spectrum of a record is matched.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -193,6 +194,35 @@ pub struct SetSettings {
     pub component: SetComponent,
     /// Damping ratio.
     pub damping: f64,
+}
+
+/// Reads the `[set]` section of a TOML file (a pipeline file, or a file holding only that
+/// section) and builds it against `spectra` (see [`SetSection::build`]), a CSV target relative to
+/// the file.
+pub fn read_set_file(path: &Path, spectra: Option<(&[f64], (f64, f64))>) -> Result<SetSettings, ConfigError> {
+    #[derive(Deserialize)]
+    struct SetFile {
+        set: Option<SetSection>,
+    }
+    let text = std::fs::read_to_string(path).map_err(|e| ConfigError::Io { path: path.to_path_buf(), source: e })?;
+    let file = |e: ConfigError| ConfigError::File { path: path.to_path_buf(), source: Box::new(e) };
+    // Only the [set] table is read: the rest of a pipeline file is the pipeline's business.
+    let doc: toml::Table = toml::from_str(&text).map_err(|e| file(ConfigError::Syntax(e.to_string())))?;
+    let only = toml::Table::from_iter(doc.get("set").map(|v| ("set".to_string(), v.clone())));
+    let f: SetFile =
+        toml::Value::Table(only).try_into().map_err(|e: toml::de::Error| file(ConfigError::Syntax(e.to_string())))?;
+    let section = f.set.ok_or_else(|| {
+        file(ConfigError::Invalid(vec![FieldError {
+            field: "set".into(),
+            value: "absent".into(),
+            allowed: "a [set] section (see pipelines/accelerograms.toml)".into(),
+        }]))
+    })?;
+    let mut ck = Checker::default();
+    let base = path.parent().unwrap_or(Path::new("."));
+    let built = section.build(base, spectra, &mut ck);
+    ck.finish().map_err(file)?;
+    built.ok_or_else(|| file(ConfigError::Syntax("the set could not be built".into())))
 }
 
 impl SetSection {

@@ -116,8 +116,11 @@ pub fn gather(out: &Folder, seeds: &[u64], memory: Gathering) -> Result<Option<R
     Ok(runs)
 }
 
-/// PSA across records per (scale, node, component, damping, period): mean, geometric mean, and
-/// type-7 percentiles 5/50/95, and whether the period is in every record's band.
+/// PSA across records per (scale, node, component, damping, period), over the records whose
+/// usable band holds that period: how many, their mean, geometric mean and type-7 percentiles
+/// 5/50/95 (null where no record is in band), and whether every record is in band there. A record
+/// cut short (a window clipped by the end of the run has a narrow band) leaves the statistics of
+/// the others alone at the periods it does not reach.
 pub fn psa_stats(spectra: &DataFrame) -> Result<Vec<PsaStatsRow>, StoreError> {
     let mut groups = PsaGroups::default();
     groups.add(spectra)?;
@@ -175,7 +178,10 @@ impl PsaGroups {
                     self.groups.len() - 1
                 }
             };
-            self.groups[g].0.push(psa[i]);
+            // Per ordinate: the finite values in band, and whether every record is in band.
+            if in_band[i] && psa[i].is_finite() {
+                self.groups[g].0.push(psa[i]);
+            }
             self.groups[g].1 &= in_band[i];
         }
         Ok(())
@@ -199,13 +205,20 @@ impl PsaGroups {
             ordered.insert(Key { scale, node: n, component, damping: d, period: p }, g);
         }
         let mut rows = Vec::new();
-        for (key, (mut v, in_band)) in ordered {
-            v.retain(|x| x.is_finite());
-            if v.is_empty() {
-                continue;
-            }
+        for (key, (mut v, every)) in ordered {
             v.sort_by(f64::total_cmp);
             let n = v.len() as f64;
+            let stats = if v.is_empty() {
+                [f64::NAN; 5]
+            } else {
+                [
+                    v.iter().sum::<f64>() / n,
+                    if v[0] > 0.0 { (v.iter().map(|x| x.ln()).sum::<f64>() / n).exp() } else { f64::NAN },
+                    percentile_sorted(&v, 0.05),
+                    percentile_sorted(&v, 0.50),
+                    percentile_sorted(&v, 0.95),
+                ]
+            };
             rows.push(PsaStatsRow {
                 scale: key.scale,
                 node: key.node,
@@ -213,14 +226,8 @@ impl PsaGroups {
                 damping: f64::from_bits(key.damping),
                 period_s: f64::from_bits(key.period),
                 count: v.len() as u32,
-                stats: [
-                    v.iter().sum::<f64>() / n,
-                    if v[0] > 0.0 { (v.iter().map(|x| x.ln()).sum::<f64>() / n).exp() } else { f64::NAN },
-                    percentile_sorted(&v, 0.05),
-                    percentile_sorted(&v, 0.50),
-                    percentile_sorted(&v, 0.95),
-                ],
-                in_band,
+                stats,
+                in_band: every,
             });
         }
         rows
@@ -247,4 +254,48 @@ pub fn attenuation_fits(att: &DataFrame) -> Result<Vec<FitRow>, StoreError> {
         }
     }
     Ok(rows)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Three records at two periods; the third is cut short (its band stops below the long
+    /// period), so the long period's statistics are those of the other two, not missing.
+    #[test]
+    fn psa_statistics_at_a_period_are_over_the_records_in_band_there() {
+        let df = df!(
+            col::SCALE => ["model"; 6],
+            col::NODE => [36u32; 6],
+            col::COMPONENT => ["z"; 6],
+            col::DAMPING => [0.05; 6],
+            col::PERIOD_S => [0.01, 0.01, 0.01, 0.1, 0.1, 0.1],
+            col::PSA_M_S2 => [1.0, 2.0, 3.0, 10.0, 20.0, 1000.0],
+            col::IN_BAND => [true, true, true, true, true, false],
+        )
+        .unwrap();
+        let rows = psa_stats(&df).unwrap();
+        assert_eq!(rows.len(), 2);
+        let (short, long) = (&rows[0], &rows[1]);
+        assert_eq!((short.period_s, short.count, short.in_band), (0.01, 3, true));
+        assert!((short.stats[0] - 2.0).abs() < 1e-12 && (short.stats[3] - 2.0).abs() < 1e-12);
+        assert_eq!((long.period_s, long.count, long.in_band), (0.1, 2, false));
+        assert!((long.stats[0] - 15.0).abs() < 1e-12, "mean {} (the clipped record's 1000 left out)", long.stats[0]);
+        // Type-7 percentiles of [10, 20]: 10.5 and 19.5.
+        assert!((long.stats[2] - 10.5).abs() < 1e-12 && (long.stats[4] - 19.5).abs() < 1e-12);
+        // No record in band: a row with no statistic (null in the table), not one over records out of band.
+        let none = df!(
+            col::SCALE => ["model"],
+            col::NODE => [36u32],
+            col::COMPONENT => ["z"],
+            col::DAMPING => [0.05],
+            col::PERIOD_S => [1.0],
+            col::PSA_M_S2 => [5.0],
+            col::IN_BAND => [false],
+        )
+        .unwrap();
+        let r = &psa_stats(&none).unwrap()[0];
+        assert_eq!(r.count, 0);
+        assert!(r.stats.iter().all(|v| v.is_nan()));
+    }
 }

@@ -40,7 +40,9 @@ impl PrecisionOutcome {
     pub fn describe(&self) -> String {
         let stat = match (self.mean, self.half_width) {
             (Some(m), Some(h)) => {
-                format!("mean {m:.6} ± {h:.3e} (95% CI half-width {:.2}% of the mean)", 100.0 * h / m.abs())
+                // One digit past the half-width's first: 6068.4 ± 110.1, not 6068.411321 ± 1.101e2.
+                let digits = if h > 0.0 { (2 - h.log10().floor() as i32).clamp(0, 12) as usize } else { 6 };
+                format!("mean {m:.digits$} ± {h:.digits$} (95% CI half-width {:.2}% of the mean)", 100.0 * h / m.abs())
             }
             (Some(m), None) => format!("mean {m:.6}, no interval yet (fewer than two events)"),
             _ => "no event of the group yet".into(),
@@ -51,11 +53,12 @@ impl PrecisionOutcome {
             format!("NOT met: all {} seeds of the budget used; add seeds or relax the target", self.budget)
         };
         format!(
-            "precision target ({}): {verdict}; {} {} over {} events: {stat}",
+            "precision target ({}): {verdict}; {} {} over {} event{}: {stat}",
             self.target.describe(),
             self.target.group,
             self.target.quantity,
-            self.count
+            self.count,
+            if self.count == 1 { "" } else { "s" }
         )
     }
 }

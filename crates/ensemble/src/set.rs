@@ -142,7 +142,9 @@ pub fn select_set(out: &Folder, pipeline: &Pipeline, settings: &SetSettings) -> 
         full.push(values);
         metas.push(Meta { seed, record, label: label.clone(), node, component, usable_hz: (lo, hi) });
     }
-    let selection = select(&periods, &target, &candidates, &settings.options).map_err(EnsembleError::Set)?;
+    let mut selection = select(&periods, &target, &candidates, &settings.options).map_err(EnsembleError::Set)?;
+    // Ranked by misfit, best first: the set table's rank, the files' numbers and the printout.
+    selection.records.sort_by(|a, b| a.misfit.total_cmp(&b.misfit).then(a.index.cmp(&b.index)));
     let rows: Vec<SetRow> = selection
         .records
         .iter()
@@ -212,14 +214,17 @@ fn write_set_files(
                     continue;
                 };
                 let Some(k0) = t.iter().position(|&x| x == records.start_s[i]) else { continue };
-                let n = records.window_samples[i] as usize;
+                let n = records.recorded_samples[i] as usize;
                 if k0 + n > raw.len() || n < 2 {
                     continue;
                 }
                 let opts =
                     processing_options(acc_settings, records.f_low_hz[i], records.f_high_hz[i], records.pre_event_s[i]);
-                let p = process(&raw[k0..k0 + n], records.dt_s[i], &opts)
-                    .map_err(|e| EnsembleError::Setup(format!("seed {seed}, record {name}: {e}")))?;
+                // The record as analysed: processed at the run's own interval, then resampled to
+                // the pipeline's (the same function, so the same bits).
+                let p = process(&raw[k0..k0 + n], records.recorded_dt_s[i], &opts)
+                    .map_err(|e| EnsembleError::Setup(format!("seed {seed}, record {name}: {e}")))?
+                    .resampled(records.dt_s[i]);
                 // Times and accelerations at prototype scale as the similarity rules give them.
                 let time = |j: usize| (records.start_s[i] + p.t_first + j as f64 * p.dt) * lambda;
                 let dt = time(1) - time(0);

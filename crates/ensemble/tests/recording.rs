@@ -120,3 +120,36 @@ fn thinning_the_trace_between_bursts_changes_no_event() {
         assert_eq!(x.peak_acceleration, y.peak_acceleration);
     }
 }
+
+/// Every seed's records come at one interval, the pipeline's `record.interval_s` (2e-5 s in
+/// paper.toml), although each seed records every 2 of its own steps (2.12e-5 … 2.16e-5 s): set
+/// members, SAC files and engineers' tools see one Δt (docs/model.md §8).
+#[test]
+fn two_seeds_records_share_one_round_interval() {
+    let dir = scratch_dir("recording-record-dt");
+    let p = variant(&dir, "pipelines/paper.toml", "record-dt", |doc| {
+        set(doc, "seeds", "list", toml::Value::Array(vec![200.into(), 7.into()]));
+        set(doc, "report", "enabled", false.into());
+    });
+    run(&p, &dir.join("out"));
+    let column = |table: &str, name: &str| -> Vec<f64> {
+        let df = read_table(&dir.join("out/tables").join(table));
+        df.column(name).unwrap().f64().unwrap().into_no_null_iter().collect()
+    };
+    let recorded: Vec<f64> = column("runs.parquet", "dt_s").iter().map(|dt| 2.0 * dt).collect();
+    assert!((recorded[0] - recorded[1]).abs() > 1e-3 * recorded[0], "the seeds' own intervals {recorded:?} are alike");
+    let records = read_table(&dir.join("out/tables/records.parquet"));
+    let scale = records.column("scale").unwrap().str().unwrap().clone();
+    let seeds: Vec<u64> = records.column("seed").unwrap().u64().unwrap().into_no_null_iter().collect();
+    let dt = column("records.parquet", "dt_s");
+    let model: Vec<usize> = (0..dt.len()).filter(|&i| scale.get(i) == Some("model")).collect();
+    assert!(model.iter().any(|&i| seeds[i] == 200) && model.iter().any(|&i| seeds[i] == 7), "{seeds:?}");
+    for &i in &model {
+        assert_eq!(dt[i], 2e-5, "seed {}: record dt {} s", seeds[i], dt[i]);
+    }
+    // The samples of the accelerograms table are that far apart.
+    let folder = stickslip_store::Folder::new(dir.join("out"));
+    let acc = read_table(&folder.part(&stickslip_store::schema::ACCELEROGRAMS, 7));
+    let t: Vec<f64> = acc.column("time_s").unwrap().f64().unwrap().into_no_null_iter().take(50).collect();
+    assert!(t.windows(2).all(|w| ((w[1] - w[0]) / 2e-5 - 1.0).abs() < 1e-6), "{:?}", &t[..4]);
+}

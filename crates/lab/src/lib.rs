@@ -7,6 +7,10 @@
 //! ensemble costs end to end against a previous build ([`ensemble_cost`]), the LAMMPS
 //! side-by-side ([`peer`], with `lammps/compare.sh`), sweeps of
 //! assumed values ([`calibrate`]), and the criterion benchmarks of the kernels and spectra
+//! ([`recording_cost`]), what a run does before its first step ([`setup_cost`]), the LAMMPS
+//! side-by-side ([`peer`], with `lammps/compare.sh`), sweeps of assumed values ([`calibrate`]),
+//! the README's generated outputs, tables and measured numbers ([`readme`]), and the criterion
+//! benchmarks of the kernels and spectra
 //! (`benches/`). Speed is measured here, never asserted in tests. Must not know: the command
 //! line (it returns rows and writes tables and figures where it is told).
 #![deny(missing_docs)]
@@ -17,6 +21,7 @@ pub mod convergence;
 pub mod ensemble_cost;
 pub mod kernel_scene;
 pub mod peer;
+pub mod readme;
 pub mod recording_cost;
 pub mod scec;
 pub mod setup_cost;

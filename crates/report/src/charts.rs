@@ -33,7 +33,7 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 use crate::ReportError;
 use crate::clip::{ClipRect, clip_polygon, clip_polyline};
 use crate::place::{Occupancy, PixelBox, along_hline, around_point, choose, in_area};
-use crate::plot::{FONT, HEIGHT, LABEL, TICK, TITLE, WIDTH, colour, fmt_tick, log_range, padded_range};
+use crate::plot::{FONT, HEIGHT, LABEL, TICK, TITLE, WIDTH, colour, fmt_tick, log_range, log_ticks, padded_range};
 
 /// One polyline.
 #[derive(Clone, Debug)]
@@ -633,11 +633,22 @@ fn axes(
             chart.plotting_area().get_pixel_range()
         }};
     }
+    // Log axes: labels at round values only, minor grid lines at the other multiples
+    // (plotters' own log ticks crowd each other and draw dense bands of minor lines).
+    let (xb, xl) = log_ticks(x.0, x.1);
+    let (yb, yl) = log_ticks(y.0, y.1);
     let (xr, yr) = match (panel.x_scale, panel.y_scale) {
         (Scale::Linear, Scale::Linear) => mesh!(x.0..x.1, y.0..y.1),
-        (Scale::Log, Scale::Log) => mesh!((x.0..x.1).log_scale(), (y.0..y.1).log_scale()),
-        (Scale::Linear, Scale::Log) => mesh!(x.0..x.1, (y.0..y.1).log_scale()),
-        (Scale::Log, Scale::Linear) => mesh!((x.0..x.1).log_scale(), y.0..y.1),
+        (Scale::Log, Scale::Log) => mesh!(
+            (x.0..x.1).log_scale().with_key_points(xb).with_light_points(xl),
+            (y.0..y.1).log_scale().with_key_points(yb).with_light_points(yl)
+        ),
+        (Scale::Linear, Scale::Log) => {
+            mesh!(x.0..x.1, (y.0..y.1).log_scale().with_key_points(yb).with_light_points(yl))
+        }
+        (Scale::Log, Scale::Linear) => {
+            mesh!((x.0..x.1).log_scale().with_key_points(xb).with_light_points(xl), y.0..y.1)
+        }
     };
     Ok(PixelBox { x0: xr.start, y0: yr.start, x1: xr.end, y1: yr.end })
 }

@@ -5,6 +5,7 @@
 
 use std::fmt::Write as _;
 
+use stickslip_seismo::catalogue::compact;
 use stickslip_solver::laws::describe;
 use stickslip_store::schema::{col, seed_tables};
 use stickslip_store::tables::runs::RunStatus;
@@ -84,6 +85,28 @@ pub(crate) fn page(d: &ReportInput, figures: &[Figure], skipped: &[(String, Stri
         ok_failed.0,
         ok_failed.1
     );
+    if let Some(r) = &d.runs {
+        let regimes: Vec<(&str, &str)> = vec![
+            ("stick_slip", "stick-slip"),
+            ("stick_slip_then_sliding", "stick-slip, then stable sliding to the end"),
+            ("stable_sliding", "stable sliding (no earthquake: nothing catalogued)"),
+            ("no_slip", "no slip (the base held, or the block tipped)"),
+        ];
+        let parts: Vec<String> = regimes
+            .iter()
+            .filter_map(|(key, words)| {
+                let n = r.slip_regime.iter().filter(|g| g == key).count();
+                (n > 0).then(|| format!("{words} in {n}"))
+            })
+            .collect();
+        if !parts.is_empty() {
+            let _ = write!(
+                w,
+                "<p>What the base did, seed by seed (<code>runs.slip_regime</code>; docs/model.md §7): {}.</p>\n",
+                esc(&parts.join("; "))
+            );
+        }
+    }
     let lattice = s.lattice();
     let e = lattice.extent();
     let _ = write!(w, "<h2>Parameters</h2>\n<table>\n");
@@ -96,9 +119,9 @@ pub(crate) fn page(d: &ReportInput, figures: &[Figure], skipped: &[(String, Stri
                 s.dims.ny,
                 s.dims.nz,
                 s.lc_m,
-                e[0],
-                e[1],
-                e[2],
+                compact(e[0]),
+                compact(e[1]),
+                compact(e[2]),
                 lattice.node_count(),
                 lattice.bar_count()
             ),
@@ -151,7 +174,7 @@ pub(crate) fn page(d: &ReportInput, figures: &[Figure], skipped: &[(String, Stri
             format!(
                 "L_p = {} m (λ = {}), u̇_p = {:e} m/s",
                 p.analysis.similarity.prototype_length_m,
-                p.analysis.similarity.prototype_length_m / e[0],
+                compact(p.analysis.similarity.prototype_length_m / e[0]),
                 p.analysis.similarity.prototype_rate_m_s
             ),
         ),
@@ -162,11 +185,17 @@ pub(crate) fn page(d: &ReportInput, figures: &[Figure], skipped: &[(String, Stri
     let _ = write!(w, "</table>\n");
 
     // Main shocks across seeds.
+    let reference = if d.paper {
+        " Paper (seed 200, S2): stress drop 7.6 kPa, duration 2.1 ms, S1→S2 recurrence 25.8 ms, M = 6.77; at \
+         prototype scale 21 s and 2.83 years."
+            .to_string()
+    } else {
+        d.paper_note.as_ref().map(|n| format!(" {}.", esc(n))).unwrap_or_default()
+    };
     let _ = write!(
         w,
-        "<h2>Main shocks across seeds</h2>\n<p>Mean ± standard deviation across seeds (model scale unless said). \
-         Paper (seed 200, S2): stress drop 7.6 kPa, duration 2.1 ms, S1→S2 recurrence 25.8 ms, M = 6.77; \
-         at prototype scale 21 s and 2.83 years.</p>\n<table>\n<tr><th class=\"l\">shock</th><th>events</th>\
+        "<h2>Main shocks across seeds</h2>\n<p>Mean ± standard deviation across seeds (model scale unless said).\
+         {reference}</p>\n<table>\n<tr><th class=\"l\">shock</th><th>events</th>\
          <th>stress drop (kPa)</th><th>duration (ms)</th><th>stress falls in (ms)</th><th>recurrence (ms)</th>\
          <th>M (paper's M0)</th><th>Mw (consistent M0)</th><th>prototype duration (s)</th>\
          <th>prototype recurrence (years)</th></tr>\n"

@@ -5,6 +5,7 @@ use std::path::Path;
 
 use polars::prelude::DataFrame;
 use stickslip_config::Pipeline;
+use stickslip_config::set::{SetSettings, read_set_file};
 use stickslip_store::Folder;
 use stickslip_store::io::read_parquet_if_present;
 use stickslip_store::schema::{
@@ -53,7 +54,16 @@ pub struct ReportInput<'a> {
     pub emission: Option<AcousticEmission>,
     /// Mean Δt over the seeds (s), if any finished.
     pub mean_dt_s: Option<f64>,
-    /// Seeds drawn one by one (successful, at most four unless the pipeline names them).
+    /// The `[set]` the folder's record set was matched to: `set/set.toml`, written by `stickslip
+    /// select --set FILE`, or else the pipeline's own.
+    pub set: Option<SetSettings>,
+    /// Whether the figures cite the paper (its figure numbers and reference values): see
+    /// [`Pipeline::paper_references`].
+    pub paper: bool,
+    /// Why `[report] paper_figures` was not followed (the scene is not the paper's), if so.
+    pub paper_note: Option<String>,
+    /// Seeds drawn one by one: the successful seeds `[report] seeds` names, or else the first
+    /// four that ran (see [`drawn_seeds`]).
     pub seeds: Vec<u64>,
 }
 
@@ -65,11 +75,7 @@ impl<'a> ReportInput<'a> {
         let runs_df = table(&RUNS)?;
         let runs = runs_df.as_ref().map(Runs::read).transpose()?;
         let ok = runs.as_ref().map(Runs::ok_seeds).unwrap_or_default();
-        let seeds: Vec<u64> = if pipeline.report.seeds.is_empty() {
-            pipeline.seeds.iter().copied().filter(|s| ok.contains(s)).take(4).collect()
-        } else {
-            pipeline.report.seeds.iter().copied().filter(|s| ok.contains(s)).collect()
-        };
+        let seeds = drawn_seeds(&ok, &pipeline.seeds, &pipeline.report.seeds);
         let mean_dt_s = match &runs_df {
             Some(df) => {
                 let dt: Vec<f64> = stickslip_store::frame::Columns::of(df, RUNS.name)
@@ -81,7 +87,15 @@ impl<'a> ReportInput<'a> {
             }
             None => None,
         };
+        let (paper, paper_note) = match pipeline.paper_references() {
+            Ok(p) => (p, None),
+            Err(why) => (false, Some(why)),
+        };
+        let set = chosen_set(&folder, pipeline);
         Ok(ReportInput {
+            set,
+            paper,
+            paper_note,
             runs,
             events: table(&EVENTS_TABLE)?.as_ref().map(Events::read).transpose()?,
             similarity: table(&SIMILARITY)?.as_ref().map(Similarity::read).transpose()?,
@@ -104,5 +118,47 @@ impl<'a> ReportInput<'a> {
     /// A per-seed part, if present.
     pub fn part(&self, table: &TableSpec, seed: u64) -> Result<Option<DataFrame>, ReportError> {
         Ok(read_parquet_if_present(&self.folder.part(table, seed))?)
+    }
+}
+
+/// The `[set]` of `<folder>/set/set.toml` (what `stickslip select --set FILE` matched the set to),
+/// or the pipeline's when there is none (or it no longer builds).
+fn chosen_set(folder: &Folder, pipeline: &Pipeline) -> Option<SetSettings> {
+    let kept = folder.set_dir().join("set.toml");
+    kept.is_file().then(|| read_set_file(&kept, pipeline.set_grid()).ok()).flatten().or_else(|| pipeline.set.clone())
+}
+
+/// How many seeds the time-history figures draw when `[report] seeds` does not name them.
+pub const DRAWN_SEEDS: usize = 4;
+
+/// The seeds the time-history figures draw, from the seeds that ran (`ok`, successful): those of
+/// `named` (`[report] seeds`) that ran; when it names none that ran (or nothing), the first
+/// [`DRAWN_SEEDS`] that ran — the pipeline's own seeds first, in its order, then the others
+/// (`stickslip run --seed N`, `pipeline --seeds …` outside the file's list) in increasing order.
+pub fn drawn_seeds(ok: &[u64], pipeline: &[u64], named: &[u64]) -> Vec<u64> {
+    let chosen: Vec<u64> = named.iter().copied().filter(|s| ok.contains(s)).collect();
+    if !chosen.is_empty() {
+        return chosen;
+    }
+    let mut others: Vec<u64> = ok.iter().copied().filter(|s| !pipeline.contains(s)).collect();
+    others.sort_unstable();
+    others.dedup();
+    pipeline.iter().copied().filter(|s| ok.contains(s)).chain(others).take(DRAWN_SEEDS).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::drawn_seeds;
+
+    #[test]
+    fn the_seeds_drawn_are_those_that_ran() {
+        // `stickslip run paper.toml --seed 1`: a seed outside the file's list.
+        assert_eq!(drawn_seeds(&[1], &[123, 200, 7], &[]), vec![1]);
+        // The file's order first, then the others in increasing order, four at most.
+        assert_eq!(drawn_seeds(&[9, 2, 7, 123, 5], &[123, 200, 7], &[]), vec![123, 7, 2, 5]);
+        // Named seeds that ran; a list naming none that ran falls back to those that did.
+        assert_eq!(drawn_seeds(&[1, 2, 3], &[1, 2, 3], &[3, 8]), vec![3]);
+        assert_eq!(drawn_seeds(&[1, 2], &[123], &[8]), vec![1, 2]);
+        assert!(drawn_seeds(&[], &[1], &[]).is_empty());
     }
 }

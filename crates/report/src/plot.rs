@@ -110,6 +110,44 @@ pub fn log_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     (if decade >= lo { lo } else { decade * 0.9 }, hi)
 }
 
+/// The ticks of a log axis over `lo..hi` (positive): labelled ticks (`.0`) and unlabelled minor
+/// grid lines (`.1`). Over two decades or more, a labelled tick at each power of ten (every
+/// second, third, … when there are more than eight) and minor lines at 2…9 × 10^k up to five
+/// decades; over less, labels at 1, 2 and 5 × 10^k (or every integer multiple when those give
+/// fewer than two) and minor lines at the other multiples. Labels never sit at neighbouring
+/// minor positions (as 0.09 and 0.1 did).
+pub fn log_ticks(lo: f64, hi: f64) -> (Vec<f64>, Vec<f64>) {
+    if !(lo > 0.0 && hi > lo && hi.is_finite()) {
+        return (vec![], vec![]);
+    }
+    let inside = |v: f64| v >= lo * (1.0 - 1e-9) && v <= hi * (1.0 + 1e-9);
+    let (k0, k1) = (lo.log10().floor() as i32, hi.log10().ceil() as i32);
+    let multiples = |ms: &[u32]| -> Vec<f64> {
+        (k0..=k1).flat_map(|k| ms.iter().map(move |&m| m as f64 * 10f64.powi(k))).filter(|&v| inside(v)).collect()
+    };
+    let decades = multiples(&[1]);
+    let all: Vec<u32> = (1..=9).collect();
+    if decades.len() >= 2 {
+        let step = decades.len().div_ceil(8);
+        // Keep the powers of ten whose exponent is a multiple of the step, so the labels are
+        // evenly spaced and round.
+        let bold: Vec<f64> =
+            decades.iter().copied().filter(|v| (v.log10().round() as i64).rem_euclid(step as i64) == 0).collect();
+        let light = if k1 - k0 <= 5 {
+            multiples(&all).into_iter().filter(|v| !bold.iter().any(|b| (b / v - 1.0).abs() < 1e-9)).collect()
+        } else {
+            decades.into_iter().filter(|v| !bold.iter().any(|b| (b / v - 1.0).abs() < 1e-9)).collect()
+        };
+        return (bold, light);
+    }
+    let mut bold = multiples(&[1, 2, 5]);
+    if bold.len() < 2 {
+        bold = multiples(&all);
+    }
+    let light = multiples(&all).into_iter().filter(|v| !bold.iter().any(|b| (b / v - 1.0).abs() < 1e-9)).collect();
+    (bold, light)
+}
+
 /// Tick label formatter: plain numbers with up to 4 significant digits, scientific when tiny or
 /// huge.
 pub fn fmt_tick(v: &f64) -> String {
@@ -122,5 +160,29 @@ pub fn fmt_tick(v: &f64) -> String {
         let s = format!("{v:.4}");
         let s = s.trim_end_matches('0').trim_end_matches('.');
         s.to_string()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{fmt_tick, log_ticks};
+
+    #[test]
+    fn log_axes_are_labelled_at_round_values_only() {
+        // Three decades: a label per power of ten, minor lines at 2…9 ×.
+        let (bold, light) = log_ticks(0.003, 2.0);
+        let labels: Vec<String> = bold.iter().map(fmt_tick).collect();
+        assert_eq!(labels, ["0.01", "0.1", "1"]);
+        assert!(light.iter().any(|v| (v - 0.09).abs() < 1e-12) && light.iter().any(|v| (v - 0.004).abs() < 1e-12));
+        assert!(!light.iter().any(|v| (v - 0.1).abs() < 1e-12), "a label is not also a minor line");
+        // Less than a decade: 1, 2, 5 ×.
+        let (bold, light) = log_ticks(1.5, 9.0);
+        assert_eq!(bold.iter().map(fmt_tick).collect::<Vec<_>>(), ["2", "5"]);
+        assert_eq!(light.len(), 6);
+        // Twenty decades: at most eight labels, evenly spaced; no minor line at 2…9 ×.
+        let (bold, light) = log_ticks(1e-10, 1e10);
+        assert!(bold.len() <= 8 && bold.len() >= 5, "{bold:?}");
+        assert!(light.iter().all(|v| (v.log10() - v.log10().round()).abs() < 1e-9));
+        assert_eq!(log_ticks(0.0, 1.0), (vec![], vec![]));
     }
 }

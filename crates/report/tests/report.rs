@@ -74,9 +74,14 @@ fn paper_report_has_every_figure_drawn_and_every_link_resolving() {
     for l in &all {
         assert!(out.join(l).is_file(), "link {l} does not resolve to a file");
     }
-    for title in
-        ["Shear stress", "Normal stress", "Response spectra", "Attenuation", "Energy terms", "Main shocks across seeds"]
-    {
+    for title in [
+        "Shear stress",
+        "Normal stress",
+        "Response spectra",
+        "Peak acceleration against distance",
+        "Energy terms",
+        "Main shocks across seeds",
+    ] {
         assert!(html.contains(title), "page lacks {title}");
     }
     assert!(!html.contains("http://") && !html.contains("https://"), "the page must not load network resources");
@@ -141,6 +146,33 @@ fn figures_without_data_are_skipped_not_drawn_empty() {
     let html = std::fs::read_to_string(dir.join("out/index.html")).unwrap();
     assert!(html.contains("Not drawn (their data is absent from this run)"));
     assert!(dir.join("out/figures/shear_stress.png").exists());
+}
+
+/// A copy of `paper.toml` made into one's own scene keeps `paper_figures = true`: on another block
+/// the paper's figure numbers and reference values would mislead, so they are left out and the
+/// page says why.
+#[test]
+fn a_copy_of_paper_toml_on_another_block_cites_no_paper_figure() {
+    let dir = scratch_dir("report-copy");
+    let text = std::fs::read_to_string(repo_path("pipelines/paper.toml"))
+        .unwrap()
+        .replace("name = \"paper\"", "name = \"my-scene\"")
+        .replace("list = [123, 200, 7]", "list = [1]")
+        .replace("nx = 10", "nx = 12")
+        .replace("duration_s = 0.32 ", "duration_s = 0.12 ");
+    assert!(text.contains("paper_figures = true") && text.contains("nx = 12"));
+    let report = run(&dir, &text);
+    for f in &report.figures {
+        for h in &f.headings {
+            assert!(!h.contains("paper Fig."), "{}: {h:?} cites the paper on the user's block", f.file);
+        }
+        for reference in ["paper Fig.", "M = 6.77", "25.8 ms", "the paper reports"] {
+            assert!(!f.caption.contains(reference), "{}: {}", f.file, f.caption);
+        }
+    }
+    let html = std::fs::read_to_string(dir.join("out/index.html")).unwrap();
+    assert!(!html.contains("M = 6.77") && !html.contains("Paper (seed 200, S2)"), "the paper's reference on the page");
+    assert!(html.contains("not the paper's scene (block 12×1×5 modules"), "the page does not say why");
 }
 
 #[test]

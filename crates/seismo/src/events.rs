@@ -173,6 +173,34 @@ pub struct Catalogue {
     pub events: Vec<Event>,
     /// Sub-events in time order.
     pub sub_events: Vec<Burst>,
+    /// A slip episode that never stopped and is not an earthquake (see [`Sliding`]), if the run
+    /// ended in one: it is not among the events.
+    pub sliding: Option<Sliding>,
+    /// Slip episodes left out because their stress drop was no larger than the ringing of τ̄
+    /// before them (twice its RMS about a straight line over the stuck stretch).
+    pub within_ringing: usize,
+}
+
+/// Stable sliding: a slip episode still going when the run ends that has lasted longer than the
+/// loading takes to restore its stress drop and longer than every episode that ended — the
+/// interface slides along with its loading instead of slipping in a burst and locking again — or
+/// more than half the run. It is not
+/// catalogued (no earthquake, no magnitude): the run is read as sliding from `start_s` on.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Sliding {
+    /// Its measures (start, end = the end of the run, the drop of τ̄ at its onset, slip, …).
+    pub burst: Burst,
+    /// The rate τ̄ rose at while the base was stuck before it, its fastest stretch (Pa/s);
+    /// `None` when no stuck stretch was long enough to tell.
+    pub loading_rate_pa_s: Option<f64>,
+}
+
+impl Sliding {
+    /// The time the loading takes to restore the episode's stress drop (s), if the loading rate
+    /// is known.
+    pub fn restore_s(&self) -> Option<f64> {
+        self.loading_rate_pa_s.map(|r| self.burst.stress_drop_pa.max(0.0) / r)
+    }
 }
 
 impl Catalogue {
@@ -391,10 +419,82 @@ pub fn detect(signals: &Signals<'_>, contact_nodes: usize, contact_area_m2: f64,
         }
     }
     let mut catalogue = Catalogue::default();
+    // The loading rate of τ̄ while the base is stuck: over the stretch before the first episode
+    // and each gap between episodes at least three windows long (a window past the end of the
+    // one before, half a window before the next), the fastest.
+    let loading_rate_pa_s = {
+        let mut stuck: Vec<(f64, f64)> = Vec::new();
+        let mut from = t[0];
+        for &(a, b) in &spans {
+            stuck.push((from, t[a] - half));
+            from = t[b.min(n - 1)] + w;
+        }
+        let mut hint = 0;
+        let tau_bar = Piecewise::new(t, &tau_s);
+        stuck
+            .into_iter()
+            .filter(|&(lo, hi)| hi - lo >= 2.0 * w)
+            .map(|(lo, hi)| (tau_bar.value(hi, &mut hint) - tau_bar.value(lo, &mut hint)) / (hi - lo))
+            .filter(|r| *r > 0.0 && r.is_finite())
+            .fold(None, |m: Option<f64>, r| Some(m.map_or(r, |m| m.max(r))))
+    };
+    let record_s = t[n - 1] - t[0];
+    // The ringing of τ̄ while the base is stuck before an episode: twice the RMS of τ̄ about its
+    // least-squares line over the stretch from a window past the previous episode's end to half
+    // a window before this one's start (at least three windows long; else not judged).
+    let ringing = |lo: f64, hi: f64| -> Option<f64> {
+        if hi - lo < 3.0 * w {
+            return None;
+        }
+        let idx: Vec<usize> = (at(lo)..n).take_while(|&i| t[i] <= hi).collect();
+        if idx.len() < 8 {
+            return None;
+        }
+        let m = idx.len() as f64;
+        let (tm, ym) = idx.iter().fold((0.0, 0.0), |(a, b), &i| (a + t[i] / m, b + tau_s[i] / m));
+        let (sxx, sxy) =
+            idx.iter().fold((0.0, 0.0), |(a, b), &i| (a + (t[i] - tm).powi(2), b + (t[i] - tm) * (tau_s[i] - ym)));
+        let slope = if sxx > 0.0 { sxy / sxx } else { 0.0 };
+        let ss: f64 = idx.iter().map(|&i| (tau_s[i] - ym - slope * (t[i] - tm)).powi(2)).sum();
+        Some(2.0 * (ss / m).sqrt())
+    };
+    // The longest episode that ended before the run did: an unfinished one shorter than that
+    // may be a burst the end of the run cut short.
+    let longest_finished = groups
+        .iter()
+        .map(|&(k0, k1)| (spans[k0].0, spans[k1 - 1].1))
+        .filter(|&(_, b)| b < n)
+        .map(|(a, b)| t[b] - t[a])
+        .fold(0.0, f64::max);
+    let mut previous_end = t[0] - w;
     for (k0, k1) in groups {
         let (a, b) = (spans[k0].0, spans[k1 - 1].1);
         let burst = measure(a, b);
+        let ring = ringing(previous_end + w, burst.start_s - half);
+        previous_end = burst.end_s;
+        // An episode still slipping when the run ends, for longer than the loading needs to
+        // restore its drop and than any episode that ended (or for more than half the run):
+        // stable sliding, not an earthquake.
+        let burst = if b >= n {
+            let sliding = Sliding { burst, loading_rate_pa_s };
+            let lasted = sliding.burst.end_s - sliding.burst.start_s;
+            let outlasted = sliding.restore_s().is_some_and(|r| lasted > r) && lasted > longest_finished;
+            // Without a loading rate (no stuck stretch rising: a fault loaded by its initial
+            // stress, whose one rupture may last most of a short run) it is an event.
+            if outlasted || (sliding.loading_rate_pa_s.is_some() && lasted > 0.5 * record_s) {
+                catalogue.sliding = Some(sliding);
+                continue;
+            }
+            sliding.burst
+        } else {
+            burst
+        };
         if burst.stress_drop_pa < params.min_drop_pa {
+            continue;
+        }
+        // A drop no larger than the ringing of the stuck interface before it is not an event.
+        if ring.is_some_and(|r| burst.stress_drop_pa <= r) {
+            catalogue.within_ringing += 1;
             continue;
         }
         let first = catalogue.sub_events.len();
@@ -619,6 +719,62 @@ mod tests {
         assert!((e.stress_drop_pa - 5875.0).abs() < 15.0, "drop {}", e.stress_drop_pa);
         assert!((e.start_s - 5000.0 * DT).abs() < 1e-9 * DT, "start {}", e.start_s / DT);
         assert!((e.end_s - 5450.0 * DT).abs() < 1e-9 * DT, "end {}", e.end_s / DT);
+    }
+
+    /// The base slides at 1 mm/s from sample 5000 to the end of the record, τ̄ having dropped by
+    /// 1 kPa at the onset: the loading (300 Pa/ms) restores that in 3.3 ms, and the episode lasts
+    /// 150 ms without stopping. Stable sliding, not an event (the plate scene at 400 1/s read it
+    /// as a main shock S1 lasting 233 ms).
+    #[test]
+    fn sliding_that_never_stops_is_not_an_earthquake() {
+        let n = 20_000;
+        let rec = synthetic(n, &[(5000, n, 1e-3, 1000.0)]);
+        let cat = detect(&signals(&rec), 22, 0.1, &EventParams::default());
+        assert!(cat.events.is_empty(), "{:?}", cat.events);
+        let s = cat.sliding.expect("stable sliding");
+        assert!((s.burst.start_s - 5000.0 * DT).abs() < 1e-9, "{}", s.burst.start_s);
+        let rate = s.loading_rate_pa_s.expect("a loading rate");
+        assert!((rate / 300e3 - 1.0).abs() < 0.01, "loading rate {rate} Pa/s");
+        assert!((s.restore_s().unwrap() - s.burst.stress_drop_pa / 300e3).abs() < 1e-4);
+        // Stick-slip first, then sliding: the event stays, the sliding is not one.
+        let rec = synthetic(n, &[(5000, 5200, 1e-3, 6000.0), (12_000, n, 1e-3, 1000.0)]);
+        let cat = detect(&signals(&rec), 22, 0.1, &EventParams::default());
+        assert_eq!(cat.events.iter().map(|e| e.kind).collect::<Vec<_>>(), [EventKind::Main(1)]);
+        assert!((cat.sliding.unwrap().burst.start_s - 12_000.0 * DT).abs() < 1e-9);
+        // A 30-ms event, then the onset of the next (a small drop so far) 5 ms before the end:
+        // not sliding, it has not outlasted the event before it.
+        let rec = synthetic(n, &[(5000, 8000, 1e-3, 6000.0), (19_500, n, 1e-3, 50.0)]);
+        let cat = detect(&signals(&rec), 22, 0.1, &EventParams::default());
+        assert!(cat.sliding.is_none(), "{:?}", cat.sliding);
+        assert_eq!(cat.events.len(), 1);
+    }
+
+    /// A burst the end of the run cuts short (2 ms before it, 6 kPa: the loading needs 20 ms to
+    /// restore that) is an earthquake seen in part, not sliding.
+    #[test]
+    fn an_event_cut_by_the_end_of_the_run_is_still_an_event() {
+        let n = 20_000;
+        let rec = synthetic(n, &[(19_800, n, 1e-3, 6000.0)]);
+        let cat = detect(&signals(&rec), 22, 0.1, &EventParams::default());
+        assert!(cat.sliding.is_none());
+        assert_eq!(cat.events.len(), 1);
+        assert_eq!(cat.events[0].kind, EventKind::Main(1));
+    }
+
+    /// τ̄ ringing by ±2 kPa (50 Hz, slower than the 1-ms window) while the base is stuck: a 1-kPa
+    /// drop inside that ringing is not an event, a 6-kPa one is.
+    #[test]
+    fn a_drop_below_the_ringing_is_not_an_event() {
+        let n = 20_000;
+        for (drop, events) in [(1000.0, 0usize), (6000.0, 1)] {
+            let mut rec = synthetic(n, &[(15_000, 15_200, 1e-3, drop)]);
+            for (i, tau) in rec[1].iter_mut().enumerate().take(15_000) {
+                *tau += 2000.0 * (2.0 * std::f64::consts::PI * 50.0 * i as f64 * DT).sin();
+            }
+            let cat = detect(&signals(&rec), 22, 0.1, &EventParams::default());
+            assert_eq!(cat.events.len(), events, "drop {drop}");
+            assert_eq!(cat.within_ringing, 1 - events, "drop {drop}");
+        }
     }
 
     #[test]

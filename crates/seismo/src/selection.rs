@@ -61,6 +61,7 @@
 
 use std::collections::HashMap;
 
+use crate::catalogue::compact;
 use crate::error::SeismoError;
 
 /// One candidate record.
@@ -103,11 +104,16 @@ impl PeriodRange {
                 if !(t1 > 0.0 && t1.is_finite()) {
                     return Err(SeismoError::parameter("range.t1", format!("{t1} s"), "a finite T_1 > 0 s"));
                 }
-                Ok((0.2 * t1, 2.0 * t1))
+                // T₁/5 rather than 0.2·T₁: 0.05/5 is 0.01, 0.2·0.05 is 0.010000000000000002.
+                Ok((t1 / 5.0, 2.0 * t1))
             }
             PeriodRange::Explicit { t_a, t_b } => {
                 if !(t_a > 0.0 && t_a < t_b && t_b.is_finite()) {
-                    return Err(SeismoError::parameter("range", format!("[{t_a}, {t_b}] s"), "0 < T_a < T_b, finite"));
+                    return Err(SeismoError::parameter(
+                        "range",
+                        format!("[{}, {}] s", compact(t_a), compact(t_b)),
+                        "0 < T_a < T_b, finite",
+                    ));
                 }
                 Ok((t_a, t_b))
             }
@@ -438,14 +444,22 @@ fn check_inputs(
     if t_a < g0 * (1.0 - eps) || t_b > g1 * (1.0 + eps) {
         return Err(SeismoError::parameter(
             "range",
-            format!("[{t_a}, {t_b}] s"),
-            format!("inside the period grid [{g0}, {g1}] s, so the rule can be checked over all of it"),
+            format!("[{}, {}] s", compact(t_a), compact(t_b)),
+            format!(
+                "inside the period grid [{}, {}] s, so the rule can be checked over all of it",
+                compact(g0),
+                compact(g1)
+            ),
         ));
     }
     let start = periods.partition_point(|&t| t < t_a * (1.0 - eps));
     let end = periods.partition_point(|&t| t <= t_b * (1.0 + eps));
     if start >= end {
-        return Err(SeismoError::parameter("range", format!("[{t_a}, {t_b}] s"), "at least one grid period inside"));
+        return Err(SeismoError::parameter(
+            "range",
+            format!("[{}, {}] s", compact(t_a), compact(t_b)),
+            "at least one grid period inside",
+        ));
     }
     let positive_int = |name: &str, v: usize| {
         if v == 0 { Err(SeismoError::parameter(name, v, "≥ 1")) } else { Ok(()) }
@@ -477,7 +491,7 @@ fn check_inputs(
         if !(c.usable_min >= 0.0 && c.usable_min <= c.usable_max) || c.usable_min.is_infinite() {
             return Err(SeismoError::parameter(
                 format!("candidates[{i}] usable band"),
-                format!("[{}, {}] s", c.usable_min, c.usable_max),
+                format!("[{}, {}] s", compact(c.usable_min), compact(c.usable_max)),
                 "0 ≤ usable_min ≤ usable_max",
             ));
         }

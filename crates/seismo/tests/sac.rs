@@ -109,3 +109,42 @@ fn metre_unit_and_undefined_reference_by_the_independent_reader() {
     assert_eq!([f(&b, 158), f(&b, 159), f(&b, 160)], [0.5, -0.25, 1.0]);
     assert_eq!((f(&b, 1), f(&b, 2), f(&b, 56)), (-0.25, 1.0, (1.25f64 / 3.0) as f32)); // (0.5 − 0.25 + 1)/3
 }
+
+/// A record's position is not latitude and longitude: `STLA`/`STLO` (degrees) stay undefined,
+/// x, y, z (m) go to `USER7`–`USER9` after the labelled numbers, the height also to `STEL` (m).
+#[test]
+fn a_records_position_is_metres_in_user7_to_9_not_degrees() {
+    use stickslip_seismo::accelerogram::sac::{POSITION_USER, parse_sac};
+    use stickslip_seismo::accelerogram::{RecordFile, RecordFormat, Sac};
+    let accel = [0.0, 1.0, -0.5, 0.25];
+    let numbers: [(&str, &[f64]); 3] = [("FILTER", &[0.5, 400.0]), ("USABLE", &[0.63, 51.0]), ("LAMBDA", &[100.0])];
+    let record = RecordFile {
+        description: "test",
+        accel_m_s2: &accel,
+        dt_s: 0.01,
+        begin_s: 0.0,
+        motion: None,
+        station: "N36",
+        component: "Z",
+        network: "SS",
+        location: "P",
+        event: "S2",
+        position_m: Some([20.0, 10.0, 10.0]),
+        orientation: None,
+        magnitude: None,
+        numbers: &numbers,
+    };
+    let bytes = Sac.encode(&record).unwrap();
+    // Words 31 and 32 (STLA, STLO) hold SAC's undefined value.
+    assert_eq!((f(&bytes, 31), f(&bytes, 32)), (-12345.0, -12345.0), "STLA STLO");
+    assert_eq!(f(&bytes, 33), 10.0, "STEL");
+    let t = parse_sac(&bytes, Path::new("t.SAC")).unwrap();
+    assert_eq!(t.meta.station_lat, None);
+    assert_eq!(t.meta.station_lon, None);
+    assert_eq!(POSITION_USER, 7);
+    assert_eq!(&t.meta.user[..5], &[Some(0.5), Some(400.0), Some(0.63), Some(51.0), Some(100.0)]);
+    assert_eq!(&t.meta.user[7..], &[Some(20.0), Some(10.0), Some(10.0)]);
+    // Numbers that would reach the position's slots are refused.
+    let many: [(&str, &[f64]); 1] = [("MANY", &[1.0; 8])];
+    assert!(Sac.encode(&RecordFile { numbers: &many, ..record }).is_err());
+}

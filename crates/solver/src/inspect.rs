@@ -67,7 +67,18 @@ pub struct Slider {
     pub slip_speed_m_s: f64,
     /// Loading speed u̇f (m/s).
     pub loading_speed_m_s: f64,
+    /// The base's resistance while it slides, μd·N (N; μs and μd are the means over the base's
+    /// nodes when a friction map gives them their own).
+    pub sliding_n: f64,
+    /// The fractions of μs·N at which a lattice block lets go of its base, when they depart from
+    /// the rigid slider's 1: under rigid driver nodes, whose load lets the trailing base nodes go
+    /// first (0.73–0.81 measured, docs/model.md §12); `None` for a plate's springs.
+    pub let_go: Option<(f64, f64)>,
 }
+
+/// The fractions of μs·N at which a lattice block under rigid driver nodes lets go of its base
+/// (docs/model.md §12: 0.73–0.81 for the 8×1×1 block).
+pub const DRIVER_LET_GO: (f64, f64) = (0.73, 0.81);
 
 /// What the spring-slider reading expects, by kind: the verdict without its numbers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -80,6 +91,12 @@ pub enum Regime {
     StiffLoading,
     /// Stable sliding: the swing is damped too much for a slip to outrun the loading.
     Overdamped,
+    /// Stable sliding: a lattice block under driver nodes lets go of its base before the drop to
+    /// μd·N is large enough for the slip to outrun the loading.
+    LetsGoEarly,
+    /// Stick-slip or stable sliding: the slip outruns the loading only if the block holds its
+    /// base up to a fraction of μs·N inside the range where lattice blocks under drivers let go.
+    Marginal,
     /// Stick-slip.
     StickSlip,
     /// Not decided: the block's stiffness under its load was not solved.
@@ -101,8 +118,22 @@ impl Slider {
             // Underdamped: a slip overshoots and sticks again only if its swing outruns the loading.
             Regime::Overdamped
         } else {
-            Regime::StickSlip
+            match (self.let_go, self.holds_until()) {
+                (Some((_, hi)), Some(f)) if f > hi => Regime::LetsGoEarly,
+                (Some((lo, _)), Some(f)) if f > lo => Regime::Marginal,
+                _ => Regime::StickSlip,
+            }
         }
+    }
+
+    /// The fraction of μs·N the block must hold its base up to for the slip that follows to
+    /// outrun the loading: the drop `ΔF` from there to μd·N must swing the block faster than
+    /// u̇f, `ΔF/k·ω·e^(−πζ/√(1−ζ²)) = u̇f` (the rigid slider's criterion with the let-go lowered).
+    pub fn holds_until(&self) -> Option<f64> {
+        let omega = self.slip_speed_m_s * self.k_n_m / (self.strength_n - self.sliding_n);
+        let needed = self.loading_speed_m_s * self.k_n_m / (omega * self.overshoot());
+        let f = (self.sliding_n + needed) / self.strength_n;
+        f.is_finite().then_some(f)
     }
 
     /// The fraction of its speed a slip's swing overshoots by, `exp(−πζ/√(1 − ζ²))`.
@@ -136,6 +167,25 @@ impl Slider {
                 self.slip_speed_m_s * self.overshoot(),
                 self.loading_speed_m_s
             ),
+            Regime::LetsGoEarly | Regime::Marginal => {
+                let (lo, hi) = self.let_go.unwrap_or((1.0, 1.0));
+                let f = self.holds_until().unwrap_or(f64::NAN);
+                let head = if self.regime() == Regime::LetsGoEarly {
+                    "stable sliding expected"
+                } else {
+                    "stick-slip or stable sliding (marginal)"
+                };
+                format!(
+                    "{head}: the rigid slider would stick and slip (k = {:.4e} N/m below k_c, swing damping ratio {:.3}), \
+                     but its slip outruns the loading only if the block holds its base up to {f:.2}·μs·N, and a \
+                     lattice block under driver nodes lets its base go from the driven edge at {lo:.2}–{hi:.2}·μs·N, \
+                     where the drop to μd·N = {:.4e} N is {}; a plate on springs loads the base more evenly",
+                    self.k_n_m,
+                    self.damping_ratio,
+                    self.sliding_n,
+                    if f > hi { "too small: it slides with its loading" } else { "about what stick-slip needs" }
+                )
+            }
             Regime::Undetermined => format!(
                 "not assessed: the reading needs the block's stiffness under its load, a static solve of the whole \
                  lattice, left out for a block this large (the critical stiffness (μs − μd)·N/Dc = {:.4e} N/m)",
@@ -223,7 +273,7 @@ pub fn inspect(model: &Model, seeds: &[u64], statics: Statics) -> Result<Inspect
         mass_kg: model.total_mass(),
         contact_area_m2: area,
         self_weight_stress_pa: weight / area,
-        strength_pa: scene.friction.law.node(1.0).static_coefficient() * weight / area,
+        strength_pa: slider.strength_n / slider.normal_n * weight / area,
         critical,
         paper_bound_s: scene.paper_time_step_bound(),
         moduli,
@@ -280,8 +330,12 @@ fn slider(model: &Model, k: Option<&[f64]>, weight: f64) -> Result<Slider, Solve
     // The loaded nodes: the drivers and the plate's nodes.
     let loaded: Vec<usize> =
         model.drivers().iter().map(|&d| d as usize).chain(model.plate().iter().map(|&(i, _)| i as usize)).collect();
-    let base = scene.friction.law.node(1.0);
-    let strength = base.static_coefficient() * normal;
+    // The base's coefficients: the law's, or their means over a friction map's nodes.
+    let contacts = model.contact().len().max(1);
+    let nodes: Vec<_> = (0..contacts).map(|c| scene.friction.base(c)).collect();
+    let mean = |f: &dyn Fn(&crate::laws::NodeFriction) -> f64| nodes.iter().map(f).sum::<f64>() / nodes.len() as f64;
+    let (mu_s, mu_d) = (mean(&|n| n.static_coefficient()), mean(&|n| n.residual_coefficient()));
+    let strength = mu_s * normal;
     let e = lattice.extent();
     let h = if loaded.is_empty() {
         e[2]
@@ -306,7 +360,9 @@ fn slider(model: &Model, k: Option<&[f64]>, weight: f64) -> Result<Slider, Solve
     };
     let plate = scene.plate.as_ref().map_or(f64::INFINITY, |p| p.stiffness());
     let k_load = 1.0 / (1.0 / block + 1.0 / plate);
-    let critical = base.critical_stiffness(normal);
+    // Each node's critical stiffness at its share of the normal force, summed (infinite when
+    // any node drops at once).
+    let critical = nodes.iter().map(|n| n.critical_stiffness(normal / contacts as f64)).sum::<f64>();
     let omega = (k_load / model.total_mass()).sqrt();
     Ok(Slider {
         normal_n: normal,
@@ -317,7 +373,9 @@ fn slider(model: &Model, k: Option<&[f64]>, weight: f64) -> Result<Slider, Solve
         k_n_m: k_load,
         critical_n_m: critical,
         damping_ratio: scene.shear.damping_per_s / (2.0 * omega),
-        slip_speed_m_s: (base.static_coefficient() - base.residual_coefficient()) * normal / k_load * omega,
+        slip_speed_m_s: (mu_s - mu_d) * normal / k_load * omega,
         loading_speed_m_s: scene.shear.velocity_m_s,
+        sliding_n: mu_d * normal,
+        let_go: (!model.drivers().is_empty() && model.plate().is_empty()).then_some(DRIVER_LET_GO),
     })
 }

@@ -69,7 +69,7 @@ fn static_self_weight_that_friction_cannot_hold_falls_back_to_settling() {
         f.self_weight.method = SettleMethod::Static.name().into();
         f.friction.mu_static = 0.0;
         f.shear.duration_s = 0.001;
-        f.shear.velocity_m_s = 0.0;
+        f.shear.velocity_m_s = 1e-9; // a driver at rest is refused; this one does not move in 1 ms
     });
     let out = run(scene, 1, RunOptions::default());
     assert_eq!(out.settled_by, SettleMethod::Dynamic);

@@ -16,6 +16,8 @@ pub const DT_S: &str = "dt_s";
 pub const CRITICAL_DT_S: &str = "critical_dt_s";
 pub const EVENTS: &str = "events";
 pub const MAIN_SHOCKS: &str = "main_shocks";
+pub const SLIP_REGIME: &str = "slip_regime";
+pub const SLIDING_FROM_S: &str = "sliding_from_s";
 pub const PIPELINE_HASH: &str = "pipeline_hash";
 pub const TIME_S: &str = "time_s";
 pub const NODE: &str = "node";
@@ -77,6 +79,10 @@ pub const Z_M: &str = "z_m";
 pub const PRE_EVENT_S: &str = "pre_event_s";
 pub const SAMPLES: &str = "samples";
 pub const WINDOW_SAMPLES: &str = "window_samples";
+/// Sampling interval of the run's own record of a window, before resampling (s).
+pub const RECORDED_DT_S: &str = "recorded_dt_s";
+/// Samples of the run's own record of a window, before resampling.
+pub const RECORDED_SAMPLES: &str = "recorded_samples";
 pub const FIRST_SAMPLE_S: &str = "first_sample_s";
 pub const F_LOW_HZ: &str = "f_low_hz";
 pub const F_HIGH_HZ: &str = "f_high_hz";

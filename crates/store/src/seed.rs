@@ -31,7 +31,7 @@ pub fn write_seed(
         }
     }
     let a = view.analysis;
-    let row = RunRow { seed: view.seed, outcome: Ok(RunFacts::of(&a.run, &a.catalogue)), wall_time_s };
+    let row = RunRow { seed: view.seed, outcome: Ok(RunFacts::of(&a.run, &a.catalogue, &a.diagnosis)), wall_time_s };
     let mut df = runs::frame(&[row], stamp.hash)?;
     write_parquet_atomic(&mut df, &out.part(&RUNS, view.seed))?;
     keep(&RUNS, df);

@@ -5,7 +5,12 @@ use std::path::PathBuf;
 use anyhow::{Context, Result, bail};
 use stickslip_ensemble::catalogue::{CatalogueStats, GOF_LEVEL_PERCENT, MAGNITUDE_BIN, rewrite_catalogue};
 use stickslip_store::Folder;
+use stickslip_store::io::read_parquet_if_present;
+use stickslip_store::schema::RUNS;
 use stickslip_store::tables::catalogue::Outcome;
+use stickslip_store::tables::runs::Runs;
+
+use crate::text::seed_list;
 
 /// Arguments of `stickslip catalogue`.
 #[derive(clap::Args, Debug)]
@@ -22,6 +27,21 @@ pub struct Args {
 pub fn run(a: Args) -> Result<()> {
     let folder = Folder::new(&a.folder);
     folder.require_output()?;
+    // A seed that is not the folder's is refused before anything is rewritten.
+    if let Some(seed) = a.seed {
+        let runs = read_parquet_if_present(&folder.gathered(&RUNS))?.map(|df| Runs::read(&df)).transpose()?;
+        let seeds = runs.map(|r| r.ok_seeds()).unwrap_or_default();
+        if !seeds.contains(&seed) {
+            bail!(
+                "--seed {seed} is not a seed of {} (its finished seeds: {})",
+                a.folder.display(),
+                if seeds.is_empty() { "none".into() } else { seed_list(&seeds) }
+            );
+        }
+        if seeds.len() == 1 {
+            bail!("--seed {seed}: the folder has one seed, so its statistics are the pooled ones (run without --seed)");
+        }
+    }
     let Some(stats) = rewrite_catalogue(&folder).with_context(|| format!("{}", a.folder.display()))? else {
         bail!(
             "{} has no gathered events table yet: finish the ensemble (`stickslip pipeline` or `stickslip merge`) first",
@@ -30,17 +50,12 @@ pub fn run(a: Args) -> Result<()> {
     };
     print(&stats, None);
     if let Some(seed) = a.seed {
-        if !stats.b_values.iter().any(|r| r.seed == Some(seed)) {
-            let mut seeds: Vec<u64> = stats.b_values.iter().filter_map(|r| r.seed).collect();
-            seeds.dedup();
-            if seeds.is_empty() {
-                bail!("--seed {seed}: the folder has one seed, so its statistics are the pooled ones printed above");
-            }
-            let list: Vec<String> = seeds.iter().map(u64::to_string).collect();
-            bail!("--seed {seed} is not a seed of this folder; its seeds are {}", list.join(", "));
-        }
         println!();
-        print(&stats, Some(seed));
+        if stats.b_values.iter().any(|r| r.seed == Some(seed)) {
+            print(&stats, Some(seed));
+        } else {
+            println!("seed {seed} has no events: no statistics of its own");
+        }
     }
     println!(
         "\ntables → {} (magnitude_frequency, b_values, recurrence_stats, aftershocks, omori, scaling)",

@@ -6,6 +6,10 @@ use anyhow::Result;
 use stickslip_analysis::settings::RecordSpan;
 use stickslip_config::Pipeline;
 use stickslip_config::check::Named;
+use stickslip_seismo::catalogue::compact;
+use stickslip_seismo::similarity::AreaChoice;
+use stickslip_seismo::spectra::fourier::Window;
+use stickslip_seismo::spectra::response::Reading;
 use stickslip_solver::Model;
 use stickslip_solver::boundary::absorbing::impedances;
 use stickslip_solver::fault::FaultReading;
@@ -72,9 +76,9 @@ pub fn run(a: Args) -> Result<()> {
         scene.dims.ny,
         scene.dims.nz,
         scene.lc_m,
-        e[0],
-        e[1],
-        e[2],
+        compact(e[0]),
+        compact(e[1]),
+        compact(e[2]),
         facts.nodes,
         facts.bars,
         facts.contact_nodes,
@@ -232,6 +236,7 @@ pub fn run(a: Args) -> Result<()> {
                 if lo == hi { format!("{lo}") } else { format!("{lo}…{hi}") }
             };
             let (x0, x1) = span(&mut members.iter().map(|&c| model.lattice().position(contact[c])[0]));
+            let (x0, x1) = (round(x0), round(x1));
             println!(
                 "    {} ({}): {} nodes, x {x0}…{x1} m, {}",
                 r.name,
@@ -314,11 +319,18 @@ pub fn run(a: Args) -> Result<()> {
             None => groups.push((c.node, vec![what])),
         }
     }
-    for (node, what) in groups.iter().take(12) {
+    // Every control node, also those given by position or by a set (the README promises it).
+    let contact = model.lattice().contact_nodes();
+    for (node, what) in &groups {
         println!("  control {}: {}", position(&model, *node), what.join(", "));
     }
-    if groups.len() > 12 {
-        println!("  … and {} more control nodes", groups.len() - 12);
+    for (node, _) in groups.iter().filter(|(n, _)| contact.contains(n)) {
+        println!(
+            "  warning: control node {} is a base contact node: it records the motion of the frictional contact \
+             (held, sliding or lifting), not of the block above it (a number written for another block size names \
+             another node on this one: give at_m instead)",
+            position(&model, *node)
+        );
     }
     let ev = &pipeline.analysis.events;
     println!(
@@ -331,8 +343,14 @@ pub fn run(a: Args) -> Result<()> {
         println!("  scale: its own (λ = 1); each event's Mw from its slip, M0 = μ·A·ΔD̄");
     } else {
         println!(
-            "  similarity: L_p = {} m (λ = {}), u̇_p = {:e} m/s, model area: {:?}",
-            si.prototype_length_m, lambda, si.prototype_rate_m_s, si.area
+            "  similarity: L_p = {} m (λ = {}), u̇_p = {:e} m/s, model area: {}",
+            si.prototype_length_m,
+            compact(lambda),
+            si.prototype_rate_m_s,
+            match si.area {
+                AreaChoice::Contact => "the whole contact area (the paper's)",
+                AreaChoice::Rupture => "each event's rupture area",
+            }
         );
     }
     match &pipeline.analysis.accelerograms {
@@ -354,13 +372,14 @@ pub fn run(a: Args) -> Result<()> {
                 if formats.is_empty() { "none".into() } else { formats.join(", ") }
             );
             println!(
-                "  usable band: up to f_max = {:.1} Hz at model scale ({:.4} Hz prototype, λ = {lambda}): plane waves \
+                "  usable band: up to f_max = {:.1} Hz at model scale ({:.4} Hz prototype, λ = {}): plane waves \
                  within {}% of their long-wave speed; filter {} Hz … {} Hz, order {}",
                 a.resolved_hz,
                 a.resolved_hz / lambda,
-                100.0 * a.band_tolerance,
-                a.low_corner_hz.map_or("1/record length".into(), |f| f.to_string()),
-                a.high_corner_hz.map_or("f_max".into(), |f| f.to_string()),
+                compact(lambda),
+                compact(100.0 * a.band_tolerance),
+                a.low_corner_hz.map_or("1/record length".into(), compact),
+                a.high_corner_hz.map_or("f_max".into(), compact),
                 a.order
             );
         }
@@ -368,13 +387,20 @@ pub fn run(a: Args) -> Result<()> {
     }
     match &pipeline.analysis.spectra {
         Some(s) => println!(
-            "  spectra: {} periods {:.3e} … {:.3e} s, dampings {:?}, reading {:?}, window {:?}{}{}",
+            "  spectra: {} periods {:.3e} … {:.3e} s, dampings {}, {} reading of the samples, {} window for the \
+             Fourier spectrum{}{}",
             s.periods.len(),
             s.periods.first().copied().unwrap_or(f64::NAN),
             s.periods.last().copied().unwrap_or(f64::NAN),
-            s.dampings,
-            s.reading,
-            s.window,
+            s.dampings.iter().map(|d| compact(*d)).collect::<Vec<_>>().join(", "),
+            match s.reading {
+                Reading::Linear => "linear",
+                Reading::BandLimited => "band-limited",
+            },
+            match s.window {
+                Window::Rectangular => "rectangular",
+                Window::Hann => "Hann",
+            },
             if s.rotd { ", RotD50/RotD100" } else { "" },
             if s.attenuation { ", attenuation" } else { "" }
         ),
@@ -383,12 +409,14 @@ pub fn run(a: Args) -> Result<()> {
     if let Some(set) = &pipeline.set {
         let (a, b) = set.options.range.bounds().unwrap_or((f64::NAN, f64::NAN));
         println!(
-            "  set: {} records ({} at most per {}), {} spectra at {}%, periods {a} … {b} s (prototype), scale factors {} … {}; target {}",
+            "  set: {} records ({} at most per {}), {} spectra at {}%, periods {} … {} s (prototype), scale factors {} … {}; target {}",
             set.options.count,
             set.options.per_group,
             set.per.name(),
             set.component.name(),
-            100.0 * set.damping,
+            compact(100.0 * set.damping),
+            compact(a),
+            compact(b),
             set.options.scale_min,
             set.options.scale_max,
             set.target_name

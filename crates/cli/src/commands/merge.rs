@@ -23,8 +23,8 @@ pub struct Args {
 pub fn run(a: Args) -> Result<()> {
     let r = stickslip_ensemble::merge::merge(&a.out, a.pipeline.as_deref(), a.shards)?;
     println!(
-        "merged {} seeds ({} failed) in {:.1} s → {}",
-        r.seeds,
+        "merged {} ({} failed) in {:.1} s → {}",
+        crate::text::count(r.seeds, "seed", "seeds"),
         r.failed,
         r.wall_time_s,
         a.out.join("tables").display()

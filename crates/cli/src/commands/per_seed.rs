@@ -25,6 +25,12 @@ const AVERAGE_S: f64 = 1e-3;
 
 /// `stickslip seeds`.
 pub fn run(a: Args) -> Result<()> {
+    let shock = a.shock.as_str();
+    let rank = shock.strip_prefix('S').and_then(|n| n.parse::<u32>().ok()).filter(|&n| n >= 1);
+    anyhow::ensure!(
+        rank.is_some(),
+        "--shock {shock:?} is not a main shock: main shocks are named S1, S2, … in time order within each seed"
+    );
     let folder = Folder::new(&a.out);
     folder.require_output()?;
     let pipeline = Pipeline::load(&a.out.join("pipeline.toml"))?;
@@ -37,7 +43,29 @@ pub fn run(a: Args) -> Result<()> {
     let events = read(&EVENTS_TABLE)?;
     let similarity = read(&SIMILARITY)?;
     let series = read(&SERIES)?;
-    let shock = a.shock.as_str();
+    let seed_of = |df: &DataFrame| -> Result<Vec<u64>> { Ok(df.column(col::SEED)?.u64()?.iter().flatten().collect()) };
+    let strings = |df: &DataFrame, c: &str| -> Result<Vec<String>> {
+        Ok(df.column(c)?.str()?.iter().map(|v| v.unwrap_or_default().to_string()).collect())
+    };
+    let labels = strings(&events, col::LABEL)?;
+    let kinds = strings(&events, col::KIND)?;
+    if !(0..labels.len()).any(|i| kinds[i] == "main" && labels[i] == shock) {
+        let mut ranks: Vec<u32> = (0..labels.len())
+            .filter(|&i| kinds[i] == "main")
+            .filter_map(|i| labels[i].strip_prefix('S')?.parse().ok())
+            .collect();
+        ranks.sort_unstable();
+        ranks.dedup();
+        anyhow::bail!(
+            "no seed of {} has a main shock {shock}: {}",
+            a.out.display(),
+            match ranks.last() {
+                Some(1) => "its seeds have S1 only".to_string(),
+                Some(last) => format!("its seeds have S1 … S{last}"),
+                None => "it has no main shock at all".to_string(),
+            }
+        );
+    }
     let prev =
         shock.strip_prefix('S').and_then(|n| n.parse::<u32>().ok()).filter(|&n| n > 1).map(|n| format!("S{}", n - 1));
     println!(
@@ -46,10 +74,6 @@ pub fn run(a: Args) -> Result<()> {
         AVERAGE_S * 1e3
     );
     println!("|---|---|---|---|---|---|---|---|---|");
-    let seed_of = |df: &DataFrame| -> Result<Vec<u64>> { Ok(df.column(col::SEED)?.u64()?.iter().flatten().collect()) };
-    let strings = |df: &DataFrame, c: &str| -> Result<Vec<String>> {
-        Ok(df.column(c)?.str()?.iter().map(|v| v.unwrap_or_default().to_string()).collect())
-    };
     let floats = |df: &DataFrame, c: &str| -> Vec<f64> {
         df.column(c)
             .ok()

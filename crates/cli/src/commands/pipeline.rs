@@ -14,7 +14,11 @@ use stickslip_ensemble::{EnsembleOptions, EnsembleReport, run_ensemble, shard};
 use stickslip_store::Folder;
 
 use crate::progress;
+use crate::text::{count, seed_list};
+use stickslip_analysis::SlipRegime;
 use stickslip_config::seeds::{parse_seeds, parse_shard};
+use stickslip_seismo::catalogue::compact;
+use stickslip_store::tables::runs::Runs;
 
 /// Arguments of `stickslip pipeline`.
 #[derive(clap::Args, Debug)]
@@ -93,17 +97,22 @@ pub fn finish(pipeline: &Pipeline, out: &Path) -> Result<()> {
     let events =
         stickslip_store::io::read_parquet_if_present(&folder.gathered(&stickslip_store::schema::EVENTS_TABLE))?;
     let ran = stickslip_store::io::any_part(&folder.part_glob(&stickslip_store::schema::SERIES));
+    let regimes = Regimes::of(&folder)?;
     if events.is_some_and(|e| e.height() > 0) || !ran {
         println!("{}", digest(&folder)?);
+        if let Some(text) = regimes.sliding_text() {
+            println!("{text}");
+            println!("  as a spring-slider (stickslip check): {}", slider_verdict(pipeline));
+        }
     } else {
-        println!("{}", no_events(pipeline, &folder));
+        println!("{}", no_events(pipeline, &folder, &regimes));
     }
     if pipeline.report.enabled {
         let start = Instant::now();
         let r = stickslip_report::write_report(out, pipeline)?;
         println!(
-            "report: {} figures in {:.1} s → {}{}",
-            r.figures.len(),
+            "report: {} in {:.1} s → {}{}",
+            count(r.figures.len(), "figure", "figures"),
             start.elapsed().as_secs_f64(),
             r.index.display(),
             if r.skipped.is_empty() {
@@ -116,8 +125,91 @@ pub fn finish(pipeline: &Pipeline, out: &Path) -> Result<()> {
     Ok(())
 }
 
-/// Why a finished ensemble has no event, from what its seeds recorded, and what to try.
-fn no_events(pipeline: &Pipeline, folder: &Folder) -> String {
+/// What the base did in each finished seed, from the runs table (`slip_regime`).
+struct Regimes {
+    /// Seeds of each regime.
+    by: Vec<(SlipRegime, Vec<u64>)>,
+    /// Start of the sliding that never stopped, per seed that ended sliding.
+    sliding_from: Vec<(u64, f64)>,
+    /// Finished seeds.
+    seeds: usize,
+}
+
+impl Regimes {
+    fn of(folder: &Folder) -> Result<Regimes> {
+        let runs = stickslip_store::io::read_parquet_if_present(&folder.gathered(&stickslip_store::schema::RUNS))?
+            .map(|df| Runs::read(&df))
+            .transpose()?;
+        let mut by: Vec<(SlipRegime, Vec<u64>)> = SlipRegime::ALL.iter().map(|&r| (r, Vec::new())).collect();
+        let mut sliding_from = Vec::new();
+        let mut seeds = 0;
+        if let Some(r) = runs {
+            for i in 0..r.seed.len() {
+                let Some(regime) = SlipRegime::parse(&r.slip_regime[i]) else { continue };
+                seeds += 1;
+                by.iter_mut().find(|(g, _)| *g == regime).expect("every regime").1.push(r.seed[i]);
+                if let Some(t) = r.sliding_from_s[i] {
+                    sliding_from.push((r.seed[i], t));
+                }
+            }
+        }
+        Ok(Regimes { by, sliding_from, seeds })
+    }
+
+    fn seeds(&self, regime: SlipRegime) -> &[u64] {
+        &self.by.iter().find(|(g, _)| *g == regime).expect("every regime").1
+    }
+
+    /// "in 3 of 8 seeds (1, 4, 7)".
+    fn among(&self, seeds: &[u64]) -> String {
+        format!("in {} of {} ({})", seeds.len(), count(self.seeds, "seed", "seeds"), seed_list(seeds))
+    }
+
+    /// The range of the sliding onsets, "from t = 0.067 … 0.068 s".
+    fn onset_text(&self, seeds: &[u64]) -> String {
+        let t: Vec<f64> = self.sliding_from.iter().filter(|(s, _)| seeds.contains(s)).map(|p| p.1).collect();
+        let (lo, hi) = t.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+        let (a, b) = (format!("{lo:.3}"), format!("{hi:.3}"));
+        match t.len() {
+            0 => String::new(),
+            _ if a == b => format!(" from t = {a} s"),
+            _ => format!(" from t = {a} … {b} s"),
+        }
+    }
+
+    /// What to say about seeds that slid stably, if any did.
+    fn sliding_text(&self) -> Option<String> {
+        let (sliding, then) = (self.seeds(SlipRegime::StableSliding), self.seeds(SlipRegime::StickSlipThenSliding));
+        if sliding.is_empty() && then.is_empty() {
+            return None;
+        }
+        let mut lines = vec![
+            "stable sliding: the base slid along with its loading, without stopping — not an earthquake, so none of it \
+             is in the catalogue (no main shock, no magnitude)"
+                .to_string(),
+        ];
+        if !sliding.is_empty() {
+            lines.push(format!("  sliding only {}{}", self.among(sliding), self.onset_text(sliding)));
+        }
+        if !then.is_empty() {
+            lines.push(format!("  stick-slip, then sliding to the end {}{}", self.among(then), self.onset_text(then)));
+        }
+        Some(lines.join("\n"))
+    }
+}
+
+/// What `stickslip check` expects of the scene, as a spring-slider.
+fn slider_verdict(pipeline: &Pipeline) -> String {
+    let model = stickslip_solver::Model::new(pipeline.scene.clone());
+    let statics = stickslip_solver::inspect::Statics::for_model(&model);
+    match stickslip_solver::inspect::spring_slider(&model, pipeline.seeds[0], statics) {
+        Ok(slider) => stickslip_config::keys::verdict(&slider),
+        Err(e) => format!("not assessed ({e})"),
+    }
+}
+
+/// Why a finished ensemble has no event, from what its seeds did and recorded, and what to try.
+fn no_events(pipeline: &Pipeline, folder: &Folder, regimes: &Regimes) -> String {
     use stickslip_solver::Channel;
     let ev = &pipeline.analysis.events;
     let sh = &pipeline.scene.shear;
@@ -126,54 +218,82 @@ fn no_events(pipeline: &Pipeline, folder: &Folder) -> String {
         let values = series.as_ref()?.column(c.name()).ok()?.f64().ok()?.iter().flatten().collect::<Vec<_>>();
         values.into_iter().reduce(f64::max)
     };
-    let mut lines = vec![
-        "no events in any seed, so no statistics. An event is a burst of slip of the base: the mean slip rate, \
-         smoothed over events.smoothing_s, must rise above events.v_on_m_s and τ must then drop by at least \
-         events.min_drop_pa."
-            .to_string(),
-    ];
-    match largest(Channel::MeanSlipRate) {
-        Some(v) => lines.push(format!(
-            "  largest mean slip rate recorded (unsmoothed): {v:.3e} m/s against v_on = {:e} m/s{}",
-            ev.v_on_m_s,
-            if v < ev.v_on_m_s { ": the base never slipped fast enough" } else { "" }
-        )),
-        None => lines.push("  the slip rate is not recorded (add \"slip_rate\" to record.interface)".into()),
-    }
-    let model = stickslip_solver::Model::new(pipeline.scene.clone());
-    if let Some(tau) = largest(Channel::ShearStress) {
-        let sigma = model.total_mass() * pipeline.scene.self_weight.gravity_m_s2 / model.lattice().contact_area();
-        let mu = pipeline.scene.friction.law.node(1.0).static_coefficient();
+    let sliding = regimes.seeds(SlipRegime::StableSliding);
+    let mut lines = Vec::new();
+    if !sliding.is_empty() {
         lines.push(format!(
-            "  largest shear stress τ: {tau:.4e} Pa; sliding needs about μs·σ = {:.4e} Pa (μs = {mu}, self-weight σ = {sigma:.4e} Pa)",
-            mu * sigma
+            "no events: the base slid stably {}{} — it kept up with its loading without stopping, so there is no \
+             stick-slip to catalogue (stable sliding is not an earthquake).",
+            regimes.among(sliding),
+            regimes.onset_text(sliding)
         ));
     }
-    if let Some(lifted) = largest(Channel::LiftedNodes) {
-        let contacts = pipeline.scene.lattice().contact_nodes().len();
-        if lifted >= 0.5 * contacts as f64 {
+    let held = regimes.seeds(SlipRegime::NoSlip);
+    if !held.is_empty() || sliding.is_empty() {
+        lines.push(format!(
+            "no events{}: an event is a burst of slip of the base — the mean slip rate, smoothed over \
+             events.smoothing_s, must rise above events.v_on_m_s and τ must then drop by at least events.min_drop_pa.",
+            if held.is_empty() { String::new() } else { format!(" {}", regimes.among(held)) }
+        ));
+        match largest(Channel::MeanSlipRate) {
+            Some(v) => lines.push(format!(
+                "  largest mean slip rate recorded (unsmoothed): {v:.3e} m/s against v_on = {} m/s{}",
+                compact(ev.v_on_m_s),
+                if v < ev.v_on_m_s { ": the base never slipped fast enough" } else { "" }
+            )),
+            None => lines.push("  the slip rate is not recorded (add \"slip_rate\" to record.interface)".into()),
+        }
+        if let Some(tau) = largest(Channel::ShearStress) {
+            let model = stickslip_solver::Model::new(pipeline.scene.clone());
+            let sigma = model.total_mass() * pipeline.scene.self_weight.gravity_m_s2 / model.lattice().contact_area();
+            let mu = pipeline.scene.friction.law.node(1.0).static_coefficient();
             lines.push(format!(
-                "  up to {lifted:.0} of {contacts} base nodes were lifted at once: the load tips the block over rather than \
-                 sliding it"
+                "  largest shear stress τ: {tau:.4e} Pa; sliding needs about μs·σ = {:.4e} Pa (μs = {}, self-weight σ = \
+                 {sigma:.4e} Pa)",
+                mu * sigma,
+                compact(mu)
             ));
         }
+        if let Some(lifted) = largest(Channel::LiftedNodes) {
+            let contacts = pipeline.scene.lattice().contact_nodes().len();
+            if lifted >= 0.5 * contacts as f64 {
+                lines.push(format!(
+                    "  up to {lifted:.0} of {contacts} base nodes were lifted at once: the load tips the block over \
+                     rather than sliding it"
+                ));
+            }
+        }
+        lines.push(format!(
+            "  the shear stage lasted {} s: the loading moved about {:.3e} m at {} m/s",
+            compact(sh.duration_s),
+            sh.driver_displacement(sh.duration_s),
+            compact(sh.velocity_m_s)
+        ));
     }
-    let statics = stickslip_solver::inspect::Statics::for_model(&model);
-    if let Ok(slider) = stickslip_solver::inspect::spring_slider(&model, pipeline.seeds[0], statics) {
-        lines.push(format!("  as a spring-slider (stickslip check): {}", stickslip_config::keys::verdict(&slider)));
+    lines.push(format!("  as a spring-slider (stickslip check): {}", slider_verdict(pipeline)));
+    let figure = folder.figures().join("shear_stress.png");
+    let look = if pipeline.report.enabled {
+        format!("look at {} (written with the report below) and", figure.display())
+    } else {
+        "look at the series table and".to_string()
+    };
+    if sliding.is_empty() {
+        lines.push(format!(
+            "  try: a longer [shear] duration_s (or a faster velocity_m_s) so τ reaches the strength; a lower [friction] \
+             mu_static; a lower [events] v_on_m_s or min_drop_pa for small events; and {look} `stickslip check` for \
+             what the scene builds"
+        ));
+    } else {
+        let softer = if pipeline.scene.plate.is_some() {
+            "softer [loading_plate] springs"
+        } else {
+            "a [loading_plate] on springs instead of rigid driver nodes"
+        };
+        lines.push(format!(
+            "  for stick-slip a slip must outrun its loading and stop again: {softer}, less [shear] damping_per_s, a \
+             larger μs − μd (the spring-slider reading above says which matters here); {look} `stickslip check`"
+        ));
     }
-    lines.push(format!(
-        "  the shear stage lasted {} s: the driver moved about {:.3e} m at {} m/s",
-        sh.duration_s,
-        sh.velocity_m_s * (sh.duration_s - sh.rise_time_s).max(0.0),
-        sh.velocity_m_s
-    ));
-    lines.push(
-        "  try: a longer [shear] duration_s (or a faster velocity_m_s) so τ reaches the strength; a lower [friction] \
-         mu_static; a lower [events] v_on_m_s or min_drop_pa for small events; and look at figures/shear_stress.png \
-         and `stickslip check` for what the scene builds"
-            .into(),
-    );
     lines.join("\n")
 }
 
@@ -233,10 +353,10 @@ pub fn run(a: Args) -> Result<()> {
             None => (ensemble(pipeline, &options, a.quiet, &cancel)?, None),
         };
         println!(
-            "{}{}: {} seeds ({} run now, {} already done, {} failed) in {:.1} s → {}",
+            "{}{}: {} ({} run now, {} already done, {} failed) in {:.1} s → {}",
             pipeline.name,
             a.shard.map_or(String::new(), |(k, n)| format!(" shard {k}/{n}")),
-            report.ran + report.skipped,
+            count(report.ran + report.skipped, "seed", "seeds"),
             report.ran,
             report.skipped,
             report.failed.len(),

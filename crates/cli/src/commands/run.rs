@@ -18,12 +18,16 @@ use crate::commands::pipeline::{cancel_on_ctrl_c, ensemble, finish};
 pub struct Args {
     /// Pipeline file (TOML), e.g. pipelines/paper.toml.
     pub pipeline: PathBuf,
-    /// Seed of the random fields.
-    #[arg(long)]
+    /// Seed of the random fields (a whole number ≥ 0).
+    #[arg(long, allow_negative_numbers = true, value_parser = parse_seed)]
     pub seed: u64,
     /// Output folder [default: reports/<pipeline name>/seed-<seed>].
     #[arg(long)]
     pub out: Option<PathBuf>,
+    /// Worker threads [default: one per core]: a large lattice splits each step over them; the
+    /// numbers are the same on any thread count.
+    #[arg(long)]
+    pub threads: Option<usize>,
     /// Discard results of a different pipeline found in the output folder.
     #[arg(long)]
     pub fresh: bool,
@@ -35,8 +39,19 @@ pub struct Args {
     pub allow_long: bool,
 }
 
+/// A seed as given on the command line: a whole number ≥ 0 (a negative one is refused as such,
+/// not taken for an option).
+pub fn parse_seed(s: &str) -> Result<u64, String> {
+    match s.trim().parse::<i128>() {
+        Ok(v) if v < 0 => Err(format!("{v} is not a seed: seeds are whole numbers ≥ 0")),
+        Ok(v) => u64::try_from(v).map_err(|_| format!("{v} is not a seed: seeds are whole numbers up to {}", u64::MAX)),
+        Err(_) => Err(format!("{s:?} is not a seed: seeds are whole numbers ≥ 0")),
+    }
+}
+
 /// `stickslip run`.
 pub fn run(a: Args) -> Result<()> {
+    anyhow::ensure!(a.threads != Some(0), "--threads 0: give at least 1 (or leave it out for one per core)");
     let pipeline = Pipeline::load(&a.pipeline)?;
     crate::budget::check_before_build(
         &pipeline.scene,
@@ -47,7 +62,13 @@ pub fn run(a: Args) -> Result<()> {
     )?;
     let out = a.out.unwrap_or_else(|| PathBuf::from("reports").join(&pipeline.name).join(format!("seed-{}", a.seed)));
     let cancel = cancel_on_ctrl_c()?;
-    let options = EnsembleOptions { out: out.clone(), threads: 1, seeds: vec![a.seed], fresh: a.fresh, finish: true };
+    let options = EnsembleOptions {
+        out: out.clone(),
+        threads: a.threads.unwrap_or(0),
+        seeds: vec![a.seed],
+        fresh: a.fresh,
+        finish: true,
+    };
     let report = ensemble(&pipeline, &options, a.quiet, &cancel)?;
     if let Some((_, msg)) = report.failed.first() {
         anyhow::bail!("seed {} of {}: {msg}", a.seed, a.pipeline.display());
@@ -75,4 +96,17 @@ pub fn run(a: Args) -> Result<()> {
     );
     println!("tables → {}", folder.tables().display());
     finish(&pipeline, &out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::parse_seed;
+
+    #[test]
+    fn a_negative_seed_is_refused_as_a_seed() {
+        assert_eq!(parse_seed("7"), Ok(7));
+        assert_eq!(parse_seed("-1").unwrap_err(), "-1 is not a seed: seeds are whole numbers ≥ 0");
+        assert!(parse_seed("x").unwrap_err().contains("\"x\" is not a seed"));
+        assert!(parse_seed("99999999999999999999999").unwrap_err().contains("up to"));
+    }
 }

@@ -4,8 +4,7 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 use stickslip_config::Pipeline;
-use stickslip_config::check::Checker;
-use stickslip_config::set::SetSection;
+use stickslip_config::set::read_set_file;
 use stickslip_ensemble::set::{SetOutcome, select_set};
 use stickslip_store::Folder;
 
@@ -20,11 +19,9 @@ pub struct Args {
     pub set: Option<PathBuf>,
 }
 
-/// A file with a `[set]` section (a pipeline file, or a file holding only that section).
-#[derive(serde::Deserialize)]
-struct SetFile {
-    set: SetSection,
-}
+/// Where a set chosen with `--set FILE` keeps its `[set]` section, so the report draws the set
+/// against the target it was matched to (a CSV target is copied beside it).
+pub const SET_FILE: &str = "set.toml";
 
 /// `stickslip select`.
 pub fn run(a: Args) -> Result<()> {
@@ -33,21 +30,45 @@ pub fn run(a: Args) -> Result<()> {
     let pipeline = Pipeline::load(&folder.pipeline_copy())
         .with_context(|| format!("reading the pipeline of {}", a.folder.display()))?;
     let settings = match &a.set {
-        Some(path) => {
-            let text = std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
-            let file: SetFile = toml::from_str(&text).with_context(|| format!("{}", path.display()))?;
-            let mut ck = Checker::default();
-            let base = path.parent().unwrap_or(std::path::Path::new("."));
-            let s = file.set.build(base, pipeline.set_grid(), &mut ck);
-            ck.finish().with_context(|| format!("{}", path.display()))?;
-            s.context("the set could not be built")?
-        }
+        Some(path) => read_set_file(path, pipeline.set_grid())?,
         None => pipeline.set.clone().with_context(|| {
             format!("the pipeline of {} has no [set] section: give one with --set FILE", a.folder.display())
         })?,
     };
     let outcome = select_set(&folder, &pipeline, &settings)?;
     print_set(&outcome, &settings.target_name, &folder);
+    if let Some(path) = &a.set {
+        keep_set_section(path, &folder)?;
+    }
+    // The page and its record-set figure show the set just chosen, not the one before.
+    if pipeline.report.enabled {
+        let r = stickslip_report::write_report(&a.folder, &pipeline)?;
+        println!("report: rewritten with the new set → {}", r.index.display());
+    }
+    Ok(())
+}
+
+/// Writes the `[set]` section of `path` to `<folder>/set/set.toml` (with a CSV target copied
+/// beside it), for the report.
+fn keep_set_section(path: &std::path::Path, folder: &Folder) -> Result<()> {
+    let text = std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
+    let doc: toml::Table = toml::from_str(&text).with_context(|| format!("{}", path.display()))?;
+    let mut set = doc.get("set").and_then(|v| v.as_table()).cloned().context("no [set] section")?;
+    let dir = folder.set_dir();
+    if let Some(csv) = set.get("target_csv").and_then(|v| v.as_str()).filter(|c| !c.is_empty()) {
+        let from = path.parent().unwrap_or(std::path::Path::new(".")).join(csv);
+        let bytes = std::fs::read(&from).with_context(|| format!("reading {}", from.display()))?;
+        stickslip_store::io::write_bytes_atomic(&dir.join("target.csv"), &bytes)?;
+        set.insert("target_csv".into(), toml::Value::String("target.csv".into()));
+    }
+    let mut out = toml::Table::new();
+    out.insert("set".into(), toml::Value::Table(set));
+    let text = format!(
+        "# The [set] of `stickslip select --set {}`: what the set in this folder was matched to.\n{}",
+        path.display(),
+        toml::to_string(&out)?
+    );
+    stickslip_store::io::write_text_atomic(&dir.join(SET_FILE), &text)?;
     Ok(())
 }
 
@@ -77,5 +98,9 @@ pub fn print_set(o: &SetOutcome, target: &str, folder: &Folder) {
     for (k, r) in o.rows.iter().enumerate() {
         println!("  {:>4}  {:>10}  {:<14} {:>8.3}  {:>8.4}", k + 1, r.seed, r.record, r.scale_factor, r.misfit);
     }
-    println!("  scaled records (AT2, SAC) and the set table → {}", folder.set_dir().display());
+    println!(
+        "  the set table → {}; its scaled records (AT2, SAC) → {}",
+        folder.gathered(&stickslip_store::schema::SET).display(),
+        folder.set_dir().display()
+    );
 }

@@ -3,13 +3,16 @@
 use std::path::PathBuf;
 
 use anyhow::Result;
-use stickslip_seismo::accelerogram::{AccelUnit, read_accelerogram};
+use stickslip_report::figures::RecordSpectraPlot;
+use stickslip_seismo::accelerogram::{AccelUnit, Accelerogram, read_accelerogram};
+use stickslip_seismo::catalogue::compact;
 use stickslip_seismo::spectra::RecordSpectra;
 use stickslip_seismo::spectra::fourier::Window;
 use stickslip_seismo::spectra::intensity::Baseline;
 use stickslip_seismo::spectra::response::{Reading, log_periods};
 use stickslip_store::describe::{View, describe};
-use stickslip_store::io::write_parquet_atomic;
+use stickslip_store::io::{read_parquet, write_parquet_atomic};
+use stickslip_store::tables::records::Accelerograms;
 use stickslip_store::tables::spectra::record_frames;
 
 /// Units of a CSV accelerogram.
@@ -25,14 +28,36 @@ pub enum CsvUnits {
     CmS2,
 }
 
+/// Units of the PSA drawn in the figure.
+#[derive(clap::ValueEnum, Clone, Copy, Debug)]
+pub enum PlotUnits {
+    /// Standard gravity (9.80665 m/s²).
+    G,
+    /// m/s².
+    #[value(name = "m/s2")]
+    MS2,
+}
+
 /// Arguments of `stickslip spectra`.
 #[derive(clap::Args, Debug)]
 pub struct Args {
-    /// The record: a PEER .AT2 file, or a CSV file (time in s, then acceleration).
+    /// The record: SAC (this product's or ObsPy's, either byte order), PEER .AT2, text with a
+    /// time column and an acceleration column (comma, semicolon, tab or space separated; this
+    /// product's CSV records), or a Parquet accelerograms table (with --record).
     pub record: PathBuf,
-    /// Units of the acceleration column of a CSV file.
+    /// Units of the acceleration in a text file, or in a SAC file that does not say its unit
+    /// (IDEP unknown); a SAC acceleration trace (IDEP = IACC) is in nm/s².
     #[arg(long, value_enum, default_value = "m/s2")]
     pub units: CsvUnits,
+    /// The record to take from a Parquet accelerograms table, e.g. S2-n36-z.
+    #[arg(long)]
+    pub record_name: Option<String>,
+    /// The scale to take from a Parquet accelerograms table.
+    #[arg(long, default_value = "model", value_parser = ["model", "prototype"])]
+    pub scale: String,
+    /// Units of the PSA in the figure (the tables are in m/s²).
+    #[arg(long, value_enum, default_value = "g")]
+    pub plot_units: PlotUnits,
     /// Damping ratios, comma separated.
     #[arg(long, value_delimiter = ',', default_value = "0.05", allow_negative_numbers = true)]
     pub dampings: Vec<f64>,
@@ -63,7 +88,17 @@ pub fn run(a: Args) -> Result<()> {
         CsvUnits::MS2 => AccelUnit::MetrePerSecond2,
         CsvUnits::CmS2 => AccelUnit::CentimetrePerSecond2,
     };
-    let record = read_accelerogram(&a.record, unit)?;
+    let is_parquet = a.record.extension().is_some_and(|e| e.eq_ignore_ascii_case("parquet"));
+    let record = if is_parquet {
+        parquet_record(&a.record, a.record_name.as_deref(), &a.scale)?
+    } else {
+        anyhow::ensure!(
+            a.record_name.is_none(),
+            "--record-name picks a record of a Parquet accelerograms table; {} holds one record",
+            a.record.display()
+        );
+        read_accelerogram(&a.record, unit)?
+    };
     let duration = record.dt * (record.accel.len().saturating_sub(1)) as f64;
     let tmin = a.period_min_s.unwrap_or(2.0 * record.dt);
     let tmax = a.period_max_s.unwrap_or(0.5 * duration);
@@ -90,7 +125,10 @@ pub fn run(a: Args) -> Result<()> {
     )?;
     let [mut spectra, mut fourier, mut intensity] =
         record_frames(&periods, &a.dampings, &r.sd, &r.fourier, &r.intensity)?;
-    let stem = a.record.file_stem().and_then(|s| s.to_str()).unwrap_or("record").to_string();
+    let mut stem = a.record.file_stem().and_then(|s| s.to_str()).unwrap_or("record").to_string();
+    if let Some(name) = &a.record_name {
+        stem = format!("{stem}_{name}_{}", a.scale);
+    }
     let out = a.out.clone().unwrap_or_else(|| PathBuf::from("reports").join("records").join(&stem));
     for (name, df) in [("spectra", &mut spectra), ("fourier", &mut fourier), ("intensity", &mut intensity)] {
         write_parquet_atomic(df, &out.join(format!("{name}.parquet")))?;
@@ -104,11 +142,77 @@ pub fn run(a: Args) -> Result<()> {
         if record.description.is_empty() { String::new() } else { format!(" — {}", record.description) }
     );
     println!("{}", describe(&out.join("intensity.parquet"), &View { rows: 1, columns: vec![], transpose: true })?);
+    let figure = out.join("spectra.png");
+    stickslip_report::figures::record_figure(
+        &figure,
+        &RecordSpectraPlot {
+            title: &format!("Spectra of {stem}"),
+            periods: &periods,
+            dampings: &a.dampings,
+            psa_m_s2: &r
+                .sd
+                .iter()
+                .enumerate()
+                .map(|(i, sd)| {
+                    let w = 2.0 * std::f64::consts::PI / periods[i % periods.len()];
+                    w * w * sd
+                })
+                .collect::<Vec<f64>>(),
+            fourier: (&r.fourier.frequency_hz, &r.fourier.amplitude),
+            in_g: matches!(a.plot_units, PlotUnits::G),
+        },
+    )?;
     println!(
-        "spectra ({} periods from {tmin:.4e} s to {tmax:.4e} s, dampings {:?}) → {}",
+        "spectra ({} periods from {tmin:.4e} s to {tmax:.4e} s, {} damping) → {} (spectra, fourier and intensity \
+         tables; the figure spectra.png)",
         periods.len(),
-        a.dampings,
+        a.dampings.iter().map(|d| format!("{}%", compact(100.0 * d))).collect::<Vec<_>>().join(", "),
         out.display()
     );
     Ok(())
+}
+
+/// One record of a Parquet accelerograms table (a seed's part, or any table with its columns).
+fn parquet_record(path: &std::path::Path, name: Option<&str>, scale: &str) -> Result<Accelerogram> {
+    let acc = Accelerograms::read(&read_parquet(path)?)?;
+    let mut names: Vec<&str> = acc.record.iter().map(String::as_str).collect();
+    names.sort_unstable();
+    names.dedup();
+    let Some(name) = name else {
+        anyhow::bail!(
+            "{} is a table of {} records: name one with --record-name ({})",
+            path.display(),
+            names.len(),
+            names.iter().take(12).copied().collect::<Vec<_>>().join(", ") + if names.len() > 12 { ", …" } else { "" }
+        );
+    };
+    // The table holds each record once, at model scale (the prototype's follows by similarity).
+    anyhow::ensure!(
+        scale == "model",
+        "{}: the accelerograms table holds records at model scale only: give --scale model (a prototype record \
+         is the model's with times ×λ and accelerations ÷λ), or read the record's AT2/SAC file",
+        path.display()
+    );
+    let rows: Vec<usize> = (0..acc.record.len()).filter(|&i| acc.record[i] == name).collect();
+    anyhow::ensure!(
+        rows.len() >= 2,
+        "{}: no record {name:?} at {scale} scale (its records: {})",
+        path.display(),
+        names.join(", ")
+    );
+    let mut seeds: Vec<u64> = rows.iter().map(|&i| acc.seed[i]).collect();
+    seeds.dedup();
+    anyhow::ensure!(seeds.len() == 1, "{}: record {name:?} of several seeds: give one seed's part", path.display());
+    let t: Vec<f64> = rows.iter().map(|&i| acc.time_s[i]).collect();
+    let dt = (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64;
+    anyhow::ensure!(
+        t.windows(2).all(|w| ((w[1] - w[0]) - dt).abs() <= 1e-6 * dt),
+        "{}: record {name:?} is not evenly sampled",
+        path.display()
+    );
+    Ok(Accelerogram {
+        dt,
+        accel: rows.iter().map(|&i| acc.acceleration_m_s2[i]).collect(),
+        description: format!("seed {} {name} ({scale} scale)", seeds[0]),
+    })
 }

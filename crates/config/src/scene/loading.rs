@@ -29,10 +29,12 @@ pub(super) fn check_shear(ck: &mut Checker, sh: &ShearSection, m: &MaterialSecti
     ck.non_negative("shear.damping_per_s", sh.damping_per_s);
     ck.non_negative("shear.rise_time_s", sh.rise_time_s);
     ck.positive("shear.duration_s", sh.duration_s);
-    if ck.non_negative("shear.velocity_m_s", sh.velocity_m_s) && m.young_pa > 0.0 && m.density_kg_m3 > 0.0 {
+    // A driver at rest loads nothing: the shear stage would only ring down (refused rather than
+    // run to a catalogue that is empty for no visible reason).
+    if ck.positive("shear.velocity_m_s", sh.velocity_m_s) && m.young_pa > 0.0 && m.density_kg_m3 > 0.0 {
         // A driver faster than a fraction of the wave speed is outside the model's reach.
         let cp_bound = 0.01 * (m.young_pa / m.density_kg_m3).sqrt();
-        ck.range("shear.velocity_m_s", sh.velocity_m_s, 0.0, false, cp_bound, false);
+        ck.range("shear.velocity_m_s", sh.velocity_m_s, 0.0, true, cp_bound, false);
     }
 }
 
@@ -69,7 +71,10 @@ pub(super) fn drivers(ck: &mut Checker, file: SceneSections<'_>, lattice: &Latti
         if lattice.half_units(*d)[2] == 0 {
             ck.push(
                 "shear.driver",
-                format!("LDEM {} at {:?} m", d.ldem(), lattice.position(*d)),
+                format!("LDEM {} at {} m", d.ldem(), {
+                    let p = lattice.position(*d).map(stickslip_seismo::catalogue::compact);
+                    format!("({}, {}, {})", p[0], p[1], p[2])
+                }),
                 "a node above the base (z > 0): base nodes are held by friction (any node, without gravity and \
                  friction)",
             );

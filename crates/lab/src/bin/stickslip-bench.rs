@@ -147,6 +147,22 @@ enum Command {
         #[arg(long, default_value = "123,200,7,1,2,3")]
         seeds: String,
     },
+    /// Rewrites the README's generated blocks (its printed outputs, tables, wall times and disk
+    /// use) from real runs of the product's `stickslip` binary, from the repository's root into
+    /// reports/ (minutes: it runs the main command, paper-precise, slow-loading and paper-100
+    /// twice more, timed).
+    Readme {
+        /// Compare instead of writing: exit 1 when a block that does not depend on the machine
+        /// differs.
+        #[arg(long)]
+        check: bool,
+        /// Only these blocks (comma separated keys).
+        #[arg(long, value_delimiter = ',')]
+        only: Vec<String>,
+        /// The `stickslip` binary [default: $STICKSLIP, or the one beside this binary].
+        #[arg(long)]
+        binary: Option<PathBuf>,
+    },
     /// A fault scene's run against a reference solution of a SCEC dynamic-rupture benchmark
     /// (TPV5): rupture time, final slip and peak slip rate at every on-fault station, the
     /// rupture-time field, and figures (written beside each run's files, in <run>/scec/).
@@ -213,6 +229,7 @@ fn run(c: Command) -> Result<()> {
             anyhow::ensure!(repeats >= 1, "--repeats = 0 is not allowed: at least 1");
             ensemble(&pipeline, before, after, large.as_deref(), repeats, out)
         }
+        Command::Readme { check, only, binary } => readme(check, &only, binary),
         Command::Setup { pipeline, nx, ny, nz, steps } => {
             let p = Pipeline::load(&pipeline)?;
             let mut scene = p.scene.clone();
@@ -270,7 +287,8 @@ fn run(c: Command) -> Result<()> {
                 grid.push((k.to_string(), vals));
             }
             for combo in sweep(&p.file, &grid, &parse_seeds(&seeds).map_err(anyhow::Error::msg)?)? {
-                println!("== {:?}", combo.values);
+                let values: Vec<String> = combo.values.iter().map(|(k, v)| format!("{k} = {v}")).collect();
+                println!("== {}", values.join(", "));
                 let mut s2 = Vec::new();
                 for (s, cat) in &combo.seeds {
                     let mains: Vec<_> = cat.main_shocks().collect();
@@ -292,15 +310,22 @@ fn run(c: Command) -> Result<()> {
                         s2.push((e.burst.stress_drop_pa, e.burst.drop_time_s(), e.recurrence_s.unwrap_or(f64::NAN)));
                     }
                 }
-                let mean = |f: &dyn Fn(&(f64, f64, f64)) -> f64| {
-                    if s2.is_empty() { f64::NAN } else { s2.iter().map(f).sum::<f64>() / s2.len() as f64 }
+                if s2.is_empty() {
+                    println!("  S2: none in any seed (fewer than two main shocks)");
+                    continue;
+                }
+                let mean = |f: &dyn Fn(&S2) -> Option<f64>| {
+                    let v: Vec<f64> = s2.iter().filter_map(f).collect();
+                    (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64)
                 };
+                let ms = |v: Option<f64>| v.map_or("–".into(), |v| format!("{:.1} ms", v * 1e3));
                 println!(
-                    "  S2 (n = {}): drop {:.0} Pa, stress falls in {:.2} ms, S1→S2 {:.1} ms",
+                    "  S2 in {} of {} seeds: drop {:.0} Pa, stress falls in {:.2} ms, S1→S2 {}",
                     s2.len(),
-                    mean(&|v| v.0),
-                    mean(&|v| v.1) * 1e3,
-                    mean(&|v| v.2) * 1e3
+                    combo.seeds.len(),
+                    mean(&|v| Some(v.0)).unwrap_or(f64::NAN),
+                    mean(&|v| Some(v.1)).unwrap_or(f64::NAN) * 1e3,
+                    ms(mean(&|v| v.2.is_finite().then_some(v.2)))
                 );
             }
             Ok(())
@@ -691,6 +716,42 @@ fn ensemble(
             println!("| {} | {m:.2} s | {g:.2} s | {r:.2} s | {:.0} MB |", b.label, bytes as f64 / 1e6);
             std::fs::remove_dir_all(&dir).ok();
         }
+    }
+    Ok(())
+}
+
+/// An S2's stress drop (Pa), the time its stress falls in (s) and its recurrence (s, NaN if none).
+type S2 = (f64, f64, f64);
+
+/// `stickslip-bench readme`.
+fn readme(check: bool, only: &[String], binary: Option<PathBuf>) -> Result<()> {
+    use stickslip_lab::readme::{Runner, rewrite};
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..").canonicalize()?;
+    let binary = binary
+        .or_else(|| std::env::var_os("STICKSLIP").map(PathBuf::from))
+        .or_else(|| std::env::current_exe().ok().and_then(|e| Some(e.parent()?.join("stickslip"))))
+        .filter(|b| b.is_file())
+        .ok_or_else(|| {
+            anyhow::anyhow!("no stickslip binary: build it (cargo build --release -p stickslip) or give --binary")
+        })?;
+    let path = root.join("README.md");
+    let old = std::fs::read_to_string(&path)?;
+    let (new, outcomes) = rewrite(&old, &Runner::new(binary, root), only)?;
+    for o in &outcomes {
+        println!(
+            "{:<14} {}{}",
+            o.key,
+            if o.changed { "changed" } else { "as before" },
+            if o.measured { " (measured on this machine)" } else { "" }
+        );
+    }
+    if check {
+        let stale: Vec<&str> = outcomes.iter().filter(|o| o.changed && !o.measured).map(|o| o.key).collect();
+        anyhow::ensure!(stale.is_empty(), "the README is stale in: {} (run stickslip-bench readme)", stale.join(", "));
+        println!("README blocks current (measured ones may differ from machine to machine)");
+    } else {
+        std::fs::write(&path, new)?;
+        println!("README.md rewritten");
     }
     Ok(())
 }

@@ -266,6 +266,10 @@ pub fn scaling(d: &ReportInput, path: &Path) -> Result<Outcome, ReportError> {
         let Some(r) = pooled(&sc.seed).find(|&i| sc.relation[i] == relation) else { continue };
         let pts: Vec<(f64, f64)> =
             x.iter().zip(y.iter()).map(|(&a, &b)| (a, b)).filter(|p| p.0.is_finite() && p.1 > 0.0).collect();
+        if pts.is_empty() {
+            // Nothing to draw: no empty panel.
+            continue;
+        }
         let (x_lo, x_hi) = pts.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| (a.min(p.0), b.max(p.0)));
         let mut lines = Vec::new();
         let ends = [x_lo, x_hi];
@@ -293,10 +297,18 @@ pub fn scaling(d: &ReportInput, path: &Path) -> Result<Outcome, ReportError> {
             _ => format!("{relation}: {}", sc.reason[r].clone().unwrap_or_else(|| "no fit".into())),
         };
         let fitted = sc.exponent[r].is_some();
-        notes.push(note.clone());
+        notes.push(note);
+        // A third of the sheet's width: the panel says why there is no fit in a few words (the
+        // caption has the whole reason).
+        let why = sc.reason[r].as_deref().unwrap_or("");
+        let short = match (why.contains("no spread"), relation) {
+            (true, "moment_area") => "no fit: one area for every event".to_string(),
+            (true, _) => "no fit: no spread".to_string(),
+            (false, _) if why.contains("needed") => "no fit: too few events".to_string(),
+            _ => "no fit".to_string(),
+        };
         panels.push(Panel {
-            name: if fitted { String::new() } else { note },
-            x_ticks: if loglog { Some(log_ticks) } else { None },
+            name: if fitted { String::new() } else { short },
             points: vec![Points { label: String::new(), points: pts, colour: colour(0), size: 3 }],
             lines,
             x_scale: if loglog { Scale::Log } else { Scale::Linear },
@@ -306,7 +318,7 @@ pub fn scaling(d: &ReportInput, path: &Path) -> Result<Outcome, ReportError> {
         });
     }
     if panels.is_empty() {
-        return Ok(Outcome::Skipped("no scaling rows".into()));
+        return Ok(Outcome::Skipped("no events to scale".into()));
     }
     drawn(
         path,
@@ -320,16 +332,6 @@ pub fn scaling(d: &ReportInput, path: &Path) -> Result<Outcome, ReportError> {
             notes.join("; ")
         ),
     )
-}
-
-/// Tick labels of a log axis at 1, 2 and 5 × 10^k only (the others crowd each other).
-fn log_ticks(v: &f64) -> String {
-    let mantissa = v / 10f64.powf(v.log10().floor());
-    if [1.0, 2.0, 5.0, 10.0].iter().any(|m| (mantissa - m).abs() < 1e-6) {
-        crate::plot::fmt_tick(v)
-    } else {
-        String::new()
-    }
 }
 
 /// Every event of the first seed drawn: time against magnitude, main shocks marked.

@@ -27,7 +27,7 @@ pub(super) fn seeds_text(seeds: &[u64]) -> String {
 
 /// " (paper Fig. n)" for the paper's pipelines (`[report] paper_figures`), else nothing.
 pub(super) fn paper_fig(d: &ReportInput, n: u32) -> String {
-    if d.pipeline.report.paper_figures { format!(" (paper Fig. {n})") } else { String::new() }
+    if d.paper { format!(" (paper Fig. {n})") } else { String::new() }
 }
 
 /// Draws `sheet` to `path` and returns the figure's outcome.

@@ -91,7 +91,7 @@ pub(super) fn recurrence(d: &ReportInput, path: &Path) -> Result<Outcome, Report
             (!v.is_empty()).then(|| (r as f64, v.iter().sum::<f64>() / v.len() as f64))
         })
         .collect();
-    let paper = d.pipeline.report.paper_figures && !slow;
+    let paper = d.paper && !slow;
     let panel = Panel {
         points: groups,
         lines: vec![Line { label: "mean across seeds".into(), points: means, colour: colour(1), width: 3, alpha: 1.0 }],
@@ -138,7 +138,7 @@ pub(super) fn magnitude(d: &ReportInput, path: &Path) -> Result<Outcome, ReportE
             size: 5,
         },
     ];
-    let paper = d.pipeline.report.paper_figures;
+    let paper = d.paper;
     let panel = Panel {
         points: groups,
         hlines: if paper {
@@ -174,40 +174,87 @@ pub(super) fn attenuation(d: &ReportInput, path: &Path) -> Result<Outcome, Repor
             label: format!("S{r}"),
             points: (0..att.len())
                 .filter(|&i| ok(i) && rank_of(&label[i]) == Some(r))
-                .map(|i| (dist[i].log10(), pga[i].log10()))
+                .map(|i| (dist[i], pga[i]))
                 .collect(),
             colour: colour(r as usize - 1),
             size: 5,
         })
+        .filter(|g| !g.points.is_empty())
         .collect();
+    if groups.is_empty() {
+        return Ok(Outcome::Skipped("no positive distance and peak acceleration".into()));
+    }
     let mut lines = Vec::new();
     let mut fit_text = String::from("no fit");
     if let Some(fit) = &d.attenuation_fit {
         let (g, m) = (&fit.group, &fit.measure);
-        let (a, b, r2) = (&fit.intercept, &fit.slope, &fit.r2);
+        let (a, b, r2, n) = (&fit.intercept, &fit.slope, &fit.r2, &fit.points);
         if let Some(i) = (0..g.len()).find(|&i| g[i] == "main" && m[i] == col::PGA_M_S2) {
-            let xs: Vec<f64> = (0..att.len()).filter(|&i| ok(i)).map(|i| dist[i].log10()).collect();
+            let xs: Vec<f64> = (0..att.len()).filter(|&i| ok(i)).map(|i| dist[i]).collect();
             let (x0, x1) = xs.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| (lo.min(x), hi.max(x)));
+            let se = slope_se(b[i], r2[i], n[i] as f64);
             lines.push(Line {
-                label: format!("fit: log PGA = {:.2} {:+.2}·log R (r² = {:.2})", a[i], b[i], r2[i]),
-                points: vec![(x0, a[i] + b[i] * x0), (x1, a[i] + b[i] * x1)],
+                label: format!("fit: PGA ∝ R^({:.2} ± {:.2}), r² = {:.2}", b[i], se, r2[i]),
+                points: [x0, x1].iter().map(|&x| (x, 10f64.powf(a[i] + b[i] * x.log10()))).collect(),
                 colour: BLACK,
                 width: 3,
                 alpha: 1.0,
             });
-            fit_text = format!("log10 PGA = {:.3} {:+.3}·log10 R, r² = {:.2}", a[i], b[i], r2[i]);
+            fit_text = format!(
+                "log10 PGA = {:.3} {:+.3}·log10 R (slope ± {:.3}, one standard error; r² = {:.2}, {} points): {}",
+                a[i],
+                b[i],
+                se,
+                r2[i],
+                n[i],
+                trend(b[i], se)
+            );
         }
     }
-    let panel = Panel { points: groups, lines, ..Panel::linear("log10 distance (m)", "log10 PGA (m/s²)") };
+    let panel = Panel { points: groups, lines, ..Panel::loglog("distance from the hypocentre R (m)", "PGA (m/s²)") };
     drawn(
         path,
         &Sheet::new("Peak acceleration against distance from the hypocentre", 1, vec![panel]),
-        "Attenuation of peak acceleration".into(),
+        "Peak acceleration against distance".into(),
         format!(
             "Peak magnitude of the recorded acceleration of every control node during every main shock, against its \
-             distance from the shock's hypocentre (the first contact node to slide for good), all seeds, model scale; \
-             least-squares line over all main shocks: {fit_text}. The block is 1 m long, so these are near-field \
-             distances; g = {G} m/s²."
+             distance from the shock's hypocentre (the first contact node to slide for good), all seeds, model scale, \
+             log–log; least-squares line of log10 PGA on log10 R over all main shocks: {fit_text}. The block is \
+             {} m long, so these are near-field distances; g = {G} m/s².",
+            crate::plot::fmt_tick(&d.pipeline.scene.lattice().extent()[0])
         ),
     )
+}
+
+/// The standard error of a least-squares slope `b` from its r² over `n` points.
+fn slope_se(b: f64, r2: f64, n: f64) -> f64 {
+    if n > 2.0 && r2 > 0.0 { b.abs() * ((1.0 / r2 - 1.0) / (n - 2.0)).sqrt() } else { f64::INFINITY }
+}
+
+/// What a slope of log PGA on log R says, given its standard error: a fall with distance only
+/// when the slope is negative by more than two standard errors.
+fn trend(b: f64, se: f64) -> &'static str {
+    if b + 2.0 * se < 0.0 {
+        "PGA falls with distance"
+    } else if b - 2.0 * se > 0.0 {
+        "PGA grows with distance over this range (no attenuation)"
+    } else {
+        "no trend with distance can be told (the slope is within two standard errors of zero)"
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{slope_se, trend};
+
+    #[test]
+    fn a_positive_or_insignificant_slope_is_not_called_attenuation() {
+        // r² = 0.04 over 300 points, slope +0.2: se = 0.2·√(24/298) = 0.057, so it grows.
+        let se = slope_se(0.2, 0.04, 300.0);
+        assert!((se - 0.2 * (24.0f64 / 298.0).sqrt()).abs() < 1e-12);
+        assert!(trend(0.2, se).contains("no attenuation"));
+        assert_eq!(trend(-1.0, 0.1), "PGA falls with distance");
+        assert!(trend(-0.05, 0.1).starts_with("no trend"));
+        assert!(slope_se(1.0, 0.5, 2.0).is_infinite());
+    }
 }

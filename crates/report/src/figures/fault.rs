@@ -30,23 +30,34 @@ pub(super) fn friction_map(d: &ReportInput, path: &Path) -> Result<Outcome, Repo
     let mut plan = Panel::linear("x (m)", "y (m)");
     plan.title = "Regions of the base (seen from above)".into();
     let groups: Vec<(String, Option<u16>)> = std::iter::once(("background".to_string(), None))
-        .chain(map.regions.iter().enumerate().map(|(i, r)| (format!("{} ({})", r.name, r.kind.name()), Some(i as u16))))
+        .chain(map.regions.iter().enumerate().map(|(i, r)| {
+            // "barrier (barrier)" says it twice: the kind only when the name does not.
+            let kind = r.kind.name();
+            let name = if r.name.contains(kind) { r.name.clone() } else { format!("{} ({kind})", r.name) };
+            (name, Some(i as u16))
+        }))
         .collect();
     for (k, (name, region)) in groups.iter().enumerate() {
         let nodes: Vec<usize> = (0..ids.len()).filter(|&c| map.region[c] == *region).collect();
         let Some(&c0) = nodes.first() else { continue };
         let f = map.nodes[c0];
         plan.points.push(Points {
-            label: format!("{name}: μs {:.3}, μd {:.3}", f.static_coefficient(), f.residual_coefficient()),
+            label: format!(
+                "{name}: μs {}, μd {}",
+                crate::plot::fmt_tick(&f.static_coefficient()),
+                crate::plot::fmt_tick(&f.residual_coefficient())
+            ),
             points: nodes.iter().map(|&c| (pos[c][0], pos[c][1])).collect(),
             colour: region_colour(k),
             size: 5,
         });
     }
+    // The base fills the panel (half a module around it, so no node sits on an axis line); the
+    // legend goes where there is room, or above the axes.
     let e = lattice.extent();
     let pad = 0.5 * lattice.lc();
     plan.x_range = Some((-pad, e[0] + pad));
-    plan.y_range = Some((-pad, e[1] + pad + 0.6 * e[0].max(e[1])));
+    plan.y_range = Some((-pad, e[1] + pad));
     let mut along = Panel::linear("x (m)", "friction coefficient");
     along.title = "μs and μd of the nodes along x (before the seed's Weibull factor)".into();
     let row: Vec<usize> = (0..ids.len()).filter(|&c| pos[c][1] == 0.0).collect();

@@ -43,21 +43,15 @@ pub(super) fn shear_stress(d: &ReportInput, path: &Path) -> Result<Outcome, Repo
         return long_shear_stress(d, path);
     }
     // Several seeds share each main-shock rank, and their S2s lie close together: each rank is
-    // labelled once, above the highest of its triangles, in black (it names the triangles of
-    // every seed); the chart drops any label that would still overlap another.
+    // labelled once, in black (it names the triangles of every seed), at its triangle nearest the
+    // rank's median time, so the labels read S1, S2, … from left to right even where one seed's
+    // S3 comes before another's S2; the chart drops any label that would still overlap another.
     if d.seeds.len() > 1 {
-        let mut best: std::collections::BTreeMap<String, usize> = Default::default();
-        for (i, m) in markers.iter().enumerate() {
-            let e = best.entry(m.text.clone()).or_insert(i);
-            if m.at.1 > markers[*e].at.1 {
-                *e = i;
-            }
-        }
-        for (i, m) in markers.iter_mut().enumerate() {
-            if best.get(&m.text) == Some(&i) {
-                m.text_colour = BLACK;
+        for (i, keep) in label_once_per_rank(&markers).into_iter().enumerate() {
+            if keep {
+                markers[i].text_colour = BLACK;
             } else {
-                m.text.clear();
+                markers[i].text.clear();
             }
         }
     }
@@ -74,6 +68,34 @@ pub(super) fn shear_stress(d: &ReportInput, path: &Path) -> Result<Outcome, Repo
             seeds_text(&d.seeds)
         ),
     )
+}
+
+/// For markers of several seeds labelled by rank (`S1`, `S2`, …): whether each keeps its label —
+/// one per rank, rank by rank, the one nearest the median time of its rank among those after the
+/// previous rank's label (so the labels read in time order).
+fn label_once_per_rank(markers: &[Marker]) -> Vec<bool> {
+    let mut by_rank: std::collections::BTreeMap<u32, Vec<usize>> = Default::default();
+    for (i, m) in markers.iter().enumerate() {
+        if let Some(r) = super::common::rank_of(&m.text) {
+            by_rank.entry(r).or_default().push(i);
+        }
+    }
+    let mut keep = vec![false; markers.len()];
+    let mut after = f64::NEG_INFINITY;
+    for members in by_rank.values() {
+        let mut times: Vec<f64> = members.iter().map(|&i| markers[i].at.0).collect();
+        times.sort_by(f64::total_cmp);
+        let median = times[(times.len() - 1) / 2];
+        let later: Vec<usize> = members.iter().copied().filter(|&i| markers[i].at.0 > after).collect();
+        let Some(best) = later.into_iter().min_by(|&a, &b| {
+            (markers[a].at.0 - median).abs().total_cmp(&(markers[b].at.0 - median).abs()).then(a.cmp(&b))
+        }) else {
+            continue;
+        };
+        keep[best] = true;
+        after = markers[best].at.0;
+    }
+    keep
 }
 
 /// More main shocks than this in the τ(t) figure and it is drawn as a long run: an envelope with
@@ -192,7 +214,7 @@ pub(super) fn normal_stress(d: &ReportInput, path: &Path) -> Result<Outcome, Rep
         ..Panel::linear("time since the start of shearing (s)", "σ (kPa)")
     };
     let sheet = Sheet::new(format!("Normal stress on the base, seed {seed}{}", paper_fig(d, 4)), 1, vec![panel]);
-    let paper = if d.pipeline.report.paper_figures { "; the paper reports up to 30%" } else { "" };
+    let paper = if d.paper { "; the paper reports up to 30%" } else { "" };
     drawn(
         path,
         &sheet,
@@ -282,7 +304,34 @@ pub(super) fn energy(d: &ReportInput, path: &Path) -> Result<Outcome, ReportErro
 
 #[cfg(test)]
 mod tests {
-    use super::envelope;
+    use super::{envelope, label_once_per_rank};
+    use crate::charts::Marker;
+    use plotters::style::BLACK;
+
+    #[test]
+    fn rank_labels_sit_in_time_order() {
+        // Seed A: S1 at 0.10, S2 at 0.20, S3 at 0.30; seed B (later cycles): S1 at 0.12, S2 at
+        // 0.31, S3 at 0.40; seed C: S1 at 0.05, S2 at 0.15. Labelled at the highest
+        // triangle the order came out S1, S3, S2.
+        let m =
+            |t: f64, y: f64, text: &str| Marker { at: (t, y), text: text.into(), colour: BLACK, text_colour: BLACK };
+        let markers = [
+            m(0.10, 1.0, "S1"),
+            m(0.05, 1.0, "S1"),
+            m(0.15, 1.0, "S2"),
+            m(0.20, 1.0, "S2"),
+            m(0.30, 5.0, "S3"),
+            m(0.12, 1.0, "S1"),
+            m(0.31, 9.0, "S2"),
+            m(0.40, 1.0, "S3"),
+        ];
+        let keep = label_once_per_rank(&markers);
+        let mut labelled: Vec<(f64, &str)> =
+            markers.iter().zip(&keep).filter(|(_, k)| **k).map(|(m, _)| (m.at.0, m.text.as_str())).collect();
+        assert_eq!(labelled.len(), 3);
+        labelled.sort_by(|a, b| a.0.total_cmp(&b.0));
+        assert_eq!(labelled.iter().map(|l| l.1).collect::<Vec<_>>(), ["S1", "S2", "S3"]);
+    }
 
     #[test]
     fn the_envelope_keeps_each_columns_extremes() {

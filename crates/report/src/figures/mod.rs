@@ -24,6 +24,7 @@ use crate::{ReportError, ReportInput};
 
 pub use common::{MAX_NODES, NodeChannel, spread};
 pub use interface::LONG_RUN_MAIN_SHOCKS;
+pub use spectra::{EVERY_RECORD_UP_TO, RecordSpectraPlot, record_figure};
 
 /// What drawing a figure gave.
 pub enum Outcome {

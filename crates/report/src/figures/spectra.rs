@@ -7,16 +7,18 @@ use std::path::Path;
 use plotters::style::{BLACK, RGBColor};
 
 use std::collections::BTreeMap;
+use stickslip_seismo::spectra::intensity::G;
+
 use stickslip_solver::scene::Component;
 
-use stickslip_store::io::scan_columns;
+use stickslip_store::io::{scan_columns, scan_glob};
 use stickslip_store::schema::col;
 use stickslip_store::schema::{FOURIER, ROTD, SET, SPECTRA};
 use stickslip_store::tables::set::SetTable;
 use stickslip_store::tables::spectra::{Spectra, read_fourier};
 
 use super::Outcome;
-use super::common::{NodeChannel, accelerogram_nodes, drawn, nodes_short, nodes_text, seeds_text};
+use super::common::{NodeChannel, accelerogram_nodes, drawn, nodes_short, nodes_text, rank_of, seeds_text};
 use crate::charts::{Band, Line, Panel, Sheet};
 use crate::plot::{HEIGHT, colour};
 use crate::{ReportError, ReportInput};
@@ -42,8 +44,13 @@ pub(super) fn spectra_x(d: &ReportInput, path: &Path) -> Result<Outcome, ReportE
     spectra(d, path, Component::X)
 }
 
-/// PSA at 5% (or the nearest damping), model and prototype scale, one row per node: every seed
-/// thin, the mean and the 5–95% band bold.
+/// Every record is drawn when there are at most this many per node; beyond, the spread is the
+/// percentile band and only a few records are drawn, highlighted.
+pub const EVERY_RECORD_UP_TO: usize = 12;
+
+/// PSA at 5% (or the nearest damping), model and prototype scale, one row per node: the 5–95%
+/// band, the median and the mean across records (per period, over the records in band there),
+/// and every record thin when they are few, else the main shocks of the first seed drawn.
 fn spectra(d: &ReportInput, path: &Path, comp: Component) -> Result<Outcome, ReportError> {
     let (all_nodes, total) = accelerogram_nodes(d);
     let Some(stats) = &d.psa_stats else {
@@ -75,77 +82,148 @@ fn spectra(d: &ReportInput, path: &Path, comp: Component) -> Result<Outcome, Rep
             by_record.entry((sp.node[i], sp.seed[i], sp.record[i].as_str())).or_default().push(i);
         }
     }
+    // Records per node: every record of the node drawn when few, else the first drawn seed's.
+    let records_of = |node: u64| -> Vec<(u64, String, String)> {
+        let Some(rec) = &d.records else { return vec![] };
+        let mut v: Vec<(u64, String, String)> = (0..rec.seed.len())
+            .filter(|&i| rec.node[i] == node && rec.component[i] == cname && rec.scale[i] == "model")
+            .map(|i| (rec.seed[i], rec.record[i].clone(), rec.label[i].clone()))
+            .collect();
+        v.sort();
+        v.dedup();
+        v
+    };
+    let all_records: Vec<Vec<(u64, String, String)>> = nodes.iter().map(|n| records_of(n.ldem)).collect();
+    let few = all_records.iter().all(|r| r.len() <= EVERY_RECORD_UP_TO);
+    let highlight_seed = d.seeds.first().copied();
+    let spectra_rows = if few {
+        scan_glob(&d.folder.part_glob(&SPECTRA))?.map(|df| Spectra::read(&df)).transpose()?
+    } else {
+        match highlight_seed {
+            Some(seed) => d.part(&SPECTRA, seed)?.map(|df| Spectra::read(&df)).transpose()?,
+            None => None,
+        }
+    };
     let mut panels = Vec::new();
-    let mut count = 0;
-    for node in &nodes {
-        for (scale, unit_note) in [("model", "model scale"), ("prototype", "prototype scale (λ)")] {
-            let rows: Vec<usize> = (0..stats.node.len())
+    let mut highlighted: Vec<String> = Vec::new();
+    let mut least_in_band = usize::MAX;
+    for (node, records) in nodes.iter().zip(&all_records) {
+        let drawn_records: Vec<&(u64, String, String)> = if few {
+            records.iter().collect()
+        } else {
+            records.iter().filter(|r| Some(r.0) == highlight_seed && rank_of(&r.2).is_some()).take(4).collect()
+        };
+        // Model scale in m/s²; prototype scale in g, as engineers read a design spectrum.
+        for (scale, unit_note, unit, per) in
+            [("model", "model scale", "PSA (m/s²)", 1.0), ("prototype", "prototype scale (λ)", "PSA (g)", 1.0 / G)]
+        {
+            let mut rows: Vec<usize> = (0..stats.node.len())
                 .filter(|&i| {
                     stats.node[i] == node.ldem
                         && stats.component[i] == cname
                         && stats.scale[i] == scale
                         && stats.damping[i] == damping
-                        && stats.in_band[i]
                 })
                 .collect();
+            rows.sort_by(|&a, &b| stats.period_s[a].total_cmp(&stats.period_s[b]));
+            // The statistics where at least half of the records are in band.
+            let n_records = records.len().max(rows.iter().map(|&i| stats.count[i] as usize).max().unwrap_or(0));
+            let wanted = n_records.div_ceil(2).max(1);
+            let rows: Vec<usize> = rows.into_iter().filter(|&i| stats.count[i] as usize >= wanted).collect();
+            least_in_band = least_in_band.min(wanted);
             let mut lines = Vec::new();
-            if let Some(sp) = &all {
-                let records: Vec<&Vec<usize>> =
-                    by_record.range((node.ldem, 0, "")..(node.ldem + 1, 0, "")).map(|(_, r)| r).collect();
-                count = records.len();
-                for idx in records {
-                    let pts: Vec<(f64, f64)> = idx
-                        .iter()
-                        .filter(|&&i| sp.scale[i] == scale && sp.in_band[i])
-                        .map(|&i| (sp.period_s[i], sp.psa_m_s2[i]))
+            if let Some(sp) = &spectra_rows {
+                for (k, (seed, record, label)) in drawn_records.iter().enumerate() {
+                    let mut pts: Vec<(f64, f64)> = (0..sp.seed.len())
+                        .filter(|&i| {
+                            sp.seed[i] == *seed
+                                && sp.record[i] == *record
+                                && sp.scale[i] == scale
+                                && sp.damping[i] == damping
+                                && sp.in_band[i]
+                        })
+                        .map(|i| (sp.period_s[i], sp.psa_m_s2[i] * per))
                         .collect();
-                    lines.push(Line {
-                        label: String::new(),
-                        points: pts,
-                        colour: RGBColor(150, 150, 150),
-                        width: 1,
-                        alpha: 0.5,
-                    });
+                    pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+                    if few {
+                        lines.push(Line {
+                            label: if k == 0 { "each record".into() } else { String::new() },
+                            points: pts,
+                            colour: RGBColor(150, 150, 150),
+                            width: 1,
+                            alpha: 0.6,
+                        });
+                    } else {
+                        let name = format!("seed {seed} {label}");
+                        if scale == "model" && !highlighted.contains(&name) {
+                            highlighted.push(name.clone());
+                        }
+                        let mut l = Line::new(name, pts, 2 + k);
+                        l.width = 1;
+                        lines.push(l);
+                    }
                 }
             }
-            if let Some(l) = lines.first_mut() {
-                l.label = "each record".into();
-            }
             lines.push(Line {
-                label: "mean".into(),
-                points: rows.iter().map(|&i| (stats.period_s[i], stats.mean[i])).collect(),
+                label: "median".into(),
+                points: rows.iter().map(|&i| (stats.period_s[i], stats.p50[i] * per)).collect(),
                 colour: colour(1),
                 width: 4,
                 alpha: 1.0,
             });
+            lines.push(Line {
+                label: "mean".into(),
+                points: rows.iter().map(|&i| (stats.period_s[i], stats.mean[i] * per)).collect(),
+                colour: BLACK,
+                width: 2,
+                alpha: 1.0,
+            });
             let band = Band {
-                points: rows.iter().map(|&i| (stats.period_s[i], stats.p5[i], stats.p95[i])).collect(),
+                points: rows.iter().map(|&i| (stats.period_s[i], stats.p5[i] * per, stats.p95[i] * per)).collect(),
                 colour: colour(0),
                 label: "5–95%".into(),
             };
             panels.push(Panel {
-                title: format!("PSA, {unit_note}"),
+                title: format!("PSA at {}% damping, {unit_note}", crate::plot::fmt_tick(&(100.0 * damping))),
                 name: node.name(),
                 lines,
                 bands: vec![band],
-                ..Panel::loglog("period (s)", "PSA (m/s²)")
+                ..Panel::loglog("period (s)", unit)
             });
         }
     }
+    let count = all_records.iter().map(Vec::len).max().unwrap_or(0);
     let rows = nodes.len() as u32;
     let sheet = Sheet::new(String::new(), 2, panels).with_height(if rows == 1 { HEIGHT } else { 420 * rows });
+    let records_text = if few {
+        format!("every record thin ({count} per node)")
+    } else if highlighted.is_empty() {
+        format!("{count} records per node, their spread as the band")
+    } else {
+        format!(
+            "{count} records per node, their spread as the band; drawn on it, the main shocks of {} ({})",
+            highlight_seed.map(|s| format!("seed {s}")).unwrap_or_default(),
+            highlighted.join(", ")
+        )
+    };
     drawn(
         path,
         &sheet,
         format!("Response spectra, {} ({cname})", nodes_short(&nodes)),
         format!(
-            "Pseudo-spectral acceleration at {:.0}% damping of the processed {cname} records, {}: every record thin \
-             ({count} records per node), the mean and the 5–95% band across records bold, drawn only over the usable \
-             band (periods between 1/f_max of the lattice and 1/(1.25·f_low) of the filter). Left at model scale, \
-             right at prototype scale (periods ×λ, PSA ÷λ). Exact peaks for the straight-line reading of the samples \
-             (Nigam–Jennings).",
-            100.0 * damping,
-            nodes_text(&nodes, total)
+            "Pseudo-spectral acceleration at {}% damping of the processed {cname} records, {}: the 5–95% band, the \
+             median and the mean across records, {records_text}. Each record counts only over its usable band \
+             (periods between 1/f_max of the lattice and 1/(1.25·f_low) of the filter): at each period the band, \
+             median and mean are over the records in band there, drawn where at least half of them are{}. Left at \
+             model scale (m/s²), right at prototype scale in g = {G} m/s² (periods ×λ, PSA ÷λ). Exact peaks for the straight-line reading \
+             of the samples (Nigam–Jennings).",
+            crate::plot::fmt_tick(&(100.0 * damping)),
+            nodes_text(&nodes, total),
+            if least_in_band < usize::MAX && least_in_band > 1 {
+                format!(" ({least_in_band} or more)")
+            } else {
+                String::new()
+            }
         ),
     )
 }
@@ -217,7 +295,7 @@ pub(super) fn fourier(d: &ReportInput, path: &Path) -> Result<Outcome, ReportErr
 /// The record set chosen by `[set]` against its design spectrum, prototype scale: the target, each
 /// scaled record, their mean, the rule's fraction of the target, the period range shaded.
 pub(super) fn record_set(d: &ReportInput, path: &Path) -> Result<Outcome, ReportError> {
-    let Some(settings) = &d.pipeline.set else { return Ok(Outcome::Skipped("no [set] section".into())) };
+    let Some(settings) = &d.set else { return Ok(Outcome::Skipped("no [set] section".into())) };
     let Some(df) = stickslip_store::io::read_parquet_if_present(&d.folder.gathered(&SET))? else {
         return Ok(Outcome::Skipped("no set table (the selection failed or has not run)".into()));
     };
@@ -242,7 +320,7 @@ pub(super) fn record_set(d: &ReportInput, path: &Path) -> Result<Outcome, Report
                     && (!rotd || sp.component[i] == "rotd50")
                     && (sp.damping[i] - settings.damping).abs() < 1e-12
             })
-            .map(|i| (sp.period_s[i], sp.psa_m_s2[i], sp.in_band[i]))
+            .map(|i| (sp.period_s[i], sp.psa_m_s2[i] / G, sp.in_band[i]))
             .collect();
         pts.sort_by(|a, b| a.0.total_cmp(&b.0));
         pts
@@ -275,7 +353,7 @@ pub(super) fn record_set(d: &ReportInput, path: &Path) -> Result<Outcome, Report
         .map(|j| (scaled_all[0][j].0, scaled_all.iter().map(|r| r[j].1).sum::<f64>() / scaled_all.len() as f64))
         .collect();
     let target: Vec<(f64, f64)> =
-        scaled_all[0][..n].iter().filter_map(|&(t, _, _)| settings.target.psa(t).ok().map(|v| (t, v))).collect();
+        scaled_all[0][..n].iter().filter_map(|&(t, _, _)| settings.target.psa(t).ok().map(|v| (t, v / G))).collect();
     let fraction = settings.options.rule_fraction;
     let floor: Vec<(f64, f64)> = target.iter().map(|&(t, v)| (t, fraction * v)).collect();
     let range = settings.options.range.bounds().ok();
@@ -298,7 +376,7 @@ pub(super) fn record_set(d: &ReportInput, path: &Path) -> Result<Outcome, Report
         width: 2,
         alpha: 1.0,
     });
-    let panel = Panel { lines, bands, y_range: Some((lo, hi)), ..Panel::loglog("period (s)", "PSA (m/s²)") };
+    let panel = Panel { lines, bands, y_range: Some((lo, hi)), ..Panel::loglog("period (s)", "PSA (g)") };
     let count = scaled_all.len();
     let comp = if rotd { "RotD50".to_string() } else { set.component.first().cloned().unwrap_or_default() };
     drawn(
@@ -307,7 +385,7 @@ pub(super) fn record_set(d: &ReportInput, path: &Path) -> Result<Outcome, Report
         "Record set matched to a design spectrum".into(),
         format!(
             "The {count} records chosen by [set] ({comp}, {:.0}% damping), each scaled by its factor (grey), their \
-             mean, the target spectrum ({}) and {:.0}% of it, at prototype scale; the shaded band is the period range \
+             mean, the target spectrum ({}) and {:.0}% of it, at prototype scale, in g = {G} m/s²; the shaded band is the period range \
              of the match{}. The set table lists each record, its factor and misfit; the scaled records are under set/.",
             100.0 * settings.damping,
             settings.target_name,
@@ -317,4 +395,72 @@ pub(super) fn record_set(d: &ReportInput, path: &Path) -> Result<Outcome, Report
                 .unwrap_or_default()
         ),
     )
+}
+
+/// What [`record_figure`] draws: one record's spectra.
+pub struct RecordSpectraPlot<'a> {
+    /// The figure's title (the record's name).
+    pub title: &'a str,
+    /// Periods (s).
+    pub periods: &'a [f64],
+    /// Damping ratios.
+    pub dampings: &'a [f64],
+    /// PSA (m/s²), damping-major over `periods`.
+    pub psa_m_s2: &'a [f64],
+    /// Fourier amplitude spectrum: frequencies (Hz) and amplitudes |X|·Δt (m/s).
+    pub fourier: (&'a [f64], &'a [f64]),
+    /// PSA drawn in g (else m/s²).
+    pub in_g: bool,
+}
+
+/// The spectra of one record (`stickslip spectra`): PSA against period for each damping ratio,
+/// and the Fourier amplitude against frequency, log–log, written as a PNG at `path`.
+pub fn record_figure(path: &Path, r: &RecordSpectraPlot<'_>) -> Result<(), ReportError> {
+    crate::plot::register_fonts();
+    let n = r.periods.len();
+    let per = if r.in_g { 1.0 / G } else { 1.0 };
+    let lines: Vec<Line> = r
+        .dampings
+        .iter()
+        .enumerate()
+        .map(|(k, &xi)| {
+            let pts = (0..n).map(|j| (r.periods[j], r.psa_m_s2[k * n + j] * per)).collect();
+            Line::new(format!("{}% damping", crate::plot::fmt_tick(&(100.0 * xi))), pts, k)
+        })
+        .collect();
+    let dampings: Vec<String> =
+        r.dampings.iter().map(|x| format!("{}%", crate::plot::fmt_tick(&(100.0 * x)))).collect();
+    let psa = Panel {
+        title: format!("PSA at {} damping", dampings.join(", ")),
+        lines,
+        ..Panel::loglog("period (s)", if r.in_g { "PSA (g)" } else { "PSA (m/s²)" })
+    };
+    // The largest amplitude per 1/200 decade, as the report's Fourier figure draws it.
+    let (f, a) = r.fourier;
+    let mut pts: Vec<(f64, f64)> = Vec::new();
+    let mut bucket = i64::MIN;
+    for i in (0..f.len()).filter(|&i| f[i] > 0.0 && a[i] > 0.0) {
+        let b = (f[i].log10() * 200.0).floor() as i64;
+        match pts.last_mut() {
+            Some(p) if b == bucket => {
+                if a[i] > p.1 {
+                    *p = (f[i], a[i]);
+                }
+            }
+            _ => {
+                pts.push((f[i], a[i]));
+                bucket = b;
+            }
+        }
+    }
+    let mut fl = Line::new("", pts, 0);
+    fl.width = 1;
+    let fourier = Panel {
+        title: "Fourier amplitude".into(),
+        lines: vec![fl],
+        legend: false,
+        ..Panel::loglog("frequency (Hz)", "|X|·Δt (m/s)")
+    };
+    crate::charts::draw(path, &Sheet::new(r.title, 2, vec![psa, fourier]))?;
+    Ok(())
 }

@@ -133,11 +133,24 @@ pub fn format_named(name: &str) -> Option<&'static dyn RecordFormat> {
     FORMATS.iter().copied().find(|f| f.name() == name)
 }
 
-/// Reads an accelerogram file: SAC by its `.SAC` extension, `.AT2` by extension or content,
-/// otherwise CSV in `csv_unit` (comma, semicolon, tab or whitespace separated).
-pub fn read_accelerogram(path: &Path, csv_unit: AccelUnit) -> Result<Accelerogram, SeismoError> {
+/// Whether `bytes` are a SAC file: its header version (`NVHDR`, 6 or 7) where SAC keeps it, in
+/// either byte order (a text file has no NUL bytes there).
+pub fn is_sac(bytes: &[u8]) -> bool {
+    let at = 4 * (70 + 6);
+    bytes.len() >= sac::HEADER_BYTES && {
+        let w = [bytes[at], bytes[at + 1], bytes[at + 2], bytes[at + 3]];
+        matches!(i32::from_le_bytes(w), 6 | 7) || matches!(i32::from_be_bytes(w), 6 | 7)
+    }
+}
+
+/// Reads an accelerogram file, its format told by its content: SAC (either byte order, as this
+/// product and ObsPy write it; `IACC` values in nm/s², values of unknown unit in `unit`), PEER
+/// `.AT2` (by extension or its `PEER` first line), otherwise text: a time column and an
+/// acceleration column in `unit`, separated by commas, semicolons, tabs or whitespace (the
+/// product's CSV records included).
+pub fn read_accelerogram(path: &Path, unit: AccelUnit) -> Result<Accelerogram, SeismoError> {
     let bytes = std::fs::read(path).map_err(|source| SeismoError::Io { path: path.to_path_buf(), source })?;
-    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("sac")) {
+    if is_sac(&bytes) {
         let trace = sac::parse_sac(&bytes, path)?;
         let m = &trace.meta;
         let description = [&m.network, &m.station, &m.location, &m.component, &m.event]
@@ -146,12 +159,18 @@ pub fn read_accelerogram(path: &Path, csv_unit: AccelUnit) -> Result<Accelerogra
             .map(|s| s.as_str())
             .collect::<Vec<_>>()
             .join(" ");
-        return Ok(Accelerogram { dt: trace.dt, accel: trace.accel_si()?, description });
+        let accel = if trace.idep == sac::IACC {
+            trace.accel_si()?
+        } else {
+            // A trace that does not say its unit: the unit the caller gives.
+            trace.accel_si()?.iter().map(|v| v * unit.to_si()).collect()
+        };
+        return Ok(Accelerogram { dt: trace.dt, accel, description });
     }
     let text = String::from_utf8(bytes).map_err(|_| SeismoError::Format {
         path: path.to_path_buf(),
-        what: "not text: AT2 and CSV records are text (a SAC file needs the .SAC extension)".into(),
+        what: "neither a SAC file (no SAC header) nor text (AT2, CSV or columns of numbers)".into(),
     })?;
     let is_at2 = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("at2")) || text.starts_with("PEER");
-    if is_at2 { parse_at2(&text, path) } else { parse_csv(&text, csv_unit, path) }
+    if is_at2 { parse_at2(&text, path) } else { parse_csv(&text, unit, path) }
 }

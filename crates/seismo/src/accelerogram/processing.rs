@@ -475,6 +475,136 @@ pub fn process(accel: &[f64], dt: f64, opts: &ProcessingOptions) -> Result<Proce
     })
 }
 
+/// Half-width of the resampling kernel of [`Processed::resampled`], in samples of the coarser of
+/// the two intervals.
+pub const RESAMPLE_HALF_WIDTH: usize = 16;
+
+/// Kaiser window parameter β of the resampling kernel.
+pub const RESAMPLE_KAISER_BETA: f64 = 8.0;
+
+/// Points per sample of the tabulated kernel (linear interpolation between them).
+const KERNEL_TABLE_PER_SAMPLE: usize = 1024;
+
+/// Zeroth-order modified Bessel function of the first kind, by its power series.
+fn bessel_i0(x: f64) -> f64 {
+    let (mut sum, mut term, q) = (1.0, 1.0, 0.25 * x * x);
+    for k in 1..200 {
+        term *= q / (k * k) as f64;
+        sum += term;
+        if term < 1e-17 * sum {
+            break;
+        }
+    }
+    sum
+}
+
+/// The kernel `sinc(s)·w(s/H)` for `s` in `[0, H]` (H = [`RESAMPLE_HALF_WIDTH`]), `w` the Kaiser
+/// window of β = [`RESAMPLE_KAISER_BETA`], tabulated [`KERNEL_TABLE_PER_SAMPLE`] points per unit.
+fn kernel_table() -> &'static [f64] {
+    static TABLE: std::sync::OnceLock<Vec<f64>> = std::sync::OnceLock::new();
+    TABLE.get_or_init(|| {
+        let h = RESAMPLE_HALF_WIDTH as f64;
+        let n = RESAMPLE_HALF_WIDTH * KERNEL_TABLE_PER_SAMPLE;
+        let i0b = bessel_i0(RESAMPLE_KAISER_BETA);
+        (0..=n + 1)
+            .map(|i| {
+                let s = i as f64 / KERNEL_TABLE_PER_SAMPLE as f64;
+                if s >= h {
+                    return 0.0;
+                }
+                let sinc = if s == 0.0 { 1.0 } else { (std::f64::consts::PI * s).sin() / (std::f64::consts::PI * s) };
+                let r = s / h;
+                sinc * bessel_i0(RESAMPLE_KAISER_BETA * (1.0 - r * r).sqrt()) / i0b
+            })
+            .collect()
+    })
+}
+
+/// `x`, sampled every `dt_in` s from t = 0, at `t = i·dt_out` for `i = 0 … ⌊(n−1)·dt_in/dt_out⌋`:
+/// band-limited (windowed-sinc) interpolation whose low-pass cuts off at the lower of the two
+/// Nyquist frequencies, so that going to a coarser interval is anti-aliased. The kernel is
+/// `r·sinc(r·u)·w(r·u/H)` with `u` the distance in input samples, `r = min(1, dt_in/dt_out)`,
+/// `w` the Kaiser window (β = 8) and `H` = 16. Its gain is flat to 1e-4 up to 80% of the lower
+/// Nyquist frequency, 1/2 (−6 dB) at it and below 1e-4 (−80 dB) from 1.2 times it (computed from
+/// the kernel; the tests `resampling_…` check the flat part and the rejection). Samples outside
+/// `x` count as zero.
+pub fn resample(x: &[f64], dt_in: f64, dt_out: f64) -> Vec<f64> {
+    if x.is_empty() {
+        return Vec::new();
+    }
+    let n = x.len();
+    let m = ((n - 1) as f64 * dt_in / dt_out * (1.0 + 1e-12)).floor() as usize + 1;
+    let table = kernel_table();
+    let r = (dt_in / dt_out).min(1.0);
+    let reach = RESAMPLE_HALF_WIDTH as f64 / r;
+    let per = KERNEL_TABLE_PER_SAMPLE as f64;
+    let kernel = |u: f64| -> f64 {
+        let pos = (r * u).abs() * per;
+        let i = pos as usize;
+        if i + 1 >= table.len() {
+            return 0.0;
+        }
+        let f = pos - i as f64;
+        table[i] + f * (table[i + 1] - table[i])
+    };
+    (0..m)
+        .map(|i| {
+            let u = i as f64 * dt_out / dt_in;
+            let lo = (u - reach).ceil().max(0.0) as usize;
+            let hi = ((u + reach).floor() as usize).min(n - 1);
+            let mut y = 0.0;
+            for (k, xk) in x.iter().enumerate().take(hi + 1).skip(lo) {
+                y += xk * kernel(u - k as f64);
+            }
+            r * y
+        })
+        .collect()
+}
+
+/// The interval records are written at: `requested` (the pipeline's `record.interval_s`) when
+/// given, else the largest of 1, 2, 2.5 and 5 × 10^k s at or below `0.4/resolved_hz` (the usable
+/// band's top at 80% of the Nyquist frequency). It does not depend on a seed's time step, so every
+/// seed's records share it.
+pub fn record_interval(requested: Option<f64>, resolved_hz: f64) -> f64 {
+    if let Some(dt) = requested.filter(|d| *d > 0.0 && d.is_finite()) {
+        return dt;
+    }
+    let target = 0.4 / resolved_hz;
+    let decade = 10f64.powf(target.log10().floor());
+    [5.0, 2.5, 2.0, 1.0].into_iter().map(|m| m * decade).find(|&d| d <= target * (1.0 + 1e-12)).unwrap_or(decade)
+}
+
+impl Processed {
+    /// The same record at the interval `dt` ([`resample`] of the acceleration, velocity and
+    /// displacement; the first sample at the same time `t_first`, the pads counted on the new
+    /// grid). Its content must lie below 80% of the new Nyquist frequency (the band's high corner
+    /// is held there by [`RecordBand::new`] given the coarser interval).
+    pub fn resampled(&self, dt: f64) -> Processed {
+        if dt == self.dt {
+            return self.clone();
+        }
+        let accel = resample(&self.accel, self.dt, dt);
+        let m = accel.len();
+        let pad_front = ((self.pad_front as f64 * self.dt / dt) - 1e-9).ceil().max(0.0) as usize;
+        let record_end = (self.accel.len() - self.pad_end) as f64 * self.dt;
+        let inside = ((record_end / dt) - 1e-9).ceil().max(0.0) as usize;
+        Processed {
+            dt,
+            t_first: self.t_first,
+            pad_front: pad_front.min(m),
+            pad_end: m.saturating_sub(inside.max(pad_front)),
+            f_low: self.f_low,
+            f_high: self.f_high,
+            order: self.order,
+            mean_removed: self.mean_removed,
+            baseline: self.baseline.clone(),
+            vel: resample(&self.vel, self.dt, dt),
+            disp: resample(&self.disp, self.dt, dt),
+            accel,
+        }
+    }
+}
+
 /// The lowest usable frequency of a record low-cut at `f_low` is `USABLE_LOW_FACTOR·f_low`
 /// (PEER NGA-West2, Ancheta et al. 2014: 1.25).
 pub const USABLE_LOW_FACTOR: f64 = 1.25;
@@ -564,6 +694,73 @@ impl RecordBand {
 mod tests {
     use super::*;
     use std::f64::consts::PI;
+
+    #[test]
+    fn resampling_keeps_a_sine_in_band_to_1e_4_going_finer_or_coarser() {
+        // 2.137e-5 s (a seed's 2 steps) to 2e-5 s, and 2e-5 s to 2.137e-5 s: a 5-kHz sine (20% of
+        // the Nyquist frequency, the paper scene's usable band) and a 18.7-kHz one (80% of the
+        // lower Nyquist frequency).
+        for (dt_in, dt_out) in [(2.137e-5f64, 2e-5f64), (2e-5, 2.137e-5)] {
+            let nyq = 0.5 / dt_in.max(dt_out);
+            for f in [5e3, 0.8 * nyq] {
+                let n = 3000;
+                let y = resample(&sine(f, dt_in, n), dt_in, dt_out);
+                assert_eq!(y.len(), ((n - 1) as f64 * dt_in / dt_out).floor() as usize + 1);
+                let edge = 2 * RESAMPLE_HALF_WIDTH + 2;
+                let worst = (edge..y.len() - edge)
+                    .map(|i| (y[i] - (2.0 * PI * f * i as f64 * dt_out).sin()).abs())
+                    .fold(0.0, f64::max);
+                assert!(worst < 2e-4, "{dt_in} → {dt_out} s, {f} Hz: error {worst:e}");
+            }
+        }
+        // A constant stays itself away from the ends.
+        let y = resample(&[1.0; 500], 1.0, 1.3);
+        assert!(y[100..280].iter().all(|v| (v - 1.0).abs() < 1e-4), "{:?}", &y[100..110]);
+    }
+
+    #[test]
+    fn resampling_to_a_coarser_interval_removes_what_would_alias() {
+        // 1 ms to 2 ms: a 325-Hz sine is 1.3 times the new Nyquist frequency (250 Hz); sampled
+        // every 2 ms as it is it would alias to 175 Hz with its full amplitude.
+        let (dt_in, dt_out, n) = (1e-3, 2e-3, 4000);
+        let y = resample(&sine(325.0, dt_in, n), dt_in, dt_out);
+        let range = 40..y.len() - 40;
+        let left = amplitude(&y, dt_out, 175.0, range.clone());
+        assert!(left < 2e-4, "aliased amplitude {left:e}");
+        // While a 100-Hz sine (40% of the new Nyquist frequency) passes unchanged.
+        let y = resample(&sine(100.0, dt_in, n), dt_in, dt_out);
+        assert!((amplitude(&y, dt_out, 100.0, range) - 1.0).abs() < 1e-4);
+    }
+
+    #[test]
+    fn record_interval_is_the_pipelines_or_a_round_one_below_the_band() {
+        assert_eq!(record_interval(Some(2e-5), 5078.4), 2e-5);
+        // 0.4/5078.4 Hz = 7.9e-5 s: 5e-5 s.
+        assert!((record_interval(None, 5078.4) - 5e-5).abs() < 1e-18);
+        assert!((record_interval(None, 1000.0) - 2.5e-4).abs() < 1e-18);
+        assert!((record_interval(None, 0.4) - 1.0).abs() < 1e-15);
+        assert!((record_interval(None, 0.2) - 2.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn a_resampled_record_keeps_its_start_span_and_band() {
+        let dt = 2.137e-5;
+        let raw: Vec<f64> = (0..1100).map(|i| (2.0 * PI * 2e3 * i as f64 * dt).sin()).collect();
+        let p = process(&raw, dt, &ProcessingOptions::new(200.0, Some(5e3))).unwrap();
+        let q = p.resampled(2e-5);
+        assert_eq!(q.dt, 2e-5);
+        assert_eq!(q.t_first, p.t_first);
+        let span = |r: &Processed| (r.accel.len() - 1) as f64 * r.dt;
+        assert!(span(&p) - span(&q) < 2e-5 && span(&q) <= span(&p), "{} {}", span(&p), span(&q));
+        assert_eq!((q.vel.len(), q.disp.len()), (q.accel.len(), q.accel.len()));
+        // The pads are the same lengths of time on the new grid, to a sample.
+        assert!((q.pad_front as f64 * q.dt - p.pad_front as f64 * p.dt).abs() <= q.dt);
+        assert!((q.pad_end as f64 * q.dt - p.pad_end as f64 * p.dt).abs() <= 2.0 * q.dt);
+        // The peak acceleration and the final displacement are those of the record.
+        let peak = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        assert!((peak(&q.accel) / peak(&p.accel) - 1.0).abs() < 2e-3);
+        assert_eq!(p.resampled(dt), p);
+    }
 
     /// Amplitude of the `f`-Hz component of `x[range]` by least squares on sin and cos.
     fn amplitude(x: &[f64], dt: f64, f: f64, range: std::ops::Range<usize>) -> f64 {

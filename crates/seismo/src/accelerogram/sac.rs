@@ -14,8 +14,8 @@
 //! the reference time `NZYEAR…NZMSEC` with `IZTYPE = IB` when given (else undefined and
 //! `IZTYPE = IUNKN`), `O` when the origin time is known, `EVLA`, `EVLO`, `EVDP`, `STLA`, `STLO`,
 //! `STEL`, `DIST`, `CMPAZ`, `CMPINC`, `MAG`, `USER0–9` and `KUSER0–2` where given. SAC reads
-//! `EVLA/EVLO/STLA/STLO` as degrees, `EVDP` and `DIST` as km and `STEL` as m; model-scale runs may
-//! store plain model coordinates there (say so in `KUSER0–2`).
+//! `EVLA/EVLO/STLA/STLO` as degrees, `EVDP` and `DIST` as km and `STEL` as m: the record format
+//! ([`Sac`]) leaves the degrees undefined and puts a node's position (m) in `USER7–9`.
 //!
 //! Times in SAC are seconds relative to the reference time: `B` is the first sample, `O` the
 //! event origin on the same clock.
@@ -127,7 +127,8 @@ pub const HEADER_BYTES: usize = 632;
 
 const ITIME: i32 = 1;
 const IUNKN: i32 = 5;
-const IACC: i32 = 8;
+/// `IDEP` of an acceleration trace (values in nm/s²).
+pub const IACC: i32 = 8;
 const IB: i32 = 9;
 
 /// Names of the 23 string fields, in file order.
@@ -422,10 +423,14 @@ pub fn sac_bytes(accel: &[f64], dt: f64, meta: &SacMeta) -> Result<Vec<u8>, Seis
 }
 
 /// The SAC format: acceleration in nm/s² (`IDEP = IACC`), the record's names in `KSTNM`,
-/// `KCMPNM`, `KNETWK`, `KHOLE`, `KEVNM`; its position in `STLA`/`STLO`/`STEL` (plain coordinates
-/// of the scene in metres, not degrees); the component's orientation in `CMPINC`/`CMPAZ`; the
-/// magnitude in `MAG`; the labelled number groups in `USER0`… in order, each group's label in
-/// the next of `KUSER0`–`KUSER2`.
+/// `KCMPNM`, `KNETWK`, `KHOLE`, `KEVNM`; its position x, y, z (m, the scene's coordinates) in
+/// `USER7`–`USER9` and its height z also in `STEL` (m) — `STLA`/`STLO` are degrees of latitude
+/// and longitude, which a block has not, so they stay undefined; the component's orientation in
+/// `CMPINC`/`CMPAZ`; the magnitude in `MAG`; the labelled number groups in `USER0`… in order
+/// (at most seven numbers with a position), each group's label in the next of `KUSER0`–`KUSER2`.
+pub const POSITION_USER: usize = 7;
+
+/// The SAC record format (see [`POSITION_USER`] for where it puts what).
 #[derive(Clone, Copy, Debug)]
 pub struct Sac;
 
@@ -455,6 +460,18 @@ impl super::RecordFormat for Sac {
                 k += 1;
             }
         }
+        if let Some(p) = r.position_m {
+            if k > POSITION_USER {
+                return Err(SeismoError::parameter(
+                    "numbers",
+                    k,
+                    "at most 7 numbers with a position (USER0–6; the position takes USER7–9)",
+                ));
+            }
+            for (c, v) in p.iter().enumerate() {
+                user[POSITION_USER + c] = Some(*v);
+            }
+        }
         let meta = SacMeta {
             station: r.station.to_string(),
             component: r.component.to_string(),
@@ -462,8 +479,6 @@ impl super::RecordFormat for Sac {
             location: r.location.to_string(),
             event: r.event.to_string(),
             begin: r.begin_s,
-            station_lat: r.position_m.map(|p| p[0]),
-            station_lon: r.position_m.map(|p| p[1]),
             station_elevation: r.position_m.map(|p| p[2]),
             component_incidence: r.orientation.map(|o| o.incidence_deg),
             component_azimuth: r.orientation.map(|o| o.azimuth_deg),

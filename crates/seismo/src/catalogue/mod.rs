@@ -28,7 +28,7 @@ pub enum FitError {
         need: usize,
     },
     /// All values are the same, so the quantity is not defined.
-    #[error("{what}: no spread (every value is {value})")]
+    #[error("{what}: no spread (every value is {})", compact(*value))]
     NoSpread {
         /// What has no spread (e.g. "magnitudes at or above Mc").
         what: &'static str,
@@ -78,4 +78,22 @@ pub enum FitError {
         /// The Mc where it was found.
         best_mc: f64,
     },
+}
+
+/// A value as a message shows it: six significant digits at most, in scientific notation when
+/// very large or small (1e7, not 10000000; 0.01, not 0.010000000000000002).
+pub fn compact(v: f64) -> String {
+    let a = v.abs();
+    if v == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    if !(1e-3..1e5).contains(&a) {
+        let s = format!("{v:.5e}");
+        let (m, e) = s.split_once('e').unwrap_or((&s, "0"));
+        let m = if m.contains('.') { m.trim_end_matches('0').trim_end_matches('.') } else { m };
+        return format!("{m}e{e}");
+    }
+    let digits = (5 - a.log10().floor() as i32).max(0) as usize;
+    let s = format!("{v:.digits$}");
+    if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.').to_string() } else { s }
 }

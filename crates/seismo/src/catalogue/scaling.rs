@@ -133,7 +133,9 @@ pub fn fit(x: &[f64], y: &[f64], axes: Axes) -> Result<ScalingFit, FitError> {
         return Err(FitError::TooFew { what: "points placeable on the axes", have: n, need: MIN_POINTS });
     }
     if xs.iter().all(|&v| v == xs[0]) {
-        return Err(FitError::NoSpread { what: "x", value: xs[0] });
+        // The value as given (not its logarithm): "every value is 1e7", not "7".
+        let value = x.iter().copied().find(|&a| a.is_finite()).unwrap_or(xs[0]);
+        return Err(FitError::NoSpread { what: "the abscissae", value });
     }
     let nf = n as f64;
     let xm = xs.iter().sum::<f64>() / nf;
@@ -262,6 +264,12 @@ mod tests {
             Err(FitError::TooFew { what: "points placeable on the axes", have: 2, need: MIN_POINTS })
         );
         assert!(matches!(moment_area(&[2.0; 5], &[1.0, 2.0, 3.0, 4.0, 5.0]), Err(FitError::NoSpread { .. })));
+        // The message gives the value as given, not its logarithm.
+        let e = moment_area(&[1e7; 5], &[1.0, 2.0, 3.0, 4.0, 5.0]).unwrap_err().to_string();
+        assert_eq!(e, "the abscissae: no spread (every value is 1e7)");
+        assert_eq!(super::super::compact(0.010000000000000002), "0.01");
+        assert_eq!(super::super::compact(0.6000000000000001), "0.6");
+        assert_eq!(super::super::compact(6068.411321), "6068.41");
         assert!(matches!(moment_area(&[1.0, 2.0], &[1.0]), Err(FitError::InvalidParameter { .. })));
         // Zero area, negative moment and NaN are left out: 3 of 6 remain.
         let f = moment_area(&[0.0, 1.0, 2.0, 4.0, 8.0, f64::NAN], &[1.0, 1.0, -8.0, 8.0, 22.6, 1.0]).unwrap();

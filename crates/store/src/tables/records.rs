@@ -41,6 +41,8 @@ pub const RECORDS: TableSpec = TableSpec {
         col::DT_S,
         col::SAMPLES,
         col::WINDOW_SAMPLES,
+        col::RECORDED_DT_S,
+        col::RECORDED_SAMPLES,
         col::FIRST_SAMPLE_S,
         col::F_LOW_HZ,
         col::F_HIGH_HZ,
@@ -160,6 +162,8 @@ pub fn records_frame(seed: u64, records: &[RecordData], lambda: f64) -> Result<D
         .f64(col::DT_S, f(&|r, l| r.processed.dt * l))
         .u32(col::SAMPLES, rows.iter().map(|(r, _)| r.processed.accel.len() as u32).collect())
         .u32(col::WINDOW_SAMPLES, rows.iter().map(|(r, _)| window(&r.processed).len() as u32).collect())
+        .f64(col::RECORDED_DT_S, f(&|r, l| r.recorded_dt_s * l))
+        .u32(col::RECORDED_SAMPLES, rows.iter().map(|(r, _)| r.recorded_samples).collect())
         .f64(col::FIRST_SAMPLE_S, f(&|r, l| r.processed.t_first * l))
         .f64(col::F_LOW_HZ, band(&|b| b.f_low_hz))
         .f64(col::F_HIGH_HZ, band(&|b| b.f_high_hz))
@@ -309,6 +313,10 @@ read_back! {
         dt_s: Vec<f64> = c.f64s(col::DT_S)?,
         /// Samples of the window (the record without its pads).
         window_samples: Vec<u64> = c.u64s(col::WINDOW_SAMPLES)?,
+        /// Sampling interval of the run's own record of the window, before resampling (s).
+        recorded_dt_s: Vec<f64> = c.f64s(col::RECORDED_DT_S)?,
+        /// Samples of the run's own record of the window (the raw window in `control`).
+        recorded_samples: Vec<u64> = c.u64s(col::RECORDED_SAMPLES)?,
         /// Low corner of the band-pass (Hz).
         f_low_hz: Vec<f64> = c.f64s(col::F_LOW_HZ)?,
         /// High corner of the band-pass (Hz).

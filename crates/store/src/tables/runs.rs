@@ -1,6 +1,7 @@
 //! The runs table: one row per seed.
 
 use polars::prelude::DataFrame;
+use stickslip_analysis::{Diagnosis, SlipRegime};
 use stickslip_seismo::events::Catalogue;
 use stickslip_solver::RunOutput;
 
@@ -29,6 +30,8 @@ pub const RUNS: TableSpec = TableSpec {
         col::CRITICAL_DT_S,
         col::EVENTS,
         col::MAIN_SHOCKS,
+        col::SLIP_REGIME,
+        col::SLIDING_FROM_S,
         col::PIPELINE_HASH,
     ],
     variable: None,
@@ -92,11 +95,15 @@ pub struct RunFacts {
     pub events: u32,
     /// Main shocks found.
     pub main_shocks: u32,
+    /// What the base did (stick-slip, stable sliding, no slip).
+    pub regime: SlipRegime,
+    /// Start of the slip episode that never stopped, if the run ended in one (s).
+    pub sliding_from_s: Option<f64>,
 }
 
 impl RunFacts {
-    /// Facts of a finished run and its catalogue.
-    pub fn of(out: &RunOutput, cat: &Catalogue) -> Self {
+    /// Facts of a finished run, its catalogue and what the base did.
+    pub fn of(out: &RunOutput, cat: &Catalogue, diagnosis: &Diagnosis) -> Self {
         RunFacts {
             steps: out.steps(),
             settle_steps: out.settle_steps,
@@ -108,6 +115,8 @@ impl RunFacts {
             critical_dt_s: out.critical.dt_s,
             events: cat.events.len() as u32,
             main_shocks: cat.main_shocks().count() as u32,
+            regime: diagnosis.regime,
+            sliding_from_s: diagnosis.sliding_from_s,
         }
     }
 }
@@ -136,6 +145,11 @@ pub fn frame(rows: &[RunRow], pipeline_hash: &str) -> Result<DataFrame, StoreErr
         .f64(col::CRITICAL_DT_S, fact(&|f| f.critical_dt_s))
         .u32(col::EVENTS, count(&|f| f.events as u64).into_iter().map(|v| v as u32).collect())
         .u32(col::MAIN_SHOCKS, count(&|f| f.main_shocks as u64).into_iter().map(|v| v as u32).collect())
+        .static_str(col::SLIP_REGIME, rows.iter().map(|r| r.outcome.as_ref().map_or("", |f| f.regime.name())).collect())
+        .opt_f64(
+            col::SLIDING_FROM_S,
+            rows.iter().map(|r| r.outcome.as_ref().ok().and_then(|f| f.sliding_from_s)).collect(),
+        )
         .str(col::PIPELINE_HASH, vec![pipeline_hash.to_string(); n])
         .finish(RUNS.name)
 }
@@ -155,6 +169,11 @@ read_back! {
         main_shocks: Vec<u64> = c.u64s(col::MAIN_SHOCKS)?,
         /// Events of each seed.
         events: Vec<u64> = c.u64s(col::EVENTS)?,
+        /// What the base did in each seed (`stick_slip`, `stable_sliding`, …; empty for a failed
+        /// seed or a folder written before the column existed).
+        slip_regime: Vec<String> = if c.has(col::SLIP_REGIME) { c.strs(col::SLIP_REGIME)? } else { vec![String::new(); c.height()] },
+        /// Start of the sliding that never stopped (s), per seed.
+        sliding_from_s: Vec<Option<f64>> = if c.has(col::SLIDING_FROM_S) { c.opt_f64s(col::SLIDING_FROM_S)? } else { vec![None; c.height()] },
         /// Steps of each seed, integrated or skipped.
         steps: Vec<u64> = c.u64s(col::STEPS)?,
         /// Steps skipped by the quasi-static skip-ahead.

@@ -140,9 +140,10 @@ pub struct PsaStatsRow {
     pub damping: f64,
     /// Period (s).
     pub period_s: f64,
-    /// Records.
+    /// Records whose usable band holds the period: the statistics are over them.
     pub count: u32,
-    /// Mean, geometric mean, 5th, 50th and 95th percentiles (m/s²).
+    /// Mean, geometric mean, 5th, 50th and 95th percentiles (m/s²) of those records (NaN, written
+    /// as null, when there is none).
     pub stats: [f64; 5],
     /// Whether the period is in the usable band of every record.
     pub in_band: bool,
@@ -181,8 +182,12 @@ read_back! {
         damping: Vec<f64> = c.f64s(col::DAMPING)?,
         /// Period (s).
         period_s: Vec<f64> = c.f64s(col::PERIOD_S)?,
+        /// Records in band at the period (the statistics are over them).
+        count: Vec<u64> = c.u64s(col::COUNT)?,
         /// Mean (m/s²).
         mean: Vec<f64> = c.f64s(col::MEAN_M_S2)?,
+        /// Median (m/s²).
+        p50: Vec<f64> = c.f64s(col::P50_M_S2)?,
         /// 5th percentile (m/s²).
         p5: Vec<f64> = c.f64s(col::P5_M_S2)?,
         /// 95th percentile (m/s²).
@@ -223,6 +228,8 @@ read_back! {
         group: Vec<String> = c.strs(col::GROUP)?,
         /// Measure.
         measure: Vec<String> = c.strs(col::MEASURE)?,
+        /// Points fitted.
+        points: Vec<u64> = c.u64s(col::POINTS)?,
         /// Intercept.
         intercept: Vec<f64> = c.f64s(col::INTERCEPT)?,
         /// Slope.
