@@ -650,4 +650,14 @@ fn scenes_too_large_or_too_long_are_refused_before_anything_is_built() {
     let (stdout, err) = text(&out);
     assert!(out.status.success(), "{err}");
     assert!(stdout.contains("a long run, accepted with --allow-long") && stdout.contains("memory: about"), "{stdout}");
+    // A skip-ahead run's step count bounds what it steps (slow-loading: 3.7e9 bounded, about 1e7
+    // stepped), so it is never refused as long.
+    let out = Command::new(env!("CARGO_BIN_EXE_stickslip"))
+        .args(["check", repo().join("pipelines/slow-loading.toml").to_str().unwrap()])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let (stdout, err) = text(&out);
+    assert!(out.status.success(), "a skip-ahead pipeline refused as long: {err}{stdout}");
+    assert!(stdout.contains("at most") && !stdout.contains("accepted with --allow-long"), "{stdout}");
 }

@@ -128,15 +128,23 @@ pub fn run(a: Args) -> Result<()> {
     let rate = Some(facts.bars as f64 / per_step);
     let updates = budget::check_length(scene, facts.bars as u64, dt, rate, a.allow_long, "this scene")?;
     let on = if parallel { format!("{threads} threads") } else { "one thread".into() };
+    // With the skip-ahead the count bounds the run: the quasi-static stretches are jumped.
+    let bound = if scene.skip_ahead.enabled { "at most " } else { "" };
     println!(
-        "  run: {} steps per seed ({}shear {shear}), {updates:.3e} bar-updates; about {} per seed on {on} \
-         (a timed probe: {:.3e} s per step, {:.3e} bar-updates/s){}",
+        "  run: {bound}{} steps per seed ({}shear {shear}), {bound}{updates:.3e} bar-updates; {bound}about {} per seed on \
+         {on} (a timed probe: {:.3e} s per step, {:.3e} bar-updates/s){}",
         settle + shear,
         if settle > 0 { format!("self-weight up to {settle} + ") } else { String::new() },
         budget::duration(per_step * (settle + shear) as f64),
         per_step,
         facts.bars as f64 / per_step,
-        if updates > LONG_RUN_BAR_UPDATES { " — a long run, accepted with --allow-long" } else { "" }
+        if scene.skip_ahead.enabled {
+            " — the skip-ahead jumps the quasi-static stretches, so the run steps far fewer"
+        } else if updates > LONG_RUN_BAR_UPDATES {
+            " — a long run, accepted with --allow-long"
+        } else {
+            ""
+        }
     );
     let batches = Batches::of_ensemble(pipeline.seeds.len(), threads, scene.skip_ahead.enabled);
     let all = estimate(scene, batches, samples(scene, dt)).ok();
