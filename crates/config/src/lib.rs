@@ -14,6 +14,7 @@ pub mod accelerograms;
 pub mod check;
 pub mod error;
 pub mod friction_map;
+pub mod input;
 pub mod keys;
 pub mod pipeline;
 pub mod precision;
@@ -23,7 +24,7 @@ pub mod seeds;
 pub mod set;
 
 pub use check::Checker;
-pub use error::{ConfigError, FieldError};
+pub use error::{ConfigError, FieldError, Warning};
 pub use pipeline::{Pipeline, PipelineFile};
 pub use sections::ReportSettings;
 pub use set::SetSettings;
