@@ -55,12 +55,14 @@ pub struct SeedAnalysis {
 }
 
 /// Analyses one finished run of `model` as `settings` ask; `plans` holds the spectra's plans,
-/// shared by every seed of an ensemble.
+/// shared by every seed of an ensemble. Setting `cancel` stops it between two records' windows
+/// ([`RecordFailure::Cancelled`]).
 pub fn analyse(
     run: RunOutput,
     model: &Model,
     settings: &Settings,
     plans: &PlanCache,
+    cancel: &std::sync::atomic::AtomicBool,
 ) -> Result<SeedAnalysis, AnalysisError> {
     let catalogue = events::catalogue(&run.recording, model, &settings.events);
     let scaled = events::scaled_events(&catalogue, model, &settings.similarity);
@@ -73,6 +75,7 @@ pub fn analyse(
             settings.spectra.as_ref(),
             settings.events.smoothing_s,
             plans,
+            cancel,
         )?),
         None => None,
     };

@@ -7,6 +7,7 @@
 //! Everything is computed at model scale; the tables rescale to the prototype (docs/model.md §9).
 
 use std::collections::HashMap;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 
 use crate::attenuation::{AttenuationRow, attenuation};
@@ -144,6 +145,9 @@ pub enum RecordFailure {
         /// Why.
         source: SeismoError,
     },
+    /// The caller asked the analysis to stop.
+    #[error("analysis cancelled")]
+    Cancelled,
 }
 
 /// One window of the run that becomes records.
@@ -194,6 +198,7 @@ pub fn compute(
     spectra: Option<&SpectraSettings>,
     smoothing_s: f64,
     plans: &PlanCache,
+    cancel: &AtomicBool,
 ) -> Result<SeedRecords, RecordFailure> {
     let Some(span) = rec.uniform_shear() else {
         return Err(RecordFailure::NotUniform(format!(
@@ -213,6 +218,10 @@ pub fn compute(
     let dt = (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64;
     let lattice = model.lattice();
     for w in windows(t, span.start, catalogue, acc) {
+        // Each window is a few records and their spectra: the latency of an interrupt.
+        if cancel.load(Ordering::Relaxed) {
+            return Err(RecordFailure::Cancelled);
+        }
         let mut horizontal: HashMap<NodeId, [Option<usize>; 2]> = HashMap::new();
         for (ch, accel) in rec.control.iter().filter(|(c, _)| acc.wants(c)) {
             let id = format!("{}-n{}-{}", w.label, ch.node.ldem(), ch.component.name());

@@ -55,6 +55,8 @@ pub struct ReportInput<'a> {
     pub mean_dt_s: Option<f64>,
     /// Seeds drawn one by one (successful, at most four unless the pipeline names them).
     pub seeds: Vec<u64>,
+    /// Seeds `[report] seeds` names that did not run here or failed (the page says so).
+    pub not_drawn: Vec<u64>,
 }
 
 impl<'a> ReportInput<'a> {
@@ -65,11 +67,15 @@ impl<'a> ReportInput<'a> {
         let runs_df = table(&RUNS)?;
         let runs = runs_df.as_ref().map(Runs::read).transpose()?;
         let ok = runs.as_ref().map(Runs::ok_seeds).unwrap_or_default();
-        let seeds: Vec<u64> = if pipeline.report.seeds.is_empty() {
-            pipeline.seeds.iter().copied().filter(|s| ok.contains(s)).take(4).collect()
-        } else {
-            pipeline.report.seeds.iter().copied().filter(|s| ok.contains(s)).collect()
-        };
+        // The pipeline's seeds that ran first, then any other seed that ran (a run given its own
+        // `--seeds`); the seeds `[report] seeds` names when any of them ran.
+        let mut first: Vec<u64> = pipeline.seeds.iter().copied().filter(|s| ok.contains(s)).collect();
+        let others: Vec<u64> = ok.iter().copied().filter(|s| !first.contains(s)).collect();
+        first.extend(others);
+        first.truncate(4);
+        let named: Vec<u64> = pipeline.report.seeds.iter().copied().filter(|s| ok.contains(s)).collect();
+        let not_drawn: Vec<u64> = pipeline.report.seeds.iter().copied().filter(|s| !ok.contains(s)).collect();
+        let seeds = if named.is_empty() { first } else { named };
         let mean_dt_s = match &runs_df {
             Some(df) => {
                 let dt: Vec<f64> = stickslip_store::frame::Columns::of(df, RUNS.name)
@@ -96,6 +102,7 @@ impl<'a> ReportInput<'a> {
             emission: table(&ACOUSTIC_EMISSION)?.as_ref().map(AcousticEmission::read).transpose()?,
             mean_dt_s,
             seeds,
+            not_drawn,
             folder,
             pipeline,
         })
