@@ -11,6 +11,8 @@ use stickslip_solver::inspect::{Statics, inspect};
 use stickslip_solver::laws::describe;
 use stickslip_solver::scene::{SettleMethod, TimeStep};
 
+use crate::text::N;
+
 /// Arguments of `stickslip check`.
 #[derive(clap::Args, Debug)]
 pub struct Args {
@@ -31,9 +33,10 @@ fn position(model: &Model, id: stickslip_solver::NodeId) -> String {
     format!("LDEM {} at ({}, {}, {}) m", id.ldem(), round(p[0]), round(p[1]), round(p[2]))
 }
 
-/// Positions written without the round-off of `i·Lc`.
-fn round(v: f64) -> f64 {
-    (v * 1e9).round() / 1e9
+/// Positions written without the round-off of `i·Lc` (and short when huge or tiny).
+fn round(v: f64) -> N {
+    let r = (v * 1e9).round() / 1e9;
+    N(if r.is_finite() && (r != 0.0 || v == 0.0) { r } else { v })
 }
 
 /// `stickslip check`.
@@ -58,25 +61,26 @@ pub fn run(a: Args) -> Result<()> {
         scene.dims.nx,
         scene.dims.ny,
         scene.dims.nz,
-        scene.lc_m,
-        e[0],
-        e[1],
-        e[2],
+        N(scene.lc_m),
+        N(e[0]),
+        N(e[1]),
+        N(e[2]),
         facts.nodes,
         facts.bars,
         facts.contact_nodes,
-        facts.mass_kg
+        N(facts.mass_kg)
     );
     let law = scene.friction.law;
     println!(
         "  friction: {} ({}), CV of μ {}",
         law.name(),
-        describe(&law.node(1.0).coefficients(), |_, c| c.value.to_string()),
-        scene.friction.mu_cv
+        describe(&law.node(1.0).coefficients(), |_, c| N(c.value).to_string()),
+        N(scene.friction.mu_cv)
     );
     println!(
         "  self-weight normal stress {:.1} Pa, sliding strength μs·σ = {:.1} Pa",
-        facts.self_weight_stress_pa, facts.strength_pa
+        N(facts.self_weight_stress_pa),
+        N(facts.strength_pa)
     );
     let (lo, hi) = facts.critical_range_s();
     let which = if facts.critical.len() == pipeline.seeds.len() {
@@ -85,11 +89,17 @@ pub fn run(a: Args) -> Result<()> {
         format!("over its first {} of {} seeds (--seeds N for more)", facts.critical.len(), pipeline.seeds.len())
     };
     println!("  critical step {lo:.4e} … {hi:.4e} s {which}; paper's 0.6·Lc/Cp = {:.4e} s", facts.paper_bound_s);
+    let smallest_dt = match scene.time_step {
+        TimeStep::Fraction(f) => f * lo,
+        TimeStep::Fixed(dt) => dt,
+    };
+    stickslip_solver::run::check_step_count(&model, smallest_dt)
+        .map_err(|e| anyhow::anyhow!("{}", stickslip_config::keys::describe(&e)))?;
     match scene.time_step {
         TimeStep::Fraction(f) => {
             println!("  time step: {f} of each seed's critical step ({:.4e} … {:.4e} s)", f * lo, f * hi)
         }
-        TimeStep::Fixed(dt) => println!("  time step: {dt:e} s ({:.3} of the smallest critical step)", dt / lo),
+        TimeStep::Fixed(dt) => println!("  time step: {dt:e} s ({:.3} of the smallest critical step)", N(dt / lo)),
     }
     if let Some(iv) = scene.record.interval_s {
         let k = |dt: f64| (iv / dt).round().max(1.0);
@@ -98,7 +108,7 @@ pub fn run(a: Args) -> Result<()> {
             TimeStep::Fixed(dt) => (k(dt), k(dt)),
         };
         let steps = if k_lo == k_hi { format!("{k_lo}") } else { format!("{k_lo}–{k_hi}") };
-        println!("  recorded every {steps} steps (the nearest whole number to {iv} s; Δt does not depend on it)");
+        println!("  recorded every {steps} steps (the nearest whole number to {} s; Δt does not depend on it)", N(iv));
     }
     let on = if facts.moduli_of == scene.dims {
         String::new()
@@ -109,6 +119,9 @@ pub fn run(a: Args) -> Result<()> {
             d.nx, d.ny, d.nz
         )
     };
+    if let Some(why) = &facts.unsolved {
+        println!("  effective stiffness{on}: not solved ({why}); the run does not need it");
+    }
     for m in &facts.moduli {
         let name = |a: usize| ["x", "y", "z"][a];
         let others: Vec<usize> = (0..3).filter(|&a| a != m.axis).collect();
@@ -144,7 +157,7 @@ pub fn run(a: Args) -> Result<()> {
         );
     }
     if let Some(n) = &scene.normal_load {
-        println!("  normal load: {} Pa on the top face ({:.4e} N)", n.pressure_pa, n.total());
+        println!("  normal load: {} Pa on the top face ({:.4e} N)", N(n.pressure_pa), n.total());
     }
     if let Some(map) = &scene.friction.map {
         println!("  friction map ({} base nodes):", map.nodes.len());
@@ -164,25 +177,35 @@ pub fn run(a: Args) -> Result<()> {
             }
             let range = |k: usize| {
                 let (lo, hi) = span(&mut members.iter().map(|&c| map.nodes[c].coefficients()[k].value));
-                if lo == hi { format!("{lo}") } else { format!("{lo}…{hi}") }
+                if lo == hi { format!("{}", N(lo)) } else { format!("{}…{}", N(lo), N(hi)) }
             };
             let (x0, x1) = span(&mut members.iter().map(|&c| model.lattice().position(contact[c])[0]));
             println!(
-                "    {} ({}): {} nodes, x {x0}…{x1} m, {}",
+                "    {} ({}): {} nodes, x {}…{} m, {}",
                 r.name,
                 r.kind.name(),
                 members.len(),
+                N(x0),
+                N(x1),
                 describe(&map.nodes[members[0]].coefficients(), |k, _| range(k)),
             );
         }
     }
     let sl = &facts.slider;
     if sl.block_n_m.is_nan() {
+        let why = match &sl.block_note {
+            Some(note) => {
+                format!("the block's stiffness under its load is a static solve of all {} bars, {note}", facts.bars)
+            }
+            None => format!(
+                "the block's stiffness under its load needs a static solve of all {} bars: --full-statics",
+                facts.bars
+            ),
+        };
         println!(
-            "  as a spring-slider: N = {:.4e} N, strength μs·N = {:.4e} N, tips at {:.4e} N; k not solved (the block's \
-             stiffness under its load needs a static solve of all {} bars: --full-statics), plate springs {:.4e} N/m, \
-             k_c = (μs − μd)·N/Dc = {:.4e} N/m",
-            sl.normal_n, sl.strength_n, sl.tipping_n, facts.bars, sl.plate_n_m, sl.critical_n_m
+            "  as a spring-slider: N = {:.4e} N, strength μs·N = {:.4e} N, tips at {:.4e} N; k not solved ({why}), \
+             plate springs {:.4e} N/m, k_c = (μs − μd)·N/Dc = {:.4e} N/m",
+            sl.normal_n, sl.strength_n, sl.tipping_n, sl.plate_n_m, sl.critical_n_m
         );
     } else {
         println!(
@@ -195,7 +218,7 @@ pub fn run(a: Args) -> Result<()> {
             sl.block_n_m,
             sl.plate_n_m,
             sl.critical_n_m,
-            sl.damping_ratio
+            N(sl.damping_ratio)
         );
     }
     println!(
@@ -210,19 +233,23 @@ pub fn run(a: Args) -> Result<()> {
                 "solved statically (falls back to damped settling if friction cannot hold it)".into(),
             SettleMethod::Dynamic => format!(
                 "damped settling, D = {} 1/s, until out-of-balance/weight < {:e}",
-                sw.damping_per_s, sw.settle_tolerance
+                N(sw.damping_per_s),
+                sw.settle_tolerance
             ),
         }
     );
     let sh = &scene.shear;
     println!(
         "  shear: u̇f = {} m/s (t0 = {} s), D = {} 1/s, for {} s",
-        sh.velocity_m_s, sh.rise_time_s, sh.damping_per_s, sh.duration_s
+        N(sh.velocity_m_s),
+        N(sh.rise_time_s),
+        N(sh.damping_per_s),
+        N(sh.duration_s)
     );
     let r = &scene.record;
     println!(
         "  record: {}, interface {}{}{}{}",
-        r.interval_s.map_or("every step".to_string(), |iv| format!("every {iv} s")),
+        r.interval_s.map_or("every step".to_string(), |iv| format!("every {} s", N(iv))),
         r.interface.iter().map(|q| q.name()).collect::<Vec<_>>().join(", "),
         if r.energy { ", energy terms" } else { "" },
         if r.slip_onsets { ", slip onsets" } else { "" },
@@ -245,13 +272,19 @@ pub fn run(a: Args) -> Result<()> {
     let ev = &pipeline.analysis.events;
     println!(
         "  events: smoothing {} s, slip rate on {} / off {} m/s for {} s, merge gap {} s, min drop {} Pa, main shocks ≥ {} of the largest",
-        ev.smoothing_s, ev.v_on_m_s, ev.v_off_m_s, ev.quiet_s, ev.merge_gap_s, ev.min_drop_pa, ev.main_fraction
+        N(ev.smoothing_s),
+        N(ev.v_on_m_s),
+        N(ev.v_off_m_s),
+        N(ev.quiet_s),
+        N(ev.merge_gap_s),
+        N(ev.min_drop_pa),
+        N(ev.main_fraction)
     );
     let si = &pipeline.analysis.similarity;
     println!(
         "  similarity: L_p = {} m (λ = {}), u̇_p = {:e} m/s, model area: {:?}",
-        si.prototype_length_m,
-        si.prototype_length_m / e[0],
+        N(si.prototype_length_m),
+        N(si.prototype_length_m / e[0]),
         si.prototype_rate_m_s,
         si.area
     );
@@ -265,7 +298,12 @@ pub fn run(a: Args) -> Result<()> {
             };
             let span = match a.span {
                 RecordSpan::Events => {
-                    format!("{} events from {} s before to {} s after", a.events.name(), a.pre_event_s, a.post_event_s)
+                    format!(
+                        "{} events from {} s before to {} s after",
+                        a.events.name(),
+                        N(a.pre_event_s),
+                        N(a.post_event_s)
+                    )
                 }
                 RecordSpan::WholeRun => "the whole shear stage".into(),
             };
@@ -275,13 +313,14 @@ pub fn run(a: Args) -> Result<()> {
                 if formats.is_empty() { "none".into() } else { formats.join(", ") }
             );
             println!(
-                "  usable band: up to f_max = {:.1} Hz at model scale ({:.4} Hz prototype, λ = {lambda}): plane waves \
+                "  usable band: up to f_max = {:.1} Hz at model scale ({:.4} Hz prototype, λ = {}): plane waves \
                  within {}% of their long-wave speed; filter {} Hz … {} Hz, order {}",
-                a.resolved_hz,
-                a.resolved_hz / lambda,
-                100.0 * a.band_tolerance,
-                a.low_corner_hz.map_or("1/record length".into(), |f| f.to_string()),
-                a.high_corner_hz.map_or("f_max".into(), |f| f.to_string()),
+                N(a.resolved_hz),
+                N(a.resolved_hz / lambda),
+                N(lambda),
+                N(100.0 * a.band_tolerance),
+                a.low_corner_hz.map_or("1/record length".into(), |f| N(f).to_string()),
+                a.high_corner_hz.map_or("f_max".into(), |f| N(f).to_string()),
                 a.order
             );
         }
@@ -304,14 +343,16 @@ pub fn run(a: Args) -> Result<()> {
     if let Some(set) = &pipeline.set {
         let (a, b) = set.options.range.bounds().unwrap_or((f64::NAN, f64::NAN));
         println!(
-            "  set: {} records ({} at most per {}), {} spectra at {}%, periods {a} … {b} s (prototype), scale factors {} … {}; target {}",
+            "  set: {} records ({} at most per {}), {} spectra at {}%, periods {} … {} s (prototype), scale factors {} … {}; target {}",
             set.options.count,
             set.options.per_group,
             set.per.name(),
             set.component.name(),
-            100.0 * set.damping,
-            set.options.scale_min,
-            set.options.scale_max,
+            N(100.0 * set.damping),
+            N(a),
+            N(b),
+            N(set.options.scale_min),
+            N(set.options.scale_max),
             set.target_name
         );
     }
@@ -321,9 +362,12 @@ pub fn run(a: Args) -> Result<()> {
             "  skip-ahead: on (tolerance {:e}, {} explicit steps before each transition{})",
             sk.tolerance,
             sk.margin_steps,
-            sk.record_interval_s.map_or(String::new(), |iv| format!(", one sample per {iv} s while skipping"))
+            sk.record_interval_s.map_or(String::new(), |iv| format!(", one sample per {} s while skipping", N(iv)))
         );
     }
     println!("  report: {}", if pipeline.report.enabled { "on" } else { "off" });
+    for w in &pipeline.warnings {
+        println!("  warning: {w}");
+    }
     Ok(())
 }

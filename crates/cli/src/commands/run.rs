@@ -36,6 +36,7 @@ pub struct Args {
 /// `stickslip run`.
 pub fn run(a: Args) -> Result<()> {
     let pipeline = Pipeline::load(&a.pipeline)?;
+    crate::commands::pipeline::print_warnings(&pipeline);
     let out = a.out.unwrap_or_else(|| PathBuf::from("reports").join(&pipeline.name).join(format!("seed-{}", a.seed)));
     let cancel = cancel_on_ctrl_c()?;
     let options = EnsembleOptions { out: out.clone(), threads: 1, seeds: vec![a.seed], fresh: a.fresh, finish: true };
