@@ -141,7 +141,7 @@ impl AccelerogramsSection {
             ck.push(
                 "accelerograms.high_corner_hz",
                 self.high_corner_hz,
-                format!("above low_corner_hz ({} Hz), or 0 for the lattice's f_max", self.low_corner_hz),
+                format!("above low_corner_hz ({} Hz), or 0 for the lattice's f_max", approx(self.low_corner_hz)),
             );
         }
         let tolerance_ok = ck.range("accelerograms.band_tolerance", self.band_tolerance, 0.0, true, 0.5, true);

@@ -11,7 +11,7 @@ use stickslip_seismo::spectra::response::{Reading, log_periods};
 use stickslip_solver::Scene;
 use stickslip_solver::scene::InterfaceQuantity;
 
-use crate::check::{Checker, Named, approx};
+use crate::check::{Checker, Named, approx, num};
 
 /// `[events]`: detector thresholds (docs/model.md §7).
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
@@ -266,7 +266,7 @@ impl SpectraSection {
                 ck.push(
                     "spectra.period_max_s",
                     self.period_max_s,
-                    format!("period_min_s ({}) < period_max_s (finite)", self.period_min_s),
+                    format!("period_min_s ({}) < period_max_s (finite)", num(self.period_min_s)),
                 );
             }
         }

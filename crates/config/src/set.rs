@@ -19,7 +19,7 @@ use serde::{Deserialize, Serialize};
 use stickslip_seismo::design::{Asce7, DesignSpectrum, Ec8, Ec8Type, GroundType, Tabulated};
 use stickslip_seismo::selection::{PeriodRange, SelectionOptions};
 
-use crate::check::{Checker, Named, num};
+use crate::check::{Checker, Named, approx, num};
 use crate::input::InputFile;
 
 /// Which spectrum of a record is matched.
@@ -264,7 +264,7 @@ impl SetSection {
             if ck.positive("set.period_min_s", self.period_min_s)
                 && !(self.period_max_s > self.period_min_s && self.period_max_s.is_finite())
             {
-                ck.push("set.period_max_s", self.period_max_s, format!("above period_min_s ({} s)", self.period_min_s));
+                ck.push("set.period_max_s", self.period_max_s, format!("above period_min_s ({} s)", num(self.period_min_s)));
             }
             PeriodRange::Explicit { t_a: self.period_min_s, t_b: self.period_max_s }
         };
@@ -279,10 +279,10 @@ impl SetSection {
                     format!(
                         "a period range ({} … {} s at prototype scale) inside the spectra's periods \
                          ({} … {} s at prototype scale: [spectra] period_min_s, period_max_s × λ)",
-                        round12(t_a),
-                        round12(t_b),
-                        round12(lo),
-                        round12(hi)
+                        approx(t_a),
+                        approx(t_b),
+                        approx(lo),
+                        approx(hi)
                     ),
                 );
             }
@@ -293,7 +293,7 @@ impl SetSection {
         if ck.positive("set.scale_min", self.scale_min)
             && !(self.scale_max >= self.scale_min && self.scale_max.is_finite())
         {
-            ck.push("set.scale_max", self.scale_max, format!("at least scale_min ({}), finite", self.scale_min));
+            ck.push("set.scale_max", self.scale_max, format!("at least scale_min ({}), finite", num(self.scale_min)));
         }
         let component = ck.named("set.component", &self.component).unwrap_or(SetComponent::Horizontal);
         match dampings {
@@ -312,11 +312,6 @@ impl SetSection {
         };
         Some(SetSettings { target: target?, target_name, options, per, component, damping: self.damping, input })
     }
-}
-
-/// `x` to 12 significant digits, for messages (0.020000000000000004 → 0.02).
-fn round12(x: f64) -> f64 {
-    format!("{x:.11e}").parse().unwrap_or(x)
 }
 
 /// A CSV target: rows `period_s, psa_m_s2` (comma, semicolon or tab; `#` comments and one header

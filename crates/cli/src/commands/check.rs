@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use anyhow::Result;
 use stickslip_analysis::settings::RecordSpan;
 use stickslip_config::Pipeline;
-use stickslip_config::check::Named;
+use stickslip_config::check::{Named, approx};
 use stickslip_solver::Model;
 use stickslip_solver::inspect::{Statics, inspect};
 use stickslip_solver::laws::describe;
@@ -62,9 +62,9 @@ pub fn run(a: Args) -> Result<()> {
         scene.dims.ny,
         scene.dims.nz,
         N(scene.lc_m),
-        N(e[0]),
-        N(e[1]),
-        N(e[2]),
+        round(e[0]),
+        round(e[1]),
+        round(e[2]),
         facts.nodes,
         facts.bars,
         facts.contact_nodes,
@@ -143,9 +143,11 @@ pub fn run(a: Args) -> Result<()> {
     if scene.shear.drivers.is_empty() {
         println!("  drivers: none");
     } else {
+        let d = &scene.shear.drivers;
         println!(
-            "  drivers: {}",
-            scene.shear.drivers.iter().map(|&d| position(&model, d)).collect::<Vec<_>>().join("; ")
+            "  drivers: {}{}",
+            d.iter().take(12).map(|&d| position(&model, d)).collect::<Vec<_>>().join("; "),
+            if d.len() > 12 { format!("; … and {} more", d.len() - 12) } else { String::new() }
         );
     }
     if let Some(p) = &scene.plate {
@@ -284,7 +286,7 @@ pub fn run(a: Args) -> Result<()> {
     println!(
         "  similarity: L_p = {} m (λ = {}), u̇_p = {:e} m/s, model area: {:?}",
         N(si.prototype_length_m),
-        N(si.prototype_length_m / e[0]),
+        approx(si.prototype_length_m / e[0]),
         si.prototype_rate_m_s,
         si.area
     );
@@ -317,7 +319,7 @@ pub fn run(a: Args) -> Result<()> {
                  within {}% of their long-wave speed; filter {} Hz … {} Hz, order {}",
                 N(a.resolved_hz),
                 N(a.resolved_hz / lambda),
-                N(lambda),
+                approx(lambda),
                 N(100.0 * a.band_tolerance),
                 a.low_corner_hz.map_or("1/record length".into(), |f| N(f).to_string()),
                 a.high_corner_hz.map_or("f_max".into(), |f| N(f).to_string()),
