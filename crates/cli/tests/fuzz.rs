@@ -283,10 +283,12 @@ fn mutate_once(rng: &mut Rng, text: &str) -> String {
         }
     }
     if rng.below(40) == 0 {
-        out.truncate(rng.below(out.len() + 1));
-        while !out.is_char_boundary(out.len()) {
-            out.pop();
+        // Cut at a byte, moved back to the start of its character (unicode values are drawn).
+        let mut cut = rng.below(out.len() + 1);
+        while !out.is_char_boundary(cut) {
+            cut -= 1;
         }
+        out.truncate(cut);
     }
     out
 }
