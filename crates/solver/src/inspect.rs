@@ -184,6 +184,11 @@ pub const SAMPLE_MODULES: usize = 16;
 /// thousands of steps' worth of bar passes (the condition number grows with the block).
 pub const FULL_STATICS_MAX_BARS: usize = 500_000;
 
+/// The largest bars × longest side (in modules) solved whole by default: a conjugate-gradient
+/// solve takes iterations in proportion to the longest side, each a pass over the bars, so a
+/// long thin block (9999×1×2 modules, 320 000 bars: 64 s of `check`) is read on a sample block.
+pub const FULL_STATICS_MAX_WORK: f64 = 1e8;
+
 /// Which static solves [`inspect`] makes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Statics {
@@ -195,9 +200,17 @@ pub enum Statics {
 }
 
 impl Statics {
-    /// [`Statics::Full`] up to [`FULL_STATICS_MAX_BARS`] bars, [`Statics::Sample`] above.
+    /// [`Statics::Full`] up to [`FULL_STATICS_MAX_BARS`] bars and [`FULL_STATICS_MAX_WORK`],
+    /// [`Statics::Sample`] above.
     pub fn for_model(model: &Model) -> Statics {
-        if model.bar_count() <= FULL_STATICS_MAX_BARS { Statics::Full } else { Statics::Sample }
+        let d = model.scene().dims;
+        let longest = d.nx.max(d.ny).max(d.nz) as f64;
+        let work = model.bar_count() as f64 * longest;
+        if model.bar_count() <= FULL_STATICS_MAX_BARS && work <= FULL_STATICS_MAX_WORK {
+            Statics::Full
+        } else {
+            Statics::Sample
+        }
     }
 }
 
