@@ -464,22 +464,40 @@ impl Tally {
     }
 }
 
-/// The shipped pipelines, by name, with their text and block (nx, ny, lc).
+/// The shipped pipelines, by name, with their text and block (nx, ny, lc). A pipeline whose block
+/// has more than [`MAX_MODULES`] modules is fuzzed coarsened: Lc × k and nx, ny, nz ÷ k (the same
+/// extent, so its patches and stations stay where they are), k the smallest whole factor that
+/// divides them all and brings the block under the limit; the name says so (`tpv5/2`).
 fn shipped() -> Vec<(String, String, (i64, i64, f64))> {
     let mut out = Vec::new();
     for e in std::fs::read_dir(repo_path("pipelines")).unwrap().flatten() {
         let p = e.path();
         if p.extension().is_some_and(|x| x == "toml") {
-            let text = std::fs::read_to_string(&p).unwrap();
-            let doc: toml::Table = toml::from_str(&text).unwrap();
-            let b = doc.get("block").and_then(|b| b.as_table());
-            let get_i = |k: &str, d: i64| b.and_then(|b| b.get(k)).and_then(|v| v.as_integer()).unwrap_or(d);
-            let lc = b.and_then(|b| b.get("lc_m")).and_then(|v| v.as_float()).unwrap_or(0.1);
-            out.push((
-                p.file_stem().unwrap().to_string_lossy().into_owned(),
-                text,
-                (get_i("nx", 10), get_i("ny", 1), lc),
-            ));
+            let mut text = std::fs::read_to_string(&p).unwrap();
+            let mut name = p.file_stem().unwrap().to_string_lossy().into_owned();
+            let mut doc: toml::Table = toml::from_str(&text).unwrap();
+            let b = doc.get("block").and_then(|b| b.as_table()).cloned().unwrap_or_default();
+            let get_i = |k: &str, d: i64| b.get(k).and_then(|v| v.as_integer()).unwrap_or(d);
+            let (mut n, mut lc) =
+                ([get_i("nx", 10), get_i("ny", 1), get_i("nz", 5)], b.get("lc_m").and_then(|v| v.as_float()).unwrap_or(0.1));
+            if modules(&text) > MAX_MODULES {
+                let k = (2..=64)
+                    .find(|&k| {
+                        n.iter().all(|&x| x % k == 0) && n.iter().map(|&x| (x / k) as f64).product::<f64>() <= MAX_MODULES
+                    })
+                    .unwrap_or_else(|| panic!("{name}: no whole factor brings its block under {MAX_MODULES} modules"));
+                n = n.map(|x| x / k);
+                lc *= k as f64;
+                let block = doc.entry("block").or_insert(toml::Value::Table(toml::Table::new()));
+                let block = block.as_table_mut().unwrap();
+                for (key, v) in ["nx", "ny", "nz"].iter().zip(n) {
+                    block.insert(key.to_string(), toml::Value::Integer(v));
+                }
+                block.insert("lc_m".into(), toml::Value::Float(lc));
+                text = toml::to_string(&doc).unwrap();
+                name = format!("{name}/{k}");
+            }
+            out.push((name, text, (n[0], n[1], lc)));
         }
     }
     out.sort_by(|a, b| a.0.cmp(&b.0));
