@@ -47,7 +47,7 @@ fn failed_and_finished_seeds_leave_no_nan_in_any_table() {
 }
 
 /// Runs a short paper pipeline (spectra, attenuation, energy), a short skip-ahead one and the
-/// tension prism (cracks), and checks every table against the store's registry: each declared
+/// tension prism (cracks), the asperity fault and TPV5 at 500 m (source, fault nodes, stations), and checks every table against the store's registry: each declared
 /// column is written, nothing undeclared is, and every typed reader reads what its writer wrote.
 #[test]
 fn every_table_matches_its_declaration_and_reads_back_typed() {
@@ -67,6 +67,7 @@ fn every_table_matches_its_declaration_and_reads_back_typed() {
     use stickslip_store::tables::runs::Runs;
     use stickslip_store::tables::series::{Fault, read_control, read_series_channel};
     use stickslip_store::tables::set::SetTable;
+    use stickslip_store::tables::source::{FaultNodes, Stations};
     use stickslip_store::tables::spectra::{Spectra, read_fourier};
     use stickslip_store::tables::stats::{AttenuationFit, PsaStats, SummaryTable};
 
@@ -89,10 +90,18 @@ fn every_table_matches_its_declaration_and_reads_back_typed() {
         .unwrap()
         .replace("range = { first = 1, count = 8 }", "list = [1]")
         .replace("duration_s = 0.3", "duration_s = 0.12");
+    // TPV5 at 500 m for its first 3 s: the source, the fault's nodes and the off-fault stations.
+    let quake = std::fs::read_to_string(stickslip_support::repo_path("pipelines/tpv5-500m.toml"))
+        .unwrap()
+        .replace("duration_s = 12.0", "duration_s = 3.0");
     let mut seen = std::collections::BTreeSet::new();
-    for (name, text) in
-        [("paper", paper.as_str()), ("skip", skip), ("tension", tension.as_str()), ("fault", fault.as_str())]
-    {
+    for (name, text) in [
+        ("paper", paper.as_str()),
+        ("skip", skip),
+        ("tension", tension.as_str()),
+        ("fault", fault.as_str()),
+        ("quake", quake.as_str()),
+    ] {
         std::fs::write(dir.join(format!("{name}.toml")), text).unwrap();
         let p = Pipeline::load(&dir.join(format!("{name}.toml"))).unwrap();
         let out = dir.join(name);
@@ -131,8 +140,8 @@ fn every_table_matches_its_declaration_and_reads_back_typed() {
                     }
                     "summary" => assert_eq!(
                         SummaryTable::read(&df).unwrap().find("main", "stress_drop_pa").is_some(),
-                        name == "paper" || name == "fault",
-                        "main shocks in the paper and fault runs only"
+                        name == "paper" || name == "fault" || name == "quake",
+                        "main shocks in the paper and fault runs only (and the quake's one rupture)"
                     ),
                     "psa_stats" => assert!(!PsaStats::read(&df).unwrap().mean.is_empty()),
                     "attenuation" => assert!(!Attenuation::read(&df).unwrap().is_empty()),
@@ -161,6 +170,21 @@ fn every_table_matches_its_declaration_and_reads_back_typed() {
                         let stations = folder.fault_stations_dir(1);
                         assert_eq!(std::fs::read_dir(&stations).unwrap().count(), 4, "{}", stations.display());
                     }
+                    "fault_nodes" => {
+                        let f = FaultNodes::read(&df).unwrap();
+                        assert_eq!(f.x_m.len(), 81 * 41, "every node of the fault plane");
+                        assert!(f.rupture_time_s.iter().any(|t| t.is_finite()), "nothing ruptured");
+                    }
+                    "stations" => {
+                        let s = Stations::read(&df).unwrap();
+                        assert_eq!(s.station.len(), 4);
+                        // 3 km off the fault plane: R_rup (to the part ruptured in 3 s) is no less.
+                        assert!(s.r_rup_m.iter().all(|r| (2999.0..15000.0).contains(r)), "{:?}", s.r_rup_m);
+                    }
+                    "source" => {
+                        let m0 = df.column(stickslip_store::col::M0_N_M).unwrap().f64().unwrap().get(0).unwrap();
+                        assert!(m0 > 1e18, "TPV5's first 3 s: M0 {m0} N·m");
+                    }
                     "series" => {
                         assert!(read_series_channel(&df, Channel::ShearStress.name()).unwrap().is_some())
                     }
@@ -170,5 +194,5 @@ fn every_table_matches_its_declaration_and_reads_back_typed() {
         }
     }
     let all: std::collections::BTreeSet<&str> = schema::ALL.iter().map(|t| t.name).collect();
-    assert_eq!(seen, all, "every declared table is written by one of the four pipelines");
+    assert_eq!(seen, all, "every declared table is written by one of the five pipelines");
 }

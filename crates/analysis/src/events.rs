@@ -2,6 +2,7 @@
 
 use stickslip_seismo::events::{Catalogue, EventParams, Signals, detect};
 use stickslip_seismo::similarity::{AreaChoice, Magnitudes, ModelEvent, Scaled, SimilarityParams, scale};
+use stickslip_solver::material::lattice_elastic_constants;
 use stickslip_solver::scene::{ControlChannel, Kinematic};
 use stickslip_solver::{Model, Recording};
 
@@ -14,6 +15,10 @@ pub struct ScaledEvent {
     pub scaled: Scaled,
     /// Its magnitudes by both moment conventions.
     pub magnitudes: Magnitudes,
+    /// On a fault (docs/model.md §15), the moment from its own slip, `μ·A·ΔD̄` with `ΔD̄` the
+    /// change of the mean slip of the fault's nodes over the event and `A` the fault area (N·m),
+    /// and its moment magnitude; `None` on the rigid base.
+    pub slip_moment: Option<(f64, f64)>,
 }
 
 /// Control acceleration channels recorded by the scene, in table order (the events' peak
@@ -38,9 +43,10 @@ pub fn catalogue(rec: &Recording, model: &Model, events: &EventParams) -> Catalo
     detect(&signals, model.contact().len(), model.lattice().contact_area(), events)
 }
 
-/// The prototype length ratio λ = L_p / L_m of `model`'s block.
+/// The prototype length ratio λ = L_p / L_m of `model`'s block: 1 on a fault, whose scene is at
+/// its own scale.
 pub fn lambda(model: &Model, similarity: &SimilarityParams) -> f64 {
-    similarity.prototype_length_m / model.lattice().extent()[0]
+    if model.scene().is_fault() { 1.0 } else { similarity.prototype_length_m / model.lattice().extent()[0] }
 }
 
 /// Every event of `cat` scaled to the prototype of `similarity` (docs/model.md §9); the model's
@@ -48,6 +54,8 @@ pub fn lambda(model: &Model, similarity: &SimilarityParams) -> f64 {
 pub fn scaled_events(cat: &Catalogue, model: &Model, similarity: &SimilarityParams) -> Vec<ScaledEvent> {
     let lattice = model.lattice();
     let model_length = lattice.extent()[0];
+    let scene = model.scene();
+    let shear_modulus = lattice_elastic_constants(scene.young_pa, scene.poisson).2;
     cat.events
         .iter()
         .map(|e| {
@@ -64,7 +72,11 @@ pub fn scaled_events(cat: &Catalogue, model: &Model, similarity: &SimilarityPara
                 model_rate_m_s: model.scene().shear.velocity_m_s,
             };
             let scaled = scale(&input, similarity);
-            ScaledEvent { input, scaled, magnitudes: scaled.magnitudes() }
+            let slip_moment = scene.is_fault().then(|| {
+                let m0 = shear_modulus * lattice.contact_area() * e.burst.slip_m.abs();
+                (m0, crate::source::moment_magnitude(m0))
+            });
+            ScaledEvent { input, scaled, magnitudes: scaled.magnitudes(), slip_moment }
         })
         .collect()
 }

@@ -4,7 +4,8 @@
 //! solver's event trace ([`events`]), each at prototype scale with its magnitudes, the records
 //! cut around the events with their processing, intensity, response, Fourier and RotD spectra
 //! ([`records`]), the attenuation of peak motions with distance ([`attenuation`]), the rupture
-//! front of each event ([`fronts`]) and the bar breaks as acoustic emission ([`emission`]) — and
+//! front of each event ([`fronts`]), the bar breaks as acoustic emission ([`emission`]), and on a
+//! fault the source from its own slip and the stations against the rupture ([`source`]) — and
 //! what it is asked to do ([`settings`]). It is a pure function of the run, the model and the
 //! settings: it can be tested without files.
 //!
@@ -18,6 +19,7 @@ pub mod events;
 pub mod fronts;
 pub mod records;
 pub mod settings;
+pub mod source;
 
 use stickslip_seismo::emission::Cluster;
 use stickslip_seismo::events::Catalogue;
@@ -27,6 +29,7 @@ pub use events::ScaledEvent;
 pub use fronts::SeedFronts;
 pub use records::{PlanCache, RecordData, RecordFailure, RotdData, SeedRecords};
 pub use settings::{AccelerogramSettings, Settings, SpectraSettings};
+pub use source::{Source, StationRow};
 
 /// Why a seed's run could not be analysed.
 #[derive(Debug, thiserror::Error)]
@@ -52,6 +55,11 @@ pub struct SeedAnalysis {
     pub emission: Option<Vec<Cluster>>,
     /// The rupture front of each event, when the scene records slip onsets or the fault.
     pub fronts: Option<SeedFronts>,
+    /// On a fault (docs/model.md §15): the source from the fault's own slip, and the stations'
+    /// distances to the rupture and peak motions.
+    pub source: Option<Source>,
+    /// The stations of a fault scene against its rupture (empty otherwise).
+    pub stations: Vec<StationRow>,
 }
 
 /// Analyses one finished run of `model` as `settings` ask; `plans` holds the spectra's plans,
@@ -88,5 +96,7 @@ pub fn analyse(
         settings.events.rupture_rate_m_s,
     );
     let lambda = events::lambda(model, &settings.similarity);
-    Ok(SeedAnalysis { run, catalogue, scaled, lambda, records, emission, fronts })
+    let source = source::source(&run.recording, model);
+    let stations = source.as_ref().map_or_else(Vec::new, |s| source::stations(&run.recording, model, s));
+    Ok(SeedAnalysis { run, catalogue, scaled, lambda, records, emission, fronts, source, stations })
 }

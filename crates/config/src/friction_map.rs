@@ -148,9 +148,36 @@ fn coefficients(
     NodeFriction::Weakening(WeakeningNode::new(mu_static, mu_dynamic, dc))
 }
 
+/// The shape of a patch of the base (friction patches, fault traction patches).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Shape<'a> {
+    /// `"rectangle"` or `"ellipse"`.
+    pub shape: &'a str,
+    /// Rectangle: `[x_min, x_max]` (m).
+    pub x_m: Option<[f64; 2]>,
+    /// Rectangle: `[y_min, y_max]` (m); the whole width when absent.
+    pub y_m: Option<[f64; 2]>,
+    /// Ellipse: centre (m).
+    pub centre_m: Option<[f64; 2]>,
+    /// Ellipse: semi-axes (m).
+    pub semi_axes_m: Option<[f64; 2]>,
+}
+
+impl PatchSection {
+    fn shape(&self) -> Shape<'_> {
+        Shape {
+            shape: &self.shape,
+            x_m: self.x_m,
+            y_m: self.y_m,
+            centre_m: self.centre_m,
+            semi_axes_m: self.semi_axes_m,
+        }
+    }
+}
+
 /// Whether the base point `(x, y)` lies in the patch (boundary included, to a part in 10⁹ of Lc).
-fn contains(p: &PatchSection, x: f64, y: f64, width: f64, eps: f64) -> bool {
-    match p.shape.as_str() {
+fn contains(p: &Shape<'_>, x: f64, y: f64, width: f64, eps: f64) -> bool {
+    match p.shape {
         "rectangle" => {
             let [x0, x1] = p.x_m.unwrap_or([0.0, 0.0]);
             let [y0, y1] = p.y_m.unwrap_or([0.0, width]);
@@ -163,6 +190,64 @@ fn contains(p: &PatchSection, x: f64, y: f64, width: f64, eps: f64) -> bool {
             dx * dx + dy * dy <= 1.0 + eps / a.min(b)
         }
     }
+}
+
+/// The base nodes (indices into [`Lattice::contact_nodes`]) a patch `p` named `field` holds,
+/// its shape checked: a rectangle or an ellipse on the base that holds at least one base node.
+pub(crate) fn patch_nodes(ck: &mut Checker, field: &str, p: &Shape<'_>, lattice: &Lattice) -> Vec<usize> {
+    let contact = lattice.contact_nodes();
+    let e = lattice.extent();
+    let eps = 1e-9 * lattice.lc();
+    let inside = |lo: f64, hi: f64, max: f64| lo >= -eps && hi <= max + eps && lo < hi;
+    match p.shape {
+        "rectangle" => match p.x_m {
+            None => ck.push(format!("{field}.x_m"), "(missing)", "[x_min, x_max] in metres for a rectangle"),
+            Some([x0, x1]) => {
+                let [y0, y1] = p.y_m.unwrap_or([0.0, e[1]]);
+                if !inside(x0, x1, e[0]) || !inside(y0, y1, e[1]) {
+                    ck.push(
+                        field,
+                        format!("x_m = [{x0}, {x1}], y_m = [{y0}, {y1}]"),
+                        format!("a rectangle {} (min < max)", describe_base(lattice)),
+                    );
+                }
+            }
+        },
+        "ellipse" => match (p.centre_m, p.semi_axes_m) {
+            (Some([cx, cy]), Some([a, b])) => {
+                if !(a > 0.0 && b > 0.0 && inside(cx - a, cx + a, e[0]) && inside(cy - b, cy + b, e[1])) {
+                    ck.push(
+                        field,
+                        format!("centre_m = [{cx}, {cy}], semi_axes_m = [{a}, {b}]"),
+                        format!("an ellipse with positive semi-axes {}", describe_base(lattice)),
+                    );
+                }
+            }
+            _ => ck.push(
+                field,
+                "an ellipse without centre_m or semi_axes_m",
+                "centre_m = [x, y] and semi_axes_m = [a_x, a_y] in metres",
+            ),
+        },
+        other => ck.push(format!("{field}.shape"), format!("{other:?}"), "\"rectangle\" or \"ellipse\""),
+    }
+    let held: Vec<usize> = contact
+        .iter()
+        .enumerate()
+        .filter(|(_, id)| {
+            let q = lattice.position(**id);
+            contains(p, q[0], q[1], e[1], eps)
+        })
+        .map(|(c, _)| c)
+        .collect();
+    if held.is_empty() && ck.is_clean() {
+        ck.push(
+            field,
+            "a patch holding no base node",
+            format!("a patch that holds at least one base node (they lie every Lc = {} m)", lattice.lc()),
+        );
+    }
+    held
 }
 
 /// The friction map of `patches` and `grid` on `lattice`'s base, over the background `law`;
@@ -178,8 +263,6 @@ pub(crate) fn build(
         return None;
     }
     let contact = lattice.contact_nodes();
-    let e = lattice.extent();
-    let eps = 1e-9 * lattice.lc();
     let mut nodes = vec![law.node(1.0); contact.len()];
     let mut region: Vec<Option<u16>> = vec![None; contact.len()];
     let mut regions: Vec<Region> = Vec::new();
@@ -232,56 +315,8 @@ pub(crate) fn build(
     let mut members: Vec<(Vec<usize>, NodeFriction)> = Vec::new();
     for (i, p) in patches.iter().enumerate() {
         let field = format!("friction.patches[{i}]");
-        let inside = |lo: f64, hi: f64, max: f64| lo >= -eps && hi <= max + eps && lo < hi;
-        match p.shape.as_str() {
-            "rectangle" => match p.x_m {
-                None => ck.push(format!("{field}.x_m"), "(missing)", "[x_min, x_max] in metres for a rectangle"),
-                Some([x0, x1]) => {
-                    let [y0, y1] = p.y_m.unwrap_or([0.0, e[1]]);
-                    if !inside(x0, x1, e[0]) || !inside(y0, y1, e[1]) {
-                        ck.push(
-                            field.clone(),
-                            format!("x_m = [{}, {}], y_m = [{}, {}]", num(x0), num(x1), num(y0), num(y1)),
-                            format!("a rectangle {} (min < max)", describe_base(lattice)),
-                        );
-                    }
-                }
-            },
-            "ellipse" => match (p.centre_m, p.semi_axes_m) {
-                (Some([cx, cy]), Some([a, b])) => {
-                    if !(a > 0.0 && b > 0.0 && inside(cx - a, cx + a, e[0]) && inside(cy - b, cy + b, e[1])) {
-                        ck.push(
-                            field.clone(),
-                            format!("centre_m = [{}, {}], semi_axes_m = [{}, {}]", num(cx), num(cy), num(a), num(b)),
-                            format!("an ellipse with positive semi-axes {}", describe_base(lattice)),
-                        );
-                    }
-                }
-                _ => ck.push(
-                    field.clone(),
-                    "an ellipse without centre_m or semi_axes_m",
-                    "centre_m = [x, y] and semi_axes_m = [a_x, a_y] in metres",
-                ),
-            },
-            other => ck.push(format!("{field}.shape"), format!("{other:?}"), "\"rectangle\" or \"ellipse\""),
-        }
+        let held = patch_nodes(ck, &field, &p.shape(), lattice);
         let co = coefficients(ck, &field, p.mu_static, p.mu_dynamic, p.slip_weakening_m, law);
-        let held: Vec<usize> = contact
-            .iter()
-            .enumerate()
-            .filter(|(_, id)| {
-                let q = lattice.position(**id);
-                contains(p, q[0], q[1], e[1], eps)
-            })
-            .map(|(c, _)| c)
-            .collect();
-        if held.is_empty() && ck.is_clean() {
-            ck.push(
-                field.clone(),
-                "a patch holding no base node",
-                format!("a patch that holds at least one base node (they lie every Lc = {} m)", lattice.lc()),
-            );
-        }
         let name = p.name.clone().unwrap_or_else(|| format!("patch[{i}]"));
         regions.push(Region { name, kind: kind(&co) });
         members.push((held, co));

@@ -1,5 +1,5 @@
-//! Files a pipeline names (`friction.grid.file`, `set.target_csv`): where they are looked for and
-//! how they are read.
+//! Files a pipeline names (`friction.grid.file`, `fault.grid.file`, `set.target_csv`): where they
+//! are looked for and how they are read.
 //!
 //! A path in a pipeline file is relative to the pipeline file's folder and stays inside it: an
 //! absolute path or one that climbs out with `..` is refused, so a pipeline file (one shared by

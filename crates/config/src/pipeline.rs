@@ -24,8 +24,9 @@ use crate::error::{ConfigError, Warning};
 use crate::input::InputFile;
 use crate::precision::{PrecisionTarget, TargetSection};
 use crate::scene::{
-    BlockSection, BoundarySection, FrictionSection, LoadingPlateSection, MaterialSection, RecordSection,
-    RuptureSection, SceneSections, SelfWeightSection, ShearSection, SkipAheadSection, TimeSection,
+    AbsorbingSection, BlockSection, BoundarySection, FaultSection, FrictionSection, LoadingPlateSection,
+    MaterialSection, RecordSection, RuptureSection, SceneSections, SelfWeightSection, ShearSection, SkipAheadSection,
+    StationSection, TimeSection,
 };
 use crate::sections::{
     EventsSection, ReportSection, ReportSettings, SimilaritySection, SpectraSection, shortest_period,
@@ -110,6 +111,16 @@ pub struct PipelineFile {
     /// `[rupture]`: bars that crack; absent = every bar elastic.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rupture: Option<RuptureSection>,
+    /// `[fault]`: the base as one side of a planar fault with its tractions; absent = the
+    /// paper's rigid base.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fault: Option<FaultSection>,
+    /// `[absorbing]`: faces that let waves leave; absent = none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub absorbing: Option<AbsorbingSection>,
+    /// `[[stations]]`: named points whose motion is recorded.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub stations: Vec<StationSection>,
     /// `[events]`: event detection thresholds.
     #[serde(default)]
     pub events: EventsSection,
@@ -148,6 +159,9 @@ impl Default for PipelineFile {
             skip_ahead: SkipAheadSection::default(),
             loading_plate: None,
             rupture: None,
+            fault: None,
+            absorbing: None,
+            stations: Vec::new(),
             events: EventsSection::default(),
             similarity: SimilaritySection::default(),
             accelerograms: None,
@@ -183,8 +197,12 @@ impl PipelineFile {
         if let Some(g) = friction.grid.as_mut() {
             g.file.clear();
         }
+        let mut fault = self.fault.clone();
+        if let Some(g) = fault.as_mut().and_then(|f| f.grid.as_mut()) {
+            g.file.clear();
+        }
         let hashed = Hashed {
-            scene: SceneSections { friction: &friction, ..self.scene_sections() },
+            scene: SceneSections { friction: &friction, fault: &fault, ..self.scene_sections() },
             events: &self.events,
             similarity: &self.similarity,
             accelerograms: &self.accelerograms,
@@ -213,6 +231,9 @@ impl PipelineFile {
             skip_ahead: &self.skip_ahead,
             loading_plate: &self.loading_plate,
             rupture: &self.rupture,
+            fault: &self.fault,
+            absorbing: &self.absorbing,
+            stations: &self.stations,
         }
     }
 
@@ -237,6 +258,7 @@ pub fn trace_plan(events: &EventParams, shear_duration_s: f64) -> TracePlan {
         hot_rate_m_s: 0.5 * events.v_off_m_s,
         margin_s: 2.0 * events.smoothing_s + events.quiet_s,
         quiet_interval_s: (0.25 * events.smoothing_s).max(shear_duration_s / 200_000.0),
+        rupture_rate_m_s: events.rupture_rate_m_s,
     }
 }
 
@@ -310,6 +332,11 @@ impl Pipeline {
         let mut ck = Checker::default();
         let mut inputs = Vec::new();
         if let Some(grid) = file.friction.grid.as_mut()
+            && grid.rows.is_empty()
+        {
+            inputs.extend(grid.read(base, &mut ck));
+        }
+        if let Some(grid) = file.fault.as_mut().and_then(|f| f.grid.as_mut())
             && grid.rows.is_empty()
         {
             inputs.extend(grid.read(base, &mut ck));
@@ -530,6 +557,7 @@ pub struct OutputCopy {
 #[serde(default)]
 struct PathKeys {
     friction: FrictionPathKeys,
+    fault: Option<FrictionPathKeys>,
     set: Option<SetPathKeys>,
 }
 
@@ -561,6 +589,9 @@ impl Pipeline {
         let mut spans: Vec<(&str, std::ops::Range<usize>)> = Vec::new();
         if let Some(g) = &keys.friction.grid {
             spans.push(("friction.grid.file", g.file.span()));
+        }
+        if let Some(g) = keys.fault.as_ref().and_then(|f| f.grid.as_ref()) {
+            spans.push(("fault.grid.file", g.file.span()));
         }
         if let Some(t) = keys.set.as_ref().and_then(|s| s.target_csv.as_ref()) {
             spans.push(("set.target_csv", t.span()));

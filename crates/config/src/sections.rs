@@ -150,6 +150,16 @@ impl SimilaritySection {
             false,
         );
         let area = ck.named::<AreaChoice>("similarity.area", &self.area).unwrap_or(AreaChoice::Contact);
+        if let Some(scene) = scene
+            && scene.is_fault()
+            && *self != SimilaritySection::default()
+        {
+            ck.push(
+                "similarity",
+                "a [similarity] section with [fault]",
+                "no [similarity] in a fault scene: it is at its own scale (λ = 1), its magnitudes come from its own slip",
+            );
+        }
         if area == AreaChoice::Rupture
             && let Some(scene) = scene
             && !scene.record.has(InterfaceQuantity::SlippingNodes)

@@ -28,6 +28,7 @@ pub fn setup(m: &Model, seed: u64) -> LaneSetup {
         stiffness: k,
         friction: m.friction_factors(seed).expect("friction"),
         strength: m.bar_strength(seed).expect("strength"),
+        fault: m.fault_loads(seed).expect("fault loads"),
     }
 }
 

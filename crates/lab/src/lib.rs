@@ -15,6 +15,7 @@ pub mod convergence;
 pub mod kernel_scene;
 pub mod peer;
 pub mod recording_cost;
+pub mod scec;
 pub mod skip;
 
 use stickslip_config::ConfigError;

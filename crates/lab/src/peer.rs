@@ -117,8 +117,13 @@ pub fn peer(nx: i64, ny: i64, nz: i64, steps: usize, out: &Path) -> Result<PeerT
         model.bar_count()
     );
     write("in.lattice", &input)?;
-    let lane =
-        || LaneSetup { dt_s: dt, stiffness: k.clone(), friction: vec![1.0; model.contact().len()], strength: None };
+    let lane = || LaneSetup {
+        dt_s: dt,
+        stiffness: k.clone(),
+        friction: vec![1.0; model.contact().len()],
+        strength: None,
+        fault: None,
+    };
     Ok(PeerTiming {
         bars: model.bar_count(),
         dt_s: dt,

@@ -19,6 +19,7 @@
 
 pub mod charts;
 pub mod clip;
+pub mod contour;
 mod error;
 pub mod figures;
 mod html;

@@ -6,8 +6,9 @@
 //! ([`fit`]), response, RotD and Fourier spectra and intensity measures ([`spectra`]),
 //! accelerogram processing and file formats ([`accelerogram`]), design spectra ([`design`]), the
 //! selection of record sets matched to them ([`selection`]), rupture fronts ([`front`]), SEAS fault
-//! station files ([`seas`]) and
-//! acoustic-emission clusters of bar breaks ([`emission`]).
+//! station files ([`seas`]), SCEC dynamic-rupture benchmark files ([`scec`]), acoustic-emission
+//! clusters of bar breaks ([`emission`]), and the NGA-West2 ground-motion models with fault-to-site
+//! distances and the Broadband Platform's validation statistics ([`gmm`]).
 //!
 //! Must not know: the solver, the pipeline file, tables or figures. Every function takes slices
 //! and plain parameter structs, so it can be used on any record, simulated or recorded; the
@@ -22,6 +23,8 @@ pub mod error;
 pub mod events;
 pub mod fit;
 pub mod front;
+pub mod gmm;
+pub mod scec;
 pub mod seas;
 pub mod selection;
 pub mod similarity;

@@ -101,7 +101,7 @@ pub fn summarize(values: &[f64]) -> Option<Summary> {
 /// `D = sup |F_a − F_b|` of the two empirical distribution functions and its asymptotic p-value
 /// `Q_KS(λ)`, `Q_KS(λ) = 2 Σ_{k≥1} (−1)^(k−1) e^(−2k²λ²)` at
 /// `λ = (√n_e + 0.12 + 0.11/√n_e)·D`, `n_e = n_a n_b/(n_a + n_b)` (Stephens 1970's correction, as
-/// Press et al., *Numerical Recipes* 3rd ed. §14.3.3). `None` with fewer than two values in
+/// Press et al., *Numerical Recipes* 3rd ed. §15.3.3). `None` with fewer than two values in
 /// either sample.
 pub fn ks_two_sample(a: &[f64], b: &[f64]) -> Option<(f64, f64)> {
     let sorted = |x: &[f64]| {

@@ -20,17 +20,21 @@ pub struct Energy {
     pub body_work: f64,
     /// Work of the drivers and the loading plate's springs.
     pub driver_work: f64,
+    /// Work of the initial tractions on a fault's face (docs/model.md §15; 0 on the rigid base).
+    pub traction_work: f64,
+    /// Carried out of the block by the absorbing faces' dashpots (0 without them).
+    pub absorbed: f64,
 }
 
 impl Energy {
-    /// Body plus driver work.
+    /// Body, driver and traction work.
     pub fn external_work(&self) -> f64 {
-        self.body_work + self.driver_work
+        self.body_work + self.driver_work + self.traction_work
     }
 
     /// External work minus everything stored and dissipated (zero up to round-off).
     pub fn residual(&self) -> f64 {
         self.external_work()
-            - (self.kinetic + self.elastic + self.damping + self.friction + self.impact + self.fracture)
+            - (self.kinetic + self.elastic + self.damping + self.friction + self.impact + self.fracture + self.absorbed)
     }
 }

@@ -25,6 +25,7 @@
 pub mod boundary;
 pub mod dispersion;
 pub mod error;
+pub mod fault;
 pub mod field;
 pub mod geometry;
 pub mod inspect;

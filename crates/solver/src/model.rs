@@ -6,7 +6,8 @@
 
 use crate::boundary::Boundaries;
 use crate::error::SolverError;
-use crate::geometry::{Bar, BarFamily, Direction, Lattice, NodeId};
+use crate::fault::{FaultLoads, von_karman_field};
+use crate::geometry::{Bar, BarFamily, Direction, Face, Lattice, NodeId};
 use crate::laws::NodeFriction;
 use crate::layout::{BarGroup, BarLayout, Bars, Segment};
 use crate::material::{STREAM_FRICTION, STREAM_YOUNG, axial_stiffness, weibull_factors};
@@ -303,10 +304,44 @@ impl Model {
         Ok(weibull_factors(self.scene.friction.mu_cv, seed, STREAM_FRICTION, n)?.unwrap_or_else(|| vec![1.0; n]))
     }
 
+    /// The fault's loads on every contact node for `seed` (docs/model.md §15): `τ0·A_i` along x
+    /// and y, with the seed's von Kármán field added to x when the scene has one, and
+    /// `σn·A_i`, `A_i` the node's share of the base. `None` on the rigid base.
+    pub fn fault_loads(&self, seed: u64) -> Result<Option<FaultLoads>, SolverError> {
+        let Some(fault) = &self.scene.fault else { return Ok(None) };
+        let lattice = &self.lattice;
+        let nodes = lattice.contact_nodes();
+        let area: Vec<f64> = nodes.iter().map(|&id| Face::ZMin.tributary_area(lattice, id)).collect();
+        let dims = lattice.dims();
+        let field = match &fault.stochastic {
+            Some(st) => Some(von_karman_field(
+                dims.nx + 1,
+                dims.ny + 1,
+                self.scene.lc_m,
+                st.correlation_length_m,
+                st.hurst,
+                seed,
+            )?),
+            None => None,
+        };
+        // Contact nodes come in canonical order: x fastest, then y, the grid of the field.
+        let shear_n = (0..nodes.len())
+            .map(|c| {
+                let extra = match (&field, &fault.stochastic) {
+                    (Some(f), Some(st)) => st.std_pa * f[c],
+                    _ => 0.0,
+                };
+                [(fault.shear_pa[c][0] + extra) * area[c], fault.shear_pa[c][1] * area[c]]
+            })
+            .collect();
+        let normal_n = (0..nodes.len()).map(|c| fault.normal_pa[c] * area[c]).collect();
+        Ok(Some(FaultLoads { shear_n, normal_n }))
+    }
+
     /// Coefficients of contact node `c` (order of [`Model::contact`]) whose field factor is
     /// `factor`: its region's (or the law's) μs and μd times the factor, and its Dc.
     pub fn node_friction(&self, c: usize, factor: f64) -> NodeFriction {
-        self.scene.friction.base(c).scaled(factor)
+        self.scene.friction.base(c).scaled(factor).healing(self.scene.friction.heals)
     }
 }
 

@@ -5,7 +5,7 @@
 
 use crate::geometry::NodeId;
 use crate::observe::Observed;
-use crate::scene::{ControlChannel, InterfaceQuantity, RecordPlan};
+use crate::scene::{ControlChannel, InterfaceQuantity, RecordPlan, Scene};
 use crate::step::rupture::CrackKind;
 use crate::trace::{Trace, Tracer};
 
@@ -43,10 +43,15 @@ pub enum Channel {
     /// Dissipated by bars that crack since the start (J); recorded only when the scene's bars
     /// crack.
     FractureDissipated,
+    /// Carried out through the absorbing faces since the start (J); recorded only when the scene
+    /// has absorbing faces.
+    Absorbed,
     /// Work of gravity and body forces since the start (J).
     BodyWork,
     /// Work of the drivers since the start (J).
     DriverWork,
+    /// Work of a fault's initial tractions since the start (J); recorded only on a fault.
+    TractionWork,
     /// Body plus driver work (J).
     ExternalWork,
     /// External work minus stored and dissipated energy (J); zero up to round-off.
@@ -55,7 +60,7 @@ pub enum Channel {
 
 impl Channel {
     /// Every channel.
-    pub const ALL: [Channel; 19] = [
+    pub const ALL: [Channel; 21] = [
         Channel::ShearStress,
         Channel::NormalStress,
         Channel::MeanSlip,
@@ -71,8 +76,10 @@ impl Channel {
         Channel::FrictionDissipated,
         Channel::ImpactDissipated,
         Channel::FractureDissipated,
+        Channel::Absorbed,
         Channel::BodyWork,
         Channel::DriverWork,
+        Channel::TractionWork,
         Channel::ExternalWork,
         Channel::EnergyResidual,
     ];
@@ -95,8 +102,10 @@ impl Channel {
             Channel::FrictionDissipated => "friction_dissipated_j",
             Channel::ImpactDissipated => "impact_dissipated_j",
             Channel::FractureDissipated => "fracture_dissipated_j",
+            Channel::Absorbed => "absorbed_j",
             Channel::BodyWork => "body_work_j",
             Channel::DriverWork => "driver_work_j",
+            Channel::TractionWork => "traction_work_j",
             Channel::ExternalWork => "external_work_j",
             Channel::EnergyResidual => "energy_residual_j",
         }
@@ -107,12 +116,20 @@ impl Channel {
         matches!(self, Channel::SlippingNodes | Channel::LiftedNodes)
     }
 
-    /// The energy channels, in order (the last ten of [`Channel::ALL`]).
+    /// The energy channels, in order (the last twelve of [`Channel::ALL`]).
     pub const ENERGY: &[Channel] = Channel::ALL.split_at(9).1;
 
-    /// Channels of the plan, in a fixed order; `fracture` when the scene's bars crack (only then
-    /// is the fracture term a column).
-    pub fn of_plan(plan: &RecordPlan, fracture: bool) -> Vec<Channel> {
+    /// Channels of `scene`'s record plan, in a fixed order: an energy term that the scene cannot
+    /// have is no column (fracture without bars that crack, absorbed without absorbing faces,
+    /// traction work without a fault).
+    pub fn of_scene(scene: &Scene) -> Vec<Channel> {
+        let plan = &scene.record;
+        let has = |c: Channel| match c {
+            Channel::FractureDissipated => scene.rupture.is_some(),
+            Channel::Absorbed => !scene.absorbing.is_empty(),
+            Channel::TractionWork => scene.is_fault(),
+            _ => true,
+        };
         let mut out = Vec::new();
         for q in InterfaceQuantity::ALL {
             if !plan.has(q) {
@@ -129,7 +146,7 @@ impl Channel {
             });
         }
         if plan.energy {
-            out.extend(Channel::ENERGY.iter().filter(|&&c| fracture || c != Channel::FractureDissipated));
+            out.extend(Channel::ENERGY.iter().copied().filter(|&c| has(c)));
         }
         out
     }
@@ -290,10 +307,8 @@ pub(crate) struct Recorder {
 
 impl Recorder {
     pub(crate) fn new(plan: &RecordPlan, model: &crate::model::Model, capacity: usize) -> Self {
-        let channels = Channel::of_plan(plan, model.scene().rupture.is_some())
-            .into_iter()
-            .map(|c| (c, Vec::with_capacity(capacity)))
-            .collect();
+        let channels =
+            Channel::of_scene(model.scene()).into_iter().map(|c| (c, Vec::with_capacity(capacity))).collect();
         let control = plan.control.iter().map(|&c| (c, Vec::with_capacity(capacity))).collect();
         Recorder {
             records: Recording {
@@ -344,8 +359,10 @@ impl Recorder {
                 Channel::FrictionDissipated => e().friction,
                 Channel::ImpactDissipated => e().impact,
                 Channel::FractureDissipated => e().fracture,
+                Channel::Absorbed => e().absorbed,
                 Channel::BodyWork => e().body_work,
                 Channel::DriverWork => e().driver_work,
+                Channel::TractionWork => e().traction_work,
                 Channel::ExternalWork => e().external_work(),
                 Channel::EnergyResidual => e().residual(),
             });

@@ -7,6 +7,7 @@
 //! benchmarks start from.
 
 use crate::dispersion::{DispersionError, LatticeMaterial, UsableBand, usable_band};
+use crate::fault::Fault;
 use crate::geometry::{Dims, Face, Lattice, NodeId};
 use crate::laws::{Coulomb, FrictionLaw, FrictionMap, NodeFriction};
 use crate::rupture::Rupture;
@@ -56,6 +57,9 @@ pub struct Friction {
     /// Regions of the base with their own μs, μd and Dc (patches, a grid); `None` = the law
     /// everywhere.
     pub map: Option<FrictionMap>,
+    /// Whether a node that sticks heals to μs (the paper's cycles) or keeps its slip (the
+    /// dynamic-rupture benchmarks' slip weakening, over the whole run).
+    pub heals: bool,
 }
 
 impl Friction {
@@ -317,7 +321,8 @@ pub struct RecordPlan {
     /// Record every contact node's slip, slip rate and stresses with the event trace
     /// ([`crate::trace::FaultTrace`]).
     pub fault: bool,
-    /// Fault stations: contact nodes whose series are also written as station files.
+    /// Fault stations: contact nodes whose slip, slip rate and stresses along x and y are kept at
+    /// the trace's instants ([`crate::trace::StationTrace`]) and written as station files.
     pub fault_stations: Vec<NodeId>,
     /// Interval of the fault's written instants (s); `None` = every trace instant.
     pub fault_interval_s: Option<f64>,
@@ -344,12 +349,15 @@ pub struct TracePlan {
     pub margin_s: f64,
     /// Between bursts, one step in this interval is kept (s).
     pub quiet_interval_s: f64,
+    /// A contact node has ruptured once its slip rate reaches this (m/s): the rupture time of
+    /// the fault summary of a fault (docs/model.md §15).
+    pub rupture_rate_m_s: f64,
 }
 
 impl Default for TracePlan {
     /// The plan for the default detector (1-ms smoothing, 50 µm/s quiet threshold).
     fn default() -> Self {
-        TracePlan { hot_rate_m_s: 2.5e-5, margin_s: 2.5e-3, quiet_interval_s: 2.5e-4 }
+        TracePlan { hot_rate_m_s: 2.5e-5, margin_s: 2.5e-3, quiet_interval_s: 2.5e-4, rupture_rate_m_s: 1e-3 }
     }
 }
 
@@ -389,6 +397,24 @@ pub struct Scene {
     pub skip_ahead: SkipAhead,
     /// Bars that crack (the bilinear law of docs/model.md §11); `None`: every bar elastic.
     pub rupture: Option<Rupture>,
+    /// The base face as one side of a planar fault between identical media, with its tractions
+    /// (docs/model.md §15); `None`: the paper's rigid base.
+    pub fault: Option<Fault>,
+    /// Faces whose nodes carry Lysmer–Kuhlemeyer dashpots, so that waves leave the block
+    /// ([`crate::boundary::absorbing`]); never the base.
+    pub absorbing: Vec<Face>,
+    /// Named stations: nodes whose displacement, velocity and acceleration (three components)
+    /// are recorded (as control channels of `record.control`), sorted by node.
+    pub stations: Vec<Station>,
+}
+
+/// A named station: a corner node whose motion is recorded in full.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Station {
+    /// Name (unique in the scene).
+    pub name: String,
+    /// The node.
+    pub node: NodeId,
 }
 
 impl Scene {
@@ -407,7 +433,7 @@ impl Scene {
             density_kg_m3: 2400.0,
             poisson: 0.2,
             young_cv: 0.05,
-            friction: Friction { law: FrictionLaw::Coulomb(Coulomb { mu: 5.0 }), mu_cv: 0.0, map: None },
+            friction: Friction { law: FrictionLaw::Coulomb(Coulomb { mu: 5.0 }), mu_cv: 0.0, map: None, heals: true },
             time_step: TimeStep::Fraction(0.5),
             self_weight: SelfWeight {
                 gravity_m_s2: 9.81,
@@ -440,6 +466,9 @@ impl Scene {
             normal_load: None,
             skip_ahead: SkipAhead { enabled: false, tolerance: 1e-4, margin_steps: 20, record_interval_s: None },
             rupture: None,
+            fault: None,
+            absorbing: Vec::new(),
+            stations: Vec::new(),
         }
     }
 
@@ -457,6 +486,18 @@ impl Scene {
         s.shear.drivers.clear();
         s.record.interface.clear();
         s
+    }
+
+    /// Whether the base face is one side of a fault between identical media (docs/model.md §15)
+    /// rather than the paper's rigid base.
+    pub fn is_fault(&self) -> bool {
+        self.fault.is_some()
+    }
+
+    /// Slip across the base face per unit of its tangential displacement: 2 on a symmetric
+    /// fault (the other side moves the opposite way), 1 on the rigid base.
+    pub fn slip_factor(&self) -> f64 {
+        if self.is_fault() { 2.0 } else { 1.0 }
     }
 
     /// The lattice of this scene.

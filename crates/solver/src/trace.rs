@@ -11,7 +11,11 @@
 //!
 //! With `record.fault` the trace also holds every contact node's slip, slip rate and stresses at
 //! the same instants ([`FaultTrace`]): the fault in space and time, at the solver's full rate
-//! through every burst.
+//! through every burst. The fault stations' series along x and y are kept at the same instants
+//! ([`StationTrace`]), with or without the whole fault; and on a fault (docs/model.md §15) every
+//! contact node's rupture time, peak slip rate and final slip and stresses are taken at every
+//! step ([`FaultSummary`]), which costs one pass over the contact nodes a step and no memory
+//! per step.
 
 use crate::geometry::{Face, NodeId};
 use crate::observe::Observed;
@@ -38,6 +42,69 @@ pub struct Trace {
     pub accelerations: Vec<(ControlChannel, Vec<f64>)>,
     /// Every contact node at the same instants, when the scene records the fault.
     pub fault: Option<FaultTrace>,
+    /// The fault stations' series at the same instants, order of `record.fault_stations`.
+    pub stations: Vec<StationTrace>,
+    /// Every contact node's rupture time, peak slip rate and final slip, on a fault.
+    pub summary: Option<FaultSummary>,
+}
+
+/// One fault station (a contact node) at the trace's instants: slip, slip rate and shear stress
+/// along x and y, and the normal stress. On a fault the slip is across it, twice the face's
+/// displacement (docs/model.md §15).
+#[derive(Clone, Debug, PartialEq)]
+pub struct StationTrace {
+    /// The contact node.
+    pub node: NodeId,
+    /// The base area it stands for (m²).
+    pub area_m2: f64,
+    /// Slip since the start of the shear stage along x and y (m).
+    pub slip_m: [Vec<f64>; 2],
+    /// Slip rate along x and y (m/s).
+    pub slip_rate_m_s: [Vec<f64>; 2],
+    /// Shear stress `−F/A_i` along x and y (Pa).
+    pub shear_stress_pa: [Vec<f64>; 2],
+    /// Normal stress `N/A_i` (Pa).
+    pub normal_stress_pa: Vec<f64>,
+}
+
+/// Every contact node of a fault over the whole shear stage (docs/model.md §15), canonical
+/// contact order, taken at every step.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct FaultSummary {
+    /// The contact nodes.
+    pub nodes: Vec<NodeId>,
+    /// The fault area each stands for (m²).
+    pub area_m2: Vec<f64>,
+    /// Time its slip-rate magnitude first reached `rupture_rate_m_s` (s of the shear stage);
+    /// NaN if it never did.
+    pub rupture_time_s: Vec<f64>,
+    /// Largest slip-rate magnitude (m/s).
+    pub peak_slip_rate_m_s: Vec<f64>,
+    /// Slip at the end along x and y (m).
+    pub final_slip_m: Vec<[f64; 2]>,
+    /// Shear stress at the start and at the end along x and y (Pa).
+    pub shear_stress_pa: Vec<[[f64; 2]; 2]>,
+    /// Normal stress (Pa).
+    pub normal_stress_pa: Vec<f64>,
+    /// The slip-rate threshold of the rupture time (m/s).
+    pub rupture_rate_m_s: f64,
+}
+
+impl FaultSummary {
+    /// Seismic moment `M0 = μ·Σ A_i·|D_i|` over the nodes whose slip is at least `min_slip_m`,
+    /// with `μ` the shear modulus (N·m), and the area that slipped (m²).
+    pub fn moment(&self, shear_modulus_pa: f64, min_slip_m: f64) -> (f64, f64) {
+        let mut m0 = 0.0;
+        let mut area = 0.0;
+        for (d, a) in self.final_slip_m.iter().zip(&self.area_m2) {
+            let slip = d[0].hypot(d[1]);
+            if slip >= min_slip_m {
+                m0 += a * slip;
+                area += a;
+            }
+        }
+        (shear_modulus_pa * m0, area)
+    }
 }
 
 /// Every contact node of the base through the shear stage, at the trace's instants.
@@ -159,6 +226,12 @@ pub(crate) struct Tracer {
     nodes: Vec<(ControlChannel, usize)>,
     /// Contact nodes recorded (all or none) and their x-displacement at the first step.
     fault: Option<(usize, Vec<f64>)>,
+    /// The fault stations' contact indices and their slip at the first step.
+    stations: Vec<(usize, [f64; 2])>,
+    /// The fault summary being built (on a fault).
+    summary: Option<SummaryBuilder>,
+    /// Whether a step has been looked at.
+    observed: bool,
     /// The contact nodes of the step being looked at (reused).
     contacts: Vec<NodeContact>,
     width: usize,
@@ -184,7 +257,19 @@ impl Tracer {
             .map(|&c| (c, model.internal(c.node)))
             .collect();
         let fault = model.scene().record.fault.then(|| (model.contact().len(), Vec::new()));
-        let width = FIXED + nodes.len() + fault.as_ref().map_or(0, |(n, _)| 4 * n);
+        let lattice = model.lattice();
+        let stations: Vec<(usize, [f64; 2])> = model
+            .scene()
+            .record
+            .fault_stations
+            .iter()
+            .map(|&id| {
+                (lattice.contact_nodes().iter().position(|&c| c == id).expect("a station is a contact node"), [0.0; 2])
+            })
+            .collect();
+        let summary =
+            model.scene().is_fault().then(|| SummaryBuilder::new(model.contact().len(), plan.rupture_rate_m_s));
+        let width = FIXED + nodes.len() + fault.as_ref().map_or(0, |(n, _)| 4 * n) + STATION_WIDTH * stations.len();
         Tracer {
             hot_rate: plan.hot_rate_m_s,
             margin: (plan.margin_s / dt).ceil().max(1.0) as u64,
@@ -193,6 +278,9 @@ impl Tracer {
             area: model.lattice().contact_area(),
             nodes,
             fault,
+            stations,
+            summary,
+            observed: false,
             contacts: Vec::new(),
             width,
             pending: Rows::new(width),
@@ -212,13 +300,17 @@ impl Tracer {
         // With the fault recorded, each contact node is read once: for its own columns and the sums.
         let mut contacts = std::mem::take(&mut self.contacts);
         contacts.clear();
-        let face = match &self.fault {
-            Some((n, _)) => {
-                contacts.extend((0..*n).map(|ci| s.node_contact(ci)));
-                Interface::sum(contacts.iter().copied())
-            }
-            None => s.interface(),
+        let face = if self.fault.is_some() || self.summary.is_some() {
+            contacts.extend((0..s.contacts()).map(|ci| s.node_contact(ci)));
+            Interface::sum(contacts.iter().copied())
+        } else {
+            s.interface()
         };
+        let first = !self.observed;
+        self.observed = true;
+        if let Some(summary) = self.summary.as_mut() {
+            summary.observe(&contacts, step - self.origin);
+        }
         let hot = face.mean_slip_rate.abs() >= self.hot_rate;
         let mut sample = std::mem::take(&mut self.scratch);
         sample.clear();
@@ -238,6 +330,21 @@ impl Tracer {
             for (c, u0) in contacts.iter().zip(origin.iter()) {
                 sample.extend([c.slip - u0, c.slip_rate, c.friction_x, c.normal]);
             }
+        }
+        for (ci, origin) in self.stations.iter_mut() {
+            let c = if contacts.is_empty() { s.node_contact(*ci) } else { contacts[*ci] };
+            if first {
+                *origin = [c.slip, c.slip_y];
+            }
+            sample.extend([
+                c.slip - origin[0],
+                c.slip_y - origin[1],
+                c.slip_rate,
+                c.slip_rate_y,
+                c.friction_x,
+                c.friction_y,
+                c.normal,
+            ]);
         }
         self.contacts = contacts;
         // Samples older than the margin leave the pending queue: kept if on the quiet grid.
@@ -272,6 +379,29 @@ impl Tracer {
         }
         let mut column = |k: usize| std::mem::take(&mut columns[k]);
         let origin = self.origin as f64;
+        let lattice = model.lattice();
+        let first_station = FIXED + self.nodes.len() + self.fault.as_ref().map_or(0, |(n, _)| 4 * n);
+        let contact_ids = lattice.contact_nodes();
+        let stations = self
+            .stations
+            .iter()
+            .enumerate()
+            .map(|(k, &(ci, _))| {
+                let node = contact_ids[ci];
+                let area = Face::ZMin.tributary_area(lattice, node);
+                let at = first_station + STATION_WIDTH * k;
+                let stress = |v: Vec<f64>, sign: f64| v.into_iter().map(|f| sign * f / area).collect::<Vec<f64>>();
+                StationTrace {
+                    node,
+                    area_m2: area,
+                    slip_m: [column(at), column(at + 1)],
+                    slip_rate_m_s: [column(at + 2), column(at + 3)],
+                    shear_stress_pa: [stress(column(at + 4), -1.0), stress(column(at + 5), -1.0)],
+                    normal_stress_pa: stress(column(at + 6), 1.0),
+                }
+            })
+            .collect();
+        let summary = self.summary.take().map(|b| b.finish(model, dt));
         Trace {
             time_s: column(0).into_iter().map(|s| (s - origin) * dt).collect(),
             shear_stress_pa: column(1),
@@ -303,6 +433,83 @@ impl Tracer {
                     area_m2: area,
                 }
             }),
+            stations,
+            summary,
+        }
+    }
+}
+
+/// Values per station and instant: slip x, y, slip rate x, y, friction x, y, normal force.
+const STATION_WIDTH: usize = 7;
+
+/// Builds a [`FaultSummary`] from every step of the shear stage.
+struct SummaryBuilder {
+    threshold: f64,
+    rupture_step: Vec<Option<u64>>,
+    peak: Vec<f64>,
+    origin: Vec<[f64; 2]>,
+    first: Vec<[f64; 2]>,
+    last: Vec<NodeContact>,
+}
+
+impl SummaryBuilder {
+    fn new(contacts: usize, threshold: f64) -> SummaryBuilder {
+        SummaryBuilder {
+            threshold,
+            rupture_step: vec![None; contacts],
+            peak: vec![0.0; contacts],
+            origin: Vec::new(),
+            first: Vec::new(),
+            last: Vec::new(),
+        }
+    }
+
+    /// Takes in the contact nodes at shear-stage step `j`.
+    fn observe(&mut self, contacts: &[NodeContact], j: u64) {
+        if self.origin.is_empty() {
+            self.origin = contacts.iter().map(|c| [c.slip, c.slip_y]).collect();
+            self.first = contacts.iter().map(|c| [c.friction_x, c.friction_y]).collect();
+        }
+        for (ci, c) in contacts.iter().enumerate() {
+            let rate = c.slip_rate.hypot(c.slip_rate_y);
+            if rate > self.peak[ci] {
+                self.peak[ci] = rate;
+            }
+            if self.rupture_step[ci].is_none() && rate >= self.threshold {
+                self.rupture_step[ci] = Some(j);
+            }
+        }
+        self.last.clear();
+        self.last.extend_from_slice(contacts);
+    }
+
+    fn finish(self, model: &crate::model::Model, dt: f64) -> FaultSummary {
+        let lattice = model.lattice();
+        let nodes = lattice.contact_nodes();
+        let area_m2: Vec<f64> = nodes.iter().map(|&id| Face::ZMin.tributary_area(lattice, id)).collect();
+        let n = nodes.len();
+        let last = |ci: usize| self.last.get(ci).copied();
+        FaultSummary {
+            rupture_time_s: self.rupture_step.iter().map(|s| s.map_or(f64::NAN, |j| j as f64 * dt)).collect(),
+            peak_slip_rate_m_s: self.peak,
+            final_slip_m: (0..n)
+                .map(|ci| match (last(ci), self.origin.get(ci)) {
+                    (Some(c), Some(o)) => [c.slip - o[0], c.slip_y - o[1]],
+                    _ => [0.0; 2],
+                })
+                .collect(),
+            shear_stress_pa: (0..n)
+                .map(|ci| {
+                    let a = area_m2[ci];
+                    let start = self.first.get(ci).map_or([0.0; 2], |f| [-f[0] / a, -f[1] / a]);
+                    let end = last(ci).map_or([0.0; 2], |c| [-c.friction_x / a, -c.friction_y / a]);
+                    [start, end]
+                })
+                .collect(),
+            normal_stress_pa: (0..n).map(|ci| last(ci).map_or(0.0, |c| c.normal / area_m2[ci])).collect(),
+            nodes,
+            area_m2,
+            rupture_rate_m_s: self.threshold,
         }
     }
 }

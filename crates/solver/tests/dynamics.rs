@@ -17,7 +17,13 @@ fn go(_: f64) -> ControlFlow<()> {
 fn lane(model: &Model, fraction: f64) -> LaneSetup {
     let k = model.nominal_stiffness().to_vec();
     let crit = critical_time_step(model, &k).unwrap();
-    LaneSetup { dt_s: fraction * crit.dt_s, stiffness: k, friction: vec![1.0; model.contact().len()], strength: None }
+    LaneSetup {
+        dt_s: fraction * crit.dt_s,
+        stiffness: k,
+        friction: vec![1.0; model.contact().len()],
+        strength: None,
+        fault: None,
+    }
 }
 
 /// Time of the maximum of `u` by a parabola through the largest sample and its neighbours.

@@ -14,11 +14,12 @@ pub use crate::tables::records::{ACCELEROGRAMS, ATTENUATION, INTENSITY, RECORDS}
 pub use crate::tables::runs::RUNS;
 pub use crate::tables::series::{CONTROL, FAULT, SERIES, SKIPS};
 pub use crate::tables::set::SET;
+pub use crate::tables::source::{FAULT_NODES, SOURCE, STATIONS};
 pub use crate::tables::spectra::{FOURIER, ROTD, SPECTRA};
 pub use crate::tables::stats::{ATTENUATION_FIT, PSA_STATS, SUMMARY};
 
 /// Every table, in the order the README documents them.
-pub const ALL: [TableSpec; 29] = [
+pub const ALL: [TableSpec; 32] = [
     RUNS,
     SERIES,
     CONTROL,
@@ -36,6 +37,9 @@ pub const ALL: [TableSpec; 29] = [
     ATTENUATION,
     RUPTURES,
     RUPTURE_ONSETS,
+    SOURCE,
+    FAULT_NODES,
+    STATIONS,
     CRACKS,
     ACOUSTIC_EMISSION,
     SUMMARY,

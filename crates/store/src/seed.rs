@@ -13,6 +13,7 @@ use crate::tables::runs::{self, RUNS, RunFacts, RunRow};
 /// Writes every part and file of a seed that ran, `runs` last.
 pub fn write_seed(out: &Folder, view: &SeedView<'_>, stamp: &Stamp<'_>, wall_time_s: f64) -> Result<(), StoreError> {
     files::stations::write(out, view, stamp)?;
+    files::scec::write(out, view, stamp)?;
     files::records::write(out, view, stamp)?;
     for table in &SEED_TABLES {
         if let Some(mut df) = (table.write)(view)? {

@@ -7,6 +7,8 @@ use stickslip_analysis::settings::RecordSpan;
 use stickslip_config::Pipeline;
 use stickslip_config::check::{Named, approx};
 use stickslip_solver::Model;
+use stickslip_solver::boundary::absorbing::impedances;
+use stickslip_solver::fault::FaultReading;
 use stickslip_solver::inspect::{Statics, inspect};
 use stickslip_solver::laws::describe;
 use stickslip_solver::scene::{SettleMethod, TimeStep};
@@ -77,11 +79,15 @@ pub fn run(a: Args) -> Result<()> {
         describe(&law.node(1.0).coefficients(), |_, c| N(c.value).to_string()),
         N(scene.friction.mu_cv)
     );
-    println!(
-        "  self-weight normal stress {:.1} Pa, sliding strength μs·σ = {:.1} Pa",
-        N(facts.self_weight_stress_pa),
-        N(facts.strength_pa)
-    );
+    if scene.is_fault() {
+        print_fault(&model);
+    } else {
+        println!(
+            "  self-weight normal stress {:.1} Pa, sliding strength μs·σ = {:.1} Pa",
+            N(facts.self_weight_stress_pa),
+            N(facts.strength_pa)
+        );
+    }
     let (lo, hi) = facts.critical_range_s();
     let which = if facts.critical.len() == pipeline.seeds.len() {
         format!("over the pipeline's {} seeds", facts.critical.len())
@@ -193,61 +199,74 @@ pub fn run(a: Args) -> Result<()> {
             );
         }
     }
-    let sl = &facts.slider;
-    if sl.block_n_m.is_nan() {
-        let why = match &sl.block_note {
-            Some(note) => {
-                format!("the block's stiffness under its load is a static solve of all {} bars, {note}", facts.bars)
-            }
-            None => format!(
-                "the block's stiffness under its load needs a static solve of all {} bars: --full-statics",
-                facts.bars
-            ),
-        };
+    // A fault has no weight on a base: the spring-slider reading is the rigid base's.
+    if !scene.is_fault() {
+        let sl = &facts.slider;
+        if sl.block_n_m.is_nan() {
+            let why = match &sl.block_note {
+                Some(note) => {
+                    format!("the block's stiffness under its load is a static solve of all {} bars, {note}", facts.bars)
+                }
+                None => format!(
+                    "the block's stiffness under its load needs a static solve of all {} bars: --full-statics",
+                    facts.bars
+                ),
+            };
+            println!(
+                "  as a spring-slider: N = {:.4e} N, strength μs·N = {:.4e} N, tips at {:.4e} N; k not solved ({why}), \
+                 plate springs {:.4e} N/m, k_c = (μs − μd)·N/Dc = {:.4e} N/m",
+                sl.normal_n, sl.strength_n, sl.tipping_n, sl.plate_n_m, sl.critical_n_m
+            );
+        } else {
+            println!(
+                "  as a spring-slider: N = {:.4e} N, strength μs·N = {:.4e} N, tips at {:.4e} N; k = {:.4e} N/m (block \
+                 under the load {:.4e}, plate springs {:.4e}), k_c = (μs − μd)·N/Dc = {:.4e} N/m, swing damping D/(2ω) = \
+                 {:.3}",
+                sl.normal_n,
+                sl.strength_n,
+                sl.tipping_n,
+                sl.k_n_m,
+                sl.block_n_m,
+                sl.plate_n_m,
+                sl.critical_n_m,
+                N(sl.damping_ratio)
+            );
+        }
         println!(
-            "  as a spring-slider: N = {:.4e} N, strength μs·N = {:.4e} N, tips at {:.4e} N; k not solved ({why}), \
-             plate springs {:.4e} N/m, k_c = (μs − μd)·N/Dc = {:.4e} N/m",
-            sl.normal_n, sl.strength_n, sl.tipping_n, sl.plate_n_m, sl.critical_n_m
+            "    → {} (the rigid slider's reading; docs/model.md §12 says where a lattice block differs)",
+            stickslip_config::keys::verdict(sl)
+        );
+    }
+    let sw = &scene.self_weight;
+    let sh = &scene.shear;
+    if scene.is_fault() {
+        println!(
+            "  run: {} s from the prestressed state at rest, D = {} 1/s, no self-weight stage{}",
+            N(sh.duration_s),
+            N(sh.damping_per_s),
+            if sh.drivers.is_empty() { ", no driver" } else { "" }
         );
     } else {
         println!(
-            "  as a spring-slider: N = {:.4e} N, strength μs·N = {:.4e} N, tips at {:.4e} N; k = {:.4e} N/m (block under \
-             the load {:.4e}, plate springs {:.4e}), k_c = (μs − μd)·N/Dc = {:.4e} N/m, swing damping D/(2ω) = {:.3}",
-            sl.normal_n,
-            sl.strength_n,
-            sl.tipping_n,
-            sl.k_n_m,
-            sl.block_n_m,
-            sl.plate_n_m,
-            sl.critical_n_m,
-            N(sl.damping_ratio)
+            "  self-weight: {}",
+            match sw.method {
+                SettleMethod::Static =>
+                    "solved statically (falls back to damped settling if friction cannot hold it)".into(),
+                SettleMethod::Dynamic => format!(
+                    "damped settling, D = {} 1/s, until out-of-balance/weight < {:e}",
+                    N(sw.damping_per_s),
+                    sw.settle_tolerance
+                ),
+            }
+        );
+        println!(
+            "  shear: u̇f = {} m/s (t0 = {} s), D = {} 1/s, for {} s",
+            N(sh.velocity_m_s),
+            N(sh.rise_time_s),
+            N(sh.damping_per_s),
+            N(sh.duration_s)
         );
     }
-    println!(
-        "    → {} (the rigid slider's reading; docs/model.md §12 says where a lattice block differs)",
-        stickslip_config::keys::verdict(sl)
-    );
-    let sw = &scene.self_weight;
-    println!(
-        "  self-weight: {}",
-        match sw.method {
-            SettleMethod::Static =>
-                "solved statically (falls back to damped settling if friction cannot hold it)".into(),
-            SettleMethod::Dynamic => format!(
-                "damped settling, D = {} 1/s, until out-of-balance/weight < {:e}",
-                N(sw.damping_per_s),
-                sw.settle_tolerance
-            ),
-        }
-    );
-    let sh = &scene.shear;
-    println!(
-        "  shear: u̇f = {} m/s (t0 = {} s), D = {} 1/s, for {} s",
-        N(sh.velocity_m_s),
-        N(sh.rise_time_s),
-        N(sh.damping_per_s),
-        N(sh.duration_s)
-    );
     let r = &scene.record;
     println!(
         "  record: {}, interface {}{}{}{}",
@@ -283,14 +302,18 @@ pub fn run(a: Args) -> Result<()> {
         N(ev.main_fraction)
     );
     let si = &pipeline.analysis.similarity;
-    println!(
-        "  similarity: L_p = {} m (λ = {}), u̇_p = {:e} m/s, model area: {:?}",
-        N(si.prototype_length_m),
-        approx(si.prototype_length_m / e[0]),
-        si.prototype_rate_m_s,
-        si.area
-    );
-    let lambda = si.prototype_length_m / e[0];
+    let lambda = if scene.is_fault() { 1.0 } else { si.prototype_length_m / e[0] };
+    if scene.is_fault() {
+        println!("  scale: its own (λ = 1); each event's Mw from its slip, M0 = μ·A·ΔD̄");
+    } else {
+        println!(
+            "  similarity: L_p = {} m (λ = {}), u̇_p = {:e} m/s, model area: {:?}",
+            N(si.prototype_length_m),
+            approx(lambda),
+            si.prototype_rate_m_s,
+            si.area
+        );
+    }
     match &pipeline.analysis.accelerograms {
         Some(a) => {
             let nodes = if a.nodes.is_empty() {
@@ -372,4 +395,63 @@ pub fn run(a: Args) -> Result<()> {
         println!("  warning: {w}");
     }
     Ok(())
+}
+
+/// What `check` says of a fault scene (docs/model.md §15): tractions, where rupture starts, the
+/// cohesive zone against the lattice, the absorbing faces and the lattice's wave speeds.
+fn print_fault(model: &Model) {
+    let scene = model.scene();
+    let Some(r) = FaultReading::of(model) else { return };
+    let mpa = |(a, b): (f64, f64)| {
+        if a == b { format!("{:.2} MPa", N(a / 1e6)) } else { format!("{:.2} … {:.2} MPa", N(a / 1e6), N(b / 1e6)) }
+    };
+    println!(
+        "  fault (the base as one side of a planar fault, slip = 2 × the face's displacement; friction heals: {}): \
+         normal stress {}, initial shear stress {}",
+        scene.friction.heals,
+        mpa(r.normal_pa),
+        mpa(r.shear_pa)
+    );
+    if r.overstressed.0 == 0 {
+        println!(
+            "  ⚠ no node starts above its static strength μs·σn: nothing nucleates unless a random field or a patch \
+             overstresses some ([[fault.patches]] with shear_stress_pa above μs·normal_stress_pa)"
+        );
+    } else {
+        println!(
+            "  nucleation: {} nodes ({:.4e} m²) start above their static strength μs·σn and slide from the first step; \
+             {} nodes can slip (above μd·σn){}",
+            r.overstressed.0,
+            r.overstressed.1,
+            r.can_slip,
+            r.median_s.map_or(String::new(), |s| format!(", median strength excess S = (τs − τ0)/(τ0 − τd) = {:.2}", N(s)))
+        );
+    }
+    if let Some(l) = r.cohesive_zone_m {
+        let per = l / scene.lc_m;
+        println!(
+            "  cohesive zone Λ0 = (9π/32)·μ·Dc/(τs − τd) ≥ {l:.4e} m = {:.1} × Lc{}",
+            N(per),
+            if per < 3.0 {
+                " ⚠ under-resolved (fewer than 3 nodes): rupture speed and slip rates depend on Lc"
+            } else {
+                ""
+            }
+        );
+    }
+    let (zp, zs) = impedances(scene);
+    let rho = scene.density_kg_m3;
+    if !scene.absorbing.is_empty() {
+        println!(
+            "  absorbing faces {} (dashpots ρCp = {:.4e} and ρCs = {:.4e} Pa·s/m per m² of face)",
+            scene.absorbing.iter().map(|f| f.name()).collect::<Vec<_>>().join(", "),
+            zp,
+            zs
+        );
+    }
+    let band = scene
+        .usable_band(0.05)
+        .map(|b| format!(", waves within 5% of these speeds up to {:.3} Hz", N(b.f_max_hz)))
+        .unwrap_or_default();
+    println!("  lattice wave speeds Cp = {:.1} m/s, Cs = {:.1} m/s{band}", N(zp / rho), N(zs / rho));
 }

@@ -18,7 +18,7 @@ pub(super) fn law(ck: &mut Checker, f: &FrictionSection) -> FrictionLaw {
 /// on `lattice` (every refused value recorded in `ck`).
 pub(super) fn friction(ck: &mut Checker, f: &FrictionSection, law: FrictionLaw, lattice: &Lattice) -> Friction {
     let map = crate::friction_map::build(ck, lattice, &law, &f.patches, f.grid.as_ref());
-    Friction { law, mu_cv: f.mu_cv, map }
+    Friction { law, mu_cv: f.mu_cv, map, heals: f.heals }
 }
 
 /// The friction law the section describes.

@@ -43,14 +43,15 @@ pub(super) fn check_shear(ck: &mut Checker, sh: &ShearSection, m: &MaterialSecti
 pub(super) fn drivers(ck: &mut Checker, file: SceneSections<'_>, lattice: &Lattice) -> Vec<NodeId> {
     let sh = &file.shear;
     let no_drivers_given = sh.driver_nodes.is_empty() && sh.driver_at_m.is_empty();
-    let (driver_ldem, driver_at): (&[i64], Vec<[f64; 3]>) = if no_drivers_given && file.loading_plate.is_some() {
-        // The plate loads the block: no default driver node.
-        (&[], Vec::new())
-    } else if no_drivers_given {
-        (&[], vec![[0.0, 0.0, 2.0 * file.block.lc_m]])
-    } else {
-        (&sh.driver_nodes, sh.driver_at_m.clone())
-    };
+    let (driver_ldem, driver_at): (&[i64], Vec<[f64; 3]>) =
+        if no_drivers_given && (file.loading_plate.is_some() || file.fault.is_some()) {
+            // The plate or the fault's tractions load the block: no default driver node.
+            (&[], Vec::new())
+        } else if no_drivers_given {
+            (&[], vec![[0.0, 0.0, 2.0 * file.block.lc_m]])
+        } else {
+            (&sh.driver_nodes, sh.driver_at_m.clone())
+        };
     let (driver_ldem, driver_at) = match sh.driver_face {
         Some(_) if sh.driver_nodes.is_empty() && sh.driver_at_m.is_empty() => (&[][..], Vec::new()),
         _ => (driver_ldem, driver_at),

@@ -11,6 +11,7 @@
 
 mod block;
 mod boundary;
+mod fault;
 mod friction;
 mod loading;
 mod record;
@@ -25,6 +26,10 @@ use stickslip_solver::Scene;
 use crate::check::Checker;
 pub use crate::friction_map::{GridSection, PatchSection};
 pub use block::MAX_NODES;
+pub use fault::{
+    AbsorbingSection, FaultSection, StationSection, StochasticSection, TRACTION_GRID_HEADER, TractionGridSection,
+    TractionPatchSection,
+};
 pub use sections::*;
 pub use stage_sections::*;
 
@@ -58,6 +63,19 @@ pub struct SceneSections<'a> {
     /// do not change).
     #[serde(skip_serializing_if = "is_absent")]
     pub rupture: &'a Option<RuptureSection>,
+    /// `[fault]` (left out of the canonical form when absent).
+    #[serde(skip_serializing_if = "is_absent")]
+    pub fault: &'a Option<FaultSection>,
+    /// `[absorbing]` (left out of the canonical form when absent).
+    #[serde(skip_serializing_if = "is_absent")]
+    pub absorbing: &'a Option<AbsorbingSection>,
+    /// `[[stations]]` (left out of the canonical form when empty).
+    #[serde(skip_serializing_if = "is_empty")]
+    pub stations: &'a Vec<StationSection>,
+}
+
+fn is_empty<T>(x: &&Vec<T>) -> bool {
+    x.is_empty()
 }
 
 fn is_absent<T>(x: &&Option<T>) -> bool {
@@ -79,13 +97,20 @@ pub(crate) fn build(file: SceneSections<'_>, ck: &mut Checker) -> Option<Scene> 
     let skip_ahead = time::skip_ahead(ck, file.skip_ahead, file.record);
     let rupture = file.rupture.as_ref().map(|r| rupture::rupture(ck, r, file.material, file.block.lc_m));
     time::refuse_skip_ahead_with(ck, file.skip_ahead, rupture.is_some(), time::WITH_RUPTURE);
+    time::refuse_skip_ahead_with(ck, file.skip_ahead, !file.friction.heals, time::WITH_KEPT_SLIP);
     let interface = record::interface(ck, file.record);
     // Everything below needs the lattice.
     let lattice = block::lattice(ck, file.block, counts)?;
     let drivers = loading::drivers(ck, file, &lattice);
     let fixed = boundary::rollers(ck, file, &lattice);
     loading::refuse_held_drivers(ck, &drivers, &fixed);
-    let control = record::control_channels(ck, file.record, &lattice);
+    let mut control = record::control_channels(ck, file.record, &lattice);
+    let (stations, station_channels) = fault::stations(ck, file, &lattice);
+    control.extend(station_channels);
+    control.sort();
+    control.dedup();
+    let fault = fault::fault(ck, file, &lattice);
+    let absorbing = fault::absorbing(ck, file);
     let friction = friction::friction(ck, file.friction, law, &lattice);
     let (plate, normal_load) = match file.loading_plate {
         Some(lp) => boundary::loading_plate(ck, lp, &lattice, &fixed),
@@ -111,5 +136,8 @@ pub(crate) fn build(file: SceneSections<'_>, ck: &mut Checker) -> Option<Scene> 
         normal_load,
         skip_ahead,
         rupture,
+        fault,
+        absorbing,
+        stations,
     })
 }

@@ -55,7 +55,7 @@ pub(super) fn plan(
         energy: r.energy,
         settling: r.settling,
         slip_onsets: r.slip_onsets,
-        fault: r.fault || !r.fault_stations_m.is_empty(),
+        fault: r.fault,
         fault_stations: fault_stations(ck, &r.fault_stations_m, lattice),
         fault_interval_s: r.fault_interval_s.filter(|&v| v > 0.0 && v.is_finite()),
         control,

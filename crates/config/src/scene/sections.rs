@@ -66,6 +66,14 @@ pub struct FrictionSection {
     /// Coefficients per base node from a CSV file.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub grid: Option<GridSection>,
+    /// Whether a node that sticks again heals to μs (the paper's stick-slip cycles) or keeps the
+    /// slip it has (slip weakening over the whole run, the SCEC benchmarks' law). Default true.
+    #[serde(skip_serializing_if = "is_true")]
+    pub heals: bool,
+}
+
+fn is_true(v: &bool) -> bool {
+    *v
 }
 
 impl Default for FrictionSection {
@@ -77,6 +85,7 @@ impl Default for FrictionSection {
             mu_cv: 0.0,
             patches: Vec::new(),
             grid: None,
+            heals: true,
         }
     }
 }

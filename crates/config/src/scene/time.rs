@@ -92,6 +92,10 @@ pub(super) fn skip_ahead(ck: &mut Checker, sk: &SkipAheadSection, r: &RecordSect
 pub(super) const WITH_RUPTURE: &str =
     "false with [rupture] (the skip-ahead follows the linear elastic motion; a bar past its peak is not linear)";
 
+/// What [`refuse_skip_ahead_with`] says of `friction.heals = false`.
+pub(super) const WITH_KEPT_SLIP: &str = "false with friction.heals = false (the skip-ahead predicts the next slide from μs; a node that keeps its slip holds \
+     less)";
+
 /// What [`refuse_skip_ahead_with`] says of `[loading_plate]`.
 pub(super) const WITH_PLATE: &str =
     "false with [loading_plate] (the skip-ahead's quasi-static motion does not include the plate's springs yet)";

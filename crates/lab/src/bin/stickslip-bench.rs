@@ -11,6 +11,7 @@ use stickslip_lab::calibrate::sweep;
 use stickslip_lab::convergence::{Cell, Loading, QUANTITIES, compare, convergence_figure, convergence_frame, run_cell};
 use stickslip_lab::peer::peer;
 use stickslip_lab::recording_cost::recording_cost;
+use stickslip_lab::scec::{self, Reference, read_run};
 use stickslip_lab::skip::{JumpCheck, SkipBench, compare_skip, jumps_frame, runs_frame};
 use stickslip_store::io::write_parquet_atomic;
 
@@ -105,6 +106,24 @@ enum Command {
         #[arg(long, default_value = "123,200,7,1,2,3")]
         seeds: String,
     },
+    /// A fault scene's run against a reference solution of a SCEC dynamic-rupture benchmark
+    /// (TPV5): rupture time, final slip and peak slip rate at every on-fault station, the
+    /// rupture-time field, and figures (written beside each run's files, in <run>/scec/).
+    DynamicRupture(RuptureArgs),
+}
+
+/// `stickslip-bench dynamic-rupture`'s arguments.
+#[derive(clap::Args, Debug)]
+struct RuptureArgs {
+    /// Output folders of runs of the benchmark (e.g. reports/tpv5 and reports/tpv5-100m).
+    #[arg(required = true)]
+    runs: Vec<PathBuf>,
+    /// Seed of the runs.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// The reference solution's folder.
+    #[arg(long, default_value = "pipelines/reference/tpv5")]
+    reference: PathBuf,
 }
 
 fn bench_out(pipeline: &Pipeline, out: Option<PathBuf>) -> PathBuf {
@@ -139,6 +158,7 @@ fn run(c: Command) -> Result<()> {
             }
             Ok(())
         }
+        Command::DynamicRupture(a) => dynamic_rupture(&a),
         Command::Peer { nx, ny, nz, steps, out } => {
             anyhow::ensure!(nx >= 1 && ny >= 1 && nz >= 1, "NX NY NZ must be at least 1");
             let t = peer(nx, ny, nz, steps, &out)?;
@@ -452,5 +472,22 @@ fn convergence(a: ConvergenceArgs) -> Result<()> {
         table.display(),
         figure.display()
     );
+    Ok(())
+}
+
+/// Each run against the reference, printed as Markdown, with its figures.
+fn dynamic_rupture(a: &RuptureArgs) -> Result<()> {
+    let reference = Reference::load(&a.reference)?;
+    for run in &a.runs {
+        let dir = run.join("scec").join(format!("seed{}", a.seed));
+        let (stations, field) = read_run(&dir)?;
+        let c = scec::compare(&stations, &field, &reference);
+        let label = run.file_name().and_then(|s| s.to_str()).unwrap_or("run").to_string();
+        println!("## {label} against {}\n", a.reference.display());
+        println!("{}", scec::table(&c));
+        let png = run.join("scec").join(format!("comparison_seed{}.png", a.seed));
+        scec::figure(&png, &label, &stations, &field, &reference)?;
+        println!("figures: {} and its _slip_rates companion\n", png.display());
+    }
     Ok(())
 }

@@ -4,7 +4,8 @@
 //! This module is the registry: every figure in page order ([`ALL`]), the signature of one
 //! ([`Draw`]) and what drawing it gave ([`Outcome`]). The figures live by topic: the sliding
 //! interface (`interface`), accelerograms and records (`records`), spectra (`spectra`), main
-//! shocks across seeds (`events`), the fault (`fault`), cracks (`cracks`) and the event catalogue
+//! shocks across seeds (`events`), the fault (`fault`), a fault scene's rupture (`rupture`), cracks
+//! (`cracks`) and the event catalogue
 //! (`catalogue`); what several topics share is in `common`.
 
 mod catalogue;
@@ -14,6 +15,7 @@ mod events;
 mod fault;
 mod interface;
 mod records;
+mod rupture;
 mod spectra;
 
 use std::path::Path;
@@ -47,7 +49,7 @@ pub enum Outcome {
 pub type Draw = fn(&ReportInput, &Path) -> Result<Outcome, ReportError>;
 
 /// Every figure, in page order.
-pub const ALL: [(&str, Draw); 24] = [
+pub const ALL: [(&str, Draw); 26] = [
     ("shear_stress.png", interface::shear_stress),
     ("normal_stress.png", interface::normal_stress),
     ("mean_slip.png", interface::mean_slip),
@@ -65,6 +67,8 @@ pub const ALL: [(&str, Draw); 24] = [
     ("energy.png", interface::energy),
     ("friction_map.png", fault::friction_map),
     ("space_time.png", fault::space_time),
+    ("rupture_time.png", rupture::rupture_time),
+    ("ground_motion.png", rupture::ground_motion),
     ("cracks.png", cracks::crack_map),
     ("acoustic_emission.png", cracks::emission),
     ("catalogue.png", catalogue::overview),

@@ -5,20 +5,24 @@
 //! or a held component), the work it does (so the energy balance closes), how much it can raise
 //! the lattice's highest eigenvalue (the critical step), and whether the quasi-static skip-ahead
 //! can follow it. [`Boundaries`] holds a scene's, built once in the model, and applies them in a
-//! fixed order each step — springs and pressure (forces), then rollers, then drivers (held
-//! components) — before the contact with the base ([`crate::step::contact`]).
+//! fixed order each step — springs, pressure and tractions (forces), then the dashpots (which
+//! need every force in the trial), then rollers, then drivers (held components) — before the contact with the base ([`crate::step::contact`]).
 //!
 //! The kinds: [`rollers`] (held components of nodes or faces), [`drivers`] (a prescribed x motion,
 //! Eq. 12), [`plate`] (springs to a plate moving by Eq. 12), [`pressure`] (a constant normal
-//! pressure on the top face). A new kind is its file here, its field in [`Boundaries`] with its
+//! pressure on the top face), [`traction`] (the initial shear tractions on a fault's face),
+//! [`absorbing`] (Lysmer–Kuhlemeyer dashpots on faces that let waves leave). A new kind is its file here, its field in [`Boundaries`] with its
 //! calls in the `Boundaries` methods, and its keys and refusals in the configuration crate
 //! (ARCHITECTURE.md lists the files).
 
+pub mod absorbing;
 pub mod drivers;
 pub mod plate;
 pub mod pressure;
 pub mod rollers;
+pub mod traction;
 
+use crate::fault::FaultLanes;
 use crate::field::{Field, Lanes};
 use crate::geometry::NodeId;
 use crate::ledger::Energy;
@@ -61,12 +65,20 @@ pub struct Step<'a, const L: usize> {
     pub mass: &'a [f64],
     /// `Δt²/(1 + DΔt/2)` of each lane: a force `F` moves the trial by `F·cf/m`.
     pub cf: &'a Lanes<L>,
+    /// Time step of each lane (s).
+    pub dt: &'a Lanes<L>,
+    /// Mass-proportional damping D of each lane (1/s).
+    pub damping: &'a Lanes<L>,
+    /// `uₙ`, the level before `now`.
+    pub before: &'a Field<L>,
     /// `uₙ₊₁`, the newest committed displacements.
     pub now: &'a Field<L>,
     /// The trial `uₙ₊₂`, changed in place.
     pub trial: &'a mut Field<L>,
     /// The loading's state.
     pub loading: &'a mut LoadingState<L>,
+    /// Each lane's fault loads, when the base is a fault.
+    pub fault: Option<&'a FaultLanes<L>>,
 }
 
 /// What a boundary's work over a step is read from and added to (before the commit).
@@ -77,6 +89,10 @@ pub struct Work<'a, const L: usize> {
     pub old: &'a Field<L>,
     /// The loading's state.
     pub loading: &'a LoadingState<L>,
+    /// Time step of each lane (s).
+    pub dt: &'a Lanes<L>,
+    /// Each lane's fault loads, when the base is a fault.
+    pub fault: Option<&'a FaultLanes<L>>,
     /// The energy terms of each lane.
     pub energy: &'a mut [Energy; L],
 }
@@ -115,6 +131,10 @@ pub struct Boundaries {
     pub plate: plate::Plate,
     /// The normal pressure on the top face.
     pub pressure: pressure::Pressure,
+    /// The initial tractions on a fault's face.
+    pub traction: traction::Traction,
+    /// The absorbing faces' dashpots.
+    pub absorbing: absorbing::Absorbing,
 }
 
 impl Boundaries {
@@ -126,14 +146,18 @@ impl Boundaries {
             drivers: drivers::Drivers::new(scene, &internal),
             plate: plate::Plate::new(scene, &internal),
             pressure: pressure::Pressure::new(scene, &internal),
+            traction: traction::Traction::new(scene, &internal),
+            absorbing: absorbing::Absorbing::new(scene, &internal),
         }
     }
 
-    /// Applies every boundary to the trial of a step, in order: forces (plate springs, pressure),
-    /// then held components (rollers, drivers).
+    /// Applies every boundary to the trial of a step, in order: forces (plate springs, pressure,
+    /// tractions), the dashpots, then held components (rollers, drivers).
     pub(crate) fn apply<const L: usize>(&self, s: &mut Step<'_, L>) {
         self.plate.apply(s);
         self.pressure.apply(s);
+        self.traction.apply(s);
+        self.absorbing.apply(s);
         self.rollers.apply(s);
         self.drivers.apply(s);
     }
@@ -143,6 +167,8 @@ impl Boundaries {
         self.drivers.work(w);
         self.plate.work(w);
         self.pressure.work(w);
+        self.traction.work(w);
+        self.absorbing.work(w);
         self.rollers.work(w);
     }
 
@@ -153,6 +179,8 @@ impl Boundaries {
             + self.drivers.stiffening(inv_mass)
             + self.plate.stiffening(inv_mass)
             + self.pressure.stiffening(inv_mass)
+            + self.traction.stiffening(inv_mass)
+            + self.absorbing.stiffening(inv_mass)
     }
 
     /// Why the skip-ahead cannot follow these boundaries, if it cannot.
@@ -160,6 +188,8 @@ impl Boundaries {
         self.rollers.skip_ahead()?;
         self.drivers.skip_ahead()?;
         self.plate.skip_ahead()?;
-        self.pressure.skip_ahead()
+        self.pressure.skip_ahead()?;
+        self.traction.skip_ahead()?;
+        self.absorbing.skip_ahead()
     }
 }

@@ -11,7 +11,9 @@
 //! named coefficients. Nothing else names a law's fields.
 //!
 //! A law keeps **one state variable per contact node** (the slip of the current slide for slip
-//! weakening; θ for a rate-and-state law), reset to 0 when the node sticks. Its coefficients at a
+//! weakening; θ for a rate-and-state law); what a node that sticks keeps of it is the law's
+//! ([`Law::stuck`]: the paper's slip weakening heals, resetting it to 0; without healing, the
+//! benchmark convention of dynamic-rupture codes, the slip accumulates over the run). Its coefficients at a
 //! node are its [`Law::Node`]; for `L` seeds side by side, its [`Law::Lanes`] holds one array per
 //! coefficient, so the lane kernel loads each coefficient of all lanes at once and compiles to
 //! one vector loop (`cargo bench -p stickslip-lab --bench step`).
@@ -49,9 +51,14 @@ pub trait Law: Copy + Debug + Default + Send + Sync + 'static {
     /// `trial` says what the node would do without friction (what a rate-dependent law solves
     /// its slip rate from).
     fn kinetic(node: &Self::Node, state: f64, trial: &Trial) -> f64;
-    /// The coefficient bounding `|R_t|` of a node in contact: the static one if it was sticking,
-    /// `kinetic` (its kinetic coefficient, computed once by the caller) if it was sliding.
-    fn holding(node: &Self::Node, sliding: bool, kinetic: f64) -> f64;
+    /// The coefficient bounding `|R_t|` of a node in contact whose state variable is `state`:
+    /// `kinetic` (its kinetic coefficient at that state, computed once by the caller) if it was
+    /// sliding; if it was sticking, the static one, or, for a law that does not heal and a node
+    /// that has slipped, `kinetic`.
+    fn holding(node: &Self::Node, sliding: bool, kinetic: f64, state: f64) -> f64;
+    /// The state variable of a node that sticks this step, from `state`: 0 for a law that heals,
+    /// `state` for one that keeps its slip.
+    fn stuck(node: &Self::Node, state: f64) -> f64;
     /// The state variable of a sliding node after it moved `slid_m` metres in a step of `dt_s`
     /// seconds.
     fn advance(node: &Self::Node, state: f64, slid_m: f64, dt_s: f64) -> f64;
@@ -149,6 +156,13 @@ impl NodeFriction {
     pub fn scaled(&self, factor: f64) -> NodeFriction {
         match self {
             NodeFriction::Weakening(n) => NodeFriction::Weakening(Weakening::scaled(n, factor)),
+        }
+    }
+
+    /// The same coefficients, healing when a node sticks or not.
+    pub fn healing(&self, heals: bool) -> NodeFriction {
+        match self {
+            NodeFriction::Weakening(n) => NodeFriction::Weakening(n.with_healing(heals)),
         }
     }
 }
@@ -274,7 +288,17 @@ mod tests {
         assert!((sw.kinetic(0.5e-3) - 0.5).abs() < 1e-15);
         assert_eq!(sw.kinetic(2e-3), 0.4);
         // Sticking nodes hold at μs whatever the law.
-        assert_eq!(Weakening::holding(&sw, false, sw.kinetic(0.5e-3)), 0.6);
+        assert_eq!(Weakening::holding(&sw, false, sw.kinetic(0.5e-3), 0.5e-3), 0.6);
+        assert_eq!(Weakening::stuck(&sw, 0.5e-3), 0.0);
+        // Without healing a stuck node keeps its slip and holds at its weakened coefficient; one
+        // that never slipped holds at μs.
+        let kept = sw.with_healing(false);
+        assert_eq!(Weakening::stuck(&kept, 0.5e-3), 0.5e-3);
+        assert!((Weakening::holding(&kept, false, kept.kinetic(0.5e-3), 0.5e-3) - 0.5).abs() < 1e-15);
+        assert_eq!(Weakening::holding(&kept, false, kept.kinetic(0.0), 0.0), 0.6);
+        let sd_kept = sd.with_healing(false);
+        assert_eq!(Weakening::holding(&sd_kept, false, sd_kept.kinetic(0.0), 0.0), 0.6);
+        assert_eq!(Weakening::holding(&sd_kept, false, sd_kept.kinetic(1e-9), 1e-9), 0.4);
         // The spring-slider's critical stiffness (μs − μd)·N/Dc.
         assert!((Weakening::critical_stiffness(&sw, 1000.0) - 0.2 * 1000.0 / 1e-3).abs() < 1e-6);
         assert_eq!(Weakening::critical_stiffness(&sd, 1000.0), f64::INFINITY);

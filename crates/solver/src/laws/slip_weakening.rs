@@ -6,7 +6,10 @@
 //! - **static/dynamic**: `μ_k = μd` from the first step of slip;
 //! - **linear slip weakening**: the formula above.
 //!
-//! A node that sticks again heals to μs. The kinetic coefficient is one formula with `Dc` a value
+//! A node that sticks again heals to μs (the paper's stick-slip cycles), unless the law is set not
+//! to heal: then the slip accumulates over the run and a node that has slipped holds at its
+//! weakened coefficient (the convention of the SCEC dynamic-rupture benchmarks, Harris et al.
+//! 2009). The kinetic coefficient is one formula with `Dc` a value
 //! per node, not one function per case: the lane kernel then compiles to the same vector loop
 //! whatever the case (per-case kernels left the plain law's loop scalar at 4 seeds, 11% slower per
 //! step), and a friction map may give each region its own μs, μd and Dc.
@@ -24,6 +27,8 @@ pub struct WeakeningNode {
     mu_static: f64,
     mu_dynamic: f64,
     dc_m: f64,
+    /// 1 when a node that sticks keeps its slip (no healing), 0 when it heals.
+    keeps: f64,
 }
 
 /// [`WeakeningNode`] of `L` seeds side by side.
@@ -32,13 +37,25 @@ pub struct WeakeningLanes<const L: usize> {
     mu_static: [f64; L],
     mu_dynamic: [f64; L],
     dc_m: [f64; L],
+    keeps: [f64; L],
 }
 
 impl WeakeningNode {
     /// Static coefficient μs, dynamic μd ≤ μs (μs for the plain law) and slip-weakening
     /// distance Dc (m; 0 = μd from the first step of slip).
     pub fn new(mu_static: f64, mu_dynamic: f64, dc_m: f64) -> WeakeningNode {
-        WeakeningNode { mu_static, mu_dynamic, dc_m }
+        WeakeningNode { mu_static, mu_dynamic, dc_m, keeps: 0.0 }
+    }
+
+    /// The same coefficients, healing when a node sticks (`true`, the default) or keeping its
+    /// slip (`false`).
+    pub fn with_healing(self, heals: bool) -> WeakeningNode {
+        WeakeningNode { keeps: if heals { 0.0 } else { 1.0 }, ..self }
+    }
+
+    /// Whether a node that sticks heals.
+    pub fn heals(&self) -> bool {
+        self.keeps == 0.0
     }
 
     /// Slip-weakening distance Dc (m).
@@ -68,12 +85,18 @@ impl Law for Weakening {
             mu_static: nodes.map(|n| n.mu_static),
             mu_dynamic: nodes.map(|n| n.mu_dynamic),
             dc_m: nodes.map(|n| n.dc_m),
+            keeps: nodes.map(|n| n.keeps),
         }
     }
 
     #[inline(always)]
     fn lane<const L: usize>(lanes: &WeakeningLanes<L>, l: usize) -> WeakeningNode {
-        WeakeningNode { mu_static: lanes.mu_static[l], mu_dynamic: lanes.mu_dynamic[l], dc_m: lanes.dc_m[l] }
+        WeakeningNode {
+            mu_static: lanes.mu_static[l],
+            mu_dynamic: lanes.mu_dynamic[l],
+            dc_m: lanes.dc_m[l],
+            keeps: lanes.keeps[l],
+        }
     }
 
     #[inline(always)]
@@ -88,8 +111,14 @@ impl Law for Weakening {
     }
 
     #[inline(always)]
-    fn holding(node: &WeakeningNode, sliding: bool, kinetic: f64) -> f64 {
-        if sliding { kinetic } else { node.mu_static }
+    fn holding(node: &WeakeningNode, sliding: bool, kinetic: f64, state: f64) -> f64 {
+        if sliding || (node.keeps != 0.0 && state > 0.0) { kinetic } else { node.mu_static }
+    }
+
+    /// 0 (healed) or the slip so far, as the node's coefficients say.
+    #[inline(always)]
+    fn stuck(node: &WeakeningNode, state: f64) -> f64 {
+        node.keeps * state
     }
 
     /// The slip path grows by the distance slid.
@@ -100,7 +129,7 @@ impl Law for Weakening {
 
     /// μs and μd times the factor, Dc unchanged.
     fn scaled(node: &WeakeningNode, factor: f64) -> WeakeningNode {
-        WeakeningNode { mu_static: node.mu_static * factor, mu_dynamic: node.mu_dynamic * factor, dc_m: node.dc_m }
+        WeakeningNode { mu_static: node.mu_static * factor, mu_dynamic: node.mu_dynamic * factor, ..*node }
     }
 
     fn residual_coefficient(node: &WeakeningNode) -> f64 {

@@ -255,11 +255,15 @@ impl Observed for MotionView<'_> {
         let [cm, c, cp] = &self.c;
         let p = self.model.contact()[ci] as usize;
         let r = m.contact_reaction(self.model, c, ci);
+        let rate = |axis: usize| (m.u(cp, p, axis) - m.u(cm, p, axis)) * 0.5 / self.dt;
         NodeContact {
             friction_x: r[0],
+            friction_y: r[1],
             normal: r[2],
             slip: m.u(c, p, 0),
-            slip_rate: (m.u(cp, p, 0) - m.u(cm, p, 0)) * 0.5 / self.dt,
+            slip_y: m.u(c, p, 1),
+            slip_rate: rate(0),
+            slip_rate_y: rate(1),
             slipping: false,
             lifted: m.state[ci] == Contact::Lifted,
         }

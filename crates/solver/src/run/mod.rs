@@ -147,6 +147,7 @@ pub(crate) fn prepare(model: &Model, seed: u64, options: RunOptions) -> Result<(
     let stiffness = model.bar_stiffness(seed)?;
     let friction = model.friction_factors(seed)?;
     let strength = model.bar_strength(seed)?;
+    let fault = model.fault_loads(seed)?;
     let critical = critical_time_step(model, &stiffness)?;
     // Δt never depends on the recording interval (which samples every `round(interval/Δt)`
     // steps): the same seed gives the same run whatever it records.
@@ -160,7 +161,7 @@ pub(crate) fn prepare(model: &Model, seed: u64, options: RunOptions) -> Result<(
         }
     };
     check_step_count(model, dt_s)?;
-    Ok((LaneSetup { dt_s, stiffness, friction, strength }, critical))
+    Ok((LaneSetup { dt_s, stiffness, friction, strength, fault }, critical))
 }
 
 /// Refuses a time step `dt_s` with which a stage of `model`'s scene would take more steps than

@@ -7,11 +7,19 @@
 //! - **lifted** if `z_t ≥ 0`: the trial stands, no reaction;
 //! - otherwise put back on the base, `N = −z_t·g`, and the tangential reaction needed to hold it
 //!   still is `R = (x_n − x_t, y_n − y_t)·g`. It **sticks** (stays at `(x_n, y_n)`, reaction `R`)
-//!   if `|R| ≤ μ_hold·N`, `μ_hold` being μs if it was sticking and its kinetic coefficient if it
-//!   was sliding; else it **slides** with friction `μ_k·N` along `R` (against the trial motion),
-//!   to `(x_t, y_t) + F/g`, and the law advances its state by the distance it moved. A sliding
-//!   node whose needed reaction falls within `μ_k·N` would reverse within the step, so it sticks
-//!   (its state resets: it heals).
+//!   if `|R| ≤ μ_hold·N`, `μ_hold` being μs if it was sticking (its weakened coefficient, for a
+//!   law that does not heal and a node that has slipped) and its kinetic coefficient if it was
+//!   sliding; else it **slides** with friction `μ_k·N` along `R` (against the trial motion), to
+//!   `(x_t, y_t) + F/g`, and the law advances its state by the distance it moved. A sliding node
+//!   whose needed reaction falls within `μ_k·N` would reverse within the step, so it sticks (a law
+//!   that heals resets its state; see [`Law::stuck`]).
+//!
+//! **On a fault** (docs/model.md §15) the face is one side of a planar fault between identical
+//! media: there is no base to lift from or land on. The normal force is the prescribed `N_i`
+//! (the fault's normal traction times the node's area), the normal trial stands, and the
+//! tangential rule is the same as above with that `N`; the law's state advances by twice the
+//! distance the node slid (the slip across the fault, the other side moving the opposite way).
+//! [`resolve_fault`] is that rule for one node; the lane kernel picks it once for the whole step.
 //!
 //! The law is asked, never read: its holding and kinetic coefficients, its state after a slide
 //! ([`Law`]). The kernel is generic over it and picked once per step ([`FrictionLaws::dispatch`]).
@@ -41,7 +49,7 @@ pub struct Resolved {
     /// Whether the node slides.
     pub sliding: bool,
     /// The law's state variable after the step (the slip of the current slide for slip
-    /// weakening), zero unless sliding.
+    /// weakening); after a stick or a lift, what the law keeps of it ([`Law::stuck`]).
     pub state: f64,
 }
 
@@ -58,14 +66,19 @@ pub fn resolve<W: Law>(
     state: f64,
 ) -> Resolved {
     if !(trial[2] < 0.0) {
-        return Resolved { position: trial, reaction: [0.0; 3], sliding: false, state: 0.0 };
+        return Resolved { position: trial, reaction: [0.0; 3], sliding: false, state: W::stuck(node, state) };
     }
     let normal = -trial[2] * g;
     let (rx, ry) = ((now[0] - trial[0]) * g, (now[1] - trial[1]) * g);
     let need = (rx * rx + ry * ry).sqrt();
     let mu_k = W::kinetic(node, state, &Trial { need_n: need, normal_n: normal, g_n_m: g, dt_s: dt });
-    if need <= W::holding(node, sliding, mu_k) * normal {
-        return Resolved { position: [now[0], now[1], 0.0], reaction: [rx, ry, normal], sliding: false, state: 0.0 };
+    if need <= W::holding(node, sliding, mu_k, state) * normal {
+        return Resolved {
+            position: [now[0], now[1], 0.0],
+            reaction: [rx, ry, normal],
+            sliding: false,
+            state: W::stuck(node, state),
+        };
     }
     let scale = mu_k * normal / need;
     let (fx, fy) = (rx * scale, ry * scale);
@@ -76,6 +89,41 @@ pub fn resolve<W: Law>(
         reaction: [fx, fy, normal],
         sliding: true,
         state: W::advance(node, state, (sx * sx + sy * sy).sqrt(), dt),
+    }
+}
+
+/// The fault rule for one node under law `W` (see the module doc): as [`resolve`], with the
+/// prescribed normal force `normal` instead of the base's reaction, the normal trial standing, and
+/// the law's state advanced by the slip, twice the distance slid.
+pub fn resolve_fault<W: Law>(
+    node: &W::Node,
+    (g, dt): (f64, f64),
+    trial: [f64; 3],
+    now: [f64; 2],
+    sliding: bool,
+    state: f64,
+    normal: f64,
+) -> Resolved {
+    let (rx, ry) = ((now[0] - trial[0]) * g, (now[1] - trial[1]) * g);
+    let need = (rx * rx + ry * ry).sqrt();
+    let mu_k = W::kinetic(node, state, &Trial { need_n: need, normal_n: normal, g_n_m: g, dt_s: dt });
+    if need <= W::holding(node, sliding, mu_k, state) * normal {
+        return Resolved {
+            position: [now[0], now[1], trial[2]],
+            reaction: [rx, ry, normal],
+            sliding: false,
+            state: W::stuck(node, state),
+        };
+    }
+    let scale = mu_k * normal / need;
+    let (fx, fy) = (rx * scale, ry * scale);
+    let (x1, y1) = (trial[0] + fx / g, trial[1] + fy / g);
+    let (sx, sy) = (x1 - now[0], y1 - now[1]);
+    Resolved {
+        position: [x1, y1, trial[2]],
+        reaction: [fx, fy, normal],
+        sliding: true,
+        state: W::advance(node, state, 2.0 * (sx * sx + sy * sy).sqrt(), dt),
     }
 }
 
@@ -93,6 +141,8 @@ pub(crate) struct ContactArrays<'a, const L: usize> {
     /// The law's state variable of each node.
     pub state: &'a mut [Lanes<L>],
     pub reaction: &'a mut [Vec<Lanes<L>>; 3],
+    /// The prescribed normal force of each node when the base is a fault.
+    pub fault_normal: Option<&'a [Lanes<L>]>,
 }
 
 impl<const L: usize> WithLaw<L> for (Isa, &mut ContactArrays<'_, L>) {
@@ -100,7 +150,11 @@ impl<const L: usize> WithLaw<L> for (Isa, &mut ContactArrays<'_, L>) {
 
     fn run<W: Law>(self, law: &[W::Lanes<L>]) {
         let (isa, arrays) = self;
-        contact_dispatch(isa, arrays, law, W::default());
+        if arrays.fault_normal.is_some() {
+            fault_dispatch(isa, arrays, law, W::default());
+        } else {
+            contact_dispatch(isa, arrays, law, W::default());
+        }
     }
 }
 
@@ -126,6 +180,7 @@ pub(crate) fn apply<const L: usize>(
         sliding: &mut contact.sliding,
         state: &mut contact.state,
         reaction: &mut contact.reaction,
+        fault_normal: p.fault.as_ref().map(|f| f.normal_n.as_slice()),
     };
     p.friction.dispatch((Isa::current(), &mut c));
     let Some((log, track_slid, track_onsets, step)) = log else { return };
@@ -179,7 +234,7 @@ fn contact<const L: usize, W: Law>(c: &mut ContactArrays<'_, L>, law: &[W::Lanes
             let need = (rx * rx + ry * ry).sqrt();
             let node = W::lane(&coefficients, l);
             let mu_k = W::kinetic(&node, state[l], &Trial { need_n: need, normal_n: normal, g_n_m: g, dt_s: c.dt[l] });
-            let limit = W::holding(&node, slipping[l], mu_k) * normal;
+            let limit = W::holding(&node, slipping[l], mu_k, state[l]) * normal;
             let stick = need <= limit;
             // Sliding: friction μ_k·N against the trial motion (unused when sticking).
             let scale = mu_k * normal / need;
@@ -218,10 +273,62 @@ fn contact<const L: usize, W: Law>(c: &mut ContactArrays<'_, L>, law: &[W::Lanes
             };
             no[l] = if touching { normal } else { 0.0 };
             slip_o[l] = slides;
-            state_o[l] = if slides { W::advance(&node, state[l], (sx * sx + sy * sy).sqrt(), c.dt[l]) } else { 0.0 };
+            state_o[l] = if slides {
+                W::advance(&node, state[l], (sx * sx + sy * sy).sqrt(), c.dt[l])
+            } else {
+                W::stuck(&node, state[l])
+            };
         }
         (c.trial[0][p], c.trial[1][p], c.trial[2][p]) = (ox, oy, oz);
         (c.reaction[0][ci], c.reaction[1][ci], c.reaction[2][ci]) = (rxo, ryo, no);
+        (c.sliding[ci], c.state[ci]) = (slip_o, state_o);
+    }
+}
+
+widest! {
+    /// The fault update of every contact node in instruction set `isa`, under law `W`.
+    fn fault_dispatch<const L: usize, W: Law>(c: &mut ContactArrays<'_, L>, law: &[W::Lanes<L>], kind: W) => fault
+}
+
+/// [`resolve_fault`] for every contact node, `L` lanes at once without branches.
+#[inline(always)]
+fn fault<const L: usize, W: Law>(c: &mut ContactArrays<'_, L>, law: &[W::Lanes<L>], _: W) {
+    let normals = c.fault_normal.expect("the fault kernel runs with the fault's normal forces");
+    for (ci, &node) in c.nodes.iter().enumerate() {
+        let p = node as usize;
+        let m = c.mass[p];
+        let (xt, yt) = (c.trial[0][p], c.trial[1][p]);
+        let (xn, yn) = (c.now[0][p], c.now[1][p]);
+        let (slipping, state, normal) = (c.sliding[ci], c.state[ci], normals[ci]);
+        let coefficients = law[ci];
+        let (mut ox, mut oy) = ([0.0; L], [0.0; L]);
+        let (mut rxo, mut ryo) = ([0.0; L], [0.0; L]);
+        let (mut slip_o, mut state_o) = ([false; L], [0.0; L]);
+        for l in 0..L {
+            let g = m / c.cf[l];
+            let (rx, ry) = ((xn[l] - xt[l]) * g, (yn[l] - yt[l]) * g);
+            let need = (rx * rx + ry * ry).sqrt();
+            let node = W::lane(&coefficients, l);
+            let mu_k =
+                W::kinetic(&node, state[l], &Trial { need_n: need, normal_n: normal[l], g_n_m: g, dt_s: c.dt[l] });
+            let stick = need <= W::holding(&node, slipping[l], mu_k, state[l]) * normal[l];
+            let scale = mu_k * normal[l] / need;
+            let (fx, fy) = (rx * scale, ry * scale);
+            let (x1, y1) = (xt[l] + fx / g, yt[l] + fy / g);
+            let (sx, sy) = (x1 - xn[l], y1 - yn[l]);
+            ox[l] = if stick { xn[l] } else { x1 };
+            oy[l] = if stick { yn[l] } else { y1 };
+            rxo[l] = if stick { rx } else { fx };
+            ryo[l] = if stick { ry } else { fy };
+            slip_o[l] = !stick;
+            state_o[l] = if stick {
+                W::stuck(&node, state[l])
+            } else {
+                W::advance(&node, state[l], 2.0 * (sx * sx + sy * sy).sqrt(), c.dt[l])
+            };
+        }
+        (c.trial[0][p], c.trial[1][p]) = (ox, oy);
+        (c.reaction[0][ci], c.reaction[1][ci], c.reaction[2][ci]) = (rxo, ryo, normal);
         (c.sliding[ci], c.state[ci]) = (slip_o, state_o);
     }
 }
@@ -260,7 +367,9 @@ mod tests {
                 std::array::from_fn(|l| {
                     let NodeFriction::Weakening(n) = law.node(factor[l]);
                     let dc = n.weakening_distance_m() * if i % 2 == 0 { 1.0 } else { dc[l] };
+                    // A third of the nodes keep their slip when they stick (no healing).
                     WeakeningNode::new(Weakening::static_coefficient(&n), Weakening::residual_coefficient(&n), dc)
+                        .with_healing(i % 3 != 0)
                 })
             })
             .collect();
@@ -298,6 +407,7 @@ mod tests {
                 sliding: &mut sliding,
                 state: &mut path,
                 reaction: &mut reaction,
+                fault_normal: None,
             };
             contact_dispatch(isa, &mut arrays, &coefficients, Weakening);
         }
@@ -328,6 +438,103 @@ mod tests {
             }
         }
         assert!(outcomes.iter().all(|&n| n > 0), "every outcome (lift, stick, slide) is exercised: {outcomes:?}");
+    }
+
+    /// The fault kernel in build `isa` against [`resolve_fault`], bit for bit, with normal forces
+    /// of each node and lane.
+    fn agree_fault<const L: usize>(law: FrictionLaw, isa: Isa, seed: u64) {
+        let c = case::<L>(&law, seed, 40);
+        let nodes: Vec<u32> = (0..c.mass.len() as u32).collect();
+        let mut rng = rand::rngs::ChaCha8Rng::seed_from_u64(seed + 100);
+        // Normal forces comparable to the tangential trials' reactions (g·µm), so that nodes both
+        // stick and slide.
+        let normal: Vec<Lanes<L>> = (0..nodes.len())
+            .map(|i| std::array::from_fn(|l| c.mass[i] / c.cf[l] * rng.random_range(0.2e-6..3e-6)))
+            .collect();
+        let mut trial = c.trial.clone();
+        let mut sliding = c.sliding.clone();
+        let mut path = c.path.clone();
+        let mut reaction = [vec![[0.0; L]; nodes.len()], vec![[0.0; L]; nodes.len()], vec![[0.0; L]; nodes.len()]];
+        let coefficients: Vec<_> = c.law.iter().map(|n| Weakening::lanes(*n)).collect();
+        {
+            let [tx, ty, tz] = &mut trial;
+            let mut arrays = ContactArrays {
+                mass: &c.mass,
+                nodes: &nodes,
+                cf: &c.cf,
+                dt: &c.dt,
+                trial: [tx, ty, tz],
+                now: [&c.now[0], &c.now[1]],
+                sliding: &mut sliding,
+                state: &mut path,
+                reaction: &mut reaction,
+                fault_normal: Some(&normal),
+            };
+            fault_dispatch(isa, &mut arrays, &coefficients, Weakening);
+        }
+        let mut outcomes = [0usize; 2];
+        for i in 0..nodes.len() {
+            for l in 0..L {
+                let g = c.mass[i] / c.cf[l];
+                let t = [c.trial[0][i][l], c.trial[1][i][l], c.trial[2][i][l]];
+                let now = [c.now[0][i][l], c.now[1][i][l]];
+                let want = resolve_fault::<Weakening>(
+                    &c.law[i][l],
+                    (g, c.dt[l]),
+                    t,
+                    now,
+                    c.sliding[i][l],
+                    c.path[i][l],
+                    normal[i][l],
+                );
+                let got = Resolved {
+                    position: [trial[0][i][l], trial[1][i][l], trial[2][i][l]],
+                    reaction: [reaction[0][i][l], reaction[1][i][l], reaction[2][i][l]],
+                    sliding: sliding[i][l],
+                    state: path[i][l],
+                };
+                let bits = |r: &Resolved| {
+                    (r.position.map(f64::to_bits), r.reaction.map(f64::to_bits), r.sliding, r.state.to_bits())
+                };
+                assert_eq!(bits(&got), bits(&want), "{law:?}, {isa:?}, node {i}, lane {l}: {got:?} vs {want:?}");
+                // The normal trial stands: no base on a fault.
+                assert_eq!(got.position[2].to_bits(), t[2].to_bits());
+                outcomes[usize::from(want.sliding)] += 1;
+            }
+        }
+        assert!(outcomes.iter().all(|&n| n > 0), "both outcomes (stick, slide) are exercised: {outcomes:?}");
+    }
+
+    #[test]
+    fn fault_kernel_agrees_with_the_scalar_rule_bit_for_bit_in_every_build() {
+        for isa in Isa::available() {
+            for seed in 0..4 {
+                let sd = FrictionLaw::StaticDynamic(StaticDynamic { mu_static: 1.0, mu_dynamic: 0.8 });
+                let sw = FrictionLaw::SlipWeakening(SlipWeakening { mu_static: 1.0, mu_dynamic: 0.8, dc_m: 3e-6 });
+                for law in [sd, sw] {
+                    agree_fault::<1>(law, isa, seed);
+                    agree_fault::<4>(law, isa, seed);
+                    agree_fault::<8>(law, isa, seed);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_sliding_fault_node_weakens_with_twice_its_displacement() {
+        // A node sliding 1 µm in a step has slipped 2 µm across the fault: with Dc = 4 µm the
+        // slip-weakening state is 2 µm, halfway from μs to μd.
+        let law = SlipWeakening { mu_static: 0.6, mu_dynamic: 0.4, dc_m: 4e-6 };
+        let NodeFriction::Weakening(node) = FrictionLaw::SlipWeakening(law).node(1.0);
+        let g = 1.0e6;
+        let normal = 1.0;
+        // A trial 10 µm away: the friction (0.6 N at most) moves it back 0.6 µm, to 9.4 µm.
+        let r = resolve_fault::<Weakening>(&node, (g, 1e-3), [10e-6, 0.0, 3e-7], [0.0, 0.0], false, 0.0, normal);
+        assert!(r.sliding);
+        assert!((r.position[0] - 9.4e-6).abs() < 1e-15);
+        assert!((r.state - 2.0 * 9.4e-6).abs() < 1e-18);
+        assert_eq!(r.position[2], 3e-7);
+        assert_eq!(r.reaction[2], normal);
     }
 
     #[test]

@@ -235,14 +235,18 @@ pub(crate) fn accumulate<const L: usize>(p: &Params<'_, L>, state: &mut State<L>
         e.body_work += 0.5 * body[l];
     }
     let reaction = &contact.reaction;
+    // On a fault the normal force is the friction's only: it does no work (docs/model.md §15).
+    let normal_work = !model.scene().is_fault();
     for (ci, &node) in model.contact().iter().enumerate() {
         let i = node as usize;
         for l in 0..L {
             let d2 = |c: usize| new.c[c][i][l] - old.c[c][i][l];
             let e = &mut energy[l];
             e.friction -= 0.5 * (reaction[0][ci][l] * d2(0) + reaction[1][ci][l] * d2(1));
-            e.impact -= 0.5 * reaction[2][ci][l] * d2(2);
+            if normal_work {
+                e.impact -= 0.5 * reaction[2][ci][l] * d2(2);
+            }
         }
     }
-    model.boundaries().work(&mut boundary::Work { new, old, loading, energy });
+    model.boundaries().work(&mut boundary::Work { new, old, loading, dt: p.dts(), fault: p.fault.as_ref(), energy });
 }

@@ -147,9 +147,13 @@ impl<const L: usize> Stepper<L> {
         m.boundaries().apply(&mut boundary::Step {
             mass: m.mass(),
             cf: &p.coefficients().cf,
+            dt: p.dts(),
+            damping: p.dampings(),
+            before: &state.u.n,
             now: &state.u.np1,
             trial: &mut state.u.nm1,
             loading: &mut state.loading,
+            fault: p.fault.as_ref(),
         });
         let log = (self.tracking.slid || self.tracking.onsets).then_some((
             &mut state.log,

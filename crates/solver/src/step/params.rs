@@ -1,6 +1,7 @@
 //! The parameters of `L` seeds advancing together: the model, each seed's bar stiffness and
 //! friction coefficients, and the per-lane time step, damping and body force.
 
+use crate::fault::{FaultLanes, FaultLoads};
 use crate::field::Lanes;
 use crate::laws::FrictionLaws;
 use crate::model::Model;
@@ -18,6 +19,9 @@ pub struct LaneSetup {
     /// Peak elongation per bar (kernel units) when the scene's bars crack, e.g.
     /// [`Model::bar_strength`]; `None`: elastic bars. Every lane of a batch has it or none does.
     pub strength: Option<Vec<f64>>,
+    /// The fault's loads on every contact node when the base is a fault (docs/model.md §15),
+    /// e.g. [`Model::fault_loads`]; every lane of a batch has them or none does.
+    pub fault: Option<FaultLoads>,
 }
 
 /// Per-lane coefficients of the trial update `u⁺ = cf·(f/m + b) + c2·u − cp·u⁻`.
@@ -42,6 +46,8 @@ pub struct Params<'m, const L: usize> {
     pub friction: FrictionLaws<L>,
     /// The bilinear law's peaks and `Kr` when bars crack (docs/model.md §11).
     pub rupture: Option<RuptureParams<L>>,
+    /// Each lane's fault loads when the base is a fault (docs/model.md §15).
+    pub fault: Option<FaultLanes<L>>,
     dt: Lanes<L>,
     damping: Lanes<L>,
     body: [Lanes<L>; 3],
@@ -78,11 +84,24 @@ impl<'m, const L: usize> Params<'m, L> {
             (_, true) => None,
             _ => panic!("every lane of a batch has a strength, or none does"),
         };
+        let fault = match lanes.iter().map(|l| l.fault.as_ref()).collect::<Option<Vec<&FaultLoads>>>() {
+            Some(loads) => {
+                for f in &loads {
+                    assert_eq!(f.normal_n.len(), nc, "one fault load per contact node");
+                }
+                Some(FaultLanes::new(loads.try_into().expect("one load per lane")))
+            }
+            None => {
+                assert!(lanes.iter().all(|l| l.fault.is_none()), "every lane of a batch has fault loads, or none does");
+                None
+            }
+        };
         let mut p = Params {
             model,
             k,
             friction,
             rupture,
+            fault,
             dt: lanes.each_ref().map(|lane| lane.dt_s),
             damping: [0.0; L],
             body: [[0.0; L]; 3],

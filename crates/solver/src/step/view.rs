@@ -24,17 +24,25 @@ pub struct Interface {
     pub lifted: usize,
 }
 
-/// One contact node as the interface sums see it.
+/// One contact node as the interface sums see it. On a fault (docs/model.md §15) its slip and
+/// slip rate are across the fault, twice the face's displacement and velocity, and its normal
+/// reaction is the prescribed normal force.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct NodeContact {
     /// Friction reaction in x (N).
     pub friction_x: f64,
+    /// Friction reaction in y (N).
+    pub friction_y: f64,
     /// Normal reaction (N).
     pub normal: f64,
-    /// x-displacement (m).
+    /// Slip in x: the x-displacement (m).
     pub slip: f64,
-    /// x-velocity (m/s).
+    /// Slip in y (m).
+    pub slip_y: f64,
+    /// Slip rate in x: the x-velocity (m/s).
     pub slip_rate: f64,
+    /// Slip rate in y (m/s).
+    pub slip_rate_y: f64,
     /// Sliding.
     pub slipping: bool,
     /// Off the base.
@@ -110,13 +118,17 @@ impl<const L: usize> LaneView<'_, '_, L> {
     /// Contact node `ci` (order of [`crate::Model::contact`]) at the viewed time.
     pub fn node_contact(&self, ci: usize) -> NodeContact {
         let (l, u, r) = (self.lane, &self.state.u, &self.state.contact.reaction);
-        let h = 0.5 / self.params.dt(l);
+        let factor = self.params.model.scene().slip_factor();
+        let h = 0.5 / self.params.dt(l) * factor;
         let p = self.params.model.contact()[ci] as usize;
         NodeContact {
             friction_x: r[0][ci][l],
+            friction_y: r[1][ci][l],
             normal: r[2][ci][l],
-            slip: u.n.c[0][p][l],
+            slip: u.n.c[0][p][l] * factor,
+            slip_y: u.n.c[1][p][l] * factor,
             slip_rate: (u.np1.c[0][p][l] - u.nm1.c[0][p][l]) * h,
+            slip_rate_y: (u.np1.c[1][p][l] - u.nm1.c[1][p][l]) * h,
             slipping: self.state.contact.sliding[ci][l],
             lifted: r[2][ci][l] == 0.0,
         }

@@ -1,7 +1,9 @@
 //! The files of a seed beside its tables: its records in every format the pipeline asks for
-//! ([`records`]) and its fault stations in the SEAS layout ([`stations`]).
+//! ([`records`]), its fault stations in the SEAS layout ([`stations`]) on the rigid base, and on a
+//! fault the SCEC benchmarks' station and rupture-time files ([`scec`]).
 
 pub mod records;
+pub mod scec;
 pub mod stations;
 
 /// What names a seed's files: the pipeline's name and the hash of what determines its results.

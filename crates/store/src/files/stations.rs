@@ -13,17 +13,15 @@ use crate::spec::SeedView;
 pub fn write(out: &Folder, view: &SeedView<'_>, stamp: &Stamp<'_>) -> Result<(), StoreError> {
     let (model, seed) = (view.model, view.seed);
     let trace = &view.analysis.run.recording.trace;
-    let Some(f) = &trace.fault else { return Ok(()) };
-    let stations = &model.scene().record.fault_stations;
-    if stations.is_empty() {
+    if trace.stations.is_empty() || model.scene().is_fault() {
         return Ok(());
     }
     let keep = trace.thinned(model.scene().record.fault_interval_s);
     let dir = out.fault_stations_dir(seed);
     let problem = format!("stickslip pipeline {} seed {seed} (hash {})", stamp.pipeline, stamp.hash);
     let code = format!("stickslip {}", env!("CARGO_PKG_VERSION"));
-    for &id in stations {
-        let Some(i) = f.nodes.iter().position(|&n| n == id) else { continue };
+    for st in &trace.stations {
+        let id = st.node;
         let p = model.lattice().position(id);
         let location = format!(
             "on the base (the fault), x = {} m along strike, y = {} m across; contact node LDEM {}",
@@ -34,8 +32,8 @@ pub fn write(out: &Folder, view: &SeedView<'_>, stamp: &Stamp<'_>) -> Result<(),
         let header =
             StationHeader { problem: &problem, code: &code, element_size_m: model.scene().lc_m, location: &location };
         let pick = |v: &[f64]| keep.iter().map(|&k| v[k]).collect::<Vec<f64>>();
-        let (t, slip, rate) = (pick(&trace.time_s), pick(&f.slip_m[i]), pick(&f.slip_rate_m_s[i]));
-        let (tau, sigma) = (pick(&f.shear_stress_pa[i]), pick(&f.normal_stress_pa[i]));
+        let (t, slip, rate) = (pick(&trace.time_s), pick(&st.slip_m[0]), pick(&st.slip_rate_m_s[0]));
+        let (tau, sigma) = (pick(&st.shear_stress_pa[0]), pick(&st.normal_stress_pa));
         let series = StationSeries {
             time_s: &t,
             slip_m: &slip,

@@ -11,6 +11,7 @@ pub mod records;
 pub mod runs;
 pub mod series;
 pub mod set;
+pub mod source;
 pub mod spectra;
 pub mod stats;
 
@@ -18,7 +19,7 @@ use crate::spec::SeedTable;
 
 /// Every per-seed table but `runs` (written last, from the seed's outcome: see
 /// [`crate::seed::write_seed`]), in the order of [`crate::schema::ALL`].
-pub const SEED_TABLES: [SeedTable; 18] = [
+pub const SEED_TABLES: [SeedTable; 21] = [
     series::SERIES_PART,
     series::CONTROL_PART,
     series::FAULT_PART,
@@ -35,6 +36,9 @@ pub const SEED_TABLES: [SeedTable; 18] = [
     records::ATTENUATION_PART,
     fronts::RUPTURES_PART,
     fronts::RUPTURE_ONSETS_PART,
+    source::SOURCE_PART,
+    source::FAULT_NODES_PART,
+    source::STATIONS_PART,
     cracks::CRACKS_PART,
     cracks::ACOUSTIC_EMISSION_PART,
 ];

@@ -1,0 +1,469 @@
+//! `[fault]`, `[absorbing]` and `[[stations]]` checked: the base as one side of a planar fault with
+//! its tractions (docs/model.md §15), the faces that let waves leave, and the named stations.
+
+use std::path::Path;
+
+use serde::{Deserialize, Serialize};
+use stickslip_solver::fault::{Fault, StochasticStress};
+use stickslip_solver::geometry::{Face, Lattice, NodeKind};
+use stickslip_solver::scene::{Component, ControlChannel, Kinematic, Station};
+
+use super::SceneSections;
+use crate::check::{Checker, approx, num};
+use crate::friction_map::{Shape, patch_nodes};
+use crate::input::InputFile;
+
+/// `[fault]`: the base face is one side of a planar fault between identical media, with these
+/// initial tractions (docs/model.md §15). Its normal stress is prescribed (no base to lift from),
+/// friction acts on the slip, twice the face's displacement; the scene has no gravity.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct FaultSection {
+    /// Normal traction on the fault, compression positive (Pa).
+    pub normal_stress_pa: f64,
+    /// Initial shear traction along +x (Pa). Default 0.
+    #[serde(default)]
+    pub shear_stress_pa: f64,
+    /// Initial shear traction along +y (Pa). Default 0.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub shear_stress_y_pa: f64,
+    /// Regions with their own tractions, laid over the uniform values (and the grid) in order of
+    /// priority.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub patches: Vec<TractionPatchSection>,
+    /// Tractions per base node from a CSV file.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub grid: Option<TractionGridSection>,
+    /// A random field on the shear traction, drawn per seed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stochastic: Option<StochasticSection>,
+    /// The point `[x, y]` of the fault that benchmark files measure along strike and down dip
+    /// from (m), e.g. mid-strike at the surface for TPV5. Default `[0, 0]`.
+    #[serde(default, skip_serializing_if = "is_origin")]
+    pub origin_m: [f64; 2],
+}
+
+fn is_origin(v: &[f64; 2]) -> bool {
+    *v == [0.0, 0.0]
+}
+
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
+}
+
+/// `[[fault.patches]]`: a rectangle or ellipse of the base with its own tractions (the ones it
+/// names; the others keep what lies below).
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Default)]
+#[serde(deny_unknown_fields, default)]
+pub struct TractionPatchSection {
+    /// Name shown by `check`. Default `patch[i]`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// `"rectangle"` (with `x_m`, `y_m`) or `"ellipse"` (with `centre_m`, `semi_axes_m`).
+    pub shape: String,
+    /// Rectangle: `[x_min, x_max]` (m).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub x_m: Option<[f64; 2]>,
+    /// Rectangle: `[y_min, y_max]` (m). Default: the whole width.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub y_m: Option<[f64; 2]>,
+    /// Ellipse: centre `[x, y]` (m).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub centre_m: Option<[f64; 2]>,
+    /// Ellipse: semi-axes `[a_x, a_y]` (m).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub semi_axes_m: Option<[f64; 2]>,
+    /// Shear traction along +x (Pa).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shear_stress_pa: Option<f64>,
+    /// Shear traction along +y (Pa).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shear_stress_y_pa: Option<f64>,
+    /// Normal traction (Pa).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub normal_stress_pa: Option<f64>,
+    /// Which patch holds where two overlap: the higher. Default 0.
+    pub priority: i64,
+}
+
+/// `[fault.grid]`: tractions per base node from a CSV file with the header
+/// `x_m,y_m,shear_stress_pa,shear_stress_y_pa,normal_stress_pa`, one row per base node.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Default)]
+#[serde(deny_unknown_fields)]
+pub struct TractionGridSection {
+    /// The CSV file, relative to the pipeline file's folder and inside it (see [`crate::input`]).
+    /// Not part of the results hash (the rows are): a grid moved or copied gives the same results.
+    pub file: String,
+    /// The rows as read (filled in when the pipeline is loaded; part of the results hash).
+    #[serde(skip_deserializing, default, skip_serializing_if = "Vec::is_empty")]
+    pub rows: Vec<[f64; 5]>,
+    /// Whether the file was refused (its refusal is the grid's only one).
+    #[serde(skip)]
+    pub refused: bool,
+}
+
+/// The traction grid's CSV header.
+pub const TRACTION_GRID_HEADER: &str = "x_m,y_m,shear_stress_pa,shear_stress_y_pa,normal_stress_pa";
+
+/// The traction grid's columns, in order, for messages.
+const TRACTION_GRID_COLUMNS: [&str; 5] = ["x_m", "y_m", "shear_stress_pa", "shear_stress_y_pa", "normal_stress_pa"];
+
+impl TractionGridSection {
+    /// Reads the CSV file relative to `base` into `rows` (refusals into `ck`, which never echo the
+    /// file's content) and returns the file as read.
+    pub fn read(&mut self, base: &Path, ck: &mut Checker) -> Option<InputFile> {
+        let field = "fault.grid.file";
+        let what = format!("a CSV file with the header {TRACTION_GRID_HEADER:?} and one row per base node");
+        let Some(input) = crate::input::read(ck, field, &self.file, base, &what) else {
+            self.refused = true;
+            return None;
+        };
+        let mut lines =
+            input.text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
+        let header: String = lines.next().map_or("", |(_, l)| l).chars().filter(|c| !c.is_whitespace()).collect();
+        if header != TRACTION_GRID_HEADER {
+            ck.push(
+                field,
+                format!("{:?}", self.file),
+                format!("{what}: its first line (after # comments) is not that header"),
+            );
+            self.refused = true;
+            return None;
+        }
+        let mut rows = Vec::new();
+        for (i, (k, line)) in lines.enumerate() {
+            let cells: Vec<&str> = line.split(',').map(str::trim).collect();
+            let bad = if cells.len() != 5 {
+                Some(format!("{} cells", cells.len()))
+            } else {
+                cells
+                    .iter()
+                    .position(|c| !c.parse::<f64>().is_ok_and(f64::is_finite))
+                    .map(|j| format!("{} is not a finite number", TRACTION_GRID_COLUMNS[j]))
+            };
+            if let Some(bad) = bad {
+                ck.push(
+                    field,
+                    format!("{:?} row {} (line {})", self.file, i + 1, k + 1),
+                    format!(
+                        "five finite numbers per row: x_m, y_m, shear_stress_pa, shear_stress_y_pa, \
+                         normal_stress_pa ({bad})"
+                    ),
+                );
+                self.refused = true;
+                return None;
+            }
+            let v: Vec<f64> = cells.iter().map(|c| c.parse::<f64>().unwrap_or(f64::NAN)).collect();
+            rows.push([v[0], v[1], v[2], v[3], v[4]]);
+        }
+        self.rows = rows;
+        Some(input)
+    }
+}
+
+/// `[fault.stochastic]`: a random field on the initial shear traction along x, drawn per seed,
+/// with a von Kármán spectrum.
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct StochasticSection {
+    /// Standard deviation over the face (Pa).
+    pub std_pa: f64,
+    /// Correlation length (m).
+    pub correlation_length_m: f64,
+    /// Hurst exponent, 0 < H ≤ 1. Default 0.75.
+    #[serde(default = "default_hurst")]
+    pub hurst: f64,
+}
+
+fn default_hurst() -> f64 {
+    0.75
+}
+
+/// `[absorbing]`: faces whose nodes carry Lysmer–Kuhlemeyer dashpots, so that waves leave.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Default)]
+#[serde(deny_unknown_fields)]
+pub struct AbsorbingSection {
+    /// Faces: `"x_min"`, `"x_max"`, `"y_min"`, `"y_max"`, `"z_max"` (never the base `"z_min"`).
+    pub faces: Vec<String>,
+}
+
+/// `[[stations]]`: named points whose displacement, velocity and acceleration (x, y, z) are
+/// recorded at the record interval: one point (`at_m`), or a line of `count` points from
+/// `from_m` to `to_m` (named `<name>-<i>`). Each is the nearest corner node.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Default)]
+#[serde(deny_unknown_fields, default)]
+pub struct StationSection {
+    /// Name (a line's points are `<name>-0`, `<name>-1`, …).
+    pub name: String,
+    /// One point `[x, y, z]` (m).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub at_m: Option<[f64; 3]>,
+    /// A line's first point (m).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub from_m: Option<[f64; 3]>,
+    /// A line's last point (m).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub to_m: Option<[f64; 3]>,
+    /// Points on the line, ends included (≥ 2).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub count: Option<i64>,
+}
+
+/// The fault of `[fault]` on `lattice`'s base; `None` without one.
+pub(super) fn fault(ck: &mut Checker, file: SceneSections<'_>, lattice: &Lattice) -> Option<Fault> {
+    let f = file.fault.as_ref()?;
+    if file.self_weight.gravity_m_s2 != 0.0 {
+        ck.push(
+            "self_weight.gravity_m_s2",
+            file.self_weight.gravity_m_s2,
+            "0 with [fault]: the fault's normal stress is prescribed, and a block on its side has no weight to \
+             settle",
+        );
+    }
+    if file.loading_plate.is_some() {
+        ck.push(
+            "loading_plate",
+            "a [loading_plate] with [fault]",
+            "no plate on a fault scene: its normal pressure would contradict the fault's prescribed normal stress \
+             (load the fault by its tractions)",
+        );
+    }
+    if file.skip_ahead.enabled {
+        ck.push("skip_ahead.enabled", true, "false with [fault]: the skip-ahead follows a block on a rigid base");
+    }
+    ck.positive("fault.normal_stress_pa", f.normal_stress_pa);
+    ck.range("fault.shear_stress_pa", f.shear_stress_pa, f64::NEG_INFINITY, true, f64::INFINITY, true);
+    ck.range("fault.shear_stress_y_pa", f.shear_stress_y_pa, f64::NEG_INFINITY, true, f64::INFINITY, true);
+    let n = lattice.contact_nodes().len();
+    let mut shear = vec![[f.shear_stress_pa, f.shear_stress_y_pa]; n];
+    let mut normal = vec![f.normal_stress_pa; n];
+    if let Some(g) = f.grid.as_ref().filter(|g| !g.refused) {
+        grid(ck, g, lattice, &mut shear, &mut normal);
+    }
+    let mut order: Vec<usize> = (0..f.patches.len()).collect();
+    order.sort_by_key(|&i| f.patches[i].priority);
+    let mut members: Vec<Vec<usize>> = vec![Vec::new(); f.patches.len()];
+    for (i, p) in f.patches.iter().enumerate() {
+        let field = format!("fault.patches[{i}]");
+        let shape = Shape { shape: &p.shape, x_m: p.x_m, y_m: p.y_m, centre_m: p.centre_m, semi_axes_m: p.semi_axes_m };
+        members[i] = patch_nodes(ck, &field, &shape, lattice);
+        if p.shear_stress_pa.is_none() && p.shear_stress_y_pa.is_none() && p.normal_stress_pa.is_none() {
+            ck.push(
+                field.clone(),
+                "a patch with no traction",
+                "shear_stress_pa, shear_stress_y_pa or normal_stress_pa",
+            );
+        }
+        if let Some(v) = p.shear_stress_pa {
+            ck.range(&format!("{field}.shear_stress_pa"), v, f64::NEG_INFINITY, true, f64::INFINITY, true);
+        }
+        if let Some(v) = p.shear_stress_y_pa {
+            ck.range(&format!("{field}.shear_stress_y_pa"), v, f64::NEG_INFINITY, true, f64::INFINITY, true);
+        }
+        if let Some(v) = p.normal_stress_pa {
+            ck.positive(&format!("{field}.normal_stress_pa"), v);
+        }
+        for j in 0..i {
+            let shared = members[i].iter().filter(|c| members[j].contains(c)).count();
+            if shared > 0 && f.patches[i].priority == f.patches[j].priority {
+                ck.push(
+                    format!("{field}.priority"),
+                    p.priority,
+                    format!(
+                        "a priority other than patches[{j}]'s ({}): the two share {shared} base nodes, and the higher \
+                         priority holds there",
+                        f.patches[j].priority
+                    ),
+                );
+            }
+        }
+    }
+    for i in order {
+        let p = &f.patches[i];
+        for &c in &members[i] {
+            if let Some(v) = p.shear_stress_pa {
+                shear[c][0] = v;
+            }
+            if let Some(v) = p.shear_stress_y_pa {
+                shear[c][1] = v;
+            }
+            if let Some(v) = p.normal_stress_pa {
+                normal[c] = v;
+            }
+        }
+    }
+    let stochastic = f.stochastic.map(|s| {
+        ck.non_negative("fault.stochastic.std_pa", s.std_pa);
+        if ck.positive("fault.stochastic.correlation_length_m", s.correlation_length_m)
+            && s.correlation_length_m < 2.0 * lattice.lc()
+        {
+            ck.push(
+                "fault.stochastic.correlation_length_m",
+                s.correlation_length_m,
+                format!("at least 2·Lc = {} m: a field the lattice cannot resolve is noise", 2.0 * lattice.lc()),
+            );
+        }
+        ck.range("fault.stochastic.hurst", s.hurst, 0.0, true, 1.0, false);
+        StochasticStress { std_pa: s.std_pa, correlation_length_m: s.correlation_length_m, hurst: s.hurst }
+    });
+    let e = lattice.extent();
+    let on_fault = (0..2).all(|a| f.origin_m[a].is_finite() && f.origin_m[a] >= 0.0 && f.origin_m[a] <= e[a]);
+    if !on_fault {
+        ck.push(
+            "fault.origin_m",
+            format!("{:?} m", f.origin_m),
+            format!("a point of the fault, 0 ≤ x ≤ {} m and 0 ≤ y ≤ {} m", e[0], e[1]),
+        );
+    }
+    Some(Fault { shear_pa: shear, normal_pa: normal, stochastic, origin_m: f.origin_m })
+}
+
+/// The grid's tractions laid on `shear` and `normal`, every row checked.
+fn grid(ck: &mut Checker, g: &TractionGridSection, lattice: &Lattice, shear: &mut [[f64; 2]], normal: &mut [f64]) {
+    let field = "fault.grid.file";
+    let n = shear.len();
+    if g.rows.len() != n {
+        ck.push(
+            field,
+            format!("{:?} with {} rows", g.file, g.rows.len()),
+            format!(
+                "one row per base node: {n} rows for this block ({} × {} corner nodes every Lc = {} m)",
+                lattice.dims().nx + 1,
+                lattice.dims().ny + 1,
+                lattice.lc()
+            ),
+        );
+        return;
+    }
+    let mut seen = vec![false; n];
+    for (i, row) in g.rows.iter().enumerate() {
+        let c = lattice.node_at([row[0], row[1], 0.0]).map(|id| id.index()).filter(|&c| c < n);
+        let Some(c) = c else {
+            let e = lattice.extent();
+            ck.push(
+                field,
+                format!("row {}: x = {} m, y = {} m", i + 1, num(row[0]), num(row[1])),
+                format!(
+                    "a base node, 0 ≤ x ≤ {} m and 0 ≤ y ≤ {} m, on the lattice (every {} m)",
+                    approx(e[0]),
+                    approx(e[1]),
+                    approx(lattice.lc())
+                ),
+            );
+            continue;
+        };
+        if std::mem::replace(&mut seen[c], true) {
+            ck.push(field, format!("row {}: x = {} m, y = {} m", i + 1, num(row[0]), num(row[1])), "each base node once");
+        }
+        if !(row[4] > 0.0) {
+            ck.push(field, format!("row {}: normal_stress_pa = {}", i + 1, num(row[4])), "a positive normal stress");
+        }
+        shear[c] = [row[2], row[3]];
+        normal[c] = row[4];
+    }
+}
+
+/// The absorbing faces of `[absorbing]`, each once; the base is refused.
+pub(super) fn absorbing(ck: &mut Checker, file: SceneSections<'_>) -> Vec<Face> {
+    let Some(a) = file.absorbing.as_ref() else { return Vec::new() };
+    let mut faces: Vec<Face> = Vec::new();
+    for (i, name) in a.faces.iter().enumerate() {
+        let field = format!("absorbing.faces[{i}]");
+        let Some(face) = ck.named::<Face>(&field, name) else { continue };
+        if face == Face::ZMin {
+            ck.push(field, format!("\"{name}\""), "a face other than the base \"z_min\" (the contact or fault face)");
+        } else if faces.contains(&face) {
+            ck.push(field, format!("\"{name}\""), "each face once");
+        } else {
+            faces.push(face);
+        }
+    }
+    if file.skip_ahead.enabled && !faces.is_empty() {
+        ck.push("skip_ahead.enabled", true, "false with [absorbing]: the skip-ahead's motion has no dashpots");
+    }
+    faces
+}
+
+/// The stations of `[[stations]]` (sorted by node) and the control channels that record them:
+/// displacement, velocity and acceleration, x, y and z. A point outside the block, a name used
+/// twice and two stations on one node (a spacing finer than the lattice) are refused.
+pub(super) fn stations(
+    ck: &mut Checker,
+    file: SceneSections<'_>,
+    lattice: &Lattice,
+) -> (Vec<Station>, Vec<ControlChannel>) {
+    let e = lattice.extent();
+    let lc = lattice.lc();
+    let mut out: Vec<(String, [f64; 3], String)> = Vec::new();
+    for (i, s) in file.stations.iter().enumerate() {
+        let field = format!("stations[{i}]");
+        let valid_name = !s.name.is_empty() && s.name.chars().all(|c| c.is_ascii_alphanumeric() || "-_.".contains(c));
+        if !valid_name {
+            ck.push(format!("{field}.name"), format!("{:?}", s.name), "a name of letters, digits, '-', '_' or '.'");
+        }
+        match (s.at_m, s.from_m, s.to_m, s.count) {
+            (Some(p), None, None, None) => out.push((s.name.clone(), p, format!("{field}.at_m"))),
+            (None, Some(a), Some(b), Some(count)) => {
+                let Some(count) =
+                    ck.count(&format!("{field}.count"), count, 2, 100_000, " (points on the line, ends included)")
+                else {
+                    continue;
+                };
+                for k in 0..count {
+                    let t = k as f64 / (count - 1) as f64;
+                    let p = [0, 1, 2].map(|a_| a[a_] + t * (b[a_] - a[a_]));
+                    out.push((format!("{}-{k}", s.name), p, format!("{field} point {k}")));
+                }
+            }
+            _ => ck.push(
+                field,
+                "neither a point nor a line",
+                "at_m = [x, y, z], or from_m, to_m and count for a line of stations",
+            ),
+        }
+    }
+    let mut stations: Vec<Station> = Vec::new();
+    for (name, p, field) in out {
+        let inside = (0..3).all(|a| p[a].is_finite() && p[a] >= -1e-9 * lc && p[a] <= e[a] + 1e-9 * lc);
+        if !inside {
+            ck.push(
+                field,
+                format!("{p:?} m"),
+                format!("a point of the block, 0 ≤ x ≤ {} m, 0 ≤ y ≤ {} m, 0 ≤ z ≤ {} m", e[0], e[1], e[2]),
+            );
+            continue;
+        }
+        // The nearest corner node.
+        let snap = |v: f64| (v / lc).round() * lc;
+        let Some(node) = lattice.node_at([snap(p[0]), snap(p[1]), snap(p[2])]) else { continue };
+        debug_assert!(matches!(lattice.kind(node), NodeKind::Corner(_)));
+        if let Some(other) = stations.iter().find(|s| s.node == node) {
+            let q = lattice.position(node);
+            ck.push(
+                field,
+                format!("{name} at {p:?} m"),
+                format!(
+                    "a station on its own node: {} is already at the nearest node ({}, {}, {}) m (stations closer than \
+                     the lattice spacing Lc = {lc} m are one)",
+                    other.name, q[0], q[1], q[2]
+                ),
+            );
+            continue;
+        }
+        if stations.iter().any(|s| s.name == name) {
+            ck.push(field, name.clone(), "a name used once");
+            continue;
+        }
+        stations.push(Station { name, node });
+    }
+    stations.sort_by_key(|s| s.node);
+    let mut control = Vec::new();
+    for s in &stations {
+        for quantity in Kinematic::ALL {
+            for component in Component::ALL {
+                control.push(ControlChannel { node: s.node, quantity, component });
+            }
+        }
+    }
+    (stations, control)
+}

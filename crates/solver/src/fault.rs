@@ -1,0 +1,304 @@
+//! The base face as one side of a planar fault between identical media (docs/model.md §15).
+//!
+//! For a planar fault between two identical elastic half-spaces loaded in shear, the tangential
+//! displacement is antisymmetric across the fault and the normal stress on it does not change
+//! with slip; one half models both. Its fault face carries:
+//! - in the normal direction, the prescribed normal traction `σn` only as the friction's normal
+//!   force `N_i = σn·A_i`: its change is zero, so the face's normal displacement is free;
+//! - tangentially, the initial shear traction `τ0` (a constant force `τ0·A_i` on each face node,
+//!   the [`crate::boundary::traction`] boundary) and the friction reaction of the other side,
+//!   which holds the node while `|R| ≤ μ·N_i` and otherwise slides it with `μ_k·N_i`;
+//! - slip = twice the face's tangential displacement (the other side moves the opposite way), so
+//!   the friction law's state advances by twice what the node slides.
+//!
+//! Displacements are measured from the prestressed equilibrium: the initial tractions are part of
+//! the state at rest, not a load that deforms the block. This does not hold for a bimaterial
+//! fault, a non-planar one, or where the normal stress would change (near a free surface that the
+//! fault does not cross at right angles).
+//!
+//! The tractions of a seed are the scene's (uniform, patches, a grid) plus, optionally, a random
+//! field on the shear traction with a von Kármán spectrum, drawn from the seed's own stream
+//! ([`von_karman_field`]).
+
+use std::f64::consts::PI;
+
+use rand::rngs::ChaCha8Rng;
+use rand::{Rng, SeedableRng};
+
+use crate::error::SolverError;
+use crate::field::Lanes;
+
+/// Random stream of the prestress field (the Weibull fields use 0 and 1).
+pub const STREAM_PRESTRESS: u64 = 2;
+
+/// The validated fault of a scene: tractions on every contact node (canonical contact order).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Fault {
+    /// Initial shear traction on each contact node along x and y (Pa).
+    pub shear_pa: Vec<[f64; 2]>,
+    /// Normal traction on each contact node, compression positive (Pa).
+    pub normal_pa: Vec<f64>,
+    /// A random field added to the shear traction along x, drawn per seed.
+    pub stochastic: Option<StochasticStress>,
+    /// The point of the fault `(x, y)` that benchmark files measure along strike and down dip
+    /// from (m).
+    pub origin_m: [f64; 2],
+}
+
+/// A random field on the initial shear traction with a von Kármán spectrum (docs/model.md §15):
+/// power spectral density `∝ (1 + k²a²)^−(H+1)` in two dimensions, `a` the correlation length,
+/// `H` the Hurst exponent; zero mean, standard deviation `std_pa` over the face.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StochasticStress {
+    /// Standard deviation over the face (Pa).
+    pub std_pa: f64,
+    /// Correlation length `a` (m).
+    pub correlation_length_m: f64,
+    /// Hurst exponent `H` (0 < H ≤ 1).
+    pub hurst: f64,
+}
+
+/// The fault loads of one seed on every contact node (order of [`crate::Model::contact`]): the
+/// shear force `τ0·A_i` along x and y and the normal force `σn·A_i` (N).
+#[derive(Clone, Debug, PartialEq)]
+pub struct FaultLoads {
+    /// Shear force along x and y (N).
+    pub shear_n: Vec<[f64; 2]>,
+    /// Normal force, compression positive (N).
+    pub normal_n: Vec<f64>,
+}
+
+/// [`FaultLoads`] of `L` seeds side by side.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FaultLanes<const L: usize> {
+    /// Shear force along x and y of each contact node (N).
+    pub shear_n: [Vec<Lanes<L>>; 2],
+    /// Normal force of each contact node (N).
+    pub normal_n: Vec<Lanes<L>>,
+}
+
+impl<const L: usize> FaultLanes<L> {
+    /// The loads of `L` seeds side by side.
+    pub fn new(loads: [&FaultLoads; L]) -> Self {
+        let n = loads[0].normal_n.len();
+        let lanes = |f: &dyn Fn(&FaultLoads, usize) -> f64| -> Vec<Lanes<L>> {
+            (0..n).map(|c| std::array::from_fn(|l| f(loads[l], c))).collect()
+        };
+        FaultLanes {
+            shear_n: [lanes(&|s, c| s.shear_n[c][0]), lanes(&|s, c| s.shear_n[c][1])],
+            normal_n: lanes(&|s, c| s.normal_n[c]),
+        }
+    }
+}
+
+/// A field over a grid of `nx × ny` points `spacing_m` apart, `x` fastest: zero mean, unit
+/// standard deviation, with the 2-D von Kármán spectrum `(1 + k²a²)^−(H+1)` (Frankel & Clayton
+/// 1986; Mai & Beroza 2002 for faults), drawn from stream [`STREAM_PRESTRESS`] of `seed`.
+///
+/// Spectral synthesis on a grid padded to twice the face (so the periodic wrap-around of the
+/// discrete transform does not tie opposite edges together): each wavenumber gets a complex
+/// Gaussian amplitude of standard deviation `√PSD(k)` (Box–Muller on ChaCha8 draws), the field is
+/// the real part of the inverse transform over the face, then centred and scaled to unit standard
+/// deviation. The transform is a plain separable DFT with `libm` twiddles, so the field is
+/// bit-identical on every platform.
+pub fn von_karman_field(
+    nx: usize,
+    ny: usize,
+    spacing_m: f64,
+    correlation_length_m: f64,
+    hurst: f64,
+    seed: u64,
+) -> Result<Vec<f64>, SolverError> {
+    if nx == 0 || ny == 0 {
+        return Ok(Vec::new());
+    }
+    let (px, py) = (2 * nx, 2 * ny);
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    rng.set_stream(STREAM_PRESTRESS);
+    let mut uniform = || -> f64 {
+        // In (0, 1]: 53 random bits.
+        ((rng.next_u64() >> 11) as f64 + 1.0) * (1.0 / (1u64 << 53) as f64)
+    };
+    let a = correlation_length_m;
+    let wavenumber = |i: usize, n: usize| {
+        let j = if i <= n / 2 { i as f64 } else { i as f64 - n as f64 };
+        2.0 * PI * j / (n as f64 * spacing_m)
+    };
+    // Spectrum: complex Gaussian coefficients, kx fastest.
+    let mut re = vec![0.0; px * py];
+    let mut im = vec![0.0; px * py];
+    for j in 0..py {
+        let ky = wavenumber(j, py);
+        for i in 0..px {
+            let kx = wavenumber(i, px);
+            let k2 = kx * kx + ky * ky;
+            let amp = if i == 0 && j == 0 { 0.0 } else { libm::pow(1.0 + k2 * a * a, -0.5 * (hurst + 1.0)) };
+            let (u1, u2) = (uniform(), uniform());
+            let r = libm::sqrt(-2.0 * libm::log(u1));
+            re[j * px + i] = amp * r * libm::cos(2.0 * PI * u2);
+            im[j * px + i] = amp * r * libm::sin(2.0 * PI * u2);
+        }
+    }
+    // Inverse DFT along x for every row, then along y for the face's columns only.
+    let twiddles = |n: usize| -> (Vec<f64>, Vec<f64>) {
+        (0..n).map(|k| (libm::cos(2.0 * PI * k as f64 / n as f64), libm::sin(2.0 * PI * k as f64 / n as f64))).unzip()
+    };
+    let (cx, sx) = twiddles(px);
+    let (cy, sy) = twiddles(py);
+    // rows[j][x] for x < nx.
+    let mut row_re = vec![0.0; py * nx];
+    let mut row_im = vec![0.0; py * nx];
+    for j in 0..py {
+        for x in 0..nx {
+            let (mut sr, mut si) = (0.0, 0.0);
+            for i in 0..px {
+                let t = (i * x) % px;
+                let (c, s) = (cx[t], sx[t]);
+                let (r, m) = (re[j * px + i], im[j * px + i]);
+                sr += r * c - m * s;
+                si += r * s + m * c;
+            }
+            row_re[j * nx + x] = sr;
+            row_im[j * nx + x] = si;
+        }
+    }
+    let mut field = vec![0.0; nx * ny];
+    for y in 0..ny {
+        for x in 0..nx {
+            let mut sr = 0.0;
+            for j in 0..py {
+                let t = (j * y) % py;
+                sr += row_re[j * nx + x] * cy[t] - row_im[j * nx + x] * sy[t];
+            }
+            field[y * nx + x] = sr;
+        }
+    }
+    let n = field.len() as f64;
+    let mean = field.iter().sum::<f64>() / n;
+    let var = field.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / n;
+    if !(var > 0.0) {
+        return Err(SolverError::Unsupported(format!(
+            "a von Kármán field on {nx} × {ny} points has no variance (correlation length {a} m, spacing {spacing_m} m)"
+        )));
+    }
+    let sd = var.sqrt();
+    Ok(field.into_iter().map(|v| (v - mean) / sd).collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Correlation of a field with itself shifted by `lag` points along x, averaged over the grid.
+    fn correlation_x(f: &[f64], nx: usize, ny: usize, lag: usize) -> f64 {
+        let mut s = 0.0;
+        let mut n = 0.0;
+        for y in 0..ny {
+            for x in 0..nx - lag {
+                s += f[y * nx + x] * f[y * nx + x + lag];
+                n += 1.0;
+            }
+        }
+        s / n
+    }
+
+    #[test]
+    fn the_field_is_reproducible_centred_and_unit() {
+        let a = von_karman_field(40, 20, 100.0, 1000.0, 0.75, 7).unwrap();
+        let b = von_karman_field(40, 20, 100.0, 1000.0, 0.75, 7).unwrap();
+        let c = von_karman_field(40, 20, 100.0, 1000.0, 0.75, 8).unwrap();
+        assert_eq!(a, b);
+        assert_ne!(a, c);
+        let mean = a.iter().sum::<f64>() / a.len() as f64;
+        let var = a.iter().map(|v| v * v).sum::<f64>() / a.len() as f64;
+        assert!(mean.abs() < 1e-12 && (var - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn correlation_falls_with_lag_on_the_scale_of_the_correlation_length() {
+        // Averaged over seeds, the correlation at a lag of a tenth of `a` is high and at several
+        // `a` low: the field is smooth on the scale asked for.
+        let (nx, ny, dx, a) = (64, 32, 100.0, 800.0);
+        let (mut near, mut far) = (0.0, 0.0);
+        let seeds = 20;
+        for seed in 0..seeds {
+            let f = von_karman_field(nx, ny, dx, a, 0.8, seed).unwrap();
+            near += correlation_x(&f, nx, ny, 1) / seeds as f64;
+            far += correlation_x(&f, nx, ny, 32) / seeds as f64;
+        }
+        assert!(near > 0.8, "correlation at 0.125 a: {near}");
+        assert!(far.abs() < 0.25, "correlation at 4 a: {far}");
+    }
+}
+
+/// What `check` says of a fault before running it (docs/model.md §15): its tractions against the
+/// strength of its nodes, where rupture can start, and whether the lattice resolves its cohesive
+/// zone.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FaultReading {
+    /// Range of the normal traction over the fault (Pa).
+    pub normal_pa: (f64, f64),
+    /// Range of the initial shear traction's magnitude (Pa).
+    pub shear_pa: (f64, f64),
+    /// Nodes whose initial shear traction exceeds their static strength `μs·σn` (they slide from
+    /// the first step: the nucleation), and their area (m²).
+    pub overstressed: (usize, f64),
+    /// Nodes that can slip: those whose traction exceeds their dynamic strength `μd·σn`.
+    pub can_slip: usize,
+    /// Median over the nodes that can slip and are not overstressed of the strength excess
+    /// `S = (τs − τ0)/(τ0 − τd)` (Das & Aki 1977).
+    pub median_s: Option<f64>,
+    /// Smallest static cohesive-zone width over the nodes that can slip,
+    /// `Λ0 = (9π/32)·μ·Dc/(τs − τd)` (Day et al. 2005), `μ` the lattice's shear modulus (m); `None`
+    /// when no such node weakens over a distance.
+    pub cohesive_zone_m: Option<f64>,
+}
+
+impl FaultReading {
+    /// Reads the fault of `model` (its tractions before any random field) against its friction.
+    pub fn of(model: &crate::Model) -> Option<FaultReading> {
+        let scene = model.scene();
+        let fault = scene.fault.as_ref()?;
+        let (_, _, c44) = crate::material::lattice_elastic_constants(scene.young_pa, scene.poisson);
+        let lattice = model.lattice();
+        let area: Vec<f64> =
+            lattice.contact_nodes().iter().map(|&id| crate::geometry::Face::ZMin.tributary_area(lattice, id)).collect();
+        let range = |v: &mut dyn Iterator<Item = f64>| {
+            v.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(x), b.max(x)))
+        };
+        let mut overstressed = (0, 0.0);
+        let mut can_slip = 0;
+        let mut s_values = Vec::new();
+        let mut zone: Option<f64> = None;
+        for c in 0..fault.normal_pa.len() {
+            let friction = scene.friction.base(c);
+            let (sn, tau) = (fault.normal_pa[c], fault.shear_pa[c][0].hypot(fault.shear_pa[c][1]));
+            let (ts, td) = (friction.static_coefficient() * sn, friction.residual_coefficient() * sn);
+            if tau > ts {
+                overstressed.0 += 1;
+                overstressed.1 += area[c];
+            }
+            if tau > td {
+                can_slip += 1;
+                if tau <= ts {
+                    s_values.push((ts - tau) / (tau - td));
+                }
+                let crate::laws::NodeFriction::Weakening(w) = friction;
+                let dc = w.weakening_distance_m();
+                if dc > 0.0 && ts > td {
+                    let l = 9.0 * std::f64::consts::PI / 32.0 * c44 * dc / (ts - td);
+                    zone = Some(zone.map_or(l, |z: f64| z.min(l)));
+                }
+            }
+        }
+        s_values.sort_by(f64::total_cmp);
+        Some(FaultReading {
+            normal_pa: range(&mut fault.normal_pa.iter().copied()),
+            shear_pa: range(&mut fault.shear_pa.iter().map(|s| s[0].hypot(s[1]))),
+            overstressed,
+            can_slip,
+            median_s: s_values.get(s_values.len() / 2).copied(),
+            cohesive_zone_m: zone,
+        })
+    }
+}

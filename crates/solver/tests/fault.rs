@@ -1,0 +1,142 @@
+//! The base as one side of a planar fault between identical media (docs/model.md §15), against
+//! closed forms: a prestress below the strength is held exactly; a uniform overstress drops the
+//! fault's traction to exactly μd·σn and radiates a plane S wave whose particle velocity on the
+//! fault is `Δτ/(ρ·Cs)`, so the slip rate is `2Δτ/(ρ·Cs)` (each side moving half of it).
+
+mod common;
+
+use common::scene_with;
+use stickslip_solver::fault::Fault;
+use stickslip_solver::geometry::Face;
+use stickslip_solver::laws::{FrictionLaw, StaticDynamic};
+use stickslip_solver::material::lattice_elastic_constants;
+use stickslip_solver::statics::critical_time_step;
+use stickslip_solver::step::{Batch, LaneSetup};
+use stickslip_solver::{Dims, Model, NodeId, Scene};
+
+const TAU0: f64 = 81.6e6;
+const SIGMA_N: f64 = 120e6;
+const MU_S: f64 = 0.677;
+const MU_D: f64 = 0.525;
+
+/// A column of 2 × 2 × `nz` modules of 100 m in rock (ρ 2670, Cp 6000, Cs 3464 m/s) whose base is
+/// a fault under `tau0` and σn = 120 MPa with static/dynamic friction 0.677/0.525, its lateral faces
+/// symmetry planes for a plane S wave along z polarised in x (they hold y and z), its top face
+/// absorbing.
+fn column(nz: usize, tau0: f64) -> Scene {
+    let mut s = scene_with(|f| {
+        f.block.nx = 2;
+        f.block.ny = 2;
+        f.block.nz = nz as i64;
+        f.block.lc_m = 100.0;
+        f.material.young_pa = 8.01e10;
+        f.material.density_kg_m3 = 2670.0;
+        f.material.poisson = 0.25;
+        f.material.young_cv = 0.0;
+        f.self_weight.gravity_m_s2 = 0.0;
+    });
+    s.dims = Dims::new(2, 2, nz);
+    s.shear.drivers.clear();
+    s.record.interface.clear();
+    s.friction.law = FrictionLaw::StaticDynamic(StaticDynamic { mu_static: MU_S, mu_dynamic: MU_D });
+    let lattice = s.lattice();
+    let contacts = lattice.contact_nodes().len();
+    s.fault = Some(Fault {
+        shear_pa: vec![[tau0, 0.0]; contacts],
+        normal_pa: vec![SIGMA_N; contacts],
+        stochastic: None,
+        origin_m: [0.0; 2],
+    });
+    let mut fixed = std::collections::BTreeMap::<NodeId, [bool; 3]>::new();
+    for face in [Face::XMin, Face::XMax, Face::YMin, Face::YMax] {
+        for id in face.nodes(&lattice) {
+            fixed.insert(id, [false, true, true]);
+        }
+    }
+    s.fixed = fixed.into_iter().collect();
+    s.absorbing = vec![Face::ZMax];
+    s
+}
+
+fn batch(model: &Model) -> Batch<'_, 1> {
+    let k = model.nominal_stiffness();
+    let dt = 0.5 * critical_time_step(model, &k).unwrap().dt_s;
+    let lane = LaneSetup {
+        dt_s: dt,
+        stiffness: k,
+        friction: vec![1.0; model.contact().len()],
+        strength: None,
+        fault: model.fault_loads(7).unwrap(),
+    };
+    Batch::<1>::new(model, &[lane])
+}
+
+#[test]
+fn a_prestress_below_the_strength_is_held_exactly() {
+    // τ0 = 70 MPa < μs·σn = 81.24 MPa: every node sticks and nothing moves, to the last bit.
+    let model = Model::new(column(10, 70e6));
+    let mut b = batch(&model);
+    for _ in 0..500 {
+        b.step();
+    }
+    let v = b.view(0);
+    let moved = (0..model.node_count()).flat_map(|i| v.displacement(i)).fold(0.0f64, |m, u| m.max(u.abs()));
+    assert_eq!(moved, 0.0, "a held fault moved the block by {moved} m");
+    for ci in 0..model.contact().len() {
+        let c = v.node_contact(ci);
+        assert!(!c.slipping);
+        // The friction holds the prestress: τ = −R/A = τ0.
+        let area = Face::ZMin.tributary_area(model.lattice(), model.canonical(model.contact()[ci] as usize));
+        assert!((-c.friction_x / area - 70e6).abs() < 1e-6, "node {ci}: {} Pa", -c.friction_x / area);
+        assert!((c.normal / area - SIGMA_N).abs() < 1e-6);
+    }
+}
+
+#[test]
+fn a_uniform_overstress_slides_at_the_closed_form_rate_and_drops_to_dynamic_friction() {
+    let scene = column(60, TAU0);
+    let (_, _, c44) = lattice_elastic_constants(scene.young_pa, scene.poisson);
+    let rho = scene.density_kg_m3;
+    let cs = (c44 / rho).sqrt();
+    let drop = TAU0 - MU_D * SIGMA_N;
+    let rate = 2.0 * drop / (rho * cs);
+    let model = Model::new(scene);
+    let mut b = batch(&model);
+    let dt = b.params.dt(0);
+    let (mut sum, mut n) = (0.0, 0);
+    // The mean slip rate over each tenth of the run after the start: the lattice rings at its
+    // highest frequencies after the sudden start (a spread of ±15% step to step), the mean must
+    // not drift.
+    let mut tenths = [0.0; 10];
+    let steps = 400;
+    for step in 0..steps {
+        b.step();
+        let v = b.view(0);
+        for ci in 0..model.contact().len() {
+            let c = v.node_contact(ci);
+            let area = Face::ZMin.tributary_area(model.lattice(), model.canonical(model.contact()[ci] as usize));
+            // Every node slides at once and for good, its traction exactly the dynamic strength.
+            assert!(c.slipping, "node {ci} stuck at step {step}");
+            let tau = -c.friction_x / area;
+            assert!((tau / (MU_D * SIGMA_N) - 1.0).abs() < 1e-12, "node {ci}: τ = {tau} Pa");
+            // Slip is twice the face's displacement.
+            let u = v.displacement(model.contact()[ci] as usize)[0];
+            assert!((c.slip - 2.0 * u).abs() <= 1e-15 * c.slip.abs());
+            if step >= 40 {
+                sum += c.slip_rate;
+                n += 1;
+                tenths[(step - 40) * 10 / (steps - 40)] += c.slip_rate;
+            }
+        }
+    }
+    let mean = sum / n as f64;
+    let per = n as f64 / 10.0;
+    let (lo, hi) =
+        tenths.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &t| (a.min(t / per), b.max(t / per)));
+    println!(
+        "slip rate {mean:.5} m/s (means of each tenth {lo:.4}–{hi:.4}) over {:.2} s; closed form 2Δτ/(ρCs) = {rate:.5} m/s",
+        steps as f64 * dt
+    );
+    assert!((mean / rate - 1.0).abs() < 0.005, "slip rate {mean} vs {rate}");
+    assert!(hi / rate - 1.0 < 0.01 && 1.0 - lo / rate < 0.01, "the slip rate drifts: {lo}–{hi} vs {rate}");
+}

@@ -1,0 +1,273 @@
+//! The source of a fault scene's run and its stations as tables (docs/model.md §15).
+//!
+//! **source**, one row per seed whose fault ruptured: `seed` u64, `ruptured_nodes` u32,
+//! `ruptured_area_m2`, `m0_n_m`, `mw`, `mean_slip_m`, `max_slip_m`, `stress_drop_pa` (area-weighted
+//! over the ruptured nodes, along the mean slip), `peak_slip_rate_m_s`,
+//! `median_peak_slip_rate_m_s`, `hypocentre_x_m`, `hypocentre_y_m`, `rupture_duration_s` (when
+//! the last node ruptured), `rupture_x_min_m`, `rupture_x_max_m`, `rupture_y_min_m`,
+//! `rupture_y_max_m`, `shear_modulus_pa`, `s_speed_m_s`, `brune_corner_hz` f64.
+//!
+//! **fault_nodes**, one row per seed and node of the fault: `seed` u64, `node` u32 (LDEM), `x_m`,
+//! `y_m`, `area_m2`, `rupture_time_s` (null: never reached `[events] rupture_rate_m_s`),
+//! `peak_slip_rate_m_s`, `slip_x_m`, `slip_y_m` (across the fault, at the end), the shear
+//! traction at the start and the end along x and y, `normal_stress_pa` f64.
+//!
+//! **stations**, one row per seed and station: `seed` u64, `station` str, `node` u32 (LDEM), `x_m`,
+//! `y_m` (depth), `z_m` (distance from the fault plane), `epicentral_m`, `hypocentral_m`,
+//! `r_rup_m`, `r_jb_m`, `r_x_m`, `r_y0_m`, `azimuth_deg`, `pga_m_s2`, `pgv_m_s`, `pgd_m`
+//! (horizontal: x and z), `pga_vertical_m_s2` f64.
+
+use polars::prelude::DataFrame;
+use stickslip_analysis::{Source, StationRow};
+use stickslip_solver::Model;
+use stickslip_solver::trace::FaultSummary;
+
+use crate::col;
+use crate::error::StoreError;
+use crate::frame::Frame;
+use crate::spec::{Scope, SeedTable, TableSpec};
+
+/// The source of each seed whose fault ruptured.
+pub const SOURCE: TableSpec = TableSpec {
+    name: "source",
+    scope: Scope::Gathered,
+    key: &[col::SEED],
+    columns: &[
+        col::SEED,
+        col::RUPTURED_NODES,
+        col::RUPTURED_AREA,
+        col::M0_N_M,
+        col::MW,
+        col::MEAN_SLIP_M,
+        col::MAX_SLIP_M,
+        col::STRESS_DROP_PA,
+        col::PEAK_SLIP_RATE_M_S,
+        col::MEDIAN_PEAK_SLIP_RATE_M_S,
+        col::HYPOCENTRE_X_M,
+        col::HYPOCENTRE_Y_M,
+        col::RUPTURE_DURATION_S,
+        col::RUPTURE_X_MIN_M,
+        col::RUPTURE_X_MAX_M,
+        col::RUPTURE_Y_MIN_M,
+        col::RUPTURE_Y_MAX_M,
+        col::SHEAR_MODULUS_PA,
+        col::S_SPEED_M_S,
+        col::BRUNE_CORNER_HZ,
+    ],
+    variable: None,
+};
+
+/// Every node of a fault: rupture time, peak slip rate, final slip and tractions.
+pub const FAULT_NODES: TableSpec = TableSpec {
+    name: "fault_nodes",
+    scope: Scope::Gathered,
+    key: &[col::SEED, col::NODE],
+    columns: &[
+        col::SEED,
+        col::NODE,
+        col::X_M,
+        col::Y_M,
+        col::AREA_M2,
+        col::RUPTURE_TIME_S,
+        col::PEAK_SLIP_RATE_M_S,
+        col::SLIP_X_M,
+        col::SLIP_Y_M,
+        col::SHEAR_STRESS_X_INITIAL_PA,
+        col::SHEAR_STRESS_Y_INITIAL_PA,
+        col::SHEAR_STRESS_X_FINAL_PA,
+        col::SHEAR_STRESS_Y_FINAL_PA,
+        col::NORMAL_STRESS_PA,
+    ],
+    variable: None,
+};
+
+/// The stations of a fault scene against each seed's rupture.
+pub const STATIONS: TableSpec = TableSpec {
+    name: "stations",
+    scope: Scope::Gathered,
+    key: &[col::SEED, col::STATION],
+    columns: &[
+        col::SEED,
+        col::STATION,
+        col::NODE,
+        col::X_M,
+        col::Y_M,
+        col::Z_M,
+        col::EPICENTRAL_M,
+        col::HYPOCENTRAL_M,
+        col::R_RUP_M,
+        col::R_JB_M,
+        col::R_X_M,
+        col::R_Y0_M,
+        col::AZIMUTH_DEG,
+        col::PGA_M_S2,
+        col::PGV_M_S,
+        col::PGD_M,
+        col::PGA_VERTICAL_M_S2,
+    ],
+    variable: None,
+};
+
+/// The `source` part of a seed whose fault ruptured.
+pub const SOURCE_PART: SeedTable =
+    SeedTable { spec: SOURCE, write: |s| s.analysis.source.as_ref().map(|src| source_frame(s.seed, src)).transpose() };
+
+/// The `fault_nodes` part of a seed on a fault.
+pub const FAULT_NODES_PART: SeedTable = SeedTable {
+    spec: FAULT_NODES,
+    write: |s| {
+        s.analysis.run.recording.trace.summary.as_ref().map(|f| fault_nodes_frame(s.seed, f, s.model)).transpose()
+    },
+};
+
+/// The `stations` part of a seed on a fault with stations.
+pub const STATIONS_PART: SeedTable = SeedTable {
+    spec: STATIONS,
+    write: |s| {
+        if s.analysis.stations.is_empty() { Ok(None) } else { stations_frame(s.seed, &s.analysis.stations).map(Some) }
+    },
+};
+
+/// The source table of one seed.
+pub fn source_frame(seed: u64, s: &Source) -> Result<DataFrame, StoreError> {
+    Frame::new(1)
+        .u64(col::SEED, vec![seed])
+        .u32(col::RUPTURED_NODES, vec![s.ruptured_nodes as u32])
+        .f64(col::RUPTURED_AREA, vec![s.area_m2])
+        .f64(col::M0_N_M, vec![s.m0_n_m])
+        .f64(col::MW, vec![s.mw])
+        .f64(col::MEAN_SLIP_M, vec![s.mean_slip_m])
+        .f64(col::MAX_SLIP_M, vec![s.max_slip_m])
+        .f64(col::STRESS_DROP_PA, vec![s.stress_drop_pa])
+        .f64(col::PEAK_SLIP_RATE_M_S, vec![s.peak_slip_rate_m_s])
+        .f64(col::MEDIAN_PEAK_SLIP_RATE_M_S, vec![s.median_peak_slip_rate_m_s])
+        .f64(col::HYPOCENTRE_X_M, vec![s.hypocentre_m[0]])
+        .f64(col::HYPOCENTRE_Y_M, vec![s.hypocentre_m[1]])
+        .f64(col::RUPTURE_DURATION_S, vec![s.rupture_duration_s])
+        .f64(col::RUPTURE_X_MIN_M, vec![s.extent_m[0][0]])
+        .f64(col::RUPTURE_X_MAX_M, vec![s.extent_m[0][1]])
+        .f64(col::RUPTURE_Y_MIN_M, vec![s.extent_m[1][0]])
+        .f64(col::RUPTURE_Y_MAX_M, vec![s.extent_m[1][1]])
+        .f64(col::SHEAR_MODULUS_PA, vec![s.shear_modulus_pa])
+        .f64(col::S_SPEED_M_S, vec![s.s_speed_m_s])
+        .f64(col::BRUNE_CORNER_HZ, vec![s.brune_corner_hz])
+        .finish(SOURCE.name)
+}
+
+/// The fault_nodes table of one seed.
+pub fn fault_nodes_frame(seed: u64, f: &FaultSummary, model: &Model) -> Result<DataFrame, StoreError> {
+    let n = f.nodes.len();
+    let lattice = model.lattice();
+    let pos: Vec<[f64; 3]> = f.nodes.iter().map(|&id| lattice.position(id)).collect();
+    let pick = |g: &dyn Fn(usize) -> f64| (0..n).map(g).collect::<Vec<f64>>();
+    Frame::new(n)
+        .u64(col::SEED, vec![seed; n])
+        .u32(col::NODE, f.nodes.iter().map(|id| id.ldem() as u32).collect())
+        .f64(col::X_M, pick(&|i| pos[i][0]))
+        .f64(col::Y_M, pick(&|i| pos[i][1]))
+        .f64(col::AREA_M2, f.area_m2.clone())
+        .opt_f64(col::RUPTURE_TIME_S, f.rupture_time_s.iter().map(|t| Some(*t).filter(|t| t.is_finite())).collect())
+        .f64(col::PEAK_SLIP_RATE_M_S, f.peak_slip_rate_m_s.clone())
+        .f64(col::SLIP_X_M, pick(&|i| f.final_slip_m[i][0]))
+        .f64(col::SLIP_Y_M, pick(&|i| f.final_slip_m[i][1]))
+        .f64(col::SHEAR_STRESS_X_INITIAL_PA, pick(&|i| f.shear_stress_pa[i][0][0]))
+        .f64(col::SHEAR_STRESS_Y_INITIAL_PA, pick(&|i| f.shear_stress_pa[i][0][1]))
+        .f64(col::SHEAR_STRESS_X_FINAL_PA, pick(&|i| f.shear_stress_pa[i][1][0]))
+        .f64(col::SHEAR_STRESS_Y_FINAL_PA, pick(&|i| f.shear_stress_pa[i][1][1]))
+        .f64(col::NORMAL_STRESS_PA, f.normal_stress_pa.clone())
+        .finish(FAULT_NODES.name)
+}
+
+/// The stations table of one seed.
+pub fn stations_frame(seed: u64, rows: &[StationRow]) -> Result<DataFrame, StoreError> {
+    let n = rows.len();
+    let pick = |g: &dyn Fn(&StationRow) -> f64| rows.iter().map(g).collect::<Vec<f64>>();
+    Frame::new(n)
+        .u64(col::SEED, vec![seed; n])
+        .str(col::STATION, rows.iter().map(|r| r.station.name.clone()).collect())
+        .u32(col::NODE, rows.iter().map(|r| r.station.node.ldem() as u32).collect())
+        .f64(col::X_M, pick(&|r| r.position_m[0]))
+        .f64(col::Y_M, pick(&|r| r.position_m[1]))
+        .f64(col::Z_M, pick(&|r| r.position_m[2]))
+        .f64(col::EPICENTRAL_M, pick(&|r| r.epicentral_m))
+        .f64(col::HYPOCENTRAL_M, pick(&|r| r.hypocentral_m))
+        .f64(col::R_RUP_M, pick(&|r| r.r_rup_m))
+        .f64(col::R_JB_M, pick(&|r| r.r_jb_m))
+        .f64(col::R_X_M, pick(&|r| r.r_x_m))
+        .f64(col::R_Y0_M, pick(&|r| r.r_y0_m))
+        .f64(col::AZIMUTH_DEG, pick(&|r| r.azimuth_deg))
+        .f64(col::PGA_M_S2, pick(&|r| r.pga_m_s2))
+        .f64(col::PGV_M_S, pick(&|r| r.pgv_m_s))
+        .f64(col::PGD_M, pick(&|r| r.pgd_m))
+        .f64(col::PGA_VERTICAL_M_S2, pick(&|r| r.pga_vertical_m_s2))
+        .finish(STATIONS.name)
+}
+
+/// The `fault_nodes` table (or one seed's part) read back: where each node is, when it ruptured
+/// and how far it slipped.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct FaultNodes {
+    /// Seed of each row.
+    pub seed: Vec<u64>,
+    /// x (m, along strike).
+    pub x_m: Vec<f64>,
+    /// y (m, down dip).
+    pub y_m: Vec<f64>,
+    /// Rupture time (s; NaN: never).
+    pub rupture_time_s: Vec<f64>,
+    /// Peak slip rate (m/s).
+    pub peak_slip_rate_m_s: Vec<f64>,
+    /// Final slip along x and y (m).
+    pub slip_m: Vec<[f64; 2]>,
+}
+
+impl FaultNodes {
+    /// Reads a `fault_nodes` frame.
+    pub fn read(df: &DataFrame) -> Result<FaultNodes, StoreError> {
+        let c = crate::frame::Columns::of(df, FAULT_NODES.name);
+        let (sx, sy) = (c.f64s(col::SLIP_X_M)?, c.f64s(col::SLIP_Y_M)?);
+        Ok(FaultNodes {
+            seed: c.u64s(col::SEED)?,
+            x_m: c.f64s(col::X_M)?,
+            y_m: c.f64s(col::Y_M)?,
+            rupture_time_s: c.f64s(col::RUPTURE_TIME_S)?,
+            peak_slip_rate_m_s: c.f64s(col::PEAK_SLIP_RATE_M_S)?,
+            slip_m: sx.into_iter().zip(sy).map(|(a, b)| [a, b]).collect(),
+        })
+    }
+}
+
+/// The `stations` table read back: each station's distances and peaks, per seed.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Stations {
+    /// Seed of each row.
+    pub seed: Vec<u64>,
+    /// Station name.
+    pub station: Vec<String>,
+    /// Rupture distance (m).
+    pub r_rup_m: Vec<f64>,
+    /// Joyner–Boore distance (m).
+    pub r_jb_m: Vec<f64>,
+    /// Azimuth from the strike (degrees).
+    pub azimuth_deg: Vec<f64>,
+    /// Peak horizontal acceleration (m/s²).
+    pub pga_m_s2: Vec<f64>,
+    /// Peak horizontal velocity (m/s).
+    pub pgv_m_s: Vec<f64>,
+}
+
+impl Stations {
+    /// Reads a `stations` frame.
+    pub fn read(df: &DataFrame) -> Result<Stations, StoreError> {
+        let c = crate::frame::Columns::of(df, STATIONS.name);
+        Ok(Stations {
+            seed: c.u64s(col::SEED)?,
+            station: c.opt_strs(col::STATION)?.into_iter().map(Option::unwrap_or_default).collect(),
+            r_rup_m: c.f64s(col::R_RUP_M)?,
+            r_jb_m: c.f64s(col::R_JB_M)?,
+            azimuth_deg: c.f64s(col::AZIMUTH_DEG)?,
+            pga_m_s2: c.f64s(col::PGA_M_S2)?,
+            pgv_m_s: c.f64s(col::PGV_M_S)?,
+        })
+    }
+}
