@@ -38,7 +38,7 @@ impl Rng {
 }
 
 /// The top-level keys of a pipeline file: a refusal must name a field under one of them.
-const TOP_KEYS: [&str; 21] = [
+const TOP_KEYS: [&str; 24] = [
     "version",
     "name",
     "description",
@@ -54,6 +54,9 @@ const TOP_KEYS: [&str; 21] = [
     "skip_ahead",
     "loading_plate",
     "rupture",
+    "fault",
+    "absorbing",
+    "stations",
     "events",
     "similarity",
     "accelerograms",
@@ -478,12 +481,15 @@ fn shipped() -> Vec<(String, String, (i64, i64, f64))> {
             let mut doc: toml::Table = toml::from_str(&text).unwrap();
             let b = doc.get("block").and_then(|b| b.as_table()).cloned().unwrap_or_default();
             let get_i = |k: &str, d: i64| b.get(k).and_then(|v| v.as_integer()).unwrap_or(d);
-            let (mut n, mut lc) =
-                ([get_i("nx", 10), get_i("ny", 1), get_i("nz", 5)], b.get("lc_m").and_then(|v| v.as_float()).unwrap_or(0.1));
+            let (mut n, mut lc) = (
+                [get_i("nx", 10), get_i("ny", 1), get_i("nz", 5)],
+                b.get("lc_m").and_then(|v| v.as_float()).unwrap_or(0.1),
+            );
             if modules(&text) > MAX_MODULES {
                 let k = (2..=64)
                     .find(|&k| {
-                        n.iter().all(|&x| x % k == 0) && n.iter().map(|&x| (x / k) as f64).product::<f64>() <= MAX_MODULES
+                        n.iter().all(|&x| x % k == 0)
+                            && n.iter().map(|&x| (x / k) as f64).product::<f64>() <= MAX_MODULES
                     })
                     .unwrap_or_else(|| panic!("{name}: no whole factor brings its block under {MAX_MODULES} modules"));
                 n = n.map(|x| x / k);

@@ -264,7 +264,11 @@ impl SetSection {
             if ck.positive("set.period_min_s", self.period_min_s)
                 && !(self.period_max_s > self.period_min_s && self.period_max_s.is_finite())
             {
-                ck.push("set.period_max_s", self.period_max_s, format!("above period_min_s ({} s)", num(self.period_min_s)));
+                ck.push(
+                    "set.period_max_s",
+                    self.period_max_s,
+                    format!("above period_min_s ({} s)", num(self.period_min_s)),
+                );
             }
             PeriodRange::Explicit { t_a: self.period_min_s, t_b: self.period_max_s }
         };

@@ -424,7 +424,8 @@ fn print_fault(model: &Model) {
             r.overstressed.0,
             r.overstressed.1,
             r.can_slip,
-            r.median_s.map_or(String::new(), |s| format!(", median strength excess S = (τs − τ0)/(τ0 − τd) = {:.2}", N(s)))
+            r.median_s
+                .map_or(String::new(), |s| format!(", median strength excess S = (τs − τ0)/(τ0 − τd) = {:.2}", N(s)))
         );
     }
     if let Some(l) = r.cohesive_zone_m {

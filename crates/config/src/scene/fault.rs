@@ -353,7 +353,11 @@ fn grid(ck: &mut Checker, g: &TractionGridSection, lattice: &Lattice, shear: &mu
             continue;
         };
         if std::mem::replace(&mut seen[c], true) {
-            ck.push(field, format!("row {}: x = {} m, y = {} m", i + 1, num(row[0]), num(row[1])), "each base node once");
+            ck.push(
+                field,
+                format!("row {}: x = {} m, y = {} m", i + 1, num(row[0]), num(row[1])),
+                "each base node once",
+            );
         }
         if !(row[4] > 0.0) {
             ck.push(field, format!("row {}: normal_stress_pa = {}", i + 1, num(row[4])), "a positive normal stress");

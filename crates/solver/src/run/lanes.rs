@@ -105,8 +105,7 @@ pub fn run_lanes<const L: usize>(
     stepper.set_parallel(options.parallel_step);
     stepper.set_tracking(Tracking { energy: scene.record.energy, onsets: scene.record.slip_onsets, slid: skipping });
     let sw = scene.self_weight;
-    let progress_every =
-        (PROGRESS_BAR_UPDATES / (model.bar_count() as u64 * L as u64).max(1)).clamp(1, PROGRESS_EVERY);
+    let progress_every = (PROGRESS_BAR_UPDATES / (model.bar_count() as u64 * L as u64).max(1)).clamp(1, PROGRESS_EVERY);
     let weight_norm: f64 = model.mass().iter().map(|m| m * m).sum::<f64>().sqrt() * sw.gravity_m_s2;
     let mut lanes: [Lane; L] = std::array::from_fn(|l| Lane {
         seed: seeds[l],
