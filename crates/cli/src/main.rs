@@ -1,6 +1,7 @@
 //! `stickslip`: the command line. Glue only: each subcommand (one file in `commands/`) parses
 //! its arguments, calls the crates that do the work and prints what they return.
 
+mod budget;
 mod commands;
 mod progress;
 mod text;

@@ -298,3 +298,54 @@ fn python_example_reads_the_tables() {
         assert!(png.exists());
     }
 }
+
+#[test]
+fn scenes_too_large_or_too_long_are_refused_before_anything_is_built() {
+    // Every file of pipelines/invalid/ refused by the command line: by check, pipeline and run,
+    // with the message its `# expect:` lines give, under a fixed memory limit.
+    let dir = scratch("budget");
+    let invalid = repo().join("pipelines/invalid");
+    let mut checked = 0;
+    for entry in std::fs::read_dir(&invalid).unwrap() {
+        let path = entry.unwrap().path();
+        let file_text = std::fs::read_to_string(&path).unwrap_or_default();
+        if !file_text.lines().any(|l| l.starts_with("# refused by: stickslip")) {
+            continue;
+        }
+        let expected: Vec<&str> = file_text.lines().filter_map(|l| l.strip_prefix("# expect: ")).collect();
+        let file = path.to_str().unwrap();
+        let out_dir = dir.join("out");
+        let out_dir = out_dir.to_str().unwrap();
+        for args in [
+            vec!["check", file],
+            vec!["pipeline", file, "--out", out_dir, "--quiet"],
+            vec!["run", file, "--seed", "1", "--out", out_dir, "--quiet"],
+        ] {
+            let start = std::time::Instant::now();
+            let out = Command::new(env!("CARGO_BIN_EXE_stickslip"))
+                .args(&args)
+                .env("STICKSLIP_MEMORY_LIMIT", "16G")
+                .current_dir(&dir)
+                .output()
+                .unwrap();
+            let (stdout, err) = text(&out);
+            assert_eq!(out.status.code(), Some(1), "{args:?} accepted:\n{stdout}{err}");
+            for want in &expected {
+                assert!(err.contains(want), "{args:?}: message lacks {want:?}:\n{err}");
+            }
+            assert!(start.elapsed().as_secs_f64() < 10.0, "{args:?}: refused only after {:?}", start.elapsed());
+            assert!(!dir.join("out").exists(), "{args:?}: nothing may be written for a refused scene");
+        }
+        checked += 1;
+    }
+    assert!(checked >= 2, "only {checked} files refused by the command line");
+    // The flag lets the long run through check: its length and time are printed, not refused.
+    let out = Command::new(env!("CARGO_BIN_EXE_stickslip"))
+        .args(["check", invalid.join("run_too_long.toml").to_str().unwrap(), "--allow-long"])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let (stdout, err) = text(&out);
+    assert!(out.status.success(), "{err}");
+    assert!(stdout.contains("a long run, accepted with --allow-long") && stdout.contains("memory: about"), "{stdout}");
+}

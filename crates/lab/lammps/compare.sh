@@ -4,6 +4,7 @@
 # lengths (LAMMPS's K = EA/(2L)), pair_style none, a neighbour list that never rebuilds,
 # fix nve + fix viscous (γ = D·m per type), the same Δt and number of steps, one core each.
 #   crates/lab/lammps/compare.sh [steps scale, default 1]
+# SIZES replaces the lattices and their steps, e.g. SIZES="200x50x20x100" (2.8 M bars, 100 steps).
 # Prints bond-updates per second of LAMMPS, ours with one seed and ours with 8 seeds side by side,
 # and the ratios. BENCH names another build's benchmark command (e.g. an older commit's binary),
 # to compare two builds against the same LAMMPS runs.
@@ -17,8 +18,9 @@ fi
 scale=${1:-1}
 work=$(mktemp -d)
 printf '%-12s %10s %8s %14s %14s %14s %9s %9s\n' lattice bars steps lammps ours_1seed ours_8seeds ratio_1 ratio_8
-for size in "10 1 5 40000" "40 20 4 1000" "100 50 10 100"; do
-    set -- $size
+sizes=${SIZES:-"10x1x5x40000 40x20x4x1000 100x50x10x100"}
+for size in $sizes; do
+    set -- ${size//x/ }
     steps=$(( $4 * scale ))
     dir=$work/$1x$2x$3
     # Best of three runs for each side, alternating, both pinned to core 0.

@@ -5,7 +5,7 @@
 use stickslip_config::PipelineFile;
 use stickslip_config::scene::RuptureSection;
 use stickslip_solver::Model;
-use stickslip_solver::statics::critical_time_step;
+use stickslip_solver::statics::critical_step;
 use stickslip_solver::step::{Batch, LaneSetup};
 
 /// The paper's scene with `nx × ny × nz` modules, with `[rupture]` at its defaults if asked.
@@ -21,8 +21,8 @@ pub fn model(nx: i64, ny: i64, nz: i64, rupture: bool) -> Model {
 
 /// Seed `seed`'s lane of `m`: its stiffness, friction, strength, and half its critical step.
 pub fn setup(m: &Model, seed: u64) -> LaneSetup {
-    let k = m.bar_stiffness(seed).expect("stiffness");
-    let dt = 0.5 * critical_time_step(m, &k).expect("critical step").dt_s;
+    let k = m.lane_stiffness(seed).expect("stiffness");
+    let dt = 0.5 * critical_step(m, &k).expect("critical step").dt_s;
     LaneSetup {
         dt_s: dt,
         stiffness: k,

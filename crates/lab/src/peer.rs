@@ -13,7 +13,7 @@ use std::time::Instant;
 use stickslip_config::PipelineFile;
 use stickslip_solver::Model;
 use stickslip_solver::geometry::BarFamily;
-use stickslip_solver::statics::critical_time_step;
+use stickslip_solver::statics::critical_step;
 use stickslip_solver::step::{LaneSetup, Params, State, Stepper};
 
 use crate::LabError;
@@ -41,7 +41,8 @@ pub fn peer(nx: i64, ny: i64, nz: i64, steps: usize, out: &Path) -> Result<PeerT
     f.shear.driver_at_m = vec![[0.0, 0.0, 0.1]];
     let model = Model::new(f.scene()?);
     let k = model.nominal_stiffness();
-    let dt = 0.5 * critical_time_step(&model, &k).map_err(|e| LabError::Setup(e.to_string()))?.dt_s;
+    let dt =
+        0.5 * critical_step(&model, &model.nominal_lane_stiffness()).map_err(|e| LabError::Setup(e.to_string()))?.dt_s;
     let damping = 400.0;
 
     // LAMMPS: bond types by (stiffness, rest length), atom types by mass.
@@ -119,7 +120,7 @@ pub fn peer(nx: i64, ny: i64, nz: i64, steps: usize, out: &Path) -> Result<PeerT
     write("in.lattice", &input)?;
     let lane = || LaneSetup {
         dt_s: dt,
-        stiffness: k.clone(),
+        stiffness: model.nominal_lane_stiffness(),
         friction: vec![1.0; model.contact().len()],
         strength: None,
         fault: None,

@@ -5,7 +5,7 @@ use crate::error::SolverError;
 use crate::field::Field;
 use crate::geometry::Dims;
 use crate::model::Model;
-use crate::statics::{CriticalStep, EffectiveModuli, Prescribed, critical_time_step, solve_static, uniaxial_moduli};
+use crate::statics::{CriticalStep, EffectiveModuli, Prescribed, critical_step_on, solve_static, uniaxial_moduli};
 
 /// The facts of a built scene.
 #[derive(Clone, Debug, PartialEq)]
@@ -223,10 +223,11 @@ pub fn inspect(model: &Model, seeds: &[u64], statics: Statics) -> Result<Inspect
     let lattice = model.lattice();
     let mut critical = Vec::with_capacity(seeds.len());
     for &seed in seeds {
-        let k = model.bar_stiffness(seed)?;
-        critical.push((seed, critical_time_step(model, &k)?));
+        // `check` runs alone: the pool is its.
+        critical.push((seed, critical_step_on(model, &model.lane_stiffness_on(seed, true)?, true)?));
     }
-    let k = model.bar_stiffness(seeds[0])?;
+    // The per-bar stiffness only for the static solves on the whole block.
+    let k = if statics == Statics::Full { model.bar_stiffness(seeds[0])? } else { Vec::new() };
     let (moduli, moduli_of) = match statics {
         Statics::Full => ([0, 2].map(|axis| uniaxial_moduli(model, &k, axis)), scene.dims),
         Statics::Sample => {
@@ -261,6 +262,45 @@ pub fn inspect(model: &Model, seeds: &[u64], statics: Statics) -> Result<Inspect
         moduli_of,
         slider,
     })
+}
+
+/// Seconds per step of one seed of `model` at Δt = `dt` with the scene's tracking (energy terms,
+/// slip onsets), on the current rayon pool (each step split over it with `parallel`): steps timed
+/// from rest under the shear stage's damping, after one untimed step, until `budget_s` has passed
+/// (at least 3 steps, at most 200).
+pub fn probe_step_time(model: &Model, seed: u64, dt: f64, parallel: bool, budget_s: f64) -> Result<f64, SolverError> {
+    use crate::step::{Batch, LaneSetup, Tracking};
+    let scene = model.scene();
+    let setup = LaneSetup {
+        dt_s: dt,
+        stiffness: model.lane_stiffness(seed)?,
+        friction: model.friction_factors(seed)?,
+        strength: model.bar_strength(seed)?,
+        fault: model.fault_loads(seed)?,
+    };
+    let mut batch = Batch::<1>::new(model, &[setup]);
+    batch.params.set_damping(0, scene.shear.damping_per_s);
+    batch.params.set_body_acceleration(0, [0.0, 0.0, -scene.self_weight.gravity_m_s2]);
+    batch.stepper.set_parallel(parallel && model.layout().splits());
+    batch.stepper.set_tracking(Tracking { energy: scene.record.energy, onsets: scene.record.slip_onsets, slid: false });
+    batch.step();
+    let start = std::time::Instant::now();
+    let mut steps = 0u32;
+    while steps < 200 && (steps < 3 || start.elapsed().as_secs_f64() < budget_s) {
+        batch.step();
+        steps += 1;
+    }
+    Ok(start.elapsed().as_secs_f64() / f64::from(steps))
+}
+
+/// The spring-slider reading of `model` for `seed` without the critical step ([`inspect`] gives
+/// it with the rest): the block's stiffness under its load solved only with [`Statics::Full`].
+pub fn spring_slider(model: &Model, seed: u64, statics: Statics) -> Result<Slider, SolverError> {
+    let weight = model.total_mass() * model.scene().self_weight.gravity_m_s2;
+    match statics {
+        Statics::Full => slider(model, Some(&model.bar_stiffness(seed)?), weight),
+        Statics::Sample => slider(model, None, weight),
+    }
 }
 
 /// The spring-slider reading of `model` with bar stiffness `k` under `weight`; without `k` the

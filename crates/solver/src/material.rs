@@ -97,6 +97,34 @@ pub fn weibull_factors(cv: f64, seed: u64, stream: u64, n: usize) -> Result<Opti
     Ok(Some((0..n).map(|_| dist.factor(Open01.sample(&mut rng))).collect()))
 }
 
+/// The Weibull factors of [`weibull_factors`] drawn from any position: factor `c` of the stream
+/// is the `c`-th of the sequential draw (each draw takes two 32-bit words of ChaCha8, so factor `c`
+/// starts at word `2c`), so disjoint stretches can be drawn independently, in any order or in
+/// parallel, and give the same numbers.
+#[derive(Clone, Copy, Debug)]
+pub struct SeekableWeibull {
+    dist: UnitWeibull,
+    seed: u64,
+    stream: u64,
+}
+
+impl SeekableWeibull {
+    /// The factors of CV `cv` (> 0) of stream `stream` of `seed`.
+    pub fn new(cv: f64, seed: u64, stream: u64) -> Result<Self, SolverError> {
+        Ok(SeekableWeibull { dist: UnitWeibull::from_cv(cv)?, seed, stream })
+    }
+
+    /// Factors `start..start + out.len()` into `out`.
+    pub fn fill(&self, start: u64, out: &mut [f64]) {
+        let mut rng = ChaCha8Rng::seed_from_u64(self.seed);
+        rng.set_stream(self.stream);
+        rng.set_word_pos(2 * u128::from(start));
+        for v in out {
+            *v = self.dist.factor(Open01.sample(&mut rng));
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -127,5 +155,16 @@ mod tests {
         assert_eq!(a, b);
         assert_ne!(a, c);
         assert_ne!(a, d);
+    }
+
+    #[test]
+    fn seeking_gives_the_sequential_draws() {
+        let all = weibull_factors(0.05, 123, STREAM_YOUNG, 1000).unwrap().unwrap();
+        let seek = SeekableWeibull::new(0.05, 123, STREAM_YOUNG).unwrap();
+        for (start, len) in [(0, 10), (1, 7), (17, 300), (999, 1), (500, 500)] {
+            let mut out = vec![0.0; len];
+            seek.fill(start as u64, &mut out);
+            assert_eq!(out, all[start..start + len], "from {start}");
+        }
     }
 }

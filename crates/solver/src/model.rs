@@ -13,7 +13,8 @@ use crate::layout::{BarGroup, BarLayout, Bars, Segment};
 use crate::material::{STREAM_FRICTION, STREAM_YOUNG, axial_stiffness, weibull_factors};
 use crate::rupture::{crack_area, fracture_energy_factors};
 use crate::scene::Scene;
-use crate::stencil::StencilLayout;
+use crate::stencil::{RunStiffness, StencilLayout};
+use crate::step::LaneStiffness;
 
 /// The group a bar belongs to in kernel order: its segment (phase, slab), its cache block
 /// (module layer, band of y) and its direction class, packed into 48 bits in the same order.
@@ -81,8 +82,10 @@ pub struct Model {
     mass: Vec<f64>,
     inv_mass: Vec<f64>,
     layout: Bars,
-    /// internal bar → canonical bar index.
+    /// internal bar → canonical bar index (listed bars).
     bar_canonical: Vec<u32>,
+    /// Nominal stiffness of each run (stencil bars).
+    run_stiffness: Vec<RunStiffness>,
     contact: Vec<u32>,
     boundaries: Boundaries,
 }
@@ -100,14 +103,17 @@ impl Model {
         Model::build(scene, false)
     }
 
+    /// As [`Model::new`] with the bars as a stencil whatever the size (for tests of the stencil on
+    /// small lattices); the scene's bars must not crack.
+    pub fn with_stencil(scene: Scene) -> Model {
+        assert!(scene.rupture.is_none(), "bars that crack are listed");
+        Model::build(scene, true)
+    }
+
     fn build(scene: Scene, stencil: bool) -> Model {
         let lattice = scene.lattice();
         let n = lattice.node_count();
-        let mut to_canonical: Vec<NodeId> = (0..n as u32).map(NodeId).collect();
-        to_canonical.sort_by_key(|&id| {
-            let h = lattice.half_units(id);
-            (h[2], h[1], h[0])
-        });
+        let to_canonical = internal_order(lattice.dims());
         let mut to_internal = vec![0u32; n];
         for (i, id) in to_canonical.iter().enumerate() {
             to_internal[id.index()] = i as u32;
@@ -125,7 +131,37 @@ impl Model {
         };
         let contact = lattice.contact_nodes().iter().map(|id| to_internal[id.index()]).collect();
         let boundaries = Boundaries::new(&scene, |id| to_internal[id.index()]);
-        Model { scene, lattice, to_canonical, to_internal, mass, inv_mass, layout, bar_canonical, contact, boundaries }
+        let mut model = Model {
+            scene,
+            lattice,
+            to_canonical,
+            to_internal,
+            mass,
+            inv_mass,
+            layout,
+            bar_canonical,
+            run_stiffness: Vec::new(),
+            contact,
+            boundaries,
+        };
+        if let Bars::Stencil(s) = &model.layout {
+            let nominal = |r: &crate::stencil::Run, m: usize| model.nominal_of_canonical(r.canonical(m));
+            model.run_stiffness = s
+                .runs()
+                .iter()
+                .map(|r| {
+                    let last = r.len as usize - 1;
+                    RunStiffness { first: nominal(r, 0), interior: nominal(r, 1.min(last)), last: nominal(r, last) }
+                })
+                .collect();
+        }
+        model
+    }
+
+    /// The nominal stiffness of each run of a stencil lattice (order of its runs; empty for
+    /// listed bars).
+    pub fn run_stiffness(&self) -> &[RunStiffness] {
+        &self.run_stiffness
     }
 
     /// The scene.
@@ -236,9 +272,61 @@ impl Model {
         &self.boundaries.plate.springs
     }
 
+    /// The bar stiffness of `seed` as a run holds it: per bar for listed bars
+    /// ([`Model::bar_stiffness`]), the Weibull factors as `f32` for a stencil
+    /// ([`Model::stencil_factors`]).
+    pub fn lane_stiffness(&self, seed: u64) -> Result<LaneStiffness, SolverError> {
+        self.lane_stiffness_on(seed, false)
+    }
+
+    /// [`Model::lane_stiffness`], a stencil's factors drawn on the current rayon pool with
+    /// `parallel` (the same factors either way; not from inside a pool whose other tasks are
+    /// other seeds: a waiting worker could start one of them).
+    pub fn lane_stiffness_on(&self, seed: u64, parallel: bool) -> Result<LaneStiffness, SolverError> {
+        Ok(match &self.layout {
+            Bars::Listed(_) => LaneStiffness::PerBar(self.bar_stiffness(seed)?),
+            Bars::Stencil(_) => LaneStiffness::Factored(self.stencil_factors_on(seed, parallel)?),
+        })
+    }
+
+    /// The homogeneous bar stiffness as a run holds it (CV = 0 whatever the scene says).
+    pub fn nominal_lane_stiffness(&self) -> LaneStiffness {
+        match &self.layout {
+            Bars::Listed(_) => LaneStiffness::PerBar(self.nominal_stiffness()),
+            Bars::Stencil(_) => LaneStiffness::Factored(None),
+        }
+    }
+
+    /// The Weibull factors of E of `seed` for a stencil lattice, kernel order, rounded to `f32`:
+    /// factor `c` of the seed's E stream for the bar of canonical index `c` (the same draws as
+    /// [`Model::bar_stiffness`]), drawn layer by layer by seeking the stream to each run; `None`
+    /// when CV = 0.
+    pub fn stencil_factors(&self, seed: u64) -> Result<Option<Vec<f32>>, SolverError> {
+        self.stencil_factors_on(seed, false)
+    }
+
+    /// [`Model::stencil_factors`], the layers on the current rayon pool with `parallel`.
+    pub fn stencil_factors_on(&self, seed: u64, parallel: bool) -> Result<Option<Vec<f32>>, SolverError> {
+        let Bars::Stencil(s) = &self.layout else { panic!("stencil factors of a listed lattice") };
+        if self.scene.young_cv == 0.0 {
+            return Ok(None);
+        }
+        let draw = crate::material::SeekableWeibull::new(self.scene.young_cv, seed, STREAM_YOUNG)?;
+        Ok(Some(crate::stencil::draw_factors(s, &draw, parallel)))
+    }
+
     /// Kernel stiffness of every bar for `seed`: nominal times the Weibull factor of E drawn in
-    /// canonical bar order from the seed's E stream (none drawn when CV = 0).
+    /// canonical bar order from the seed's E stream (none drawn when CV = 0). For a stencil, the
+    /// factor is the one its kernel reads (rounded to `f32`).
     pub fn bar_stiffness(&self, seed: u64) -> Result<Vec<f64>, SolverError> {
+        if let Bars::Stencil(_) = &self.layout {
+            let factors = self.stencil_factors(seed)?;
+            let k: crate::step::StiffnessRef<'_, 1> = crate::step::StiffnessRef::Factored {
+                runs: &self.run_stiffness,
+                factors: factors.as_deref().map(|f| f.as_chunks::<1>().0),
+            };
+            return Ok(k.lane(&self.layout, 0));
+        }
         let phi = weibull_factors(self.scene.young_cv, seed, STREAM_YOUNG, self.bar_count())?;
         let k = |c: u32| {
             let k = self.nominal_of_canonical(c as usize);
@@ -345,6 +433,22 @@ impl Model {
     }
 }
 
+/// The canonical id of every internal node: nodes sorted by `z`, then `y`, then `x` of their
+/// position, written in closed form (layer `k`: corner rows `j = 0..=ny` of `nx + 1` corners, then
+/// centre rows `j = 0..ny` of `nx` centres; see [`crate::stencil`]).
+fn internal_order(dims: crate::geometry::Dims) -> Vec<NodeId> {
+    let crate::geometry::Dims { nx, ny, nz } = dims;
+    let corners = (nx + 1) * (ny + 1) * (nz + 1);
+    let mut out = Vec::with_capacity(dims.node_count());
+    for k in 0..=nz {
+        out.extend((0..(nx + 1) * (ny + 1)).map(|c| NodeId((c + (nx + 1) * (ny + 1) * k) as u32)));
+        if k < nz {
+            out.extend((0..nx * ny).map(|m| NodeId((corners + m + nx * ny * k) as u32)));
+        }
+    }
+    out
+}
+
 /// The bars of `lattice` listed in kernel order (see [`Model`]), with the canonical index of each.
 fn listed_bars(lattice: &Lattice, to_internal: &[u32]) -> (BarLayout, Vec<u32>) {
     let n = lattice.node_count();
@@ -407,4 +511,23 @@ fn listed_bars(lattice: &Lattice, to_internal: &[u32]) -> (BarLayout, Vec<u32>) 
     drop(order);
     let ends = bar_canonical.iter().map(|&b| lattice.bar(b as usize).ends.map(|id| to_internal[id.index()])).collect();
     (BarLayout::new(segments.into_iter().map(|(_, s)| s).collect(), ends, n), bar_canonical)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Dims;
+
+    #[test]
+    fn the_internal_order_is_the_nodes_sorted_by_z_y_x() {
+        for dims in [Dims::new(10, 1, 5), Dims::new(3, 4, 2), Dims::new(1, 1, 1), Dims::new(5, 2, 7)] {
+            let lattice = Lattice::new(dims, 0.1);
+            let mut sorted: Vec<NodeId> = (0..dims.node_count() as u32).map(NodeId).collect();
+            sorted.sort_by_key(|&id| {
+                let h = lattice.half_units(id);
+                (h[2], h[1], h[0])
+            });
+            assert_eq!(internal_order(dims), sorted, "{dims:?}");
+        }
+    }
 }

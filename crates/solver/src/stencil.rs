@@ -26,7 +26,10 @@
 
 use std::ops::Range;
 
+use rayon::prelude::*;
+
 use crate::geometry::{Dims, Direction};
+use crate::material::SeekableWeibull;
 
 /// Most slabs of a lattice (the parallelism of one step).
 pub const MAX_SLABS: usize = 16;
@@ -60,6 +63,33 @@ impl Run {
     /// Canonical index of its bar `m`.
     pub fn canonical(&self, m: usize) -> usize {
         self.canonical_start as usize + m * self.canonical_stride as usize
+    }
+}
+
+/// The nominal kernel stiffness of the bars of one run (N/m; diagonals stored `k/3`): the same
+/// for every bar but the first and last, which an edge run along y or z has on the block's x
+/// faces (their surface reduction, docs/model.md §1).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RunStiffness {
+    /// Bar 0.
+    pub first: f64,
+    /// Bars `1..len − 1`.
+    pub interior: f64,
+    /// Bar `len − 1`.
+    pub last: f64,
+}
+
+impl RunStiffness {
+    /// The nominal stiffness of bar `m` of a run of `len` bars.
+    #[inline]
+    pub fn at(&self, m: usize, len: usize) -> f64 {
+        if m == 0 {
+            self.first
+        } else if m + 1 == len {
+            self.last
+        } else {
+            self.interior
+        }
     }
 }
 
@@ -182,7 +212,12 @@ impl StencilLayout {
 
     /// The runs of layer `k`.
     pub fn layer_runs(&self, k: usize) -> &[Run] {
-        &self.runs[self.layer_runs[k]..self.layer_runs[k + 1]]
+        &self.runs[self.layer_run_range(k)]
+    }
+
+    /// The indices of the runs of layer `k` (into [`StencilLayout::runs`]).
+    pub fn layer_run_range(&self, k: usize) -> Range<usize> {
+        self.layer_runs[k]..self.layer_runs[k + 1]
     }
 
     /// The nodes of layer `k` (internal indices).
@@ -209,6 +244,59 @@ impl StencilLayout {
             }
         }
     }
+}
+
+/// Factor `c` of `draw` for every bar (kernel order) of canonical index `c`, rounded to `f32`,
+/// layer by layer (on the current rayon pool with `parallel`). A layer's axial runs are stretches of consecutive
+/// canonical indices; its diagonal runs of one row share the row's modules, whose `8·nx` factors
+/// are drawn once and dealt to the eight runs.
+pub fn draw_factors(layout: &StencilLayout, draw: &SeekableWeibull, parallel: bool) -> Vec<f32> {
+    let mut out = vec![0.0f32; layout.bars()];
+    // Split the output by layer (each layer's bars are consecutive in kernel order).
+    let mut chunks = Vec::with_capacity(layout.layers());
+    let mut rest = out.as_mut_slice();
+    for k in 0..layout.layers() {
+        let runs = layout.layer_runs(k);
+        let n = runs.iter().map(|r| r.len as usize).sum::<usize>();
+        let (chunk, tail) = rest.split_at_mut(n);
+        chunks.push((runs, chunk));
+        rest = tail;
+    }
+    let layer = |(runs, chunk): (&[Run], &mut [f32])| {
+        let base = runs.first().map_or(0, |r| r.first_bar as usize);
+        let mut buf = Vec::new();
+        // The diagonal factors of the current row: canonical indices `row..row + row_buf.len()`.
+        let (mut row, mut row_buf) = (u64::MAX, Vec::<f64>::new());
+        for r in runs {
+            let (cs, len) = (u64::from(r.canonical_start), r.len as usize);
+            let dst = &mut chunk[r.first_bar as usize - base..][..len];
+            if r.canonical_stride == 1 {
+                buf.resize(len, 0.0);
+                draw.fill(cs, &mut buf);
+                for (d, &v) in dst.iter_mut().zip(&buf) {
+                    *d = v as f32;
+                }
+            } else {
+                let stride = u64::from(r.canonical_stride);
+                if !(row <= cs && cs < row + stride && row_buf.len() == stride as usize * len) {
+                    // The first diagonal run of a row starts at the row's first module.
+                    row = cs;
+                    row_buf.resize(stride as usize * len, 0.0);
+                    draw.fill(row, &mut row_buf);
+                }
+                let offset = (cs - row) as usize;
+                for (m, d) in dst.iter_mut().enumerate() {
+                    *d = row_buf[offset + m * stride as usize] as f32;
+                }
+            }
+        }
+    };
+    if parallel {
+        chunks.into_par_iter().for_each(layer);
+    } else {
+        chunks.into_iter().for_each(layer);
+    }
+    out
 }
 
 #[cfg(test)]
@@ -247,6 +335,30 @@ mod tests {
                 }
             }
             assert!(seen.iter().all(|&s| s), "{dims:?}: every bar");
+            // The factors drawn run by run are the canonical draws, and the runs' nominal
+            // stiffness is every bar's.
+            let draws = crate::material::weibull_factors(0.05, 7, 0, s.bars()).unwrap().unwrap();
+            let seek = SeekableWeibull::new(0.05, 7, 0).unwrap();
+            let factors = draw_factors(&s, &seek, true);
+            assert_eq!(factors, draw_factors(&s, &seek, false), "{dims:?}: serial and parallel draws");
+            let nominal = Model::with_listed_bars(model.scene().clone());
+            let stencil_model = Model::with_stencil(model.scene().clone());
+            let listed_k: Vec<f64> = {
+                let k = nominal.nominal_stiffness();
+                let mut by_canonical = vec![0.0; k.len()];
+                for (b, &c) in nominal.bar_canonical().iter().enumerate() {
+                    by_canonical[c as usize] = k[b];
+                }
+                by_canonical
+            };
+            for (index, r) in s.runs().iter().enumerate() {
+                for m in 0..r.len as usize {
+                    let c = r.canonical(m);
+                    assert_eq!(factors[r.first_bar as usize + m], draws[c] as f32, "{dims:?}: bar {c}");
+                    let rs = stencil_model.run_stiffness();
+                    assert_eq!(rs[index].at(m, r.len as usize), listed_k[c], "{dims:?}: nominal of bar {c}");
+                }
+            }
             // Layers hold consecutive nodes; slabs at least two layers each.
             assert_eq!(s.layer_nodes(0).start, 0);
             assert_eq!(s.layer_nodes(s.layers() - 1).end, s.nodes());

@@ -57,7 +57,7 @@ fn setup(model: &Model, fraction: f64) -> LaneSetup {
     let crit = critical_time_step(model, &k).unwrap();
     LaneSetup {
         dt_s: fraction * crit.dt_s,
-        stiffness: k,
+        stiffness: stickslip_solver::step::LaneStiffness::PerBar(k),
         friction: vec![1.0; model.contact().len()],
         strength: None,
         fault: None,

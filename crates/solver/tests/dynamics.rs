@@ -7,7 +7,7 @@ use std::ops::ControlFlow;
 use common::{repo_path, roller, scene_with};
 use stickslip_solver::material::lattice_elastic_constants;
 use stickslip_solver::statics::critical_time_step;
-use stickslip_solver::step::{Batch, LaneSetup};
+use stickslip_solver::step::{Batch, LaneSetup, LaneStiffness};
 use stickslip_solver::{Channel, Model, RunOptions, Scene, run_seed};
 
 fn go(_: f64) -> ControlFlow<()> {
@@ -19,7 +19,7 @@ fn lane(model: &Model, fraction: f64) -> LaneSetup {
     let crit = critical_time_step(model, &k).unwrap();
     LaneSetup {
         dt_s: fraction * crit.dt_s,
-        stiffness: k,
+        stiffness: LaneStiffness::PerBar(k),
         friction: vec![1.0; model.contact().len()],
         strength: None,
         fault: None,

@@ -63,7 +63,7 @@ fn batch(model: &Model) -> Batch<'_, 1> {
     let dt = 0.5 * critical_time_step(model, &k).unwrap().dt_s;
     let lane = LaneSetup {
         dt_s: dt,
-        stiffness: k,
+        stiffness: stickslip_solver::step::LaneStiffness::PerBar(k),
         friction: vec![1.0; model.contact().len()],
         strength: None,
         fault: model.fault_loads(7).unwrap(),

@@ -98,16 +98,16 @@ fn a_run_forced_past_the_critical_step_is_stopped_with_when_and_where() {
 
 #[test]
 fn the_parallel_step_of_a_large_lattice_gives_the_serial_numbers() {
+    use stickslip_solver::statics::critical_step;
     use stickslip_solver::step::{Batch, LaneSetup};
     let model = Model::new(scene_with(|f| {
         (f.block.nx, f.block.ny, f.block.nz) = (40, 20, 10);
         f.shear.driver_at_m = vec![[0.0, 0.0, 0.1]];
     }));
     assert!(model.layout().splits(), "a lattice this large is cut into slabs");
-    let k = model.bar_stiffness(9).unwrap();
-    let dt = 0.5 * critical_time_step(&model, &k).unwrap().dt_s;
-    let lane =
-        LaneSetup { dt_s: dt, stiffness: k, friction: model.friction_factors(9).unwrap(), strength: None, fault: None };
+    let k = model.lane_stiffness(9).unwrap();
+    let dt = 0.5 * critical_step(&model, &k).unwrap().dt_s;
+    let lane = LaneSetup { dt_s: dt, stiffness: k, friction: model.friction_factors(9).unwrap(), strength: None, fault: None };
     let run = |parallel: bool| {
         let mut s = Batch::<1>::new(&model, std::slice::from_ref(&lane).try_into().unwrap());
         s.params.set_damping(0, 2500.0);

@@ -9,10 +9,12 @@ use stickslip_config::check::{Named, approx};
 use stickslip_solver::Model;
 use stickslip_solver::boundary::absorbing::impedances;
 use stickslip_solver::fault::FaultReading;
-use stickslip_solver::inspect::{Statics, inspect};
+use stickslip_solver::inspect::{Statics, inspect, probe_step_time};
 use stickslip_solver::laws::describe;
+use stickslip_solver::memory::{Batches, LONG_RUN_BAR_UPDATES, estimate, human, run_steps, samples};
 use stickslip_solver::scene::{SettleMethod, TimeStep};
 
+use crate::budget;
 use crate::text::N;
 
 /// Arguments of `stickslip check`.
@@ -28,6 +30,9 @@ pub struct Args {
     /// on a 16×16×16 sample block and no block stiffness: each solve costs thousands of steps).
     #[arg(long)]
     pub full_statics: bool,
+    /// Accept a run of more than 10¹¹ bar-updates per seed (refused otherwise, as by `pipeline`).
+    #[arg(long)]
+    pub allow_long: bool,
 }
 
 fn position(model: &Model, id: stickslip_solver::NodeId) -> String {
@@ -46,6 +51,11 @@ pub fn run(a: Args) -> Result<()> {
     anyhow::ensure!(a.seeds >= 1, "--seeds = 0 is not allowed: at least 1");
     let pipeline = Pipeline::load(&a.pipeline)?;
     let scene = &pipeline.scene;
+    // The memory of one seed (what check itself builds and steps) is checked before the lattice
+    // is built; the ensemble's is printed below.
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let one = budget::check_memory(scene, 1, 1, "one seed of this scene")?;
+    let available = budget::available_memory()?;
     let model = Model::new(scene.clone());
     let seeds: Vec<u64> = pipeline.seeds.iter().copied().take(a.seeds).collect();
     let statics = if a.full_statics { Statics::Full } else { Statics::for_model(&model) };
@@ -94,18 +104,63 @@ pub fn run(a: Args) -> Result<()> {
     } else {
         format!("over its first {} of {} seeds (--seeds N for more)", facts.critical.len(), pipeline.seeds.len())
     };
-    println!("  critical step {lo:.4e} … {hi:.4e} s {which}; paper's 0.6·Lc/Cp = {:.4e} s", facts.paper_bound_s);
-    let smallest_dt = match scene.time_step {
-        TimeStep::Fraction(f) => f * lo,
-        TimeStep::Fixed(dt) => dt,
+    let how = if facts.critical.iter().all(|(_, c)| c.iterations == 0) {
+        " (the bound from each node's bars, docs/model.md §2)"
+    } else {
+        ""
     };
-    stickslip_solver::run::check_step_count(&model, smallest_dt)
-        .map_err(|e| anyhow::anyhow!("{}", stickslip_config::keys::describe(&e)))?;
+    println!("  critical step {lo:.4e} … {hi:.4e} s {which}{how}; paper's 0.6·Lc/Cp = {:.4e} s", facts.paper_bound_s);
     match scene.time_step {
         TimeStep::Fraction(f) => {
             println!("  time step: {f} of each seed's critical step ({:.4e} … {:.4e} s)", f * lo, f * hi)
         }
         TimeStep::Fixed(dt) => println!("  time step: {dt:e} s ({:.3} of the smallest critical step)", N(dt / lo)),
+    }
+    // Run length at the smallest Δt over the seeds inspected: refused when a run could not count
+    // its steps (whatever --allow-long says), then a timed probe of its steps.
+    let dt = match scene.time_step {
+        TimeStep::Fraction(f) => f * lo,
+        TimeStep::Fixed(dt) => dt,
+    };
+    stickslip_solver::run::check_step_count(&model, dt)
+        .map_err(|e| anyhow::anyhow!("{}", stickslip_config::keys::describe(&e)))?;
+    let (settle, shear) = run_steps(scene, dt);
+    let parallel = pipeline.seeds.len() < threads && model.layout().splits();
+    let per_step = probe_step_time(&model, seeds[0], dt, parallel, 0.5)?;
+    let rate = Some(facts.bars as f64 / per_step);
+    let updates = budget::check_length(scene, facts.bars as u64, dt, rate, a.allow_long, "this scene")?;
+    let on = if parallel { format!("{threads} threads") } else { "one thread".into() };
+    println!(
+        "  run: {} steps per seed ({}shear {shear}), {updates:.3e} bar-updates; about {} per seed on {on} \
+         (a timed probe: {:.3e} s per step, {:.3e} bar-updates/s){}",
+        settle + shear,
+        if settle > 0 { format!("self-weight up to {settle} + ") } else { String::new() },
+        budget::duration(per_step * (settle + shear) as f64),
+        per_step,
+        facts.bars as f64 / per_step,
+        if updates > LONG_RUN_BAR_UPDATES { " — a long run, accepted with --allow-long" } else { "" }
+    );
+    let batches = Batches::of_ensemble(pipeline.seeds.len(), threads, scene.skip_ahead.enabled);
+    let all = estimate(scene, batches, samples(scene, dt)).ok();
+    println!(
+        "  memory: about {} for one seed ({:.0} bytes per bar){}; available {}",
+        human(one.total),
+        one.bytes_per_bar(),
+        all.map_or(String::new(), |e| format!(
+            ", {} for its {} seeds on {threads} threads ({} at once in batches of {})",
+            human(e.total),
+            pipeline.seeds.len(),
+            batches.concurrent,
+            batches.lanes
+        )),
+        available.as_ref().map_or("unknown".into(), |(b, source)| format!("{} ({source})", human(*b)))
+    );
+    if let (Some(e), Some((limit, _))) = (all, &available)
+        && e.total > *limit
+    {
+        println!(
+            "    → the pipeline's seeds do not fit at once: `stickslip pipeline` refuses them; give it fewer --threads"
+        );
     }
     if let Some(iv) = scene.record.interval_s {
         let k = |dt: f64| (iv / dt).round().max(1.0);

@@ -41,6 +41,10 @@ pub struct Args {
     /// No progress bar.
     #[arg(long, short)]
     pub quiet: bool,
+    /// Accept runs of more than 10¹¹ bar-updates per seed (refused otherwise: `stickslip check`
+    /// prints a run's length and time).
+    #[arg(long)]
+    pub allow_long: bool,
 }
 
 /// Stops the running seeds at the first Ctrl-C (finished ones are kept), at once at the second.
@@ -133,8 +137,8 @@ fn no_events(pipeline: &Pipeline, folder: &Folder) -> String {
         )),
         None => lines.push("  the slip rate is not recorded (add \"slip_rate\" to record.interface)".into()),
     }
+    let model = stickslip_solver::Model::new(pipeline.scene.clone());
     if let Some(tau) = largest(Channel::ShearStress) {
-        let model = stickslip_solver::Model::new(pipeline.scene.clone());
         let sigma = model.total_mass() * pipeline.scene.self_weight.gravity_m_s2 / model.lattice().contact_area();
         let mu = pipeline.scene.friction.law.node(1.0).static_coefficient();
         lines.push(format!(
@@ -151,16 +155,9 @@ fn no_events(pipeline: &Pipeline, folder: &Folder) -> String {
             ));
         }
     }
-    let model = stickslip_solver::Model::new(pipeline.scene.clone());
-    if let Ok(facts) = stickslip_solver::inspect::inspect(
-        &model,
-        &pipeline.seeds[..1],
-        stickslip_solver::inspect::Statics::for_model(&model),
-    ) {
-        lines.push(format!(
-            "  as a spring-slider (stickslip check): {}",
-            stickslip_config::keys::verdict(&facts.slider)
-        ));
+    let statics = stickslip_solver::inspect::Statics::for_model(&model);
+    if let Ok(slider) = stickslip_solver::inspect::spring_slider(&model, pipeline.seeds[0], statics) {
+        lines.push(format!("  as a spring-slider (stickslip check): {}", stickslip_config::keys::verdict(&slider)));
     }
     lines.push(format!(
         "  the shear stage lasted {} s: the driver moved about {:.3e} m at {} m/s",
@@ -210,13 +207,21 @@ pub fn run(a: Args) -> Result<()> {
             }
         }
     }
-    let cancel = cancel_on_ctrl_c()?;
-    let mut unfinished = Vec::new();
+    // Memory and run length of every pipeline before any is built.
+    let threads = a.threads.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    let mut runs = Vec::new();
     for pipeline in &pipelines {
         let mut seeds = given.clone().unwrap_or_else(|| pipeline.seeds.clone());
         if let Some((k, n)) = a.shard {
             seeds = shard(&seeds, k, n);
         }
+        let what = format!("{}: {} seed{}", pipeline.name, seeds.len(), if seeds.len() == 1 { "" } else { "s" });
+        crate::budget::check_before_build(&pipeline.scene, seeds.len(), threads, a.allow_long, &what)?;
+        runs.push(seeds);
+    }
+    let cancel = cancel_on_ctrl_c()?;
+    let mut unfinished = Vec::new();
+    for (pipeline, seeds) in pipelines.iter().zip(runs) {
         let out = a.out.clone().unwrap_or_else(|| PathBuf::from("reports").join(&pipeline.name));
         if let Some((k, n)) = a.shard {
             stickslip_ensemble::merge::mark_shard(&out, pipeline, k, n, &seeds)?;

@@ -6,7 +6,6 @@ use std::path::PathBuf;
 use anyhow::Result;
 use stickslip_config::Pipeline;
 use stickslip_ensemble::EnsembleOptions;
-use stickslip_solver::Model;
 use stickslip_store::Folder;
 use stickslip_store::io::read_parquet;
 use stickslip_store::schema::RUNS;
@@ -31,12 +30,22 @@ pub struct Args {
     /// No progress bar.
     #[arg(long, short)]
     pub quiet: bool,
+    /// Accept a run of more than 10¹¹ bar-updates (refused otherwise).
+    #[arg(long)]
+    pub allow_long: bool,
 }
 
 /// `stickslip run`.
 pub fn run(a: Args) -> Result<()> {
     let pipeline = Pipeline::load(&a.pipeline)?;
     crate::commands::pipeline::print_warnings(&pipeline);
+    crate::budget::check_before_build(
+        &pipeline.scene,
+        1,
+        1,
+        a.allow_long,
+        &format!("{}: seed {}", pipeline.name, a.seed),
+    )?;
     let out = a.out.unwrap_or_else(|| PathBuf::from("reports").join(&pipeline.name).join(format!("seed-{}", a.seed)));
     let cancel = cancel_on_ctrl_c()?;
     let options = EnsembleOptions { out: out.clone(), threads: 1, seeds: vec![a.seed], fresh: a.fresh, finish: true };
@@ -46,7 +55,7 @@ pub fn run(a: Args) -> Result<()> {
     }
     let folder = Folder::new(&out);
     let runs = Runs::read(&read_parquet(&folder.part(&RUNS, a.seed))?)?;
-    let bars = Model::new(pipeline.scene.clone()).bar_count();
+    let bars = pipeline.scene.dims.bar_count();
     let (steps, skipped, wall) = (runs.steps[0], runs.skipped_steps[0], runs.wall_time_s[0]);
     let settle = if runs.settled_by[0] == "static" {
         "settled statically".into()

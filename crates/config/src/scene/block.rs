@@ -8,6 +8,9 @@ use crate::check::{Checker, approx};
 /// Largest node count the solver accepts (node indices are 32-bit).
 pub const MAX_NODES: u64 = 1 << 31;
 
+/// Largest bar count the solver accepts (bar indices are 32-bit).
+pub const MAX_BARS: u64 = u32::MAX as u64;
+
 /// The module counts of `[block]` (`None` where refused), its `lc_m` checked too.
 pub(super) fn counts(ck: &mut Checker, b: &BlockSection) -> [Option<usize>; 3] {
     let blurb = " (a block needs at least one module per axis)";
@@ -84,11 +87,14 @@ pub(super) fn check_material(ck: &mut Checker, m: &MaterialSection, lc_m: f64) {
 pub(super) fn lattice(ck: &mut Checker, b: &BlockSection, counts: [Option<usize>; 3]) -> Option<Lattice> {
     let [Some(nx), Some(ny), Some(nz)] = counts else { return None };
     let dims = Dims::new(nx, ny, nz);
-    let nodes = dims.node_count() as u64;
+    // Counted with checked arithmetic (at most 10⁶ modules per axis fit in 64 bits anyway).
+    let (nodes, bars) = stickslip_solver::memory::counts(dims).unwrap_or((u64::MAX, u64::MAX));
     if nodes > MAX_NODES {
         ck.push("block", format!("{nx}×{ny}×{nz} modules ({nodes} nodes)"), format!("at most {MAX_NODES} nodes"));
+    } else if bars > MAX_BARS {
+        ck.push("block", format!("{nx}×{ny}×{nz} modules ({bars} bars)"), format!("at most {MAX_BARS} bars"));
     }
-    if !(b.lc_m > 0.0 && b.lc_m.is_finite()) || nodes > MAX_NODES {
+    if !(b.lc_m > 0.0 && b.lc_m.is_finite()) || nodes > MAX_NODES || bars > MAX_BARS {
         return None;
     }
     Some(Lattice::new(dims, b.lc_m))

@@ -12,6 +12,7 @@ use stickslip_lab::convergence::{Cell, Loading, QUANTITIES, compare, convergence
 use stickslip_lab::peer::peer;
 use stickslip_lab::recording_cost::recording_cost;
 use stickslip_lab::scec::{self, Reference, read_run};
+use stickslip_lab::setup_cost::setup_cost;
 use stickslip_lab::skip::{JumpCheck, SkipBench, compare_skip, jumps_frame, runs_frame};
 use stickslip_store::io::write_parquet_atomic;
 
@@ -94,6 +95,21 @@ enum Command {
         /// Folder for lattice.data and in.lattice.
         out: PathBuf,
     },
+    /// What a run does before its first step against a step: the pipeline's scene at the given
+    /// size (e.g. `large-block.toml 500 150 48`), its first seed, on one thread and on all of them.
+    Setup {
+        /// Pipeline file (TOML).
+        pipeline: PathBuf,
+        /// Modules along x [default: the pipeline's].
+        nx: Option<usize>,
+        /// Modules along y.
+        ny: Option<usize>,
+        /// Modules along z.
+        nz: Option<usize>,
+        /// Steps timed.
+        #[arg(long, default_value_t = 20)]
+        steps: usize,
+    },
     /// Sweeps assumed values of a pipeline's scene over seeds and prints the main shocks of each
     /// combination, e.g. `d2=100,400,900 t0=0.002,0.02` (keys: z, y, d2, d1, t0, frac, dur, vel,
     /// mud, dc).
@@ -166,6 +182,49 @@ fn run(c: Command) -> Result<()> {
             println!("dt {:e}", t.dt_s);
             println!("ours_1 {:e}", t.one_seed);
             println!("ours_8 {:e}", t.eight_seeds);
+            Ok(())
+        }
+        Command::Setup { pipeline, nx, ny, nz, steps } => {
+            let p = Pipeline::load(&pipeline)?;
+            let mut scene = p.scene.clone();
+            let d = scene.dims;
+            scene.dims = stickslip_solver::Dims::new(nx.unwrap_or(d.nx), ny.unwrap_or(d.ny), nz.unwrap_or(d.nz));
+            let seed = p.seeds[0];
+            println!(
+                "{:>8} {:>11} {:>8} {:>8} {:>8} {:>4} {:>8} {:>8} {:>9} {:>9} {:>11}",
+                "threads",
+                "bars",
+                "model_s",
+                "stiff_s",
+                "crit_s",
+                "its",
+                "state_s",
+                "setup_s",
+                "step_s",
+                "setup/step",
+                "updates/s"
+            );
+            let all = std::thread::available_parallelism().map_or(1, |n| n.get());
+            for threads in [1, all] {
+                let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build()?;
+                let c = pool.install(|| setup_cost(scene.clone(), seed, steps, threads > 1))?;
+                println!(
+                    "{threads:>8} {:>11} {:>8.3} {:>8.3} {:>8.3} {:>4} {:>8.3} {:>8.3} {:>9.4} {:>9.1} {:>11.3e}",
+                    c.bars,
+                    c.model_s,
+                    c.stiffness_s,
+                    c.critical_s,
+                    c.iterations,
+                    c.state_s,
+                    c.setup_s(),
+                    c.step_s,
+                    c.setup_s() / c.step_s,
+                    c.bars as f64 / c.step_s
+                );
+                if all == 1 {
+                    break;
+                }
+            }
             Ok(())
         }
         Command::Calibrate { pipeline, values, seeds } => {

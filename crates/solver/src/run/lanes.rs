@@ -12,7 +12,7 @@ use crate::rupture::BarLaw;
 use crate::scene::SettleMethod;
 use crate::statics::CriticalStep;
 use crate::step::rupture::{CrackKind, CrackLog, elongations};
-use crate::step::{LaneSetup, LaneView, Params, State, Stepper, Tracking, park, start_drivers};
+use crate::step::{LaneSetup, LaneStiffness, LaneView, Params, State, Stepper, Tracking, park, start_drivers};
 use crate::trace::Tracer;
 
 /// Steps between two blow-up checks.
@@ -97,7 +97,7 @@ pub fn run_lanes<const L: usize>(
     // (a static settle or the skip-ahead takes its lane's back from the params).
     let dts: Vec<f64> = setups.iter().map(|s| s.dt_s).collect();
     for s in &mut setups {
-        s.stiffness = Vec::new();
+        s.stiffness = LaneStiffness::Factored(None);
     }
     let mut state = State::<L>::for_params(&params);
     let mut stepper = Stepper::<L>::new(model);
@@ -176,7 +176,8 @@ pub fn run_lanes<const L: usize>(
                 continue;
             }
             if view.is_multiple_of(BLOWUP_CHECK_EVERY)
-                && let Some(b) = (LaneView { params: &params, state: &state, lane: l }).check_blowup()
+                && let Some(b) =
+                    (LaneView { params: &params, state: &state, lane: l }).check_blowup_on(options.parallel_step)
             {
                 let (origin, stage_name) = match lane.stage {
                     Stage::Shearing { origin, .. } => (origin, "shear stage"),
@@ -332,13 +333,13 @@ pub fn run_lanes<const L: usize>(
 fn damage<const L: usize>(model: &Model, params: &Params<'_, L>, state: &State<L>, l: usize) -> Vec<BarDamage> {
     let (Some(d), Some(law)) = (&state.rupture, &params.rupture) else { return Vec::new() };
     let mut out: Vec<BarDamage> = (0..model.bar_count())
-        .filter(|&b| d.secant[b][l] != params.k[b][l])
+        .filter(|&b| d.secant[b][l] != params.k.per_bar()[b][l])
         .map(|b| {
             let canonical = model.bar_canonical()[b];
             let bar = &model.lattice().bar(canonical as usize);
             let kernel = if bar.family == crate::geometry::BarFamily::Diagonal { 3f64.sqrt() } else { 1.0 };
             let length = bar.length_factor() * model.scene().lc_m;
-            let bar_law = BarLaw { k: params.k[b][l], peak: law.peak[b][l], kr: law.kr };
+            let bar_law = BarLaw { k: params.k.per_bar()[b][l], peak: law.peak[b][l], kr: law.kr };
             BarDamage {
                 bar: canonical,
                 reach_strain: d.reach[b][l] / (kernel * length),
@@ -361,7 +362,7 @@ fn crack<const L: usize>(model: &Model, params: &Params<'_, L>, l: usize, c: &Cr
     let kernel = if bar.family == crate::geometry::BarFamily::Diagonal { 3f64.sqrt() } else { 1.0 };
     let length = bar.length_factor() * model.scene().lc_m;
     let law = params.rupture.as_ref().expect("cracks come from the rupture kernel");
-    let (k, peak) = (params.k[b][l], law.peak[b][l]);
+    let (k, peak) = (params.k.per_bar()[b][l], law.peak[b][l]);
     let energy_j = match c.kind {
         CrackKind::Soften => 0.5 * k * peak * peak,
         CrackKind::Break => 0.5 * k * peak * (law.kr * peak),

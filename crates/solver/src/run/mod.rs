@@ -10,7 +10,7 @@ use crate::model::Model;
 use crate::quasistatic::SkipStats;
 use crate::recording::Recording;
 use crate::scene::{SettleMethod, TimeStep};
-use crate::statics::{CriticalStep, critical_time_step};
+use crate::statics::{CriticalStep, critical_step_on};
 use crate::step::LaneSetup;
 
 pub use lanes::run_lanes;
@@ -144,11 +144,12 @@ pub fn run_seed(
 }
 
 pub(crate) fn prepare(model: &Model, seed: u64, options: RunOptions) -> Result<(LaneSetup, CriticalStep), SolverError> {
-    let stiffness = model.bar_stiffness(seed)?;
+    // With the step split over the pool, the pool is this seed's: the set-up may use it too.
+    let stiffness = model.lane_stiffness_on(seed, options.parallel_step)?;
     let friction = model.friction_factors(seed)?;
     let strength = model.bar_strength(seed)?;
     let fault = model.fault_loads(seed)?;
-    let critical = critical_time_step(model, &stiffness)?;
+    let critical = critical_step_on(model, &stiffness, options.parallel_step)?;
     // Δt never depends on the recording interval (which samples every `round(interval/Δt)`
     // steps): the same seed gives the same run whatever it records.
     let dt_s = match model.scene().time_step {

@@ -16,8 +16,10 @@ use rand::rngs::ChaCha8Rng;
 use crate::error::SolverError;
 use crate::field::Field;
 use crate::geometry::Direction;
+use crate::layout::Bars;
 use crate::model::Model;
 use crate::step::bars::bar_forces;
+use crate::step::{LaneStiffness, StiffnessRef};
 
 /// The critical step of one lattice.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -26,36 +28,104 @@ pub struct CriticalStep {
     pub omega_max: f64,
     /// `2/ω_max` (s).
     pub dt_s: f64,
-    /// Lanczos iterations used.
+    /// Lanczos iterations used (0: the node bound alone, [`node_bound`]).
     pub iterations: usize,
-    /// Relative residual of the top Ritz pair (bound on the relative error of `ω²_max`).
+    /// Relative residual of the top Ritz pair (bound on the relative error of `ω²_max`); NaN for
+    /// the node bound.
     pub relative_residual: f64,
+}
+
+/// The critical step of `model` with one seed's bar stiffness `k` as a run holds it: Lanczos on a
+/// listed lattice ([`critical_time_step`]); on a stencil, Lanczos of at most
+/// [`STENCIL_LANCZOS_ITERATIONS`] passes reading the factored stiffness, or the node bound if it
+/// has not converged by then.
+pub fn critical_step(model: &Model, k: &LaneStiffness) -> Result<CriticalStep, SolverError> {
+    critical_step_on(model, k, false)
+}
+
+/// [`critical_step`], a stencil's bar passes split over the current rayon pool with `parallel`
+/// (the same numbers either way; not from inside a pool whose other tasks are other seeds).
+pub fn critical_step_on(model: &Model, k: &LaneStiffness, parallel: bool) -> Result<CriticalStep, SolverError> {
+    match k {
+        LaneStiffness::PerBar(k) if !matches!(model.layout(), Bars::Stencil(_)) => critical_time_step(model, k),
+        LaneStiffness::PerBar(k) => bounded_step(model, StiffnessRef::<1>::PerBar(k.as_chunks::<1>().0), parallel),
+        LaneStiffness::Factored(f) => bounded_step(
+            model,
+            StiffnessRef::Factored { runs: model.run_stiffness(), factors: f.as_deref().map(|f| f.as_chunks::<1>().0) },
+            parallel,
+        ),
+    }
+}
+
+/// Most Lanczos iterations on a stencil lattice: the set-up of a run costs at most about as many
+/// bar passes as this many steps.
+pub const STENCIL_LANCZOS_ITERATIONS: usize = 100;
+
+/// Converged Lanczos ([`lanczos`], at most [`STENCIL_LANCZOS_ITERATIONS`], each one pass over the
+/// bars reading the stiffness as the kernel does) capped by the node bound ([`node_bound`]); the
+/// node bound alone when Lanczos has not converged to 1e-9 by then (its `θ + residual` is an upper
+/// bound only once converged: after 20 iterations it can still be 1% low).
+fn bounded_step(model: &Model, k: StiffnessRef<'_, 1>, parallel: bool) -> Result<CriticalStep, SolverError> {
+    let inv_mass = model.inv_mass();
+    let nodes = node_bound(inv_mass, |f| k.visit(model.layout(), 0, f));
+    let l = lanczos_with(model, k, Lanczos { max_iter: STENCIL_LANCZOS_ITERATIONS, check_every: 5, parallel }, nodes)?;
+    if l.relative_residual <= LANCZOS_TOLERANCE {
+        return Ok(l);
+    }
+    let bound = nodes + model.boundaries().stiffening(inv_mass);
+    if !(bound > 0.0 && bound.is_finite()) {
+        return Err(SolverError::Numerical(format!(
+            "largest stiffness eigenvalue bound is {bound:e}: the lattice has no positive stiffness"
+        )));
+    }
+    let omega = bound.sqrt();
+    Ok(CriticalStep { omega_max: omega, dt_s: 2.0 / omega, iterations: 0, relative_residual: f64::NAN })
 }
 
 /// Computes the critical step of `model` with bar stiffness `k` (internal order, kernel units).
 pub fn critical_time_step(model: &Model, k: &[f64]) -> Result<CriticalStep, SolverError> {
+    let k1: &[[f64; 1]] = k.as_chunks::<1>().0;
+    lanczos(model, StiffnessRef::PerBar(k1), LANCZOS_MAX_ITERATIONS, gershgorin_bound(model, k))
+}
+
+/// Most Lanczos iterations of [`critical_time_step`].
+pub const LANCZOS_MAX_ITERATIONS: usize = 400;
+
+/// Relative residual of the top Ritz pair at which Lanczos stops (converged).
+pub const LANCZOS_TOLERANCE: f64 = 1e-9;
+
+/// Lanczos on `M^{-1/2} K M^{-1/2}` of `model` with stiffness `k`, at most `max_iter` iterations
+/// (fewer once the top Ritz residual is below 1e-9 of its value): `θ + residual` capped by `cap`,
+/// plus the boundary conditions' stiffening.
+pub fn lanczos(model: &Model, k: StiffnessRef<'_, 1>, max_iter: usize, cap: f64) -> Result<CriticalStep, SolverError> {
+    lanczos_with(model, k, Lanczos { max_iter, check_every: 10, parallel: false }, cap)
+}
+
+/// How [`lanczos_with`] runs.
+#[derive(Clone, Copy, Debug)]
+struct Lanczos {
+    /// Most iterations.
+    max_iter: usize,
+    /// Iterations between two looks at the top Ritz pair (the result depends on it: it stops at
+    /// the first look that finds it converged).
+    check_every: usize,
+    /// The bar passes of a stencil on the current rayon pool (the same numbers).
+    parallel: bool,
+}
+
+fn lanczos_with(model: &Model, k: StiffnessRef<'_, 1>, how: Lanczos, cap: f64) -> Result<CriticalStep, SolverError> {
+    let Lanczos { max_iter, check_every, parallel } = how;
     let n = model.node_count();
     let dof = 3 * n;
-    let k1: Vec<[f64; 1]> = k.iter().map(|&v| [v]).collect();
+    let k1 = k;
+    let gershgorin = cap;
     let inv_sqrt_m: Vec<f64> = model.inv_mass().iter().map(|v| v.sqrt()).collect();
+    // Four vectors of 3n: q, q_prev (flat, component-major), x = M^{-1/2}q and the forces
+    // (fields), x then holding w. Each iteration: the bar pass, then two fused passes over the
+    // nodes (w and α = w·q; w −= αq and β² = w·w), then q = w/β with the next x: the same
+    // arithmetic, in the same order, as one pass per operation.
     let mut x = Field::<1>::zeros(n);
     let mut f = Field::<1>::zeros(n);
-    // y = M^{-1/2} K M^{-1/2} q (K·u = −internal force).
-    let mut apply = |q: &[f64], y: &mut [f64]| {
-        for c in 0..3 {
-            for i in 0..n {
-                x.c[c][i][0] = q[c * n + i] * inv_sqrt_m[i];
-            }
-        }
-        f.fill_zero();
-        bar_forces(model.layout(), &k1, &x, &mut f);
-        for c in 0..3 {
-            for i in 0..n {
-                y[c * n + i] = -f.c[c][i][0] * inv_sqrt_m[i];
-            }
-        }
-    };
-    let gershgorin = gershgorin_bound(model, k);
     // Boundary conditions with springs (the loading plate's) add `k_i/m_i` to the diagonal of
     // node i's row: by Weyl's inequality they raise ω²_max by at most what they say.
     let plate = model.boundaries().stiffening(model.inv_mass());
@@ -63,29 +133,52 @@ pub fn critical_time_step(model: &Model, k: &[f64]) -> Result<CriticalStep, Solv
     let mut rng = ChaCha8Rng::seed_from_u64(0x5eed_c417);
     let mut q: Vec<f64> = (0..dof).map(|_| StandardUniform.sample(&mut rng)).map(|u: f64| u - 0.5).collect();
     normalize(&mut q);
+    for c in 0..3 {
+        for i in 0..n {
+            x.c[c][i][0] = q[c * n + i] * inv_sqrt_m[i];
+        }
+    }
     let mut q_prev = vec![0.0; dof];
-    let mut w = vec![0.0; dof];
     let (mut alphas, mut betas) = (Vec::new(), Vec::new());
-    let max_iter = dof.min(400);
+    let max_iter = dof.min(max_iter);
     let mut best: Option<(f64, f64)> = None;
     for it in 1..=max_iter {
-        apply(&q, &mut w);
+        // f = −K·M^{-1/2}q.
+        f.fill_zero();
+        match (model.layout(), parallel) {
+            (Bars::Stencil(layout), true) => crate::step::stencil::forces_parallel(layout, k1, &x, &mut f),
+            _ => bar_forces(model.layout(), k1, &x, &mut f),
+        }
+        // w = −M^{-1/2}f − β_prev·q_prev (into x), α = w·q.
         let beta_prev = betas.last().copied().unwrap_or(0.0);
-        for i in 0..dof {
-            w[i] -= beta_prev * q_prev[i];
+        let mut alpha = -0.0;
+        for c in 0..3 {
+            let (w, fc) = (&mut x.c[c], &f.c[c]);
+            let (qc, qp) = (&q[c * n..(c + 1) * n], &q_prev[c * n..(c + 1) * n]);
+            for i in 0..n {
+                let v = -fc[i][0] * inv_sqrt_m[i] - beta_prev * qp[i];
+                w[i][0] = v;
+                alpha += v * qc[i];
+            }
         }
-        let alpha = dot(&w, &q);
-        for i in 0..dof {
-            w[i] -= alpha * q[i];
+        // w −= α·q, β² = w·w.
+        let mut beta2 = -0.0;
+        for c in 0..3 {
+            let (w, qc) = (&mut x.c[c], &q[c * n..(c + 1) * n]);
+            for i in 0..n {
+                let v = w[i][0] - alpha * qc[i];
+                w[i][0] = v;
+                beta2 += v * v;
+            }
         }
-        let beta = dot(&w, &w).sqrt();
+        let beta: f64 = beta2.sqrt();
         alphas.push(alpha);
         betas.push(beta);
         let invariant = beta <= 1e-12 * alpha.abs().max(1e-300);
-        if it % 10 == 0 || it == max_iter || invariant {
+        if it % check_every == 0 || it == max_iter || invariant {
             let (theta, residual) = top_ritz(&alphas, &betas);
             best = Some((theta, residual));
-            if residual <= 1e-9 * theta || invariant || it == max_iter {
+            if residual <= LANCZOS_TOLERANCE * theta || invariant || it == max_iter {
                 let bound = (theta + residual).min(gershgorin) + plate;
                 if !(bound > 0.0 && bound.is_finite()) {
                     return Err(SolverError::Numerical(format!(
@@ -101,9 +194,15 @@ pub fn critical_time_step(model: &Model, k: &[f64]) -> Result<CriticalStep, Solv
                 });
             }
         }
+        // q_prev ← q, q ← w/β, x ← M^{-1/2}q.
         std::mem::swap(&mut q_prev, &mut q);
-        for i in 0..dof {
-            q[i] = w[i] / beta;
+        for c in 0..3 {
+            let (w, qc) = (&mut x.c[c], &mut q[c * n..(c + 1) * n]);
+            for i in 0..n {
+                let v = w[i][0] / beta;
+                qc[i] = v;
+                w[i][0] = v * inv_sqrt_m[i];
+            }
         }
     }
     let (theta, residual) = best.unwrap_or((gershgorin, 0.0));
@@ -161,6 +260,57 @@ pub fn gershgorin_bound(model: &Model, k: &[f64]) -> f64 {
     rows.into_iter().fold(0.0, f64::max)
 }
 
+/// A proven upper bound of `ω²_max` from each node's own bars, in one pass over them
+/// (docs/model.md §2). A bar `b` between `i` and `j` of kernel stiffness `k` (diagonals stored
+/// `k/3` with `s = (±1, ±1, 1)`) stores `k·(s·(u_j − u_i))²` in `uᵀKu`, and
+/// `(a − b)² ≤ (1 + t)a² + (1 + 1/t)b²` for any `t > 0`; with `t = m_i/m_j`,
+/// `uᵀKu ≤ Σ_i m_i·u_iᵀA_iu_i`, `A_i = Σ_{b∋i} k_b(1/m_i + 1/m_j)·s_b s_bᵀ`, so
+/// `ω²_max ≤ max_i λ_max(A_i)` (exact for a chain of two masses). `bars` calls its argument with
+/// `(i, j, direction, k)` for every bar.
+pub fn node_bound(inv_mass: &[f64], bars: impl FnOnce(&mut dyn FnMut(usize, usize, Direction, f64))) -> f64 {
+    // Upper triangle of A_i: xx, yy, zz, xy, xz, yz.
+    let mut a = vec![[0.0f64; 6]; inv_mass.len()];
+    bars(&mut |i, j, direction, k| {
+        let w = k * (inv_mass[i] + inv_mass[j]);
+        for n in [i, j] {
+            let an = &mut a[n];
+            match direction {
+                Direction::Axis(ax) => an[ax as usize] += w,
+                Direction::Diagonal { neg_x, neg_y } => {
+                    let (sx, sy) = (if neg_x { -1.0 } else { 1.0 }, if neg_y { -1.0 } else { 1.0 });
+                    an[0] += w;
+                    an[1] += w;
+                    an[2] += w;
+                    an[3] += w * sx * sy;
+                    an[4] += w * sx;
+                    an[5] += w * sy;
+                }
+            }
+        }
+    });
+    let top = a.iter().map(sym3_max_eigenvalue).fold(0.0, f64::max);
+    // The closed form's round-off, a few ulps of the largest entry: covered many times over.
+    top * (1.0 + 1e-12)
+}
+
+/// Largest eigenvalue of the symmetric 3×3 matrix of upper triangle `[xx, yy, zz, xy, xz, yz]`
+/// (the trigonometric closed form).
+fn sym3_max_eigenvalue(m: &[f64; 6]) -> f64 {
+    let [a, b, c, d, e, f] = *m;
+    let p1 = d * d + e * e + f * f;
+    if p1 == 0.0 {
+        return a.max(b).max(c);
+    }
+    let q = (a + b + c) / 3.0;
+    let p2 = (a - q).powi(2) + (b - q).powi(2) + (c - q).powi(2) + 2.0 * p1;
+    let p = (p2 / 6.0).sqrt();
+    // B = (A − qI)/p; r = det(B)/2.
+    let (ba, bb, bc, bd, be, bf) = ((a - q) / p, (b - q) / p, (c - q) / p, d / p, e / p, f / p);
+    let det = ba * (bb * bc - bf * bf) - bd * (bd * bc - bf * be) + be * (bd * bf - bb * be);
+    let r = (det / 2.0).clamp(-1.0, 1.0);
+    q + 2.0 * p * (r.acos() / 3.0).cos()
+}
+
 fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
@@ -173,6 +323,7 @@ fn normalize(v: &mut [f64]) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::Dims;
     use crate::scene::Scene;
 
     /// Dense `M^{-1/2} K M^{-1/2}` built from unit vectors through the kernel.
@@ -212,6 +363,63 @@ mod tests {
             }
             if cv == 0.0 && nu == 0.25 {
                 assert!((ratio - 1.01).abs() < 0.02, "ν = 0.25: Eq.5 / true = {ratio}");
+            }
+        }
+    }
+    #[test]
+    fn the_node_bound_is_above_the_dense_eigensolve() {
+        let scenes = [
+            (Dims::new(10, 1, 5), 0.2, 0.0),
+            (Dims::new(10, 1, 5), 0.2, 0.05),
+            (Dims::new(6, 5, 4), 0.25, 0.0),
+            (Dims::new(6, 5, 4), 0.25, 0.05),
+            (Dims::new(7, 6, 5), 0.2, 0.2),
+        ];
+        for (dims, nu, cv) in scenes {
+            let model = Model::new(Scene { poisson: nu, young_cv: cv, ..Scene::paper() }.sample(dims));
+            let k = model.bar_stiffness(5).unwrap();
+            let dense = dense_max_eigenvalue(&model, &k);
+            let bound = node_bound(model.inv_mass(), |f| model.layout().visit(|b, i, j, d| f(i, j, d, k[b])));
+            eprintln!(
+                "{dims:?} ν {nu} cv {cv}: node bound / true ω² = {:.4}, Δt ratio {:.4}",
+                bound / dense,
+                (dense / bound).sqrt()
+            );
+            assert!(bound >= dense * (1.0 - 1e-12), "{dims:?}: {bound} below {dense}");
+        }
+    }
+
+    #[test]
+    #[ignore]
+    fn lanczos_convergence_experiment() {
+        for (dims, nu, cv) in [
+            (Dims::new(6, 5, 4), 0.25, 0.05),
+            (Dims::new(10, 1, 5), 0.2, 0.05),
+            (Dims::new(40, 20, 10), 0.25, 0.05),
+            (Dims::new(100, 30, 12), 0.25, 0.05),
+            (Dims::new(100, 30, 12), 0.25, 0.0),
+            (Dims::new(200, 50, 20), 0.25, 0.0),
+            (Dims::new(200, 50, 20), 0.25, 0.05),
+        ] {
+            let model = Model::new(Scene { poisson: nu, young_cv: cv, ..Scene::paper() }.sample(dims));
+            let k = model.bar_stiffness(5).unwrap();
+            let k1: &[[f64; 1]] = k.as_chunks::<1>().0;
+            let full = lanczos(&model, StiffnessRef::PerBar(k1), 400, f64::INFINITY).unwrap();
+            let nb = node_bound(model.inv_mass(), |f| model.layout().visit(|b, i, j, d| f(i, j, d, k[b])));
+            let w2 = full.omega_max.powi(2);
+            eprintln!(
+                "{dims:?}: 400 its {} → ω² {w2:.6e} (res {:.2e}); node bound ×{:.4}",
+                full.iterations,
+                full.relative_residual,
+                nb / w2
+            );
+            for it in [10, 20, 30, 40, 60, 100] {
+                let c = lanczos(&model, StiffnessRef::PerBar(k1), it, f64::INFINITY).unwrap();
+                eprintln!(
+                    "   {it:3} its: (θ+r)/ω²₄₀₀ = {:.5}, r/θ = {:.3e}",
+                    c.omega_max.powi(2) / w2,
+                    c.relative_residual
+                );
             }
         }
     }

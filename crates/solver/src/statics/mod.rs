@@ -6,5 +6,5 @@ pub mod critical;
 pub mod moduli;
 
 pub use cg::{Prescribed, StaticSolution, solve_static, solve_static_from};
-pub use critical::{CriticalStep, critical_time_step};
+pub use critical::{CriticalStep, critical_step, critical_step_on, critical_time_step, node_bound};
 pub use moduli::{EffectiveModuli, uniaxial_moduli};

@@ -31,6 +31,7 @@ use stickslip_isa::{Isa, widest};
 use crate::field::{Field, Lanes};
 use crate::geometry::Direction;
 use crate::layout::{BarGroup, BarLayout, Bars, Segment};
+use crate::step::stiffness::StiffnessRef;
 
 /// Checks that `k`, `u` and `f` fit `layout` (the kernels index them without bounds checks).
 pub(crate) fn check<const L: usize>(layout: &BarLayout, k: &[Lanes<L>], u: &Field<L>, f: &Field<L>) {
@@ -49,9 +50,13 @@ unsafe impl<const L: usize> Send for ForcePtr<L> {}
 unsafe impl<const L: usize> Sync for ForcePtr<L> {}
 
 /// Adds the internal bar forces `−K·u` to `f`, on the calling thread, whatever the layout.
-pub fn bar_forces<const L: usize>(bars: &Bars, k: &[Lanes<L>], u: &Field<L>, f: &mut Field<L>) {
+pub fn bar_forces<'k, const L: usize>(bars: &Bars, k: impl Into<StiffnessRef<'k, L>>, u: &Field<L>, f: &mut Field<L>) {
+    let k = k.into();
     match bars {
-        Bars::Listed(layout) => listed_forces(layout, k, u, f),
+        Bars::Listed(layout) => {
+            let StiffnessRef::PerBar(k) = k else { panic!("a listed lattice has per-bar stiffness") };
+            listed_forces(layout, k, u, f)
+        }
         Bars::Stencil(layout) => crate::step::stencil::forces(layout, k, u, f),
     }
 }
@@ -277,16 +282,16 @@ pub(crate) unsafe fn scatter_diagonal<const L: usize>(
 }
 
 /// Diagonal of the stiffness matrix per node and component, for one lane of `k`.
-pub fn stiffness_diagonal<const L: usize>(bars: &Bars, k: &[Lanes<L>], l: usize) -> Field<1> {
+pub fn stiffness_diagonal<'k, const L: usize>(bars: &Bars, k: impl Into<StiffnessRef<'k, L>>, l: usize) -> Field<1> {
     let mut d = Field::<1>::zeros(bars.nodes());
-    bars.visit(|b, i, j, direction| {
+    k.into().visit(bars, l, |i, j, direction, k| {
         for node in [i, j] {
             match direction {
-                Direction::Axis(a) => d.c[a as usize][node][0] += k[b][l],
+                Direction::Axis(a) => d.c[a as usize][node][0] += k,
                 // k stored as k/3 and s_c² = 1: each component's diagonal gains k/3.
                 Direction::Diagonal { .. } => {
                     for c in 0..3 {
-                        d.c[c][node][0] += k[b][l];
+                        d.c[c][node][0] += k;
                     }
                 }
             }

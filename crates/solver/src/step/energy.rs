@@ -11,7 +11,7 @@ use std::ops::Range;
 use rayon::prelude::*;
 
 use crate::boundary;
-use crate::field::{Field, Lanes};
+use crate::field::Field;
 use crate::geometry::Direction;
 use crate::layout::{BarLayout, Bars};
 use crate::model::Model;
@@ -19,21 +19,33 @@ use crate::stencil::{Run, StencilLayout};
 use crate::step::bars::signs;
 use crate::step::params::Params;
 use crate::step::state::State;
+use crate::step::stiffness::StiffnessRef;
 
 pub use crate::ledger::Energy;
 
 /// `½ Σ_b k_b·e_b(a)·e_b(b)` for lane `l`: the strain energy `½aᵀKb` (J). With `a = b` it is the
 /// strain energy of one state; with `a = uₙ`, `b = uₙ₊₁` it is the energy the central-difference
 /// scheme conserves exactly.
-pub fn strain_energy<const L: usize>(bars: &Bars, k: &[Lanes<L>], a: &Field<L>, b: &Field<L>, l: usize) -> f64 {
+pub fn strain_energy<'k, const L: usize>(
+    bars: &Bars,
+    k: impl Into<StiffnessRef<'k, L>>,
+    a: &Field<L>,
+    b: &Field<L>,
+    l: usize,
+) -> f64 {
+    let k = k.into();
     match bars {
-        Bars::Listed(layout) => strain_energy_with(layout, a, b, l, |bar, _| k[bar][l]),
+        Bars::Listed(layout) => {
+            let StiffnessRef::PerBar(k) = k else { panic!("a listed lattice has per-bar stiffness") };
+            strain_energy_with(layout, a, b, l, |bar, _| k[bar][l])
+        }
         Bars::Stencil(layout) => {
             let slab_sums = per_slab(layout, false, |layers| {
                 let mut sum = 0.0;
                 for layer in layers {
-                    for r in layout.layer_runs(layer) {
-                        sum += run_strain_energy(r, k, a, b, l);
+                    let range = layout.layer_run_range(layer);
+                    for (index, r) in range.clone().zip(&layout.runs()[range]) {
+                        sum += run_strain_energy(index, r, k, a, b, l);
                     }
                 }
                 sum
@@ -44,14 +56,21 @@ pub fn strain_energy<const L: usize>(bars: &Bars, k: &[Lanes<L>], a: &Field<L>, 
 }
 
 /// `Σ k·e(a)·e(b)` over the bars of one run, lane `l`, in eight partial sums.
-fn run_strain_energy<const L: usize>(r: &Run, k: &[Lanes<L>], a: &Field<L>, b: &Field<L>, l: usize) -> f64 {
-    let (lo, hi, n, kb) = (r.start as usize, (r.start + r.offset) as usize, r.len as usize, r.first_bar as usize);
-    let k = &k[kb..kb + n];
+fn run_strain_energy<const L: usize>(
+    index: usize,
+    r: &Run,
+    k: StiffnessRef<'_, L>,
+    a: &Field<L>,
+    b: &Field<L>,
+    l: usize,
+) -> f64 {
+    let (lo, hi, n) = (r.start as usize, (r.start + r.offset) as usize, r.len as usize);
+    let k = |m: usize| k.of_run_bar(index, r, m, l);
     match r.direction {
         Direction::Axis(axis) => {
             let (ca, cb) = (&a.c[axis as usize], &b.c[axis as usize]);
             let (al, ah, bl, bh) = (&ca[lo..lo + n], &ca[hi..hi + n], &cb[lo..lo + n], &cb[hi..hi + n]);
-            sum8(n, |m| k[m][l] * (ah[m][l] - al[m][l]) * (bh[m][l] - bl[m][l]))
+            sum8(n, |m| k(m) * (ah[m][l] - al[m][l]) * (bh[m][l] - bl[m][l]))
         }
         Direction::Diagonal { neg_x, neg_y } => {
             let (sx, sy) = signs(neg_x, neg_y);
@@ -59,7 +78,7 @@ fn run_strain_energy<const L: usize>(r: &Run, k: &[Lanes<L>], a: &Field<L>, b: &
                 let (i, j) = (lo + m, hi + m);
                 sx * (u.c[0][j][l] - u.c[0][i][l]) + sy * (u.c[1][j][l] - u.c[1][i][l]) + (u.c[2][j][l] - u.c[2][i][l])
             };
-            sum8(n, |m| k[m][l] * e(a, m) * e(b, m))
+            sum8(n, |m| k(m) * e(a, m) * e(b, m))
         }
     }
 }

@@ -22,6 +22,7 @@ pub mod params;
 pub mod rupture;
 pub mod state;
 pub mod stencil;
+pub mod stiffness;
 mod view;
 
 pub use crate::field::{Field, Lanes};
@@ -29,6 +30,7 @@ pub use contact::SUSTAINED_SLIP_STEPS;
 pub use energy::Energy;
 pub use params::{LaneSetup, Params};
 pub use state::State;
+pub use stiffness::{LaneStiffness, Stiffness, StiffnessRef};
 pub use view::{Blowup, Interface, LaneView, NodeContact};
 
 use stickslip_isa::Isa;
@@ -120,18 +122,18 @@ impl<const L: usize> Stepper<L> {
         } else if let Bars::Stencil(layout) = m.layout() {
             let u = &mut state.u;
             let levels = Levels { u: &u.np1, up: &u.n, out: &mut u.nm1 };
-            stencil::forces_and_trial(layout, &p.k, &update, &mut self.force, levels, self.parallel);
+            stencil::forces_and_trial(layout, p.stiffness(), &update, &mut self.force, levels, self.parallel);
         } else {
             let u = &mut state.u;
             let layout = m.layout().listed();
             // The force field is zero here: the integration clears it as it consumes it. The trial
             // `uₙ₊₂` is written over `uₙ₋₁`, no longer needed.
             if self.parallel {
-                bar_forces_parallel(layout, &p.k, &u.np1, &mut self.force);
+                bar_forces_parallel(layout, p.k.per_bar(), &u.np1, &mut self.force);
                 integrate_all(&update, &mut self.force, Levels { u: &u.np1, up: &u.n, out: &mut u.nm1 }, true);
             } else if !m.cache_blocked() {
                 // A small lattice stays in cache: two plain sweeps beat handing over short runs.
-                listed_forces(layout, &p.k, &u.np1, &mut self.force);
+                listed_forces(layout, p.k.per_bar(), &u.np1, &mut self.force);
                 integrate_all(&update, &mut self.force, Levels { u: &u.np1, up: &u.n, out: &mut u.nm1 }, false);
             } else {
                 // Each node is integrated as soon as its last bar has run, while its data is still in
@@ -139,7 +141,7 @@ impl<const L: usize> Stepper<L> {
                 // same bits).
                 let isa = Isa::current();
                 let (now, before, out) = (&u.np1, &u.n, &mut u.nm1);
-                bar_forces_finishing(layout, &p.k, now, &mut self.force, |r, f| {
+                bar_forces_finishing(layout, p.k.per_bar(), now, &mut self.force, |r, f| {
                     integrate_range(isa, r, &update, f, Levels { u: now, up: before, out: &mut *out });
                 });
             }
@@ -180,8 +182,14 @@ impl<const L: usize> Stepper<L> {
         let damage = damage.as_mut().expect("the rupture kernel runs on a state with damage");
         let params = p.rupture.as_ref().expect("the rupture kernel runs with the law's parameters");
         let (now, before, out) = (&u.np1, &u.n, &mut u.nm1);
-        let pass =
-            rupture::Pass { layout: m.layout().listed(), k0: &p.k, params, state: &mut *damage, u: now, older: before };
+        let pass = rupture::Pass {
+            layout: m.layout().listed(),
+            k0: p.k.per_bar(),
+            params,
+            state: &mut *damage,
+            u: now,
+            older: before,
+        };
         if self.parallel {
             rupture::forces_parallel(pass, &mut self.force, &mut self.outs);
             integrate_all(update, &mut self.force, Levels { u: now, up: before, out }, true);

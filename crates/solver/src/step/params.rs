@@ -6,14 +6,15 @@ use crate::field::Lanes;
 use crate::laws::FrictionLaws;
 use crate::model::Model;
 use crate::step::rupture::RuptureParams;
+use crate::step::stiffness::{LaneStiffness, Stiffness, StiffnessRef};
 
 /// Per-lane set-up of a batch.
 #[derive(Clone, Debug)]
 pub struct LaneSetup {
     /// Time step (s).
     pub dt_s: f64,
-    /// Kernel stiffness per bar (internal order), e.g. [`Model::bar_stiffness`].
-    pub stiffness: Vec<f64>,
+    /// Bar stiffness (internal order), e.g. [`Model::lane_stiffness`].
+    pub stiffness: LaneStiffness,
     /// Friction factor per contact node, e.g. [`Model::friction_factors`].
     pub friction: Vec<f64>,
     /// Peak elongation per bar (kernel units) when the scene's bars crack, e.g.
@@ -40,8 +41,8 @@ pub struct Coefficients<const L: usize> {
 pub struct Params<'m, const L: usize> {
     /// The model.
     pub model: &'m Model,
-    /// Kernel stiffness per bar and lane (see [`crate::step::bars`]).
-    pub k: Vec<Lanes<L>>,
+    /// Bar stiffness per lane (see [`crate::step::bars`] and [`crate::step::stiffness`]).
+    pub k: Stiffness<L>,
     /// The friction law's coefficients of each contact node, per lane (field factor applied).
     pub friction: FrictionLaws<L>,
     /// The bilinear law's peaks and `Kr` when bars crack (docs/model.md §11).
@@ -59,14 +60,17 @@ impl<'m, const L: usize> Params<'m, L> {
     pub fn new(model: &'m Model, lanes: &[LaneSetup; L]) -> Self {
         let nb = model.bar_count();
         let nc = model.contact().len();
-        let mut k = vec![[0.0; L]; nb];
-        for (l, lane) in lanes.iter().enumerate() {
-            assert_eq!(lane.stiffness.len(), nb, "one stiffness per bar");
+        for lane in lanes {
             assert_eq!(lane.friction.len(), nc, "one friction factor per contact node");
-            for (kb, &v) in k.iter_mut().zip(&lane.stiffness) {
-                kb[l] = v;
-            }
         }
+        let k = Stiffness::interleave(nb, lanes.each_ref().map(|lane| &lane.stiffness));
+        assert!(
+            matches!(
+                (&k, model.layout()),
+                (Stiffness::PerBar(_), _) | (Stiffness::Factored(_), crate::layout::Bars::Stencil(_))
+            ),
+            "factored stiffness is for a stencil lattice"
+        );
         let friction = FrictionLaws::new(nc, |c, l| model.node_friction(c, lanes[l].friction[c]));
         let rupture = match (lanes.iter().all(|l| l.strength.is_some()), lanes.iter().all(|l| l.strength.is_none())) {
             (true, _) => {
@@ -121,9 +125,15 @@ impl<'m, const L: usize> Params<'m, L> {
         self.coef.cp[l] = (1.0 - a) / (1.0 + a);
     }
 
-    /// The kernel stiffness of every bar of lane `l` (internal order).
+    /// What the kernels read of the bar stiffness.
+    pub fn stiffness(&self) -> StiffnessRef<'_, L> {
+        self.k.view(self.model.run_stiffness())
+    }
+
+    /// The kernel stiffness of every bar of lane `l` (internal order; a stencil's computed from
+    /// its runs and factors).
     pub fn lane_stiffness(&self, l: usize) -> Vec<f64> {
-        self.k.iter().map(|k| k[l]).collect()
+        self.stiffness().lane(self.model.layout(), l)
     }
 
     /// Time step of lane `l` (s).

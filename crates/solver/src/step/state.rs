@@ -133,7 +133,7 @@ impl<const L: usize> State<L> {
     pub fn for_params(p: &Params<'_, L>) -> Self {
         let m = p.model;
         let mut s = State::at_rest_with_plate(m.node_count(), m.contact().len(), m.drivers().len(), m.plate().len());
-        s.rupture = p.rupture.as_ref().map(|r| RuptureState::intact(&p.k, r));
+        s.rupture = p.rupture.as_ref().map(|r| RuptureState::intact(p.k.per_bar(), r));
         s
     }
 

@@ -25,16 +25,17 @@ use stickslip_isa::{Isa, widest};
 
 use crate::field::{Field, Lanes};
 use crate::geometry::Direction;
-use crate::stencil::{Run, StencilLayout};
+use crate::stencil::{Run, RunStiffness, StencilLayout};
 use crate::step::bars::signs;
 use crate::step::integrate::{Update, integrate_raw};
+use crate::step::stiffness::StiffnessRef;
 
 /// Raw views of the arrays one pass reads and writes, shared by the slab tasks of one phase
 /// (which write disjoint layers).
 #[derive(Clone, Copy)]
 pub(crate) struct Pass<const L: usize> {
-    /// Stiffness, `L` per bar.
-    k: *const f64,
+    /// Stiffness.
+    k: KPtr,
     /// Displacements now, per component, `L` per node.
     u: [*const f64; 3],
     /// Forces, per component, `L` per node.
@@ -60,23 +61,47 @@ pub(crate) struct LevelsPtr<const L: usize> {
 unsafe impl<const L: usize> Send for LevelsPtr<L> {}
 unsafe impl<const L: usize> Sync for LevelsPtr<L> {}
 
-fn check<const L: usize>(layout: &StencilLayout, k: &[Lanes<L>], u: &Field<L>, f: &Field<L>) {
-    assert_eq!(k.len(), layout.bars(), "one stiffness per bar");
+/// The stiffness one pass reads: `L` `f64` per bar, or the runs' nominal stiffness and `L` `f32`
+/// factors per bar (or none).
+#[derive(Clone, Copy)]
+enum KPtr {
+    PerBar(*const f64),
+    Factored { runs: *const RunStiffness, factors: Option<*const f32> },
+}
+
+fn check<const L: usize>(layout: &StencilLayout, k: StiffnessRef<'_, L>, u: &Field<L>, f: &Field<L>) {
+    if let StiffnessRef::Factored { runs, .. } = k {
+        assert_eq!(runs.len(), layout.runs().len(), "one nominal stiffness per run");
+    }
+    if let Some(n) = k.bars() {
+        assert_eq!(n, layout.bars(), "one stiffness per bar");
+    }
     for c in 0..3 {
         assert!(u.c[c].len() == layout.nodes() && f.c[c].len() == layout.nodes(), "fields over the layout's nodes");
     }
 }
 
-fn pass<const L: usize>(k: &[Lanes<L>], u: &Field<L>, f: &mut Field<L>) -> Pass<L> {
+fn pass<const L: usize>(k: StiffnessRef<'_, L>, u: &Field<L>, f: &mut Field<L>) -> Pass<L> {
     Pass {
-        k: k.as_flattened().as_ptr(),
+        k: match k {
+            StiffnessRef::PerBar(k) => KPtr::PerBar(k.as_flattened().as_ptr()),
+            StiffnessRef::Factored { runs, factors } => {
+                KPtr::Factored { runs: runs.as_ptr(), factors: factors.map(|f| f.as_flattened().as_ptr()) }
+            }
+        },
         u: [0, 1, 2].map(|c| u.c[c].as_flattened().as_ptr()),
         f: f.c.each_mut().map(|c| c.as_flattened_mut().as_mut_ptr()),
     }
 }
 
 /// Adds the internal bar forces `−K·u` to `f`, on the calling thread, in slab and phase order.
-pub fn forces<const L: usize>(layout: &StencilLayout, k: &[Lanes<L>], u: &Field<L>, f: &mut Field<L>) {
+pub fn forces<'k, const L: usize>(
+    layout: &StencilLayout,
+    k: impl Into<StiffnessRef<'k, L>>,
+    u: &Field<L>,
+    f: &mut Field<L>,
+) {
+    let k = k.into();
     check(layout, k, u, f);
     let (isa, p) = (Isa::current(), pass(k, u, f));
     let mut t = vec![0.0; layout.longest_run() * L];
@@ -90,12 +115,29 @@ pub fn forces<const L: usize>(layout: &StencilLayout, k: &[Lanes<L>], u: &Field<
     }
 }
 
+/// As [`forces`], the slabs of each phase on the current rayon pool: the same bits.
+pub fn forces_parallel<const L: usize>(layout: &StencilLayout, k: StiffnessRef<'_, L>, u: &Field<L>, f: &mut Field<L>) {
+    check(layout, k, u, f);
+    let (isa, p) = (Isa::current(), pass(k, u, f));
+    let slabs: Vec<Range<usize>> = layout.slabs().collect();
+    for phase in 0..2 {
+        slabs.par_iter().for_each_init(
+            || vec![0.0; layout.longest_run() * L],
+            |t, slab| {
+                let layers = if phase == 0 { slab.start..slab.end - 1 } else { slab.end - 1..slab.end };
+                // SAFETY: checked arrays; the slabs of one phase write disjoint layers.
+                unsafe { layers_dispatch(isa, layout, layers, p, t) };
+            },
+        );
+    }
+}
+
 /// As [`forces`], and each node integrated by `update` as soon as its forces are complete (the
 /// force field is cleared as it is consumed); with `parallel`, the slabs of a phase on the current
 /// rayon pool. The same bits either way.
 pub fn forces_and_trial<const L: usize>(
     layout: &StencilLayout,
-    k: &[Lanes<L>],
+    k: StiffnessRef<'_, L>,
     update: &Update<'_, L>,
     f: &mut Field<L>,
     levels: crate::step::integrate::Levels<'_, L>,
@@ -180,9 +222,10 @@ widest! {
 #[inline(always)]
 unsafe fn layers<const L: usize>(layout: &StencilLayout, span: Range<usize>, p: Pass<L>, t: &mut [f64]) {
     for layer in span {
-        for r in layout.layer_runs(layer) {
+        let range = layout.layer_run_range(layer);
+        for (index, r) in range.clone().zip(&layout.runs()[range]) {
             // SAFETY: forwarded contract.
-            unsafe { run::<L>(r, p, t) };
+            unsafe { run::<L>(index, r, p, t) };
         }
     }
 }
@@ -192,21 +235,42 @@ unsafe fn layers<const L: usize>(layout: &StencilLayout, span: Range<usize>, p: 
 /// # Safety
 /// As [`layers_dispatch`].
 #[inline(always)]
-unsafe fn run<const L: usize>(r: &Run, p: Pass<L>, t: &mut [f64]) {
+unsafe fn run<const L: usize>(index: usize, r: &Run, p: Pass<L>, t: &mut [f64]) {
     let n = r.len as usize * L;
     let (lo, hi, kb) = (r.start as usize * L, (r.start + r.offset) as usize * L, r.first_bar as usize * L);
     let t = &mut t[..n];
     // SAFETY: the ranges lie inside the checked arrays; each mutable slice is dropped before the
     // next (lower and upper runs of an x run overlap) and no other thread writes them.
     unsafe {
-        let k = std::slice::from_raw_parts(p.k.add(kb), n);
         let read = |c: usize, at: usize| std::slice::from_raw_parts(p.u[c].add(at), n);
         match r.direction {
             Direction::Axis(a) => {
                 let a = a as usize;
                 let (ul, uh) = (read(a, lo), read(a, hi));
-                for m in 0..n {
-                    t[m] = k[m] * (uh[m] - ul[m]);
+                match p.k {
+                    KPtr::PerBar(k) => {
+                        let k = std::slice::from_raw_parts(k.add(kb), n);
+                        for m in 0..n {
+                            t[m] = k[m] * (uh[m] - ul[m]);
+                        }
+                    }
+                    KPtr::Factored { runs, factors } => {
+                        let rs = *runs.add(index);
+                        let phi = factors.map(|f| std::slice::from_raw_parts(f.add(kb), n));
+                        factored(t, rs.interior, phi, |m| uh[m] - ul[m]);
+                        // The first and last bar of a run on the block's x faces: their own nominal.
+                        let bars = r.len as usize;
+                        for m in [0, bars - 1] {
+                            let k = rs.at(m, bars);
+                            if k != rs.interior {
+                                for l in 0..L {
+                                    let q = m * L + l;
+                                    let kf = phi.map_or(k, |f| k * f64::from(f[q]));
+                                    t[q] = kf * (uh[q] - ul[q]);
+                                }
+                            }
+                        }
+                    }
                 }
                 add(std::slice::from_raw_parts_mut(p.f[a].add(lo), n), t, 1.0);
                 sub(std::slice::from_raw_parts_mut(p.f[a].add(hi), n), t, 1.0);
@@ -215,8 +279,19 @@ unsafe fn run<const L: usize>(r: &Run, p: Pass<L>, t: &mut [f64]) {
                 let (sx, sy) = signs(neg_x, neg_y);
                 let (xl, xh, yl, yh, zl, zh) =
                     (read(0, lo), read(0, hi), read(1, lo), read(1, hi), read(2, lo), read(2, hi));
-                for m in 0..n {
-                    t[m] = k[m] * (sx * (xh[m] - xl[m]) + sy * (yh[m] - yl[m]) + (zh[m] - zl[m]));
+                let e = |m: usize| sx * (xh[m] - xl[m]) + sy * (yh[m] - yl[m]) + (zh[m] - zl[m]);
+                match p.k {
+                    KPtr::PerBar(k) => {
+                        let k = std::slice::from_raw_parts(k.add(kb), n);
+                        for m in 0..n {
+                            t[m] = k[m] * e(m);
+                        }
+                    }
+                    // A diagonal has no surface reduction: one nominal stiffness for the run.
+                    KPtr::Factored { runs, factors } => {
+                        let phi = factors.map(|f| std::slice::from_raw_parts(f.add(kb), n));
+                        factored(t, (*runs.add(index)).interior, phi, e);
+                    }
                 }
                 // One array per loop (see the listed kernel).
                 add(std::slice::from_raw_parts_mut(p.f[0].add(lo), n), t, sx);
@@ -225,6 +300,23 @@ unsafe fn run<const L: usize>(r: &Run, p: Pass<L>, t: &mut [f64]) {
                 sub(std::slice::from_raw_parts_mut(p.f[0].add(hi), n), t, sx);
                 sub(std::slice::from_raw_parts_mut(p.f[1].add(hi), n), t, sy);
                 sub(std::slice::from_raw_parts_mut(p.f[2].add(hi), n), t, 1.0);
+            }
+        }
+    }
+}
+
+/// `t = (k·f64(φ))·e` over a run (`t = k·e` without factors).
+#[inline(always)]
+fn factored(t: &mut [f64], k: f64, phi: Option<&[f32]>, e: impl Fn(usize) -> f64) {
+    match phi {
+        Some(phi) => {
+            for (m, (t, &f)) in t.iter_mut().zip(phi).enumerate() {
+                *t = (k * f64::from(f)) * e(m);
+            }
+        }
+        None => {
+            for (m, t) in t.iter_mut().enumerate() {
+                *t = k * e(m);
             }
         }
     }
@@ -248,7 +340,13 @@ fn sub(f: &mut [f64], t: &[f64], s: f64) {
 
 /// The kernel's order written plainly, one bar and one lane at a time: run by run in slab and
 /// phase order, first every bar's `+t` at its lower end, then every bar's `−t` at its upper end.
-pub fn reference<const L: usize>(layout: &StencilLayout, k: &[Lanes<L>], u: &Field<L>, f: &mut Field<L>) {
+pub fn reference<'k, const L: usize>(
+    layout: &StencilLayout,
+    k: impl Into<StiffnessRef<'k, L>>,
+    u: &Field<L>,
+    f: &mut Field<L>,
+) {
+    let k = k.into();
     let mut order: Vec<usize> = Vec::new();
     for phase in 0..2 {
         for slab in layout.slabs() {
@@ -257,12 +355,11 @@ pub fn reference<const L: usize>(layout: &StencilLayout, k: &[Lanes<L>], u: &Fie
         }
     }
     for layer in order {
-        for r in layout.layer_runs(layer) {
+        let range = layout.layer_run_range(layer);
+        for (index, r) in range.clone().zip(&layout.runs()[range]) {
             let (lo, off) = (r.start as usize, r.offset as usize);
-            let ts: Vec<Lanes<L>> = r
-                .bars()
-                .enumerate()
-                .map(|(m, b)| {
+            let ts: Vec<Lanes<L>> = (0..r.len as usize)
+                .map(|m| {
                     let (i, j) = (lo + m, lo + m + off);
                     std::array::from_fn(|l| {
                         let d = |c: usize| u.c[c][j][l] - u.c[c][i][l];
@@ -273,7 +370,7 @@ pub fn reference<const L: usize>(layout: &StencilLayout, k: &[Lanes<L>], u: &Fie
                                 sx * d(0) + sy * d(1) + d(2)
                             }
                         };
-                        k[b][l] * e
+                        k.of_run_bar(index, r, m, l) * e
                     })
                 })
                 .collect();
@@ -326,9 +423,61 @@ mod tests {
         f.c.iter().flat_map(|c| c.iter().flat_map(|v| v.map(f64::to_bits))).collect()
     }
 
+    /// Random nominal stiffness per run (first and last bars their own) and `f32` factors.
+    fn random_factored<const L: usize>(layout: &StencilLayout, seed: u64) -> (Vec<RunStiffness>, Vec<[f32; L]>) {
+        let mut rng = rand::rngs::ChaCha8Rng::seed_from_u64(seed ^ 0xfac7);
+        let runs = layout
+            .runs()
+            .iter()
+            .map(|r| {
+                let interior = rng.random_range(0.5..2.0);
+                match r.direction {
+                    Direction::Axis(_) => RunStiffness {
+                        first: if rng.random_bool(0.5) { interior } else { 0.5 * interior },
+                        interior,
+                        last: if rng.random_bool(0.5) { interior } else { 0.25 * interior },
+                    },
+                    Direction::Diagonal { .. } => RunStiffness { first: interior, interior, last: interior },
+                }
+            })
+            .collect();
+        let factors = (0..layout.bars()).map(|_| std::array::from_fn(|_| rng.random_range(0.7f32..1.3))).collect();
+        (runs, factors)
+    }
+
     fn agrees<const L: usize>(dims: Dims, seed: u64) {
         let layout = StencilLayout::new(dims);
         let (k, u) = random::<L>(&layout, seed);
+        let (runs, factors) = random_factored::<L>(&layout, seed);
+        for kref in [
+            StiffnessRef::Factored { runs: &runs, factors: Some(&factors) },
+            StiffnessRef::Factored { runs: &runs, factors: None },
+        ] {
+            let mut want = Field::<L>::zeros(layout.nodes());
+            reference(&layout, kref, &u, &mut want);
+            // The factored stiffness is the per-bar stiffness `nominal · f64(factor)`.
+            let per_bar: Vec<Lanes<L>> = {
+                let mut v = vec![[0.0; L]; layout.bars()];
+                for (index, r) in layout.runs().iter().enumerate() {
+                    for m in 0..r.len as usize {
+                        v[r.first_bar as usize + m] = std::array::from_fn(|l| kref.of_run_bar(index, r, m, l));
+                    }
+                }
+                v
+            };
+            let mut plain = Field::<L>::zeros(layout.nodes());
+            reference(&layout, &per_bar, &u, &mut plain);
+            assert_eq!(bits(&plain), bits(&want), "{dims:?} L = {L}: factored as per bar");
+            for isa in Isa::available() {
+                let mut f = Field::<L>::zeros(layout.nodes());
+                Isa::pinned(isa, || forces(&layout, kref, &u, &mut f));
+                assert_eq!(bits(&f), bits(&want), "{dims:?} L = {L} {isa:?}: factored kernel against its plain order");
+            }
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
+            let mut f = Field::<L>::zeros(layout.nodes());
+            pool.install(|| forces_parallel(&layout, kref, &u, &mut f));
+            assert_eq!(bits(&f), bits(&want), "{dims:?} L = {L}: on two threads");
+        }
         let mut want = Field::<L>::zeros(layout.nodes());
         reference(&layout, &k, &u, &mut want);
         for isa in Isa::available() {
@@ -350,7 +499,14 @@ mod tests {
             let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
             let (mut f, mut out) = (Field::<L>::zeros(n), Field::<L>::zeros(n));
             pool.install(|| {
-                forces_and_trial(&layout, &k, &update, &mut f, Levels { u: &u, up: &up, out: &mut out }, threads > 1)
+                forces_and_trial(
+                    &layout,
+                    (&k).into(),
+                    &update,
+                    &mut f,
+                    Levels { u: &u, up: &up, out: &mut out },
+                    threads > 1,
+                )
             });
             assert_eq!(bits(&out), bits(&plain), "{dims:?} L = {L}, {threads} threads: fused pass");
             assert!(f.c.iter().all(|c| c.iter().all(|v| *v == [0.0; L])), "the forces are consumed");

@@ -157,10 +157,15 @@ impl<const L: usize> LaneView<'_, '_, L> {
         e.kinetic = self.kinetic_energy();
         let layout = self.params.model.layout();
         e.elastic = match &self.state.rupture {
-            None => strain_energy(layout, &self.params.k, &u.n, &u.np1, self.lane),
-            Some(r) => {
-                crate::step::rupture::strain_energy(layout.listed(), &self.params.k, &r.secant, &u.n, &u.np1, self.lane)
-            }
+            None => strain_energy(layout, self.params.stiffness(), &u.n, &u.np1, self.lane),
+            Some(r) => crate::step::rupture::strain_energy(
+                layout.listed(),
+                self.params.k.per_bar(),
+                &r.secant,
+                &u.n,
+                &u.np1,
+                self.lane,
+            ),
         };
         e
     }
@@ -186,26 +191,35 @@ impl<const L: usize> LaneView<'_, '_, L> {
     /// A blow-up in the last step: a non-finite displacement, or a node that moved more than
     /// `0.01·Lc` in one step (a particle speed no linear-elastic rock reaches).
     pub fn check_blowup(&self) -> Option<Blowup> {
+        self.check_blowup_on(false)
+    }
+
+    /// [`LaneView::check_blowup`], the nodes scanned on the current rayon pool with `parallel`
+    /// (the same first node found either way).
+    pub fn check_blowup_on(&self, parallel: bool) -> Option<Blowup> {
+        use rayon::prelude::*;
         let (l, u) = (self.lane, &self.state.u);
         let bound = 0.01 * self.params.model.scene().lc_m;
         for c in 0..3 {
             let (a, b) = (&u.np1.c[c], &u.n.c[c]);
-            for i in 0..a.len() {
-                let (x, y) = (a[i][l], b[i][l]);
-                if !x.is_finite() {
-                    return Some(Blowup { node: i, what: format!("non-finite {} displacement", ["x", "y", "z"][c]) });
-                }
-                let jump = (x - y).abs();
-                if jump > bound {
-                    return Some(Blowup {
-                        node: i,
-                        what: format!(
-                            "{} displacement changed by {jump:.3e} m in one step (bound 0.01·Lc = {bound:.3e} m)",
-                            ["x", "y", "z"][c]
-                        ),
-                    });
-                }
-            }
+            let bad = |i: usize| !a[i][l].is_finite() || (a[i][l] - b[i][l]).abs() > bound;
+            let first = if parallel {
+                (0..a.len()).into_par_iter().with_min_len(1 << 14).find_first(|&i| bad(i))
+            } else {
+                (0..a.len()).find(|&i| bad(i))
+            };
+            let Some(i) = first else { continue };
+            let (x, y) = (a[i][l], b[i][l]);
+            let what = if !x.is_finite() {
+                format!("non-finite {} displacement", ["x", "y", "z"][c])
+            } else {
+                format!(
+                    "{} displacement changed by {:.3e} m in one step (bound 0.01·Lc = {bound:.3e} m)",
+                    ["x", "y", "z"][c],
+                    (x - y).abs()
+                )
+            };
+            return Some(Blowup { node: i, what });
         }
         None
     }

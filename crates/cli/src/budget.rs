@@ -1,0 +1,188 @@
+//! What a scene will cost, checked before it is built: its memory against what the machine has
+//! available, and the length of its runs against [`LONG_RUN_BAR_UPDATES`].
+
+use anyhow::{Result, bail};
+use stickslip_solver::Scene;
+use stickslip_solver::error::MAX_STEPS;
+use stickslip_solver::memory::{
+    Batches, LONG_RUN_BAR_UPDATES, MemoryEstimate, dt_estimate, estimate, human, run_steps, samples,
+};
+
+/// Environment variable that sets the memory limit in bytes (a suffix k, M, G or T multiplies by
+/// 1024's powers), instead of what the machine reports available.
+pub const MEMORY_LIMIT_VAR: &str = "STICKSLIP_MEMORY_LIMIT";
+
+/// The memory a run may use (bytes) and where the number comes from: [`MEMORY_LIMIT_VAR`] if
+/// set, else the smaller of the kernel's `MemAvailable` and the room left under the cgroup's
+/// `memory.max` (a Slurm job's limit); `None` where neither can be read.
+pub fn available_memory() -> Result<Option<(u64, String)>> {
+    if let Ok(v) = std::env::var(MEMORY_LIMIT_VAR) {
+        let bytes = parse_bytes(&v).ok_or_else(|| {
+            anyhow::anyhow!("{MEMORY_LIMIT_VAR} = {v:?}: give a number of bytes, e.g. 16G or 17179869184")
+        })?;
+        return Ok(Some((bytes, format!("{MEMORY_LIMIT_VAR}={v}"))));
+    }
+    let meminfo = std::fs::read_to_string("/proc/meminfo").ok().and_then(|t| {
+        t.lines()
+            .find_map(|l| l.strip_prefix("MemAvailable:"))
+            .and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<u64>().ok())
+            .map(|kb| kb * 1024)
+    });
+    let read = |p: &str| std::fs::read_to_string(p).ok().and_then(|t| t.trim().parse::<u64>().ok());
+    let cgroup = read("/sys/fs/cgroup/memory.max")
+        .map(|max| max.saturating_sub(read("/sys/fs/cgroup/memory.current").unwrap_or(0)));
+    Ok(match (meminfo, cgroup) {
+        (Some(m), Some(c)) if c < m => Some((c, "the room left under the cgroup's memory.max".into())),
+        (Some(m), _) => Some((m, "MemAvailable of /proc/meminfo".into())),
+        (None, Some(c)) => Some((c, "the room left under the cgroup's memory.max".into())),
+        (None, None) => None,
+    })
+}
+
+fn parse_bytes(v: &str) -> Option<u64> {
+    let v = v.trim();
+    let (digits, shift) = match v.chars().last()? {
+        'k' | 'K' => (&v[..v.len() - 1], 10),
+        'm' | 'M' => (&v[..v.len() - 1], 20),
+        'g' | 'G' => (&v[..v.len() - 1], 30),
+        't' | 'T' => (&v[..v.len() - 1], 40),
+        _ => (v, 0),
+    };
+    digits.trim().parse::<u64>().ok()?.checked_mul(1u64 << shift)
+}
+
+/// The memory of `seeds` seeds of `scene` on `threads` threads, refused (with what to change)
+/// when it does not fit what the machine has available. `what` names the run in the message.
+pub fn check_memory(scene: &Scene, seeds: usize, threads: usize, what: &str) -> Result<MemoryEstimate> {
+    let batches = Batches::of_ensemble(seeds, threads, scene.skip_ahead.enabled);
+    let dt = dt_estimate(scene);
+    let n_samples = samples(scene, dt);
+    let est = estimate(scene, batches, n_samples).map_err(|e| anyhow::anyhow!("{what}: {e}: use fewer modules (pipeline keys: block.nx, block.ny, block.nz)"))?;
+    let Some((limit, source)) = available_memory()? else { return Ok(est) };
+    if est.total <= limit {
+        return Ok(est);
+    }
+    let one = estimate(scene, Batches::ONE, n_samples)
+        .map_err(|e| anyhow::anyhow!("{what}: {e} (pipeline keys: block.nx, block.ny, block.nz)"))?;
+    let d = scene.dims;
+    let per_module = (est.total.saturating_sub(est.model) as f64) / (d.nx as f64 * d.ny as f64 * d.nz as f64);
+    let modules = (limit as f64 * 0.9 / per_module.max(1.0)).max(1.0);
+    let mut change = Vec::new();
+    if batches.concurrent > 1 || batches.lanes > 1 {
+        if one.total <= limit {
+            let fits = (1..=batches.concurrent)
+                .rev()
+                .find(|&t| {
+                    estimate(scene, Batches::of_ensemble(seeds, t, scene.skip_ahead.enabled), n_samples)
+                        .is_ok_and(|e| e.total <= limit)
+                })
+                .unwrap_or(1);
+            change
+                .push(format!("run fewer seeds at once (--threads {fits}; one seed alone needs {})", human(one.total)));
+        } else {
+            change.push(format!("even one seed alone needs {}", human(one.total)));
+        }
+    }
+    change.push(format!(
+        "use fewer modules (about {:.3e} modules fit, the block has {}×{}×{} = {:.3e}; a larger block.lc_m over the same extent \
+         has fewer)",
+        modules,
+        d.nx,
+        d.ny,
+        d.nz,
+        d.nx as f64 * d.ny as f64 * d.nz as f64
+    ));
+    change.push(
+        "or run on a machine with more memory (or set STICKSLIP_MEMORY_LIMIT if the machine has more than it reports)"
+            .into(),
+    );
+    bail!(
+        "{what} does not fit in memory: it needs about {} ({} nodes, {} bars: {} for the lattice, {} per batch of {} seed{} \
+         × {} at once, {} while a batch is set up), and {} is available ({source}); {} (pipeline keys: block.nx, \
+         block.ny, block.nz, block.lc_m)",
+        human(est.total),
+        est.nodes,
+        est.bars,
+        human(est.model),
+        human(est.batch),
+        batches.lanes,
+        if batches.lanes == 1 { "" } else { "s" },
+        batches.concurrent,
+        human(est.setup),
+        human(limit),
+        change.join("; ")
+    )
+}
+
+/// The keys of a pipeline file that set a run's length.
+const LENGTH_KEYS: &str =
+    "shear.duration_s, self_weight.max_duration_s, time.dt_fraction, time.dt_s, block.nx, block.ny, block.nz";
+
+/// The bar-updates of one seed of `scene` at Δt = `dt` (the self-weight stage counted at its
+/// longest): refused above [`LONG_RUN_BAR_UPDATES`] without `allow_long`, and refused whatever
+/// `allow_long` says when a stage has more steps than a run can count ([`MAX_STEPS`], or 2^64
+/// bar-updates: the limit the run of each seed enforces, `run::check_step_count`).
+/// `rate` is the bar-updates per second of a timed probe (2·10⁸ when none was made).
+pub fn check_length(scene: &Scene, bars: u64, dt: f64, rate: Option<f64>, allow_long: bool, what: &str) -> Result<f64> {
+    let (settle, shear) = run_steps(scene, dt);
+    let updates = (settle as f64 + shear as f64) * bars as f64;
+    if settle as f64 > MAX_STEPS || shear as f64 > MAX_STEPS || updates >= u64::MAX as f64 {
+        bail!(
+            "{what}: one seed is {:.3e} steps at Δt = {dt:.3e} s ({}shear {:.3e}) of {bars} bars, more than a run \
+             can count (2^53 steps, 2^64 bar-updates; --allow-long does not lift this): lengthen the step \
+             (time.dt_s or time.dt_fraction) or shorten shear.duration_s (pipeline keys: {LENGTH_KEYS})",
+            settle as f64 + shear as f64,
+            if settle > 0 { format!("self-weight up to {:.3e} + ", settle as f64) } else { String::new() },
+            shear as f64
+        );
+    }
+    // Both below 2^53 from here: their sum cannot overflow.
+    if updates > LONG_RUN_BAR_UPDATES && !allow_long {
+        bail!(
+            "{what}: one seed is {} steps ({}shear {shear}) of {bars} bars, {updates:.3e} bar-updates, above the limit of \
+             {LONG_RUN_BAR_UPDATES:.0e} for a run nobody asked to be long (about {} at {:.1e} bar-updates/s{}): pass \
+             --allow-long to run it, or shorten shear.duration_s, or use fewer modules (pipeline keys: {LENGTH_KEYS})",
+            settle + shear,
+            if settle > 0 { format!("self-weight up to {settle} + ") } else { String::new() },
+            duration(updates / rate.unwrap_or(2e8)),
+            rate.unwrap_or(2e8),
+            if rate.is_some() { ", a timed probe" } else { "" }
+        );
+    }
+    Ok(updates)
+}
+
+/// Whether a scene is refused before it is built: its memory, and its length at the Δt estimated
+/// from the paper's bound (`pipeline` does not build the lattice twice).
+pub fn check_before_build(scene: &Scene, seeds: usize, threads: usize, allow_long: bool, what: &str) -> Result<()> {
+    let est = check_memory(scene, seeds, threads, what)?;
+    check_length(scene, est.bars, dt_estimate(scene), None, allow_long, what)?;
+    Ok(())
+}
+
+/// Seconds as `1.2 s`, `3.4 min`, `5.6 h` or `7.8 days`.
+pub fn duration(s: f64) -> String {
+    if s < 120.0 {
+        format!("{s:.1} s")
+    } else if s < 7200.0 {
+        format!("{:.1} min", s / 60.0)
+    } else if s < 172_800.0 {
+        format!("{:.1} h", s / 3600.0)
+    } else {
+        format!("{:.1} days", s / 86_400.0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn byte_counts_with_suffixes() {
+        assert_eq!(parse_bytes("1024"), Some(1024));
+        assert_eq!(parse_bytes("16G"), Some(16 << 30));
+        assert_eq!(parse_bytes("512m"), Some(512 << 20));
+        assert_eq!(parse_bytes("lots"), None);
+        assert_eq!(parse_bytes("99999999999T"), None);
+    }
+}
