@@ -189,7 +189,8 @@ fn windows(t: &[f64], offset: usize, catalogue: &Catalogue, acc: &AccelerogramSe
     out
 }
 
-/// Runs the analysis for one seed's recording.
+/// Runs the analysis for one seed's recording; `cancel` stops it between windows.
+#[allow(clippy::too_many_arguments)] // the seed's inputs, its settings, and the shared plans and interrupt
 pub fn compute(
     rec: &Recording,
     catalogue: &Catalogue,

@@ -211,8 +211,9 @@ fn replacement(rng: &mut Rng, old: &toml::Value) -> toml::Value {
 }
 
 /// The most modules a mutant's block may have: larger lattices are valid but take gigabytes and
-/// minutes, which is the subject of the large-lattice limits, not of this fuzzing.
-const MAX_MODULES: f64 = 300_000.0;
+/// seconds to minutes to build and check, which is the subject of the large-lattice limits (the
+/// memory and run-length refusals), not of this fuzzing; shipped pipelines above it are coarsened.
+const MAX_MODULES: f64 = 50_000.0;
 
 /// Modules of the block a pipeline text describes (0 when it does not parse or is refused).
 fn modules(text: &str) -> f64 {

@@ -107,7 +107,8 @@ fn the_parallel_step_of_a_large_lattice_gives_the_serial_numbers() {
     assert!(model.layout().splits(), "a lattice this large is cut into slabs");
     let k = model.lane_stiffness(9).unwrap();
     let dt = 0.5 * critical_step(&model, &k).unwrap().dt_s;
-    let lane = LaneSetup { dt_s: dt, stiffness: k, friction: model.friction_factors(9).unwrap(), strength: None, fault: None };
+    let lane =
+        LaneSetup { dt_s: dt, stiffness: k, friction: model.friction_factors(9).unwrap(), strength: None, fault: None };
     let run = |parallel: bool| {
         let mut s = Batch::<1>::new(&model, std::slice::from_ref(&lane).try_into().unwrap());
         s.params.set_damping(0, 2500.0);

@@ -54,6 +54,9 @@ pub fn run(a: Args) -> Result<()> {
     // The memory of one seed (what check itself builds and steps) is checked before the lattice
     // is built; the ensemble's is printed below.
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    if let Ok(e) = stickslip_solver::memory::estimate(scene, Batches::ONE, 2) {
+        budget::check_count(scene, e.bars, stickslip_solver::memory::dt_estimate(scene), "this scene")?;
+    }
     let one = budget::check_memory(scene, 1, 1, "one seed of this scene")?;
     let available = budget::available_memory()?;
     let model = Model::new(scene.clone());
