@@ -27,9 +27,25 @@ use stickslip_solver::{Model, RunOutput};
 
 pub use events::ScaledEvent;
 pub use fronts::SeedFronts;
-pub use records::{PlanCache, RecordData, RecordFailure, RotdData, SeedRecords};
+pub use records::{PlanCache, RecordData, RecordFailure, RecordTimings, RotdData, SeedRecords};
 pub use settings::{AccelerogramSettings, Settings, SpectraSettings};
 pub use source::{Source, StationRow};
+
+/// CPU seconds used so far by the calling thread (the wall clock where the system has no
+/// per-thread clock): stages timed with it add up over threads without counting the time a
+/// thread waits or shares its core.
+pub fn thread_cpu_s() -> f64 {
+    #[cfg(unix)]
+    {
+        let mut t = libc::timespec { tv_sec: 0, tv_nsec: 0 };
+        // SAFETY: `t` is a valid timespec for the call to write; the clock id is a constant.
+        if unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut t) } == 0 {
+            return t.tv_sec as f64 + t.tv_nsec as f64 * 1e-9;
+        }
+    }
+    static START: std::sync::OnceLock<std::time::Instant> = std::sync::OnceLock::new();
+    START.get_or_init(std::time::Instant::now).elapsed().as_secs_f64()
+}
 
 /// Why a seed's run could not be analysed.
 #[derive(Debug, thiserror::Error)]
@@ -55,6 +71,9 @@ pub struct SeedAnalysis {
     pub emission: Option<Vec<Cluster>>,
     /// The rupture front of each event, when the scene records slip onsets or the fault.
     pub fronts: Option<SeedFronts>,
+    /// CPU seconds spent finding the events, scaling them and their fronts, and a fault's
+    /// source and stations (a profile; the records' stages are in [`SeedRecords::timings`]).
+    pub events_s: f64,
     /// On a fault (docs/model.md §15): the source from the fault's own slip, and the stations'
     /// distances to the rupture and peak motions.
     pub source: Option<Source>,
@@ -72,8 +91,10 @@ pub fn analyse(
     plans: &PlanCache,
     cancel: &std::sync::atomic::AtomicBool,
 ) -> Result<SeedAnalysis, AnalysisError> {
+    let started = thread_cpu_s();
     let catalogue = events::catalogue(&run.recording, model, &settings.events);
     let scaled = events::scaled_events(&catalogue, model, &settings.similarity);
+    let mut events_s = thread_cpu_s() - started;
     let records = match &settings.accelerograms {
         Some(acc) => Some(records::compute(
             &run.recording,
@@ -87,6 +108,7 @@ pub fn analyse(
         )?),
         None => None,
     };
+    let started = thread_cpu_s();
     let emission = settings.emission.as_ref().map(|p| emission::emission(&run.recording.cracks, model.lattice(), p));
     let fronts = fronts::fronts(
         &run.recording,
@@ -98,5 +120,6 @@ pub fn analyse(
     let lambda = events::lambda(model, &settings.similarity);
     let source = source::source(&run.recording, model);
     let stations = source.as_ref().map_or_else(Vec::new, |s| source::stations(&run.recording, model, s));
-    Ok(SeedAnalysis { run, catalogue, scaled, lambda, records, emission, fronts, source, stations })
+    events_s += thread_cpu_s() - started;
+    Ok(SeedAnalysis { run, catalogue, scaled, lambda, records, emission, fronts, events_s, source, stations })
 }

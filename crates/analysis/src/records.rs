@@ -12,6 +12,7 @@ use std::sync::{Arc, Mutex};
 
 use crate::attenuation::{AttenuationRow, attenuation};
 use crate::settings::{AccelerogramSettings, EventChoice, MeanChoice, RecordSpan, SpectraSettings};
+use crate::thread_cpu_s;
 use rustfft::FftPlanner;
 use stickslip_seismo::SeismoError;
 use stickslip_seismo::accelerogram::processing::{
@@ -38,6 +39,25 @@ pub struct SeedRecords {
     pub left_out: Vec<String>,
     /// Attenuation rows (if asked).
     pub attenuation: Vec<AttenuationRow>,
+    /// Where the time went (a profile; not part of any table).
+    pub timings: RecordTimings,
+}
+
+/// CPU seconds spent on a seed's records, by stage.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RecordTimings {
+    /// Cutting, processing (mean, tapers, pads, band-pass, integrals), intensity measures and
+    /// Fourier spectra.
+    pub records_s: f64,
+    /// Response spectra of the records computed alone (z, and x or y without its pair).
+    pub spectra_s: f64,
+    /// RotD50/RotD100 of each horizontal pair, whose passes also give the pair's x and y
+    /// response spectra.
+    pub rotd_s: f64,
+    /// Records whose spectra were computed alone.
+    pub alone: usize,
+    /// Pairs whose RotD (and spectra) were computed.
+    pub pairs: usize,
 }
 
 /// One processed record and what was computed of it (model scale).
@@ -189,6 +209,34 @@ fn windows(t: &[f64], offset: usize, catalogue: &Catalogue, acc: &AccelerogramSe
     out
 }
 
+/// How a record is processed (docs/model.md §8): `acc`'s mean removal, tapers, pads, filter
+/// order and baseline, filtered to `f_low_hz`…`f_high_hz`, with `pre_event_s` of its window
+/// before the event. The same record processed with the same options gives the same numbers,
+/// bit for bit (the store keeps each record's window in single precision; the exact record is
+/// this function of its raw window in the `control` table and the `records` table's corners).
+pub fn processing_options(
+    acc: &AccelerogramSettings,
+    f_low_hz: f64,
+    f_high_hz: f64,
+    pre_event_s: f64,
+) -> ProcessingOptions {
+    let mean = match acc.mean {
+        MeanChoice::PreEvent if pre_event_s > 0.0 => MeanRemoval::PreEvent { seconds: pre_event_s },
+        MeanChoice::PreEvent | MeanChoice::Whole => MeanRemoval::WholeRecord,
+        MeanChoice::None => MeanRemoval::Off,
+    };
+    ProcessingOptions {
+        mean,
+        taper_start: acc.taper,
+        taper_end: acc.taper,
+        padding: if acc.pad { Padding::Auto } else { Padding::None },
+        f_low: f_low_hz,
+        f_high: Some(f_high_hz),
+        order: acc.order,
+        baseline_degree: acc.baseline_degree,
+    }
+}
+
 /// Runs the analysis for one seed's recording; `cancel` stops it between windows.
 #[allow(clippy::too_many_arguments)] // the seed's inputs, its settings, and the shared plans and interrupt
 pub fn compute(
@@ -223,6 +271,8 @@ pub fn compute(
         if cancel.load(Ordering::Relaxed) {
             return Err(RecordFailure::Cancelled);
         }
+        let started = thread_cpu_s();
+        let first = out.records.len();
         let mut horizontal: HashMap<NodeId, [Option<usize>; 2]> = HashMap::new();
         for (ch, accel) in rec.control.iter().filter(|(c, _)| acc.wants(c)) {
             let id = format!("{}-n{}-{}", w.label, ch.node.ldem(), ch.component.name());
@@ -236,34 +286,14 @@ pub fn compute(
                 }
             };
             let numerics = |source: SeismoError| RecordFailure::Numerics { record: id.clone(), source };
-            let mean = match acc.mean {
-                MeanChoice::PreEvent if w.pre_event_s > 0.0 => MeanRemoval::PreEvent { seconds: w.pre_event_s },
-                MeanChoice::PreEvent | MeanChoice::Whole => MeanRemoval::WholeRecord,
-                MeanChoice::None => MeanRemoval::Off,
-            };
-            let opts = ProcessingOptions {
-                mean,
-                taper_start: acc.taper,
-                taper_end: acc.taper,
-                padding: if acc.pad { Padding::Auto } else { Padding::None },
-                f_low: band.f_low_hz,
-                f_high: Some(band.f_high_hz),
-                order: acc.order,
-                baseline_degree: acc.baseline_degree,
-            };
+            let opts = processing_options(acc, band.f_low_hz, band.f_high_hz, w.pre_event_s);
             let processed = process(raw, dt, &opts).map_err(numerics)?;
             let intensity = intensity(&processed.accel, dt, Baseline::None);
-            let (mut sd, mut fourier) = (Vec::new(), None);
-            if let Some(s) = spectra {
-                let plan = plans.spectrum(dt, s).map_err(|e| numerics(e.into()))?;
-                sd = vec![0.0; plan.len()];
-                let f = SCRATCH.with(|scratch| -> Result<_, SpectrumError> {
-                    let scratch = &mut *scratch.borrow_mut();
-                    plan.compute(&processed.accel, &mut scratch.spectrum, &mut sd)?;
-                    Ok(fourier_amplitude(&processed.accel, dt, s.window, &mut scratch.fft))
-                });
-                fourier = Some(f.map_err(|e| numerics(e.into()))?);
-            }
+            // The response spectra come below: a node's x and y records from the passes of
+            // their RotD, the others alone.
+            let fourier = spectra.map(|s| {
+                SCRATCH.with(|scratch| fourier_amplitude(&processed.accel, dt, s.window, &mut scratch.borrow_mut().fft))
+            });
             match ch.component {
                 Component::X => horizontal.entry(ch.node).or_default()[0] = Some(out.records.len()),
                 Component::Y => horizontal.entry(ch.node).or_default()[1] = Some(out.records.len()),
@@ -280,35 +310,56 @@ pub fn compute(
                 processed,
                 band,
                 intensity,
-                sd,
+                sd: Vec::new(),
                 fourier,
             });
         }
-        let Some(s) = spectra.filter(|s| s.rotd) else { continue };
-        let mut pairs: Vec<(NodeId, usize, usize)> =
-            horizontal.into_iter().filter_map(|(n, [x, y])| Some((n, x?, y?))).collect();
-        pairs.sort();
-        for (node, ix, iy) in pairs {
-            let (x, y) = (&out.records[ix], &out.records[iy]);
-            let id = format!("{}-n{}-xy", w.label, node.ldem());
-            let numerics = |source: SeismoError| RecordFailure::Numerics { record: id.clone(), source };
-            let plan = plans.rotd(dt, s).map_err(|e| numerics(e.into()))?;
-            let mut r = RotDSpectrum::default();
-            SCRATCH
-                .with(|scratch| {
-                    plan.compute(&x.processed.accel, &y.processed.accel, &mut scratch.borrow_mut().rotd, &mut r)
-                })
-                .map_err(|e| numerics(e.into()))?;
-            out.rotd.push(RotdData {
-                id,
-                event: w.event,
-                label: w.label.clone(),
-                node,
-                band: x.band.intersect(&y.band),
-                sd50: r.rotd50,
-                sd100: r.rotd100,
-            });
+        out.timings.records_s += thread_cpu_s() - started;
+        let Some(s) = spectra else { continue };
+        let started = thread_cpu_s();
+        if s.rotd {
+            let mut pairs: Vec<(NodeId, usize, usize)> =
+                horizontal.into_iter().filter_map(|(n, [x, y])| Some((n, x?, y?))).collect();
+            pairs.sort();
+            for (node, ix, iy) in pairs {
+                let (x, y) = (&out.records[ix], &out.records[iy]);
+                let id = format!("{}-n{}-xy", w.label, node.ldem());
+                let numerics = |source: SeismoError| RecordFailure::Numerics { record: id.clone(), source };
+                let plan = plans.rotd(dt, s).map_err(|e| numerics(e.into()))?;
+                let mut r = RotDSpectrum::default();
+                SCRATCH
+                    .with(|scratch| {
+                        plan.compute(&x.processed.accel, &y.processed.accel, &mut scratch.borrow_mut().rotd, &mut r)
+                    })
+                    .map_err(|e| numerics(e.into()))?;
+                out.rotd.push(RotdData {
+                    id,
+                    event: w.event,
+                    label: w.label.clone(),
+                    node,
+                    band: x.band.intersect(&y.band),
+                    sd50: r.rotd50,
+                    sd100: r.rotd100,
+                });
+                // The same passes gave each component's own spectrum, bit for bit.
+                out.records[ix].sd = r.x;
+                out.records[iy].sd = r.y;
+                out.timings.pairs += 1;
+            }
         }
+        out.timings.rotd_s += thread_cpu_s() - started;
+        let started = thread_cpu_s();
+        for r in out.records[first..].iter_mut().filter(|r| r.sd.is_empty()) {
+            let numerics = |source: SeismoError| RecordFailure::Numerics { record: r.id.clone(), source };
+            let plan = plans.spectrum(dt, s).map_err(|e| numerics(e.into()))?;
+            let mut sd = vec![0.0; plan.len()];
+            SCRATCH
+                .with(|scratch| plan.compute(&r.processed.accel, &mut scratch.borrow_mut().spectrum, &mut sd))
+                .map_err(|e| numerics(e.into()))?;
+            r.sd = sd;
+            out.timings.alone += 1;
+        }
+        out.timings.spectra_s += thread_cpu_s() - started;
     }
     Ok(out)
 }

@@ -1,15 +1,16 @@
 //! Gathering the per-seed parts of an output folder into one table each, and the statistics
 //! across seeds: the summary, the PSA statistics and the attenuation fits.
 
-use std::collections::{BTreeMap, HashSet};
+use std::collections::{BTreeMap, HashMap, HashSet};
 
 use polars::prelude::*;
 use stickslip_seismo::fit::log_log_fit;
 use stickslip_seismo::stats::percentile_sorted;
 use stickslip_store::frame::Columns;
-use stickslip_store::io::{scan_glob, write_parquet_atomic};
+use stickslip_store::io::write_parquet_atomic;
 use stickslip_store::schema::{
-    self, ATTENUATION, ATTENUATION_FIT, EVENTS_TABLE, PSA_STATS, ROTD, RUNS, SIMILARITY, SPECTRA, SUMMARY, col,
+    self, ATTENUATION, ATTENUATION_FIT, EVENTS_TABLE, PSA_STATS, ROTD, RUNS, SIMILARITY, SPECTRA, SUMMARY, Scope,
+    TableSpec, col,
 };
 use stickslip_store::tables::runs::Runs;
 use stickslip_store::tables::stats::{FitRow, PsaStatsRow, attenuation_fit_frame, psa_stats_frame, summary_frame};
@@ -18,46 +19,86 @@ use stickslip_store::{Folder, StoreError};
 use crate::catalogue::write_catalogue;
 use crate::summary::summary_rows;
 
-/// The rows of `df` whose seed is in `keep`.
-fn only_seeds(df: DataFrame, keep: &HashSet<u64>, table: &str) -> Result<DataFrame, StoreError> {
-    let t = |e| StoreError::table(table, e);
-    let mask: BooleanChunked = df
-        .column(col::SEED)
-        .map_err(t)?
-        .u64()
-        .map_err(t)?
-        .iter()
-        .map(|s| s.is_some_and(|s| keep.contains(&s)))
-        .collect();
-    df.filter(&mask).map_err(t)
+/// The parts of the gathered tables and the PSA values of the spectra and RotD parts of the
+/// seeds written by this process, kept as they are written so that gathering does not read them
+/// back ([`gather`] reads from disk only the seeds finished before).
+#[derive(Default)]
+pub struct Gathering {
+    seeds: HashSet<u64>,
+    parts: HashMap<&'static str, Vec<DataFrame>>,
+    psa: PsaGroups,
+    psa_seen: bool,
 }
 
-/// Gathers the per-seed parts of the gathered tables (restricted to `seeds`, sorted by each
-/// table's key) into one file each, and writes the statistics across seeds. Returns the gathered
-/// runs table, if any seed has finished.
-pub fn gather(out: &Folder, seeds: &[u64]) -> Result<Option<Runs>, StoreError> {
-    let keep: HashSet<u64> = seeds.iter().copied().collect();
+impl Gathering {
+    /// Keeps what gathering needs of a part of `seed` just written.
+    pub fn keep(&mut self, seed: u64, table: &TableSpec, df: DataFrame) -> Result<(), StoreError> {
+        self.seeds.insert(seed);
+        if table.scope == Scope::Gathered {
+            self.parts.entry(table.name).or_default().push(df);
+        } else if *table == SPECTRA || *table == ROTD {
+            self.psa.add(&df)?;
+            self.psa_seen = true;
+        }
+        Ok(())
+    }
+}
+
+/// The parts of `table` of `seeds` that exist, read lazily (only `columns`, all when empty)
+/// into one frame; `None` when there is none.
+fn read_parts(
+    out: &Folder,
+    table: &TableSpec,
+    seeds: &[u64],
+    columns: &[&str],
+) -> Result<Option<DataFrame>, StoreError> {
+    let paths: Vec<PlRefPath> = seeds
+        .iter()
+        .map(|&s| out.part(table, s))
+        .filter(|p| p.exists())
+        .map(|p| PlRefPath::new(p.display().to_string()))
+        .collect();
+    if paths.is_empty() {
+        return Ok(None);
+    }
+    let t = |e| StoreError::table(table.name, e);
+    let mut lf = LazyFrame::scan_parquet_files(paths.into(), ScanArgsParquet::default()).map_err(t)?;
+    if !columns.is_empty() {
+        lf = lf.select(columns.iter().map(|c| col(*c)).collect::<Vec<_>>());
+    }
+    lf.collect().map(Some).map_err(t)
+}
+
+/// Gathers the per-seed parts of the gathered tables of `seeds` (sorted by each table's key)
+/// into one file each, and writes the statistics across seeds. Returns the gathered runs table,
+/// if any seed has finished. The parts in `memory` (seeds written by this process) are not read
+/// back; every other part is read once, with only the columns needed.
+pub fn gather(out: &Folder, seeds: &[u64], memory: Gathering) -> Result<Option<Runs>, StoreError> {
+    let Gathering { seeds: held, mut parts, psa: mut groups, mut psa_seen } = memory;
+    let on_disk: Vec<u64> = seeds.iter().copied().filter(|s| !held.contains(s)).collect();
     let mut gathered: Vec<(&str, DataFrame)> = Vec::new();
     for table in schema::gathered() {
-        let Some(df) = scan_glob(&out.part_glob(&table))? else { continue };
-        let mut df = only_seeds(df, &keep, table.name)?
-            .sort(table.key.to_vec(), SortMultipleOptions::default())
-            .map_err(|e| StoreError::table(table.name, e))?;
+        let t = |e| StoreError::table(table.name, e);
+        let mut frames = parts.remove(table.name).unwrap_or_default();
+        frames.extend(read_parts(out, &table, &on_disk, &[])?);
+        let Some(mut df) = frames.pop() else { continue };
+        for f in &frames {
+            df.vstack_mut(f).map_err(t)?;
+        }
+        let mut df = df.sort(table.key.to_vec(), SortMultipleOptions::default()).map_err(t)?;
         write_parquet_atomic(&mut df, &out.gathered(&table))?;
         gathered.push((table.name, df));
     }
-    let mut spectra: Option<DataFrame> = None;
+    // Only the columns the statistics read.
+    let columns = [col::SCALE, col::NODE, col::COMPONENT, col::DAMPING, col::PERIOD_S, col::PSA_M_S2, col::IN_BAND];
     for table in [SPECTRA, ROTD] {
-        if let Some(df) = scan_glob(&out.part_glob(&table))? {
-            let df = only_seeds(df, &keep, table.name)?;
-            spectra = Some(match spectra {
-                None => df,
-                Some(all) => all.vstack(&df).map_err(|e| StoreError::table(table.name, e))?,
-            });
+        if let Some(df) = read_parts(out, &table, &on_disk, &columns)? {
+            groups.add(&df)?;
+            psa_seen = true;
         }
     }
-    if let Some(spectra) = spectra {
-        write_parquet_atomic(&mut psa_stats_frame(&psa_stats(&spectra)?)?, &out.gathered(&PSA_STATS))?;
+    if psa_seen {
+        write_parquet_atomic(&mut psa_stats_frame(&groups.rows())?, &out.gathered(&PSA_STATS))?;
     }
     let get = |name: &str| gathered.iter().find(|(t, _)| *t == name).map(|(_, d)| d);
     if let Some(att) = get(ATTENUATION.name) {
@@ -78,62 +119,112 @@ pub fn gather(out: &Folder, seeds: &[u64]) -> Result<Option<Runs>, StoreError> {
 /// PSA across records per (scale, node, component, damping, period): mean, geometric mean, and
 /// type-7 percentiles 5/50/95, and whether the period is in every record's band.
 pub fn psa_stats(spectra: &DataFrame) -> Result<Vec<PsaStatsRow>, StoreError> {
-    let c = Columns::of(spectra, SPECTRA.name);
-    let scale = c.strs(col::SCALE)?;
-    let node = c.f64s(col::NODE)?;
-    let comp = c.strs(col::COMPONENT)?;
-    let damping = c.f64s(col::DAMPING)?;
-    let period = c.f64s(col::PERIOD_S)?;
-    let psa = c.f64s(col::PSA_M_S2)?;
-    let in_band = c.bools(col::IN_BAND)?;
-    /// One spectral ordinate across seeds; f64 keys as bits so they order and compare exactly.
-    #[derive(PartialEq, Eq, PartialOrd, Ord)]
-    struct Key {
-        scale: String,
-        node: u32,
-        component: String,
-        damping: u64,
-        period: u64,
-    }
-    let mut groups: BTreeMap<Key, (Vec<f64>, bool)> = BTreeMap::new();
-    for i in 0..c.height() {
-        let key = Key {
-            scale: scale[i].clone(),
-            node: node[i] as u32,
-            component: comp[i].clone(),
-            damping: damping[i].to_bits(),
-            period: period[i].to_bits(),
-        };
-        let g = groups.entry(key).or_insert((Vec::new(), true));
-        g.0.push(psa[i]);
-        g.1 &= in_band[i];
-    }
-    let mut rows = Vec::new();
-    for (key, (mut v, in_band)) in groups {
-        v.retain(|x| x.is_finite());
-        if v.is_empty() {
-            continue;
+    let mut groups = PsaGroups::default();
+    groups.add(spectra)?;
+    Ok(groups.rows())
+}
+
+/// One spectral ordinate across seeds (scale, node, component, damping, period), strings
+/// interned and f64 as bits, so they compare exactly.
+type PsaKey = (u32, u32, u32, u64, u64);
+
+/// The PSA values of spectra-shaped tables grouped per spectral ordinate, added part by part
+/// (any order: each group's values are sorted before its statistics), then [`PsaGroups::rows`].
+#[derive(Default)]
+pub struct PsaGroups {
+    names: Vec<String>,
+    index: HashMap<PsaKey, usize>,
+    keys: Vec<PsaKey>,
+    groups: Vec<(Vec<f64>, bool)>,
+}
+
+impl PsaGroups {
+    fn intern(&mut self, s: Option<&str>) -> u32 {
+        let s = s.unwrap_or("");
+        match self.names.iter().position(|n| n == s) {
+            Some(i) => i as u32,
+            None => {
+                self.names.push(s.to_string());
+                (self.names.len() - 1) as u32
+            }
         }
-        v.sort_by(f64::total_cmp);
-        let n = v.len() as f64;
-        rows.push(PsaStatsRow {
-            scale: key.scale,
-            node: key.node,
-            component: key.component,
-            damping: f64::from_bits(key.damping),
-            period_s: f64::from_bits(key.period),
-            count: v.len() as u32,
-            stats: [
-                v.iter().sum::<f64>() / n,
-                if v[0] > 0.0 { (v.iter().map(|x| x.ln()).sum::<f64>() / n).exp() } else { f64::NAN },
-                percentile_sorted(&v, 0.05),
-                percentile_sorted(&v, 0.50),
-                percentile_sorted(&v, 0.95),
-            ],
-            in_band,
-        });
     }
-    Ok(rows)
+
+    /// Adds the rows of a spectra or RotD table (its scale, node, component, damping, period,
+    /// PSA and in-band columns).
+    pub fn add(&mut self, spectra: &DataFrame) -> Result<(), StoreError> {
+        let t = |e| StoreError::table(SPECTRA.name, e);
+        let c = Columns::of(spectra, SPECTRA.name);
+        let strs = |name: &str| -> Result<StringChunked, StoreError> {
+            Ok(spectra.column(name).map_err(t)?.str().map_err(t)?.clone())
+        };
+        let (scale, comp) = (strs(col::SCALE)?, strs(col::COMPONENT)?);
+        let node = c.u64s(col::NODE)?;
+        let damping = c.f64s(col::DAMPING)?;
+        let period = c.f64s(col::PERIOD_S)?;
+        let psa = c.f64s(col::PSA_M_S2)?;
+        let in_band = c.bools(col::IN_BAND)?;
+        for (i, (s, k)) in scale.iter().zip(comp.iter()).enumerate() {
+            let key = (self.intern(s), node[i] as u32, self.intern(k), damping[i].to_bits(), period[i].to_bits());
+            let g = match self.index.get(&key) {
+                Some(&g) => g,
+                None => {
+                    self.index.insert(key, self.groups.len());
+                    self.groups.push((Vec::new(), true));
+                    self.keys.push(key);
+                    self.groups.len() - 1
+                }
+            };
+            self.groups[g].0.push(psa[i]);
+            self.groups[g].1 &= in_band[i];
+        }
+        Ok(())
+    }
+
+    /// The statistics of every group, ordered by scale, node, component, damping and period.
+    pub fn rows(self) -> Vec<PsaStatsRow> {
+        /// One spectral ordinate across seeds; f64 keys as bits so they order and compare exactly.
+        #[derive(PartialEq, Eq, PartialOrd, Ord)]
+        struct Key {
+            scale: String,
+            node: u32,
+            component: String,
+            damping: u64,
+            period: u64,
+        }
+        let names = &self.names;
+        let mut ordered: BTreeMap<Key, (Vec<f64>, bool)> = BTreeMap::new();
+        for ((s, n, k, d, p), g) in self.keys.into_iter().zip(self.groups) {
+            let (scale, component) = (names[s as usize].clone(), names[k as usize].clone());
+            ordered.insert(Key { scale, node: n, component, damping: d, period: p }, g);
+        }
+        let mut rows = Vec::new();
+        for (key, (mut v, in_band)) in ordered {
+            v.retain(|x| x.is_finite());
+            if v.is_empty() {
+                continue;
+            }
+            v.sort_by(f64::total_cmp);
+            let n = v.len() as f64;
+            rows.push(PsaStatsRow {
+                scale: key.scale,
+                node: key.node,
+                component: key.component,
+                damping: f64::from_bits(key.damping),
+                period_s: f64::from_bits(key.period),
+                count: v.len() as u32,
+                stats: [
+                    v.iter().sum::<f64>() / n,
+                    if v[0] > 0.0 { (v.iter().map(|x| x.ln()).sum::<f64>() / n).exp() } else { f64::NAN },
+                    percentile_sorted(&v, 0.05),
+                    percentile_sorted(&v, 0.50),
+                    percentile_sorted(&v, 0.95),
+                ],
+                in_band,
+            });
+        }
+        rows
+    }
 }
 
 /// Log-log fits of PGA and PGV against distance, per main-shock rank and over all main shocks.

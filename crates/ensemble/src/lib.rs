@@ -19,4 +19,4 @@ pub mod set;
 pub mod summary;
 
 pub use error::EnsembleError;
-pub use run::{EnsembleOptions, EnsembleReport, run_ensemble, shard};
+pub use run::{EnsembleOptions, EnsembleReport, Profile, run_ensemble, shard};

@@ -13,7 +13,7 @@ use stickslip_store::schema::{RUNS, col};
 use stickslip_store::{Folder, StoreError};
 
 use crate::error::EnsembleError;
-use crate::gather::gather;
+use crate::gather::{Gathering, gather};
 use crate::run::shard;
 use crate::set::{SetOutcome, select_set};
 
@@ -110,7 +110,7 @@ pub fn merge(out: &Path, pipeline: Option<&Path>, shards: Option<usize>) -> Resu
         }
         return Err(EnsembleError::Incomplete { out: out.to_path_buf(), why: why.join("; ") });
     }
-    gather(&folder, &p.seeds)?;
+    gather(&folder, &p.seeds, Gathering::default())?;
     let set = p.set.as_ref().map(|s| select_set(&folder, &p, s).map_err(|e| e.to_string()));
     let failed = p.seeds.iter().filter(|s| found.get(s).is_some_and(|r| r.2 != "ok")).count();
     Ok(MergeReport { seeds: p.seeds.len(), failed, wall_time_s: start.elapsed().as_secs_f64(), pipeline: p, set })

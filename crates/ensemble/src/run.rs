@@ -15,16 +15,16 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 use stickslip_analysis::records::RecordFailure;
-use stickslip_analysis::{AnalysisError, PlanCache, SeedAnalysis, analyse};
+use stickslip_analysis::{AnalysisError, PlanCache, SeedAnalysis, analyse, thread_cpu_s};
 use stickslip_config::Pipeline;
-use stickslip_solver::{BATCH, Model, RunOptions, SolverError, run_batched};
+use stickslip_solver::{Model, RunOptions, SolverError, run_batched};
 use stickslip_store::files::Stamp;
 use stickslip_store::io::write_text_atomic;
 use stickslip_store::seed::{write_failed, write_seed};
 use stickslip_store::{Folder, Manifest, SeedView};
 
 use crate::error::EnsembleError;
-use crate::gather::gather;
+use crate::gather::{Gathering, gather};
 use crate::set::{SetOutcome, select_set};
 
 /// How to run an ensemble.
@@ -60,6 +60,31 @@ pub struct EnsembleReport {
     pub steps_per_s: f64,
     /// The set of `[set]`, if asked: chosen, or why none could be.
     pub set: Option<Result<SetOutcome, String>>,
+    /// Where the time of the seeds run now went, summed over the threads.
+    pub profile: Profile,
+}
+
+/// CPU seconds spent by stage, summed over the seeds run now and the threads that ran them.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Profile {
+    /// Stepping the solver (each seed's share of its batch).
+    pub stepping_s: f64,
+    /// Finding the events, their similarity scaling and fronts.
+    pub events_s: f64,
+    /// Cutting and processing the records, their intensity measures and Fourier spectra.
+    pub records_s: f64,
+    /// Response spectra of the records computed alone.
+    pub spectra_s: f64,
+    /// RotD of each horizontal pair (with the pair's own spectra, from the same passes).
+    pub rotd_s: f64,
+    /// Writing each seed's parts and files (the writing thread).
+    pub writing_s: f64,
+    /// Gathering the tables and the statistics across seeds at the end.
+    pub gather_s: f64,
+    /// Records whose spectra were computed alone.
+    pub alone: usize,
+    /// Horizontal pairs whose RotD (and the pair's spectra) were computed.
+    pub pairs: usize,
 }
 
 /// Claims `out` for `pipeline`: refuses (or, with `fresh`, discards every result of — tables,
@@ -105,10 +130,13 @@ struct SeedResult {
     seed: u64,
     outcome: Result<SeedAnalysis, SeedFailure>,
     wall_time_s: f64,
+    /// Its share of its batch's stepping (CPU seconds).
+    stepping_s: f64,
 }
 
-/// Simulates a batch of seeds side by side (see [`run_batched`]) and analyses each; a seed's
-/// wall time is its share of the batch's.
+/// Simulates a batch of seeds side by side (see [`run_batched`]) and analyses each, the analyses
+/// as tasks of the pool (a thread with no batch left to step takes them), each sent to `tx` as
+/// soon as it is done; a seed's wall time is its share of the batch's and its analysis.
 fn simulate(
     model: &Model,
     pipeline: &Pipeline,
@@ -116,8 +144,10 @@ fn simulate(
     options: RunOptions,
     cancel: &AtomicBool,
     plans: &PlanCache,
-) -> Vec<SeedResult> {
+    tx: &mpsc::SyncSender<SeedResult>,
+) {
     let start = Instant::now();
+    let cpu = thread_cpu_s();
     let mut check = |_: f64| {
         if cancel.load(Ordering::Relaxed) {
             std::ops::ControlFlow::Break(())
@@ -127,17 +157,19 @@ fn simulate(
     };
     let runs = run_batched(model, seeds, options, &mut check);
     let share = start.elapsed().as_secs_f64() / seeds.len() as f64;
-    seeds
-        .iter()
-        .zip(runs)
-        .map(|(&seed, run)| {
-            let start = Instant::now();
-            let outcome = run
-                .map_err(SeedFailure::from)
-                .and_then(|out| analyse(out, model, &pipeline.analysis, plans, cancel).map_err(SeedFailure::from));
-            SeedResult { seed, outcome, wall_time_s: share + start.elapsed().as_secs_f64() }
-        })
-        .collect()
+    let stepping = (thread_cpu_s() - cpu) / seeds.len() as f64;
+    seeds.par_iter().zip(runs).for_each_with(tx.clone(), |tx, (&seed, run)| {
+        let start = Instant::now();
+        let outcome = run
+            .map_err(SeedFailure::from)
+            .and_then(|out| analyse(out, model, &pipeline.analysis, plans, cancel).map_err(SeedFailure::from));
+        let _ = tx.send(SeedResult {
+            seed,
+            outcome,
+            wall_time_s: share + start.elapsed().as_secs_f64(),
+            stepping_s: stepping,
+        });
+    });
 }
 
 /// Runs the seeds of `options` that have not finished in `options.out`, then (with
@@ -170,21 +202,20 @@ pub fn run_ensemble(
     let mut ran = 0;
     let mut integrated_steps = 0u64;
     let mut write_error = None;
+    let mut gathering = Gathering::default();
+    let mut profile = Profile::default();
     std::thread::scope(|scope| {
         let model = &model;
         let pending = &pending;
         let plans = &plans;
         // Batches of seeds share each pass over the lattice (lanes); a scene too large for
-        // that, with fewer seeds than threads, splits each step over the threads instead.
+        // that, with fewer seeds than threads, splits each step over the threads instead. Four
+        // lanes: as fast per bar-update as eight on every lattice of the step benchmark
+        // (BENCHMARKS.md §1; the same CPU time for paper-100 measured), and twice as many
+        // batches to share among the threads, so the last ones end closer together.
         let threads = pool.current_num_threads();
         let per_thread = pending.len().div_ceil(threads.max(1));
-        let batch = if per_thread >= BATCH {
-            BATCH
-        } else if per_thread >= 4 {
-            4
-        } else {
-            1
-        };
+        let batch = if per_thread >= 4 { 4 } else { 1 };
         let options =
             RunOptions { parallel_step: pending.len() < threads && model.layout().splits(), ..RunOptions::default() };
         scope.spawn(move || {
@@ -193,9 +224,7 @@ pub fn run_ensemble(
                     if cancel.load(Ordering::Relaxed) {
                         return;
                     }
-                    for r in simulate(model, pipeline, chunk, options, cancel, plans) {
-                        let _ = tx.send(r);
-                    }
+                    simulate(model, pipeline, chunk, options, cancel, plans, tx);
                 });
             });
         });
@@ -209,11 +238,27 @@ pub fn run_ensemble(
             if write_error.is_some() || cancelled {
                 continue;
             }
+            let mut kept: Result<(), stickslip_store::StoreError> = Ok(());
+            let mut keep = |t: &stickslip_store::TableSpec, df| {
+                if kept.is_ok() {
+                    kept = gathering.keep(r.seed, t, df);
+                }
+            };
+            let writing = thread_cpu_s();
+            profile.stepping_s += r.stepping_s;
             let written = match &r.outcome {
                 Ok(a) => {
                     integrated_steps += a.run.integrated_steps();
+                    profile.events_s += a.events_s;
+                    if let Some(t) = a.records.as_ref().map(|r| r.timings) {
+                        profile.records_s += t.records_s;
+                        profile.spectra_s += t.spectra_s;
+                        profile.rotd_s += t.rotd_s;
+                        profile.alone += t.alone;
+                        profile.pairs += t.pairs;
+                    }
                     let view = SeedView { seed: r.seed, analysis: a, model, settings: &pipeline.analysis };
-                    write_seed(&out, &view, &stamp, r.wall_time_s)
+                    write_seed(&out, &view, &stamp, r.wall_time_s, &mut keep)
                 }
                 Err(e) => {
                     // The solver's message with the pipeline keys behind its advice.
@@ -221,11 +266,13 @@ pub fn run_ensemble(
                         SeedFailure::Run(e) => stickslip_config::keys::describe(e),
                         other => other.to_string(),
                     };
-                    let written = write_failed(&out, r.seed, &msg, &pipeline.hash, r.wall_time_s);
+                    let written = write_failed(&out, r.seed, &msg, &pipeline.hash, r.wall_time_s, &mut keep);
                     failed.push((r.seed, msg));
                     written
                 }
             };
+            let written = written.and(kept);
+            profile.writing_s += thread_cpu_s() - writing;
             match written {
                 Ok(()) => {
                     done += 1;
@@ -246,12 +293,14 @@ pub fn run_ensemble(
         return Err(EnsembleError::Interrupted { done, total, out: options.out.clone() });
     }
     let mut set = None;
+    let gathering_started = thread_cpu_s();
     if options.finish
-        && let Some(runs) = gather(&out, &options.seeds)?
+        && let Some(runs) = gather(&out, &options.seeds, gathering)?
     {
         failed = runs.failed();
         set = pipeline.set.as_ref().map(|s| select_set(&out, pipeline, s).map_err(|e| e.to_string()));
     }
+    profile.gather_s = thread_cpu_s() - gathering_started;
     let wall_time_s = start.elapsed().as_secs_f64();
     Ok(EnsembleReport {
         ran,
@@ -261,6 +310,7 @@ pub fn run_ensemble(
         out: options.out.clone(),
         steps_per_s: if ran > 0 { integrated_steps as f64 / wall_time_s } else { 0.0 },
         set,
+        profile,
     })
 }
 

@@ -6,14 +6,18 @@
 
 use std::collections::{BTreeMap, HashMap};
 
+use stickslip_analysis::records::processing_options;
 use stickslip_config::set::{SetComponent, SetGroup};
 use stickslip_config::{Pipeline, SetSettings};
+use stickslip_seismo::accelerogram::processing::process;
 use stickslip_seismo::accelerogram::{At2, RecordFile, RecordFormat, Sac};
 use stickslip_seismo::selection::{Candidate, Selection, select};
+use stickslip_solver::scene::{Component, Kinematic};
 use stickslip_store::Folder;
-use stickslip_store::io::{read_parquet_if_present, scan_glob, write_bytes_atomic, write_parquet_atomic};
-use stickslip_store::schema::{ACCELEROGRAMS, RECORDS, ROTD, SET, SPECTRA};
-use stickslip_store::tables::records::{Accelerograms, Records};
+use stickslip_store::io::{read_parquet_if_present, scan_columns, write_bytes_atomic, write_parquet_atomic};
+use stickslip_store::schema::{CONTROL, RECORDS, ROTD, SET, SPECTRA, col};
+use stickslip_store::tables::records::Records;
+use stickslip_store::tables::series::read_control;
 use stickslip_store::tables::set::{SetRow, set_frame};
 use stickslip_store::tables::spectra::Spectra;
 
@@ -55,7 +59,21 @@ pub fn select_set(out: &Folder, pipeline: &Pipeline, settings: &SetSettings) -> 
     let records = Records::read(&records)?;
     let rotd = settings.component == SetComponent::Rotd50;
     let table = if rotd { ROTD } else { SPECTRA };
-    let spectra = scan_glob(&out.part_glob(&table))?.ok_or_else(|| missing(&format!("{} table", table.name)))?;
+    // Only the prototype rows and the columns read, each part once.
+    let columns = [
+        col::SEED,
+        col::RECORD,
+        col::NODE,
+        col::COMPONENT,
+        col::SCALE,
+        col::DAMPING,
+        col::PERIOD_S,
+        col::PSA_M_S2,
+        col::IN_BAND,
+    ];
+    let prototype = polars::prelude::col(col::SCALE).eq(polars::prelude::lit("prototype"));
+    let spectra = scan_columns(&out.part_glob(&table), &columns, Some(prototype))?
+        .ok_or_else(|| missing(&format!("{} table", table.name)))?;
     let spectra = Spectra::read(&spectra)?;
     // Band of each record at prototype scale; a RotD pair takes the narrower of its two.
     let mut band: HashMap<(u64, String), (f64, f64, String, u32)> = HashMap::new();
@@ -143,18 +161,22 @@ pub fn select_set(out: &Folder, pipeline: &Pipeline, settings: &SetSettings) -> 
         })
         .collect();
     write_parquet_atomic(&mut set_frame(&rows)?, &out.gathered(&SET))?;
-    write_set_files(out, pipeline, settings, &rows)?;
+    write_set_files(out, pipeline, settings, &rows, &records)?;
     let spectra = selection.records.iter().map(|c| on_grid.iter().map(|&(k, _)| full[c.index][k]).collect()).collect();
     Ok(SetOutcome { selection, rows, periods, target, spectra, candidates: candidates.len() })
 }
 
 /// Writes the chosen records, scaled, at prototype scale: AT2 and SAC (scale factor and usable
-/// band in `USER0`–`USER2`), one file per component (both of a RotD50 pair).
+/// band in `USER0`–`USER2`), one file per component (both of a RotD50 pair). Each record is
+/// processed again from its raw window in the seed's `control` table with the corners of the
+/// `records` table, which gives the record the analysis had, bit for bit, pads included (the
+/// `accelerograms` table keeps only its window, in single precision).
 fn write_set_files(
     out: &Folder,
     pipeline: &Pipeline,
     settings: &SetSettings,
     rows: &[SetRow],
+    records: &Records,
 ) -> Result<(), EnsembleError> {
     let dir = out.set_dir();
     if dir.exists() {
@@ -163,26 +185,45 @@ fn write_set_files(
             let _ = std::fs::remove_file(e.path());
         }
     }
+    let Some(acc_settings) = &pipeline.analysis.accelerograms else { return Ok(()) };
+    let lambda = pipeline.analysis.similarity.prototype_length_m / pipeline.scene.lattice().extent()[0];
     let mut by_seed: BTreeMap<u64, Vec<(usize, &SetRow)>> = BTreeMap::new();
     for (k, r) in rows.iter().enumerate() {
         by_seed.entry(r.seed).or_default().push((k, r));
     }
     for (seed, chosen) in by_seed {
-        let Some(df) = read_parquet_if_present(&out.part(&ACCELEROGRAMS, seed))? else { continue };
-        let acc = Accelerograms::read(&df)?;
+        let Some(control) = read_parquet_if_present(&out.part(&CONTROL, seed))? else { continue };
         for (k, r) in chosen {
             let names: Vec<String> = match r.record.strip_suffix("-xy") {
                 Some(head) => vec![format!("{head}-x"), format!("{head}-y")],
                 None => vec![r.record.clone()],
             };
             for name in names {
-                let idx: Vec<usize> =
-                    (0..acc.seed.len()).filter(|&i| acc.record[i] == name && acc.scale[i] == "prototype").collect();
-                if idx.len() < 2 {
+                let Some(i) = (0..records.seed.len())
+                    .find(|&i| records.seed[i] == seed && records.record[i] == name && records.scale[i] == "model")
+                else {
+                    continue;
+                };
+                let Some(component) = Component::ALL.into_iter().find(|c| c.name() == records.component[i]) else {
+                    continue;
+                };
+                let Some((t, raw)) = read_control(&control, records.node[i], component, Kinematic::Acceleration)?
+                else {
+                    continue;
+                };
+                let Some(k0) = t.iter().position(|&x| x == records.start_s[i]) else { continue };
+                let n = records.window_samples[i] as usize;
+                if k0 + n > raw.len() || n < 2 {
                     continue;
                 }
-                let dt = acc.time_s[idx[1]] - acc.time_s[idx[0]];
-                let a: Vec<f64> = idx.iter().map(|&i| r.scale_factor * acc.acceleration_m_s2[i]).collect();
+                let opts =
+                    processing_options(acc_settings, records.f_low_hz[i], records.f_high_hz[i], records.pre_event_s[i]);
+                let p = process(&raw[k0..k0 + n], records.dt_s[i], &opts)
+                    .map_err(|e| EnsembleError::Setup(format!("seed {seed}, record {name}: {e}")))?;
+                // Times and accelerations at prototype scale as the similarity rules give them.
+                let time = |j: usize| (records.start_s[i] + p.t_first + j as f64 * p.dt) * lambda;
+                let dt = time(1) - time(0);
+                let a: Vec<f64> = p.accel.iter().map(|v| r.scale_factor * (v / lambda)).collect();
                 let stem = format!("{}_set{:02}_seed{seed}_{name}", pipeline.name, k + 1);
                 let description = format!(
                     "stickslip {} set record {} of {}: seed {seed} {name} x {:.4} (prototype scale), matched to {}",
@@ -199,7 +240,7 @@ fn write_set_files(
                     description: &description,
                     accel_m_s2: &a,
                     dt_s: dt,
-                    begin_s: acc.time_s[idx[0]],
+                    begin_s: time(0),
                     motion: None,
                     station: &format!("N{}", r.node),
                     component: &component,

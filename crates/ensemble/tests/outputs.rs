@@ -1,6 +1,6 @@
-//! What the ensemble writes of the accelerogram records: AT2 files that read back as the table's
-//! processed record, spectra of the file that are the table's spectra, prototype spectra that are
-//! the scaled model spectra.
+//! What the ensemble writes of the accelerogram records: AT2 files that read back as the
+//! processed record (the table holds its window, once, in single precision), spectra of the file
+//! that are the table's spectra, prototype spectra that are the scaled model spectra.
 
 use std::sync::atomic::AtomicBool;
 
@@ -18,14 +18,21 @@ fn rows(df: &DataFrame, record: &str, scale: &str) -> DataFrame {
 }
 
 fn f64s(df: &DataFrame, name: &str) -> Vec<f64> {
-    df.column(name).unwrap().f64().unwrap().iter().map(|v| v.unwrap()).collect()
+    df.column(name).unwrap().cast(&DataType::Float64).unwrap().f64().unwrap().iter().map(|v| v.unwrap()).collect()
+}
+
+fn u32s(df: &DataFrame, name: &str) -> Vec<u32> {
+    df.column(name).unwrap().u32().unwrap().iter().map(|v| v.unwrap()).collect()
 }
 
 #[test]
 fn at2_files_read_back_and_prototype_spectra_are_the_scaled_model_spectra() {
     let dir = scratch_dir("spectra-outputs");
     let text = std::fs::read_to_string(repo_path("pipelines/paper.toml")).unwrap();
-    let text = text.replace("list = [123, 200, 7]", "list = [123]").replace("duration_s = 0.32 ", "duration_s = 0.08 ");
+    let text = text.replace("list = [123, 200, 7]", "list = [123]").replace("duration_s = 0.32 ", "duration_s = 0.08 ")
+        // A set any x record can meet: its files are written from the records processed again.
+        + "\n[set]\ntarget = \"ec8\"\na_g_m_s2 = 1e-3\nt1_s = 10.0\ncount = 1\ncomponent = \"x\"\nscale_min = 1e-6\n\
+           scale_max = 1e6\n";
     std::fs::write(dir.join("p.toml"), &text).unwrap();
     let p = Pipeline::load(&dir.join("p.toml")).unwrap();
     let out = dir.join("out");
@@ -44,14 +51,23 @@ fn at2_files_read_back_and_prototype_spectra_are_the_scaled_model_spectra() {
         assert!(head[1].contains(&format!("({scale} scale")), "{}", head[1]);
         assert_eq!(head[2], "ACCELERATION TIME SERIES IN UNITS OF G");
         let record = read_accelerogram(&path, AccelUnit::G).unwrap();
-        let table = rows(&acc, &name, scale);
-        let a = f64s(&table, "acceleration_m_s2");
-        let t = f64s(&table, "time_s");
-        assert_eq!(record.accel.len(), a.len());
+        // The table: the record's window at model scale (prototype: accelerations ÷λ, times ×λ).
+        let l = if scale == "model" { 1.0 } else { lambda };
+        let table = {
+            let m = acc.column("record").unwrap().str().unwrap().equal(name.as_str());
+            acc.filter(&m).unwrap()
+        };
+        let a: Vec<f64> = f64s(&table, "acceleration_m_s2").iter().map(|v| v / l).collect();
+        let t: Vec<f64> = f64s(&table, "time_s").iter().map(|v| v * l).collect();
+        let meta = rows(&records, &name, scale);
+        let (samples, window) = (u32s(&meta, "samples")[0] as usize, u32s(&meta, "window_samples")[0] as usize);
+        let front = (-f64s(&meta, "first_sample_s")[0] / f64s(&meta, "dt_s")[0]).round() as usize;
+        assert_eq!((record.accel.len(), a.len()), (samples, window), "the file is padded, the table its window");
         assert!((record.dt / (t[1] - t[0]) - 1.0).abs() < 1e-7, "DT {} vs {}", record.dt, t[1] - t[0]);
         let scale_max = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        for (x, y) in record.accel.iter().zip(&a) {
-            assert!((x - y).abs() <= 5e-8 * y.abs() + 1e-12 * scale_max, "{x} vs {y}");
+        // The file's 8 significant digits and the table's single precision (2⁻²⁴ of each value).
+        for (x, y) in record.accel[front..front + window].iter().zip(&a) {
+            assert!((x - y).abs() <= (5e-8 + 6e-8) * y.abs() + 1e-12 * scale_max, "{x} vs {y}");
         }
         // The spectrum of the file as read back equals the table's rows of that scale.
         let rows5 = {
@@ -79,5 +95,19 @@ fn at2_files_read_back_and_prototype_spectra_are_the_scaled_model_spectra() {
                 assert!((tp / (tm * lambda) - 1.0).abs() < 1e-12 && (ap * lambda / am - 1.0).abs() < 1e-12);
             }
         }
+    }
+    // The set's file is the chosen record, pads included, times its factor: the record processed
+    // again from the control table is the one the analysis wrote.
+    let set = read_table(&out.join("tables/set.parquet"));
+    let chosen = set.column("record").unwrap().str().unwrap().get(0).unwrap().to_string();
+    let factor = f64s(&set, "scale_factor")[0];
+    let file = read_accelerogram(&out.join(format!("set/paper_set01_seed123_{chosen}.AT2")), AccelUnit::G).unwrap();
+    let record =
+        read_accelerogram(&out.join(format!("records/paper_seed123_{chosen}_prototype.AT2")), AccelUnit::G).unwrap();
+    assert_eq!(file.accel.len(), record.accel.len());
+    assert!((file.dt / record.dt - 1.0).abs() < 1e-7);
+    let peak = record.accel.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    for (x, y) in file.accel.iter().zip(&record.accel) {
+        assert!((x - factor * y).abs() <= 1e-7 * (factor * y).abs() + 1e-12 * factor * peak, "{x} vs {factor}·{y}");
     }
 }

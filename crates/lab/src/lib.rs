@@ -3,7 +3,9 @@
 //! Owns every benchmark and calibration aid: run time against error ([`accuracy`]), the
 //! statistical convergence of event measures over seeds ([`convergence`]), the
 //! quasi-static skip-ahead against full integration ([`skip`]), what recording costs
-//! ([`recording_cost`]), what a run does before its first step ([`setup_cost`]), the LAMMPS side-by-side ([`peer`], with `lammps/compare.sh`), sweeps of
+//! ([`recording_cost`]), what a run does before its first step ([`setup_cost`]), what an
+//! ensemble costs end to end against a previous build ([`ensemble_cost`]), the LAMMPS
+//! side-by-side ([`peer`], with `lammps/compare.sh`), sweeps of
 //! assumed values ([`calibrate`]), and the criterion benchmarks of the kernels and spectra
 //! (`benches/`). Speed is measured here, never asserted in tests. Must not know: the command
 //! line (it returns rows and writes tables and figures where it is told).
@@ -12,6 +14,7 @@
 pub mod accuracy;
 pub mod calibrate;
 pub mod convergence;
+pub mod ensemble_cost;
 pub mod kernel_scene;
 pub mod peer;
 pub mod recording_cost;

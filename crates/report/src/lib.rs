@@ -45,11 +45,37 @@ pub fn write_report(out: &Path, pipeline: &Pipeline) -> Result<ReportSummary, Re
     std::fs::create_dir_all(&dir).map_err(|e| ReportError::Io { path: dir.clone(), source: e })?;
     let mut drawn = Vec::new();
     let mut skipped = Vec::new();
-    for (file, draw) in figures::ALL {
+    // The figures are drawn on the available cores, each into a temporary file (then renamed:
+    // a reader never sees half a figure); the page lists them in their order.
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let outcomes: Vec<std::sync::Mutex<Option<Result<figures::Outcome, ReportError>>>> =
+        figures::ALL.iter().map(|_| std::sync::Mutex::new(None)).collect();
+    let tmp = |file: &str| dir.join(format!(".{file}.{}.tmp.png", std::process::id()));
+    let workers = std::thread::available_parallelism().map_or(1, |n| n.get()).min(figures::ALL.len());
+    std::thread::scope(|scope| {
+        for _ in 0..workers {
+            scope.spawn(|| {
+                loop {
+                    let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                    let Some((file, draw)) = figures::ALL.get(k) else { break };
+                    let outcome = draw(&input, &tmp(file));
+                    *outcomes[k].lock().expect("figure outcome") = Some(outcome);
+                }
+            });
+        }
+    });
+    let outcomes: Vec<Result<figures::Outcome, ReportError>> =
+        outcomes.into_iter().map(|o| o.into_inner().expect("figure outcome").expect("every figure drawn")).collect();
+    if let Some(k) = outcomes.iter().position(|o| o.is_err()) {
+        for (file, _) in &figures::ALL {
+            let _ = std::fs::remove_file(tmp(file));
+        }
+        return Err(outcomes.into_iter().nth(k).and_then(Result::err).expect("the error"));
+    }
+    for ((file, _), outcome) in figures::ALL.iter().zip(outcomes) {
         let path = dir.join(file);
-        // Draw into a temporary file, then rename: a reader never sees half a figure.
-        let tmp = dir.join(format!(".{file}.{}.tmp.png", std::process::id()));
-        match draw(&input, &tmp)? {
+        let tmp = tmp(file);
+        match outcome? {
             figures::Outcome::Drawn { title, caption, headings, panels, dropped } => {
                 std::fs::rename(&tmp, &path).map_err(|e| ReportError::Io { path: path.clone(), source: e })?;
                 drawn.push(Figure { file: file.to_string(), title, caption, headings, panels, dropped });

@@ -137,6 +137,52 @@ pub fn scale(e: &ModelEvent, p: &SimilarityParams) -> Scaled {
     }
 }
 
+/// The similarity rules of a record and of everything computed from it (docs/model.md §9.5),
+/// applied to values computed once at model scale: times and periods ×λ, frequencies ÷λ,
+/// lengths and displacements ×λ (SD, PGD), velocities ×1 (PSV, PGV, the Fourier amplitude of an
+/// acceleration), accelerations ÷λ (PSA, PGA), Arias intensity ÷λ. They hold exactly for the
+/// numerics of this crate (the oscillator `ü + 2ξωu̇ + ω²u = −a` is the same equation in scaled
+/// time), so the prototype's spectra, RotD, Fourier spectra and intensity measures are derived,
+/// not computed again; `tests/similarity.rs` shows each derived value equal, to round-off, to
+/// the one computed directly from the record scaled.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RecordScale {
+    /// λ (1 at model scale).
+    pub lambda: f64,
+}
+
+impl RecordScale {
+    /// A time, duration, period or sampling interval (s).
+    pub fn time(self, t: f64) -> f64 {
+        t * self.lambda
+    }
+
+    /// A frequency (Hz).
+    pub fn frequency(self, f: f64) -> f64 {
+        f / self.lambda
+    }
+
+    /// A length or displacement (m): positions, SD, PGD.
+    pub fn length(self, x: f64) -> f64 {
+        x * self.lambda
+    }
+
+    /// A velocity (m/s): PSV, PGV, and the Fourier amplitude |X|·Δt of an acceleration.
+    pub fn velocity(self, v: f64) -> f64 {
+        v
+    }
+
+    /// An acceleration (m/s²): samples, PSA, PGA.
+    pub fn acceleration(self, a: f64) -> f64 {
+        a / self.lambda
+    }
+
+    /// Arias intensity `π/(2g)·∫a²dt` (m/s).
+    pub fn arias(self, ia: f64) -> f64 {
+        ia / self.lambda
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

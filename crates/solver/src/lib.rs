@@ -44,6 +44,7 @@ pub mod scene;
 pub mod statics;
 pub mod stencil;
 pub mod step;
+pub mod stiffness;
 pub mod trace;
 
 pub use error::SolverError;

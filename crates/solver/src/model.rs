@@ -14,7 +14,7 @@ use crate::material::{STREAM_FRICTION, STREAM_YOUNG, axial_stiffness, weibull_fa
 use crate::rupture::{crack_area, fracture_energy_factors};
 use crate::scene::Scene;
 use crate::stencil::{RunStiffness, StencilLayout};
-use crate::step::LaneStiffness;
+use crate::stiffness::LaneStiffness;
 
 /// The group a bar belongs to in kernel order: its segment (phase, slab), its cache block
 /// (module layer, band of y) and its direction class, packed into 48 bits in the same order.
@@ -321,7 +321,7 @@ impl Model {
     pub fn bar_stiffness(&self, seed: u64) -> Result<Vec<f64>, SolverError> {
         if let Bars::Stencil(_) = &self.layout {
             let factors = self.stencil_factors(seed)?;
-            let k: crate::step::StiffnessRef<'_, 1> = crate::step::StiffnessRef::Factored {
+            let k: crate::stiffness::StiffnessRef<'_, 1> = crate::stiffness::StiffnessRef::Factored {
                 runs: &self.run_stiffness,
                 factors: factors.as_deref().map(|f| f.as_chunks::<1>().0),
             };

@@ -76,6 +76,7 @@ pub const Y_M: &str = "y_m";
 pub const Z_M: &str = "z_m";
 pub const PRE_EVENT_S: &str = "pre_event_s";
 pub const SAMPLES: &str = "samples";
+pub const WINDOW_SAMPLES: &str = "window_samples";
 pub const FIRST_SAMPLE_S: &str = "first_sample_s";
 pub const F_LOW_HZ: &str = "f_low_hz";
 pub const F_HIGH_HZ: &str = "f_high_hz";

@@ -28,6 +28,17 @@ impl Frame {
         self
     }
 
+    /// A single-precision float column (NaN written as null, like [`Frame::f64`]).
+    pub fn f32(mut self, name: &str, v: Vec<f32>) -> Self {
+        if v.iter().any(|x| x.is_nan()) {
+            let v: Vec<Option<f32>> = v.into_iter().map(|x| (!x.is_nan()).then_some(x)).collect();
+            self.cols.push(Column::new(name.into(), v));
+        } else {
+            self.cols.push(Column::new(name.into(), v));
+        }
+        self
+    }
+
     /// A float column with nulls (NaN also written as null).
     pub fn opt_f64(mut self, name: &str, v: Vec<Option<f64>>) -> Self {
         let v: Vec<Option<f64>> = v.into_iter().map(|x| x.filter(|x| !x.is_nan())).collect();
@@ -73,6 +84,12 @@ impl Frame {
 
     /// A string column with nulls.
     pub fn opt_str(mut self, name: &str, v: Vec<Option<String>>) -> Self {
+        self.cols.push(Column::new(name.into(), v));
+        self
+    }
+
+    /// A string column of borrowed texts (no string allocated per row).
+    pub fn str_ref(mut self, name: &str, v: Vec<&str>) -> Self {
         self.cols.push(Column::new(name.into(), v));
         self
     }

@@ -39,13 +39,28 @@ pub fn write_parquet_atomic(df: &mut DataFrame, path: &Path) -> Result<(), Store
 
 /// Turns every −0.0 of the float columns into +0.0 (x + 0.0 changes nothing else).
 fn positive_zeros(df: &mut DataFrame) -> PolarsResult<()> {
-    let names: Vec<PlSmallStr> =
-        df.columns().iter().filter(|c| c.dtype() == &DataType::Float64).map(|c| c.name().clone()).collect();
-    for name in names {
+    let names: Vec<(PlSmallStr, DataType)> = df
+        .columns()
+        .iter()
+        .filter(|c| matches!(c.dtype(), DataType::Float64 | DataType::Float32))
+        .map(|c| (c.name().clone(), c.dtype().clone()))
+        .collect();
+    for (name, dtype) in names {
         let col = df.column(&name)?;
-        let ca = col.f64()?;
-        if ca.iter().flatten().any(|v| v == 0.0 && v.is_sign_negative()) {
-            let fixed = ca.apply_values(|v| v + 0.0).into_column();
+        let fixed = if dtype == DataType::Float64 {
+            let ca = col.f64()?;
+            ca.iter()
+                .flatten()
+                .any(|v| v == 0.0 && v.is_sign_negative())
+                .then(|| ca.apply_values(|v| v + 0.0).into_column())
+        } else {
+            let ca = col.f32()?;
+            ca.iter()
+                .flatten()
+                .any(|v| v == 0.0 && v.is_sign_negative())
+                .then(|| ca.apply_values(|v| v + 0.0).into_column())
+        };
+        if let Some(fixed) = fixed {
             df.replace(&name, fixed)?;
         }
     }
@@ -83,19 +98,44 @@ pub fn read_parquet_if_present(path: &Path) -> Result<Option<DataFrame>, StoreEr
     if path.exists() { read_parquet(path).map(Some) } else { Ok(None) }
 }
 
+/// Whether any Parquet file is in the folder of `glob` (e.g. `dir/*.parquet`): a look at the
+/// folder's names, no file opened.
+pub fn any_part(glob: &Path) -> bool {
+    let dir = glob.parent().unwrap_or(Path::new("."));
+    std::fs::read_dir(dir)
+        .map(|mut d| {
+            d.any(|e| {
+                e.is_ok_and(|e| {
+                    !e.file_name().to_string_lossy().starts_with('.')
+                        && e.path().extension().is_some_and(|x| x == "parquet")
+                })
+            })
+        })
+        .unwrap_or(false)
+}
+
 /// Lazily scans every Parquet file matching `glob` (e.g. `dir/*.parquet`) and collects them,
 /// or `None` when no file matches.
 pub fn scan_glob(glob: &Path) -> Result<Option<DataFrame>, StoreError> {
-    let pattern = glob.display().to_string();
-    let dir = glob.parent().unwrap_or(Path::new("."));
-    let any = std::fs::read_dir(dir)
-        .map(|mut d| d.any(|e| e.is_ok_and(|e| e.path().extension().is_some_and(|x| x == "parquet"))))
-        .unwrap_or(false);
-    if !any {
+    scan_columns(glob, &[], None)
+}
+
+/// Lazily scans every Parquet file matching `glob`, reading only `columns` (every column when
+/// empty) of the rows that pass `filter` (applied while scanning), and collects them; `None`
+/// when no file matches. Each file is opened once and only the asked columns are decoded.
+pub fn scan_columns(glob: &Path, columns: &[&str], filter: Option<Expr>) -> Result<Option<DataFrame>, StoreError> {
+    if !any_part(glob) {
         return Ok(None);
     }
-    let lf = LazyFrame::scan_parquet(PlRefPath::new(&pattern), ScanArgsParquet::default())
+    let pattern = glob.display().to_string();
+    let mut lf = LazyFrame::scan_parquet(PlRefPath::new(&pattern), ScanArgsParquet::default())
         .map_err(|e| StoreError::table(&pattern, e))?;
+    if let Some(f) = filter {
+        lf = lf.filter(f);
+    }
+    if !columns.is_empty() {
+        lf = lf.select(columns.iter().map(|c| col(*c)).collect::<Vec<_>>());
+    }
     lf.collect().map(Some).map_err(|e| StoreError::table(&pattern, e))
 }
 

@@ -88,8 +88,11 @@ pub fn print_set_result(pipeline: &Pipeline, set: Option<&Result<SetOutcome, Str
 /// Prints the statistics and writes the report of a finished (or merged) folder.
 pub fn finish(pipeline: &Pipeline, out: &Path) -> Result<()> {
     let folder = Folder::new(out);
-    let events = stickslip_store::io::scan_glob(&folder.part_glob(&stickslip_store::schema::EVENTS_TABLE))?;
-    let ran = stickslip_store::io::scan_glob(&folder.part_glob(&stickslip_store::schema::SERIES))?.is_some();
+    // Whether any seed has an event (the gathered table) or has run at all (a series part):
+    // no part is read for this.
+    let events =
+        stickslip_store::io::read_parquet_if_present(&folder.gathered(&stickslip_store::schema::EVENTS_TABLE))?;
+    let ran = stickslip_store::io::any_part(&folder.part_glob(&stickslip_store::schema::SERIES));
     if events.is_some_and(|e| e.height() > 0) || !ran {
         println!("{}", digest(&folder)?);
     } else {

@@ -95,6 +95,31 @@ enum Command {
         /// Folder for lattice.data and in.lattice.
         out: PathBuf,
     },
+    /// What an ensemble costs end to end, side by side with a previous build of the product:
+    /// `stickslip pipeline` on 1 and 2 threads for each build, alternately (best of the
+    /// repeats), the size of what each writes, a profile by stage of this build (in this
+    /// process), and `stickslip merge` (gathering and report) of a large pipeline's folder with
+    /// each build. Folders go under --out and are removed at the end.
+    Ensemble {
+        /// Pipeline file (TOML), e.g. pipelines/paper-100.toml.
+        pipeline: PathBuf,
+        /// The previous build's `stickslip` binary (a checkout of an earlier commit built with
+        /// `cargo build --release`); without it only this build is measured.
+        #[arg(long)]
+        before: Option<PathBuf>,
+        /// This build's `stickslip` binary [default: the one beside stickslip-bench].
+        #[arg(long)]
+        after: Option<PathBuf>,
+        /// A large pipeline whose gathering and report are timed, e.g. pipelines/paper-1000.toml.
+        #[arg(long)]
+        large: Option<PathBuf>,
+        /// Runs of each build and thread count (the best counts).
+        #[arg(long, default_value_t = 3)]
+        repeats: usize,
+        /// Scratch folder for the outputs [default: the system's temporary folder].
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
     /// What a run does before its first step against a step: the pipeline's scene at the given
     /// size (e.g. `large-block.toml 500 150 48`), its first seed, on one thread and on all of them.
     Setup {
@@ -183,6 +208,10 @@ fn run(c: Command) -> Result<()> {
             println!("ours_1 {:e}", t.one_seed);
             println!("ours_8 {:e}", t.eight_seeds);
             Ok(())
+        }
+        Command::Ensemble { pipeline, before, after, large, repeats, out } => {
+            anyhow::ensure!(repeats >= 1, "--repeats = 0 is not allowed: at least 1");
+            ensemble(&pipeline, before, after, large.as_deref(), repeats, out)
         }
         Command::Setup { pipeline, nx, ny, nz, steps } => {
             let p = Pipeline::load(&pipeline)?;
@@ -531,6 +560,138 @@ fn convergence(a: ConvergenceArgs) -> Result<()> {
         table.display(),
         figure.display()
     );
+    Ok(())
+}
+
+/// `stickslip-bench ensemble`.
+fn ensemble(
+    pipeline: &Path,
+    before: Option<PathBuf>,
+    after: Option<PathBuf>,
+    large: Option<&Path>,
+    repeats: usize,
+    out: Option<PathBuf>,
+) -> Result<()> {
+    use stickslip_lab::ensemble_cost::{Build, number_after, profile, sizes, time_merge, time_pipeline};
+    let p = Pipeline::load(pipeline)?;
+    let beside = std::env::current_exe()?.with_file_name("stickslip");
+    let after = Build { label: "after".into(), binary: after.unwrap_or(beside) };
+    anyhow::ensure!(after.binary.exists(), "{}: no such binary (build it, or give --after)", after.binary.display());
+    let mut builds = vec![];
+    if let Some(b) = before {
+        anyhow::ensure!(b.exists(), "--before {}: no such binary", b.display());
+        builds.push(Build { label: "before".into(), binary: b });
+    }
+    builds.push(after);
+    let out = out.unwrap_or_else(|| std::env::temp_dir().join("stickslip-bench-ensemble"));
+    std::fs::create_dir_all(&out)?;
+    let folder = |b: &Build, t: usize| out.join(format!("{}-{}-{t}", p.name, b.label));
+    // Wall times, the builds alternating.
+    let mut best = vec![[f64::INFINITY; 2]; builds.len()];
+    for rep in 0..repeats {
+        for (t, threads) in [1usize, 2].into_iter().enumerate() {
+            for (k, b) in builds.iter().enumerate() {
+                let (wall, _) = time_pipeline(b, pipeline, threads, &folder(b, threads))?;
+                eprintln!("run {}: {} on {threads} thread(s): {wall:.2} s", rep + 1, b.label);
+                best[k][t] = best[k][t].min(wall);
+            }
+        }
+    }
+    println!("{}: wall time of `stickslip pipeline` (best of {repeats}), and what it writes", p.name);
+    println!("| build | 1 thread | 2 threads | 2 threads / 1 | output |");
+    println!("|---|---|---|---|---|");
+    for (k, b) in builds.iter().enumerate() {
+        let (bytes, _) = sizes(&folder(b, 2));
+        println!(
+            "| {} | {:.2} s | {:.2} s | {:.2}× | {:.1} MB |",
+            b.label,
+            best[k][0],
+            best[k][1],
+            best[k][0] / best[k][1],
+            bytes as f64 / 1e6
+        );
+    }
+    if builds.len() == 2 {
+        println!(
+            "after against before: {:.2}× faster on 1 thread, {:.2}× on 2",
+            best[0][0] / best[1][0],
+            best[0][1] / best[1][1]
+        );
+    }
+    for b in &builds {
+        let (bytes, parts) = sizes(&folder(b, 2));
+        let largest: Vec<String> =
+            parts.iter().take(6).map(|(n, s)| format!("{n} {:.1} MB", *s as f64 / 1e6)).collect();
+        println!("{} writes {:.1} MB; largest: {}", b.label, bytes as f64 / 1e6, largest.join(", "));
+    }
+    // Where this build's time goes, one thread, in this process.
+    let dir = out.join(format!("{}-profile", p.name));
+    let (prof, wall, report) = profile(&p, 1, &dir)?;
+    let rows = [
+        ("stepping", prof.stepping_s),
+        ("events", prof.events_s),
+        ("records (processing, intensity, Fourier)", prof.records_s),
+        ("response spectra (records alone)", prof.spectra_s),
+        ("RotD (with its pair's x and y spectra)", prof.rotd_s),
+        ("writing (its own thread)", prof.writing_s),
+        ("gathering", prof.gather_s),
+        ("report (wall)", report),
+    ];
+    let total: f64 = rows.iter().map(|r| r.1).sum();
+    println!(
+        "\nprofile of this build, `--threads 1` in this process: CPU seconds by stage ({total:.2} s in all; wall time \
+         {:.2} s, the writing thread overlapping the stepping)",
+        wall + report
+    );
+    println!("| stage | CPU seconds | share |");
+    println!("|---|---|---|");
+    for (name, sec) in rows {
+        println!("| {name} | {sec:.2} | {:.0}% |", 100.0 * sec / total);
+    }
+    if prof.pairs > 0 && prof.alone > 0 {
+        let alone = prof.spectra_s / prof.alone as f64;
+        let pair = prof.rotd_s / prof.pairs as f64;
+        println!(
+            "RotD: {:.2} ms per pair with both components' spectra ({} pairs), against {:.2} ms for the spectra of one record alone ({} records): RotD itself costs {:.2} ms per pair ({:.2}× two records' spectra)",
+            pair * 1e3,
+            prof.pairs,
+            alone * 1e3,
+            prof.alone,
+            (pair - 2.0 * alone) * 1e3,
+            pair / (2.0 * alone)
+        );
+    }
+    std::fs::remove_dir_all(&dir).ok();
+    for b in &builds {
+        for t in [1, 2] {
+            std::fs::remove_dir_all(folder(b, t)).ok();
+        }
+    }
+    // Gathering and report of a large folder.
+    if let Some(large) = large {
+        let lp = Pipeline::load(large)?;
+        println!(
+            "\n{}: `stickslip merge` of a finished folder (gathering, then the report), best of {repeats}",
+            lp.name
+        );
+        println!("| build | merge | gathering | report | folder |");
+        println!("|---|---|---|---|---|");
+        for b in &builds {
+            let dir = out.join(format!("{}-{}", lp.name, b.label));
+            let (wall, _) = time_pipeline(b, large, 2, &dir)?;
+            eprintln!("{}: {} ran in {wall:.1} s", b.label, lp.name);
+            let (mut m, mut g, mut r) = (f64::INFINITY, f64::INFINITY, f64::INFINITY);
+            for _ in 0..repeats {
+                let (wall, text) = time_merge(b, &dir)?;
+                m = m.min(wall);
+                g = g.min(number_after(&text, "failed) in").unwrap_or(f64::NAN));
+                r = r.min(number_after(&text, "figures in").unwrap_or(f64::NAN));
+            }
+            let (bytes, _) = sizes(&dir);
+            println!("| {} | {m:.2} s | {g:.2} s | {r:.2} s | {:.0} MB |", b.label, bytes as f64 / 1e6);
+            std::fs::remove_dir_all(&dir).ok();
+        }
+    }
     Ok(())
 }
 

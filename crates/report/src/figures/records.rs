@@ -197,10 +197,7 @@ pub(super) fn event_records(d: &ReportInput, path: &Path) -> Result<Outcome, Rep
         let shock = rec.start_s[i] + rec.pre_event_s[i];
         let at: Vec<usize> = (0..acc.seed.len())
             .filter(|&j| {
-                acc.record[j] == *record
-                    && acc.scale[j] == "model"
-                    && acc.time_s[j] >= rec.start_s[i] - 1e-12
-                    && acc.time_s[j] <= shock + post_s
+                acc.record[j] == *record && acc.time_s[j] >= rec.start_s[i] - 1e-12 && acc.time_s[j] <= shock + post_s
             })
             .collect();
         if at.is_empty() {

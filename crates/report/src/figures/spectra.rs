@@ -6,8 +6,11 @@ use std::path::Path;
 
 use plotters::style::{BLACK, RGBColor};
 
+use std::collections::BTreeMap;
 use stickslip_solver::scene::Component;
-use stickslip_store::io::scan_glob;
+
+use stickslip_store::io::scan_columns;
+use stickslip_store::schema::col;
 use stickslip_store::schema::{FOURIER, ROTD, SET, SPECTRA};
 use stickslip_store::tables::set::SetTable;
 use stickslip_store::tables::spectra::{Spectra, read_fourier};
@@ -17,6 +20,19 @@ use super::common::{NodeChannel, accelerogram_nodes, drawn, nodes_short, nodes_t
 use crate::charts::{Band, Line, Panel, Sheet};
 use crate::plot::{HEIGHT, colour};
 use crate::{ReportError, ReportInput};
+
+/// The columns of a spectra-shaped part the figures read ([`Spectra`]).
+const SPECTRUM_READ: [&str; 9] = [
+    col::SEED,
+    col::RECORD,
+    col::NODE,
+    col::COMPONENT,
+    col::SCALE,
+    col::DAMPING,
+    col::PERIOD_S,
+    col::PSA_M_S2,
+    col::IN_BAND,
+];
 
 pub(super) fn spectra_z(d: &ReportInput, path: &Path) -> Result<Outcome, ReportError> {
     spectra(d, path, Component::Z)
@@ -44,7 +60,21 @@ fn spectra(d: &ReportInput, path: &Path, comp: Component) -> Result<Outcome, Rep
     if nodes.is_empty() {
         return Ok(Outcome::Skipped(format!("no {cname} spectra")));
     }
-    let all = scan_glob(&d.folder.part_glob(&SPECTRA))?.map(|df| Spectra::read(&df)).transpose()?;
+    // Every record's spectrum of this component at this damping, read once (only the columns
+    // drawn) and grouped by record, in the order of the parts.
+    let filter = polars::prelude::col(col::COMPONENT)
+        .eq(polars::prelude::lit(cname))
+        .and(polars::prelude::col(col::DAMPING).eq(polars::prelude::lit(damping)));
+    let all = scan_columns(&d.folder.part_glob(&SPECTRA), &SPECTRUM_READ, Some(filter))?
+        .map(|df| Spectra::read(&df))
+        .transpose()?;
+    // (node, seed, record) → rows, in row order.
+    let mut by_record: BTreeMap<(u64, u64, &str), Vec<usize>> = BTreeMap::new();
+    if let Some(sp) = &all {
+        for i in 0..sp.seed.len() {
+            by_record.entry((sp.node[i], sp.seed[i], sp.record[i].as_str())).or_default().push(i);
+        }
+    }
     let mut panels = Vec::new();
     let mut count = 0;
     for node in &nodes {
@@ -60,23 +90,14 @@ fn spectra(d: &ReportInput, path: &Path, comp: Component) -> Result<Outcome, Rep
                 .collect();
             let mut lines = Vec::new();
             if let Some(sp) = &all {
-                let mut records: Vec<(u64, &str)> = (0..sp.seed.len())
-                    .filter(|&i| sp.node[i] == node.ldem && sp.component[i] == cname)
-                    .map(|i| (sp.seed[i], sp.record[i].as_str()))
-                    .collect();
-                records.sort();
-                records.dedup();
+                let records: Vec<&Vec<usize>> =
+                    by_record.range((node.ldem, 0, "")..(node.ldem + 1, 0, "")).map(|(_, r)| r).collect();
                 count = records.len();
-                for (s, r) in records {
-                    let pts: Vec<(f64, f64)> = (0..sp.seed.len())
-                        .filter(|&i| {
-                            sp.seed[i] == s
-                                && sp.record[i] == r
-                                && sp.scale[i] == scale
-                                && sp.damping[i] == damping
-                                && sp.in_band[i]
-                        })
-                        .map(|i| (sp.period_s[i], sp.psa_m_s2[i]))
+                for idx in records {
+                    let pts: Vec<(f64, f64)> = idx
+                        .iter()
+                        .filter(|&&i| sp.scale[i] == scale && sp.in_band[i])
+                        .map(|&i| (sp.period_s[i], sp.psa_m_s2[i]))
                         .collect();
                     lines.push(Line {
                         label: String::new(),
@@ -203,7 +224,11 @@ pub(super) fn record_set(d: &ReportInput, path: &Path) -> Result<Outcome, Report
     let set = SetTable::read(&df)?;
     let rotd = settings.component == stickslip_config::set::SetComponent::Rotd50;
     let table = if rotd { ROTD } else { SPECTRA };
-    let Some(sp) = scan_glob(&d.folder.part_glob(&table))?.map(|df| Spectra::read(&df)).transpose()? else {
+    let prototype = polars::prelude::col(col::SCALE).eq(polars::prelude::lit("prototype"));
+    let Some(sp) = scan_columns(&d.folder.part_glob(&table), &SPECTRUM_READ, Some(prototype))?
+        .map(|df| Spectra::read(&df))
+        .transpose()?
+    else {
         return Ok(Outcome::Skipped(format!("no {} table", table.name)));
     };
     // A record's prototype spectrum at the set's damping (of its RotD50 in the RotD table, which

@@ -207,6 +207,17 @@ impl Oscillator {
         (l0, l0 + p1 * self.h, [y0, -(v0 - p1 + self.xi * self.omega * y0) * self.inv_wd])
     }
 
+    /// `(cos, sin)` of the phase `ω_d·h` the damped harmonic turns through in one step, if less
+    /// than π (then `|y|` has an interior maximum in the step only where `Im(z·e^{iω_dτ})`
+    /// changes sign, see `rotd`).
+    pub(crate) fn turn(&self) -> Option<(f64, f64)> {
+        let phase = self.wd * self.h;
+        (phase < PI).then(|| {
+            let (s, c) = phase.sin_cos();
+            (c, s)
+        })
+    }
+
     /// Largest |u| of the free vibration from `(u0, v0)` (see [`free_vibration_peak`]).
     pub fn free_peak(&self, u0: f64, v0: f64) -> f64 {
         free_vibration_peak(u0, v0, self.omega, self.xi)

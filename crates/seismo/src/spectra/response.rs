@@ -61,6 +61,7 @@
 //! arrays, so computing a record allocates nothing once the scratch has grown to the largest
 //! record.
 
+use std::f64::consts::PI;
 use std::sync::Arc;
 
 use rustfft::num_complex::Complex;
@@ -111,12 +112,13 @@ pub fn log_periods(min: f64, max: f64, n: usize) -> Vec<f64> {
     }
 }
 
-/// Oscillators are padded to a multiple of this (the padding is at rest and never flagged), so
-/// the loops across oscillators split evenly into vector registers.
+/// Oscillators are padded to a multiple of this (the padding is at rest and never flagged), and
+/// stop in groups of this many, so the loops across oscillators split evenly into vector
+/// registers.
 pub(crate) const LANES: usize = 8;
 
 /// Step coefficients and bound constants of every oscillator, one array each (structure of
-/// arrays, so the loops across oscillators are vector loops).
+/// arrays, so the loops across oscillators are vector loops), in the bank's order.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Coefficients {
     pub a11: Vec<f64>,
@@ -138,18 +140,35 @@ pub(crate) struct Coefficients {
     pub iw2: Vec<f64>,
     /// `((ωh)²/8)²`: the square of B₂'s factor on |z|.
     pub c2: Vec<f64>,
+    /// `∫₀^∞ |h(s)| ds = coth(πξ/(2√(1−ξ²)))/ω²` of the impulse response
+    /// `h(s) = e^{−ξωs}·sin(ω_d s)/ω_d`: the largest |u| an input bounded by 1 can drive from
+    /// rest (∞ undamped, 0 for the padding).
+    pub gain: Vec<f64>,
 }
 
-/// The oscillators of a plan, scalar and as arrays of coefficients padded to `padded`.
+/// The oscillators of a plan in the order they settle (see [`Bank::new`]), scalar and as arrays
+/// of coefficients padded to `padded`; `output[o]` is the output (damping-major) of oscillator
+/// `o` of the bank.
 #[derive(Clone, Debug)]
 pub(crate) struct Bank {
     pub oscillators: Vec<Oscillator>,
+    pub output: Vec<usize>,
     pub padded: usize,
     pub k: Coefficients,
 }
 
 impl Bank {
+    /// The bank of `oscillators` (given in output order), put in the order they settle after a
+    /// record: by period, the more damped first, the undamped last (they never settle while
+    /// input remains), so the oscillators still running are always a tail of the bank.
     fn new(oscillators: Vec<Oscillator>) -> Self {
+        let mut output: Vec<usize> = (0..oscillators.len()).collect();
+        let key = |o: &Oscillator| (o.damping() == 0.0, 1.0 / o.omega(), -o.damping());
+        output.sort_by(|&i, &j| {
+            let (a, b) = (key(&oscillators[i]), key(&oscillators[j]));
+            a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)).then(a.2.total_cmp(&b.2)).then(i.cmp(&j))
+        });
+        let oscillators: Vec<Oscillator> = output.iter().map(|&i| oscillators[i]).collect();
         let padded = oscillators.len().div_ceil(LANES) * LANES;
         let mut k = Coefficients::default();
         for osc in &oscillators {
@@ -172,14 +191,33 @@ impl Bank {
             k.iwd.push(1.0 / wd);
             k.iw2.push(1.0 / (w * w));
             k.c2.push(((w * h).powi(2) / 8.0).powi(2));
+            k.gain.push(if xi > 0.0 {
+                1.0 / (0.5 * PI * xi / (1.0 - xi * xi).sqrt()).tanh() / (w * w)
+            } else {
+                f64::INFINITY
+            });
         }
         for a in [
-            &mut k.a11, &mut k.a12, &mut k.a21, &mut k.a22, &mut k.bu0, &mut k.bu1, &mut k.bv0, &mut k.bv1, &mut k.ky0,
-            &mut k.ky1, &mut k.kd, &mut k.xw, &mut k.iwd, &mut k.iw2, &mut k.c2,
+            &mut k.a11,
+            &mut k.a12,
+            &mut k.a21,
+            &mut k.a22,
+            &mut k.bu0,
+            &mut k.bu1,
+            &mut k.bv0,
+            &mut k.bv1,
+            &mut k.ky0,
+            &mut k.ky1,
+            &mut k.kd,
+            &mut k.xw,
+            &mut k.iwd,
+            &mut k.iw2,
+            &mut k.c2,
+            &mut k.gain,
         ] {
             a.resize(padded, 0.0);
         }
-        Bank { oscillators, padded, k }
+        Bank { oscillators, output, padded, k }
     }
 
     pub fn len(&self) -> usize {
@@ -211,6 +249,98 @@ impl State {
     }
 }
 
+/// Below this fraction of its peak, a bound on an oscillator's response for the rest of the
+/// record lets it stop (the margin covers the rounding of the bound and of the recurrence).
+pub(crate) const SETTLED: f64 = 1.0 - 1e-9;
+
+/// Steps between two looks at which oscillators have settled.
+pub(crate) const CHECK: usize = 32;
+
+/// Which oscillators still run: the bank's tail from `first`. The first pass records when
+/// `first` moved (`moves`: after step `k`, to `first`); the second pass replays it.
+#[derive(Default)]
+pub(crate) struct Running {
+    pub first: usize,
+    pub moves: Vec<(usize, usize)>,
+    next: usize,
+}
+
+impl Running {
+    /// Every oscillator runs.
+    pub fn start(&mut self) {
+        (self.first, self.next) = (0, 0);
+        self.moves.clear();
+    }
+
+    /// Every oscillator runs again, for the second pass.
+    pub fn replay(&mut self) {
+        (self.first, self.next) = (0, 0);
+    }
+
+    /// Moves `first` past the groups of [`LANES`] at its front for which `done(group start)`,
+    /// after step `k`.
+    pub fn settle(&mut self, k: usize, n: usize, mut done: impl FnMut(usize) -> bool) {
+        let before = self.first;
+        while self.first < n && done(self.first) {
+            self.first += LANES;
+        }
+        if self.first != before {
+            self.moves.push((k, self.first));
+        }
+    }
+
+    /// In the second pass, after step `k`: `first` as the first pass had it.
+    pub fn replayed(&mut self, k: usize) {
+        while self.next < self.moves.len() && self.moves[self.next].0 == k {
+            self.first = self.moves[self.next].1;
+            self.next += 1;
+        }
+    }
+
+    /// Whether oscillator `o` stopped (its peak is final).
+    pub fn stopped(&self, o: usize) -> bool {
+        self.moves.last().is_some_and(|&(_, first)| o < first)
+    }
+}
+
+/// `out[j] = max |x[i]|` over `i ≥ j`, with `out[x.len()] = 0` (the input after the record).
+pub(crate) fn suffix_max(x: &[f64], out: &mut Vec<f64>) {
+    out.clear();
+    out.resize(x.len() + 1, 0.0);
+    for j in (0..x.len()).rev() {
+        out[j] = out[j + 1].max(x[j].abs());
+    }
+}
+
+/// The steps of a record of `n` samples: `n − 1` between samples, and one more to zero if
+/// `ramp`; from the first one that can move an oscillator at rest (the step into the first
+/// non-zero sample: before it, input and state are exactly zero).
+pub(crate) fn step_range(x: &[f64], ramp: bool) -> std::ops::Range<usize> {
+    let n = x.len();
+    let steps = if n == 0 { 0 } else { n - 1 + ramp as usize };
+    let first = x.iter().position(|&a| a != 0.0).map_or(steps, |i| i.saturating_sub(1)).min(steps);
+    first..steps
+}
+
+/// The input at both ends of step `k` of `x` (zero after the last sample).
+#[inline(always)]
+pub(crate) fn step_input(x: &[f64], k: usize) -> (f64, f64) {
+    (x[k], if k + 1 < x.len() { x[k + 1] } else { 0.0 })
+}
+
+/// Whether none of the [`LANES`] oscillators from `o` can raise its peak any more: from the
+/// state `(u, u̇)` the free vibration stays within `A = √(u² + ((u̇ + ξωu)/ω_d)²)`, and the
+/// response from rest to the rest of the input, whose largest |value| is `rest`, within
+/// `rest·∫|h|`; when their sum is below the peak reached (with the [`SETTLED`] margin), every
+/// later |u| is below it too, so the peak is final (this is exact: the outputs do not change).
+pub(crate) fn settled(k: &Coefficients, o: usize, u: &[f64], v: &[f64], peak: &[f64], rest: f64) -> bool {
+    (o..o + LANES).all(|o| {
+        let w = (v[o] + k.xw[o] * u[o]) * k.iwd[o];
+        let forced = if rest == 0.0 { 0.0 } else { rest * k.gain[o] };
+        (u[o] * u[o] + w * w).sqrt() + forced <= SETTLED * peak[o]
+    })
+}
+
 /// Everything that depends only on (Δt, periods, dampings, reading, record end).
 #[derive(Clone, Debug)]
 pub struct SpectrumPlan {
@@ -220,6 +350,8 @@ pub struct SpectrumPlan {
     reading: Reading,
     oversampling: usize,
     end: RecordEnd,
+    /// Whether blocks stop once settled (always, except to check that it changes nothing).
+    settle: bool,
     bank: Bank,
 }
 
@@ -227,6 +359,8 @@ pub struct SpectrumPlan {
 #[derive(Default)]
 pub struct SpectrumScratch {
     state: State,
+    running: Running,
+    rest: Vec<f64>,
     pub(crate) resampler: Resampler,
 }
 
@@ -254,6 +388,7 @@ impl SpectrumPlan {
             reading,
             oversampling,
             end: RecordEnd::Ramp,
+            settle: true,
             bank: Bank::new(oscillators),
         })
     }
@@ -262,6 +397,18 @@ impl SpectrumPlan {
     pub fn with_record_end(mut self, end: RecordEnd) -> Self {
         self.end = end;
         self
+    }
+
+    /// The same plan advancing every oscillator through every step, never stopping a block that
+    /// has settled: the same outputs, bit for bit, slower (to check that stopping changes
+    /// nothing).
+    pub fn exhaustive(mut self) -> Self {
+        self.settle = false;
+        self
+    }
+
+    pub(crate) fn settles(&self) -> bool {
+        self.settle
     }
 
     /// Sampling interval the plan is for (s).
@@ -320,16 +467,18 @@ impl SpectrumPlan {
         if accel.is_empty() {
             return Ok(());
         }
-        let st = &mut scratch.state;
-        match self.reading {
-            Reading::Linear => run(Isa::current(), &self.bank, accel, self.end == RecordEnd::Ramp, st),
-            Reading::BandLimited => {
-                let fine = scratch.resampler.resample(accel, self.oversampling, self.end == RecordEnd::Ramp);
-                run(Isa::current(), &self.bank, fine, false, st);
-            }
-        }
-        for (o, (osc, out)) in self.bank.oscillators.iter().zip(sd.iter_mut()).enumerate() {
-            *out = st.peak[o].max(osc.free_peak(st.u[o], st.v[o]));
+        let SpectrumScratch { state: st, running, rest, resampler } = scratch;
+        let x = match self.reading {
+            Reading::Linear => accel,
+            Reading::BandLimited => resampler.resample(accel, self.oversampling, self.end == RecordEnd::Ramp),
+        };
+        let ramp = self.reading == Reading::Linear && self.end == RecordEnd::Ramp;
+        suffix_max(x, rest);
+        run(Isa::current(), &self.bank, x, ramp, self.settle, rest, running, st);
+        for (o, osc) in self.bank.oscillators.iter().enumerate() {
+            // A stopped oscillator has its final peak; the others vibrate freely after the record.
+            sd[self.bank.output[o]] =
+                if running.stopped(o) { st.peak[o] } else { st.peak[o].max(osc.free_peak(st.u[o], st.v[o])) };
         }
         Ok(())
     }
@@ -360,27 +509,50 @@ pub(crate) fn check_finite(x: &[f64], component: &'static str) -> Result<(), Spe
 widest! {
     /// Advances every oscillator of `bank` from rest through `x` (read linearly between
     /// samples, then, if `ramp`, one more step to zero), keeping the exact peak |u|, in
-    /// instruction set `isa`; `st` ends with the final states and the peaks.
-    fn run(bank: &Bank, x: &[f64], ramp: bool, st: &mut State) => run_any
+    /// instruction set `isa`; with `settle`, the oscillators whose response can no longer reach
+    /// their peak stop (`running`; `rest` is the largest |x| from each sample on). `st` ends
+    /// with the peaks and the final states of the oscillators that ran to the end.
+    #[allow(clippy::too_many_arguments)]
+    fn run(
+        bank: &Bank,
+        x: &[f64],
+        ramp: bool,
+        settle: bool,
+        rest: &[f64],
+        running: &mut Running,
+        st: &mut State,
+    ) => run_any
 }
 
 /// The kernel of [`run`], compiled once per instruction set.
 #[inline(always)]
-fn run_any(bank: &Bank, x: &[f64], ramp: bool, st: &mut State) {
+fn run_any(bank: &Bank, x: &[f64], ramp: bool, settle: bool, rest: &[f64], running: &mut Running, st: &mut State) {
     let n = bank.padded;
     st.reset(n);
-    let tail = if ramp { x.last().map(|&a| [a, 0.0]) } else { None };
-    let steps = || x.windows(2).map(|w| (w[0], w[1])).chain(tail.map(|t| (t[0], t[1])));
+    running.start();
+    let steps = step_range(x, ramp);
+    let first = steps.start;
     // First pass: the peak at the samples, a value the response reaches, so no step whose
     // bounds stay below it can hold the true peak; the second pass refines only the others.
-    for (x0, x1) in steps() {
-        step_samples(&bank.k, n, x0, x1, st);
+    // Every CHECK steps, the oscillators whose response can no longer reach their peak stop.
+    for k in steps.clone() {
+        let (x0, x1) = step_input(x, k);
+        step_samples(&bank.k, running.first, n, x0, x1, st);
+        if settle && (k + 1 - first).is_multiple_of(CHECK) {
+            running.settle(k, n, |o| settled(&bank.k, o, &st.u, &st.v, &st.peak, rest[k + 1]));
+            if running.first == n {
+                break;
+            }
+        }
     }
     st.u.fill(0.0);
     st.v.fill(0.0);
-    for (x0, x1) in steps() {
-        if step_bounds(&bank.k, n, x0, x1, st) {
-            for o in 0..bank.len() {
+    running.replay();
+    for k in steps {
+        let (x0, x1) = step_input(x, k);
+        let lo = running.first;
+        if step_bounds(&bank.k, lo, n, x0, x1, st) {
+            for o in lo..bank.len() {
                 if st.flag[o] != 0 {
                     st.peak[o] = bank.oscillators[o].step_peak(st.u[o], st.v[o], x0, x1, st.peak[o]);
                 }
@@ -388,16 +560,20 @@ fn run_any(bank: &Bank, x: &[f64], ramp: bool, st: &mut State) {
         }
         std::mem::swap(&mut st.u, &mut st.u_next);
         std::mem::swap(&mut st.v, &mut st.v_next);
+        running.replayed(k);
+        if running.first == n {
+            break;
+        }
     }
 }
 
-/// One step of every oscillator, keeping the peak at the samples (in place).
+/// One step of oscillators `lo..n`, keeping the peak at the samples (in place).
 #[inline(always)]
-fn step_samples(k: &Coefficients, n: usize, x0: f64, x1: f64, st: &mut State) {
-    let (a11, a12, a21, a22) = (&k.a11[..n], &k.a12[..n], &k.a21[..n], &k.a22[..n]);
-    let (bu0, bu1, bv0, bv1) = (&k.bu0[..n], &k.bu1[..n], &k.bv0[..n], &k.bv1[..n]);
-    let (u, v, pk) = (&mut st.u[..n], &mut st.v[..n], &mut st.peak[..n]);
-    for o in 0..n {
+fn step_samples(k: &Coefficients, lo: usize, n: usize, x0: f64, x1: f64, st: &mut State) {
+    let (a11, a12, a21, a22) = (&k.a11[lo..n], &k.a12[lo..n], &k.a21[lo..n], &k.a22[lo..n]);
+    let (bu0, bu1, bv0, bv1) = (&k.bu0[lo..n], &k.bu1[lo..n], &k.bv0[lo..n], &k.bv1[lo..n]);
+    let (u, v, pk) = (&mut st.u[lo..n], &mut st.v[lo..n], &mut st.peak[lo..n]);
+    for o in 0..n - lo {
         let (u0, v0) = (u[o], v[o]);
         let u1 = a11[o] * u0 + a12[o] * v0 + bu0[o] * x0 + bu1[o] * x1;
         v[o] = a21[o] * u0 + a22[o] * v0 + bv0[o] * x0 + bv1[o] * x1;
@@ -406,19 +582,19 @@ fn step_samples(k: &Coefficients, n: usize, x0: f64, x1: f64, st: &mut State) {
     }
 }
 
-/// One step of every oscillator from `(st.u, st.v)` into `(st.u_next, st.v_next)`, flagging
+/// One step of oscillators `lo..n` from `(st.u, st.v)` into `(st.u_next, st.v_next)`, flagging
 /// where both bounds of |u| inside the step exceed the peak; returns whether any is flagged.
 #[inline(always)]
-fn step_bounds(k: &Coefficients, n: usize, x0: f64, x1: f64, st: &mut State) -> bool {
-    let (a11, a12, a21, a22) = (&k.a11[..n], &k.a12[..n], &k.a21[..n], &k.a22[..n]);
-    let (bu0, bu1, bv0, bv1) = (&k.bu0[..n], &k.bu1[..n], &k.bv0[..n], &k.bv1[..n]);
-    let (ky0, ky1, kd, xw) = (&k.ky0[..n], &k.ky1[..n], &k.kd[..n], &k.xw[..n]);
-    let (iwd, iw2, c2) = (&k.iwd[..n], &k.iw2[..n], &k.c2[..n]);
-    let (u, v, un, vn) = (&st.u[..n], &st.v[..n], &mut st.u_next[..n], &mut st.v_next[..n]);
-    let (pk, flag) = (&st.peak[..n], &mut st.flag[..n]);
+fn step_bounds(k: &Coefficients, lo: usize, n: usize, x0: f64, x1: f64, st: &mut State) -> bool {
+    let (a11, a12, a21, a22) = (&k.a11[lo..n], &k.a12[lo..n], &k.a21[lo..n], &k.a22[lo..n]);
+    let (bu0, bu1, bv0, bv1) = (&k.bu0[lo..n], &k.bu1[lo..n], &k.bv0[lo..n], &k.bv1[lo..n]);
+    let (ky0, ky1, kd, xw) = (&k.ky0[lo..n], &k.ky1[lo..n], &k.kd[lo..n], &k.xw[lo..n]);
+    let (iwd, iw2, c2) = (&k.iwd[lo..n], &k.iw2[lo..n], &k.c2[lo..n]);
+    let (u, v, un, vn) = (&st.u[lo..n], &st.v[lo..n], &mut st.u_next[lo..n], &mut st.v_next[lo..n]);
+    let (pk, flag) = (&st.peak[lo..n], &mut st.flag[lo..n]);
     let dx = x1 - x0;
     let mut any = 0u8;
-    for o in 0..n {
+    for o in 0..n - lo {
         let (u0, v0) = (u[o], v[o]);
         let u1 = a11[o] * u0 + a12[o] * v0 + bu0[o] * x0 + bu1[o] * x1;
         vn[o] = a21[o] * u0 + a22[o] * v0 + bv0[o] * x0 + bv1[o] * x1;
@@ -534,6 +710,34 @@ mod tests {
         assert_eq!(padded.len(), 8 * n + 1);
         assert_eq!(&padded[..fine.len()], &fine[..]);
         assert_eq!(padded[8 * n], 0.0);
+    }
+
+    #[test]
+    fn oscillators_stop_once_the_response_cannot_reach_the_peak() {
+        // A burst in the middle of a long silence-like tail (what a padded record is): the
+        // short periods settle soon after the burst, the longest ring on; none stops before the
+        // burst has passed, and the undamped ones only once no input is left (the ramp's step:
+        // their free vibration keeps its amplitude).
+        let dt = 1e-3;
+        let n = 4000;
+        let x: Vec<f64> = (0..n)
+            .map(|i| {
+                let t = i as f64 * dt;
+                let e = ((t - 0.5) / 0.05).powi(2);
+                (-e).exp() * (2.0 * std::f64::consts::PI * 20.0 * t).sin() + 1e-6 * (i as f64 * 0.37).sin()
+            })
+            .collect();
+        let periods = log_periods(0.005, 2.0, 16);
+        let plan = SpectrumPlan::new(dt, &periods, &[0.05, 0.0], Reading::Linear, 1).unwrap();
+        let (mut st, mut running, mut rest) = (State::default(), Running::default(), Vec::new());
+        suffix_max(&x, &mut rest);
+        run(Isa::current(), &plan.bank, &x, true, true, &rest, &mut running, &mut st);
+        // The bank: the damped oscillators by period (two groups of 8), then the undamped.
+        let moves = running.moves.clone();
+        println!("after which step the first running oscillator moved, and where to: {moves:?} ({n} samples)");
+        assert!(moves[0].0 > 500 && moves[0].0 < 700 && moves[0].1 == 8, "the short periods settle after the burst");
+        assert!(moves[1].0 > moves[0].0 && moves[1].0 < n && moves[1].1 == 16, "the long periods settle later");
+        assert!(moves[2..].iter().all(|&(k, _)| k >= n - 1), "undamped oscillators settle on no input: {moves:?}");
     }
 
     #[test]

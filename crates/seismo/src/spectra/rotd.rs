@@ -53,7 +53,8 @@ use stickslip_isa::{Isa, widest};
 
 use crate::spectra::oscillator::Oscillator;
 use crate::spectra::response::{
-    Bank, Coefficients, Reading, RecordEnd, Resampler, SpectrumError, SpectrumPlan, State, check_finite,
+    Bank, CHECK, Coefficients, LANES, Reading, RecordEnd, Resampler, Running, SETTLED, SpectrumError, SpectrumPlan,
+    State, check_finite, settled, step_input, step_range, suffix_max,
 };
 
 /// Number of rotation angles: θ = 0°, 1°, …, 179°.
@@ -79,6 +80,11 @@ pub struct RotDSpectrum {
     pub rotd100_angle_deg: Vec<f64>,
     /// Spectral displacement of every oscillator at every angle: `per_angle[o·180 + θ]`.
     pub per_angle: Vec<f64>,
+    /// Spectral displacement of the x component alone, bit for bit what
+    /// [`SpectrumPlan::compute`] gives for it (the same passes give both).
+    pub x: Vec<f64>,
+    /// … and of the y component alone.
+    pub y: Vec<f64>,
 }
 
 impl RotDSpectrum {
@@ -91,8 +97,15 @@ impl RotDSpectrum {
 /// Work arrays of one pair of records (reuse across records: no allocation once grown).
 #[derive(Default)]
 pub struct RotDScratch {
+    /// States of the x and y responses (with each component's own peak), in the bank's order.
     x: State,
     y: State,
+    /// Which oscillators still run.
+    running: Running,
+    /// Largest |x|, |y| and |(x, y)| from each sample on.
+    rest_x: Vec<f64>,
+    rest_y: Vec<f64>,
+    rest_p: Vec<f64>,
     rx: Resampler,
     ry: Resampler,
     /// Samples where |u_x|, |u_y| and |P| peak (first pass), per oscillator.
@@ -105,6 +118,9 @@ pub struct RotDScratch {
     angle_flag: Vec<u8>,
     candidates: Vec<Step>,
     sorted: Vec<f64>,
+    /// The 180 peaks of every oscillator in the bank's order, and |(x, y)| of each sample.
+    per_angle: Vec<f64>,
+    points: Vec<f64>,
 }
 
 /// Directions (degrees) along which the first pass records where the samples reach farthest.
@@ -270,7 +286,7 @@ impl RotDPlan {
         check_finite(x, "x")?;
         check_finite(y, "y")?;
         let n = self.len();
-        for a in [&mut out.rotd50, &mut out.rotd100, &mut out.rotd100_angle_deg] {
+        for a in [&mut out.rotd50, &mut out.rotd100, &mut out.rotd100_angle_deg, &mut out.x, &mut out.y] {
             a.clear();
             a.resize(n, 0.0);
         }
@@ -280,16 +296,59 @@ impl RotDPlan {
             return Ok(());
         }
         let ramp = self.plan.record_end() == RecordEnd::Ramp;
-        let RotDScratch { x: sx, y: sy, rx, ry, ext, hull, inradius, flag, angle_flag, candidates, sorted } = scratch;
         let (xs, ys, tail) = match self.plan.reading() {
             Reading::Linear => (x, y, ramp),
             Reading::BandLimited => {
                 let r = self.plan.oversampling();
-                (rx.resample(x, r, ramp), ry.resample(y, r, ramp), false)
+                (scratch.rx.resample(x, r, ramp), scratch.ry.resample(y, r, ramp), false)
             }
         };
-        let w = Work { bank: self.plan.bank(), cos: &self.cos, sin: &self.sin, x: xs, y: ys, ramp: tail };
-        run(Isa::current(), &w, sx, sy, ext, hull, inradius, flag, angle_flag, candidates, out);
+        let w = Work {
+            bank: self.plan.bank(),
+            cos: &self.cos,
+            sin: &self.sin,
+            x: xs,
+            y: ys,
+            ramp: tail,
+            settle: self.plan.settles(),
+        };
+        let RotDScratch {
+            x: sx,
+            y: sy,
+            running,
+            rest_x,
+            rest_y,
+            rest_p,
+            ext,
+            hull,
+            inradius,
+            flag,
+            angle_flag,
+            candidates,
+            sorted,
+            per_angle,
+            points,
+            ..
+        } = scratch;
+        suffix_max(xs, rest_x);
+        suffix_max(ys, rest_y);
+        points.clear();
+        points.extend(xs.iter().zip(ys).map(|(a, b)| a.hypot(*b)));
+        suffix_max(points, rest_p);
+        per_angle.clear();
+        per_angle.resize(n * ANGLES, 0.0);
+        let mut v = Vectors { sx, sy, running, rest: [rest_x, rest_y, rest_p], ext, hull, inradius, flag, per_angle };
+        run(Isa::current(), &w, &mut v, angle_flag, candidates);
+        // Each component's spectrum, and the 180 peaks, in the output's order.
+        let bank = self.plan.bank();
+        for (o, osc) in bank.oscillators.iter().enumerate() {
+            let at = bank.output[o];
+            let stopped = v.running.stopped(o);
+            for (s, out) in [(&*v.sx, &mut out.x), (&*v.sy, &mut out.y)] {
+                out[at] = if stopped { s.peak[o] } else { s.peak[o].max(osc.free_peak(s.u[o], s.v[o])) };
+            }
+            out.per_angle[at * ANGLES..(at + 1) * ANGLES].copy_from_slice(&v.per_angle[o * ANGLES..(o + 1) * ANGLES]);
+        }
         // Summaries.
         for o in 0..n {
             let peaks = &out.per_angle[o * ANGLES..(o + 1) * ANGLES];
@@ -318,60 +377,66 @@ struct Work<'a> {
     x: &'a [f64],
     y: &'a [f64],
     ramp: bool,
+    settle: bool,
 }
 
-impl Work<'_> {
-    /// The steps `(x₀, x₁, y₀, y₁)`: between samples, then the ramp to zero if asked.
-    fn steps(&self) -> impl Iterator<Item = [f64; 4]> + '_ {
-        let tail = match (self.ramp, self.x.last(), self.y.last()) {
-            (true, Some(&a), Some(&b)) => Some([a, 0.0, b, 0.0]),
-            _ => None,
-        };
-        self.x.windows(2).zip(self.y.windows(2)).map(|(a, b)| [a[0], a[1], b[0], b[1]]).chain(tail)
-    }
+/// The work arrays of the passes (see [`RotDScratch`]); the 180 peaks in the bank's order.
+struct Vectors<'a> {
+    sx: &'a mut State,
+    sy: &'a mut State,
+    running: &'a mut Running,
+    rest: [&'a Vec<f64>; 3],
+    ext: &'a mut Extremes,
+    hull: &'a mut Vec<Hull>,
+    inradius: &'a mut Vec<f64>,
+    flag: &'a mut Vec<u8>,
+    per_angle: &'a mut Vec<f64>,
 }
 
 widest! {
-    /// Both passes, the refinement and the free vibration of every oscillator of `w`, the 180
-    /// peaks into `out.per_angle`, in instruction set `isa`.
-    #[allow(clippy::too_many_arguments)]
+    /// Both passes, the refinement and the free vibration of every oscillator of `w`: the 180
+    /// peaks into `v.per_angle` and each component's own peak in `v.sx`, `v.sy`, in
+    /// instruction set `isa`.
     fn run(
         w: &Work,
-        sx: &mut State,
-        sy: &mut State,
-        ext: &mut Extremes,
-        hull: &mut Vec<Hull>,
-        inradius: &mut Vec<f64>,
-        flag: &mut Vec<u8>,
+        v: &mut Vectors,
         angle_flag: &mut Vec<u8>,
         candidates: &mut Vec<Step>,
-        out: &mut RotDSpectrum,
     ) => run_any
 }
 
 /// The kernel of [`run`], compiled once per instruction set.
 #[inline(always)]
-#[allow(clippy::too_many_arguments)]
-fn run_any(
-    w: &Work,
-    sx: &mut State,
-    sy: &mut State,
-    ext: &mut Extremes,
-    hull: &mut Vec<Hull>,
-    inradius: &mut Vec<f64>,
-    flag: &mut Vec<u8>,
-    angle_flag: &mut Vec<u8>,
-    candidates: &mut Vec<Step>,
-    out: &mut RotDSpectrum,
-) {
+fn run_any(w: &Work, v: &mut Vectors, angle_flag: &mut Vec<u8>, candidates: &mut Vec<Step>) {
     let bank = w.bank;
     let (n, len) = (bank.padded, bank.len());
+    let Vectors { sx, sy, running, rest: [rest_x, rest_y, rest_p], ext, hull, inradius, flag, per_angle } = v;
     sx.reset(n);
     sy.reset(n);
-    // First pass: the samples that reach farthest along the directions and in |P|.
+    running.start();
+    // The steps, from the one into the first sample where either component is not zero.
+    let steps = {
+        let all = step_range(w.x, w.ramp);
+        let first = w.x.iter().zip(w.y).position(|(a, b)| *a != 0.0 || *b != 0.0);
+        first.map_or(all.end, |i| i.saturating_sub(1)).min(all.end)..all.end
+    };
+    let first = steps.start;
+    // First pass: the samples that reach farthest along the directions and in |P|, and each
+    // component's peak at the samples. Every CHECK steps, the oscillators whose responses can no
+    // longer reach their peaks stop (each component's own, and every angle's: the disc
+    // inscribed in the hull of the points so far is inside every angle's final peak).
     ext.reset(n);
-    for [x0, x1, y0, y1] in w.steps() {
-        first_pass_step(&bank.k, n, x0, x1, y0, y1, sx, sy, ext);
+    for k in steps.clone() {
+        let (x0, x1) = step_input(w.x, k);
+        let (y0, y1) = step_input(w.y, k);
+        first_pass_step(&bank.k, running.first, n, x0, x1, y0, y1, sx, sy, ext);
+        if w.settle && (k + 1 - first).is_multiple_of(CHECK) {
+            let rests = (rest_x[k + 1], rest_y[k + 1], rest_p[k + 1]);
+            running.settle(k, n, |o| pair_settled(&bank.k, o, n, sx, sy, ext, rests));
+            if running.first == n {
+                break;
+            }
+        }
     }
     hull.clear();
     inradius.clear();
@@ -383,14 +448,16 @@ fn run_any(
     }
     // Every angle starts from the recorded points' projections.
     for o in 0..len {
-        let pk = &mut out.per_angle[o * ANGLES..(o + 1) * ANGLES];
+        let pk = &mut per_angle[o * ANGLES..(o + 1) * ANGLES];
         for q in &ext.points(o, n) {
             for t in 0..ANGLES {
                 pk[t] = pk[t].max((w.cos[t] * q[0] + w.sin[t] * q[1]).abs());
             }
         }
     }
-    // Second pass: steps that may leave the hull update the angles.
+    // Second pass over the same steps of the same oscillators: each component's steps whose
+    // bounds exceed its peak are solved exactly, and the steps that may leave the hull update
+    // the angles.
     for a in [&mut sx.u, &mut sx.v, &mut sy.u, &mut sy.v] {
         a.fill(0.0);
     }
@@ -399,21 +466,35 @@ fn run_any(
     angle_flag.clear();
     angle_flag.resize(ANGLES, 0);
     candidates.clear();
-    for [x0, x1, y0, y1] in w.steps() {
-        if second_pass_step(&bank.k, n, x0, x1, y0, y1, sx, sy, inradius, flag) {
-            for o in 0..len {
-                if flag[o] != 0 {
+    running.replay();
+    for k in steps {
+        let (x0, x1) = step_input(w.x, k);
+        let (y0, y1) = step_input(w.y, k);
+        let lo = running.first;
+        let [any_x, any_y, any] = second_pass_step(&bank.k, lo, n, x0, x1, y0, y1, sx, sy, inradius, flag);
+        if any_x || any_y || any {
+            for o in lo..len {
+                let osc = &bank.oscillators[o];
+                if any_x && sx.flag[o] != 0 {
+                    sx.peak[o] = osc.step_peak(sx.u[o], sx.v[o], x0, x1, sx.peak[o]);
+                }
+                if any_y && sy.flag[o] != 0 {
+                    sy.peak[o] = osc.step_peak(sy.u[o], sy.v[o], y0, y1, sy.peak[o]);
+                }
+                if any && flag[o] != 0 {
                     let step = Step {
                         o,
                         ux: [sx.u[o], sx.u_next[o]],
                         uy: [sy.u[o], sy.u_next[o]],
                         vx: sx.v[o],
                         vy: sy.v[o],
+                        vx1: sx.v_next[o],
+                        vy1: sy.v_next[o],
                         x: [x0, x1],
                         y: [y0, y1],
                     };
-                    if step.escapes(&bank.oscillators[o], &hull[o]) {
-                        step.sample(w.cos, w.sin, &mut out.per_angle[o * ANGLES..(o + 1) * ANGLES]);
+                    if step.escapes(osc, &hull[o]) {
+                        step.sample(w.cos, w.sin, &mut per_angle[o * ANGLES..(o + 1) * ANGLES]);
                         candidates.push(step);
                     }
                 }
@@ -423,25 +504,32 @@ fn run_any(
         std::mem::swap(&mut sx.v, &mut sx.v_next);
         std::mem::swap(&mut sy.u, &mut sy.u_next);
         std::mem::swap(&mut sy.v, &mut sy.v_next);
+        running.replayed(k);
+        if running.first == n {
+            break;
+        }
     }
     // The peaks at the samples are complete: the steps that escaped the hull are looked
     // inside where their bounds exceed them.
     // The smallest peak of each oscillator bounds a disc every angle's peak contains.
     for o in 0..len {
-        inradius[o] = out.per_angle[o * ANGLES..(o + 1) * ANGLES].iter().fold(f64::INFINITY, |m, &p| m.min(p));
+        inradius[o] = per_angle[o * ANGLES..(o + 1) * ANGLES].iter().fold(f64::INFINITY, |m, &p| m.min(p));
     }
     for step in candidates.iter() {
         let o = step.o;
-        let pk = &mut out.per_angle[o * ANGLES..(o + 1) * ANGLES];
+        let pk = &mut per_angle[o * ANGLES..(o + 1) * ANGLES];
         step.refine(&bank.oscillators[o], inradius[o], w.cos, w.sin, pk, angle_flag);
     }
-    // Free vibration after the record, angle by angle (skipped where its envelope cannot
-    // reach the peak).
+    // Free vibration after the record, angle by angle (skipped where its envelope cannot reach
+    // the peak, and for the oscillators that stopped: theirs cannot).
     for o in 0..len {
+        if running.stopped(o) {
+            continue;
+        }
         let osc = &bank.oscillators[o];
         let (wn, xi) = (osc.omega(), osc.damping());
         let wd = wn * (1.0 - xi * xi).sqrt();
-        let pk = &mut out.per_angle[o * ANGLES..(o + 1) * ANGLES];
+        let pk = &mut per_angle[o * ANGLES..(o + 1) * ANGLES];
         for t in 0..ANGLES {
             let u = w.cos[t] * sx.u[o] + w.sin[t] * sy.u[o];
             let v = w.cos[t] * sx.v[o] + w.sin[t] * sy.v[o];
@@ -452,12 +540,43 @@ fn run_any(
     }
 }
 
-/// First pass, one step: both recurrences in place, and the samples where |u_x|, |u_y| and |P|
-/// peak.
+/// Whether none of the [`LANES`] oscillators from `o` (of `n`) can raise any of its peaks any
+/// more: each component's (see [`settled`]) and every angle's — from the states the free
+/// vibration of `u_θ` stays within the joint amplitude `|Z| = (A_x² + A_y²)^½` and the forced
+/// response within `rest_p·∫|h|` (`rest_p` the largest |(a_x, a_y)| to come), and when their
+/// sum is inside the disc inscribed in the hull of the points recorded so far, it is inside
+/// every angle's final peak.
+#[allow(clippy::too_many_arguments)]
+fn pair_settled(
+    k: &Coefficients,
+    o: usize,
+    n: usize,
+    x: &State,
+    y: &State,
+    e: &Extremes,
+    (rx, ry, rp): (f64, f64, f64),
+) -> bool {
+    if !(settled(k, o, &x.u, &x.v, &x.peak, rx) && settled(k, o, &y.u, &y.v, &y.peak, ry)) {
+        return false;
+    }
+    (o..o + LANES).all(|o| {
+        let wx = (x.v[o] + k.xw[o] * x.u[o]) * k.iwd[o];
+        let wy = (y.v[o] + k.xw[o] * y.u[o]) * k.iwd[o];
+        let forced = if rp == 0.0 { 0.0 } else { rp * k.gain[o] };
+        let reach = (x.u[o] * x.u[o] + wx * wx + y.u[o] * y.u[o] + wy * wy).sqrt() + forced;
+        // The disc is inside the extent along every direction: a cheap test first.
+        let extent = (0..DIRECTIONS.len()).fold(f64::INFINITY, |m, j| m.min(e.value[j * n + o]));
+        reach <= SETTLED * extent && reach <= SETTLED * Hull::of(&e.points(o, n)).inradius()
+    })
+}
+
+/// First pass, one step of oscillators `lo..n`: both recurrences in place with each
+/// component's peak at the samples, and the samples where |u_x|, |u_y| and |P| peak.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn first_pass_step(
     k: &Coefficients,
+    lo: usize,
     n: usize,
     x0: f64,
     x1: f64,
@@ -467,16 +586,21 @@ fn first_pass_step(
     sy: &mut State,
     ext: &mut Extremes,
 ) {
-    let (a11, a12, a21, a22) = (&k.a11[..n], &k.a12[..n], &k.a21[..n], &k.a22[..n]);
-    let (bu0, bu1, bv0, bv1) = (&k.bu0[..n], &k.bu1[..n], &k.bv0[..n], &k.bv1[..n]);
-    let (ux, vx, uy, vy) = (&mut sx.u[..n], &mut sx.v[..n], &mut sy.u[..n], &mut sy.v[..n]);
-    for o in 0..n {
+    let (a11, a12, a21, a22) = (&k.a11[lo..n], &k.a12[lo..n], &k.a21[lo..n], &k.a22[lo..n]);
+    let (bu0, bu1, bv0, bv1) = (&k.bu0[lo..n], &k.bu1[lo..n], &k.bv0[lo..n], &k.bv1[lo..n]);
+    let (ux, vx, px) = (&mut sx.u[lo..n], &mut sx.v[lo..n], &mut sx.peak[lo..n]);
+    let (uy, vy, py) = (&mut sy.u[lo..n], &mut sy.v[lo..n], &mut sy.peak[lo..n]);
+    for o in 0..n - lo {
         let (u0, v0) = (ux[o], vx[o]);
-        ux[o] = a11[o] * u0 + a12[o] * v0 + bu0[o] * x0 + bu1[o] * x1;
+        let u1 = a11[o] * u0 + a12[o] * v0 + bu0[o] * x0 + bu1[o] * x1;
         vx[o] = a21[o] * u0 + a22[o] * v0 + bv0[o] * x0 + bv1[o] * x1;
+        ux[o] = u1;
+        px[o] = px[o].max(u1.abs());
         let (u0, v0) = (uy[o], vy[o]);
-        uy[o] = a11[o] * u0 + a12[o] * v0 + bu0[o] * y0 + bu1[o] * y1;
+        let w1 = a11[o] * u0 + a12[o] * v0 + bu0[o] * y0 + bu1[o] * y1;
         vy[o] = a21[o] * u0 + a22[o] * v0 + bv0[o] * y0 + bv1[o] * y1;
+        uy[o] = w1;
+        py[o] = py[o].max(w1.abs());
     }
     for j in 0..POINTS {
         let (c, s) = if j < DIRECTIONS.len() {
@@ -485,11 +609,11 @@ fn first_pass_step(
         } else {
             (0.0, 0.0)
         };
-        let value = &mut ext.value[j * n..(j + 1) * n];
-        let px = &mut ext.px[j * n..(j + 1) * n];
-        let py = &mut ext.py[j * n..(j + 1) * n];
-        let (ux, uy) = (&ux[..n], &uy[..n]);
-        for o in 0..n {
+        let value = &mut ext.value[j * n + lo..(j + 1) * n];
+        let px = &mut ext.px[j * n + lo..(j + 1) * n];
+        let py = &mut ext.py[j * n + lo..(j + 1) * n];
+        let (ux, uy) = (&ux[..n - lo], &uy[..n - lo]);
+        for o in 0..n - lo {
             let (u, w) = (ux[o], uy[o]);
             let along = if j < DIRECTIONS.len() { (c * u + s * w).abs() } else { u * u + w * w };
             let take = along > value[o];
@@ -500,12 +624,36 @@ fn first_pass_step(
     }
 }
 
-/// Second pass, one step: both recurrences into the next states, flagging the oscillators whose
-/// step may leave the disc inscribed in their hull; returns whether any is flagged.
+/// Second pass, one step of oscillators `lo..n`: both recurrences into the next states, each
+/// component's bounds against its own peak (flags in `sx.flag`, `sy.flag`, as
+/// [`crate::spectra::response`] computes them), and whether the joint step may leave the disc
+/// inscribed in the hull (`flag`). Returns whether any is flagged, per kind.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn second_pass_step(
     k: &Coefficients,
+    lo: usize,
+    n: usize,
+    x0: f64,
+    x1: f64,
+    y0: f64,
+    y1: f64,
+    sx: &mut State,
+    sy: &mut State,
+    inradius: &[f64],
+    flag: &mut [u8],
+) -> [bool; 3] {
+    let any = joint_step(k, lo, n, x0, x1, y0, y1, sx, sy, inradius, flag);
+    [component_bounds(k, lo, n, x0, x1, sx), component_bounds(k, lo, n, y0, y1, sy), any]
+}
+
+/// Both recurrences of oscillators `lo..n` into the next states, flagging where the joint step
+/// may leave the disc inscribed in the hull; returns whether any is flagged.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn joint_step(
+    k: &Coefficients,
+    lo: usize,
     n: usize,
     x0: f64,
     x1: f64,
@@ -516,16 +664,16 @@ fn second_pass_step(
     inradius: &[f64],
     flag: &mut [u8],
 ) -> bool {
-    let (a11, a12, a21, a22) = (&k.a11[..n], &k.a12[..n], &k.a21[..n], &k.a22[..n]);
-    let (bu0, bu1, bv0, bv1) = (&k.bu0[..n], &k.bu1[..n], &k.bv0[..n], &k.bv1[..n]);
-    let (ky0, ky1, kd, xw) = (&k.ky0[..n], &k.ky1[..n], &k.kd[..n], &k.xw[..n]);
-    let (iwd, iw2, c2) = (&k.iwd[..n], &k.iw2[..n], &k.c2[..n]);
-    let (ux, vx, uxn, vxn) = (&sx.u[..n], &sx.v[..n], &mut sx.u_next[..n], &mut sx.v_next[..n]);
-    let (uy, vy, uyn, vyn) = (&sy.u[..n], &sy.v[..n], &mut sy.u_next[..n], &mut sy.v_next[..n]);
-    let (inradius, flag) = (&inradius[..n], &mut flag[..n]);
+    let (a11, a12, a21, a22) = (&k.a11[lo..n], &k.a12[lo..n], &k.a21[lo..n], &k.a22[lo..n]);
+    let (bu0, bu1, bv0, bv1) = (&k.bu0[lo..n], &k.bu1[lo..n], &k.bv0[lo..n], &k.bv1[lo..n]);
+    let (ky0, ky1, kd, xw) = (&k.ky0[lo..n], &k.ky1[lo..n], &k.kd[lo..n], &k.xw[lo..n]);
+    let (iwd, iw2, c2) = (&k.iwd[lo..n], &k.iw2[lo..n], &k.c2[lo..n]);
+    let (ux, vx, uxn, vxn) = (&sx.u[lo..n], &sx.v[lo..n], &mut sx.u_next[lo..n], &mut sx.v_next[lo..n]);
+    let (uy, vy, uyn, vyn) = (&sy.u[lo..n], &sy.v[lo..n], &mut sy.u_next[lo..n], &mut sy.v_next[lo..n]);
+    let (inradius, flag) = (&inradius[lo..n], &mut flag[lo..n]);
     let (dx, dy) = (x1 - x0, y1 - y0);
     let mut any = 0u8;
-    for o in 0..n {
+    for o in 0..n - lo {
         let (u0, v0, w0, q0) = (ux[o], vx[o], uy[o], vy[o]);
         let u1 = a11[o] * u0 + a12[o] * v0 + bu0[o] * x0 + bu1[o] * x1;
         vxn[o] = a21[o] * u0 + a22[o] * v0 + bv0[o] * x0 + bv1[o] * x1;
@@ -551,6 +699,34 @@ fn second_pass_step(
     any != 0
 }
 
+/// One component's bounds of |u| inside the step just taken (from `s.u`, `s.v` to `s.u_next`),
+/// against its own peak, for oscillators `lo..n`: the flags of `response::step_bounds`, from the
+/// same arithmetic; returns whether any is flagged.
+#[inline(always)]
+fn component_bounds(k: &Coefficients, lo: usize, n: usize, x0: f64, x1: f64, s: &mut State) -> bool {
+    let (ky0, ky1, kd, xw) = (&k.ky0[lo..n], &k.ky1[lo..n], &k.kd[lo..n], &k.xw[lo..n]);
+    let (iwd, iw2, c2) = (&k.iwd[lo..n], &k.iw2[lo..n], &k.c2[lo..n]);
+    let (u, v, un) = (&s.u[lo..n], &s.v[lo..n], &s.u_next[lo..n]);
+    let (pk, flag) = (&s.peak[lo..n], &mut s.flag[lo..n]);
+    let dx = x1 - x0;
+    let mut any = 0u8;
+    for o in 0..n - lo {
+        let (u0, v0, u1) = (u[o], v[o], un[o]);
+        let q = ky0[o] * x0 + ky1[o] * x1;
+        let y0 = u0 + q;
+        let w = (v0 + kd[o] * dx + xw[o] * y0) * iwd[o];
+        let z2 = y0 * y0 + w * w;
+        let g2 = pk[o] - u0.abs().max(u1.abs());
+        let b2 = g2 * g2 < c2[o] * z2;
+        let g1 = pk[o] - q.abs().max((q + iw2[o] * dx).abs());
+        let b1 = (g1 < 0.0) | (g1 * g1 < z2);
+        let f = (b1 & b2) as u8;
+        flag[o] = f;
+        any |= f;
+    }
+    any != 0
+}
+
 /// One step of one oscillator, both components: states at its start (and displacements at its
 /// end), inputs at both ends.
 #[derive(Clone, Copy, Debug)]
@@ -560,6 +736,9 @@ struct Step {
     uy: [f64; 2],
     vx: f64,
     vy: f64,
+    /// Velocities at the step's end.
+    vx1: f64,
+    vy1: f64,
     x: [f64; 2],
     y: [f64; 2],
 }
@@ -604,12 +783,38 @@ impl Step {
             return;
         }
         let (cos, sin, pk, angle_flag) = (&cos[..ANGLES], &sin[..ANGLES], &mut pk[..ANGLES], &mut angle_flag[..ANGLES]);
+        // Side by side across angles, with the angle's own |z_θ|: the bounds of |u_θ| inside the
+        // step against its peak; and an interior extremum is a zero of u̇_θ, of which there is
+        // none when u̇_θ keeps one sign at both ends and stays farther from zero than
+        // (h²/8)·ω³|z_θ| bounds its departure from the chord (twice that, and a rounding
+        // allowance, as step_peak's own test sees slightly different roundings): the step's
+        // largest |u_θ| is then at an end, already in the peak, and step_peak would return it
+        // unchanged. The angles left are solved exactly.
+        //
+        // The harmonic part y_θ(τ) = e^{−ξωτ}·|z_θ|·cos(ω_dτ + arg z_θ) reaches |z_θ| inside the
+        // step only where cos does, i.e. where Im(z_θ·e^{iω_dτ}) changes sign (ω_d·h < π: at most
+        // once); elsewhere |y_θ| stays below its larger end value without the decay, so
+        // |u_θ| ≤ max|L_θ| + max(|Re z_θ|, |Re(z_θ·e^{iω_dh})|). Each bound, when it cannot beat
+        // the peak with a relative margin of 1e-9, means step_peak would return the peak.
+        let curve = 2.0 * k * osc.omega();
+        let rounding = 1e-9 * (self.vx.abs() + self.vy.abs() + self.vx1.abs() + self.vy1.abs());
+        let (tc, ts, turns) = match osc.turn() {
+            Some((c, s)) => (c, s, true),
+            None => (1.0, 0.0, false),
+        };
         let mut any = 0u8;
         for t in 0..ANGLES {
             let (c, s) = (cos[t], sin[t]);
+            let (zr, zi) = (c * zx[0] + s * zy[0], c * zx[1] + s * zy[1]);
+            let z = (zr * zr + zi * zi).sqrt();
             let g = (c * p0[0] + s * p0[1]).abs().max((c * p1[0] + s * p1[1]).abs());
             let l = (c * lx0 + s * ly0).abs().max((c * lxh + s * lyh).abs());
-            let f = ((g + r > pk[t]) & (l + zn > pk[t])) as u8;
+            let (v0, v1) = (c * self.vx + s * self.vy, c * self.vx1 + s * self.vy1);
+            let monotone = (v0 * v1 > 0.0) & (v0.abs().min(v1.abs()) > curve * z + rounding);
+            let (er, ei) = (zr * tc - zi * ts, zr * ts + zi * tc);
+            let harmonic = if turns & (zi * ei > 0.0) { zr.abs().max(er.abs()) } else { z };
+            let doubt = |bound: f64| bound * (1.0 + 1e-9) > pk[t];
+            let f = (doubt(g + k * z) & doubt(l + harmonic) & !monotone) as u8;
             angle_flag[t] = f;
             any |= f;
         }
@@ -617,15 +822,8 @@ impl Step {
             return;
         }
         for t in 0..ANGLES {
-            if angle_flag[t] == 0 {
-                continue;
-            }
-            let (c, s) = (cos[t], sin[t]);
-            let (zr, zi) = (c * zx[0] + s * zy[0], c * zx[1] + s * zy[1]);
-            let z = (zr * zr + zi * zi).sqrt();
-            let g = (c * p0[0] + s * p0[1]).abs().max((c * p1[0] + s * p1[1]).abs());
-            let l = (c * lx0 + s * ly0).abs().max((c * lxh + s * lyh).abs());
-            if g + k * z > pk[t] && l + z > pk[t] {
+            if angle_flag[t] != 0 {
+                let (c, s) = (cos[t], sin[t]);
                 pk[t] = osc.step_peak(
                     c * p0[0] + s * p0[1],
                     c * self.vx + s * self.vy,

@@ -31,7 +31,7 @@ use stickslip_isa::{Isa, widest};
 use crate::field::{Field, Lanes};
 use crate::geometry::Direction;
 use crate::layout::{BarGroup, BarLayout, Bars, Segment};
-use crate::step::stiffness::StiffnessRef;
+use crate::stiffness::StiffnessRef;
 
 /// Checks that `k`, `u` and `f` fit `layout` (the kernels index them without bounds checks).
 pub(crate) fn check<const L: usize>(layout: &BarLayout, k: &[Lanes<L>], u: &Field<L>, f: &Field<L>) {

@@ -19,7 +19,7 @@ use crate::stencil::{Run, StencilLayout};
 use crate::step::bars::signs;
 use crate::step::params::Params;
 use crate::step::state::State;
-use crate::step::stiffness::StiffnessRef;
+use crate::stiffness::StiffnessRef;
 
 pub use crate::ledger::Energy;
 

@@ -22,15 +22,15 @@ pub mod params;
 pub mod rupture;
 pub mod state;
 pub mod stencil;
-pub mod stiffness;
+
 mod view;
 
 pub use crate::field::{Field, Lanes};
+pub use crate::stiffness::{LaneStiffness, Stiffness, StiffnessRef};
 pub use contact::SUSTAINED_SLIP_STEPS;
 pub use energy::Energy;
 pub use params::{LaneSetup, Params};
 pub use state::State;
-pub use stiffness::{LaneStiffness, Stiffness, StiffnessRef};
 pub use view::{Blowup, Interface, LaneView, NodeContact};
 
 use stickslip_isa::Isa;

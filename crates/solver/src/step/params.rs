@@ -6,7 +6,7 @@ use crate::field::Lanes;
 use crate::laws::FrictionLaws;
 use crate::model::Model;
 use crate::step::rupture::RuptureParams;
-use crate::step::stiffness::{LaneStiffness, Stiffness, StiffnessRef};
+use crate::stiffness::{LaneStiffness, Stiffness, StiffnessRef};
 
 /// Per-lane set-up of a batch.
 #[derive(Clone, Debug)]
@@ -41,7 +41,7 @@ pub struct Coefficients<const L: usize> {
 pub struct Params<'m, const L: usize> {
     /// The model.
     pub model: &'m Model,
-    /// Bar stiffness per lane (see [`crate::step::bars`] and [`crate::step::stiffness`]).
+    /// Bar stiffness per lane (see [`crate::step::bars`] and [`crate::stiffness`]).
     pub k: Stiffness<L>,
     /// The friction law's coefficients of each contact node, per lane (field factor applied).
     pub friction: FrictionLaws<L>,

@@ -28,7 +28,7 @@ use crate::geometry::Direction;
 use crate::stencil::{Run, RunStiffness, StencilLayout};
 use crate::step::bars::signs;
 use crate::step::integrate::{Update, integrate_raw};
-use crate::step::stiffness::StiffnessRef;
+use crate::stiffness::StiffnessRef;
 
 /// Raw views of the arrays one pass reads and writes, shared by the slab tasks of one phase
 /// (which write disjoint layers).

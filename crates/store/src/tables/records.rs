@@ -10,7 +10,8 @@
 use polars::prelude::DataFrame;
 use stickslip_analysis::RecordData;
 use stickslip_analysis::attenuation::AttenuationRow;
-use stickslip_seismo::accelerogram::processing::RecordBand;
+use stickslip_seismo::accelerogram::processing::{Processed, RecordBand};
+use stickslip_seismo::similarity::RecordScale;
 use stickslip_solver::geometry::Lattice;
 
 use crate::col;
@@ -39,6 +40,7 @@ pub const RECORDS: TableSpec = TableSpec {
         col::PRE_EVENT_S,
         col::DT_S,
         col::SAMPLES,
+        col::WINDOW_SAMPLES,
         col::FIRST_SAMPLE_S,
         col::F_LOW_HZ,
         col::F_HIGH_HZ,
@@ -48,20 +50,13 @@ pub const RECORDS: TableSpec = TableSpec {
     variable: None,
 };
 
-/// The processed records (acceleration, velocity, displacement), both scales.
+/// The processed records (acceleration, velocity, displacement) over their windows, once: model
+/// scale, single precision (see [`accelerograms_frame`]).
 pub const ACCELEROGRAMS: TableSpec = TableSpec {
     name: "accelerograms",
     scope: Scope::PerSeed,
-    key: &[col::SEED, col::RECORD, col::SCALE, col::TIME_S],
-    columns: &[
-        col::SEED,
-        col::RECORD,
-        col::SCALE,
-        col::TIME_S,
-        col::ACCELERATION_M_S2,
-        col::VELOCITY_M_S,
-        col::DISPLACEMENT_M,
-    ],
+    key: &[col::SEED, col::RECORD, col::TIME_S],
+    columns: &[col::SEED, col::RECORD, col::TIME_S, col::ACCELERATION_M_S2, col::VELOCITY_M_S, col::DISPLACEMENT_M],
     variable: None,
 };
 
@@ -164,6 +159,7 @@ pub fn records_frame(seed: u64, records: &[RecordData], lambda: f64) -> Result<D
         .f64(col::PRE_EVENT_S, f(&|r, l| r.pre_event_s * l))
         .f64(col::DT_S, f(&|r, l| r.processed.dt * l))
         .u32(col::SAMPLES, rows.iter().map(|(r, _)| r.processed.accel.len() as u32).collect())
+        .u32(col::WINDOW_SAMPLES, rows.iter().map(|(r, _)| window(&r.processed).len() as u32).collect())
         .f64(col::FIRST_SAMPLE_S, f(&|r, l| r.processed.t_first * l))
         .f64(col::F_LOW_HZ, band(&|b| b.f_low_hz))
         .f64(col::F_HIGH_HZ, band(&|b| b.f_high_hz))
@@ -172,31 +168,39 @@ pub fn records_frame(seed: u64, records: &[RecordData], lambda: f64) -> Result<D
         .finish(RECORDS.name)
 }
 
-/// The processed time series of one seed's records, both scales.
-pub fn accelerograms_frame(seed: u64, records: &[RecordData], lambda: f64) -> Result<DataFrame, StoreError> {
-    let (mut id, mut scale, mut time, mut acc, mut vel, mut disp) = (vec![], vec![], vec![], vec![], vec![], vec![]);
+/// The samples of a processed record's window: the record as cut from the run, without the
+/// zero pads added before filtering (`records.first_sample_s`, `samples` and `window_samples`
+/// describe them).
+pub fn window(p: &Processed) -> std::ops::Range<usize> {
+    p.pad_front..p.accel.len() - p.pad_end
+}
+
+/// The processed time series of one seed's records, stored once: over each record's window
+/// (the pads the filter needed are described by the records table, not stored), at model scale
+/// (the prototype's is the similarity rule's: times ×λ, accelerations ÷λ, velocities ×1,
+/// displacements ×λ, λ = `similarity.lambda`), the time in double precision and the motion in
+/// single precision — each value within 2⁻²⁴ ≈ 6e-8 of itself, far below what the record
+/// resolves (its spectra, intensity measures and files are computed from the double-precision
+/// record before it is stored).
+pub fn accelerograms_frame(seed: u64, records: &[RecordData], _lambda: f64) -> Result<DataFrame, StoreError> {
+    let (mut id, mut time, mut acc, mut vel, mut disp) = (vec![], vec![], vec![], vec![], vec![]);
     for r in records {
         let p = &r.processed;
-        for sc in Scale::ALL {
-            let l = sc.factor(lambda);
-            let m = p.accel.len();
-            id.extend(std::iter::repeat_n(r.id.clone(), m));
-            scale.extend(std::iter::repeat_n(sc.name(), m));
-            time.extend((0..m).map(|i| (r.start_s + p.t_first + i as f64 * p.dt) * l));
-            acc.extend(p.accel.iter().map(|a| a / l));
-            vel.extend_from_slice(&p.vel);
-            disp.extend(p.disp.iter().map(|d| d * l));
-        }
+        let w = window(p);
+        id.extend(std::iter::repeat_n(r.id.as_str(), w.len()));
+        time.extend(w.clone().map(|i| r.start_s + p.t_first + i as f64 * p.dt));
+        acc.extend(p.accel[w.clone()].iter().map(|&a| a as f32));
+        vel.extend(p.vel[w.clone()].iter().map(|&v| v as f32));
+        disp.extend(p.disp[w].iter().map(|&d| d as f32));
     }
     let n = id.len();
     Frame::new(n)
         .u64(col::SEED, vec![seed; n])
-        .str(col::RECORD, id)
-        .static_str(col::SCALE, scale)
+        .str_ref(col::RECORD, id)
         .f64(col::TIME_S, time)
-        .f64(col::ACCELERATION_M_S2, acc)
-        .f64(col::VELOCITY_M_S, vel)
-        .f64(col::DISPLACEMENT_M, disp)
+        .f32(col::ACCELERATION_M_S2, acc)
+        .f32(col::VELOCITY_M_S, vel)
+        .f32(col::DISPLACEMENT_M, disp)
         .finish(ACCELEROGRAMS.name)
 }
 
@@ -205,9 +209,19 @@ pub fn intensity_frame(seed: u64, records: &[RecordData], lambda: f64) -> Result
     let mut rows = Vec::new();
     for r in records {
         for sc in Scale::ALL {
-            let l = sc.factor(lambda);
+            // Computed once at model scale, scaled by the similarity rules.
+            let s = RecordScale { lambda: sc.factor(lambda) };
             let i = &r.intensity;
-            rows.push((r, sc, [i.pga / l, i.pgv, i.pgd * l, i.arias / l, i.d5_95() * l, i.t5 * l, i.t95 * l]));
+            let scaled = [
+                s.acceleration(i.pga),
+                s.velocity(i.pgv),
+                s.length(i.pgd),
+                s.arias(i.arias),
+                s.time(i.d5_95()),
+                s.time(i.t5),
+                s.time(i.t95),
+            ];
+            rows.push((r, sc, scaled));
         }
     }
     let n = rows.len();
@@ -293,6 +307,12 @@ read_back! {
         pre_event_s: Vec<f64> = c.f64s(col::PRE_EVENT_S)?,
         /// Sampling interval (s).
         dt_s: Vec<f64> = c.f64s(col::DT_S)?,
+        /// Samples of the window (the record without its pads).
+        window_samples: Vec<u64> = c.u64s(col::WINDOW_SAMPLES)?,
+        /// Low corner of the band-pass (Hz).
+        f_low_hz: Vec<f64> = c.f64s(col::F_LOW_HZ)?,
+        /// High corner of the band-pass (Hz).
+        f_high_hz: Vec<f64> = c.f64s(col::F_HIGH_HZ)?,
         /// Lowest usable frequency (Hz).
         usable_low_hz: Vec<f64> = c.f64s(col::USABLE_LOW_HZ)?,
         /// Highest usable frequency (Hz).
@@ -301,14 +321,12 @@ read_back! {
 }
 
 read_back! {
-    /// The processed records read back (one or many seeds).
+    /// The processed records read back (one or many seeds), model scale, over their windows.
     pub struct Accelerograms from ACCELEROGRAMS, |c| {
         /// Seed of each row.
         seed: Vec<u64> = c.u64s(col::SEED)?,
         /// Record name within its seed.
         record: Vec<String> = c.strs(col::RECORD)?,
-        /// Scale.
-        scale: Vec<String> = c.strs(col::SCALE)?,
         /// Time (s).
         time_s: Vec<f64> = c.f64s(col::TIME_S)?,
         /// Acceleration (m/s²).

@@ -9,6 +9,7 @@
 use polars::prelude::DataFrame;
 use stickslip_analysis::{RecordData, RotdData};
 use stickslip_seismo::accelerogram::processing::RecordBand;
+use stickslip_seismo::similarity::RecordScale;
 use stickslip_seismo::spectra::fourier::FourierSpectrum;
 use stickslip_seismo::spectra::intensity::Intensity;
 use stickslip_solver::geometry::NodeId;
@@ -136,8 +137,8 @@ pub fn rotd_frame(
 
 /// Columns of a spectra-shaped table, filled record by record.
 #[derive(Default)]
-struct SpectrumColumns {
-    id: Vec<String>,
+struct SpectrumColumns<'a> {
+    id: Vec<&'a str>,
     node: Vec<u32>,
     comp: Vec<&'static str>,
     scale: Vec<&'static str>,
@@ -149,11 +150,11 @@ struct SpectrumColumns {
     in_band: Vec<bool>,
 }
 
-impl SpectrumColumns {
+impl<'a> SpectrumColumns<'a> {
     #[allow(clippy::too_many_arguments)]
     fn push(
         &mut self,
-        id: &str,
+        id: &'a str,
         node: NodeId,
         comp: &'static str,
         band: &RecordBand,
@@ -163,20 +164,21 @@ impl SpectrumColumns {
         lambda: f64,
     ) {
         for sc in Scale::ALL {
-            let l = sc.factor(lambda);
+            // Computed once at model scale, scaled by the similarity rules (PSA_p(λT) = PSA_m(T)/λ).
+            let s = RecordScale { lambda: sc.factor(lambda) };
             for (di, &d) in dampings.iter().enumerate() {
                 for (pi, &t) in periods.iter().enumerate() {
                     let v = sd[di * periods.len() + pi];
                     let (psv, psa) = pseudo(v, t);
-                    self.id.push(id.to_string());
+                    self.id.push(id);
                     self.node.push(node.ldem() as u32);
                     self.comp.push(comp);
                     self.scale.push(sc.name());
                     self.damping.push(d);
-                    self.period.push(t * l);
-                    self.sd.push(v * l);
-                    self.psv.push(psv);
-                    self.psa.push(psa / l);
+                    self.period.push(s.time(t));
+                    self.sd.push(s.length(v));
+                    self.psv.push(s.velocity(psv));
+                    self.psa.push(s.acceleration(psa));
                     self.in_band.push(band.holds_period(t));
                 }
             }
@@ -187,7 +189,7 @@ impl SpectrumColumns {
         let n = self.id.len();
         Frame::new(n)
             .u64(col::SEED, vec![seed; n])
-            .str(col::RECORD, self.id)
+            .str_ref(col::RECORD, self.id)
             .u32(col::NODE, self.node)
             .static_str(col::COMPONENT, self.comp)
             .static_str(col::SCALE, self.scale)
@@ -206,14 +208,14 @@ pub fn fourier_frame(seed: u64, records: &[RecordData]) -> Result<DataFrame, Sto
     let (mut id, mut f, mut a) = (vec![], vec![], vec![]);
     for r in records {
         let Some(fs) = &r.fourier else { continue };
-        id.extend(std::iter::repeat_n(r.id.clone(), fs.frequency_hz.len()));
+        id.extend(std::iter::repeat_n(r.id.as_str(), fs.frequency_hz.len()));
         f.extend_from_slice(&fs.frequency_hz);
         a.extend_from_slice(&fs.amplitude);
     }
     let n = id.len();
     Frame::new(n)
         .u64(col::SEED, vec![seed; n])
-        .str(col::RECORD, id)
+        .str_ref(col::RECORD, id)
         .f64(col::FREQUENCY_HZ, f)
         .f64(col::AMPLITUDE_M_S, a)
         .finish(FOURIER.name)
