@@ -433,7 +433,7 @@ pub(super) fn stations(
             ck.push(
                 field,
                 format!("{p:?} m"),
-                format!("a point of the block, 0 ≤ x ≤ {} m, 0 ≤ y ≤ {} m, 0 ≤ z ≤ {} m", e[0], e[1], e[2]),
+                format!("a point of the block, 0 ≤ x ≤ {} m, 0 ≤ y ≤ {} m, 0 ≤ z ≤ {} m", approx(e[0]), approx(e[1]), approx(e[2])),
             );
             continue;
         }
