@@ -6,14 +6,18 @@
 # compares the merged tables with a plain ensemble run of the same pipeline.
 #
 # It touches nothing outside its work folder except, if they are missing and only after saying
-# so, installing Debian's slurm-wlm and munge. It refuses, before changing anything, to run where
-# a Slurm it did not create is present (a slurm.conf in a system location, SLURM_CONF set, or a
-# running Slurm daemon): that is a real cluster's node and the check does not belong there. The
-# daemons it starts are stopped by their process ids when it exits, on success or failure.
+# so, installing Debian's slurm-wlm and munge, which it purges again when it exits (every package
+# the installation added, dependencies included; KEEP_PACKAGES=1 keeps them). It refuses, before
+# changing anything, to run where a Slurm it did not create is present (a slurm.conf in a system
+# location, SLURM_CONF set, or a running Slurm daemon): that is a real cluster's node and the
+# check does not belong there. The daemons it starts are stopped by their process ids when it
+# exits, on success or failure, and so are the job steps of its own slurmd (told by the
+# configuration in their environment), never a process picked by its name alone.
 #
 # Needs root (slurmd launches the jobs). The binary: $STICKSLIP, else target/release/stickslip.
-# Work folder: /tmp/stickslip-slurm (override with WORK=…; only a folder the check created is
-# reused). Waits at most TIMEOUT seconds (default 3600) for the jobs.
+# Work folder: a new one from `mktemp -d` (WORK=… names a folder of your own instead: it must
+# not exist yet, or be one this check made). Waits at most TIMEOUT seconds (default 3600) for
+# the jobs.
 set -euo pipefail
 
 usage="usage: scripts/slurm-check.sh [pipeline, default pipelines/paper-100.toml] [shards, default 8]"
@@ -27,7 +31,7 @@ cd "$(dirname "$0")/.."
 repo=$PWD
 pipeline=${1:-pipelines/paper-100.toml}
 shards=${2:-8}
-work=${WORK:-/tmp/stickslip-slurm}
+work=${WORK:-}
 timeout_s=${TIMEOUT:-3600}
 marker=.stickslip-slurm-check
 
@@ -42,8 +46,11 @@ pipeline=$(realpath "$pipeline")
 bin=${STICKSLIP:-target/release/stickslip}
 [ -x "$bin" ] || die "no stickslip binary at $bin: build it (cargo build --release -p stickslip) or set STICKSLIP"
 bin=$(realpath "$bin")
-[[ $work = /* ]] || work=$PWD/$work
-case $work in / | /tmp | /root | /home | /etc | /var | /usr) die "WORK=$work is not a folder of its own" ;; esac
+if [ -n "$work" ]; then
+    [[ $work = /* ]] || work=$PWD/$work
+    case $work in / | /tmp | /root | /home | /etc | /var | /usr) die "WORK=$work is not a folder of its own" ;; esac
+    [ -L "$work" ] && die "WORK=$work is a symbolic link: give a real folder"
+fi
 
 # Live processes (zombies aside) named $1 exactly, as "pid command line" lines.
 procs() {
@@ -65,7 +72,7 @@ preflight() {
     for name in slurmctld slurmd slurmdbd slurmstepd slurmrestd sackd; do
         while IFS= read -r line; do
             [ -n "$line" ] || continue
-            if [[ $line == *"$work/"* ]]; then
+            if [ -n "$work" ] && [[ $line == *"$work/"* ]]; then
                 reasons+=("a $name left over from an earlier check in $work runs (stop it: kill ${line%% *}): $line")
             else
                 reasons+=("a $name the check did not start runs: $line")
@@ -73,9 +80,9 @@ preflight() {
         done < <(procs "$name")
     done
     while IFS= read -r line; do
-        [[ $line == *"$work/"* ]] && reasons+=("a munged left over from an earlier check in $work runs (stop it: kill ${line%% *})")
+        [ -n "$work" ] && [[ $line == *"$work/"* ]] && reasons+=("a munged left over from an earlier check in $work runs (stop it: kill ${line%% *})")
     done < <(procs munged)
-    if [ -e "$work" ] && [ ! -e "$work/$marker" ] && [ -n "$(ls -A "$work" 2>/dev/null)" ]; then
+    if [ -n "$work" ] && [ -e "$work" ] && [ ! -e "$work/$marker" ] && [ -n "$(ls -A "$work" 2>/dev/null)" ]; then
         reasons+=("the work folder $work exists and was not made by this check (set WORK to a new folder)")
     fi
     if [ ${#reasons[@]} -gt 0 ]; then
@@ -90,7 +97,7 @@ say "preflight"
 preflight
 # Root only after the refusals above: they must reach whoever runs it, root or not.
 [ "$(id -u)" = 0 ] || die "needs root (slurmd runs the jobs; packages may be installed)"
-echo "no Slurm configuration or daemon present; work folder $work"
+echo "no Slurm configuration or daemon present"
 while IFS= read -r line; do
     [ -n "$line" ] && echo "note: a munged the check did not start runs ($line); left alone, the check uses its own"
 done < <(procs munged)
@@ -100,16 +107,42 @@ missing=()
 for cmd in munged munge unmunge slurmctld slurmd sbatch squeue sinfo scancel; do
     command -v "$cmd" >/dev/null || missing+=("$cmd")
 done
+installed=() # the packages this check installed, purged again on exit
+installed_packages() { dpkg-query -W -f '${db:Status-Abbrev} ${Package}\n' 2>/dev/null | awk '$1 ~ /^ii/ { print $2 }' | sort; }
+purge_installed() {
+    [ ${#installed[@]} -gt 0 ] || return 0
+    if [ "${KEEP_PACKAGES:-0}" = 1 ]; then
+        echo "KEEP_PACKAGES=1: leaving the packages this check installed: ${installed[*]}"
+        return 0
+    fi
+    echo "purging the ${#installed[@]} packages this check installed: ${installed[*]}"
+    DEBIAN_FRONTEND=noninteractive apt-get purge -y -qq "${installed[@]}" >/dev/null ||
+        { echo "could not purge: ${installed[*]} (apt-get purge them by hand)" >&2; return 1; }
+}
+trap 'rc=$?; purge_installed || rc=1; exit $rc' EXIT
 if [ ${#missing[@]} -gt 0 ]; then
-    echo "missing ${missing[*]}: installing Debian's slurm-wlm and munge:"
+    echo "missing ${missing[*]}: installing Debian's slurm-wlm and munge (purged again when the check ends):"
     echo "  apt-get update && apt-get install -y --no-install-recommends slurm-wlm munge"
+    before=$(installed_packages)
     apt-get update -qq >/dev/null
-    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends slurm-wlm munge >/dev/null
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends slurm-wlm munge >/dev/null ||
+        { mapfile -t installed < <(comm -13 <(echo "$before") <(installed_packages)); die "apt-get install failed"; }
+    mapfile -t installed < <(comm -13 <(echo "$before") <(installed_packages))
+    echo "installed ${#installed[@]} packages: ${installed[*]}"
     preflight # the packages must not have brought a Slurm of their own
 fi
 dpkg-query -W slurm-wlm munge 2>/dev/null || true
 
 # ---- from here on everything lives in $work and is undone on exit ----
+if [ -z "$work" ]; then
+    work=$(mktemp -d /tmp/stickslip-slurm.XXXXXX) # new, empty and ours (mode 0700): no race on its name
+elif [ -e "$work" ]; then
+    [ -e "$work/$marker" ] || [ -z "$(ls -A "$work")" ] || die "WORK=$work holds files this check did not make"
+    find "$work" -mindepth 1 -delete # a folder this check made: emptied in place, never replaced
+else
+    mkdir -m 0700 "$work"
+fi
+echo "work folder $work"
 host=$(hostname -s)
 cpus=$(nproc)
 mem=$(awk '/MemTotal/ { printf "%d", $2 / 1024 * 0.8 }' /proc/meminfo)
@@ -131,7 +164,15 @@ done
 [ -n "$ctld_port" ] || die "found no two free adjacent ports in 40000–60000"
 slurmd_port=$((ctld_port + 1))
 
-pids=() names=() job_ids=() stepd_before=$(pgrep -x slurmstepd | tr '\n' ' ' || true)
+# The job steps of this check's own slurmd: slurmstepd processes whose environment holds this
+# check's SLURM_CONF (inherited from its slurmd), whatever else runs on the machine.
+own_steps() {
+    local pid
+    for pid in $(pgrep -x slurmstepd || true); do
+        tr '\0' '\n' <"/proc/$pid/environ" 2>/dev/null | grep -qxF "SLURM_CONF=$SLURM_CONF" && echo "$pid"
+    done
+}
+pids=() names=() job_ids=()
 cleanup() {
     local rc=$? i pid left=()
     trap - EXIT INT TERM
@@ -139,9 +180,9 @@ cleanup() {
         scancel "${job_ids[@]}" 2>/dev/null || true
         for _ in $(seq 20); do squeue -h -j "$(IFS=,; echo "${job_ids[*]}")" 2>/dev/null | grep -q . || break; sleep 0.5; done
     fi
-    # Job steps this check's slurmd started (there were none before it, or the preflight refuses).
-    for pid in $(pgrep -x slurmstepd || true); do
-        [[ " $stepd_before " == *" $pid "* ]] || { kill "$pid" 2>/dev/null || true; }
+    # Job steps this check's slurmd started (told by their SLURM_CONF), by process id.
+    for pid in $(own_steps); do
+        kill "$pid" 2>/dev/null || true
     done
     for ((i = ${#pids[@]} - 1; i >= 0; i--)); do
         pid=${pids[i]}
@@ -167,6 +208,7 @@ cleanup() {
             [ -s "$f" ] && { echo "--- tail of $f"; tail -n 15 "$f"; }
         done >&2
     fi
+    purge_installed || rc=1
     exit $rc
 }
 trap cleanup EXIT
@@ -183,8 +225,7 @@ start() {
 }
 
 say "work folder $work"
-rm -rf "$work"
-mkdir -p "$work" "$etc" "$spool" "$state" "$log" "$run" "$mungedir" "$work/job"
+mkdir "$etc" "$spool" "$state" "$log" "$run" "$mungedir" "$work/job"
 touch "$work/$marker"
 chmod 0700 "$mungedir"
 chmod 0755 "$work" "$run" # munged wants its socket folder reachable by every user

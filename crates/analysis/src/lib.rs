@@ -84,12 +84,14 @@ pub struct SeedAnalysis {
 }
 
 /// Analyses one finished run of `model` as `settings` ask; `plans` holds the spectra's plans,
-/// shared by every seed of an ensemble.
+/// shared by every seed of an ensemble. Setting `cancel` stops it between two records' windows
+/// ([`RecordFailure::Cancelled`]).
 pub fn analyse(
     run: RunOutput,
     model: &Model,
     settings: &Settings,
     plans: &PlanCache,
+    cancel: &std::sync::atomic::AtomicBool,
 ) -> Result<SeedAnalysis, AnalysisError> {
     let started = thread_cpu_s();
     let catalogue = events::catalogue(&run.recording, model, &settings.events);
@@ -105,6 +107,7 @@ pub fn analyse(
             settings.spectra.as_ref(),
             settings.events.smoothing_s,
             plans,
+            cancel,
         )?),
         None => None,
     };

@@ -7,6 +7,7 @@
 //! Everything is computed at model scale; the tables rescale to the prototype (docs/model.md §9).
 
 use std::collections::HashMap;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 
 use crate::attenuation::{AttenuationRow, attenuation};
@@ -169,6 +170,23 @@ pub enum RecordFailure {
         /// Why.
         source: SeismoError,
     },
+    /// The records' interval is far finer than the run's own sampling: resampling would invent
+    /// samples between the steps (and a tiny interval would not fit in memory).
+    #[error(
+        "record.interval_s = {requested_s:e} s is {:.3e} times finer than this run's own sampling ({recorded_s:e} s, \
+         at least one step): records are resampled to it, not invented between steps; give a record.interval_s of at \
+         least half the run's step",
+        recorded_s / requested_s
+    )]
+    IntervalTooFine {
+        /// The interval asked for (s).
+        requested_s: f64,
+        /// The run's own sampling interval (s).
+        recorded_s: f64,
+    },
+    /// The caller asked the analysis to stop.
+    #[error("analysis cancelled")]
+    Cancelled,
 }
 
 /// One window of the run that becomes records.
@@ -238,7 +256,8 @@ pub fn processing_options(
     }
 }
 
-/// Runs the analysis for one seed's recording.
+/// Runs the analysis for one seed's recording; `cancel` stops it between windows.
+#[allow(clippy::too_many_arguments)] // the seed's inputs, its settings, and the shared plans and interrupt
 pub fn compute(
     rec: &Recording,
     catalogue: &Catalogue,
@@ -247,6 +266,7 @@ pub fn compute(
     spectra: Option<&SpectraSettings>,
     smoothing_s: f64,
     plans: &PlanCache,
+    cancel: &AtomicBool,
 ) -> Result<SeedRecords, RecordFailure> {
     let Some(span) = rec.uniform_shear() else {
         return Err(RecordFailure::NotUniform(format!(
@@ -268,8 +288,17 @@ pub fn compute(
     // below the usable band (docs/model.md §8).
     let dt_recorded = (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64;
     let dt = record_interval(model.scene().record.interval_s, acc.resolved_hz);
+    // Resampling follows a run's own interval up to twice finer (seeds' strides differ by a
+    // step); past that it would only interpolate between steps.
+    if dt < 0.5 * dt_recorded {
+        return Err(RecordFailure::IntervalTooFine { requested_s: dt, recorded_s: dt_recorded });
+    }
     let lattice = model.lattice();
     for w in windows(t, span.start, catalogue, acc) {
+        // Each window is a few records and their spectra: the latency of an interrupt.
+        if cancel.load(Ordering::Relaxed) {
+            return Err(RecordFailure::Cancelled);
+        }
         let started = thread_cpu_s();
         let first = out.records.len();
         let mut horizontal: HashMap<NodeId, [Option<usize>; 2]> = HashMap::new();

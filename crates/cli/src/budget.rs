@@ -3,6 +3,7 @@
 
 use anyhow::{Result, bail};
 use stickslip_solver::Scene;
+use stickslip_solver::error::MAX_STEPS;
 use stickslip_solver::memory::{
     Batches, LONG_RUN_BAR_UPDATES, MemoryEstimate, dt_estimate, estimate, human, run_steps, samples,
 };
@@ -56,12 +57,33 @@ pub fn check_memory(scene: &Scene, seeds: usize, threads: usize, what: &str) -> 
     let batches = Batches::of_ensemble(seeds, threads, scene.skip_ahead.enabled);
     let dt = dt_estimate(scene);
     let n_samples = samples(scene, dt);
-    let est = estimate(scene, batches, n_samples).map_err(|e| anyhow::anyhow!("{what}: {e}: use fewer modules"))?;
+    // What the run holds without its records: when that fits and the whole does not, the records
+    // are what to cut (a long stage sampled finely), not the modules.
+    let bare = estimate(scene, batches, 2).ok();
+    let records = |total: &str, limit: &str| {
+        anyhow::anyhow!(
+            "{what}: the records of a seed, {n_samples} samples of every recorded channel (shear.duration_s / \
+             record.interval_s, every step without it), need {total}, and {limit}: record less — a longer \
+             record.interval_s or a shorter shear.duration_s (pipeline keys: record.interval_s, shear.duration_s)"
+        )
+    };
+    let est = match (estimate(scene, batches, n_samples), &bare) {
+        (Ok(e), _) => e,
+        (Err(_), Some(_)) => return Err(records("more bytes than 64 bits count", "the lattice alone fits")),
+        (Err(e), None) => bail!("{what}: {e}: use fewer modules (pipeline keys: block.nx, block.ny, block.nz)"),
+    };
     let Some((limit, source)) = available_memory()? else { return Ok(est) };
     if est.total <= limit {
         return Ok(est);
     }
-    let one = estimate(scene, Batches::ONE, n_samples).map_err(|e| anyhow::anyhow!("{what}: {e}"))?;
+    if let Some(b) = bare.filter(|b| b.total <= limit) {
+        return Err(records(
+            &format!("about {} of the {} a run needs", human(est.total - b.total), human(est.total)),
+            &format!("{} is available ({source})", human(limit)),
+        ));
+    }
+    let one = estimate(scene, Batches::ONE, n_samples)
+        .map_err(|e| anyhow::anyhow!("{what}: {e} (pipeline keys: block.nx, block.ny, block.nz)"))?;
     let d = scene.dims;
     let per_module = (est.total.saturating_sub(est.model) as f64) / (d.nx as f64 * d.ny as f64 * d.nz as f64);
     let modules = (limit as f64 * 0.9 / per_module.max(1.0)).max(1.0);
@@ -96,7 +118,8 @@ pub fn check_memory(scene: &Scene, seeds: usize, threads: usize, what: &str) -> 
     );
     bail!(
         "{what} does not fit in memory: it needs about {} ({} nodes, {} bars: {} for the lattice, {} per batch of {} seed{} \
-         × {} at once, {} while a batch is set up), and {} is available ({source}); {}",
+         × {} at once, {} while a batch is set up), and {} is available ({source}); {} (pipeline keys: block.nx, \
+         block.ny, block.nz, block.lc_m)",
         human(est.total),
         est.nodes,
         est.bars,
@@ -111,12 +134,39 @@ pub fn check_memory(scene: &Scene, seeds: usize, threads: usize, what: &str) -> 
     )
 }
 
+/// The keys of a pipeline file that set a run's length.
+const LENGTH_KEYS: &str =
+    "shear.duration_s, self_weight.max_duration_s, time.dt_fraction, time.dt_s, block.nx, block.ny, block.nz";
+
+/// Refuses, whatever `--allow-long` says, a run of `scene` at Δt = `dt` with a stage of more steps
+/// than it can count ([`MAX_STEPS`], or 2^64 bar-updates of `bars` bars): the limit the run of
+/// each seed enforces (`run::check_step_count`), checked before anything is built or estimated.
+pub fn check_count(scene: &Scene, bars: u64, dt: f64, what: &str) -> Result<()> {
+    let (settle, shear) = run_steps(scene, dt);
+    let updates = (settle as f64 + shear as f64) * bars as f64;
+    if settle as f64 > MAX_STEPS || shear as f64 > MAX_STEPS || updates >= u64::MAX as f64 {
+        bail!(
+            "{what}: one seed is {:.3e} steps at Δt = {dt:.3e} s ({}shear {:.3e}) of {bars} bars, more than a run \
+             can count (2^53 steps, 2^64 bar-updates; --allow-long does not lift this): lengthen the step \
+             (time.dt_s or time.dt_fraction) or shorten shear.duration_s (pipeline keys: {LENGTH_KEYS})",
+            settle as f64 + shear as f64,
+            if settle > 0 { format!("self-weight up to {:.3e} + ", settle as f64) } else { String::new() },
+            shear as f64
+        );
+    }
+    Ok(())
+}
+
 /// The bar-updates of one seed of `scene` at Δt = `dt` (the self-weight stage counted at its
-/// longest): refused above [`LONG_RUN_BAR_UPDATES`] without `allow_long`.
+/// longest): refused above [`LONG_RUN_BAR_UPDATES`] without `allow_long`, and refused whatever
+/// `allow_long` says when a stage has more steps than a run can count ([`MAX_STEPS`], or 2^64
+/// bar-updates: the limit the run of each seed enforces, `run::check_step_count`).
 /// `rate` is the bar-updates per second of a timed probe (2·10⁸ when none was made).
 pub fn check_length(scene: &Scene, bars: u64, dt: f64, rate: Option<f64>, allow_long: bool, what: &str) -> Result<f64> {
+    check_count(scene, bars, dt, what)?;
     let (settle, shear) = run_steps(scene, dt);
-    let updates = (settle + shear) as f64 * bars as f64;
+    let updates = (settle as f64 + shear as f64) * bars as f64;
+    // Both below 2^53 from here: their sum cannot overflow.
     // With the skip-ahead the quasi-static stretches between events are jumped, not stepped:
     // the count above is a bound that says nothing of the run's length (slow-loading.toml bounds
     // 3.7e9 steps and steps about 1e7).
@@ -124,7 +174,7 @@ pub fn check_length(scene: &Scene, bars: u64, dt: f64, rate: Option<f64>, allow_
         bail!(
             "{what}: one seed is {} steps ({}shear {shear}) of {bars} bars, {updates:.3e} bar-updates, above the limit of \
              {LONG_RUN_BAR_UPDATES:.0e} for a run nobody asked to be long (about {} at {:.1e} bar-updates/s{}): pass \
-             --allow-long to run it, or shorten shear.duration_s, or use fewer modules",
+             --allow-long to run it, or shorten shear.duration_s, or use fewer modules (pipeline keys: {LENGTH_KEYS})",
             settle + shear,
             if settle > 0 { format!("self-weight up to {settle} + ") } else { String::new() },
             duration(updates / rate.unwrap_or(2e8)),
@@ -138,6 +188,9 @@ pub fn check_length(scene: &Scene, bars: u64, dt: f64, rate: Option<f64>, allow_
 /// Whether a scene is refused before it is built: its memory, and its length at the Δt estimated
 /// from the paper's bound (`pipeline` does not build the lattice twice).
 pub fn check_before_build(scene: &Scene, seeds: usize, threads: usize, allow_long: bool, what: &str) -> Result<()> {
+    if let Ok(e) = estimate(scene, Batches::ONE, 2) {
+        check_count(scene, e.bars, dt_estimate(scene), what)?;
+    }
     let est = check_memory(scene, seeds, threads, what)?;
     check_length(scene, est.bars, dt_estimate(scene), None, allow_long, what)?;
     Ok(())

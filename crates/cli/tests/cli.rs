@@ -106,7 +106,7 @@ fn bad_arguments_and_bad_files_fail_with_a_clear_message() {
     let out = stickslip(&["run", "missing.toml", "--seed", "1"], &dir);
     assert_eq!(out.status.code(), Some(1));
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("missing.toml") && err.contains("No such file"), "{err}");
+    assert!(err.contains("missing.toml") && err.contains("no such file"), "{err}");
     std::fs::write(dir.join("bad.toml"), "version = 1\n[material]\npoisson = 0.7\n").unwrap();
     let out = stickslip(&["run", "bad.toml", "--seed", "1"], &dir);
     assert_eq!(out.status.code(), Some(1));

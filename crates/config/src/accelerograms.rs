@@ -19,11 +19,12 @@
 
 use serde::{Deserialize, Serialize};
 use stickslip_analysis::settings::{AccelerogramSettings, EventChoice, MeanChoice, RecordSpan};
-use stickslip_seismo::accelerogram::processing::USABLE_LOW_FACTOR;
+use stickslip_seismo::accelerogram::processing::{MAX_CORNER_OF_NYQUIST, USABLE_LOW_FACTOR};
 use stickslip_seismo::accelerogram::{At2, FORMATS, RecordFormat, Sac};
+use stickslip_solver::NodeId;
 use stickslip_solver::scene::{Kinematic, Scene};
 
-use crate::check::{Checker, Named};
+use crate::check::{Checker, Named, approx};
 
 impl Named for RecordSpan {
     const ALL: &'static [Self] = &[RecordSpan::Events, RecordSpan::WholeRun];
@@ -140,7 +141,7 @@ impl AccelerogramsSection {
             ck.push(
                 "accelerograms.high_corner_hz",
                 self.high_corner_hz,
-                format!("above low_corner_hz ({} Hz), or 0 for the lattice's f_max", self.low_corner_hz),
+                format!("above low_corner_hz ({} Hz), or 0 for the lattice's f_max", approx(self.low_corner_hz)),
             );
         }
         let tolerance_ok = ck.range("accelerograms.band_tolerance", self.band_tolerance, 0.0, true, 0.5, true);
@@ -166,6 +167,37 @@ impl AccelerogramsSection {
                     n,
                     "a control node that records acceleration ([[record.control]])",
                 ),
+            }
+        }
+        // A driven node's acceleration is prescribed (Eq. 12), not a response of the block.
+        let drivers = &scene.shear.drivers;
+        let describe = |id: NodeId| {
+            let p = scene.lattice().position(id);
+            format!("LDEM {} at ({}, {}, {}) m", id.ldem(), approx(p[0]), approx(p[1]), approx(p[2]))
+        };
+        let driven_why = "a node that is not driven by [shear]: a driven node's acceleration is the prescribed \
+                          motion (Eq. 12), and its record would be the driver's, not the block's response";
+        if self.nodes.is_empty() {
+            let mut driven: Vec<NodeId> = control
+                .iter()
+                .filter(|c| c.quantity == Kinematic::Acceleration && drivers.contains(&c.node))
+                .map(|c| c.node)
+                .collect();
+            driven.dedup();
+            if !driven.is_empty() {
+                ck.push(
+                    "record.control",
+                    driven.iter().map(|&id| describe(id)).collect::<Vec<_>>().join("; "),
+                    format!(
+                        "{driven_why}; leave it out of [[record.control]], or list the nodes to record in \
+                         accelerograms.nodes"
+                    ),
+                );
+            }
+        }
+        for (i, &n) in self.nodes.iter().enumerate() {
+            if let Some(&id) = drivers.iter().find(|d| d.ldem() as i64 == n) {
+                ck.push(format!("accelerograms.nodes[{i}]"), describe(id), driven_why);
             }
         }
         if !control.iter().any(|c| c.quantity == Kinematic::Acceleration) {
@@ -194,16 +226,53 @@ impl AccelerogramsSection {
         };
         let top = self.high_corner_hz.clamp(0.0, resolved_hz);
         let top = if top > 0.0 { top } else { resolved_hz };
+        // The sampling cuts the band too: the filter's corner stays below 0.8 of Nyquist.
+        let interval = scene.record.interval_s.filter(|v| *v > 0.0 && v.is_finite());
+        let sampled_top = interval.map_or(f64::INFINITY, |iv| MAX_CORNER_OF_NYQUIST * 0.5 / iv);
+        if let Some(iv) = interval
+            && sampled_top < resolved_hz
+            && resolved_hz.is_finite()
+        {
+            ck.warn(
+                "record.interval_s",
+                iv,
+                format!(
+                    "records sampled every {} s are band-limited to {:.1} Hz ({MAX_CORNER_OF_NYQUIST} of Nyquist), \
+                     below the lattice's f_max = {:.1} Hz: the peaks between samples are missed, so PGA and the \
+                     short-period spectra read low; record every {} s or less to keep the lattice's band",
+                    approx(iv),
+                    sampled_top,
+                    resolved_hz,
+                    approx(MAX_CORNER_OF_NYQUIST * 0.5 / resolved_hz)
+                ),
+            );
+        }
+        let top = top.min(sampled_top);
         let shortest = self.pre_event_s + self.post_event_s;
+        let run = scene.shear.duration_s;
+        if span == RecordSpan::Events && window_ok && shortest >= run {
+            ck.push(
+                "accelerograms.post_event_s",
+                self.post_event_s,
+                format!(
+                    "a window shorter than the shear stage: pre_event_s + post_event_s = {} s ≥ shear.duration_s = \
+                     {} s makes every event's record the whole run (for that, records = \"whole_run\")",
+                    approx(shortest),
+                    approx(run)
+                ),
+            );
+        }
         let low = if self.low_corner_hz > 0.0 { self.low_corner_hz } else { 1.0 / shortest };
         if span == RecordSpan::Events && window_ok && corners_ok && tolerance_ok && !(USABLE_LOW_FACTOR * low < top) {
             ck.push(
                 "accelerograms.post_event_s",
                 self.post_event_s,
                 format!(
-                    "a window (pre_event_s + post_event_s = {shortest} s) long enough for a usable band: the low corner \
-                     {low} Hz × {USABLE_LOW_FACTOR} must stay below the band's top {top:.1} Hz (the lattice's f_max or \
-                     high_corner_hz)"
+                    "a window (pre_event_s + post_event_s = {} s) long enough for a usable band: the low corner \
+                     {} Hz × {USABLE_LOW_FACTOR} must stay below the band's top {top:.1} Hz (the lattice's f_max, \
+                     high_corner_hz or 0.8 of the sampling's Nyquist)",
+                    approx(shortest),
+                    approx(low)
                 ),
             );
         }

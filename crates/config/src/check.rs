@@ -1,7 +1,7 @@
 //! One checker for every section: collects every refused value with its field, value and allowed
 //! range, so a file is refused once with all its errors.
 
-use crate::error::{ConfigError, FieldError};
+use crate::error::{ConfigError, FieldError, Warning};
 
 /// A plain enum of the domain that is written by name in files.
 pub trait Named: Copy + 'static {
@@ -11,16 +11,40 @@ pub trait Named: Copy + 'static {
     fn name(self) -> &'static str;
 }
 
+pub use crate::numbers::{approx, num};
+
+/// A value's text with a long decimal number written short (see [`num`]).
+fn compact(text: String) -> String {
+    match text.parse::<f64>() {
+        Ok(v) if text.len() > 12 => num(v),
+        _ => text,
+    }
+}
+
 /// Collects every refused field.
 #[derive(Default)]
 pub struct Checker {
     errors: Vec<FieldError>,
+    warnings: Vec<Warning>,
 }
 
 impl Checker {
-    /// Refuses `field = value`, saying what is allowed.
+    /// Refuses `field = value`, saying what is allowed (a number given as `value` is written
+    /// short, see [`num`]).
     pub fn push(&mut self, field: impl Into<String>, value: impl ToString, allowed: impl Into<String>) {
-        self.errors.push(FieldError { field: field.into(), value: value.to_string(), allowed: allowed.into() });
+        let value = compact(value.to_string());
+        self.errors.push(FieldError { field: field.into(), value, allowed: allowed.into() });
+    }
+
+    /// Accepts `field = value` with a warning: it runs, but could mislead (`why` says how).
+    pub fn warn(&mut self, field: impl Into<String>, value: impl ToString, why: impl Into<String>) {
+        let value = compact(value.to_string());
+        self.warnings.push(Warning { field: field.into(), value, why: why.into() });
+    }
+
+    /// The warnings so far, taken out.
+    pub fn take_warnings(&mut self) -> Vec<Warning> {
+        std::mem::take(&mut self.warnings)
     }
 
     /// Accepts finite `v` with `lo (<|≤) v (<|≤) hi`.
@@ -31,9 +55,9 @@ impl Checker {
             let lo_s = if lo_open { "<" } else { "≤" };
             let hi_s = if hi_open { "<" } else { "≤" };
             let allowed = if hi.is_infinite() {
-                format!("{lo} {lo_s} {name} (finite)")
+                format!("{} {lo_s} {name} (finite)", approx(lo))
             } else {
-                format!("{lo} {lo_s} {name} {hi_s} {hi}")
+                format!("{} {lo_s} {name} {hi_s} {}", approx(lo), approx(hi))
             };
             self.push(field, v, allowed);
         }
@@ -81,9 +105,10 @@ impl Checker {
         self.errors.is_empty()
     }
 
-    /// Adds the errors of another checker.
+    /// Adds the errors and warnings of another checker.
     pub fn absorb(&mut self, other: Checker) {
         self.errors.extend(other.errors);
+        self.warnings.extend(other.warnings);
     }
 
     /// `Ok` if nothing was refused.
@@ -106,3 +131,29 @@ macro_rules! named {
 use stickslip_solver::geometry::{Face, NodeSet};
 use stickslip_solver::scene::{Component, InterfaceQuantity, Kinematic, SettleMethod};
 named!(Face, NodeSet, Component, InterfaceQuantity, Kinematic, SettleMethod);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_in_messages_are_short() {
+        assert_eq!(num(5e-324), "5e-324");
+        assert_eq!(num(1e300), "1e300");
+        assert_eq!(num(-1e300), "-1e300");
+        assert_eq!(num(0.32), "0.32");
+        assert_eq!(num(0.1 + 0.2), "0.30000000000000004", "a value given is written exactly");
+        assert_eq!(approx(1.9691060748051846e-6), "1.96911e-6");
+        assert_eq!(approx(0.019691060748051846), "0.0196911");
+        assert_eq!(approx(25.6), "25.6");
+        assert_eq!(approx(2e6), "2e6");
+        assert_eq!(approx(0.0), "0");
+        assert_eq!(approx(-3.0), "-3");
+        assert_eq!(approx(123456.7), "123457");
+        let mut ck = Checker::default();
+        ck.push("a.b", 1e300, "x");
+        ck.range("a.c", -1e300, 0.0, true, 1.0 / 3.0, false);
+        let e = ck.finish().unwrap_err().to_string();
+        assert!(e.contains("a.b = 1e300") && e.contains("a.c = -1e300") && e.contains("≤ 0.333333"), "{e}");
+    }
+}

@@ -20,6 +20,43 @@ impl fmt::Display for FieldError {
     }
 }
 
+/// A value accepted that could mislead: which field, its value and why. `check`, `pipeline` and
+/// `run` print it, and the report page shows it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Warning {
+    /// Dotted path of the field, e.g. `record.interval_s`.
+    pub field: String,
+    /// The value as given.
+    pub value: String,
+    /// What it does and what to do instead.
+    pub why: String,
+}
+
+impl ConfigError {
+    /// A TOML error: its message, with the numbers quoted in it (`` invalid type: floating point
+    /// `1000…0.0` ``) written short; the file's line it shows is left as written.
+    pub fn syntax(e: &toml::de::Error) -> ConfigError {
+        let text = e.to_string();
+        let mut out = String::with_capacity(text.len());
+        let mut parts = text.split('`');
+        out += parts.next().unwrap_or("");
+        for (i, part) in parts.enumerate() {
+            out.push('`');
+            match part.parse::<f64>() {
+                Ok(v) if i % 2 == 0 && part.len() > 12 => out += &crate::numbers::num(v),
+                _ => out += part,
+            }
+        }
+        ConfigError::Syntax(out)
+    }
+}
+
+impl fmt::Display for Warning {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{} = {}: {}", self.field, self.value, self.why)
+    }
+}
+
 /// Everything that can go wrong reading a pipeline file.
 #[derive(Debug, thiserror::Error)]
 pub enum ConfigError {

@@ -14,7 +14,8 @@ use serde::{Deserialize, Serialize};
 use stickslip_solver::geometry::Lattice;
 use stickslip_solver::laws::{FrictionLaw, FrictionMap, NodeFriction, Region, RegionKind, WeakeningNode};
 
-use crate::check::Checker;
+use crate::check::{Checker, approx, num};
+use crate::input::InputFile;
 
 /// `[[friction.patches]]`: a region of the base with its own coefficients.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Default)]
@@ -54,55 +55,77 @@ pub struct PatchSection {
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Default)]
 #[serde(deny_unknown_fields)]
 pub struct GridSection {
-    /// The CSV file, relative to the pipeline file's folder.
+    /// The CSV file, relative to the pipeline file's folder and inside it (see [`crate::input`]).
+    /// Not part of the results hash (the rows are): a grid moved or copied gives the same results.
     pub file: String,
     /// The rows as read (filled in when the pipeline is loaded; part of the results hash, so a
     /// changed file changes the hash).
     #[serde(skip_deserializing, default, skip_serializing_if = "Vec::is_empty")]
     pub rows: Vec<[f64; 5]>,
+    /// Whether the file was refused (its refusal is the grid's only one).
+    #[serde(skip)]
+    pub refused: bool,
 }
 
 /// The grid's CSV header.
 pub const GRID_HEADER: &str = "x_m,y_m,mu_static,mu_dynamic,slip_weakening_m";
 
+/// The grid's columns, in order, for messages.
+const GRID_COLUMNS: [&str; 5] = ["x_m", "y_m", "mu_static", "mu_dynamic", "slip_weakening_m"];
+
 impl GridSection {
-    /// Reads the CSV file relative to `base` into `rows` (refusals into `ck`).
-    pub fn read(&mut self, base: &Path, ck: &mut Checker) {
+    /// Reads the CSV file relative to `base` into `rows` (refusals into `ck`, which never echo the
+    /// file's content) and returns the file as read.
+    pub fn read(&mut self, base: &Path, ck: &mut Checker) -> Option<InputFile> {
         let field = "friction.grid.file";
-        let path = base.join(&self.file);
-        let text = match std::fs::read_to_string(&path) {
-            Ok(t) => t,
-            Err(e) => {
-                ck.push(field, format!("{:?}", self.file), format!("a readable CSV file ({}: {e})", path.display()));
-                return;
-            }
+        let what = format!("a CSV file with the header {GRID_HEADER:?} and one row per base node");
+        let Some(input) = crate::input::read(ck, field, &self.file, base, &what) else {
+            self.refused = true;
+            return None;
         };
-        let mut lines = text.lines().filter(|l| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
-        let header: String = lines.next().unwrap_or("").chars().filter(|c| !c.is_whitespace()).collect();
+        let mut lines =
+            input.text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
+        let header: String = lines.next().map_or("", |(_, l)| l).chars().filter(|c| !c.is_whitespace()).collect();
         if header != GRID_HEADER {
-            ck.push(field, format!("header {header:?}"), format!("the header {GRID_HEADER:?}"));
-            return;
+            ck.push(
+                field,
+                format!("{:?}", self.file),
+                format!("{what}: its first line (after # comments) is not that header"),
+            );
+            self.refused = true;
+            return None;
         }
         let mut rows = Vec::new();
-        for (i, line) in lines.enumerate() {
-            let cells: Vec<Option<f64>> = line.split(',').map(|c| c.trim().parse::<f64>().ok()).collect();
-            match cells.as_slice() {
-                [Some(a), Some(b), Some(c), Some(d), Some(e)] if [a, b, c, d, e].iter().all(|v| v.is_finite()) => {
-                    rows.push([*a, *b, *c, *d, *e])
-                }
-                _ => {
-                    ck.push(field, format!("row {} {line:?}", i + 1), "five finite numbers: x_m, y_m, μs, μd, Dc");
-                    return;
-                }
+        for (i, (k, line)) in lines.enumerate() {
+            let cells: Vec<&str> = line.split(',').map(str::trim).collect();
+            let bad = if cells.len() != 5 {
+                Some(format!("{} cells", cells.len()))
+            } else {
+                cells
+                    .iter()
+                    .position(|c| !c.parse::<f64>().is_ok_and(f64::is_finite))
+                    .map(|j| format!("{} is not a finite number", GRID_COLUMNS[j]))
+            };
+            if let Some(bad) = bad {
+                ck.push(
+                    field,
+                    format!("{:?} row {} (line {})", self.file, i + 1, k + 1),
+                    format!("five finite numbers per row, x_m, y_m, μs, μd, Dc ({bad})"),
+                );
+                self.refused = true;
+                return None;
             }
+            let v: Vec<f64> = cells.iter().map(|c| c.parse::<f64>().unwrap_or(f64::NAN)).collect();
+            rows.push([v[0], v[1], v[2], v[3], v[4]]);
         }
         self.rows = rows;
+        Some(input)
     }
 }
 
 fn describe_base(lattice: &Lattice) -> String {
     let e = lattice.extent();
-    format!("inside the base, 0 ≤ x ≤ {} m and 0 ≤ y ≤ {} m", e[0], e[1])
+    format!("inside the base, 0 ≤ x ≤ {} m and 0 ≤ y ≤ {} m", approx(e[0]), approx(e[1]))
 }
 
 /// Coefficients of one region, checked; `field` is its section's name.
@@ -184,7 +207,7 @@ pub(crate) fn patch_nodes(ck: &mut Checker, field: &str, p: &Shape<'_>, lattice:
                 if !inside(x0, x1, e[0]) || !inside(y0, y1, e[1]) {
                     ck.push(
                         field,
-                        format!("x_m = [{x0}, {x1}], y_m = [{y0}, {y1}]"),
+                        format!("x_m = [{}, {}], y_m = [{}, {}]", num(x0), num(x1), num(y0), num(y1)),
                         format!("a rectangle {} (min < max)", describe_base(lattice)),
                     );
                 }
@@ -195,7 +218,7 @@ pub(crate) fn patch_nodes(ck: &mut Checker, field: &str, p: &Shape<'_>, lattice:
                 if !(a > 0.0 && b > 0.0 && inside(cx - a, cx + a, e[0]) && inside(cy - b, cy + b, e[1])) {
                     ck.push(
                         field,
-                        format!("centre_m = [{cx}, {cy}], semi_axes_m = [{a}, {b}]"),
+                        format!("centre_m = [{}, {}], semi_axes_m = [{}, {}]", num(cx), num(cy), num(a), num(b)),
                         format!("an ellipse with positive semi-axes {}", describe_base(lattice)),
                     );
                 }
@@ -246,7 +269,7 @@ pub(crate) fn build(
     let background = law.node(1.0).static_coefficient();
     let kind =
         |c: &NodeFriction| if c.static_coefficient() > background { RegionKind::Barrier } else { RegionKind::Weak };
-    if let Some(g) = grid {
+    if let Some(g) = grid.filter(|g| !g.refused) {
         let field = "friction.grid.file";
         if g.rows.len() != contact.len() {
             ck.push(
@@ -267,13 +290,17 @@ pub(crate) fn build(
                 let Some(c) = c else {
                     ck.push(
                         field,
-                        format!("row {}: x = {} m, y = {} m", i + 1, row[0], row[1]),
+                        format!("row {}: x = {} m, y = {} m", i + 1, num(row[0]), num(row[1])),
                         describe_base(lattice),
                     );
                     continue;
                 };
                 if std::mem::replace(&mut seen[c], true) {
-                    ck.push(field, format!("row {}: x = {} m, y = {} m", i + 1, row[0], row[1]), "each base node once");
+                    ck.push(
+                        field,
+                        format!("row {}: x = {} m, y = {} m", i + 1, num(row[0]), num(row[1])),
+                        "each base node once",
+                    );
                 }
                 let co = coefficients(ck, &format!("{field} row {}", i + 1), row[2], Some(row[3]), Some(row[4]), law);
                 nodes[c] = co;

@@ -11,6 +11,9 @@ pub fn for_error(e: &SolverError) -> Option<&'static str> {
         SolverError::TimeStepAboveCritical { .. } => Some("time.dt_fraction, time.dt_s"),
         SolverError::NotSettled { .. } => Some("self_weight.damping_per_s, self_weight.max_duration_s"),
         SolverError::Unsupported(_) => Some("skip_ahead.enabled"),
+        SolverError::TooManySteps { .. } => {
+            Some("shear.duration_s, self_weight.max_duration_s, time.dt_fraction, time.dt_s")
+        }
         SolverError::Unstable { .. } | SolverError::Numerical(_) | SolverError::Cancelled => None,
     }
 }
@@ -63,6 +66,7 @@ mod tests {
             strength_n: 50.0,
             tipping_n,
             block_n_m: 1e6,
+            block_note: None,
             plate_n_m: f64::INFINITY,
             k_n_m: 1e6,
             critical_n_m,

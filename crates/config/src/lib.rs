@@ -14,7 +14,9 @@ pub mod accelerograms;
 pub mod check;
 pub mod error;
 pub mod friction_map;
+pub mod input;
 pub mod keys;
+pub mod numbers;
 pub mod pipeline;
 pub mod precision;
 pub mod scene;
@@ -23,7 +25,7 @@ pub mod seeds;
 pub mod set;
 
 pub use check::Checker;
-pub use error::{ConfigError, FieldError};
+pub use error::{ConfigError, FieldError, Warning};
 pub use pipeline::{Pipeline, PipelineFile};
 pub use sections::ReportSettings;
 pub use set::SetSettings;

@@ -9,7 +9,9 @@
 use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
+use stickslip_analysis::settings::AccelerogramSettings;
 use stickslip_analysis::{Settings, SpectraSettings};
+use stickslip_seismo::accelerogram::processing::{MAX_CORNER_OF_NYQUIST, USABLE_LOW_FACTOR};
 use stickslip_seismo::emission::ClusterParams;
 use stickslip_seismo::events::EventParams;
 use stickslip_seismo::similarity::SimilarityParams;
@@ -17,18 +19,26 @@ use stickslip_solver::{Scene, TracePlan};
 
 use crate::accelerograms::AccelerogramsSection;
 use crate::check::Checker;
-use crate::error::ConfigError;
+use crate::check::approx;
+use crate::error::{ConfigError, Warning};
+use crate::input::InputFile;
 use crate::precision::{PrecisionTarget, TargetSection};
 use crate::scene::{
     AbsorbingSection, BlockSection, BoundarySection, FaultSection, FrictionSection, LoadingPlateSection,
     MaterialSection, RecordSection, RuptureSection, SceneSections, SelfWeightSection, ShearSection, SkipAheadSection,
     StationSection, TimeSection,
 };
-use crate::sections::{EventsSection, ReportSection, ReportSettings, SimilaritySection, SpectraSection};
+use crate::sections::{
+    EventsSection, ReportSection, ReportSettings, SimilaritySection, SpectraSection, shortest_period,
+};
+use crate::seeds::MAX_SEEDS;
 use crate::set::{SetSection, SetSettings};
 
 /// The pipeline-file version this build reads.
 pub const PIPELINE_VERSION: i64 = 1;
+
+/// The largest pipeline file read (bytes).
+pub const MAX_PIPELINE_BYTES: u64 = 16 << 20;
 
 /// `[seeds]`: the seeds of the ensemble, a list and/or a range.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Default)]
@@ -182,8 +192,17 @@ impl PipelineFile {
     /// canonical TOML: equal for files that differ only in layout, comments or defaults written
     /// out, different as soon as a value changes).
     pub fn hash(&self) -> String {
+        // The grid's rows are hashed, not where the file was: a copy gives the same results.
+        let mut friction = self.friction.clone();
+        if let Some(g) = friction.grid.as_mut() {
+            g.file.clear();
+        }
+        let mut fault = self.fault.clone();
+        if let Some(g) = fault.as_mut().and_then(|f| f.grid.as_mut()) {
+            g.file.clear();
+        }
         let hashed = Hashed {
-            scene: self.scene_sections(),
+            scene: SceneSections { friction: &friction, fault: &fault, ..self.scene_sections() },
             events: &self.events,
             similarity: &self.similarity,
             accelerograms: &self.accelerograms,
@@ -268,28 +287,36 @@ pub struct Pipeline {
     pub hash: String,
     /// Where it was read from.
     pub source: Option<PathBuf>,
+    /// Its text as read (with [`Pipeline::load`]).
+    pub text: Option<String>,
+    /// The files it read (a friction grid, a CSV target), see [`crate::input`].
+    pub inputs: Vec<InputFile>,
+    /// Values accepted that could mislead (printed by `check` and the runs, shown in the report).
+    pub warnings: Vec<Warning>,
     /// The file as read, defaults filled in.
     pub file: PipelineFile,
 }
 
 impl Pipeline {
-    /// Reads and validates a pipeline file.
+    /// Reads and validates a pipeline file (a regular file of at most [`MAX_PIPELINE_BYTES`]);
+    /// the files it names are read relative to its folder.
     pub fn load(path: &Path) -> Result<Pipeline, ConfigError> {
-        let text =
-            std::fs::read_to_string(path).map_err(|e| ConfigError::Io { path: path.to_path_buf(), source: e })?;
+        let text = crate::input::read_regular(path, MAX_PIPELINE_BYTES)
+            .map_err(|why| ConfigError::Io { path: path.to_path_buf(), source: std::io::Error::other(why) })?;
         let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("pipeline").to_string();
         let base = path.parent().unwrap_or(Path::new("."));
         let mut p = toml::from_str(&text)
-            .map_err(|e| ConfigError::Syntax(e.to_string()))
+            .map_err(|e| ConfigError::syntax(&e))
             .and_then(|file| Pipeline::from_file_in(file, &stem, base))
             .map_err(|e| ConfigError::File { path: path.to_path_buf(), source: Box::new(e) })?;
         p.source = Some(path.to_path_buf());
+        p.text = Some(text);
         Ok(p)
     }
 
     /// Parses and validates pipeline TOML; `default_name` is used when the file has no `name`.
     pub fn from_toml(text: &str, default_name: &str) -> Result<Pipeline, ConfigError> {
-        let file: PipelineFile = toml::from_str(text).map_err(|e| ConfigError::Syntax(e.to_string()))?;
+        let file: PipelineFile = toml::from_str(text).map_err(|e| ConfigError::syntax(&e))?;
         Pipeline::from_file(file, default_name)
     }
 
@@ -303,15 +330,16 @@ impl Pipeline {
     /// `base`.
     pub fn from_file_in(mut file: PipelineFile, default_name: &str, base: &Path) -> Result<Pipeline, ConfigError> {
         let mut ck = Checker::default();
+        let mut inputs = Vec::new();
         if let Some(grid) = file.friction.grid.as_mut()
             && grid.rows.is_empty()
         {
-            grid.read(base, &mut ck);
+            inputs.extend(grid.read(base, &mut ck));
         }
         if let Some(grid) = file.fault.as_mut().and_then(|f| f.grid.as_mut())
             && grid.rows.is_empty()
         {
-            grid.read(base, &mut ck);
+            inputs.extend(grid.read(base, &mut ck));
         }
         if file.version != PIPELINE_VERSION {
             ck.push("version", file.version, "1 (the pipeline format this stickslip reads)");
@@ -341,24 +369,68 @@ impl Pipeline {
         }
         let mut seen = std::collections::HashSet::new();
         seeds.retain(|s| seen.insert(*s));
+        if seeds.len() as u64 > MAX_SEEDS {
+            ck.push(
+                "seeds",
+                format!("{} seeds (list and range)", seeds.len()),
+                format!("at most {MAX_SEEDS} seeds; run a larger ensemble as several pipelines or shards"),
+            );
+        }
         let target = file.seeds.target.as_ref().and_then(|t| t.build(seeds.len(), &mut ck));
         let events = file.events.build(&mut ck);
         let scene = crate::scene::build(file.scene_sections(), &mut ck);
         let similarity = file.similarity.build(scene.as_ref(), &mut ck);
         let report = file.report.build(&mut ck);
-        let spectra = match (&file.spectra, &scene) {
-            (Some(sp), Some(scene)) => Some(sp.build(scene, &mut ck)),
-            _ => None,
-        };
+        for (i, s) in report.seeds.iter().enumerate() {
+            if !seen.contains(s) {
+                ck.push(
+                    format!("report.seeds[{i}]"),
+                    s,
+                    "one of the pipeline's seeds ([seeds] list and range): the report draws only seeds that ran",
+                );
+            }
+        }
+        let random = random_fields(&file);
+        if file.seeds.target.is_some() && random.is_empty() {
+            ck.push(
+                "seeds.target",
+                "(present)",
+                "a pipeline whose seeds differ: with material.young_cv = 0, friction.mu_cv = 0 and no \
+                 rupture.fracture_energy_cv or fault.stochastic, every seed gives the same run, and a confidence interval of clones is 0 \
+                 (give a coefficient of variation > 0, or drop [seeds.target])",
+            );
+        } else if random.is_empty() && seeds.len() > 1 {
+            ck.warn(
+                "material.young_cv",
+                file.material.young_cv,
+                format!(
+                    "every one of the {} seeds gives the same run (material.young_cv = 0, friction.mu_cv = 0, no \
+                     rupture.fracture_energy_cv or fault.stochastic): the spread across seeds is 0 by construction",
+                    seeds.len()
+                ),
+            );
+        }
         let accelerograms = match (&file.accelerograms, &file.spectra, &scene) {
             (Some(a), _, Some(scene)) => Some(a.build(scene, &mut ck)),
             (None, Some(_), Some(scene)) => Some(AccelerogramsSection::default().build(scene, &mut ck)),
+            _ => None,
+        };
+        let spectra = match (&file.spectra, &scene) {
+            (Some(sp), Some(scene)) => {
+                let f_max = accelerograms.as_ref().map_or(f64::INFINITY, |a| a.resolved_hz);
+                Some(sp.build(scene, shortest_period(f_max, scene.record.interval_s), &mut ck))
+            }
             _ => None,
         };
         let set = file.set.as_ref().and_then(|s| {
             let grid = spectra.as_ref().zip(scene.as_ref()).map(|(sp, sc)| prototype_grid(sp, sc, &similarity));
             s.build(base, grid, &mut ck)
         });
+        if let (Some(set), Some(acc), Some(scene)) = (&set, &accelerograms, &scene)
+            && ck.is_clean()
+        {
+            check_set_band(&mut ck, file.set.as_ref().expect("a set"), set, acc, scene, &similarity);
+        }
         let emission = match (&file.rupture, &scene) {
             (Some(r), Some(scene)) => Some(ClusterParams {
                 link_distance_m: r.ae_link_distance_m.unwrap_or(2.0 * scene.lc_m),
@@ -366,7 +438,9 @@ impl Pipeline {
             }),
             _ => None,
         };
+        let warnings = ck.take_warnings();
         ck.finish()?;
+        inputs.extend(set.as_ref().and_then(|s| s.input.clone()));
         Ok(Pipeline {
             name,
             description: file.description.clone(),
@@ -382,8 +456,79 @@ impl Pipeline {
             report,
             hash: file.hash(),
             source: None,
+            text: None,
+            inputs,
+            warnings,
             file,
         })
+    }
+}
+
+/// The random fields of `file` that make its seeds differ, by their fields (empty: every seed
+/// gives the same run).
+fn random_fields(file: &PipelineFile) -> Vec<&'static str> {
+    let mut out = Vec::new();
+    if file.material.young_cv > 0.0 {
+        out.push("material.young_cv");
+    }
+    if file.friction.mu_cv > 0.0 {
+        out.push("friction.mu_cv");
+    }
+    if file.rupture.as_ref().is_some_and(|r| r.fracture_energy_cv > 0.0) {
+        out.push("rupture.fracture_energy_cv");
+    }
+    if file.fault.as_ref().and_then(|f| f.stochastic.as_ref()).is_some_and(|s| s.std_pa > 0.0) {
+        out.push("fault.stochastic.std_pa");
+    }
+    out
+}
+
+/// Refuses a `[set]` period range that no record's usable band can cover, before anything runs:
+/// at model scale a record is usable from `1/top` (the filter's top: the lattice's f_max, the
+/// high corner or 0.8 of the sampling's Nyquist) to `1/(1.25·f_low)`, with `f_low` the low corner
+/// or one over the record's length — at most the shear stage.
+fn check_set_band(
+    ck: &mut Checker,
+    section: &SetSection,
+    set: &SetSettings,
+    acc: &AccelerogramSettings,
+    scene: &Scene,
+    similarity: &SimilarityParams,
+) {
+    let Ok((t_a, t_b)) = set.options.range.bounds() else { return };
+    let lambda = similarity.prototype_length_m / (scene.dims.nx as f64 * scene.lc_m);
+    let nyquist_top =
+        scene.record.interval_s.filter(|v| *v > 0.0).map_or(f64::INFINITY, |iv| MAX_CORNER_OF_NYQUIST * 0.5 / iv);
+    let top = acc.high_corner_hz.unwrap_or(acc.resolved_hz).min(acc.resolved_hz).min(nyquist_top);
+    let f_low = acc.low_corner_hz.unwrap_or(1.0 / scene.shear.duration_s);
+    let (shortest, longest) = (lambda / top, lambda / (USABLE_LOW_FACTOR * f_low));
+    if !(shortest.is_finite() && longest.is_finite()) {
+        return;
+    }
+    let eps = 1e-9;
+    let (field, value) =
+        if section.t1_s > 0.0 { ("set.t1_s", section.t1_s) } else { ("set.period_min_s", section.period_min_s) };
+    let outside = if t_a < shortest * (1.0 - eps) {
+        Some(format!("its shortest period {} s is below {} s", approx(t_a), approx(shortest)))
+    } else if t_b > longest * (1.0 + eps) {
+        Some(format!("its longest period {} s is above {} s", approx(t_b), approx(longest)))
+    } else {
+        None
+    };
+    if let Some(outside) = outside {
+        ck.push(
+            field,
+            value,
+            format!(
+                "a period range that records can cover: {outside}, outside every record's usable band ({} … {} s at \
+                 prototype scale, λ = {}: from the band's top, the lattice's f_max, high_corner_hz or 0.8 of the \
+                 sampling's Nyquist, to 1/1.25 of the longest record, the shear stage of {} s, or of low_corner_hz)",
+                approx(shortest),
+                approx(longest),
+                approx(lambda),
+                approx(scene.shear.duration_s)
+            ),
+        );
     }
 }
 
@@ -399,7 +544,73 @@ fn prototype_grid<'a>(
     (spectra.dampings.as_slice(), (lo * lambda, hi * lambda))
 }
 
+/// What an output folder keeps of a pipeline so that it can be run or merged from there: the
+/// pipeline's text with the path of every file it read pointing at that file's copy, and the
+/// copies (see [`crate::input::copy_path`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct OutputCopy {
+    /// The pipeline file's text, paths rewritten (byte for byte the file otherwise).
+    pub text: String,
+    /// Each file read: its path relative to the output folder, and its text.
+    pub inputs: Vec<(String, String)>,
+}
+
+/// The keys of a pipeline file that name files, with where their values stand in the text.
+#[derive(Deserialize, Default)]
+#[serde(default)]
+struct PathKeys {
+    friction: FrictionPathKeys,
+    fault: Option<FrictionPathKeys>,
+    set: Option<SetPathKeys>,
+}
+
+#[derive(Deserialize, Default)]
+#[serde(default)]
+struct FrictionPathKeys {
+    grid: Option<GridPathKey>,
+}
+
+#[derive(Deserialize)]
+struct GridPathKey {
+    file: toml::Spanned<String>,
+}
+
+#[derive(Deserialize, Default)]
+#[serde(default)]
+struct SetPathKeys {
+    target_csv: Option<toml::Spanned<String>>,
+}
+
 impl Pipeline {
+    /// The copy an output folder keeps of this pipeline (read with [`Pipeline::load`]; `None`
+    /// for a pipeline built in code): its text, with each file it read copied under `inputs/`
+    /// and its path rewritten to the copy, so that `stickslip merge` (or a rerun) from the output
+    /// folder reads the same files.
+    pub fn output_copy(&self) -> Option<OutputCopy> {
+        let text = self.text.as_ref()?;
+        let keys: PathKeys = toml::from_str(text).ok()?;
+        let mut spans: Vec<(&str, std::ops::Range<usize>)> = Vec::new();
+        if let Some(g) = &keys.friction.grid {
+            spans.push(("friction.grid.file", g.file.span()));
+        }
+        if let Some(g) = keys.fault.as_ref().and_then(|f| f.grid.as_ref()) {
+            spans.push(("fault.grid.file", g.file.span()));
+        }
+        if let Some(t) = keys.set.as_ref().and_then(|s| s.target_csv.as_ref()) {
+            spans.push(("set.target_csv", t.span()));
+        }
+        spans.sort_by_key(|(_, r)| std::cmp::Reverse(r.start));
+        let mut out = text.clone();
+        let mut inputs = Vec::new();
+        for (field, span) in spans {
+            let Some(input) = self.inputs.iter().find(|i| i.field == field) else { continue };
+            let copy = crate::input::copy_path(field, &input.given);
+            out.replace_range(span, &toml::Value::String(copy.clone()).to_string());
+            inputs.push((copy, input.text.clone()));
+        }
+        Some(OutputCopy { text: out, inputs })
+    }
+
     /// What a `[set]` is checked against: the spectra's dampings and prototype-scale period grid.
     pub fn set_grid(&self) -> Option<(&[f64], (f64, f64))> {
         let a = &self.analysis;

@@ -106,8 +106,8 @@ impl PrecisionTarget {
     /// "the 95% CI half-width of the mean S2 stress_drop_pa ≤ 2% of the mean".
     pub fn describe(&self) -> String {
         let what = match self.precision {
-            Precision::Relative(r) => format!("≤ {}% of the mean", 100.0 * r),
-            Precision::Absolute(a) => format!("≤ {a}"),
+            Precision::Relative(r) => format!("≤ {}% of the mean", crate::check::num(100.0 * r)),
+            Precision::Absolute(a) => format!("≤ {}", crate::check::num(a)),
         };
         format!("the 95% CI half-width of the mean {} {} {what}", self.group, self.quantity)
     }

@@ -11,7 +11,7 @@ use stickslip_seismo::spectra::response::{Reading, log_periods};
 use stickslip_solver::Scene;
 use stickslip_solver::scene::InterfaceQuantity;
 
-use crate::check::{Checker, Named};
+use crate::check::{Checker, Named, approx, num};
 
 /// `[events]`: detector thresholds (docs/model.md §7).
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
@@ -93,6 +93,15 @@ impl Named for AreaChoice {
     }
 }
 
+/// The shortest prototype fault accepted (m).
+pub const MIN_PROTOTYPE_LENGTH_M: f64 = 1e-3;
+/// The longest prototype fault accepted (m): 2,000 km, beyond the longest ruptures known.
+pub const MAX_PROTOTYPE_LENGTH_M: f64 = 2e6;
+/// The slowest prototype loading rate accepted (m/s; 3e-8 mm/yr).
+pub const MIN_PROTOTYPE_RATE_M_S: f64 = 1e-15;
+/// The fastest prototype loading rate accepted (m/s).
+pub const MAX_PROTOTYPE_RATE_M_S: f64 = 1.0;
+
 /// `[similarity]`: the prototype fault (docs/model.md §9).
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields, default)]
@@ -120,8 +129,26 @@ impl Default for SimilaritySection {
 impl SimilaritySection {
     /// The scaling parameters, every refused value recorded in `ck`.
     pub fn build(&self, scene: Option<&Scene>, ck: &mut Checker) -> SimilarityParams {
-        ck.positive("similarity.prototype_length_m", self.prototype_length_m);
-        ck.positive("similarity.prototype_rate_m_s", self.prototype_rate_m_s);
+        if !(MIN_PROTOTYPE_LENGTH_M..=MAX_PROTOTYPE_LENGTH_M).contains(&self.prototype_length_m) {
+            ck.push(
+                "similarity.prototype_length_m",
+                self.prototype_length_m,
+                format!(
+                    "{} ≤ prototype_length_m ≤ {} (m): a fault's length; the longest ruptures known are about \
+                     1,500 km (Sumatra–Andaman 2004), and a longer prototype gives magnitudes no fault has, or inf",
+                    approx(MIN_PROTOTYPE_LENGTH_M),
+                    approx(MAX_PROTOTYPE_LENGTH_M)
+                ),
+            );
+        }
+        ck.range(
+            "similarity.prototype_rate_m_s",
+            self.prototype_rate_m_s,
+            MIN_PROTOTYPE_RATE_M_S,
+            false,
+            MAX_PROTOTYPE_RATE_M_S,
+            false,
+        );
         let area = ck.named::<AreaChoice>("similarity.area", &self.area).unwrap_or(AreaChoice::Contact);
         if let Some(scene) = scene
             && scene.is_fault()
@@ -218,8 +245,15 @@ impl Default for SpectraSection {
 }
 
 impl SpectraSection {
-    /// The settings for `scene`, every refused value recorded in `ck`.
-    pub fn build(&self, scene: &Scene, ck: &mut Checker) -> SpectraSettings {
+    /// The settings for `scene`, every refused value recorded in `ck`; `shortest` is the
+    /// shortest period accepted (s) with why (see [`shortest_period`]).
+    pub fn build(&self, scene: &Scene, shortest: Option<(f64, String)>, ck: &mut Checker) -> SpectraSettings {
+        let (floor, why) = shortest.unwrap_or((0.0, String::new()));
+        let above_floor = |ck: &mut Checker, field: &str, t: f64| {
+            if t > 0.0 && t.is_finite() && t < floor {
+                ck.push(field, t, format!("a period ≥ {} s: {why}", approx(floor)));
+            }
+        };
         if self.dampings.is_empty() {
             ck.push("spectra.dampings", "[]", "at least one damping ratio");
         }
@@ -227,25 +261,36 @@ impl SpectraSection {
             ck.range(&format!("spectra.dampings[{i}]"), d, 0.0, false, 1.0, true);
         }
         for (i, &t) in self.periods_s.iter().enumerate() {
-            ck.positive(&format!("spectra.periods_s[{i}]"), t);
+            let field = format!("spectra.periods_s[{i}]");
+            ck.positive(&field, t);
+            above_floor(ck, &field, t);
+        }
+        if self.periods_s.len() > 10_000 {
+            ck.push("spectra.periods_s", format!("{} periods", self.periods_s.len()), "at most 10000 periods");
         }
         if self.periods_s.is_empty() {
+            above_floor(ck, "spectra.period_min_s", self.period_min_s);
             if ck.positive("spectra.period_min_s", self.period_min_s)
                 && !(self.period_max_s > self.period_min_s && self.period_max_s.is_finite())
             {
                 ck.push(
                     "spectra.period_max_s",
                     self.period_max_s,
-                    format!("period_min_s ({}) < period_max_s (finite)", self.period_min_s),
+                    format!("period_min_s ({}) < period_max_s (finite)", num(self.period_min_s)),
                 );
             }
-            ck.count("spectra.period_count", self.period_count, 1, 10_000, "");
         }
+        // The grid is built only of a count that was accepted (a refused one can be 2^40).
+        let count = if self.periods_s.is_empty() {
+            ck.count("spectra.period_count", self.period_count, 1, 10_000, "").unwrap_or(1)
+        } else {
+            1
+        };
         ck.count("spectra.oversampling", self.oversampling, 1, 64, "");
         let reading = ck.named("spectra.reading", &self.reading).unwrap_or(Reading::Linear);
         let window = ck.named("spectra.fourier_window", &self.fourier_window).unwrap_or(Window::Rectangular);
         let periods = if self.periods_s.is_empty() {
-            log_periods(self.period_min_s, self.period_max_s, self.period_count.max(1) as usize)
+            log_periods(self.period_min_s, self.period_max_s, count)
         } else {
             self.periods_s.clone()
         };
@@ -266,6 +311,36 @@ impl SpectraSection {
             attenuation: self.attenuation,
         }
     }
+}
+
+/// The shortest period a spectrum may ask for, with why: a hundredth of the shortest period the
+/// lattice resolves (`1/f_max`, the records' usable band ends there) and of the records' sampling
+/// interval. A response spectrum at a period much shorter than both reads nothing but the peak
+/// acceleration, and its oscillator costs steps in proportion to the sampling interval over the
+/// period (2e-17 s would run for hours).
+pub fn shortest_period(f_max_hz: f64, interval_s: Option<f64>) -> Option<(f64, String)> {
+    let lattice = (f_max_hz > 0.0 && f_max_hz.is_finite()).then(|| 0.01 / f_max_hz);
+    let sampling = interval_s.filter(|v| *v > 0.0 && v.is_finite()).map(|v| 0.01 * v);
+    let floor = lattice.into_iter().chain(sampling).fold(0.0f64, f64::max);
+    (floor > 0.0).then(|| {
+        let mut why = Vec::new();
+        if let Some(t) = lattice {
+            why.push(format!(
+                "a hundredth of the shortest period the lattice resolves (1/f_max = {} s)",
+                approx(100.0 * t)
+            ));
+        }
+        if let Some(t) = sampling {
+            why.push(format!("a hundredth of record.interval_s ({} s)", approx(100.0 * t)));
+        }
+        (
+            floor,
+            format!(
+                "{}; a spectrum at shorter periods reads only the peak acceleration and costs ever more steps",
+                why.join(" and ")
+            ),
+        )
+    })
 }
 
 /// `[report]`: the report.

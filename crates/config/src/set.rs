@@ -13,14 +13,15 @@
 //! Not part of the pipeline's hash: the set is chosen from finished seeds each time the ensemble
 //! is gathered, and changes no seed's tables.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 use stickslip_seismo::design::{Asce7, DesignSpectrum, Ec8, Ec8Type, GroundType, Tabulated};
 use stickslip_seismo::selection::{PeriodRange, SelectionOptions};
 
-use crate::check::{Checker, Named};
+use crate::check::{Checker, Named, approx, num};
 use crate::error::{ConfigError, FieldError};
+use crate::input::InputFile;
 
 /// Which spectrum of a record is matched.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -194,6 +195,8 @@ pub struct SetSettings {
     pub component: SetComponent,
     /// Damping ratio.
     pub damping: f64,
+    /// The CSV target's file as read (a CSV target only).
+    pub input: Option<InputFile>,
 }
 
 /// Reads the `[set]` section of a TOML file (a pipeline file, or a file holding only that
@@ -232,16 +235,21 @@ impl SetSection {
     /// `None` when the target could not be built.
     pub fn build(&self, base: &Path, spectra: Option<(&[f64], (f64, f64))>, ck: &mut Checker) -> Option<SetSettings> {
         let dampings = spectra.map(|s| s.0);
+        let mut input = None;
         let kind = ck.named::<TargetKind>("set.target", &self.target)?;
         let (target, target_name) = match kind {
             TargetKind::Asce7 => {
                 let ok = ck.positive("set.s_ds_g", self.s_ds_g) & ck.positive("set.s_d1_g", self.s_d1_g);
                 let t_s = self.s_d1_g / self.s_ds_g;
                 if ok && !(self.t_l_s > t_s && self.t_l_s.is_finite()) {
-                    ck.push("set.t_l_s", self.t_l_s, format!("T_L > T_S = S_D1/S_DS = {t_s} s (finite)"));
+                    ck.push("set.t_l_s", self.t_l_s, format!("T_L > T_S = S_D1/S_DS = {} s (finite)", num(t_s)));
                 }
-                let name =
-                    format!("ASCE 7-16, S_DS = {} g, S_D1 = {} g, T_L = {} s", self.s_ds_g, self.s_d1_g, self.t_l_s);
+                let name = format!(
+                    "ASCE 7-16, S_DS = {} g, S_D1 = {} g, T_L = {} s",
+                    num(self.s_ds_g),
+                    num(self.s_d1_g),
+                    num(self.t_l_s)
+                );
                 (Asce7::new(self.s_ds_g, self.s_d1_g, self.t_l_s).ok().map(DesignSpectrum::Asce7), name)
             }
             TargetKind::Ec8 => {
@@ -257,7 +265,9 @@ impl SetSection {
                 let ground = ck.named::<Ground>("set.ground", &self.ground);
                 let name = format!(
                     "EN 1998-1 type {} spectrum, a_g = {} m/s², ground {}",
-                    self.ec8_type, self.a_g_m_s2, self.ground
+                    self.ec8_type,
+                    num(self.a_g_m_s2),
+                    self.ground
                 );
                 let xi = 100.0 * self.damping;
                 let spectrum = match (kind, ground) {
@@ -267,9 +277,14 @@ impl SetSection {
                 (spectrum, name)
             }
             TargetKind::Csv => {
-                let path: PathBuf = base.join(&self.target_csv);
                 let name = format!("target spectrum {}", self.target_csv);
-                (read_target_csv(&path, ck).map(DesignSpectrum::Tabulated), name)
+                match read_target_csv(&self.target_csv, base, ck) {
+                    Some((tab, file)) => {
+                        input = Some(file);
+                        (Some(DesignSpectrum::Tabulated(tab)), name)
+                    }
+                    None => (None, name),
+                }
             }
         };
         let range = if self.t1_s > 0.0 {
@@ -279,7 +294,11 @@ impl SetSection {
             if ck.positive("set.period_min_s", self.period_min_s)
                 && !(self.period_max_s > self.period_min_s && self.period_max_s.is_finite())
             {
-                ck.push("set.period_max_s", self.period_max_s, format!("above period_min_s ({} s)", self.period_min_s));
+                ck.push(
+                    "set.period_max_s",
+                    self.period_max_s,
+                    format!("above period_min_s ({} s)", num(self.period_min_s)),
+                );
             }
             PeriodRange::Explicit { t_a: self.period_min_s, t_b: self.period_max_s }
         };
@@ -294,10 +313,10 @@ impl SetSection {
                     format!(
                         "a period range ({} … {} s at prototype scale) inside the spectra's periods \
                          ({} … {} s at prototype scale: [spectra] period_min_s, period_max_s × λ)",
-                        round12(t_a),
-                        round12(t_b),
-                        round12(lo),
-                        round12(hi)
+                        approx(t_a),
+                        approx(t_b),
+                        approx(lo),
+                        approx(hi)
                     ),
                 );
             }
@@ -308,7 +327,7 @@ impl SetSection {
         if ck.positive("set.scale_min", self.scale_min)
             && !(self.scale_max >= self.scale_min && self.scale_max.is_finite())
         {
-            ck.push("set.scale_max", self.scale_max, format!("at least scale_min ({}), finite", self.scale_min));
+            ck.push("set.scale_max", self.scale_max, format!("at least scale_min ({}), finite", num(self.scale_min)));
         }
         let component = ck.named("set.component", &self.component).unwrap_or(SetComponent::Horizontal);
         match dampings {
@@ -325,49 +344,41 @@ impl SetSection {
             scale_max: self.scale_max,
             ..SelectionOptions::new(range)
         };
-        Some(SetSettings { target: target?, target_name, options, per, component, damping: self.damping })
+        Some(SetSettings { target: target?, target_name, options, per, component, damping: self.damping, input })
     }
 }
 
-/// `x` to 12 significant digits, for messages (0.020000000000000004 → 0.02).
-fn round12(x: f64) -> f64 {
-    format!("{x:.11e}").parse().unwrap_or(x)
-}
-
 /// A CSV target: rows `period_s, psa_m_s2` (comma, semicolon or tab; `#` comments and one header
-/// line allowed).
-fn read_target_csv(path: &Path, ck: &mut Checker) -> Option<Tabulated> {
+/// line allowed), the file `given` relative to `base` (see [`crate::input`]); refusals never echo
+/// its content.
+fn read_target_csv(given: &str, base: &Path, ck: &mut Checker) -> Option<(Tabulated, InputFile)> {
     let field = "set.target_csv";
-    let text = match std::fs::read_to_string(path) {
-        Ok(t) => t,
-        Err(e) => {
-            ck.push(field, path.display(), format!("a readable CSV file of period_s, psa_m_s2 ({e})"));
-            return None;
-        }
-    };
+    let what = "a CSV file of period_s, psa_m_s2 rows";
+    let file = crate::input::read(ck, field, given, base, what)?;
     let (mut t, mut psa) = (Vec::new(), Vec::new());
-    for (k, line) in text.lines().enumerate() {
+    for (k, line) in file.text.lines().enumerate() {
         let line = line.trim();
         if line.is_empty() || line.starts_with('#') {
             continue;
         }
         let cells: Vec<&str> = line.split([',', ';', '\t']).map(str::trim).collect();
-        match (cells.first().and_then(|c| c.parse::<f64>().ok()), cells.get(1).and_then(|c| c.parse::<f64>().ok())) {
+        let number = |i: usize| cells.get(i).and_then(|c| c.parse::<f64>().ok());
+        match (number(0), number(1)) {
             (Some(a), Some(b)) => {
                 t.push(a);
                 psa.push(b);
             }
             _ if t.is_empty() && k == 0 => continue,
             _ => {
-                ck.push(field, format!("{} line {}", path.display(), k + 1), "two numbers: period_s, psa_m_s2");
+                ck.push(field, format!("{given:?} line {}", k + 1), format!("{what}: two numbers on each line"));
                 return None;
             }
         }
     }
     match Tabulated::new(&t, &psa) {
-        Ok(tab) => Some(tab),
+        Ok(tab) => Some((tab, file)),
         Err(e) => {
-            ck.push(field, path.display(), e.to_string());
+            ck.push(field, format!("{given:?}"), format!("{what}: {e}"));
             None
         }
     }

@@ -40,11 +40,37 @@ fn every_invalid_pipeline_is_refused_with_its_expected_message() {
 }
 
 #[test]
-fn shipped_pipelines_are_valid() {
+fn shipped_pipelines_are_valid_and_mislead_nobody() {
     for entry in std::fs::read_dir(repo_path("pipelines")).unwrap() {
         let path = entry.unwrap().path();
         if path.extension().is_some_and(|e| e == "toml") {
-            Pipeline::load(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            let p = Pipeline::load(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            assert!(p.warnings.is_empty(), "{}: {:?}", path.display(), p.warnings);
         }
+    }
+}
+
+#[test]
+fn a_bad_grid_is_refused_once_and_its_content_never_echoed() {
+    let err = Pipeline::load(&repo_path("pipelines/invalid/friction_grid_nan_row.toml")).unwrap_err();
+    let text = format!("{}", std::error::Error::source(&err).unwrap());
+    assert_eq!(text.matches(" - ").count(), 1, "one refusal, not a second one about its row count:\n{text}");
+    assert!(!text.contains("0.1,0,NaN"), "the row was echoed:\n{text}");
+    let err = Pipeline::load(&repo_path("pipelines/invalid/friction_grid_not_a_grid.toml")).unwrap_err();
+    let text = format!("{}", std::error::Error::source(&err).unwrap());
+    assert!(!text.contains("version = 1") && !text.contains("A report seed"), "content echoed:\n{text}");
+}
+
+#[test]
+fn refusals_write_numbers_short() {
+    for (toml, want) in [
+        ("version = 1\n[material]\ndensity_kg_m3 = 5e-324\n", "density_kg_m3 = 5e-324"),
+        ("version = 1\n[block]\nlc_m = -1e300\n", "block.lc_m = -1e300"),
+        ("version = 1\n[spectra]\nperiod_min_s = 1e-300\n", "period_min_s = 1e-300"),
+        ("version = 1\n[spectra]\nperiod_count = 1099511627776\n", "spectra.period_count = 1099511627776"),
+    ] {
+        let e = Pipeline::from_toml(toml, "t").unwrap_err().to_string();
+        assert!(e.contains(want), "{e}");
+        assert!(!e.contains("00000000000"), "a long number: {e}");
     }
 }

@@ -14,6 +14,7 @@ use std::sync::mpsc;
 use std::time::Instant;
 
 use rayon::prelude::*;
+use stickslip_analysis::records::RecordFailure;
 use stickslip_analysis::{AnalysisError, PlanCache, SeedAnalysis, analyse, thread_cpu_s};
 use stickslip_config::Pipeline;
 use stickslip_solver::{Model, RunOptions, SolverError, run_batched};
@@ -86,8 +87,10 @@ pub struct Profile {
     pub pairs: usize,
 }
 
-/// Claims `out` for `pipeline`: refuses (or, with `fresh`, clears) results of another pipeline,
-/// then writes the manifest and a copy of the pipeline file.
+/// Claims `out` for `pipeline`: refuses (or, with `fresh`, discards every result of — tables,
+/// records, station files, set, figures, page) a folder holding results of another pipeline,
+/// then writes the manifest, a copy of the pipeline file and copies of the files it read (so the
+/// folder can be merged or rerun on its own, see [`Pipeline::output_copy`]).
 pub fn prepare_output(out: &Folder, pipeline: &Pipeline, fresh: bool) -> Result<(), EnsembleError> {
     if let Some(found) = out.read_manifest()?
         && found.pipeline_hash != pipeline.hash
@@ -99,15 +102,14 @@ pub fn prepare_output(out: &Folder, pipeline: &Pipeline, fresh: bool) -> Result<
                 expected: pipeline.hash.clone(),
             });
         }
-        let tables = out.tables();
-        if tables.exists() {
-            std::fs::remove_dir_all(&tables).map_err(|e| stickslip_store::StoreError::io(&tables, e))?;
-        }
+        out.discard_results()?;
     }
     out.write_manifest(&Manifest { name: pipeline.name.clone(), pipeline_hash: pipeline.hash.clone() })?;
-    if let Some(src) = &pipeline.source {
-        let text = std::fs::read_to_string(src).map_err(|e| stickslip_store::StoreError::io(src, e))?;
-        write_text_atomic(&out.pipeline_copy(), &text)?;
+    if let Some(copy) = pipeline.output_copy() {
+        for (rel, text) in &copy.inputs {
+            write_text_atomic(&out.root().join(rel), text)?;
+        }
+        write_text_atomic(&out.pipeline_copy(), &copy.text)?;
     }
     Ok(())
 }
@@ -160,7 +162,7 @@ fn simulate(
         let start = Instant::now();
         let outcome = run
             .map_err(SeedFailure::from)
-            .and_then(|out| analyse(out, model, &pipeline.analysis, plans).map_err(SeedFailure::from));
+            .and_then(|out| analyse(out, model, &pipeline.analysis, plans, cancel).map_err(SeedFailure::from));
         let _ = tx.send(SeedResult {
             seed,
             outcome,
@@ -228,7 +230,12 @@ pub fn run_ensemble(
         });
         let stamp = Stamp { pipeline: &pipeline.name, hash: &pipeline.hash };
         for r in rx {
-            if write_error.is_some() || matches!(r.outcome, Err(SeedFailure::Run(SolverError::Cancelled))) {
+            let cancelled = matches!(
+                r.outcome,
+                Err(SeedFailure::Run(SolverError::Cancelled))
+                    | Err(SeedFailure::Analysis(AnalysisError::Records(RecordFailure::Cancelled)))
+            );
+            if write_error.is_some() || cancelled {
                 continue;
             }
             let mut kept: Result<(), stickslip_store::StoreError> = Ok(());

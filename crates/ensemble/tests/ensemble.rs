@@ -131,9 +131,9 @@ fn paper_pipeline_main_shocks_are_found_and_labelled_in_time_order() {
 #[test]
 fn a_changed_pipeline_is_refused_and_fresh_starts_over() {
     let dir = scratch_dir("ensemble-changed");
-    let p = pipeline(&dir, &short_paper(2, 0.02));
+    let p = pipeline(&dir, &short_paper(2, 0.03));
     run(&p, &dir.join("out"), 2);
-    let changed = pipeline(&dir, &short_paper(2, 0.02).replace("young_cv = 0.05", "young_cv = 0.06"));
+    let changed = pipeline(&dir, &short_paper(2, 0.03).replace("young_cv = 0.05", "young_cv = 0.06"));
     assert_ne!(p.hash, changed.hash);
     let mut options =
         EnsembleOptions { out: dir.join("out"), threads: 2, seeds: changed.seeds.clone(), fresh: false, finish: true };

@@ -34,13 +34,30 @@ fn count(d: &ReportInput, group: &str) -> String {
     s.find(group, col::STRESS_DROP_PA).map_or("0".into(), |i| format!("{}", s.count[i]))
 }
 
-/// Files under `dir` with extension `ext`, sorted, relative to `out`.
+/// Files under `dir` with extension `ext`, sorted, relative to `out`; per-seed parts and record
+/// files only of the seeds of this run's `runs` table (a file of another seed left in the folder
+/// is not this run's, and is not linked).
 fn files(d: &ReportInput, dir: &str, ext: &str) -> Vec<String> {
+    let ran: Option<std::collections::HashSet<u64>> = d.runs.as_ref().map(|r| r.seed.iter().copied().collect());
+    let of_this_run = |name: &str| {
+        let Some(ran) = &ran else { return true };
+        let part = name.strip_prefix("seed-").and_then(|r| r.split('.').next()).and_then(|s| s.parse::<u64>().ok());
+        let record = name
+            .strip_prefix(&format!("{}_seed", d.pipeline.name))
+            .and_then(|r| r.split('_').next())
+            .and_then(|s| s.parse::<u64>().ok());
+        match (dir, part, record) {
+            ("records", _, Some(seed)) => ran.contains(&seed),
+            ("records", _, None) => false,
+            (_, Some(seed), _) if dir.starts_with("tables/") => ran.contains(&seed),
+            _ => true,
+        }
+    };
     let mut v: Vec<String> = std::fs::read_dir(d.folder.root().join(dir))
         .map(|r| {
             r.flatten()
                 .map(|e| e.file_name().to_string_lossy().into_owned())
-                .filter(|n| !n.starts_with('.') && n.ends_with(ext))
+                .filter(|n| !n.starts_with('.') && n.ends_with(ext) && of_this_run(n))
                 .map(|n| format!("{dir}/{n}"))
                 .collect()
         })
@@ -106,6 +123,22 @@ pub(crate) fn page(d: &ReportInput, figures: &[Figure], skipped: &[(String, Stri
                 esc(&parts.join("; "))
             );
         }
+    }
+    let mut warnings: Vec<String> = p.warnings.iter().map(|w| w.to_string()).collect();
+    if !d.not_drawn.is_empty() {
+        warnings.push(format!(
+            "report.seeds = {:?}: seeds {} did not run here (or failed); the figures draw seeds {:?} instead",
+            p.report.seeds,
+            d.not_drawn.iter().map(|s| s.to_string()).collect::<Vec<_>>().join(", "),
+            d.seeds
+        ));
+    }
+    if !warnings.is_empty() {
+        let _ = write!(w, "<h2>Warnings</h2>\n<p>Values this pipeline was run with that could mislead:</p>\n<ul>\n");
+        for text in &warnings {
+            let _ = writeln!(w, "<li>{}</li>", esc(text));
+        }
+        let _ = write!(w, "</ul>\n");
     }
     let lattice = s.lattice();
     let e = lattice.extent();

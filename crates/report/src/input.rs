@@ -65,6 +65,8 @@ pub struct ReportInput<'a> {
     /// Seeds drawn one by one: the successful seeds `[report] seeds` names, or else the first
     /// four that ran (see [`drawn_seeds`]).
     pub seeds: Vec<u64>,
+    /// Seeds `[report] seeds` names that did not run here or failed (the page says so).
+    pub not_drawn: Vec<u64>,
 }
 
 impl<'a> ReportInput<'a> {
@@ -76,6 +78,7 @@ impl<'a> ReportInput<'a> {
         let runs = runs_df.as_ref().map(Runs::read).transpose()?;
         let ok = runs.as_ref().map(Runs::ok_seeds).unwrap_or_default();
         let seeds = drawn_seeds(&ok, &pipeline.seeds, &pipeline.report.seeds);
+        let not_drawn: Vec<u64> = pipeline.report.seeds.iter().copied().filter(|s| !ok.contains(s)).collect();
         let mean_dt_s = match &runs_df {
             Some(df) => {
                 let dt: Vec<f64> = stickslip_store::frame::Columns::of(df, RUNS.name)
@@ -110,6 +113,7 @@ impl<'a> ReportInput<'a> {
             emission: table(&ACOUSTIC_EMISSION)?.as_ref().map(AcousticEmission::read).transpose()?,
             mean_dt_s,
             seeds,
+            not_drawn,
             folder,
             pipeline,
         })

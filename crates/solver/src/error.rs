@@ -63,7 +63,30 @@ pub enum SolverError {
     /// A numerical procedure found no answer.
     #[error("numerical failure: {0}")]
     Numerical(String),
+    /// A stage would take more steps than the run can count: more than [`MAX_STEPS`] (beyond
+    /// which the times `k·Δt` are no longer exact), or more bar updates than a 64-bit counter
+    /// holds.
+    #[error(
+        "the {stage} of {duration_s:e} s at Δt = {dt_s:.4e} s would take {steps:.3e} steps ({bar_updates:.3e} bar \
+         updates), more than the run can count (at most 2^53 steps and 2^64 bar updates); use a shorter stage or a \
+         larger time step"
+    )]
+    TooManySteps {
+        /// The stage: "self-weight stage (its time limit)" or "shear stage".
+        stage: &'static str,
+        /// Its duration (s).
+        duration_s: f64,
+        /// The time step (s).
+        dt_s: f64,
+        /// Steps it would take.
+        steps: f64,
+        /// Bar updates it would take.
+        bar_updates: f64,
+    },
     /// The caller asked the run to stop.
     #[error("run cancelled")]
     Cancelled,
 }
+
+/// The most steps a stage may take: 2^53, the largest count whose times `k·Δt` are exact.
+pub const MAX_STEPS: f64 = 9_007_199_254_740_992.0;

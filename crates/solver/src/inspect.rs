@@ -29,8 +29,12 @@ pub struct Inspection {
     /// The paper's bound `0.6·Lc/Cp` (Eq. 5, s).
     pub paper_bound_s: f64,
     /// Effective moduli along x and along z (static solves of the lattice of the first seed
-    /// inspected, or of a sample block of the same material: see `moduli_of`).
-    pub moduli: [EffectiveModuli; 2],
+    /// inspected, or of a sample block of the same material: see `moduli_of`); empty when a
+    /// solve did not converge (`unsolved` says why).
+    pub moduli: Vec<EffectiveModuli>,
+    /// Why the moduli were not solved, if they were not (a check reads what it can; the run does
+    /// not need them).
+    pub unsolved: Option<String>,
     /// The block the moduli were solved on: the scene's, or a sample of at most
     /// [`SAMPLE_MODULES`] modules per axis when the scene's is too large ([`Statics::Sample`]).
     pub moduli_of: Dims,
@@ -51,8 +55,10 @@ pub struct Slider {
     /// `N·(L/2)/h` with `h` the height the load acts at (N).
     pub tipping_n: f64,
     /// Stiffness of the block under the loaded nodes, base held (static solve, N/m); NaN when not
-    /// solved ([`Statics::Sample`]).
+    /// solved ([`Statics::Sample`], or a solve that did not converge: `block_note` says which).
     pub block_n_m: f64,
+    /// Why the block's stiffness was not solved, when it was not.
+    pub block_note: Option<String>,
     /// Stiffness of the plate's springs (N/m); infinite without a plate (rigid drivers).
     pub plate_n_m: f64,
     /// The loading stiffness `k`: block and springs in series (N/m).
@@ -160,10 +166,10 @@ impl Slider {
                 self.k_n_m, self.critical_n_m
             ),
             Regime::Overdamped => format!(
-                "stable sliding expected despite k < k_c: the damping ratio of the block's swing D/(2ω) = {:.3} lets a slip \
+                "stable sliding expected despite k < k_c: the damping ratio of the block's swing D/(2ω) = {} lets a slip \
                  overshoot by only {:.2e} m/s, less than the loading speed {:.2e} m/s, so the block never stops again \
                  (lower the shear stage's damping or the loading speed)",
-                self.damping_ratio,
+                three(self.damping_ratio),
                 self.slip_speed_m_s * self.overshoot(),
                 self.loading_speed_m_s
             ),
@@ -188,21 +194,27 @@ impl Slider {
             }
             Regime::Undetermined => format!(
                 "not assessed: the reading needs the block's stiffness under its load, a static solve of the whole \
-                 lattice, left out for a block this large (the critical stiffness (μs − μd)·N/Dc = {:.4e} N/m)",
+                 lattice, {} (the critical stiffness (μs − μd)·N/Dc = {:.4e} N/m)",
+                self.block_note.as_deref().unwrap_or("left out for a block this large"),
                 self.critical_n_m
             ),
             Regime::StickSlip => format!(
-                "stick-slip expected: k = {:.4e} N/m below k_c = {}, swing damping ratio {:.3}",
+                "stick-slip expected: k = {:.4e} N/m below k_c = {}, swing damping ratio {}",
                 self.k_n_m,
                 if self.critical_n_m.is_finite() {
                     format!("{:.4e} N/m", self.critical_n_m)
                 } else {
                     "∞ (μ drops at once)".into()
                 },
-                self.damping_ratio
+                three(self.damping_ratio)
             ),
         }
     }
+}
+
+/// `v` with three decimals, or with an exponent once it is 10⁶ or more in size.
+fn three(v: f64) -> String {
+    if v.abs() < 1e6 { format!("{v:.3}") } else { format!("{v:.3e}") }
 }
 
 impl Inspection {
@@ -222,6 +234,11 @@ pub const SAMPLE_MODULES: usize = 16;
 /// thousands of steps' worth of bar passes (the condition number grows with the block).
 pub const FULL_STATICS_MAX_BARS: usize = 500_000;
 
+/// The largest bars × longest side (in modules) solved whole by default: a conjugate-gradient
+/// solve takes iterations in proportion to the longest side, each a pass over the bars, so a
+/// long thin block (9999×1×2 modules, 320 000 bars: 64 s of `check`) is read on a sample block.
+pub const FULL_STATICS_MAX_WORK: f64 = 1e8;
+
 /// Which static solves [`inspect`] makes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Statics {
@@ -233,9 +250,17 @@ pub enum Statics {
 }
 
 impl Statics {
-    /// [`Statics::Full`] up to [`FULL_STATICS_MAX_BARS`] bars, [`Statics::Sample`] above.
+    /// [`Statics::Full`] up to [`FULL_STATICS_MAX_BARS`] bars and [`FULL_STATICS_MAX_WORK`],
+    /// [`Statics::Sample`] above.
     pub fn for_model(model: &Model) -> Statics {
-        if model.bar_count() <= FULL_STATICS_MAX_BARS { Statics::Full } else { Statics::Sample }
+        let d = model.scene().dims;
+        let longest = d.nx.max(d.ny).max(d.nz) as f64;
+        let work = model.bar_count() as f64 * longest;
+        if model.bar_count() <= FULL_STATICS_MAX_BARS && work <= FULL_STATICS_MAX_WORK {
+            Statics::Full
+        } else {
+            Statics::Sample
+        }
     }
 }
 
@@ -254,14 +279,20 @@ pub fn inspect(model: &Model, seeds: &[u64], statics: Statics) -> Result<Inspect
     // The per-bar stiffness only for the static solves on the whole block.
     let k = if statics == Statics::Full { model.bar_stiffness(seeds[0])? } else { Vec::new() };
     let (moduli, moduli_of) = match statics {
-        Statics::Full => ([uniaxial_moduli(model, &k, 0)?, uniaxial_moduli(model, &k, 2)?], scene.dims),
+        Statics::Full => ([0, 2].map(|axis| uniaxial_moduli(model, &k, axis)), scene.dims),
         Statics::Sample => {
             let d = scene.dims;
             let dims = Dims::new(d.nx.min(SAMPLE_MODULES), d.ny.min(SAMPLE_MODULES), d.nz.min(SAMPLE_MODULES));
             let sample = Model::new(scene.sample(dims));
             let ks = sample.bar_stiffness(seeds[0])?;
-            ([uniaxial_moduli(&sample, &ks, 0)?, uniaxial_moduli(&sample, &ks, 2)?], dims)
+            ([0, 2].map(|axis| uniaxial_moduli(&sample, &ks, axis)), dims)
         }
+    };
+    // A solve that does not converge leaves the moduli out; the check goes on (the run does not
+    // need them).
+    let (moduli, unsolved) = match moduli {
+        [Ok(x), Ok(z)] => (vec![x, z], None),
+        [Err(e), _] | [_, Err(e)] => (Vec::new(), Some(e.to_string())),
     };
     let weight = model.total_mass() * scene.self_weight.gravity_m_s2;
     let area = lattice.contact_area();
@@ -277,6 +308,7 @@ pub fn inspect(model: &Model, seeds: &[u64], statics: Statics) -> Result<Inspect
         critical,
         paper_bound_s: scene.paper_time_step_bound(),
         moduli,
+        unsolved,
         moduli_of,
         slider,
     })
@@ -344,6 +376,7 @@ fn slider(model: &Model, k: Option<&[f64]>, weight: f64) -> Result<Slider, Solve
     };
     let tipping = if h > 0.0 { normal * 0.5 * e[0] / h } else { f64::INFINITY };
     // Block stiffness: base held, loaded nodes moved together by δ in x; k = ΣR/δ.
+    let mut block_note = None;
     let block = if loaded.is_empty() {
         f64::INFINITY
     } else if let Some(k) = k {
@@ -353,8 +386,13 @@ fn slider(model: &Model, k: Option<&[f64]>, weight: f64) -> Result<Slider, Solve
             prescribed.extend((0..3).map(|axis| Prescribed { node: c as usize, axis, value: 0.0 }));
         }
         prescribed.extend(loaded.iter().map(|&i| Prescribed { node: i, axis: 0, value: delta }));
-        let sol = solve_static(model, k, &Field::zeros(model.node_count()), &prescribed, 1e-8, 20_000)?;
-        loaded.iter().map(|&i| sol.reactions.c[0][i][0]).sum::<f64>() / delta
+        match solve_static(model, k, &Field::zeros(model.node_count()), &prescribed, 1e-8, 20_000) {
+            Ok(sol) => loaded.iter().map(|&i| sol.reactions.c[0][i][0]).sum::<f64>() / delta,
+            Err(e) => {
+                block_note = Some(format!("which did not converge here ({e})"));
+                f64::NAN
+            }
+        }
     } else {
         f64::NAN
     };
@@ -369,6 +407,7 @@ fn slider(model: &Model, k: Option<&[f64]>, weight: f64) -> Result<Slider, Solve
         strength_n: strength,
         tipping_n: tipping,
         block_n_m: block,
+        block_note,
         plate_n_m: plate,
         k_n_m: k_load,
         critical_n_m: critical,

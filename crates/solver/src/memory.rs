@@ -203,7 +203,8 @@ pub fn run_steps(scene: &Scene, dt: f64) -> (u64, u64) {
 pub fn samples(scene: &Scene, dt: f64) -> u64 {
     let (settle, shear) = run_steps(scene, dt);
     let stride = scene.record.interval_s.map_or(1, |iv| ((iv / dt).round() as u64).max(1));
-    shear / stride + 2 + if scene.record.settling { settle } else { 0 }
+    // Saturating: a Δt so small that the steps saturate is refused by the length check, not wrapped here.
+    (shear / stride).saturating_add(2).saturating_add(if scene.record.settling { settle } else { 0 })
 }
 
 /// `bytes` in the largest unit that keeps it at least 1 (B, kB, MB, GB, TB; powers of 1000).

@@ -8,6 +8,9 @@
 //! <out>/records/…                          record files (AT2, SAC, CSV), model and prototype scale
 //! <out>/set/…                              a set matched to a design spectrum: its records and table
 //! <out>/figures/*.png, <out>/index.html    the report
+//! <out>/fault_stations/seed<seed>/…        fault station files (SEAS layout)
+//! <out>/inputs/<field>/<file>              copies of the files the pipeline read (a friction grid…)
+//! <out>/shards/shard-<k>-of-<n>.toml       which shards of a sharded run started here
 //! ```
 //! `<seed>` is written with ten digits (`seed-0000000123.parquet`) so the parts sort by seed.
 
@@ -80,6 +83,43 @@ impl Folder {
     /// A matched set: its scaled record files, table and figure.
     pub fn set_dir(&self) -> PathBuf {
         self.root.join("set")
+    }
+
+    /// Copies of the files the pipeline read, `inputs/<field>/<file>`.
+    pub fn inputs_dir(&self) -> PathBuf {
+        self.root.join("inputs")
+    }
+
+    /// The marks of a sharded run: one file per shard that started here.
+    pub fn shards_dir(&self) -> PathBuf {
+        self.root.join("shards")
+    }
+
+    /// Removes every result of an earlier run — tables, record files, fault stations, the set,
+    /// figures, the page, shard marks and input copies — so nothing of it survives or is linked.
+    /// The manifest and the pipeline copy are left for the caller to overwrite.
+    pub fn discard_results(&self) -> Result<(), StoreError> {
+        for dir in [
+            self.tables(),
+            self.records_dir(),
+            self.root.join("fault_stations"),
+            self.set_dir(),
+            self.figures(),
+            self.shards_dir(),
+            self.inputs_dir(),
+        ] {
+            match std::fs::remove_dir_all(&dir) {
+                Ok(()) => {}
+                Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+                Err(e) => return Err(StoreError::io(&dir, e)),
+            }
+        }
+        let index = self.index();
+        match std::fs::remove_file(&index) {
+            Ok(()) => Ok(()),
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
+            Err(e) => Err(StoreError::io(&index, e)),
+        }
     }
 
     /// The figures.

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use anyhow::Result;
 use stickslip_analysis::settings::RecordSpan;
 use stickslip_config::Pipeline;
-use stickslip_config::check::Named;
+use stickslip_config::check::{Named, approx};
 use stickslip_seismo::catalogue::compact;
 use stickslip_seismo::similarity::AreaChoice;
 use stickslip_seismo::spectra::fourier::Window;
@@ -19,6 +19,7 @@ use stickslip_solver::memory::{Batches, LONG_RUN_BAR_UPDATES, estimate, human, r
 use stickslip_solver::scene::{SettleMethod, TimeStep};
 
 use crate::budget;
+use crate::text::N;
 
 /// Arguments of `stickslip check`.
 #[derive(clap::Args, Debug)]
@@ -43,9 +44,10 @@ fn position(model: &Model, id: stickslip_solver::NodeId) -> String {
     format!("LDEM {} at ({}, {}, {}) m", id.ldem(), round(p[0]), round(p[1]), round(p[2]))
 }
 
-/// Positions written without the round-off of `i·Lc`.
-fn round(v: f64) -> f64 {
-    (v * 1e9).round() / 1e9
+/// Positions written without the round-off of `i·Lc` (and short when huge or tiny).
+fn round(v: f64) -> N {
+    let r = (v * 1e9).round() / 1e9;
+    N(if r.is_finite() && (r != 0.0 || v == 0.0) { r } else { v })
 }
 
 /// `stickslip check`.
@@ -56,6 +58,9 @@ pub fn run(a: Args) -> Result<()> {
     // The memory of one seed (what check itself builds and steps) is checked before the lattice
     // is built; the ensemble's is printed below.
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    if let Ok(e) = stickslip_solver::memory::estimate(scene, Batches::ONE, 2) {
+        budget::check_count(scene, e.bars, stickslip_solver::memory::dt_estimate(scene), "this scene")?;
+    }
     let one = budget::check_memory(scene, 1, 1, "one seed of this scene")?;
     let available = budget::available_memory()?;
     let model = Model::new(scene.clone());
@@ -75,28 +80,29 @@ pub fn run(a: Args) -> Result<()> {
         scene.dims.nx,
         scene.dims.ny,
         scene.dims.nz,
-        scene.lc_m,
-        compact(e[0]),
-        compact(e[1]),
-        compact(e[2]),
+        N(scene.lc_m),
+        round(e[0]),
+        round(e[1]),
+        round(e[2]),
         facts.nodes,
         facts.bars,
         facts.contact_nodes,
-        facts.mass_kg
+        N(facts.mass_kg)
     );
     let law = scene.friction.law;
     println!(
         "  friction: {} ({}), CV of μ {}",
         law.name(),
-        describe(&law.node(1.0).coefficients(), |_, c| c.value.to_string()),
-        scene.friction.mu_cv
+        describe(&law.node(1.0).coefficients(), |_, c| N(c.value).to_string()),
+        N(scene.friction.mu_cv)
     );
     if scene.is_fault() {
         print_fault(&model);
     } else {
         println!(
             "  self-weight normal stress {:.1} Pa, sliding strength μs·σ = {:.1} Pa",
-            facts.self_weight_stress_pa, facts.strength_pa
+            N(facts.self_weight_stress_pa),
+            N(facts.strength_pa)
         );
     }
     let (lo, hi) = facts.critical_range_s();
@@ -115,13 +121,16 @@ pub fn run(a: Args) -> Result<()> {
         TimeStep::Fraction(f) => {
             println!("  time step: {f} of each seed's critical step ({:.4e} … {:.4e} s)", f * lo, f * hi)
         }
-        TimeStep::Fixed(dt) => println!("  time step: {dt:e} s ({:.3} of the smallest critical step)", dt / lo),
+        TimeStep::Fixed(dt) => println!("  time step: {dt:e} s ({:.3} of the smallest critical step)", N(dt / lo)),
     }
-    // Run length at the smallest Δt over the seeds inspected, and a timed probe of its steps.
+    // Run length at the smallest Δt over the seeds inspected: refused when a run could not count
+    // its steps (whatever --allow-long says), then a timed probe of its steps.
     let dt = match scene.time_step {
         TimeStep::Fraction(f) => f * lo,
         TimeStep::Fixed(dt) => dt,
     };
+    stickslip_solver::run::check_step_count(&model, dt)
+        .map_err(|e| anyhow::anyhow!("{}", stickslip_config::keys::describe(&e)))?;
     let (settle, shear) = run_steps(scene, dt);
     let parallel = pipeline.seeds.len() < threads && model.layout().splits();
     let per_step = probe_step_time(&model, seeds[0], dt, parallel, 0.5)?;
@@ -175,7 +184,7 @@ pub fn run(a: Args) -> Result<()> {
             TimeStep::Fixed(dt) => (k(dt), k(dt)),
         };
         let steps = if k_lo == k_hi { format!("{k_lo}") } else { format!("{k_lo}–{k_hi}") };
-        println!("  recorded every {steps} steps (the nearest whole number to {iv} s; Δt does not depend on it)");
+        println!("  recorded every {steps} steps (the nearest whole number to {} s; Δt does not depend on it)", N(iv));
     }
     let on = if facts.moduli_of == scene.dims {
         String::new()
@@ -186,6 +195,9 @@ pub fn run(a: Args) -> Result<()> {
             d.nx, d.ny, d.nz
         )
     };
+    if let Some(why) = &facts.unsolved {
+        println!("  effective stiffness{on}: not solved ({why}); the run does not need it");
+    }
     for m in &facts.moduli {
         let name = |a: usize| ["x", "y", "z"][a];
         let others: Vec<usize> = (0..3).filter(|&a| a != m.axis).collect();
@@ -207,9 +219,11 @@ pub fn run(a: Args) -> Result<()> {
     if scene.shear.drivers.is_empty() {
         println!("  drivers: none");
     } else {
+        let d = &scene.shear.drivers;
         println!(
-            "  drivers: {}",
-            scene.shear.drivers.iter().map(|&d| position(&model, d)).collect::<Vec<_>>().join("; ")
+            "  drivers: {}{}",
+            d.iter().take(12).map(|&d| position(&model, d)).collect::<Vec<_>>().join("; "),
+            if d.len() > 12 { format!("; … and {} more", d.len() - 12) } else { String::new() }
         );
     }
     if let Some(p) = &scene.plate {
@@ -221,7 +235,7 @@ pub fn run(a: Args) -> Result<()> {
         );
     }
     if let Some(n) = &scene.normal_load {
-        println!("  normal load: {} Pa on the top face ({:.4e} N)", n.pressure_pa, n.total());
+        println!("  normal load: {} Pa on the top face ({:.4e} N)", N(n.pressure_pa), n.total());
     }
     if let Some(map) = &scene.friction.map {
         println!("  friction map ({} base nodes):", map.nodes.len());
@@ -241,15 +255,17 @@ pub fn run(a: Args) -> Result<()> {
             }
             let range = |k: usize| {
                 let (lo, hi) = span(&mut members.iter().map(|&c| map.nodes[c].coefficients()[k].value));
-                if lo == hi { format!("{lo}") } else { format!("{lo}…{hi}") }
+                if lo == hi { format!("{}", N(lo)) } else { format!("{}…{}", N(lo), N(hi)) }
             };
             let (x0, x1) = span(&mut members.iter().map(|&c| model.lattice().position(contact[c])[0]));
             let (x0, x1) = (round(x0), round(x1));
             println!(
-                "    {} ({}): {} nodes, x {x0}…{x1} m, {}",
+                "    {} ({}): {} nodes, x {}…{} m, {}",
                 r.name,
                 r.kind.name(),
                 members.len(),
+                x0,
+                x1,
                 describe(&map.nodes[members[0]].coefficients(), |k, _| range(k)),
             );
         }
@@ -258,16 +274,25 @@ pub fn run(a: Args) -> Result<()> {
     if !scene.is_fault() {
         let sl = &facts.slider;
         if sl.block_n_m.is_nan() {
+            let why = match &sl.block_note {
+                Some(note) => {
+                    format!("the block's stiffness under its load is a static solve of all {} bars, {note}", facts.bars)
+                }
+                None => format!(
+                    "the block's stiffness under its load needs a static solve of all {} bars: --full-statics",
+                    facts.bars
+                ),
+            };
             println!(
-                "  as a spring-slider: N = {:.4e} N, strength μs·N = {:.4e} N, tips at {:.4e} N; k not solved (the block's \
-                 stiffness under its load needs a static solve of all {} bars: --full-statics), plate springs {:.4e} N/m, \
-                 k_c = (μs − μd)·N/Dc = {:.4e} N/m",
-                sl.normal_n, sl.strength_n, sl.tipping_n, facts.bars, sl.plate_n_m, sl.critical_n_m
+                "  as a spring-slider: N = {:.4e} N, strength μs·N = {:.4e} N, tips at {:.4e} N; k not solved ({why}), \
+                 plate springs {:.4e} N/m, k_c = (μs − μd)·N/Dc = {:.4e} N/m",
+                sl.normal_n, sl.strength_n, sl.tipping_n, sl.plate_n_m, sl.critical_n_m
             );
         } else {
             println!(
-                "  as a spring-slider: N = {:.4e} N, strength μs·N = {:.4e} N, tips at {:.4e} N; k = {:.4e} N/m (block under \
-                 the load {:.4e}, plate springs {:.4e}), k_c = (μs − μd)·N/Dc = {:.4e} N/m, swing damping D/(2ω) = {:.3}",
+                "  as a spring-slider: N = {:.4e} N, strength μs·N = {:.4e} N, tips at {:.4e} N; k = {:.4e} N/m (block \
+                 under the load {:.4e}, plate springs {:.4e}), k_c = (μs − μd)·N/Dc = {:.4e} N/m, swing damping D/(2ω) = \
+                 {:.3}",
                 sl.normal_n,
                 sl.strength_n,
                 sl.tipping_n,
@@ -275,7 +300,7 @@ pub fn run(a: Args) -> Result<()> {
                 sl.block_n_m,
                 sl.plate_n_m,
                 sl.critical_n_m,
-                sl.damping_ratio
+                N(sl.damping_ratio)
             );
         }
         println!(
@@ -288,8 +313,8 @@ pub fn run(a: Args) -> Result<()> {
     if scene.is_fault() {
         println!(
             "  run: {} s from the prestressed state at rest, D = {} 1/s, no self-weight stage{}",
-            sh.duration_s,
-            sh.damping_per_s,
+            N(sh.duration_s),
+            N(sh.damping_per_s),
             if sh.drivers.is_empty() { ", no driver" } else { "" }
         );
     } else {
@@ -300,20 +325,23 @@ pub fn run(a: Args) -> Result<()> {
                     "solved statically (falls back to damped settling if friction cannot hold it)".into(),
                 SettleMethod::Dynamic => format!(
                     "damped settling, D = {} 1/s, until out-of-balance/weight < {:e}",
-                    sw.damping_per_s, sw.settle_tolerance
+                    N(sw.damping_per_s),
+                    sw.settle_tolerance
                 ),
             }
         );
-        let sh = &scene.shear;
         println!(
             "  shear: u̇f = {} m/s (t0 = {} s), D = {} 1/s, for {} s",
-            sh.velocity_m_s, sh.rise_time_s, sh.damping_per_s, sh.duration_s
+            N(sh.velocity_m_s),
+            N(sh.rise_time_s),
+            N(sh.damping_per_s),
+            N(sh.duration_s)
         );
     }
     let r = &scene.record;
     println!(
         "  record: {}, interface {}{}{}{}",
-        r.interval_s.map_or("every step".to_string(), |iv| format!("every {iv} s")),
+        r.interval_s.map_or("every step".to_string(), |iv| format!("every {} s", N(iv))),
         r.interface.iter().map(|q| q.name()).collect::<Vec<_>>().join(", "),
         if r.energy { ", energy terms" } else { "" },
         if r.slip_onsets { ", slip onsets" } else { "" },
@@ -343,7 +371,13 @@ pub fn run(a: Args) -> Result<()> {
     let ev = &pipeline.analysis.events;
     println!(
         "  events: smoothing {} s, slip rate on {} / off {} m/s for {} s, merge gap {} s, min drop {} Pa, main shocks ≥ {} of the largest",
-        ev.smoothing_s, ev.v_on_m_s, ev.v_off_m_s, ev.quiet_s, ev.merge_gap_s, ev.min_drop_pa, ev.main_fraction
+        N(ev.smoothing_s),
+        N(ev.v_on_m_s),
+        N(ev.v_off_m_s),
+        N(ev.quiet_s),
+        N(ev.merge_gap_s),
+        N(ev.min_drop_pa),
+        N(ev.main_fraction)
     );
     let si = &pipeline.analysis.similarity;
     let lambda = if scene.is_fault() { 1.0 } else { si.prototype_length_m / e[0] };
@@ -352,8 +386,8 @@ pub fn run(a: Args) -> Result<()> {
     } else {
         println!(
             "  similarity: L_p = {} m (λ = {}), u̇_p = {:e} m/s, model area: {}",
-            si.prototype_length_m,
-            compact(lambda),
+            N(si.prototype_length_m),
+            approx(lambda),
             si.prototype_rate_m_s,
             match si.area {
                 AreaChoice::Contact => "the whole contact area (the paper's)",
@@ -370,7 +404,12 @@ pub fn run(a: Args) -> Result<()> {
             };
             let span = match a.span {
                 RecordSpan::Events => {
-                    format!("{} events from {} s before to {} s after", a.events.name(), a.pre_event_s, a.post_event_s)
+                    format!(
+                        "{} events from {} s before to {} s after",
+                        a.events.name(),
+                        N(a.pre_event_s),
+                        N(a.post_event_s)
+                    )
                 }
                 RecordSpan::WholeRun => "the whole shear stage".into(),
             };
@@ -382,12 +421,12 @@ pub fn run(a: Args) -> Result<()> {
             println!(
                 "  usable band: up to f_max = {:.1} Hz at model scale ({:.4} Hz prototype, λ = {}): plane waves \
                  within {}% of their long-wave speed; filter {} Hz … {} Hz, order {}",
-                a.resolved_hz,
-                a.resolved_hz / lambda,
-                compact(lambda),
-                compact(100.0 * a.band_tolerance),
-                a.low_corner_hz.map_or("1/record length".into(), compact),
-                a.high_corner_hz.map_or("f_max".into(), compact),
+                N(a.resolved_hz),
+                N(a.resolved_hz / lambda),
+                approx(lambda),
+                N(100.0 * a.band_tolerance),
+                a.low_corner_hz.map_or("1/record length".into(), |f| N(f).to_string()),
+                a.high_corner_hz.map_or("f_max".into(), |f| N(f).to_string()),
                 a.order
             );
         }
@@ -422,11 +461,11 @@ pub fn run(a: Args) -> Result<()> {
             set.options.per_group,
             set.per.name(),
             set.component.name(),
-            compact(100.0 * set.damping),
-            compact(a),
-            compact(b),
-            set.options.scale_min,
-            set.options.scale_max,
+            N(100.0 * set.damping),
+            N(a),
+            N(b),
+            N(set.options.scale_min),
+            N(set.options.scale_max),
             set.target_name
         );
     }
@@ -436,10 +475,13 @@ pub fn run(a: Args) -> Result<()> {
             "  skip-ahead: on (tolerance {:e}, {} explicit steps before each transition{})",
             sk.tolerance,
             sk.margin_steps,
-            sk.record_interval_s.map_or(String::new(), |iv| format!(", one sample per {iv} s while skipping"))
+            sk.record_interval_s.map_or(String::new(), |iv| format!(", one sample per {} s while skipping", N(iv)))
         );
     }
     println!("  report: {}", if pipeline.report.enabled { "on" } else { "off" });
+    for w in &pipeline.warnings {
+        println!("  warning: {w}");
+    }
     Ok(())
 }
 
@@ -449,7 +491,7 @@ fn print_fault(model: &Model) {
     let scene = model.scene();
     let Some(r) = FaultReading::of(model) else { return };
     let mpa = |(a, b): (f64, f64)| {
-        if a == b { format!("{:.2} MPa", a / 1e6) } else { format!("{:.2} … {:.2} MPa", a / 1e6, b / 1e6) }
+        if a == b { format!("{:.2} MPa", N(a / 1e6)) } else { format!("{:.2} … {:.2} MPa", N(a / 1e6), N(b / 1e6)) }
     };
     println!(
         "  fault (the base as one side of a planar fault, slip = 2 × the face's displacement; friction heals: {}): \
@@ -470,13 +512,15 @@ fn print_fault(model: &Model) {
             r.overstressed.0,
             r.overstressed.1,
             r.can_slip,
-            r.median_s.map_or(String::new(), |s| format!(", median strength excess S = (τs − τ0)/(τ0 − τd) = {s:.2}"))
+            r.median_s
+                .map_or(String::new(), |s| format!(", median strength excess S = (τs − τ0)/(τ0 − τd) = {:.2}", N(s)))
         );
     }
     if let Some(l) = r.cohesive_zone_m {
         let per = l / scene.lc_m;
         println!(
-            "  cohesive zone Λ0 = (9π/32)·μ·Dc/(τs − τd) ≥ {l:.4e} m = {per:.1} × Lc{}",
+            "  cohesive zone Λ0 = (9π/32)·μ·Dc/(τs − τd) ≥ {l:.4e} m = {:.1} × Lc{}",
+            N(per),
             if per < 3.0 {
                 " ⚠ under-resolved (fewer than 3 nodes): rupture speed and slip rates depend on Lc"
             } else {
@@ -496,7 +540,7 @@ fn print_fault(model: &Model) {
     }
     let band = scene
         .usable_band(0.05)
-        .map(|b| format!(", waves within 5% of these speeds up to {:.3} Hz", b.f_max_hz))
+        .map(|b| format!(", waves within 5% of these speeds up to {:.3} Hz", N(b.f_max_hz)))
         .unwrap_or_default();
-    println!("  lattice wave speeds Cp = {:.1} m/s, Cs = {:.1} m/s{band}", zp / rho, zs / rho);
+    println!("  lattice wave speeds Cp = {:.1} m/s, Cs = {:.1} m/s{band}", N(zp / rho), N(zs / rho));
 }

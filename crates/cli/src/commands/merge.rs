@@ -29,6 +29,15 @@ pub fn run(a: Args) -> Result<()> {
         r.wall_time_s,
         a.out.join("tables").display()
     );
+    crate::commands::pipeline::print_warnings(&r.pipeline);
     crate::commands::pipeline::print_set_result(&r.pipeline, r.set.as_ref(), &a.out);
-    finish(&r.pipeline, &a.out)
+    finish(&r.pipeline, &a.out)?;
+    let mut unfinished = Vec::new();
+    if r.seeds > 0 && r.failed == r.seeds {
+        unfinished.push(format!("{}: every seed failed ({}); nothing to analyse", r.pipeline.name, r.seeds));
+    }
+    if let Some(Err(e)) = &r.set {
+        unfinished.push(format!("{}: the [set] asked for could not be chosen: {e}", r.pipeline.name));
+    }
+    crate::commands::pipeline::finished(unfinished)
 }

@@ -315,6 +315,21 @@ pub fn run(a: Args) -> Result<()> {
             p.name
         );
     }
+    for p in &pipelines {
+        print_warnings(p);
+        if let Some(given) = &given {
+            let drawn: Vec<String> =
+                p.report.seeds.iter().filter(|s| !given.contains(*s)).map(|s| s.to_string()).collect();
+            if !drawn.is_empty() && p.report.enabled {
+                eprintln!(
+                    "warning: {}: report.seeds {} are not among --seeds: the report draws the first seeds that ran \
+                     instead",
+                    p.name,
+                    drawn.join(", ")
+                );
+            }
+        }
+    }
     // Memory and run length of every pipeline before any is built.
     let threads = a.threads.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
     let mut runs = Vec::new();
@@ -328,8 +343,12 @@ pub fn run(a: Args) -> Result<()> {
         runs.push(seeds);
     }
     let cancel = cancel_on_ctrl_c()?;
+    let mut unfinished = Vec::new();
     for (pipeline, seeds) in pipelines.iter().zip(runs) {
         let out = a.out.clone().unwrap_or_else(|| PathBuf::from("reports").join(&pipeline.name));
+        if let Some((k, n)) = a.shard {
+            stickslip_ensemble::merge::mark_shard(&out, pipeline, k, n, &seeds)?;
+        }
         let options = EnsembleOptions {
             out: out.clone(),
             threads: a.threads.unwrap_or(0),
@@ -369,12 +388,37 @@ pub fn run(a: Args) -> Result<()> {
         if let Some(p) = &precision {
             println!("{}", p.describe());
         }
+        let total = report.ran + report.skipped;
+        let nothing = total > 0 && report.failed.len() == total;
         if a.shard.is_some() {
-            println!("  merge the shards with: stickslip merge {}", out.display());
+            if nothing {
+                unfinished.push(format!("{}: every seed of the shard failed ({total})", pipeline.name));
+            } else {
+                println!("  merge the shards with: stickslip merge {}", out.display());
+            }
             continue;
         }
         print_set_result(pipeline, report.set.as_ref(), &out);
         finish(pipeline, &out)?;
+        if nothing {
+            unfinished.push(format!("{}: every seed failed ({total}); nothing to analyse", pipeline.name));
+        }
+        if let Some(Err(e)) = &report.set {
+            unfinished.push(format!("{}: the [set] asked for could not be chosen: {e}", pipeline.name));
+        }
     }
-    Ok(())
+    finished(unfinished)
+}
+
+/// `Ok` when every pipeline gave what it asked for, else an error listing what did not (the
+/// tables and reports are written either way): exit status 1, so a dependent job does not run.
+pub fn finished(unfinished: Vec<String>) -> Result<()> {
+    if unfinished.is_empty() { Ok(()) } else { anyhow::bail!("{}", unfinished.join("\n  ")) }
+}
+
+/// Prints a pipeline's warnings (values accepted that could mislead) to stderr.
+pub fn print_warnings(pipeline: &Pipeline) {
+    for w in &pipeline.warnings {
+        eprintln!("warning: {}: {w}", pipeline.name);
+    }
 }

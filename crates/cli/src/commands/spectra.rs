@@ -88,6 +88,8 @@ pub fn run(a: Args) -> Result<()> {
         CsvUnits::MS2 => AccelUnit::MetrePerSecond2,
         CsvUnits::CmS2 => AccelUnit::CentimetrePerSecond2,
     };
+    stickslip_config::input::check_regular(&a.record, stickslip_config::input::MAX_INPUT_BYTES)
+        .map_err(|why| anyhow::anyhow!("{}: {why}", a.record.display()))?;
     let is_parquet = a.record.extension().is_some_and(|e| e.eq_ignore_ascii_case("parquet"));
     let record = if is_parquet {
         parquet_record(&a.record, a.record_name.as_deref(), &a.scale)?
@@ -102,11 +104,27 @@ pub fn run(a: Args) -> Result<()> {
     let duration = record.dt * (record.accel.len().saturating_sub(1)) as f64;
     let tmin = a.period_min_s.unwrap_or(2.0 * record.dt);
     let tmax = a.period_max_s.unwrap_or(0.5 * duration);
+    let approx = stickslip_config::check::approx;
     anyhow::ensure!(
-        tmin > 0.0 && tmax >= tmin,
-        "--period-min-s = {tmin}, --period-max-s = {tmax} are not allowed: 0 < period-min-s ≤ period-max-s"
+        tmin > 0.0 && tmax >= tmin && tmax.is_finite(),
+        "--period-min-s = {}, --period-max-s = {} are not allowed: 0 < period-min-s ≤ period-max-s (finite)",
+        approx(tmin),
+        approx(tmax)
+    );
+    // Far below the sampling interval an oscillator reads only the peak acceleration, and costs
+    // steps in proportion to the interval over the period.
+    anyhow::ensure!(
+        tmin >= 0.01 * record.dt,
+        "--period-min-s = {} is not allowed: at least a hundredth of the record's sampling interval ({} s)",
+        approx(tmin),
+        approx(0.01 * record.dt)
     );
     anyhow::ensure!(a.period_count >= 1, "--period-count = 0 is not allowed: at least 1");
+    anyhow::ensure!(
+        a.period_count <= 10_000,
+        "--period-count = {} is not allowed: at most 10000 periods",
+        a.period_count
+    );
     anyhow::ensure!(a.period_count == 1 || tmax > tmin, "--period-count > 1 needs period-min-s < period-max-s");
     for d in &a.dampings {
         anyhow::ensure!((0.0..1.0).contains(d), "--dampings: {d} is not allowed: 0 ≤ damping < 1");

@@ -3,7 +3,7 @@
 use stickslip_solver::geometry::{Dims, Lattice, NodeId};
 
 use super::{BlockSection, MaterialSection};
-use crate::check::Checker;
+use crate::check::{Checker, approx};
 
 /// Largest node count the solver accepts (node indices are 32-bit).
 pub const MAX_NODES: u64 = 1 << 31;
@@ -21,12 +21,65 @@ pub(super) fn counts(ck: &mut Checker, b: &BlockSection) -> [Option<usize>; 3] {
     [nx, ny, nz]
 }
 
-/// Checks `[material]`.
-pub(super) fn check_material(ck: &mut Checker, m: &MaterialSection) {
-    ck.positive("material.young_pa", m.young_pa);
-    ck.positive("material.density_kg_m3", m.density_kg_m3);
+/// Whether `v` is a positive, finite number the arithmetic keeps its digits for (not
+/// subnormal: 5e-324 is a number, but a mass or stiffness made of it is 0 after one product).
+fn normal(v: f64) -> bool {
+    v.is_normal() && v > 0.0
+}
+
+/// Checks `[material]`, and that with the module side `lc_m` it gives nodes a mass, bars a
+/// stiffness and the lattice a frequency the arithmetic can hold.
+pub(super) fn check_material(ck: &mut Checker, m: &MaterialSection, lc_m: f64) {
+    let young = ck.positive("material.young_pa", m.young_pa);
+    let density = ck.positive("material.density_kg_m3", m.density_kg_m3);
     ck.range("material.poisson", m.poisson, 0.0, true, 0.5, true);
     ck.range("material.young_cv", m.young_cv, 0.0, false, 1.0, false);
+    if !(lc_m > 0.0 && lc_m.is_finite()) {
+        return;
+    }
+    // A node's mass is a share of ρ·Lc³; a bar's stiffness a share of E·Lc; ω² ∝ E/(ρ·Lc²).
+    // The shares are within 1e-3 … 1, and a lattice's numbers must stay normal through them.
+    let room = 1e-6;
+    let (mass, stiffness) = (m.density_kg_m3 * lc_m.powi(3), m.young_pa * lc_m);
+    if density && !(normal(mass * room) && (mass / room).is_finite()) {
+        ck.push(
+            "material.density_kg_m3",
+            m.density_kg_m3,
+            format!(
+                "a density that gives the nodes a mass the arithmetic can hold: ρ·Lc³ = {} kg with Lc = {} m \
+                 (between 1e-302 and 1e302 kg)",
+                approx(mass),
+                approx(lc_m)
+            ),
+        );
+        return;
+    }
+    if young && !(normal(stiffness * room) && (stiffness / room).is_finite()) {
+        ck.push(
+            "material.young_pa",
+            m.young_pa,
+            format!(
+                "a modulus that gives the bars a stiffness the arithmetic can hold: E·Lc = {} N/m with Lc = {} m \
+                 (between 1e-302 and 1e302 N/m)",
+                approx(stiffness),
+                approx(lc_m)
+            ),
+        );
+        return;
+    }
+    let omega2 = stiffness / mass;
+    if young && density && !(normal(omega2 * room) && (omega2 / room).is_finite()) {
+        ck.push(
+            "material.young_pa",
+            m.young_pa,
+            format!(
+                "a modulus and density whose lattice has a frequency the arithmetic can hold: E/(ρ·Lc²) = {} 1/s² \
+                 (between 1e-302 and 1e302 1/s²; material.density_kg_m3 = {})",
+                approx(omega2),
+                approx(m.density_kg_m3)
+            ),
+        );
+    }
 }
 
 /// The lattice of `[block]` from its checked `counts`; `None` when a count or `lc_m` was refused

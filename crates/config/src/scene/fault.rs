@@ -9,8 +9,9 @@ use stickslip_solver::geometry::{Face, Lattice, NodeKind};
 use stickslip_solver::scene::{Component, ControlChannel, Kinematic, Station};
 
 use super::SceneSections;
-use crate::check::Checker;
+use crate::check::{Checker, approx, num};
 use crate::friction_map::{Shape, patch_nodes};
+use crate::input::InputFile;
 
 /// `[fault]`: the base face is one side of a planar fault between identical media, with these
 /// initial tractions (docs/model.md §15). Its normal stress is prescribed (no base to lift from),
@@ -90,52 +91,73 @@ pub struct TractionPatchSection {
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Default)]
 #[serde(deny_unknown_fields)]
 pub struct TractionGridSection {
-    /// The CSV file, relative to the pipeline file's folder.
+    /// The CSV file, relative to the pipeline file's folder and inside it (see [`crate::input`]).
+    /// Not part of the results hash (the rows are): a grid moved or copied gives the same results.
     pub file: String,
     /// The rows as read (filled in when the pipeline is loaded; part of the results hash).
     #[serde(skip_deserializing, default, skip_serializing_if = "Vec::is_empty")]
     pub rows: Vec<[f64; 5]>,
+    /// Whether the file was refused (its refusal is the grid's only one).
+    #[serde(skip)]
+    pub refused: bool,
 }
 
 /// The traction grid's CSV header.
 pub const TRACTION_GRID_HEADER: &str = "x_m,y_m,shear_stress_pa,shear_stress_y_pa,normal_stress_pa";
 
+/// The traction grid's columns, in order, for messages.
+const TRACTION_GRID_COLUMNS: [&str; 5] = ["x_m", "y_m", "shear_stress_pa", "shear_stress_y_pa", "normal_stress_pa"];
+
 impl TractionGridSection {
-    /// Reads the CSV file relative to `base` into `rows` (refusals into `ck`).
-    pub fn read(&mut self, base: &Path, ck: &mut Checker) {
+    /// Reads the CSV file relative to `base` into `rows` (refusals into `ck`, which never echo the
+    /// file's content) and returns the file as read.
+    pub fn read(&mut self, base: &Path, ck: &mut Checker) -> Option<InputFile> {
         let field = "fault.grid.file";
-        let path = base.join(&self.file);
-        let text = match std::fs::read_to_string(&path) {
-            Ok(t) => t,
-            Err(e) => {
-                ck.push(field, format!("{:?}", self.file), format!("a readable CSV file ({}: {e})", path.display()));
-                return;
-            }
+        let what = format!("a CSV file with the header {TRACTION_GRID_HEADER:?} and one row per base node");
+        let Some(input) = crate::input::read(ck, field, &self.file, base, &what) else {
+            self.refused = true;
+            return None;
         };
-        let mut lines = text.lines().filter(|l| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
-        let header: String = lines.next().unwrap_or("").chars().filter(|c| !c.is_whitespace()).collect();
+        let mut lines =
+            input.text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
+        let header: String = lines.next().map_or("", |(_, l)| l).chars().filter(|c| !c.is_whitespace()).collect();
         if header != TRACTION_GRID_HEADER {
-            ck.push(field, "the file's header", format!("the header {TRACTION_GRID_HEADER:?}"));
-            return;
+            ck.push(
+                field,
+                format!("{:?}", self.file),
+                format!("{what}: its first line (after # comments) is not that header"),
+            );
+            self.refused = true;
+            return None;
         }
         let mut rows = Vec::new();
-        for (i, line) in lines.enumerate() {
-            let cells: Vec<Option<f64>> = line.split(',').map(|c| c.trim().parse::<f64>().ok()).collect();
-            match cells.as_slice() {
-                [Some(a), Some(b), Some(c), Some(d), Some(e)] if [a, b, c, d, e].iter().all(|v| v.is_finite()) => {
-                    rows.push([*a, *b, *c, *d, *e])
-                }
-                _ => {
-                    ck.push(
-                        field,
-                        format!("row {}", i + 1),
-                        "five finite numbers: x_m, y_m, shear_stress_pa, shear_stress_y_pa, normal_stress_pa",
-                    );
-                    return;
-                }
+        for (i, (k, line)) in lines.enumerate() {
+            let cells: Vec<&str> = line.split(',').map(str::trim).collect();
+            let bad = if cells.len() != 5 {
+                Some(format!("{} cells", cells.len()))
+            } else {
+                cells
+                    .iter()
+                    .position(|c| !c.parse::<f64>().is_ok_and(f64::is_finite))
+                    .map(|j| format!("{} is not a finite number", TRACTION_GRID_COLUMNS[j]))
+            };
+            if let Some(bad) = bad {
+                ck.push(
+                    field,
+                    format!("{:?} row {} (line {})", self.file, i + 1, k + 1),
+                    format!(
+                        "five finite numbers per row: x_m, y_m, shear_stress_pa, shear_stress_y_pa, \
+                         normal_stress_pa ({bad})"
+                    ),
+                );
+                self.refused = true;
+                return None;
             }
+            let v: Vec<f64> = cells.iter().map(|c| c.parse::<f64>().unwrap_or(f64::NAN)).collect();
+            rows.push([v[0], v[1], v[2], v[3], v[4]]);
         }
         self.rows = rows;
+        Some(input)
     }
 }
 
@@ -215,7 +237,7 @@ pub(super) fn fault(ck: &mut Checker, file: SceneSections<'_>, lattice: &Lattice
     let n = lattice.contact_nodes().len();
     let mut shear = vec![[f.shear_stress_pa, f.shear_stress_y_pa]; n];
     let mut normal = vec![f.normal_stress_pa; n];
-    if let Some(g) = &f.grid {
+    if let Some(g) = f.grid.as_ref().filter(|g| !g.refused) {
         grid(ck, g, lattice, &mut shear, &mut normal);
     }
     let mut order: Vec<usize> = (0..f.patches.len()).collect();
@@ -290,7 +312,7 @@ pub(super) fn fault(ck: &mut Checker, file: SceneSections<'_>, lattice: &Lattice
         ck.push(
             "fault.origin_m",
             format!("{:?} m", f.origin_m),
-            format!("a point of the fault, 0 ≤ x ≤ {} m and 0 ≤ y ≤ {} m", e[0], e[1]),
+            format!("a point of the fault, 0 ≤ x ≤ {} m and 0 ≤ y ≤ {} m", num(e[0]), num(e[1])),
         );
     }
     Some(Fault { shear_pa: shear, normal_pa: normal, stochastic, origin_m: f.origin_m })
@@ -320,21 +342,25 @@ fn grid(ck: &mut Checker, g: &TractionGridSection, lattice: &Lattice, shear: &mu
             let e = lattice.extent();
             ck.push(
                 field,
-                format!("row {}: x = {} m, y = {} m", i + 1, row[0], row[1]),
+                format!("row {}: x = {} m, y = {} m", i + 1, num(row[0]), num(row[1])),
                 format!(
                     "a base node, 0 ≤ x ≤ {} m and 0 ≤ y ≤ {} m, on the lattice (every {} m)",
-                    e[0],
-                    e[1],
-                    lattice.lc()
+                    approx(e[0]),
+                    approx(e[1]),
+                    approx(lattice.lc())
                 ),
             );
             continue;
         };
         if std::mem::replace(&mut seen[c], true) {
-            ck.push(field, format!("row {}: x = {} m, y = {} m", i + 1, row[0], row[1]), "each base node once");
+            ck.push(
+                field,
+                format!("row {}: x = {} m, y = {} m", i + 1, num(row[0]), num(row[1])),
+                "each base node once",
+            );
         }
         if !(row[4] > 0.0) {
-            ck.push(field, format!("row {}: normal_stress_pa = {}", i + 1, row[4]), "a positive normal stress");
+            ck.push(field, format!("row {}: normal_stress_pa = {}", i + 1, num(row[4])), "a positive normal stress");
         }
         shear[c] = [row[2], row[3]];
         normal[c] = row[4];
@@ -407,7 +433,12 @@ pub(super) fn stations(
             ck.push(
                 field,
                 format!("{p:?} m"),
-                format!("a point of the block, 0 ≤ x ≤ {} m, 0 ≤ y ≤ {} m, 0 ≤ z ≤ {} m", e[0], e[1], e[2]),
+                format!(
+                    "a point of the block, 0 ≤ x ≤ {} m, 0 ≤ y ≤ {} m, 0 ≤ z ≤ {} m",
+                    approx(e[0]),
+                    approx(e[1]),
+                    approx(e[2])
+                ),
             );
             continue;
         }

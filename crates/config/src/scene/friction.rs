@@ -5,7 +5,7 @@ use stickslip_solver::laws::{Coulomb, FrictionLaw, SlipWeakening, StaticDynamic}
 use stickslip_solver::scene::Friction;
 
 use super::FrictionSection;
-use crate::check::Checker;
+use crate::check::{Checker, num};
 
 /// The background friction law of `[friction]`, its `mu_cv` checked too.
 pub(super) fn law(ck: &mut Checker, f: &FrictionSection) -> FrictionLaw {
@@ -44,7 +44,10 @@ fn friction_law(ck: &mut Checker, f: &FrictionSection) -> FrictionLaw {
                 ck.push(
                     "friction.mu_dynamic",
                     mu_dynamic,
-                    format!("below mu_static ({}) when slip_weakening_m > 0 (otherwise nothing weakens)", f.mu_static),
+                    format!(
+                        "below mu_static ({}) when slip_weakening_m > 0 (otherwise nothing weakens)",
+                        num(f.mu_static)
+                    ),
                 );
             }
             FrictionLaw::SlipWeakening(SlipWeakening { mu_static: f.mu_static, mu_dynamic, dc_m: f.slip_weakening_m })

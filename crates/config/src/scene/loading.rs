@@ -30,10 +30,11 @@ pub(super) fn check_shear(ck: &mut Checker, sh: &ShearSection, m: &MaterialSecti
     ck.non_negative("shear.rise_time_s", sh.rise_time_s);
     ck.positive("shear.duration_s", sh.duration_s);
     // A driver at rest loads nothing: the shear stage would only ring down (refused rather than
-    // run to a catalogue that is empty for no visible reason).
-    if ck.positive("shear.velocity_m_s", sh.velocity_m_s) && m.young_pa > 0.0 && m.density_kg_m3 > 0.0 {
-        // A driver faster than a fraction of the wave speed is outside the model's reach.
-        let cp_bound = 0.01 * (m.young_pa / m.density_kg_m3).sqrt();
+    // run to a catalogue that is empty for no visible reason). A driver faster than a fraction of
+    // the wave speed is outside the model's reach (the bound is left to the material's own
+    // refusal when the material gives no wave speed).
+    let cp_bound = 0.01 * (m.young_pa / m.density_kg_m3).sqrt();
+    if ck.positive("shear.velocity_m_s", sh.velocity_m_s) && cp_bound.is_normal() && cp_bound > 0.0 {
         ck.range("shear.velocity_m_s", sh.velocity_m_s, 0.0, true, cp_bound, false);
     }
 }

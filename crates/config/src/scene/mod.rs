@@ -87,12 +87,13 @@ fn is_absent<T>(x: &&Option<T>) -> bool {
 pub(crate) fn build(file: SceneSections<'_>, ck: &mut Checker) -> Option<Scene> {
     // The checks that need no lattice, section by section.
     let counts = block::counts(ck, file.block);
-    block::check_material(ck, file.material);
+    block::check_material(ck, file.material, file.block.lc_m);
     let law = friction::law(ck, file.friction);
     let time_step = time::time_step(ck, file.time);
+    time::check_step_count(ck, file.time, file.shear, file.self_weight);
     let self_weight = loading::self_weight(ck, file.self_weight);
     loading::check_shear(ck, file.shear, file.material);
-    record::check_interval(ck, file.record);
+    record::check_interval(ck, file.record, file.shear.duration_s);
     let skip_ahead = time::skip_ahead(ck, file.skip_ahead, file.record);
     let rupture = file.rupture.as_ref().map(|r| rupture::rupture(ck, r, file.material, file.block.lc_m));
     time::refuse_skip_ahead_with(ck, file.skip_ahead, rupture.is_some(), time::WITH_RUPTURE);

@@ -6,12 +6,30 @@ use stickslip_solver::scene::{Component, ControlChannel, InterfaceQuantity, Kine
 
 use super::RecordSection;
 use super::block::resolve_nodes;
-use crate::check::Checker;
+use crate::check::{Checker, approx};
 
-/// Checks `record.interval_s`.
-pub(super) fn check_interval(ck: &mut Checker, r: &RecordSection) {
-    if let Some(dt) = r.interval_s {
-        ck.positive("record.interval_s", dt);
+/// The fewest samples the shear stage may give at `record.interval_s` (and the fault table at
+/// `record.fault_interval_s`): fewer make empty records and flat figures, not results.
+pub const MIN_SAMPLES: f64 = 10.0;
+
+/// Checks `record.interval_s` and `record.fault_interval_s` against the shear stage of
+/// `duration_s`: at least [`MIN_SAMPLES`] samples over it.
+pub(super) fn check_interval(ck: &mut Checker, r: &RecordSection, duration_s: f64) {
+    let longest = duration_s / MIN_SAMPLES;
+    for (field, iv) in [("record.interval_s", r.interval_s), ("record.fault_interval_s", r.fault_interval_s)] {
+        let Some(iv) = iv else { continue };
+        if ck.positive(field, iv) && duration_s > 0.0 && duration_s.is_finite() && iv > longest {
+            ck.push(
+                field,
+                iv,
+                format!(
+                    "0 < {} ≤ shear.duration_s/{MIN_SAMPLES} = {} s (at least {MIN_SAMPLES} samples over the shear \
+                     stage; fewer give empty records and flat figures)",
+                    field.rsplit('.').next().unwrap_or(field),
+                    approx(longest)
+                ),
+            );
+        }
     }
 }
 
@@ -39,7 +57,7 @@ pub(super) fn plan(
         slip_onsets: r.slip_onsets,
         fault: r.fault,
         fault_stations: fault_stations(ck, &r.fault_stations_m, lattice),
-        fault_interval_s: r.fault_interval_s.filter(|&v| ck.positive("record.fault_interval_s", v)),
+        fault_interval_s: r.fault_interval_s.filter(|&v| v > 0.0 && v.is_finite()),
         control,
         trace: TracePlan::default(),
     }
@@ -102,7 +120,7 @@ fn fault_stations(ck: &mut Checker, at_m: &[[f64; 2]], lattice: &Lattice) -> Vec
             ck.push(
                 field,
                 format!("{p:?} m"),
-                format!("a point of the base, 0 ≤ x ≤ {} m and 0 ≤ y ≤ {} m", e[0], e[1]),
+                format!("a point of the base, 0 ≤ x ≤ {} m and 0 ≤ y ≤ {} m", approx(e[0]), approx(e[1])),
             );
             continue;
         }

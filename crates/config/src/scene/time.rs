@@ -2,8 +2,10 @@
 
 use stickslip_solver::scene::{SkipAhead, TimeStep};
 
-use super::{RecordSection, SAFE_DT_FRACTION, SkipAheadSection, TimeSection};
-use crate::check::Checker;
+use stickslip_solver::error::MAX_STEPS;
+
+use super::{RecordSection, SAFE_DT_FRACTION, SelfWeightSection, ShearSection, SkipAheadSection, TimeSection};
+use crate::check::{Checker, approx};
 
 /// The time step of `[time]`.
 pub(super) fn time_step(ck: &mut Checker, t: &TimeSection) -> TimeStep {
@@ -31,6 +33,31 @@ pub(super) fn time_step(ck: &mut Checker, t: &TimeSection) -> TimeStep {
                 );
             }
             TimeStep::Fraction(fr)
+        }
+    }
+}
+
+/// Refuses a fixed `time.dt_s` that would make a stage take more steps than the run can count
+/// (more than 2^53; the solver refuses the same of a step given as a fraction, once the critical
+/// step of each seed is known).
+pub(super) fn check_step_count(ck: &mut Checker, t: &TimeSection, sh: &ShearSection, sw: &SelfWeightSection) {
+    let (None, Some(dt)) = (t.dt_fraction, t.dt_s) else { return };
+    if !(dt > 0.0 && dt.is_finite()) {
+        return;
+    }
+    for (field, duration) in [("shear.duration_s", sh.duration_s), ("self_weight.max_duration_s", sw.max_duration_s)] {
+        if duration > 0.0 && duration / dt > MAX_STEPS {
+            ck.push(
+                "time.dt_s",
+                dt,
+                format!(
+                    "a step that covers {field} = {} s in at most 2^53 steps (the most a run can count): \
+                     dt_s ≥ {} s",
+                    approx(duration),
+                    approx(duration / MAX_STEPS)
+                ),
+            );
+            return;
         }
     }
 }

@@ -5,7 +5,7 @@ mod lanes;
 
 use std::ops::ControlFlow;
 
-use crate::error::SolverError;
+use crate::error::{MAX_STEPS, SolverError};
 use crate::model::Model;
 use crate::quasistatic::SkipStats;
 use crate::recording::Recording;
@@ -161,5 +161,45 @@ pub(crate) fn prepare(model: &Model, seed: u64, options: RunOptions) -> Result<(
             dt
         }
     };
+    check_step_count(model, dt_s)?;
     Ok((LaneSetup { dt_s, stiffness, friction, strength, fault }, critical))
+}
+
+/// Refuses a time step `dt_s` with which a stage of `model`'s scene would take more steps than
+/// the run can count ([`SolverError::TooManySteps`]).
+pub fn check_step_count(model: &Model, dt_s: f64) -> Result<(), SolverError> {
+    let scene = model.scene();
+    let bars = model.bar_count() as f64;
+    let stages = [
+        ("self-weight stage (its time limit)", scene.self_weight.max_duration_s),
+        ("shear stage", scene.shear.duration_s),
+    ];
+    let mut total = 0.0;
+    for (stage, duration_s) in stages {
+        let steps = (duration_s / dt_s).ceil();
+        total += steps;
+        if !(steps <= MAX_STEPS && total * bars < u64::MAX as f64) {
+            return Err(SolverError::TooManySteps { stage, duration_s, dt_s, steps, bar_updates: steps * bars });
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::Scene;
+
+    #[test]
+    fn a_stage_longer_than_the_run_can_count_is_refused_before_it_starts() {
+        let model = Model::new(Scene::paper());
+        assert!(check_step_count(&model, 1e-5).is_ok(), "the paper scene's 32 000 steps");
+        let e = check_step_count(&model, 1e-25).unwrap_err();
+        assert!(matches!(e, SolverError::TooManySteps { stage: "self-weight stage (its time limit)", .. }), "{e}");
+        let mut scene = Scene::paper();
+        scene.shear.duration_s = 3e11;
+        let e = check_step_count(&Model::new(scene), 1e-5).unwrap_err();
+        assert!(matches!(e, SolverError::TooManySteps { stage: "shear stage", .. }), "{e}");
+        assert!(e.to_string().contains("more than the run can count"), "{e}");
+    }
 }
