@@ -104,10 +104,10 @@ fn describe_block(lattice: &Lattice) -> String {
     let e = lattice.extent();
     format!(
         "a node of the block (0..{} × 0..{} × 0..{} m; corner nodes every Lc = {} m, centre nodes at module centres)",
-        e[0],
-        e[1],
-        e[2],
-        lattice.lc()
+        approx(e[0]),
+        approx(e[1]),
+        approx(e[2]),
+        approx(lattice.lc())
     )
 }
 

@@ -121,7 +121,8 @@ pub fn emission_frame(seed: u64, clusters: &[Cluster]) -> Result<DataFrame, Stor
         .f64(col::CENTROID_Y_M, col(&|c| c.centroid[1]))
         .f64(col::CENTROID_Z_M, col(&|c| c.centroid[2]))
         .f64(col::ENERGY_J, col(&|c| c.energy_j))
-        .f64(col::MAGNITUDE, col(&|c| c.magnitude))
+        // A cluster of breaks that released no energy has no magnitude (log10 0): null, not −∞.
+        .opt_f64(col::MAGNITUDE, clusters.iter().map(|c| c.magnitude.is_finite().then_some(c.magnitude)).collect())
         .finish(ACOUSTIC_EMISSION.name)
 }
 
