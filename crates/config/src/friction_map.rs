@@ -77,47 +77,11 @@ impl GridSection {
     /// Reads the CSV file relative to `base` into `rows` (refusals into `ck`, which never echo the
     /// file's content) and returns the file as read.
     pub fn read(&mut self, base: &Path, ck: &mut Checker) -> Option<InputFile> {
-        let field = "friction.grid.file";
-        let what = format!("a CSV file with the header {GRID_HEADER:?} and one row per base node");
-        let Some(input) = crate::input::read(ck, field, &self.file, base, &what) else {
-            self.refused = true;
-            return None;
-        };
-        let mut lines =
-            input.text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
-        let header: String = lines.next().map_or("", |(_, l)| l).chars().filter(|c| !c.is_whitespace()).collect();
-        if header != GRID_HEADER {
-            ck.push(
-                field,
-                format!("{:?}", self.file),
-                format!("{what}: its first line (after # comments) is not that header"),
-            );
-            self.refused = true;
-            return None;
-        }
-        let mut rows = Vec::new();
-        for (i, (k, line)) in lines.enumerate() {
-            let cells: Vec<&str> = line.split(',').map(str::trim).collect();
-            let bad = if cells.len() != 5 {
-                Some(format!("{} cells", cells.len()))
-            } else {
-                cells
-                    .iter()
-                    .position(|c| !c.parse::<f64>().is_ok_and(f64::is_finite))
-                    .map(|j| format!("{} is not a finite number", GRID_COLUMNS[j]))
-            };
-            if let Some(bad) = bad {
-                ck.push(
-                    field,
-                    format!("{:?} row {} (line {})", self.file, i + 1, k + 1),
-                    format!("five finite numbers per row, x_m, y_m, μs, μd, Dc ({bad})"),
-                );
-                self.refused = true;
-                return None;
-            }
-            let v: Vec<f64> = cells.iter().map(|c| c.parse::<f64>().unwrap_or(f64::NAN)).collect();
-            rows.push([v[0], v[1], v[2], v[3], v[4]]);
-        }
+        let per_row = "five finite numbers per row, x_m, y_m, μs, μd, Dc";
+        let read =
+            crate::input::read_grid(ck, "friction.grid.file", &self.file, base, GRID_HEADER, &GRID_COLUMNS, per_row);
+        self.refused = read.is_none();
+        let (input, rows) = read?;
         self.rows = rows;
         Some(input)
     }

@@ -110,6 +110,49 @@ pub fn copy_path(field: &str, given: &str) -> String {
     format!("inputs/{field}/{name}")
 }
 
+/// A CSV grid of five numbers per base node read from `given` relative to `base` (see [`read`]):
+/// its first line after blank lines and `#` comments must be `header` (spaces aside), each row
+/// five finite numbers (`columns` name them in a refusal, `per_row` says what a row holds).
+/// Refusals go into `ck` under `field` and never echo the file's content; `None` when refused.
+pub fn read_grid(
+    ck: &mut Checker,
+    field: &str,
+    given: &str,
+    base: &Path,
+    header: &str,
+    columns: &[&str; 5],
+    per_row: &str,
+) -> Option<(InputFile, Vec<[f64; 5]>)> {
+    let what = format!("a CSV file with the header {header:?} and one row per base node");
+    let input = read(ck, field, given, base, &what)?;
+    let mut lines =
+        input.text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
+    let first: String = lines.next().map_or("", |(_, l)| l).chars().filter(|c| !c.is_whitespace()).collect();
+    if first != header {
+        ck.push(field, format!("{given:?}"), format!("{what}: its first line (after # comments) is not that header"));
+        return None;
+    }
+    let mut rows = Vec::new();
+    for (i, (k, line)) in lines.enumerate() {
+        let cells: Vec<&str> = line.split(',').map(str::trim).collect();
+        let bad = if cells.len() != 5 {
+            Some(format!("{} cells", cells.len()))
+        } else {
+            cells
+                .iter()
+                .position(|c| !c.parse::<f64>().is_ok_and(f64::is_finite))
+                .map(|j| format!("{} is not a finite number", columns[j]))
+        };
+        if let Some(bad) = bad {
+            ck.push(field, format!("{given:?} row {} (line {})", i + 1, k + 1), format!("{per_row} ({bad})"));
+            return None;
+        }
+        let v: Vec<f64> = cells.iter().map(|c| c.parse::<f64>().unwrap_or(f64::NAN)).collect();
+        rows.push([v[0], v[1], v[2], v[3], v[4]]);
+    }
+    Some((input, rows))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
