@@ -45,6 +45,7 @@ fn column(nz: usize, tau0: f64) -> Scene {
         shear_pa: vec![[tau0, 0.0]; contacts],
         normal_pa: vec![SIGMA_N; contacts],
         stochastic: None,
+        nucleation: None,
         origin_m: [0.0; 2],
     });
     let mut fixed = std::collections::BTreeMap::<NodeId, [bool; 3]>::new();
