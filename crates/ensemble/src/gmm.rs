@@ -4,7 +4,8 @@
 //! intensity measure, the mean bias with its 90% interval, the between-record spread, the fraction
 //! of records within ±1σ, the Part-B test and the attenuation slope against R_rup.
 //!
-//! The inputs are the gathered `source`, `stations` and `station_spectra` tables. Each seed's
+//! The inputs are the gathered `source`, `stations` and `station_spectra` tables; only stations
+//! on the free surface (depth y = 0) are compared, as the models are for surface motions. Each seed's
 //! rupture goes to the models as a vertical strike-slip fault (dip 90°, rake 0°) with the seed's
 //! Mw (from its slip), Z_tor and width from its ruptured extent down dip; each station with its
 //! R_rup, R_JB, R_x and R_y0; V_S30 the scene's S-wave speed at the surface unless given. Where
@@ -99,6 +100,7 @@ fn records(folder: &Folder, vs30: Option<f64>) -> Result<Option<Vec<Record>>, St
     }
     let c = Columns::of(&st, STATIONS.name);
     let (seed, name) = (c.u64s(col::SEED)?, c.strs(col::STATION)?);
+    let depth = c.f64s(col::Y_M)?;
     let (r_rup, r_jb, r_x, r_y0) =
         (c.f64s(col::R_RUP_M)?, c.f64s(col::R_JB_M)?, c.f64s(col::R_X_M)?, c.f64s(col::R_Y0_M)?);
     let az = c.f64s(col::AZIMUTH_DEG)?;
@@ -114,6 +116,10 @@ fn records(folder: &Folder, vs30: Option<f64>) -> Result<Option<Vec<Record>>, St
     }
     let mut out = Vec::new();
     for i in 0..seed.len() {
+        // The models predict motions at the Earth's surface: buried stations are left out.
+        if depth[i].abs() > 1e-6 {
+            continue;
+        }
         let Some(&(rupture, vs30)) = ruptures.get(&seed[i]) else { continue };
         let mut motions = Vec::new();
         motions.extend(pga[i].filter(|v| *v > 0.0).map(|v| (Imt::Pga, v)));
