@@ -123,8 +123,11 @@ pub fn analyse(
         settings.events.rupture_rate_m_s,
     );
     let lambda = events::lambda(model, &settings.similarity);
-    let source = source::source(&run.recording, model);
+    let mut source = source::source(&run.recording, model);
     let stations = source.as_ref().map_or_else(Vec::new, |s| source::stations(&run.recording, model, s));
+    if let Some(src) = source.as_mut() {
+        src.fitted_corner_hz = motions::fitted_corner(&stations).map(|b| b.corner_hz);
+    }
     events_s += thread_cpu_s() - started;
     Ok(SeedAnalysis {
         run,

@@ -17,6 +17,8 @@
 //!   velocity; PSA by [`RotDPlan`].
 
 use stickslip_seismo::accelerogram::processing::{ProcessingOptions, RecordBand, process};
+use stickslip_seismo::fit::{BruneFit, fit_brune};
+use stickslip_seismo::spectra::fourier::{Window, fourier_amplitude};
 use stickslip_seismo::spectra::response::Reading;
 use stickslip_seismo::spectra::rotd::{ANGLES, RotDPlan, RotDScratch, RotDSpectrum};
 use stickslip_solver::Recording;
@@ -55,6 +57,9 @@ pub struct Motion {
     pub rotd50_m_s2: Vec<f64>,
     /// RotD100 PSA at each period (m/s²).
     pub rotd100_m_s2: Vec<f64>,
+    /// Fourier amplitude of the horizontal displacement, `√(|X|² + |Z|²)` (m·s), at the
+    /// frequencies of the usable band: `(f, amplitude)`.
+    pub displacement_spectrum: Vec<(f64, f64)>,
 }
 
 /// The horizontal acceleration pair (x, z) of the station at `node` over the shear stage, and
@@ -115,7 +120,18 @@ pub fn motion(rec: &Recording, node: NodeId, resolved_hz: f64) -> Result<Motion,
             rotd100.push(w2 * out.rotd100[k]);
         }
     }
+    let mut planner = rustfft::FftPlanner::new();
+    let fx = fourier_amplitude(&px.disp, dt, Window::Rectangular, &mut planner);
+    let fz = fourier_amplitude(&pz.disp, dt, Window::Rectangular, &mut planner);
+    let displacement_spectrum = fx
+        .frequency_hz
+        .iter()
+        .zip(fx.amplitude.iter().zip(&fz.amplitude))
+        .filter(|(f, _)| **f >= band.usable_low_hz && **f <= band.usable_high_hz)
+        .map(|(f, (a, b))| (*f, a.hypot(*b)))
+        .collect();
     Ok(Motion {
+        displacement_spectrum,
         band_hz: [band.f_low_hz, band.f_high_hz],
         usable_s: usable,
         pga_rotd50_m_s2: rotd50_peak(&px.accel, &pz.accel),
@@ -124,6 +140,35 @@ pub fn motion(rec: &Recording, node: NodeId, resolved_hz: f64) -> Result<Motion,
         rotd50_m_s2: rotd50,
         rotd100_m_s2: rotd100,
     })
+}
+
+/// The corner frequency of the rupture seen by the surface stations (docs/model.md §16.2): each
+/// station's horizontal displacement spectrum times its hypocentral distance (undoing the 1/R
+/// spreading of body waves), stacked as a geometric mean over the stations on a common frequency
+/// grid, fitted with an ω-square spectrum in the band all of them resolve ([`fit_brune`]).
+/// `None` with fewer than 3 such stations or no fit.
+pub fn fitted_corner(stations: &[crate::source::StationRow]) -> Option<BruneFit> {
+    let used: Vec<(&Motion, f64)> = stations
+        .iter()
+        .filter(|s| s.position_m[1] == 0.0)
+        .filter_map(|s| s.motion.as_ref().ok().map(|m| (m, s.hypocentral_m)))
+        .filter(|(m, r)| !m.displacement_spectrum.is_empty() && *r > 0.0)
+        .collect();
+    if used.len() < 3 {
+        return None;
+    }
+    let grid = &used[0].0.displacement_spectrum;
+    if used.iter().any(|(m, _)| m.displacement_spectrum.len() != grid.len()) {
+        return None;
+    }
+    let stacked: Vec<f64> = (0..grid.len())
+        .map(|k| {
+            let ln = used.iter().map(|(m, r)| (m.displacement_spectrum[k].1 * r).max(f64::MIN_POSITIVE).ln());
+            (ln.sum::<f64>() / used.len() as f64).exp()
+        })
+        .collect();
+    let f: Vec<f64> = grid.iter().map(|p| p.0).collect();
+    fit_brune(&f, &stacked, f[0], f[f.len() - 1])
 }
 
 #[cfg(test)]

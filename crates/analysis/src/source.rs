@@ -55,6 +55,9 @@ pub struct Source {
     pub s_speed_m_s: f64,
     /// Brune's corner frequency `0.4906·β·(Δσ/M0)^(1/3)` (Hz).
     pub brune_corner_hz: f64,
+    /// The corner fitted to the surface stations' displacement spectra
+    /// ([`crate::motions::fitted_corner`]), when there are enough of them.
+    pub fitted_corner_hz: Option<f64>,
 }
 
 /// Brune's (1970) corner frequency `0.4906·β·(Δσ/M0)^(1/3)` (Hz; β in m/s, Δσ in Pa, M0 in N·m).
@@ -123,6 +126,7 @@ pub fn source(rec: &Recording, model: &Model) -> Option<Source> {
         shear_modulus_pa: c44,
         s_speed_m_s: s_speed,
         brune_corner_hz: brune_corner_hz(s_speed, drop, m0),
+        fitted_corner_hz: None,
     })
 }
 

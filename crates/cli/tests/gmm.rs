@@ -18,7 +18,15 @@ fn read(path: &Path) -> DataFrame {
 }
 
 fn f64s(df: &DataFrame, name: &str) -> Vec<f64> {
-    df.column(name).unwrap().cast(&DataType::Float64).unwrap().f64().unwrap().iter().map(|v| v.unwrap_or(f64::NAN)).collect()
+    df.column(name)
+        .unwrap()
+        .cast(&DataType::Float64)
+        .unwrap()
+        .f64()
+        .unwrap()
+        .iter()
+        .map(|v| v.unwrap_or(f64::NAN))
+        .collect()
 }
 
 fn strs(df: &DataFrame, name: &str) -> Vec<String> {
@@ -177,7 +185,14 @@ fn a_scenario_s_stations_are_compared_with_the_models_as_they_predict() {
             _ => Imt::Psa(period[i]),
         };
         let p = Model::Bssa14.predict(&rupture, &site, m).unwrap();
-        assert!((median[i] / p.median() - 1.0).abs() < 1e-9, "{} {}: {} vs {}", station[i], imt[i], median[i], p.median());
+        assert!(
+            (median[i] / p.median() - 1.0).abs() < 1e-9,
+            "{} {}: {} vs {}",
+            station[i],
+            imt[i],
+            median[i],
+            p.median()
+        );
         assert!((resid[i] - (sim[i] / median[i]).ln()).abs() < 1e-9);
         checked += 1;
     }
@@ -207,6 +222,24 @@ fn gmm_refuses_what_it_cannot_compare() {
         assert!(!out.status.success(), "{args:?} was accepted");
         let err = String::from_utf8_lossy(&out.stderr);
         assert!(err.contains(expect), "{args:?}: {err}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_scenario_too_short_for_any_model_period_is_told_before_it_runs() {
+    let dir = std::env::temp_dir().join(format!("stickslip-gmm-short-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    // At 1 km the lattice resolves up to 1.16 Hz: PSA from 0.86 s. 12 s of run: usable to
+    // 12/2.5 = 4.8 s; 0.6 s of run: to 0.24 s, so no model period is in band.
+    for (duration, warned) in [("12.0", false), ("0.6", true)] {
+        let text = SMOKE.replace("duration_s = 12.0", &format!("duration_s = {duration}"));
+        std::fs::write(dir.join("short.toml"), text).unwrap();
+        let out = stickslip(&["check", "short.toml"], &dir);
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let said = String::from_utf8_lossy(&out.stdout).contains("holds none of the ground-motion");
+        assert_eq!(said, warned, "duration {duration}: {}", String::from_utf8_lossy(&out.stdout));
     }
     let _ = std::fs::remove_dir_all(&dir);
 }

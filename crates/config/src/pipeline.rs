@@ -19,7 +19,7 @@ use stickslip_solver::{Scene, TracePlan};
 
 use crate::accelerograms::AccelerogramsSection;
 use crate::check::Checker;
-use crate::check::approx;
+use crate::check::{approx, num};
 use crate::error::{ConfigError, Warning};
 use crate::input::InputFile;
 use crate::precision::{PrecisionTarget, TargetSection};
@@ -390,6 +390,9 @@ impl Pipeline {
                 );
             }
         }
+        if let Some(scene) = scene.as_ref() {
+            warn_gmm_band(scene, &mut ck);
+        }
         let random = random_fields(&file);
         if file.seeds.target.is_some() && random.is_empty() {
             ck.push(
@@ -480,10 +483,44 @@ fn random_fields(file: &PipelineFile) -> Vec<&'static str> {
     if file.fault.as_ref().and_then(|f| f.stochastic.as_ref()).is_some_and(|s| s.std_pa > 0.0) {
         out.push("fault.stochastic.std_pa");
     }
-    if file.fault.as_ref().and_then(|f| f.nucleation.as_ref()).is_some_and(|n| n.x_m[0] < n.x_m[1] || n.y_m[0] < n.y_m[1]) {
+    if file
+        .fault
+        .as_ref()
+        .and_then(|f| f.nucleation.as_ref())
+        .is_some_and(|n| n.x_m[0] < n.x_m[1] || n.y_m[0] < n.y_m[1])
+    {
         out.push("fault.nucleation");
     }
     out
+}
+
+/// Warns when a fault scene's surface stations can give no PSA at any of the ground-motion models'
+/// periods (docs/model.md §16.2): their usable band runs from `1/f_max` (the lattice's, at most
+/// 80% of the record interval's Nyquist) to `1.25·T/2`, `T` the shear stage.
+fn warn_gmm_band(scene: &stickslip_solver::Scene, ck: &mut Checker) {
+    use stickslip_analysis::motions::{DEPARTURE, GMM_PERIODS_S, LOW_CORNER_CYCLES};
+    let lattice = scene.lattice();
+    let surface = scene.stations.iter().any(|s| lattice.position(s.node)[1] == 0.0);
+    if !scene.is_fault() || !surface {
+        return;
+    }
+    let Ok(band) = scene.usable_band(DEPARTURE) else { return };
+    let nyquist = scene.record.interval_s.map_or(f64::INFINITY, |iv| 0.8 * 0.5 / iv);
+    let shortest = 1.0 / band.f_max_hz.min(nyquist);
+    let longest = scene.shear.duration_s / (LOW_CORNER_CYCLES * 1.25);
+    if !GMM_PERIODS_S.iter().any(|&t| t >= shortest && t <= longest) {
+        ck.warn(
+            "shear.duration_s",
+            scene.shear.duration_s,
+            format!(
+                "the surface stations' PSA is usable from {} s to {} s, which holds none of the ground-motion \
+                 models' periods (0.1–10 s): `stickslip gmm` can compare only PGA and PGV (a longer run or a \
+                 finer lattice widens the band)",
+                num(shortest),
+                num(longest)
+            ),
+        );
+    }
 }
 
 /// Refuses a `[set]` period range that no record's usable band can cover, before anything runs:

@@ -62,6 +62,8 @@ pub struct GmmComparison {
     pub seeds: Vec<u64>,
     /// Records (station × seed) compared.
     pub records: usize,
+    /// Records without a PSA in their usable band (PGA and PGV only).
+    pub without_psa: usize,
     /// The range of the seeds' Mw.
     pub mw_range: [f64; 2],
     /// V_S30 given to the models (m/s), the range over seeds.
@@ -109,7 +111,8 @@ fn records(folder: &Folder, vs30: Option<f64>) -> Result<Option<Vec<Record>>, St
     let mut psa: HashMap<(u64, String), Vec<(f64, f64)>> = HashMap::new();
     if let Some(sp) = read_parquet_if_present(&folder.gathered(&STATION_SPECTRA))? {
         let c = Columns::of(&sp, STATION_SPECTRA.name);
-        let (s, n, t, v) = (c.u64s(col::SEED)?, c.strs(col::STATION)?, c.f64s(col::PERIOD_S)?, c.f64s(col::ROTD50_M_S2)?);
+        let (s, n, t, v) =
+            (c.u64s(col::SEED)?, c.strs(col::STATION)?, c.f64s(col::PERIOD_S)?, c.f64s(col::ROTD50_M_S2)?);
         for i in 0..s.len() {
             psa.entry((s[i], n[i].clone())).or_default().push((t[i], v[i]));
         }
@@ -215,8 +218,8 @@ pub fn compare(folder: &Folder, opts: &GmmOptions) -> Result<Option<GmmCompariso
                     simulated: v,
                     median: p.median(),
                     sigma: p.sigma,
-                    tau: p.tau,
-                    phi: p.phi,
+                    tau: Some(p.tau),
+                    phi: Some(p.phi),
                     outside: flag,
                 });
                 med.push(p.median());
@@ -253,9 +256,8 @@ pub fn compare(folder: &Folder, opts: &GmmOptions) -> Result<Option<GmmCompariso
         }
         // The models' average: ln medians and σ averaged per record.
         let n_models = opts.models.len() as f64;
-        let avg_median: Vec<f64> = (0..sim.len())
-            .map(|i| (medians.iter().map(|m| m[i].ln()).sum::<f64>() / n_models).exp())
-            .collect();
+        let avg_median: Vec<f64> =
+            (0..sim.len()).map(|i| (medians.iter().map(|m| m[i].ln()).sum::<f64>() / n_models).exp()).collect();
         let avg_sigma: Vec<f64> = (0..sim.len()).map(|i| sigmas.iter().map(|s| s[i]).sum::<f64>() / n_models).collect();
         for (i, r) in who.iter().enumerate() {
             out.residuals.push(ResidualRow {
@@ -272,8 +274,8 @@ pub fn compare(folder: &Folder, opts: &GmmOptions) -> Result<Option<GmmCompariso
                 simulated: sim[i],
                 median: avg_median[i],
                 sigma: avg_sigma[i],
-                tau: f64::NAN,
-                phi: f64::NAN,
+                tau: None,
+                phi: None,
                 outside: None,
             });
         }
@@ -301,6 +303,7 @@ pub fn compare(folder: &Folder, opts: &GmmOptions) -> Result<Option<GmmCompariso
     out.mw_range = range(&|r| r.rupture.mw);
     out.vs30_range = range(&|r| r.site.vs30_m_s);
     out.records = records.len();
+    out.without_psa = records.iter().filter(|r| !r.motions.iter().any(|(m, _)| matches!(m, Imt::Psa(_)))).count();
     out.seeds = seeds;
     Ok(Some(out))
 }

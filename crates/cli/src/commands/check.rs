@@ -515,7 +515,15 @@ fn print_fault(model: &Model, first_seed: u64) {
             N(n.centre(first_seed)[1])
         );
     }
-    if r.overstressed.0 == 0 && scene.fault.as_ref().is_none_or(|f| f.nucleation.is_none()) {
+    let per_seed = scene.fault.as_ref().is_some_and(|f| f.nucleation.is_some());
+    if r.overstressed.0 == 0 && per_seed {
+        println!(
+            "  before the seed's square: {} nodes can slip (above μd·σn){}",
+            r.can_slip,
+            r.median_s
+                .map_or(String::new(), |s| format!(", median strength excess S = (τs − τ0)/(τ0 − τd) = {:.2}", N(s)))
+        );
+    } else if r.overstressed.0 == 0 {
         println!(
             "  ⚠ no node starts above its static strength μs·σn: nothing nucleates unless a random field or a patch \
              overstresses some ([[fault.patches]] with shear_stress_pa above μs·normal_stress_pa)"

@@ -50,8 +50,9 @@ pub fn run(a: Args) -> Result<()> {
     let opts = GmmOptions { models, vs30_m_s: a.vs30 };
     let Some(c) = compare(&folder, &opts).with_context(|| format!("{}", a.folder.display()))? else {
         bail!(
-            "{} has no gathered source and stations tables: `stickslip gmm` compares a finished fault scenario's \
-             [[stations]] (e.g. pipelines/scenario-m6.toml) with the models",
+            "{} has no ruptured seed with stations on the free surface (the gathered source and stations tables, \
+             stations at depth y = 0): `stickslip gmm` compares a finished fault scenario's surface [[stations]] \
+             (e.g. pipelines/scenario-m6.toml) with the models",
             a.folder.display()
         );
     };
@@ -87,6 +88,12 @@ pub fn print(c: &GmmComparison, opts: &GmmOptions) {
         "{:<12} {:>5} {:>8} {:>18} {:>8} {:>7} {:>7} {:>14} {:>8}",
         "measure", "n", "bias", "90% interval", "σ_rec", "±1σ", "Part B", "slope Δ (±se)", "outside"
     );
+    if c.without_psa > 0 {
+        println!(
+            "{} of the {} records have no model period in their usable band: PGA and PGV only",
+            c.without_psa, c.records
+        );
+    }
     for b in c.bias.iter().filter(|b| b.model == "average") {
         let name = match b.period_s {
             Some(t) => format!("PSA({t} s)"),

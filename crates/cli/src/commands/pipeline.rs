@@ -98,7 +98,19 @@ pub fn finish(pipeline: &Pipeline, out: &Path) -> Result<()> {
         stickslip_store::io::read_parquet_if_present(&folder.gathered(&stickslip_store::schema::EVENTS_TABLE))?;
     let ran = stickslip_store::io::any_part(&folder.part_glob(&stickslip_store::schema::SERIES));
     let regimes = Regimes::of(&folder)?;
-    if events.is_some_and(|e| e.height() > 0) || !ran {
+    if pipeline.scene.is_fault() {
+        // A fault's events are its ruptures: the source from its own slip says what they were, and
+        // the stations against the ground-motion models how they shook.
+        if let Some(text) = source_digest(&folder)? {
+            println!("{text}");
+        } else {
+            println!("{}", no_events(pipeline, &folder, &regimes));
+        }
+        let opts = stickslip_ensemble::gmm::GmmOptions::default();
+        if let Some(c) = stickslip_ensemble::gmm::compare(&folder, &opts)? {
+            crate::commands::gmm::print(&c, &opts);
+        }
+    } else if events.is_some_and(|e| e.height() > 0) || !ran {
         println!("{}", digest(&folder)?);
         if let Some(text) = regimes.sliding_text() {
             println!("{text}");
@@ -123,6 +135,54 @@ pub fn finish(pipeline: &Pipeline, out: &Path) -> Result<()> {
         );
     }
     Ok(())
+}
+
+/// The ruptures of a fault scene, seed by seed, from the `source` table (`None` without one).
+fn source_digest(folder: &Folder) -> Result<Option<String>> {
+    use stickslip_store::schema::{SOURCE, col};
+    let Some(df) = stickslip_store::io::read_parquet_if_present(&folder.gathered(&SOURCE))? else { return Ok(None) };
+    let c = stickslip_store::frame::Columns::of(&df, SOURCE.name);
+    let seeds = c.u64s(col::SEED)?;
+    if seeds.is_empty() {
+        return Ok(None);
+    }
+    let (mw, drop, slip) = (c.f64s(col::MW)?, c.f64s(col::STRESS_DROP_PA)?, c.f64s(col::MEAN_SLIP_M)?);
+    let (rate, dur) = (c.f64s(col::MEDIAN_PEAK_SLIP_RATE_M_S)?, c.f64s(col::RUPTURE_DURATION_S)?);
+    let (hx, hy) = (c.f64s(col::HYPOCENTRE_X_M)?, c.f64s(col::HYPOCENTRE_Y_M)?);
+    let brune = c.f64s(col::BRUNE_CORNER_HZ)?;
+    let fitted =
+        if c.has(col::FITTED_CORNER_HZ) { c.opt_f64s(col::FITTED_CORNER_HZ)? } else { vec![None; seeds.len()] };
+    let mut text = format!(
+        "ruptures (the source table, from each seed's own slip; docs/model.md §15–16)\n{:>6} {:>6} {:>12} {:>10} \
+         {:>18} {:>11} {:>18} {:>20}",
+        "seed",
+        "Mw",
+        "stress drop",
+        "mean slip",
+        "median peak rate",
+        "duration",
+        "corner Brune/fit",
+        "hypocentre (x, y)"
+    );
+    for i in 0..seeds.len() {
+        let corner = match fitted[i] {
+            Some(f) => format!("{:.2}/{:.2} Hz", brune[i], f),
+            None => format!("{:.2}/– Hz", brune[i]),
+        };
+        text.push_str(&format!(
+            "\n{:>6} {:>6.2} {:>8.2} MPa {:>8.2} m {:>14.2} m/s {:>9.2} s {:>18} {:>9.1}, {:.1} km",
+            seeds[i],
+            mw[i],
+            drop[i] / 1e6,
+            slip[i],
+            rate[i],
+            dur[i],
+            corner,
+            hx[i] / 1e3,
+            hy[i] / 1e3
+        ));
+    }
+    Ok(Some(text))
 }
 
 /// What the base did in each finished seed, from the runs table (`slip_regime`).

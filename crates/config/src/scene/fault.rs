@@ -316,7 +316,10 @@ fn nucleation(ck: &mut Checker, n: &NucleationSection, lattice: &Lattice) -> Nuc
         ck.push(
             "fault.nucleation.size_m",
             num(n.size_m),
-            format!("at least 2·Lc = {} m: a square the lattice cannot resolve does not start a rupture", num(2.0 * lc)),
+            format!(
+                "at least 2·Lc = {} m: a square the lattice cannot resolve does not start a rupture",
+                num(2.0 * lc)
+            ),
         );
     }
     ck.positive("fault.nucleation.shear_stress_pa", n.shear_stress_pa);

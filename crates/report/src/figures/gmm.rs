@@ -27,7 +27,8 @@ pub(super) fn gmm_bias(d: &ReportInput, path: &Path) -> Result<Outcome, ReportEr
     let (mean, lo, hi) = (c.f64s(col::MEAN_BIAS_LN)?, c.opt_f64s(col::CI90_LOW_LN)?, c.opt_f64s(col::CI90_HIGH_LN)?);
     let records = c.u64s(col::RECORDS)?;
     let psa = |m: &str| -> Vec<usize> {
-        let mut i: Vec<usize> = (0..imt.len()).filter(|&i| imt[i] == "PSA" && model[i] == m && period[i].is_some()).collect();
+        let mut i: Vec<usize> =
+            (0..imt.len()).filter(|&i| imt[i] == "PSA" && model[i] == m && period[i].is_some()).collect();
         i.sort_by(|&a, &b| period[a].unwrap_or(0.0).total_cmp(&period[b].unwrap_or(0.0)));
         i
     };
@@ -55,12 +56,14 @@ pub(super) fn gmm_bias(d: &ReportInput, path: &Path) -> Result<Outcome, ReportEr
     for (k, m) in ["bssa14", "ask14"].into_iter().enumerate() {
         let rows = psa(m);
         if !rows.is_empty() {
-            let mut l = Line::new(m.to_uppercase(), rows.iter().map(|&i| (period[i].unwrap_or(0.0), mean[i])).collect(), k + 1);
+            let mut l =
+                Line::new(m.to_uppercase(), rows.iter().map(|&i| (period[i].unwrap_or(0.0), mean[i])).collect(), k + 1);
             l.width = 1;
             bias.lines.push(l);
         }
     }
-    let mut l = Line::new("average of the models", avg.iter().map(|&i| (period[i].unwrap_or(0.0), mean[i])).collect(), 0);
+    let mut l =
+        Line::new("average of the models", avg.iter().map(|&i| (period[i].unwrap_or(0.0), mean[i])).collect(), 0);
     l.width = 3;
     bias.dots = true;
     bias.lines.push(l);

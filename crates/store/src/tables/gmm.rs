@@ -5,7 +5,8 @@
 //! and `average`: the models' mean in ln units): `seed` u64, `station` str, `imt` str (`PGA`,
 //! `PGV`, `PSA`), `period_s` f64 (null for PGA and PGV), `model` str, `mw`, `r_rup_km`,
 //! `r_jb_km`, `azimuth_deg`, `vs30_m_s`, `simulated` (RotD50: m/s² for PGA and PSA, m/s for PGV),
-//! `median` (the model's, same unit), `sigma`, `tau`, `phi` (natural log), `residual_ln`
+//! `median` (the model's, same unit), `sigma`, `tau`, `phi` (natural log; τ and φ null on the
+//! average rows), `residual_ln`
 //! (ln(simulated/median)), `residual_sigma` (residual_ln/σ) f64, `outside` str (the quantities
 //! outside the model's ranges; null inside them).
 //!
@@ -107,12 +108,12 @@ pub struct ResidualRow {
     pub simulated: f64,
     /// The model's median.
     pub median: f64,
-    /// σ, τ, φ (ln).
+    /// σ (ln).
     pub sigma: f64,
-    /// τ (ln).
-    pub tau: f64,
-    /// φ (ln).
-    pub phi: f64,
+    /// τ (ln); `None` for the models' average.
+    pub tau: Option<f64>,
+    /// φ (ln); `None` for the models' average.
+    pub phi: Option<f64>,
     /// Quantities outside the model's ranges (`None`: inside).
     pub outside: Option<String>,
 }
@@ -164,8 +165,8 @@ pub fn residuals_frame(rows: &[ResidualRow]) -> Result<DataFrame, StoreError> {
         .f64(col::SIMULATED, f(&|r| r.simulated))
         .f64(col::MEDIAN, f(&|r| r.median))
         .f64(col::SIGMA, f(&|r| r.sigma))
-        .f64(col::TAU, f(&|r| r.tau))
-        .f64(col::PHI, f(&|r| r.phi))
+        .opt_f64(col::TAU, rows.iter().map(|r| r.tau).collect())
+        .opt_f64(col::PHI, rows.iter().map(|r| r.phi).collect())
         .f64(col::RESIDUAL_LN, f(&|r| (r.simulated / r.median).ln()))
         .f64(col::RESIDUAL_SIGMA, f(&|r| (r.simulated / r.median).ln() / r.sigma))
         .opt_str(col::OUTSIDE, rows.iter().map(|r| r.outside.clone()).collect())

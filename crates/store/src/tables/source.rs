@@ -5,7 +5,9 @@
 //! over the ruptured nodes, along the mean slip), `peak_slip_rate_m_s`,
 //! `median_peak_slip_rate_m_s`, `hypocentre_x_m`, `hypocentre_y_m`, `rupture_duration_s` (when
 //! the last node ruptured), `rupture_x_min_m`, `rupture_x_max_m`, `rupture_y_min_m`,
-//! `rupture_y_max_m`, `shear_modulus_pa`, `s_speed_m_s`, `brune_corner_hz` f64.
+//! `rupture_y_max_m`, `shear_modulus_pa`, `s_speed_m_s`, `brune_corner_hz` f64, `fitted_corner_hz` f64
+//! (the ω-square corner of the surface stations' stacked displacement spectra; null with fewer than
+//! 3 surface stations).
 //!
 //! **fault_nodes**, one row per seed and node of the fault: `seed` u64, `node` u32 (LDEM), `x_m`,
 //! `y_m`, `area_m2`, `rupture_time_s` (null: never reached `[events] rupture_rate_m_s`),
@@ -61,6 +63,7 @@ pub const SOURCE: TableSpec = TableSpec {
         col::SHEAR_MODULUS_PA,
         col::S_SPEED_M_S,
         col::BRUNE_CORNER_HZ,
+        col::FITTED_CORNER_HZ,
     ],
     variable: None,
 };
@@ -209,6 +212,7 @@ pub fn source_frame(seed: u64, s: &Source) -> Result<DataFrame, StoreError> {
         .f64(col::SHEAR_MODULUS_PA, vec![s.shear_modulus_pa])
         .f64(col::S_SPEED_M_S, vec![s.s_speed_m_s])
         .f64(col::BRUNE_CORNER_HZ, vec![s.brune_corner_hz])
+        .opt_f64(col::FITTED_CORNER_HZ, vec![s.fitted_corner_hz])
         .finish(SOURCE.name)
 }
 
