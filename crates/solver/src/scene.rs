@@ -494,6 +494,13 @@ impl Scene {
         self.fault.is_some()
     }
 
+    /// Whether a moving driver loads the block in the shear stage: driven nodes or a loading
+    /// plate, moving at a positive speed. A fault scene without either (TPV5) is loaded only by
+    /// its fixed initial tractions.
+    pub fn is_driven(&self) -> bool {
+        (!self.shear.drivers.is_empty() || self.plate.is_some()) && self.shear.velocity_m_s > 0.0
+    }
+
     /// Slip across the base face per unit of its tangential displacement: 2 on a symmetric
     /// fault (the other side moves the opposite way), 1 on the rigid base.
     pub fn slip_factor(&self) -> f64 {
