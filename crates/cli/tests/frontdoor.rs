@@ -125,6 +125,42 @@ fn a_pipeline_whose_every_seed_fails_exits_non_zero_after_writing_its_tables() {
     assert!(err(&o).contains("every seed failed"), "{}", err(&o));
 }
 
+/// A record interval far finer than the step (the fuzz's 1.3e17-byte resampling) is refused once
+/// Δt is known and before the first step: by `check`, and by each seed of `pipeline` and `run`,
+/// naming record.interval_s, its value and the least allowed.
+#[test]
+fn a_record_interval_finer_than_half_the_step_is_refused_before_stepping() {
+    let dir = scratch_dir("frontdoor-fine-records");
+    std::fs::write(dir.join("p.toml"), SHORT.replace("interval_s = 5e-5", "interval_s = 1e-9")).unwrap();
+    // pipeline prints each seed's failure on stdout, run and check on stderr.
+    let says = |o: &Output| {
+        let e = format!("{}{}", out(o), err(o));
+        assert!(e.contains("record.interval_s = 1e-9 s is finer than this run can sample"), "{e}");
+        assert!(
+            e.contains("give record.interval_s at least Δt/2 = ") && e.contains("pipeline keys: record.interval_s"),
+            "{e}"
+        );
+    };
+    let (o, _) = within(&["check", "p.toml"], &dir, Duration::from_secs(30));
+    assert_eq!(o.status.code(), Some(1), "{}", out(&o));
+    says(&o);
+    assert!(!out(&o).contains("run: "), "refused before the run's length is probed:\n{}", out(&o));
+    for args in [
+        &["pipeline", "p.toml", "--quiet", "--out", "o"][..],
+        &["run", "p.toml", "--seed", "1", "--out", "r", "--quiet"],
+    ] {
+        // A 0.1-s stage at 1e-9 s would be 1e8 samples: refused in well under its run time.
+        let (o, took) = within(args, &dir, Duration::from_secs(60));
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {}", out(&o));
+        says(&o);
+        assert!(took < Duration::from_secs(10), "{args:?} took {took:?}");
+    }
+    // Half a step is still sampled every step: accepted.
+    std::fs::write(dir.join("p.toml"), SHORT.replace("interval_s = 5e-5", "interval_s = 5.5e-6")).unwrap();
+    let o = stickslip(&["check", "p.toml"], &dir);
+    assert!(o.status.success(), "{}", err(&o));
+}
+
 #[test]
 fn fresh_leaves_nothing_of_the_discarded_run() {
     let dir = scratch_dir("frontdoor-fresh");

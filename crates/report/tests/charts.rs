@@ -308,9 +308,8 @@ fn a_linear_axis_beside_a_log_axis_has_grid_lines_at_its_labels_only() {
     // Grid lines crossing the middle row (columns) and the middle column (rows), away from the
     // axes: any non-white pixel there is a grid line.
     let (row, col) = ((a.y0 + a.y1) as u32 / 2 + 3, (a.x0 + a.x1) as u32 / 2 + 3);
-    let lines = |pixels: Vec<[u8; 3]>| {
-        pixels.windows(2).filter(|w| w[0] == [255, 255, 255] && w[1] != [255, 255, 255]).count()
-    };
+    let lines =
+        |pixels: Vec<[u8; 3]>| pixels.windows(2).filter(|w| w[0] == [255, 255, 255] && w[1] != [255, 255, 255]).count();
     let vertical = lines((a.x0 as u32 + 2..a.x1 as u32 - 2).map(|x| img.pixel(x, row)).collect());
     let horizontal = lines((a.y0 as u32 + 2..a.y1 as u32 - 2).map(|y| img.pixel(col, y)).collect());
     // 3.1, 3.2, …, 4.0: ten labels, so at most ten vertical lines (and at least a few).

@@ -131,6 +131,13 @@ pub fn run(a: Args) -> Result<()> {
     };
     stickslip_solver::run::check_step_count(&model, dt)
         .map_err(|e| anyhow::anyhow!("{}", stickslip_config::keys::describe(&e)))?;
+    // The record interval against the largest Δt: the seed with it would refuse it.
+    let dt_largest = match scene.time_step {
+        TimeStep::Fraction(f) => f * hi,
+        TimeStep::Fixed(dt) => dt,
+    };
+    stickslip_solver::run::check_record_interval(&model, dt_largest)
+        .map_err(|e| anyhow::anyhow!("{}", stickslip_config::keys::describe(&e)))?;
     let (settle, shear) = run_steps(scene, dt);
     let parallel = pipeline.seeds.len() < threads && model.layout().splits();
     let per_step = probe_step_time(&model, seeds[0], dt, parallel, 0.5)?;
