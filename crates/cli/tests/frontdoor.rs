@@ -161,6 +161,54 @@ fn a_record_interval_finer_than_half_the_step_is_refused_before_stepping() {
     assert!(o.status.success(), "{}", err(&o));
 }
 
+/// `stickslip pipeline p.toml | head -1`: the reader goes away after a line, and the run still
+/// writes its tables and report and exits normally (a broken pipe killed it at its next print,
+/// before the report). `check`, which only reads, may end at once.
+#[test]
+fn a_reader_that_goes_away_does_not_stop_the_run_before_its_outputs() {
+    let dir = scratch_dir("frontdoor-epipe");
+    let text =
+        SHORT.replace("range = { first = 1, count = 4 }", "list = [1, 2]").replace("enabled = false", "enabled = true");
+    std::fs::write(dir.join("p.toml"), text).unwrap();
+    for command in ["pipeline", "run"] {
+        let mut args = vec![command, "p.toml", "--out", command];
+        if command == "run" {
+            args.extend(["--seed", "1"]);
+        }
+        let mut child = Command::new(env!("CARGO_BIN_EXE_stickslip"))
+            .args(&args)
+            .current_dir(&dir)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        // The read end closed before the command prints a line (`head -0`).
+        drop(child.stdout.take());
+        let o = child.wait_with_output().unwrap();
+        assert_eq!(o.status.code(), Some(0), "{command}: {:?}\n{}", o.status, err(&o));
+        assert!(dir.join(command).join("index.html").exists(), "{command}: no report");
+        assert!(dir.join(command).join("tables/runs.parquet").exists(), "{command}: no runs table");
+    }
+}
+
+/// `check` writes the block's mass and the friction map's patch extents short: not
+/// `mass 5184.000 kg` or `2.136e16` with three decimals, not `x 0.8999999999999999…` on a
+/// lattice of Lc = 0.3 m.
+#[test]
+fn check_writes_the_mass_and_patch_extents_short() {
+    let dir = scratch_dir("frontdoor-check-numbers");
+    let text =
+        std::fs::read_to_string(repo_path("pipelines/fault-barrier.toml")).unwrap().replace("lc_m = 0.1", "lc_m = 0.3");
+    assert!(text.contains("lc_m = 0.3"));
+    std::fs::write(dir.join("p.toml"), text).unwrap();
+    let o = stickslip(&["check", "p.toml", "--seeds", "1"], &dir);
+    assert!(o.status.success(), "{}", err(&o));
+    let printed = out(&o);
+    assert!(printed.contains("82 contact nodes, mass 5184 kg"), "{printed}");
+    assert!(printed.contains("patch (weak): 6 nodes, x 0.3…0.9 m"), "{printed}");
+    assert!(printed.contains("barrier (barrier): 8 nodes, x 3…3.9 m"), "{printed}");
+}
+
 #[test]
 fn fresh_leaves_nothing_of_the_discarded_run() {
     let dir = scratch_dir("frontdoor-fresh");

@@ -59,7 +59,7 @@ pub fn cancel_on_ctrl_c() -> Result<Arc<AtomicBool>> {
         if flag.swap(true, Ordering::SeqCst) {
             std::process::exit(130);
         }
-        eprintln!("\ninterrupt: finishing the seeds being written (Ctrl-C again to stop at once)");
+        errln!("\ninterrupt: finishing the seeds being written (Ctrl-C again to stop at once)");
     })
     .context("installing the Ctrl-C handler")?;
     Ok(cancel)
@@ -84,7 +84,7 @@ pub fn ensemble(
 pub fn print_set_result(pipeline: &Pipeline, set: Option<&Result<SetOutcome, String>>, out: &Path) {
     match (set, &pipeline.set) {
         (Some(Ok(o)), Some(s)) => crate::commands::select::print_set(o, &s.target_name, &Folder::new(out)),
-        (Some(Err(e)), _) => println!("set: none chosen: {e}"),
+        (Some(Err(e)), _) => outln!("set: none chosen: {e}"),
         _ => {}
     }
 }
@@ -99,18 +99,18 @@ pub fn finish(pipeline: &Pipeline, out: &Path) -> Result<()> {
     let ran = stickslip_store::io::any_part(&folder.part_glob(&stickslip_store::schema::SERIES));
     let regimes = Regimes::of(&folder)?;
     if events.is_some_and(|e| e.height() > 0) || !ran {
-        println!("{}", digest(&folder)?);
+        outln!("{}", digest(&folder)?);
         if let Some(text) = regimes.sliding_text() {
-            println!("{text}");
-            println!("  as a spring-slider (stickslip check): {}", slider_verdict(pipeline));
+            outln!("{text}");
+            outln!("  as a spring-slider (stickslip check): {}", slider_verdict(pipeline));
         }
     } else {
-        println!("{}", no_events(pipeline, &folder, &regimes));
+        outln!("{}", no_events(pipeline, &folder, &regimes));
     }
     if pipeline.report.enabled {
         let start = Instant::now();
         let r = stickslip_report::write_report(out, pipeline)?;
-        println!(
+        outln!(
             "report: {} in {:.1} s → {}{}",
             count(r.figures.len(), "figure", "figures"),
             start.elapsed().as_secs_f64(),
@@ -321,7 +321,7 @@ pub fn run(a: Args) -> Result<()> {
             let drawn: Vec<String> =
                 p.report.seeds.iter().filter(|s| !given.contains(*s)).map(|s| s.to_string()).collect();
             if !drawn.is_empty() && p.report.enabled {
-                eprintln!(
+                errln!(
                     "warning: {}: report.seeds {} are not among --seeds: the report draws the first seeds that ran \
                      instead",
                     p.name,
@@ -371,7 +371,7 @@ pub fn run(a: Args) -> Result<()> {
             }
             None => (ensemble(pipeline, &options, a.quiet, &cancel)?, None),
         };
-        println!(
+        outln!(
             "{}{}: {} ({} run now, {} already done, {} failed) in {:.1} s → {}",
             pipeline.name,
             a.shard.map_or(String::new(), |(k, n)| format!(" shard {k}/{n}")),
@@ -383,10 +383,10 @@ pub fn run(a: Args) -> Result<()> {
             report.out.join("tables").display()
         );
         for (seed, msg) in report.failed.iter().take(5) {
-            println!("  seed {seed} failed: {msg}");
+            outln!("  seed {seed} failed: {msg}");
         }
         if let Some(p) = &precision {
-            println!("{}", p.describe());
+            outln!("{}", p.describe());
         }
         let total = report.ran + report.skipped;
         let nothing = total > 0 && report.failed.len() == total;
@@ -394,7 +394,7 @@ pub fn run(a: Args) -> Result<()> {
             if nothing {
                 unfinished.push(format!("{}: every seed of the shard failed ({total})", pipeline.name));
             } else {
-                println!("  merge the shards with: stickslip merge {}", out.display());
+                outln!("  merge the shards with: stickslip merge {}", out.display());
             }
             continue;
         }
@@ -419,6 +419,6 @@ pub fn finished(unfinished: Vec<String>) -> Result<()> {
 /// Prints a pipeline's warnings (values accepted that could mislead) to stderr.
 pub fn print_warnings(pipeline: &Pipeline) {
     for w in &pipeline.warnings {
-        eprintln!("warning: {}: {w}", pipeline.name);
+        errln!("warning: {}: {w}", pipeline.name);
     }
 }
