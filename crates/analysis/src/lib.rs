@@ -5,7 +5,8 @@
 //! cut around the events with their processing, intensity, response, Fourier and RotD spectra
 //! ([`records`]), the attenuation of peak motions with distance ([`attenuation`]), the rupture
 //! front of each event ([`fronts`]), the bar breaks as acoustic emission ([`emission`]), and on a
-//! fault the source from its own slip and the stations against the rupture ([`source`]) — and
+//! fault the source from its own slip and the stations against the rupture ([`source`]) with
+//! their processed RotD motions ([`motions`]) — and
 //! what it is asked to do ([`settings`]). It is a pure function of the run, the model and the
 //! settings: it can be tested without files.
 //!
@@ -17,6 +18,7 @@ pub mod attenuation;
 pub mod emission;
 pub mod events;
 pub mod fronts;
+pub mod motions;
 pub mod records;
 pub mod settings;
 pub mod source;

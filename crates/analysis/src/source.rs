@@ -20,6 +20,8 @@ use stickslip_solver::material::lattice_elastic_constants;
 use stickslip_solver::scene::{Kinematic, Station};
 use stickslip_solver::{Model, Recording};
 
+use crate::motions::Motion;
+
 /// The source of one run on a fault.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Source {
@@ -154,11 +156,14 @@ pub struct StationRow {
     pub pgd_m: f64,
     /// Peak vertical acceleration `max |a_y|` (m/s²).
     pub pga_vertical_m_s2: f64,
+    /// Its processed horizontal motion as RotD50/RotD100 ([`crate::motions`]), or why it has none.
+    pub motion: Result<Motion, String>,
 }
 
 /// The stations of a fault scene against the rupture of `src` (the fault summary's ruptured
-/// nodes), with their peak motions over the shear stage.
+/// nodes), with their peak motions over the shear stage and their processed RotD motions.
 pub fn stations(rec: &Recording, model: &Model, src: &Source) -> Vec<StationRow> {
+    let resolved_hz = model.scene().usable_band(crate::motions::DEPARTURE).map_or(f64::INFINITY, |b| b.f_max_hz);
     let Some(f) = rec.trace.summary.as_ref() else { return Vec::new() };
     let lattice = model.lattice();
     let ruptured: Vec<[f64; 3]> =
@@ -208,6 +213,7 @@ pub fn stations(rec: &Recording, model: &Model, src: &Source) -> Vec<StationRow>
                 pgv_m_s: horizontal(Kinematic::Velocity),
                 pgd_m: horizontal(Kinematic::Displacement),
                 pga_vertical_m_s2: series(Kinematic::Acceleration, 1).iter().fold(0.0, |m, v| m.max(v.abs())),
+                motion: crate::motions::motion(rec, st.node, resolved_hz),
             }
         })
         .collect()

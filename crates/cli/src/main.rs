@@ -9,7 +9,7 @@ mod progress;
 
 use clap::{Parser, Subcommand};
 
-use commands::{catalogue, check, compare, merge, per_seed, pipeline, run, select, show, similarity, spectra};
+use commands::{catalogue, check, compare, gmm, merge, per_seed, pipeline, run, select, show, similarity, spectra};
 
 /// Earthquake stick-slip with the Lattice Discrete Element Method: simulate ensembles of seeds and
 /// turn them into event catalogues, accelerograms, spectra, statistics and scaled magnitudes.
@@ -51,6 +51,9 @@ enum Command {
     /// Catalogue statistics of an ensemble: Gutenberg–Richter b-values, recurrence CV and
     /// renewal fits, Omori–Utsu aftershock decay, scaling exponents (rewrites their tables).
     Catalogue(catalogue::Args),
+    /// A fault scenario's stations against the NGA-West2 ground-motion models BSSA14 and ASK14:
+    /// residuals of RotD50 PGA, PGV and PSA, bias per period, as tables and a figure.
+    Gmm(gmm::Args),
 }
 
 fn main() {
@@ -82,6 +85,7 @@ fn main() {
         Command::Spectra(a) => spectra::run(a),
         Command::Select(a) => select::run(a),
         Command::Catalogue(a) => catalogue::run(a),
+        Command::Gmm(a) => gmm::run(a),
     };
     if let Err(e) = result {
         errln!("error: {e:#}");

@@ -396,7 +396,7 @@ impl Pipeline {
                 "seeds.target",
                 "(present)",
                 "a pipeline whose seeds differ: with material.young_cv = 0, friction.mu_cv = 0 and no \
-                 rupture.fracture_energy_cv or fault.stochastic, every seed gives the same run, and a confidence interval of clones is 0 \
+                 rupture.fracture_energy_cv, fault.stochastic or fault.nucleation, every seed gives the same run, and a confidence interval of clones is 0 \
                  (give a coefficient of variation > 0, or drop [seeds.target])",
             );
         } else if random.is_empty() && seeds.len() > 1 {
@@ -405,7 +405,7 @@ impl Pipeline {
                 file.material.young_cv,
                 format!(
                     "every one of the {} seeds gives the same run (material.young_cv = 0, friction.mu_cv = 0, no \
-                     rupture.fracture_energy_cv or fault.stochastic): the spread across seeds is 0 by construction",
+                     rupture.fracture_energy_cv, fault.stochastic or fault.nucleation): the spread across seeds is 0 by construction",
                     seeds.len()
                 ),
             );
@@ -479,6 +479,14 @@ fn random_fields(file: &PipelineFile) -> Vec<&'static str> {
     }
     if file.fault.as_ref().and_then(|f| f.stochastic.as_ref()).is_some_and(|s| s.std_pa > 0.0) {
         out.push("fault.stochastic.std_pa");
+    }
+    if file
+        .fault
+        .as_ref()
+        .and_then(|f| f.nucleation.as_ref())
+        .is_some_and(|n| n.x_m[0] < n.x_m[1] || n.y_m[0] < n.y_m[1])
+    {
+        out.push("fault.nucleation");
     }
     out
 }

@@ -57,6 +57,9 @@ pub enum EnsembleError {
     /// set record could not be written.
     #[error("set: {0}")]
     Set(stickslip_seismo::SeismoError),
+    /// A ground-motion model refused a record's inputs.
+    #[error("ground-motion model: {0}")]
+    Gmm(stickslip_seismo::SeismoError),
     /// Something could not be set up.
     #[error("{0}")]
     Setup(String),

@@ -9,8 +9,8 @@ use stickslip_seismo::stats::percentile_sorted;
 use stickslip_store::frame::Columns;
 use stickslip_store::io::write_parquet_atomic;
 use stickslip_store::schema::{
-    self, ATTENUATION, ATTENUATION_FIT, EVENTS_TABLE, PSA_STATS, ROTD, RUNS, SIMILARITY, SPECTRA, SUMMARY, Scope,
-    TableSpec, col,
+    self, ATTENUATION, ATTENUATION_FIT, EVENTS_TABLE, PSA_STATS, ROTD, RUNS, SIMILARITY, SPECTRA, STATIONS, SUMMARY,
+    Scope, TableSpec, col,
 };
 use stickslip_store::tables::runs::Runs;
 use stickslip_store::tables::stats::{FitRow, PsaStatsRow, attenuation_fit_frame, psa_stats_frame, summary_frame};
@@ -112,6 +112,16 @@ pub fn gather(out: &Folder, seeds: &[u64], memory: Gathering) -> Result<Option<R
     }
     if let (Some(runs), Some(events), Some(similarity)) = (runs_df, get(EVENTS_TABLE.name), get(SIMILARITY.name)) {
         write_catalogue(out, runs, events, similarity)?;
+    }
+    // A fault scenario's stations against the ground-motion models, with the defaults of
+    // `stickslip gmm` (both models, V_S30 the medium's S-wave speed).
+    if get(STATIONS.name).is_some() {
+        match crate::gmm::compare(out, &crate::gmm::GmmOptions::default()) {
+            Ok(Some(c)) => crate::gmm::write(out, &c)?,
+            Ok(None) => {}
+            Err(crate::error::EnsembleError::Store(e)) => return Err(e),
+            Err(e) => return Err(StoreError::Unreadable { table: "gmm_residuals".into(), what: e.to_string() }),
+        }
     }
     Ok(runs)
 }

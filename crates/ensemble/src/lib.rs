@@ -4,7 +4,8 @@
 //! ([`stickslip_analysis::analyse`]) and written ([`stickslip_store::seed`]) as it finishes
 //! ([`run`]); resuming an interrupted ensemble, shards and their merge ([`merge`]); stopping once
 //! a statistic is precise enough ([`precision`]); gathering the tables and the statistics across
-//! seeds ([`gather`], [`summary`], [`catalogue`]) and the record set ([`set`]). Must not know: how
+//! seeds ([`gather`], [`summary`], [`catalogue`]), a fault scenario's stations against the
+//! ground-motion models ([`gmm`]) and the record set ([`set`]). Must not know: how
 //! one seed is analysed or written, the pipeline file's syntax (it takes a validated
 //! [`stickslip_config::Pipeline`]), figures, the command line.
 #![deny(missing_docs)]
@@ -12,6 +13,7 @@
 pub mod catalogue;
 pub mod error;
 pub mod gather;
+pub mod gmm;
 pub mod merge;
 pub mod precision;
 pub mod run;

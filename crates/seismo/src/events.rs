@@ -375,7 +375,8 @@ pub fn detect(
     // before `quiet` whose raw rate does.
     let measure = |on: usize, quiet: usize| -> Burst {
         let above = |k: &usize| rate[*k] >= params.v_on_m_s;
-        let a = (at(t[on] - half)..quiet.max(on + 1)).find(above).unwrap_or(on);
+        // A burst that starts on the record's last sample is measured over its last two.
+        let a = (at(t[on] - half)..quiet.max(on + 1)).find(above).unwrap_or(on).min(n - 2);
         let b = (a..quiet.max(a + 1)).rev().find(above).map_or(quiet, |k| k + 1).min(n - 1).max(a + 1);
         // Stress before: the highest τ̄ in the half window up to the start; after: the lowest τ̄
         // from the start to half a window past the end (where τ̄ has taken in the whole fall).
@@ -798,6 +799,21 @@ mod tests {
         assert!(cat.sliding.is_none());
         assert_eq!(cat.events.len(), 1);
         assert_eq!(cat.events[0].kind, EventKind::Main(1));
+    }
+
+    /// Slip that starts on the record's last samples (a fault scene whose barrier creeps at the
+    /// very end) is measured over what the record holds, not past its end (it panicked).
+    #[test]
+    fn slip_starting_on_the_last_sample_does_not_read_past_the_record() {
+        let n = 2_000;
+        for start in 1..=40 {
+            for rate in [1e-4, 1e-3, 1e-2, 1.0] {
+                let rec = synthetic(n, &[(n - start, n, rate, 10.0)]);
+                // Under fixed tractions (a fault scene) the unfinished slip is always measured.
+                let cat = detect(&signals(&rec), 22, 0.1, Loading::Fixed, &EventParams::default());
+                assert!(cat.sub_events.iter().all(|b| b.samples.1 < n), "starting {start} from the end");
+            }
+        }
     }
 
     /// τ̄ ringing by ±2 kPa (50 Hz, slower than the 1-ms window) while the base is stuck: a 1-kPa

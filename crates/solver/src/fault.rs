@@ -30,6 +30,8 @@ use crate::field::Lanes;
 
 /// Random stream of the prestress field (the Weibull fields use 0 and 1).
 pub const STREAM_PRESTRESS: u64 = 2;
+/// Random stream of the nucleation's place.
+pub const STREAM_NUCLEATION: u64 = 3;
 
 /// The validated fault of a scene: tractions on every contact node (canonical contact order).
 #[derive(Clone, Debug, PartialEq)]
@@ -40,6 +42,8 @@ pub struct Fault {
     pub normal_pa: Vec<f64>,
     /// A random field added to the shear traction along x, drawn per seed.
     pub stochastic: Option<StochasticStress>,
+    /// An overstressed square placed per seed, where the rupture starts.
+    pub nucleation: Option<Nucleation>,
     /// The point of the fault `(x, y)` that benchmark files measure along strike and down dip
     /// from (m).
     pub origin_m: [f64; 2],
@@ -56,6 +60,44 @@ pub struct StochasticStress {
     pub correlation_length_m: f64,
     /// Hurst exponent `H` (0 < H ≤ 1).
     pub hurst: f64,
+}
+
+/// A square of the fault whose shear traction along x is set to `shear_pa` (above the static
+/// strength: the rupture starts there), its centre drawn per seed uniformly in `x_m × y_m` from
+/// stream [`STREAM_NUCLEATION`] of the seed ([`Nucleation::centre`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Nucleation {
+    /// Side of the square (m).
+    pub size_m: f64,
+    /// Shear traction along x inside it (Pa).
+    pub shear_pa: f64,
+    /// Range of the centre along x (m).
+    pub x_m: [f64; 2],
+    /// Range of the centre along y (m).
+    pub y_m: [f64; 2],
+}
+
+impl Nucleation {
+    /// The square's centre `(x, y)` for `seed` (m).
+    pub fn centre(&self, seed: u64) -> [f64; 2] {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        rng.set_stream(STREAM_NUCLEATION);
+        let mut draw = |[lo, hi]: [f64; 2]| {
+            // In [0, 1): 53 random bits.
+            let u = (rng.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64);
+            lo + u * (hi - lo)
+        };
+        let x = draw(self.x_m);
+        let y = draw(self.y_m);
+        [x, y]
+    }
+
+    /// Whether the point `(x, y)` lies in the square centred at `centre` (edges included, to a
+    /// millionth of the side).
+    pub fn contains(&self, centre: [f64; 2], x: f64, y: f64) -> bool {
+        let half = 0.5 * self.size_m * (1.0 + 1e-6);
+        (x - centre[0]).abs() <= half && (y - centre[1]).abs() <= half
+    }
 }
 
 /// The fault loads of one seed on every contact node (order of [`crate::Model::contact`]): the

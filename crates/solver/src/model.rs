@@ -393,7 +393,8 @@ impl Model {
     }
 
     /// The fault's loads on every contact node for `seed` (docs/model.md §15): `τ0·A_i` along x
-    /// and y, with the seed's von Kármán field added to x when the scene has one, and
+    /// and y, with the seed's von Kármán field added to x when the scene has one and the seed's
+    /// nucleation square's traction set inside it, and
     /// `σn·A_i`, `A_i` the node's share of the base. `None` on the rigid base.
     pub fn fault_loads(&self, seed: u64) -> Result<Option<FaultLoads>, SolverError> {
         let Some(fault) = &self.scene.fault else { return Ok(None) };
@@ -412,6 +413,7 @@ impl Model {
             )?),
             None => None,
         };
+        let nucleation = fault.nucleation.map(|n| (n, n.centre(seed)));
         // Contact nodes come in canonical order: x fastest, then y, the grid of the field.
         let shear_n = (0..nodes.len())
             .map(|c| {
@@ -419,7 +421,14 @@ impl Model {
                     (Some(f), Some(st)) => st.std_pa * f[c],
                     _ => 0.0,
                 };
-                [(fault.shear_pa[c][0] + extra) * area[c], fault.shear_pa[c][1] * area[c]]
+                let mut tau_x = fault.shear_pa[c][0] + extra;
+                if let Some((n, centre)) = nucleation {
+                    let p = lattice.position(nodes[c]);
+                    if n.contains(centre, p[0], p[1]) {
+                        tau_x = n.shear_pa;
+                    }
+                }
+                [tau_x * area[c], fault.shear_pa[c][1] * area[c]]
             })
             .collect();
         let normal_n = (0..nodes.len()).map(|c| fault.normal_pa[c] * area[c]).collect();

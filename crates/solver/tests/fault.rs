@@ -45,6 +45,7 @@ fn column(nz: usize, tau0: f64) -> Scene {
         shear_pa: vec![[tau0, 0.0]; contacts],
         normal_pa: vec![SIGMA_N; contacts],
         stochastic: None,
+        nucleation: None,
         origin_m: [0.0; 2],
     });
     let mut fixed = std::collections::BTreeMap::<NodeId, [bool; 3]>::new();
@@ -139,4 +140,48 @@ fn a_uniform_overstress_slides_at_the_closed_form_rate_and_drops_to_dynamic_fric
     );
     assert!((mean / rate - 1.0).abs() < 0.005, "slip rate {mean} vs {rate}");
     assert!(hi / rate - 1.0 < 0.01 && 1.0 - lo / rate < 0.01, "the slip rate drifts: {lo}–{hi} vs {rate}");
+}
+
+#[test]
+fn a_nucleation_square_lands_where_its_seed_draws_it_and_nowhere_else() {
+    use stickslip_solver::fault::Nucleation;
+    // A 20 × 20-module face of 100 m: a 500 m square at 90 MPa, its centre in x, y ∈ [600, 1400] m.
+    let mut s = column(2, 60e6);
+    s.dims = Dims::new(20, 20, 2);
+    let lattice = s.lattice();
+    let contacts = lattice.contact_nodes().len();
+    let n = Nucleation { size_m: 500.0, shear_pa: 90e6, x_m: [600.0, 1400.0], y_m: [600.0, 1400.0] };
+    s.fault = Some(Fault {
+        shear_pa: vec![[60e6, 0.0]; contacts],
+        normal_pa: vec![SIGMA_N; contacts],
+        stochastic: None,
+        nucleation: Some(n),
+        origin_m: [0.0; 2],
+    });
+    s.fixed.clear();
+    let model = Model::new(s);
+    let nodes = model.lattice().contact_nodes();
+    let mut centres = Vec::new();
+    for seed in 1..=20u64 {
+        let c = n.centre(seed);
+        assert_eq!(c, n.centre(seed), "the same seed draws the same centre");
+        assert!((600.0..=1400.0).contains(&c[0]) && (600.0..=1400.0).contains(&c[1]), "{c:?}");
+        centres.push(c);
+        let loads = model.fault_loads(seed).unwrap().unwrap();
+        let mut inside = 0;
+        for (k, &id) in nodes.iter().enumerate() {
+            let p = model.lattice().position(id);
+            let area = Face::ZMin.tributary_area(model.lattice(), id);
+            let in_square = (p[0] - c[0]).abs() <= 250.0 && (p[1] - c[1]).abs() <= 250.0;
+            let expected = if in_square { 90e6 } else { 60e6 } * area;
+            assert!((loads.shear_n[k][0] - expected).abs() <= 1e-9 * expected, "seed {seed} node {k}");
+            inside += usize::from(in_square);
+        }
+        // A 500 m square on a 100 m grid covers 5 × 5 or 6 × 6 nodes (fewer at no edge here).
+        assert!((25..=36).contains(&inside), "seed {seed}: {inside} nodes in the square");
+    }
+    // The seeds spread the square over its range: both halves of each axis are reached.
+    for a in 0..2 {
+        assert!(centres.iter().any(|c| c[a] < 1000.0) && centres.iter().any(|c| c[a] > 1000.0), "axis {a}");
+    }
 }

@@ -70,6 +70,12 @@ impl Frame {
         self
     }
 
+    /// A boolean column with nulls.
+    pub fn opt_bool(mut self, name: &str, v: Vec<Option<bool>>) -> Self {
+        self.cols.push(Column::new(name.into(), v));
+        self
+    }
+
     /// A string column.
     pub fn str(mut self, name: &str, v: Vec<String>) -> Self {
         self.cols.push(Column::new(name.into(), v));

@@ -10,16 +10,17 @@ pub use crate::tables::catalogue::{
 pub use crate::tables::cracks::{ACOUSTIC_EMISSION, CRACKS};
 pub use crate::tables::events::{EVENTS_TABLE, SIMILARITY, SUB_EVENTS_TABLE};
 pub use crate::tables::fronts::{RUPTURE_ONSETS, RUPTURES};
+pub use crate::tables::gmm::{GMM_BIAS, GMM_RESIDUALS};
 pub use crate::tables::records::{ACCELEROGRAMS, ATTENUATION, INTENSITY, RECORDS};
 pub use crate::tables::runs::RUNS;
 pub use crate::tables::series::{CONTROL, FAULT, SERIES, SKIPS};
 pub use crate::tables::set::SET;
-pub use crate::tables::source::{FAULT_NODES, SOURCE, STATIONS};
+pub use crate::tables::source::{FAULT_NODES, SOURCE, STATION_SPECTRA, STATIONS};
 pub use crate::tables::spectra::{FOURIER, ROTD, SPECTRA};
 pub use crate::tables::stats::{ATTENUATION_FIT, PSA_STATS, SUMMARY};
 
 /// Every table, in the order the README documents them.
-pub const ALL: [TableSpec; 32] = [
+pub const ALL: [TableSpec; 35] = [
     RUNS,
     SERIES,
     CONTROL,
@@ -40,6 +41,7 @@ pub const ALL: [TableSpec; 32] = [
     SOURCE,
     FAULT_NODES,
     STATIONS,
+    STATION_SPECTRA,
     CRACKS,
     ACOUSTIC_EMISSION,
     SUMMARY,
@@ -52,6 +54,8 @@ pub const ALL: [TableSpec; 32] = [
     AFTERSHOCKS_TABLE,
     OMORI,
     SCALING,
+    GMM_RESIDUALS,
+    GMM_BIAS,
 ];
 
 /// Per-seed tables in the order a seed's parts are written: `runs` last, so a seed counts as

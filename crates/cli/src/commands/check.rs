@@ -99,7 +99,7 @@ pub fn run(a: Args) -> Result<()> {
         N(scene.friction.mu_cv)
     );
     if scene.is_fault() {
-        print_fault(&model);
+        print_fault(&model, seeds[0]);
     } else {
         outln!(
             "  self-weight normal stress {:.1} Pa, sliding strength μs·σ = {:.1} Pa",
@@ -500,7 +500,7 @@ pub fn run(a: Args) -> Result<()> {
 
 /// What `check` says of a fault scene (docs/model.md §15): tractions, where rupture starts, the
 /// cohesive zone against the lattice, the absorbing faces and the lattice's wave speeds.
-fn print_fault(model: &Model) {
+fn print_fault(model: &Model, first_seed: u64) {
     let scene = model.scene();
     let Some(r) = FaultReading::of(model) else { return };
     let mpa = |(a, b): (f64, f64)| {
@@ -513,7 +513,22 @@ fn print_fault(model: &Model) {
         mpa(r.normal_pa),
         mpa(r.shear_pa)
     );
-    if r.overstressed.0 == 0 {
+    if let Some(n) = scene.fault.as_ref().and_then(|f| f.nucleation) {
+        outln!(
+            "  nucleation per seed: a {} m square at {:.2} MPa along x, its centre drawn uniformly in x {}…{} m, \
+             y {}…{} m (seed {}: at ({:.0}, {:.0}) m)",
+            N(n.size_m),
+            N(n.shear_pa / 1e6),
+            N(n.x_m[0]),
+            N(n.x_m[1]),
+            N(n.y_m[0]),
+            N(n.y_m[1]),
+            first_seed,
+            N(n.centre(first_seed)[0]),
+            N(n.centre(first_seed)[1])
+        );
+    }
+    if r.overstressed.0 == 0 && scene.fault.as_ref().is_none_or(|f| f.nucleation.is_none()) {
         outln!(
             "  ⚠ no node starts above its static strength μs·σn: nothing nucleates unless a random field or a patch \
              overstresses some ([[fault.patches]] with shear_stress_pa above μs·normal_stress_pa)"

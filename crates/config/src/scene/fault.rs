@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use serde::{Deserialize, Serialize};
-use stickslip_solver::fault::{Fault, StochasticStress};
+use stickslip_solver::fault::{Fault, Nucleation, StochasticStress};
 use stickslip_solver::geometry::{Face, Lattice, NodeKind};
 use stickslip_solver::scene::{Component, ControlChannel, Kinematic, Station};
 
@@ -37,6 +37,9 @@ pub struct FaultSection {
     /// A random field on the shear traction, drawn per seed.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stochastic: Option<StochasticSection>,
+    /// An overstressed square placed at random per seed: each seed's rupture starts elsewhere.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub nucleation: Option<NucleationSection>,
     /// The point `[x, y]` of the fault that benchmark files measure along strike and down dip
     /// from (m), e.g. mid-strike at the surface for TPV5. Default `[0, 0]`.
     #[serde(default, skip_serializing_if = "is_origin")]
@@ -145,6 +148,22 @@ pub struct StochasticSection {
 
 fn default_hurst() -> f64 {
     0.75
+}
+
+/// `[fault.nucleation]`: a square of side `size_m` whose shear traction along x is
+/// `shear_stress_pa` (above the static strength, so the rupture starts there), its centre drawn
+/// per seed uniformly in `x_m × y_m` (laid over the patches, the grid and the random field).
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct NucleationSection {
+    /// Side of the square (m).
+    pub size_m: f64,
+    /// Shear traction along x inside it (Pa).
+    pub shear_stress_pa: f64,
+    /// Range `[min, max]` of the centre along x (m).
+    pub x_m: [f64; 2],
+    /// Range `[min, max]` of the centre along y, down dip (m).
+    pub y_m: [f64; 2],
 }
 
 /// `[absorbing]`: faces whose nodes carry Lysmer–Kuhlemeyer dashpots, so that waves leave.
@@ -275,6 +294,7 @@ pub(super) fn fault(ck: &mut Checker, file: SceneSections<'_>, lattice: &Lattice
         StochasticStress { std_pa: s.std_pa, correlation_length_m: s.correlation_length_m, hurst: s.hurst }
     });
     let e = lattice.extent();
+    let nucleation = f.nucleation.map(|n| nucleation(ck, &n, lattice));
     let on_fault = (0..2).all(|a| f.origin_m[a].is_finite() && f.origin_m[a] >= 0.0 && f.origin_m[a] <= e[a]);
     if !on_fault {
         ck.push(
@@ -283,7 +303,44 @@ pub(super) fn fault(ck: &mut Checker, file: SceneSections<'_>, lattice: &Lattice
             format!("a point of the fault, 0 ≤ x ≤ {} m and 0 ≤ y ≤ {} m", num(e[0]), num(e[1])),
         );
     }
-    Some(Fault { shear_pa: shear, normal_pa: normal, stochastic, origin_m: f.origin_m })
+    Some(Fault { shear_pa: shear, normal_pa: normal, stochastic, nucleation, origin_m: f.origin_m })
+}
+
+/// `[fault.nucleation]` checked: a square of at least 2·Lc whose centre's range keeps it on the
+/// fault, with a positive traction (whether it exceeds the strength where it lands is the
+/// friction map's business: `check` prints the nucleation).
+fn nucleation(ck: &mut Checker, n: &NucleationSection, lattice: &Lattice) -> Nucleation {
+    let e = lattice.extent();
+    let lc = lattice.lc();
+    if ck.positive("fault.nucleation.size_m", n.size_m) && n.size_m < 2.0 * lc {
+        ck.push(
+            "fault.nucleation.size_m",
+            num(n.size_m),
+            format!(
+                "at least 2·Lc = {} m: a square the lattice cannot resolve does not start a rupture",
+                num(2.0 * lc)
+            ),
+        );
+    }
+    ck.positive("fault.nucleation.shear_stress_pa", n.shear_stress_pa);
+    let half = 0.5 * n.size_m.max(0.0);
+    for (a, (field, r)) in [("fault.nucleation.x_m", n.x_m), ("fault.nucleation.y_m", n.y_m)].into_iter().enumerate() {
+        let (lo, hi) = (half, e[a] - half);
+        let ok = r.iter().all(|v| v.is_finite()) && r[0] <= r[1] && r[0] >= lo - 1e-9 * lc && r[1] <= hi + 1e-9 * lc;
+        if !ok {
+            ck.push(
+                field,
+                format!("[{}, {}] m", num(r[0]), num(r[1])),
+                format!(
+                    "min ≤ max within [{}, {}] m, so that the square (side {} m) stays on the fault",
+                    approx(lo),
+                    approx(hi),
+                    approx(n.size_m)
+                ),
+            );
+        }
+    }
+    Nucleation { size_m: n.size_m, shear_pa: n.shear_stress_pa, x_m: n.x_m, y_m: n.y_m }
 }
 
 /// The grid's tractions laid on `shear` and `normal`, every row checked.

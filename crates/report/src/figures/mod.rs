@@ -4,7 +4,8 @@
 //! This module is the registry: every figure in page order ([`ALL`]), the signature of one
 //! ([`Draw`]) and what drawing it gave ([`Outcome`]). The figures live by topic: the sliding
 //! interface (`interface`), accelerograms and records (`records`), spectra (`spectra`), main
-//! shocks across seeds (`events`), the fault (`fault`), a fault scene's rupture (`rupture`), cracks
+//! shocks across seeds (`events`), the fault (`fault`), a fault scene's rupture (`rupture`), its stations against the
+//! ground-motion models (`gmm`), cracks
 //! (`cracks`) and the event catalogue
 //! (`catalogue`); what several topics share is in `common`.
 
@@ -13,6 +14,7 @@ mod common;
 mod cracks;
 mod events;
 mod fault;
+mod gmm;
 mod interface;
 mod records;
 mod rupture;
@@ -50,7 +52,7 @@ pub enum Outcome {
 pub type Draw = fn(&ReportInput, &Path) -> Result<Outcome, ReportError>;
 
 /// Every figure, in page order.
-pub const ALL: [(&str, Draw); 26] = [
+pub const ALL: [(&str, Draw); 27] = [
     ("shear_stress.png", interface::shear_stress),
     ("normal_stress.png", interface::normal_stress),
     ("mean_slip.png", interface::mean_slip),
@@ -70,6 +72,7 @@ pub const ALL: [(&str, Draw); 26] = [
     ("space_time.png", fault::space_time),
     ("rupture_time.png", rupture::rupture_time),
     ("ground_motion.png", rupture::ground_motion),
+    ("gmm_bias.png", gmm::gmm_bias),
     ("cracks.png", cracks::crack_map),
     ("acoustic_emission.png", cracks::emission),
     ("catalogue.png", catalogue::overview),

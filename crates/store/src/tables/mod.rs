@@ -7,6 +7,7 @@ pub mod catalogue;
 pub mod cracks;
 pub mod events;
 pub mod fronts;
+pub mod gmm;
 pub mod records;
 pub mod runs;
 pub mod series;
@@ -19,7 +20,7 @@ use crate::spec::SeedTable;
 
 /// Every per-seed table but `runs` (written last, from the seed's outcome: see
 /// [`crate::seed::write_seed`]), in the order of [`crate::schema::ALL`].
-pub const SEED_TABLES: [SeedTable; 21] = [
+pub const SEED_TABLES: [SeedTable; 22] = [
     series::SERIES_PART,
     series::CONTROL_PART,
     series::FAULT_PART,
@@ -39,6 +40,7 @@ pub const SEED_TABLES: [SeedTable; 21] = [
     source::SOURCE_PART,
     source::FAULT_NODES_PART,
     source::STATIONS_PART,
+    source::STATION_SPECTRA_PART,
     cracks::CRACKS_PART,
     cracks::ACOUSTIC_EMISSION_PART,
 ];

@@ -15,9 +15,17 @@
 //! **stations**, one row per seed and station: `seed` u64, `station` str, `node` u32 (LDEM), `x_m`,
 //! `y_m` (depth), `z_m` (distance from the fault plane), `epicentral_m`, `hypocentral_m`,
 //! `r_rup_m`, `r_jb_m`, `r_x_m`, `r_y0_m`, `azimuth_deg`, `pga_m_s2`, `pgv_m_s`, `pgd_m`
-//! (horizontal: x and z), `pga_vertical_m_s2` f64.
+//! (horizontal: largest |(x, z)| of the raw record), `pga_vertical_m_s2` f64; of the processed
+//! record (docs/model.md §15): `pga_rotd50_m_s2`, `pgv_rotd50_m_s`, `f_low_hz`, `f_high_hz` (its
+//! band-pass), `usable_min_period_s`, `usable_max_period_s` f64 (null without a processed record),
+//! `motion_note` str (why there is none; null otherwise).
+//!
+//! **station_spectra**, one row per seed, station and period in the station's usable band:
+//! `seed` u64, `station` str, `period_s`, `rotd50_m_s2`, `rotd100_m_s2` f64 (5%-damped PSA of the
+//! horizontal pair (x, z)).
 
 use polars::prelude::DataFrame;
+use stickslip_analysis::motions::Motion;
 use stickslip_analysis::{Source, StationRow};
 use stickslip_solver::Model;
 use stickslip_solver::trace::FaultSummary;
@@ -104,7 +112,23 @@ pub const STATIONS: TableSpec = TableSpec {
         col::PGV_M_S,
         col::PGD_M,
         col::PGA_VERTICAL_M_S2,
+        col::PGA_ROTD50_M_S2,
+        col::PGV_ROTD50_M_S,
+        col::F_LOW_HZ,
+        col::F_HIGH_HZ,
+        col::USABLE_MIN_PERIOD_S,
+        col::USABLE_MAX_PERIOD_S,
+        col::MOTION_NOTE,
     ],
+    variable: None,
+};
+
+/// RotD50 and RotD100 PSA of each station's processed horizontal pair, per seed.
+pub const STATION_SPECTRA: TableSpec = TableSpec {
+    name: "station_spectra",
+    scope: Scope::Gathered,
+    key: &[col::SEED, col::STATION, col::PERIOD_S],
+    columns: &[col::SEED, col::STATION, col::PERIOD_S, col::ROTD50_M_S2, col::ROTD100_M_S2],
     variable: None,
 };
 
@@ -127,6 +151,40 @@ pub const STATIONS_PART: SeedTable = SeedTable {
         if s.analysis.stations.is_empty() { Ok(None) } else { stations_frame(s.seed, &s.analysis.stations).map(Some) }
     },
 };
+
+/// The `station_spectra` part of a seed on a fault with stations.
+pub const STATION_SPECTRA_PART: SeedTable = SeedTable {
+    spec: STATION_SPECTRA,
+    write: |s| {
+        let rows = &s.analysis.stations;
+        if rows.iter().all(|r| r.motion.as_ref().map_or(true, |m| m.periods_s.is_empty())) {
+            Ok(None)
+        } else {
+            station_spectra_frame(s.seed, rows).map(Some)
+        }
+    },
+};
+
+/// The station_spectra table of one seed.
+pub fn station_spectra_frame(seed: u64, rows: &[StationRow]) -> Result<DataFrame, StoreError> {
+    let (mut name, mut period, mut r50, mut r100) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for r in rows {
+        let Ok(m) = &r.motion else { continue };
+        for k in 0..m.periods_s.len() {
+            name.push(r.station.name.clone());
+            period.push(m.periods_s[k]);
+            r50.push(m.rotd50_m_s2[k]);
+            r100.push(m.rotd100_m_s2[k]);
+        }
+    }
+    Frame::new(name.len())
+        .u64(col::SEED, vec![seed; name.len()])
+        .str(col::STATION, name)
+        .f64(col::PERIOD_S, period)
+        .f64(col::ROTD50_M_S2, r50)
+        .f64(col::ROTD100_M_S2, r100)
+        .finish(STATION_SPECTRA.name)
+}
 
 /// The source table of one seed.
 pub fn source_frame(seed: u64, s: &Source) -> Result<DataFrame, StoreError> {
@@ -182,6 +240,8 @@ pub fn fault_nodes_frame(seed: u64, f: &FaultSummary, model: &Model) -> Result<D
 pub fn stations_frame(seed: u64, rows: &[StationRow]) -> Result<DataFrame, StoreError> {
     let n = rows.len();
     let pick = |g: &dyn Fn(&StationRow) -> f64| rows.iter().map(g).collect::<Vec<f64>>();
+    let motion =
+        |g: &dyn Fn(&Motion) -> f64| rows.iter().map(|r| r.motion.as_ref().ok().map(g)).collect::<Vec<Option<f64>>>();
     Frame::new(n)
         .u64(col::SEED, vec![seed; n])
         .str(col::STATION, rows.iter().map(|r| r.station.name.clone()).collect())
@@ -200,6 +260,13 @@ pub fn stations_frame(seed: u64, rows: &[StationRow]) -> Result<DataFrame, Store
         .f64(col::PGV_M_S, pick(&|r| r.pgv_m_s))
         .f64(col::PGD_M, pick(&|r| r.pgd_m))
         .f64(col::PGA_VERTICAL_M_S2, pick(&|r| r.pga_vertical_m_s2))
+        .opt_f64(col::PGA_ROTD50_M_S2, motion(&|m| m.pga_rotd50_m_s2))
+        .opt_f64(col::PGV_ROTD50_M_S, motion(&|m| m.pgv_rotd50_m_s))
+        .opt_f64(col::F_LOW_HZ, motion(&|m| m.band_hz[0]))
+        .opt_f64(col::F_HIGH_HZ, motion(&|m| m.band_hz[1]))
+        .opt_f64(col::USABLE_MIN_PERIOD_S, motion(&|m| m.usable_s[0]))
+        .opt_f64(col::USABLE_MAX_PERIOD_S, motion(&|m| m.usable_s[1]))
+        .opt_str(col::MOTION_NOTE, rows.iter().map(|r| r.motion.as_ref().err().cloned()).collect())
         .finish(STATIONS.name)
 }
 

@@ -1,0 +1,129 @@
+//! `stickslip gmm`: a fault scenario's stations against the NGA-West2 ground-motion models.
+
+use std::path::PathBuf;
+
+use anyhow::{Context, Result, bail};
+use stickslip_config::Pipeline;
+use stickslip_ensemble::gmm::{GmmComparison, GmmOptions, compare, write};
+use stickslip_seismo::gmm::Model;
+use stickslip_store::Folder;
+use stickslip_store::tables::gmm::BIAS_BAND_LN;
+
+use crate::text::N;
+
+/// Arguments of `stickslip gmm`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// Output folder of a finished fault scenario with `[[stations]]` (its source, stations and
+    /// station_spectra tables).
+    pub folder: PathBuf,
+    /// Models to compare with, comma-separated: bssa14, ask14.
+    #[arg(long, value_delimiter = ',', default_value = "bssa14,ask14")]
+    pub models: Vec<String>,
+    /// V_S30 given to the models (m/s, 100–5000) [default: the medium's S-wave speed, a
+    /// homogeneous half-space].
+    #[arg(long)]
+    pub vs30: Option<f64>,
+}
+
+/// `stickslip gmm`: writes the gmm_residuals and gmm_bias tables, prints the bias per intensity
+/// measure, and redraws the report.
+pub fn run(a: Args) -> Result<()> {
+    let mut models = Vec::new();
+    for m in &a.models {
+        let model = Model::parse(m.trim()).map_err(|e| anyhow::anyhow!("--models: {e}"))?;
+        if models.contains(&model) {
+            bail!("--models: {m} is given twice (each model once: bssa14, ask14)");
+        }
+        models.push(model);
+    }
+    if models.is_empty() {
+        bail!("--models: at least one of bssa14, ask14");
+    }
+    if let Some(v) = a.vs30 {
+        if !(v.is_finite() && (100.0..=5000.0).contains(&v)) {
+            bail!("--vs30 = {}: a V_S30 from 100 to 5000 m/s", N(v));
+        }
+    }
+    let folder = Folder::new(&a.folder);
+    folder.require_output()?;
+    let opts = GmmOptions { models, vs30_m_s: a.vs30 };
+    let Some(c) = compare(&folder, &opts).with_context(|| format!("{}", a.folder.display()))? else {
+        bail!(
+            "{} has no gathered source and stations tables: `stickslip gmm` compares a finished fault scenario's \
+             [[stations]] (e.g. pipelines/scenario-m6.toml) with the models",
+            a.folder.display()
+        );
+    };
+    write(&folder, &c)?;
+    print(&c, &opts);
+    outln!("\ntables → {} (gmm_residuals, gmm_bias)", folder.tables().display());
+    let pipeline = Pipeline::load(&folder.pipeline_copy())
+        .with_context(|| format!("reading the pipeline of {}", a.folder.display()))?;
+    if pipeline.report.enabled {
+        let r = stickslip_report::write_report(&a.folder, &pipeline)?;
+        outln!("report: rewritten → {} (gmm_bias.png)", r.index.display());
+    }
+    Ok(())
+}
+
+/// The bias table as text: one line per intensity measure, against the models' average.
+pub fn print(c: &GmmComparison, opts: &GmmOptions) {
+    let vs30 = if c.vs30_range[0] == c.vs30_range[1] {
+        format!("{:.0} m/s", N(c.vs30_range[0]))
+    } else {
+        format!("{:.0}–{:.0} m/s", N(c.vs30_range[0]), N(c.vs30_range[1]))
+    };
+    outln!(
+        "{} records ({} seeds × stations), Mw {:.2}–{:.2}, V_S30 {vs30}; against {} and their average \
+         (ln medians averaged)",
+        c.records,
+        c.seeds.len(),
+        N(c.mw_range[0]),
+        N(c.mw_range[1]),
+        opts.models.iter().map(|m| m.name().to_uppercase()).collect::<Vec<_>>().join(", ")
+    );
+    outln!(
+        "{:<12} {:>5} {:>8} {:>18} {:>8} {:>7} {:>7} {:>14} {:>8}",
+        "measure",
+        "n",
+        "bias",
+        "90% interval",
+        "σ_rec",
+        "±1σ",
+        "Part B",
+        "slope Δ (±se)",
+        "outside"
+    );
+    for b in c.bias.iter().filter(|b| b.model == "average") {
+        let name = match b.period_s {
+            Some(t) => format!("PSA({t} s)"),
+            None => b.imt.to_string(),
+        };
+        let ci = b.ci90_ln.map_or("–".to_string(), |[l, h]| format!("[{:.2}, {:.2}]", N(l), N(h)));
+        let slope = b.slope.and_then(|s| s[2].map(|d| (d, s[3]))).map_or("–".to_string(), |(d, se)| {
+            se.map_or(format!("{:.2}", N(d)), |se| format!("{:.2} ± {:.2}", N(d), N(se)))
+        });
+        outln!(
+            "{:<12} {:>5} {:>8} {:>18} {:>8} {:>6.0}% {:>7} {:>14} {:>8}",
+            name,
+            b.records,
+            format!("{:.2}{}", N(b.mean_bias_ln), if b.mean_bias_ln.abs() <= BIAS_BAND_LN { "" } else { " ✗" }),
+            ci,
+            b.between_record_std_ln.map_or("–".to_string(), |s| format!("{:.2}", N(s))),
+            100.0 * b.within_one_sigma,
+            match b.part_b_pass {
+                Some(true) => "pass",
+                Some(false) => "fail",
+                None => "–",
+            },
+            slope,
+            b.outside_records
+        );
+    }
+    outln!(
+        "(bias = mean ln(simulated/model) of RotD50, ✗ outside the ±{BIAS_BAND_LN} pass band; σ_rec the between-record \
+         standard deviation; ±1σ the share of records within one model σ; slope Δ = d ln(sim/model)/d ln R_rup; \
+         outside = records where a model extrapolates)"
+    );
+}
