@@ -40,10 +40,10 @@ pub fn run(a: Args) -> Result<()> {
     if models.is_empty() {
         bail!("--models: at least one of bssa14, ask14");
     }
-    if let Some(v) = a.vs30 {
-        if !(v.is_finite() && (100.0..=5000.0).contains(&v)) {
-            bail!("--vs30 = {}: a V_S30 from 100 to 5000 m/s", N(v));
-        }
+    if let Some(v) = a.vs30
+        && !(v.is_finite() && (100.0..=5000.0).contains(&v))
+    {
+        bail!("--vs30 = {}: a V_S30 from 100 to 5000 m/s", N(v));
     }
     let folder = Folder::new(&a.folder);
     folder.require_output()?;
