@@ -125,13 +125,16 @@ fn a_pipeline_whose_every_seed_fails_exits_non_zero_after_writing_its_tables() {
     assert!(err(&o).contains("every seed failed"), "{}", err(&o));
 }
 
-/// A record interval far finer than the step (the fuzz's 1.3e17-byte resampling) is refused once
-/// Δt is known and before the first step: by `check`, and by each seed of `pipeline` and `run`,
-/// naming record.interval_s, its value and the least allowed.
+/// A record interval far finer than the step, with records resampled to it (the fuzz's
+/// 1.3e17-byte resampling), is refused once Δt is known and before the first step: by `check`,
+/// and by each seed of `pipeline` and `run`, naming record.interval_s, its value and the least
+/// allowed. Without records it samples every step.
 #[test]
 fn a_record_interval_finer_than_half_the_step_is_refused_before_stepping() {
     let dir = scratch_dir("frontdoor-fine-records");
-    std::fs::write(dir.join("p.toml"), SHORT.replace("interval_s = 5e-5", "interval_s = 1e-9")).unwrap();
+    let records = "[[record.control]]\nnodes = [36]\n[accelerograms]\n";
+    let fine = SHORT.replace("interval_s = 5e-5", "interval_s = 1e-9");
+    std::fs::write(dir.join("p.toml"), format!("{fine}{records}")).unwrap();
     // pipeline prints each seed's failure on stdout, run and check on stderr.
     let says = |o: &Output| {
         let e = format!("{}{}", out(o), err(o));
@@ -155,10 +158,13 @@ fn a_record_interval_finer_than_half_the_step_is_refused_before_stepping() {
         says(&o);
         assert!(took < Duration::from_secs(10), "{args:?} took {took:?}");
     }
-    // Half a step is still sampled every step: accepted.
-    std::fs::write(dir.join("p.toml"), SHORT.replace("interval_s = 5e-5", "interval_s = 5.5e-6")).unwrap();
-    let o = stickslip(&["check", "p.toml"], &dir);
-    assert!(o.status.success(), "{}", err(&o));
+    // Half a step is still sampled every step: accepted; and without records, any interval.
+    let half = SHORT.replace("interval_s = 5e-5", "interval_s = 5.5e-6");
+    for text in [format!("{half}{records}"), fine] {
+        std::fs::write(dir.join("p.toml"), text).unwrap();
+        let o = stickslip(&["check", "p.toml"], &dir);
+        assert!(o.status.success(), "{}", err(&o));
+    }
 }
 
 /// `stickslip pipeline p.toml | head -1`: the reader goes away after a line, and the run still

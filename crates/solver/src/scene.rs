@@ -310,6 +310,10 @@ pub struct ControlChannel {
 pub struct RecordPlan {
     /// Sampling interval (s); `None` = every step.
     pub interval_s: Option<f64>,
+    /// The records are resampled to exactly `interval_s` (the pipeline processes accelerograms),
+    /// so it may be no finer than half a step (refused before the run,
+    /// [`crate::run::check_record_interval`]); otherwise a finer interval samples every step.
+    pub resampled: bool,
     /// Interface quantities.
     pub interface: Vec<InterfaceQuantity>,
     /// Energy terms.
@@ -452,6 +456,7 @@ impl Scene {
             fixed: Vec::new(),
             record: RecordPlan {
                 interval_s: None,
+                resampled: false,
                 interface: InterfaceQuantity::ALL.to_vec(),
                 energy: false,
                 settling: false,
