@@ -1,0 +1,212 @@
+//! A fault scenario end to end at 1 km (a smoke version of `pipelines/scenario-m6.toml`, seconds):
+//! per-seed nucleation, the stations' RotD motions, `stickslip gmm` and its refusals. The
+//! residuals are checked against the models evaluated here from the tables' own distances and
+//! magnitudes; the scenario's statistics at 500 m are a benchmark (README, docs/model.md §16).
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use polars::prelude::*;
+use stickslip_seismo::gmm::{Imt, Mechanism, Model, Rupture, Site};
+
+fn stickslip(args: &[&str], cwd: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_stickslip")).args(args).current_dir(cwd).output().expect("run stickslip")
+}
+
+fn read(path: &Path) -> DataFrame {
+    ParquetReader::new(std::fs::File::open(path).unwrap()).finish().unwrap()
+}
+
+fn f64s(df: &DataFrame, name: &str) -> Vec<f64> {
+    df.column(name).unwrap().cast(&DataType::Float64).unwrap().f64().unwrap().iter().map(|v| v.unwrap_or(f64::NAN)).collect()
+}
+
+fn strs(df: &DataFrame, name: &str) -> Vec<String> {
+    df.column(name).unwrap().str().unwrap().iter().map(|v| v.unwrap_or_default().to_string()).collect()
+}
+
+const SMOKE: &str = r#"
+version = 1
+name = "scenario-smoke"
+[seeds]
+list = [1, 2]
+[block]
+nx = 24
+ny = 8
+nz = 12
+lc_m = 1000.0
+[material]
+young_pa = 8.0104e10
+density_kg_m3 = 2670.0
+poisson = 0.25
+young_cv = 0.0
+[friction]
+mu_static = 0.677
+mu_dynamic = 0.525
+slip_weakening_m = 0.40
+heals = false
+[[friction.patches]]
+name = "barrier -x"
+shape = "rectangle"
+x_m = [0.0, 5500.0]
+mu_static = 10000.0
+priority = 1
+[[friction.patches]]
+name = "barrier +x"
+shape = "rectangle"
+x_m = [16500.0, 24000.0]
+mu_static = 10000.0
+priority = 1
+[[friction.patches]]
+name = "barrier below"
+shape = "rectangle"
+x_m = [0.0, 24000.0]
+y_m = [5500.0, 8000.0]
+mu_static = 10000.0
+priority = 2
+[fault]
+normal_stress_pa = 120e6
+shear_stress_pa = 70e6
+[fault.stochastic]
+std_pa = 3e6
+correlation_length_m = 3000.0
+[fault.nucleation]
+size_m = 3000.0
+shear_stress_pa = 82e6
+x_m = [8000.0, 14000.0]
+y_m = [1500.0, 3500.0]
+[absorbing]
+faces = ["x_min", "x_max", "y_max", "z_max"]
+[self_weight]
+gravity_m_s2 = 0.0
+[shear]
+damping_per_s = 0.0
+duration_s = 12.0
+[record]
+interval_s = 0.05
+[[stations]]
+name = "normal"
+from_m = [11000.0, 0.0, 2000.0]
+to_m = [11000.0, 0.0, 10000.0]
+count = 5
+[[stations]]
+name = "buried"
+at_m = [11000.0, 4000.0, 3000.0]
+[events]
+rupture_rate_m_s = 0.001
+"#;
+
+fn scenario() -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("stickslip-gmm-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("smoke.toml"), SMOKE).unwrap();
+    let out = stickslip(&["pipeline", "smoke.toml", "--out", "out", "-q", "--threads", "2"], &dir);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    dir
+}
+
+#[test]
+fn a_scenario_s_stations_are_compared_with_the_models_as_they_predict() {
+    let dir = scenario();
+    let tables = dir.join("out/tables");
+    // Each seed nucleates where its own draw puts it.
+    let source = read(&tables.join("source.parquet"));
+    let hx = f64s(&source, "hypocentre_x_m");
+    assert_eq!(hx.len(), 2, "both seeds ruptured");
+    assert_ne!(hx[0], hx[1], "two seeds, two hypocentres");
+    let mw = f64s(&source, "mw");
+    // The surface stations have processed motions and PSA in their usable band only.
+    let st = read(&tables.join("stations.parquet"));
+    let names = strs(&st, "station");
+    let pgv = f64s(&st, "pgv_rotd50_m_s");
+    let tmin = f64s(&st, "usable_min_period_s");
+    let tmax = f64s(&st, "usable_max_period_s");
+    assert!(pgv.iter().all(|v| *v > 0.0), "{pgv:?}");
+    let sp = read(&tables.join("station_spectra.parquet"));
+    let (sp_name, sp_t) = (strs(&sp, "station"), f64s(&sp, "period_s"));
+    assert!(!sp_t.is_empty());
+    for (n, t) in sp_name.iter().zip(&sp_t) {
+        let i = names.iter().position(|s| s == n).unwrap();
+        assert!(*t >= tmin[i] * (1.0 - 1e-9) && *t <= tmax[i], "{n}: {t} s outside [{}, {}]", tmin[i], tmax[i]);
+    }
+    // The pipeline compared them already (both models, V_S30 = Vs); `stickslip gmm` again with one
+    // model and a V_S30 of 760 m/s rewrites the tables.
+    assert!(tables.join("gmm_bias.parquet").exists() && dir.join("out/figures/gmm_bias.png").exists());
+    let out = stickslip(&["gmm", "out", "--models", "bssa14", "--vs30", "760"], &dir);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("PGV") && text.contains("PSA("), "{text}");
+    let res = read(&tables.join("gmm_residuals.parquet"));
+    let (model, imt, station) = (strs(&res, "model"), strs(&res, "imt"), strs(&res, "station"));
+    assert!(model.iter().all(|m| m == "bssa14" || m == "average"));
+    assert!(station.iter().all(|s| s.starts_with("normal-")), "the buried station is not compared");
+    let seed: Vec<f64> = f64s(&res, "seed");
+    let (period, r_rup, sim, median, resid) = (
+        f64s(&res, "period_s"),
+        f64s(&res, "r_rup_km"),
+        f64s(&res, "simulated"),
+        f64s(&res, "median"),
+        f64s(&res, "residual_ln"),
+    );
+    let (y0, y1) = (f64s(&source, "rupture_y_min_m"), f64s(&source, "rupture_y_max_m"));
+    let (st_seed, rjb, rx, ry0) = (f64s(&st, "seed"), f64s(&st, "r_jb_m"), f64s(&st, "r_x_m"), f64s(&st, "r_y0_m"));
+    let mut checked = 0;
+    for i in (0..model.len()).filter(|&i| model[i] == "bssa14") {
+        let k = (seed[i] as usize) - 1;
+        let j = (0..names.len()).find(|&j| names[j] == station[i] && st_seed[j] == seed[i]).unwrap();
+        let rupture = Rupture {
+            mw: mw[k],
+            mechanism: Mechanism::StrikeSlip,
+            dip_deg: 90.0,
+            ztor_km: y0[k] / 1e3,
+            width_km: (y1[k] - y0[k]) / 1e3,
+        };
+        let site = Site {
+            r_rup_km: r_rup[i],
+            r_jb_km: rjb[j] / 1e3,
+            r_x_km: rx[j] / 1e3,
+            r_y0_km: Some(ry0[j] / 1e3),
+            vs30_m_s: 760.0,
+            z1_km: None,
+            vs30_measured: true,
+        };
+        let m = match imt[i].as_str() {
+            "PGA" => Imt::Pga,
+            "PGV" => Imt::Pgv,
+            _ => Imt::Psa(period[i]),
+        };
+        let p = Model::Bssa14.predict(&rupture, &site, m).unwrap();
+        assert!((median[i] / p.median() - 1.0).abs() < 1e-9, "{} {}: {} vs {}", station[i], imt[i], median[i], p.median());
+        assert!((resid[i] - (sim[i] / median[i]).ln()).abs() < 1e-9);
+        checked += 1;
+    }
+    assert!(checked >= 2 * 5 * 3, "PGA, PGV and PSA of every surface station and seed: {checked}");
+    // The bias table: one row per measure for the model and one for the average.
+    let bias = read(&tables.join("gmm_bias.parquet"));
+    let (bm, bmean) = (strs(&bias, "model"), f64s(&bias, "mean_bias_ln"));
+    for (m, b) in bm.iter().zip(&bmean) {
+        assert!(m == "bssa14" || m == "average");
+        assert!(b.is_finite());
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn gmm_refuses_what_it_cannot_compare() {
+    let dir = std::env::temp_dir().join(format!("stickslip-gmm-refusals-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    for (args, expect) in [
+        (vec!["gmm", ".", "--vs30", "50"], "--vs30 = 50: a V_S30 from 100 to 5000 m/s"),
+        (vec!["gmm", ".", "--models", "cy14"], "--models"),
+        (vec!["gmm", ".", "--models", "bssa14,bssa14"], "given twice"),
+        (vec!["gmm", "."], "not"),
+    ] {
+        let out = stickslip(&args, &dir);
+        assert!(!out.status.success(), "{args:?} was accepted");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(expect), "{args:?}: {err}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
