@@ -18,7 +18,15 @@ fn read(path: &Path) -> DataFrame {
 }
 
 fn f64s(df: &DataFrame, name: &str) -> Vec<f64> {
-    df.column(name).unwrap().cast(&DataType::Float64).unwrap().f64().unwrap().iter().map(|v| v.unwrap_or(f64::NAN)).collect()
+    df.column(name)
+        .unwrap()
+        .cast(&DataType::Float64)
+        .unwrap()
+        .f64()
+        .unwrap()
+        .iter()
+        .map(|v| v.unwrap_or(f64::NAN))
+        .collect()
 }
 
 fn strs(df: &DataFrame, name: &str) -> Vec<String> {
@@ -177,7 +185,14 @@ fn a_scenario_s_stations_are_compared_with_the_models_as_they_predict() {
             _ => Imt::Psa(period[i]),
         };
         let p = Model::Bssa14.predict(&rupture, &site, m).unwrap();
-        assert!((median[i] / p.median() - 1.0).abs() < 1e-9, "{} {}: {} vs {}", station[i], imt[i], median[i], p.median());
+        assert!(
+            (median[i] / p.median() - 1.0).abs() < 1e-9,
+            "{} {}: {} vs {}",
+            station[i],
+            imt[i],
+            median[i],
+            p.median()
+        );
         assert!((resid[i] - (sim[i] / median[i]).ln()).abs() < 1e-9);
         checked += 1;
     }
