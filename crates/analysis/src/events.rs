@@ -1,6 +1,6 @@
 //! A seed's events (docs/model.md §7) and each at prototype scale with its magnitudes (§9).
 
-use stickslip_seismo::events::{Catalogue, EventParams, Signals, detect};
+use stickslip_seismo::events::{Catalogue, EventParams, Loading, Signals, detect};
 use stickslip_seismo::similarity::{AreaChoice, Magnitudes, ModelEvent, Scaled, SimilarityParams, scale};
 use stickslip_solver::material::lattice_elastic_constants;
 use stickslip_solver::scene::{ControlChannel, Kinematic};
@@ -40,7 +40,8 @@ pub fn catalogue(rec: &Recording, model: &Model, events: &EventParams) -> Catalo
         slipping_nodes: Some(&trace.slipping_nodes),
         accelerations: &accelerations,
     };
-    detect(&signals, model.contact().len(), model.lattice().contact_area(), events)
+    let loading = if model.scene().is_driven() { Loading::Driven } else { Loading::Fixed };
+    detect(&signals, model.contact().len(), model.lattice().contact_area(), loading, events)
 }
 
 /// The prototype length ratio λ = L_p / L_m of `model`'s block: 1 on a fault, whose scene is at

@@ -1,10 +1,11 @@
 //! `stickslip`: the command line. Glue only: each subcommand (one file in `commands/`) parses
 //! its arguments, calls the crates that do the work and prints what they return.
 
+#[macro_use]
+mod text;
 mod budget;
 mod commands;
 mod progress;
-mod text;
 
 use clap::{Parser, Subcommand};
 
@@ -56,14 +57,23 @@ enum Command {
 }
 
 fn main() {
-    // Output piped into `head` and the like: end quietly when the reader goes away, as Unix
-    // tools do, instead of panicking on a broken pipe.
+    let command = Cli::parse().command;
+    // Output piped into `head` and the like. A command that only reads ends quietly when the
+    // reader goes away, as Unix tools do; one that writes tables, records or a report keeps
+    // going (SIGPIPE stays ignored and its prints ignore the broken pipe, see `text::outln`)
+    // so that a closed pipe never leaves its outputs half written.
+    let only_reads = matches!(
+        command,
+        Command::Check(_) | Command::Show(_) | Command::Seeds(_) | Command::Similarity(_) | Command::Compare(_)
+    );
     #[cfg(unix)]
-    // SAFETY: restoring the default disposition of SIGPIPE before any thread starts.
-    unsafe {
-        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    if only_reads {
+        // SAFETY: restoring the default disposition of SIGPIPE before any thread starts.
+        unsafe {
+            libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+        }
     }
-    let result = match Cli::parse().command {
+    let result = match command {
         Command::Pipeline(a) => pipeline::run(a),
         Command::Run(a) => run::run(a),
         Command::Merge(a) => merge::run(a),
@@ -78,7 +88,7 @@ fn main() {
         Command::Gmm(a) => gmm::run(a),
     };
     if let Err(e) = result {
-        eprintln!("error: {e:#}");
+        errln!("error: {e:#}");
         std::process::exit(1);
     }
 }

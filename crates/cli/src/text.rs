@@ -1,4 +1,22 @@
-//! Text layout for a terminal.
+//! Text layout for a terminal, and printing that a closed pipe cannot stop.
+
+/// `outln!` that ignores a failed write: a reader that went away (`stickslip pipeline … |
+/// head -1`) must not stop a run before its tables and report are written (`outln!` panics on
+/// a broken pipe).
+macro_rules! outln {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stdout(), $($arg)*);
+    }};
+}
+
+/// `errln!` that ignores a failed write (stderr piped into a reader that went away).
+macro_rules! errln {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stderr(), $($arg)*);
+    }};
+}
 
 /// Width of `s` as a terminal shows it: combining marks (e.g. the dot of u̇) take no column.
 pub fn width(s: &str) -> usize {

@@ -125,6 +125,96 @@ fn a_pipeline_whose_every_seed_fails_exits_non_zero_after_writing_its_tables() {
     assert!(err(&o).contains("every seed failed"), "{}", err(&o));
 }
 
+/// A record interval far finer than the step, with records resampled to it (the fuzz's
+/// 1.3e17-byte resampling), is refused once Δt is known and before the first step: by `check`,
+/// and by each seed of `pipeline` and `run`, naming record.interval_s, its value and the least
+/// allowed. Without records it samples every step.
+#[test]
+fn a_record_interval_finer_than_half_the_step_is_refused_before_stepping() {
+    let dir = scratch_dir("frontdoor-fine-records");
+    let records = "[[record.control]]\nnodes = [36]\n[accelerograms]\n";
+    let fine = SHORT.replace("interval_s = 5e-5", "interval_s = 1e-9");
+    std::fs::write(dir.join("p.toml"), format!("{fine}{records}")).unwrap();
+    // pipeline prints each seed's failure on stdout, run and check on stderr.
+    let says = |o: &Output| {
+        let e = format!("{}{}", out(o), err(o));
+        assert!(e.contains("record.interval_s = 1e-9 s is finer than this run can sample"), "{e}");
+        assert!(
+            e.contains("give record.interval_s at least Δt/2 = ") && e.contains("pipeline keys: record.interval_s"),
+            "{e}"
+        );
+    };
+    let (o, _) = within(&["check", "p.toml"], &dir, Duration::from_secs(30));
+    assert_eq!(o.status.code(), Some(1), "{}", out(&o));
+    says(&o);
+    assert!(!out(&o).contains("run: "), "refused before the run's length is probed:\n{}", out(&o));
+    for args in [
+        &["pipeline", "p.toml", "--quiet", "--out", "o"][..],
+        &["run", "p.toml", "--seed", "1", "--out", "r", "--quiet"],
+    ] {
+        // A 0.1-s stage at 1e-9 s would be 1e8 samples: refused in well under its run time.
+        let (o, took) = within(args, &dir, Duration::from_secs(60));
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {}", out(&o));
+        says(&o);
+        assert!(took < Duration::from_secs(10), "{args:?} took {took:?}");
+    }
+    // Half a step is still sampled every step: accepted; and without records, any interval.
+    let half = SHORT.replace("interval_s = 5e-5", "interval_s = 5.5e-6");
+    for text in [format!("{half}{records}"), fine] {
+        std::fs::write(dir.join("p.toml"), text).unwrap();
+        let o = stickslip(&["check", "p.toml"], &dir);
+        assert!(o.status.success(), "{}", err(&o));
+    }
+}
+
+/// `stickslip pipeline p.toml | head -1`: the reader goes away after a line, and the run still
+/// writes its tables and report and exits normally (a broken pipe killed it at its next print,
+/// before the report). `check`, which only reads, may end at once.
+#[test]
+fn a_reader_that_goes_away_does_not_stop_the_run_before_its_outputs() {
+    let dir = scratch_dir("frontdoor-epipe");
+    let text =
+        SHORT.replace("range = { first = 1, count = 4 }", "list = [1, 2]").replace("enabled = false", "enabled = true");
+    std::fs::write(dir.join("p.toml"), text).unwrap();
+    for command in ["pipeline", "run"] {
+        let mut args = vec![command, "p.toml", "--out", command];
+        if command == "run" {
+            args.extend(["--seed", "1"]);
+        }
+        let mut child = Command::new(env!("CARGO_BIN_EXE_stickslip"))
+            .args(&args)
+            .current_dir(&dir)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        // The read end closed before the command prints a line (`head -0`).
+        drop(child.stdout.take());
+        let o = child.wait_with_output().unwrap();
+        assert_eq!(o.status.code(), Some(0), "{command}: {:?}\n{}", o.status, err(&o));
+        assert!(dir.join(command).join("index.html").exists(), "{command}: no report");
+        assert!(dir.join(command).join("tables/runs.parquet").exists(), "{command}: no runs table");
+    }
+}
+
+/// `check` writes the block's mass and the friction map's patch extents short: not
+/// `mass 5184.000 kg` or `2.136e16` with three decimals, not `x 0.8999999999999999…` on a
+/// lattice of Lc = 0.3 m.
+#[test]
+fn check_writes_the_mass_and_patch_extents_short() {
+    let dir = scratch_dir("frontdoor-check-numbers");
+    let text =
+        std::fs::read_to_string(repo_path("pipelines/fault-barrier.toml")).unwrap().replace("lc_m = 0.1", "lc_m = 0.3");
+    assert!(text.contains("lc_m = 0.3"));
+    std::fs::write(dir.join("p.toml"), text).unwrap();
+    let o = stickslip(&["check", "p.toml", "--seeds", "1"], &dir);
+    assert!(o.status.success(), "{}", err(&o));
+    let printed = out(&o);
+    assert!(printed.contains("82 contact nodes, mass 5184 kg"), "{printed}");
+    assert!(printed.contains("patch (weak): 6 nodes, x 0.3…0.9 m"), "{printed}");
+    assert!(printed.contains("barrier (barrier): 8 nodes, x 3…3.9 m"), "{printed}");
+}
+
 #[test]
 fn fresh_leaves_nothing_of_the_discarded_run() {
     let dir = scratch_dir("frontdoor-fresh");

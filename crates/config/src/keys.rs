@@ -14,6 +14,7 @@ pub fn for_error(e: &SolverError) -> Option<&'static str> {
         SolverError::TooManySteps { .. } => {
             Some("shear.duration_s, self_weight.max_duration_s, time.dt_fraction, time.dt_s")
         }
+        SolverError::RecordIntervalTooFine { .. } => Some("record.interval_s, time.dt_fraction, time.dt_s"),
         SolverError::Unstable { .. } | SolverError::Numerical(_) | SolverError::Cancelled => None,
     }
 }

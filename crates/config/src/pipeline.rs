@@ -245,6 +245,8 @@ impl PipelineFile {
         ck.finish()?;
         let mut scene = scene.expect("no refusal means a scene");
         scene.record.trace = trace_plan(&events, scene.shear.duration_s);
+        // Accelerograms are processed with `[accelerograms]` or `[spectra]` (as by the pipeline).
+        scene.record.resampled = self.accelerograms.is_some() || self.spectra.is_some();
         Ok(scene)
     }
 }
@@ -452,6 +454,7 @@ impl Pipeline {
             scene: {
                 let mut scene = scene.expect("no refusal means a scene");
                 scene.record.trace = trace_plan(&events, scene.shear.duration_s);
+                scene.record.resampled = accelerograms.is_some();
                 scene
             },
             analysis: Settings { events, similarity, accelerograms, spectra, emission },

@@ -610,6 +610,9 @@ fn axes(
     };
     let desc = if panel.compact { TICK + 2 } else { LABEL };
     let light = if panel.minor_grid { RGBColor(235, 235, 235).mix(1.0) } else { WHITE.mix(0.0) };
+    // A linear axis has grid lines at its labels only (plotters' default of ten minor lines per
+    // label drew dense bands, as on the magnitude axis); a log axis has its own minor lines below.
+    let light_lines = |scale: Scale| if scale == Scale::Linear { 1 } else { 10 };
     macro_rules! mesh {
         ($xspec:expr, $yspec:expr) => {{
             let mut chart = builder.build_cartesian_2d($xspec, $yspec).map_err(fail)?;
@@ -619,7 +622,9 @@ fn axes(
                 .label_style((FONT, TICK))
                 .x_label_formatter(x_fmt)
                 .y_label_formatter(&fmt_tick)
-                .light_line_style(light);
+                .light_line_style(light)
+                .x_max_light_lines(light_lines(panel.x_scale))
+                .y_max_light_lines(light_lines(panel.y_scale));
             if has_x_desc && panel.x_tick_labels {
                 mesh.x_desc(panel.x_desc.as_str());
             }

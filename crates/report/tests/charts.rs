@@ -288,3 +288,32 @@ fn a_reference_label_through_a_point_cloud_and_a_legend_over_curves_find_free_ro
         assert!(t.iter().any(|s| s.contains(want)), "{want:?} drawn: {t:?}");
     }
 }
+
+/// The grid of magnitude_frequency.png (a linear magnitude axis beside a log count axis, minor
+/// grid on): vertical grid lines at the magnitude labels only, not plotters' ten minor lines per
+/// label (which drew a dense light band); the log axis keeps its minor lines at 2…9 × 10^k.
+#[test]
+fn a_linear_axis_beside_a_log_axis_has_grid_lines_at_its_labels_only() {
+    use stickslip_report::charts::Scale;
+    let panel = Panel {
+        y_scale: Scale::Log,
+        minor_grid: true,
+        x_range: Some((3.05, 4.05)),
+        y_range: Some((0.8, 150.0)),
+        legend: false,
+        ..Panel::linear("magnitude", "events")
+    };
+    let (img, drawn) = render(&Sheet::new("", 1, vec![panel])).unwrap();
+    let a = drawn.panels[0].area;
+    // Grid lines crossing the middle row (columns) and the middle column (rows), away from the
+    // axes: any non-white pixel there is a grid line.
+    let (row, col) = ((a.y0 + a.y1) as u32 / 2 + 3, (a.x0 + a.x1) as u32 / 2 + 3);
+    let lines =
+        |pixels: Vec<[u8; 3]>| pixels.windows(2).filter(|w| w[0] == [255, 255, 255] && w[1] != [255, 255, 255]).count();
+    let vertical = lines((a.x0 as u32 + 2..a.x1 as u32 - 2).map(|x| img.pixel(x, row)).collect());
+    let horizontal = lines((a.y0 as u32 + 2..a.y1 as u32 - 2).map(|y| img.pixel(col, y)).collect());
+    // 3.1, 3.2, …, 4.0: ten labels, so at most ten vertical lines (and at least a few).
+    assert!((5..=11).contains(&vertical), "{vertical} vertical grid lines");
+    // 1, 10, 100 and the minor lines at 2…9 × 10^k (and 0.9): about 20.
+    assert!((15..=30).contains(&horizontal), "{horizontal} horizontal grid lines");
+}

@@ -210,6 +210,17 @@ impl Catalogue {
     }
 }
 
+/// How the scene loads the interface: what tells steady sliding from a rupture when a slip
+/// episode is still going at the end of the run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Loading {
+    /// A driver or a loading plate moves: the interface can slide along with it for good.
+    Driven,
+    /// Fixed tractions (a fault loaded by its initial stress, nothing moving): a slip that has
+    /// not stopped is a rupture the end of the run cut short, never sliding.
+    Fixed,
+}
+
 /// The interface signals the detector reads, all sampled at the same instants.
 #[derive(Clone, Copy, Debug)]
 pub struct Signals<'a> {
@@ -335,8 +346,15 @@ impl<'a> Piecewise<'a> {
 /// Detects the events of one run (docs/model.md §7). The signals may be sampled unevenly (the
 /// solver's event trace is: every step around each burst of slip, sparsely between); the
 /// smoothing is over time, not samples. `contact_nodes` and `contact_area_m2` convert the
-/// slipping count into a rupture area.
-pub fn detect(signals: &Signals<'_>, contact_nodes: usize, contact_area_m2: f64, params: &EventParams) -> Catalogue {
+/// slipping count into a rupture area; `loading` says whether a slip that never stops can be
+/// sliding ([`Sliding`]).
+pub fn detect(
+    signals: &Signals<'_>,
+    contact_nodes: usize,
+    contact_area_m2: f64,
+    loading: Loading,
+    params: &EventParams,
+) -> Catalogue {
     let t = signals.time_s;
     let n = t.len();
     let (tau, slip, rate) = (signals.shear_stress_pa, signals.mean_slip_m, signals.mean_slip_rate_m_s);
@@ -473,16 +491,16 @@ pub fn detect(signals: &Signals<'_>, contact_nodes: usize, contact_area_m2: f64,
         let burst = measure(a, b);
         let ring = ringing(previous_end + w, burst.start_s - half);
         previous_end = burst.end_s;
-        // An episode still slipping when the run ends, for longer than the loading needs to
-        // restore its drop and than any episode that ended (or for more than half the run):
-        // stable sliding, not an earthquake.
-        let burst = if b >= n {
+        // An episode still slipping when the run ends under a moving driver, for longer than
+        // the loading needs to restore its drop and than any episode that ended (or for more
+        // than half the run, as when the base slides from the start and no stuck stretch gives
+        // a loading rate): stable sliding, not an earthquake. Under fixed tractions (a fault's
+        // one rupture, which may last most of a short run) it is an event.
+        let burst = if b >= n && loading == Loading::Driven {
             let sliding = Sliding { burst, loading_rate_pa_s };
             let lasted = sliding.burst.end_s - sliding.burst.start_s;
             let outlasted = sliding.restore_s().is_some_and(|r| lasted > r) && lasted > longest_finished;
-            // Without a loading rate (no stuck stretch rising: a fault loaded by its initial
-            // stress, whose one rupture may last most of a short run) it is an event.
-            if outlasted || (sliding.loading_rate_pa_s.is_some() && lasted > 0.5 * record_s) {
+            if outlasted || lasted > 0.5 * record_s {
                 catalogue.sliding = Some(sliding);
                 continue;
             }
@@ -620,7 +638,7 @@ mod tests {
         // One-sample smoothing averages each sample with half of its neighbours': the 50-sample
         // gaps between sub-events read as 49 quiet samples, so the quiet time is 0.4 ms here.
         let params = EventParams { smoothing_s: DT, quiet_s: 0.4e-3, ..EventParams::default() };
-        let cat = detect(&signals(&rec), 22, 0.1, &params);
+        let cat = detect(&signals(&rec), 22, 0.1, Loading::Driven, &params);
         let kinds: Vec<EventKind> = cat.events.iter().map(|e| e.kind).collect();
         assert_eq!(
             kinds,
@@ -661,7 +679,7 @@ mod tests {
     /// default 1-ms smoothing (w = 100 samples at DT = 10 µs).
     fn one_burst(bursts: &[(usize, usize, f64, f64)]) -> Catalogue {
         let rec = synthetic(12000, bursts);
-        detect(&signals(&rec), 22, 0.1, &EventParams::default())
+        detect(&signals(&rec), 22, 0.1, Loading::Driven, &EventParams::default())
     }
 
     /// A clean burst under the default 1-ms smoothing: start and end come from the raw slip
@@ -701,7 +719,7 @@ mod tests {
                 *tau += 1000.0 * (2.0 * std::f64::consts::PI * 2000.0 * t).sin() * (-t / 0.01).exp();
             }
         }
-        let rung = detect(&signals(&rec), 22, 0.1, &EventParams::default());
+        let rung = detect(&signals(&rec), 22, 0.1, Loading::Driven, &EventParams::default());
         assert_eq!(rung.events.len(), 1);
         let (d0, d1) = (clean.events[0].burst.stress_drop_pa, rung.events[0].burst.stress_drop_pa);
         // A 1-kPa ringing, unsmoothed, would change the drop by up to 1 kPa (17%).
@@ -730,7 +748,7 @@ mod tests {
     fn sliding_that_never_stops_is_not_an_earthquake() {
         let n = 20_000;
         let rec = synthetic(n, &[(5000, n, 1e-3, 1000.0)]);
-        let cat = detect(&signals(&rec), 22, 0.1, &EventParams::default());
+        let cat = detect(&signals(&rec), 22, 0.1, Loading::Driven, &EventParams::default());
         assert!(cat.events.is_empty(), "{:?}", cat.events);
         let s = cat.sliding.expect("stable sliding");
         assert!((s.burst.start_s - 5000.0 * DT).abs() < 1e-9, "{}", s.burst.start_s);
@@ -739,15 +757,36 @@ mod tests {
         assert!((s.restore_s().unwrap() - s.burst.stress_drop_pa / 300e3).abs() < 1e-4);
         // Stick-slip first, then sliding: the event stays, the sliding is not one.
         let rec = synthetic(n, &[(5000, 5200, 1e-3, 6000.0), (12_000, n, 1e-3, 1000.0)]);
-        let cat = detect(&signals(&rec), 22, 0.1, &EventParams::default());
+        let cat = detect(&signals(&rec), 22, 0.1, Loading::Driven, &EventParams::default());
         assert_eq!(cat.events.iter().map(|e| e.kind).collect::<Vec<_>>(), [EventKind::Main(1)]);
         assert!((cat.sliding.unwrap().burst.start_s - 12_000.0 * DT).abs() < 1e-9);
         // A 30-ms event, then the onset of the next (a small drop so far) 5 ms before the end:
         // not sliding, it has not outlasted the event before it.
         let rec = synthetic(n, &[(5000, 8000, 1e-3, 6000.0), (19_500, n, 1e-3, 50.0)]);
-        let cat = detect(&signals(&rec), 22, 0.1, &EventParams::default());
+        let cat = detect(&signals(&rec), 22, 0.1, Loading::Driven, &EventParams::default());
         assert!(cat.sliding.is_none(), "{:?}", cat.sliding);
         assert_eq!(cat.events.len(), 1);
+    }
+
+    /// A slip from 1 ms into the run to its end, 2 kPa of drop at its onset: no stuck stretch is
+    /// long enough to give a loading rate. Under a moving driver it is sliding from the start (a
+    /// plate on 10¹⁵ N/m springs); under fixed tractions it is one rupture the run cut short (a
+    /// fault's), an event.
+    #[test]
+    fn a_slip_from_the_start_is_sliding_under_a_driver_and_a_rupture_under_fixed_tractions() {
+        let n = 20_000;
+        let rec = synthetic(n, &[(100, n, 1e-3, 2000.0)]);
+        let driven = detect(&signals(&rec), 22, 0.1, Loading::Driven, &EventParams::default());
+        assert!(driven.events.is_empty(), "{:?}", driven.events);
+        let s = driven.sliding.expect("stable sliding");
+        assert!(s.loading_rate_pa_s.is_none() && (s.burst.start_s - 100.0 * DT).abs() < 1e-9);
+        let fixed = detect(&signals(&rec), 22, 0.1, Loading::Fixed, &EventParams::default());
+        assert!(fixed.sliding.is_none());
+        assert_eq!(fixed.events.iter().map(|e| e.kind).collect::<Vec<_>>(), [EventKind::Main(1)]);
+        // Sliding after stick-slip is sliding only under a driver too.
+        let rec = synthetic(n, &[(5000, n, 1e-3, 1000.0)]);
+        let fixed = detect(&signals(&rec), 22, 0.1, Loading::Fixed, &EventParams::default());
+        assert!(fixed.sliding.is_none() && fixed.events.len() == 1);
     }
 
     /// A burst the end of the run cuts short (2 ms before it, 6 kPa: the loading needs 20 ms to
@@ -756,7 +795,7 @@ mod tests {
     fn an_event_cut_by_the_end_of_the_run_is_still_an_event() {
         let n = 20_000;
         let rec = synthetic(n, &[(19_800, n, 1e-3, 6000.0)]);
-        let cat = detect(&signals(&rec), 22, 0.1, &EventParams::default());
+        let cat = detect(&signals(&rec), 22, 0.1, Loading::Driven, &EventParams::default());
         assert!(cat.sliding.is_none());
         assert_eq!(cat.events.len(), 1);
         assert_eq!(cat.events[0].kind, EventKind::Main(1));
@@ -770,7 +809,8 @@ mod tests {
         for start in 1..=40 {
             for rate in [1e-4, 1e-3, 1e-2, 1.0] {
                 let rec = synthetic(n, &[(n - start, n, rate, 10.0)]);
-                let cat = detect(&signals(&rec), 22, 0.1, &EventParams::default());
+                // Under fixed tractions (a fault scene) the unfinished slip is always measured.
+                let cat = detect(&signals(&rec), 22, 0.1, Loading::Fixed, &EventParams::default());
                 assert!(cat.sub_events.iter().all(|b| b.samples.1 < n), "starting {start} from the end");
             }
         }
@@ -786,7 +826,7 @@ mod tests {
             for (i, tau) in rec[1].iter_mut().enumerate().take(15_000) {
                 *tau += 2000.0 * (2.0 * std::f64::consts::PI * 50.0 * i as f64 * DT).sin();
             }
-            let cat = detect(&signals(&rec), 22, 0.1, &EventParams::default());
+            let cat = detect(&signals(&rec), 22, 0.1, Loading::Driven, &EventParams::default());
             assert_eq!(cat.events.len(), events, "drop {drop}");
             assert_eq!(cat.within_ringing, 1 - events, "drop {drop}");
         }
@@ -804,7 +844,7 @@ mod tests {
     #[test]
     fn no_main_shocks_without_events() {
         let rec = synthetic(3000, &[]);
-        let cat = detect(&signals(&rec), 22, 0.1, &EventParams::default());
+        let cat = detect(&signals(&rec), 22, 0.1, Loading::Driven, &EventParams::default());
         assert!(cat.events.is_empty() && cat.sub_events.is_empty());
     }
 }

@@ -83,6 +83,20 @@ pub enum SolverError {
         /// Bar updates it would take.
         bar_updates: f64,
     },
+    /// The recording interval is finer than half the time step: the run samples at most once a
+    /// step, and its records would be resampled to samples invented between steps.
+    #[error(
+        "record.interval_s = {interval_s:e} s is finer than this run can sample: it samples every round(interval/Δt) \
+         steps, at least one, at Δt = {dt_s:.4e} s, and records resampled finer would be invented between steps; \
+         give record.interval_s at least Δt/2 = {:.4e} s (or leave it out: every step)",
+        0.5 * dt_s
+    )]
+    RecordIntervalTooFine {
+        /// The interval asked for (s).
+        interval_s: f64,
+        /// The time step (s).
+        dt_s: f64,
+    },
     /// The caller asked the run to stop.
     #[error("run cancelled")]
     Cancelled,

@@ -310,6 +310,10 @@ pub struct ControlChannel {
 pub struct RecordPlan {
     /// Sampling interval (s); `None` = every step.
     pub interval_s: Option<f64>,
+    /// The records are resampled to exactly `interval_s` (the pipeline processes accelerograms),
+    /// so it may be no finer than half a step (refused before the run,
+    /// [`crate::run::check_record_interval`]); otherwise a finer interval samples every step.
+    pub resampled: bool,
     /// Interface quantities.
     pub interface: Vec<InterfaceQuantity>,
     /// Energy terms.
@@ -452,6 +456,7 @@ impl Scene {
             fixed: Vec::new(),
             record: RecordPlan {
                 interval_s: None,
+                resampled: false,
                 interface: InterfaceQuantity::ALL.to_vec(),
                 energy: false,
                 settling: false,
@@ -492,6 +497,13 @@ impl Scene {
     /// rather than the paper's rigid base.
     pub fn is_fault(&self) -> bool {
         self.fault.is_some()
+    }
+
+    /// Whether a moving driver loads the block in the shear stage: driven nodes or a loading
+    /// plate, moving at a positive speed. A fault scene without either (TPV5) is loaded only by
+    /// its fixed initial tractions.
+    pub fn is_driven(&self) -> bool {
+        (!self.shear.drivers.is_empty() || self.plate.is_some()) && self.shear.velocity_m_s > 0.0
     }
 
     /// Slip across the base face per unit of its tangential displacement: 2 on a symmetric

@@ -50,14 +50,14 @@ pub fn run(a: Args) -> Result<()> {
     };
     print(&stats, None);
     if let Some(seed) = a.seed {
-        println!();
+        outln!();
         if stats.b_values.iter().any(|r| r.seed == Some(seed)) {
             print(&stats, Some(seed));
         } else {
-            println!("seed {seed} has no events: no statistics of its own");
+            outln!("seed {seed} has no events: no statistics of its own");
         }
     }
-    println!(
+    outln!(
         "\ntables → {} (magnitude_frequency, b_values, recurrence_stats, aftershocks, omori, scaling)",
         folder.tables().display()
     );
@@ -73,16 +73,16 @@ fn or_reason<T>(o: &Outcome<T>, f: impl Fn(&T) -> String) -> String {
 
 fn print(s: &CatalogueStats, seed: Option<u64>) {
     let who = seed.map_or("all seeds pooled".to_string(), |s| format!("seed {s}"));
-    println!(
+    outln!(
         "Gutenberg–Richter ({who}; bins of {MAGNITUDE_BIN}, Mc by {GOF_LEVEL_PERCENT}% goodness of fit, else maximum curvature + 0.2)"
     );
     for r in s.b_values.iter().filter(|r| r.seed == seed) {
         let fit = or_reason(&r.fit, |f| {
             format!("Mc {:.1}, {} events ≥ Mc, b = {:.2} ± {:.2} (Shi–Bolt), a = {:.2}", f.mc, f.n, f.b, f.b_sigma, f.a)
         });
-        println!("  {:<30} {:>7} events  {fit}", r.quantity, r.events);
+        outln!("  {:<30} {:>7} events  {fit}", r.quantity, r.events);
     }
-    println!("Recurrence ({who}; model-scale seconds, intervals within each seed)");
+    outln!("Recurrence ({who}; model-scale seconds, intervals within each seed)");
     for r in s.recurrence.iter().filter(|r| r.seed == seed) {
         let stats = or_reason(&r.stats, |st| {
             let ci = r.cv_ci95.map_or(String::new(), |(lo, hi)| format!(" [{lo:.2}, {hi:.2}]"));
@@ -97,16 +97,16 @@ fn print(s: &CatalogueStats, seed: Option<u64>) {
             .as_ref()
             .map_or(String::new(), |w| format!("; Weibull λ {:.4} s k {:.2} (AIC {:.1})", w.scale, w.shape, w.aic));
         let ex = r.exponential.as_ref().map_or(String::new(), |e| format!("; Poisson AIC {:.1}", e.aic));
-        println!("  {:<5} {:>7} intervals  {stats}{bpt}{wb}{ex}", r.sequence, r.intervals);
+        outln!("  {:<5} {:>7} intervals  {stats}{bpt}{wb}{ex}", r.sequence, r.intervals);
     }
-    println!("Aftershocks ({who}; every event until the next main shock or the end of the run)");
+    outln!("Aftershocks ({who}; every event until the next main shock or the end of the run)");
     for r in s.omori.iter().filter(|r| r.seed == seed) {
         let fit = or_reason(&r.fit, |f| {
             format!("Omori–Utsu p = {:.2} ± {:.2}, c = {:.3e} ± {:.1e} s, K = {:.3e}", f.p, f.p_se, f.c, f.c_se, f.k)
         });
-        println!("  {} main shocks, {} aftershocks: {fit}", r.main_shocks, r.aftershocks);
+        outln!("  {} main shocks, {} aftershocks: {fit}", r.main_shocks, r.aftershocks);
     }
-    println!("Scaling ({who}; prototype moment N·m, area m², duration s; stress drop Pa against Mw)");
+    outln!("Scaling ({who}; prototype moment N·m, area m², duration s; stress drop Pa against Mw)");
     for r in s.scaling.iter().filter(|r| r.seed == seed) {
         let fit = or_reason(&r.fit, |f| {
             format!(
@@ -114,13 +114,13 @@ fn print(s: &CatalogueStats, seed: Option<u64>) {
                 f.line.exponent, f.exponent_ci95.0, f.exponent_ci95.1, f.n, r.self_similar
             )
         });
-        println!("  {:<22} {fit}", r.relation);
+        outln!("  {:<22} {fit}", r.relation);
     }
     let equal_areas = s.scaling.iter().any(|r| {
         r.seed == seed && r.relation == "moment_area" && r.fit.as_ref().is_err_and(|e| e.contains("no spread"))
     });
     if equal_areas {
-        println!(
+        outln!(
             "  every event has the same area (similarity.area = \"contact\"): moment is then stress drop × a \
              constant, so stress drop against Mw has slope 1.5 by construction; set similarity.area = \"rupture\" \
              (and record slipping_nodes) for per-event areas"

@@ -44,10 +44,12 @@ fn position(model: &Model, id: stickslip_solver::NodeId) -> String {
     format!("LDEM {} at ({}, {}, {}) m", id.ldem(), round(p[0]), round(p[1]), round(p[2]))
 }
 
-/// Positions written without the round-off of `i·Lc` (and short when huge or tiny).
+/// Positions written without the round-off of `i·Lc` (and short when huge or tiny): to 12
+/// significant digits, whatever their size (`2.8000000000000003` is 2.8, `12000000.000000002`
+/// is 12000000).
 fn round(v: f64) -> N {
-    let r = (v * 1e9).round() / 1e9;
-    N(if r.is_finite() && (r != 0.0 || v == 0.0) { r } else { v })
+    let r: f64 = format!("{v:.11e}").parse().unwrap_or(v);
+    N(if r.is_finite() { r } else { v })
 }
 
 /// `stickslip check`.
@@ -68,15 +70,15 @@ pub fn run(a: Args) -> Result<()> {
     let statics = if a.full_statics { Statics::Full } else { Statics::for_model(&model) };
     let facts = inspect(&model, &seeds, statics)?;
     let e = model.lattice().extent();
-    println!("pipeline {} ({}), hash {}", pipeline.name, a.pipeline.display(), pipeline.hash);
-    println!(
+    outln!("pipeline {} ({}), hash {}", pipeline.name, a.pipeline.display(), pipeline.hash);
+    outln!(
         "  seeds: {} ({}{})",
         pipeline.seeds.len(),
         pipeline.seeds.iter().take(8).map(|s| s.to_string()).collect::<Vec<_>>().join(", "),
         if pipeline.seeds.len() > 8 { ", …" } else { "" }
     );
-    println!(
-        "  block {}×{}×{} modules of Lc = {} m ({} × {} × {} m): {} nodes, {} bars, {} contact nodes, mass {:.3} kg",
+    outln!(
+        "  block {}×{}×{} modules of Lc = {} m ({} × {} × {} m): {} nodes, {} bars, {} contact nodes, mass {} kg",
         scene.dims.nx,
         scene.dims.ny,
         scene.dims.nz,
@@ -87,10 +89,10 @@ pub fn run(a: Args) -> Result<()> {
         facts.nodes,
         facts.bars,
         facts.contact_nodes,
-        N(facts.mass_kg)
+        approx(facts.mass_kg)
     );
     let law = scene.friction.law;
-    println!(
+    outln!(
         "  friction: {} ({}), CV of μ {}",
         law.name(),
         describe(&law.node(1.0).coefficients(), |_, c| N(c.value).to_string()),
@@ -99,7 +101,7 @@ pub fn run(a: Args) -> Result<()> {
     if scene.is_fault() {
         print_fault(&model, seeds[0]);
     } else {
-        println!(
+        outln!(
             "  self-weight normal stress {:.1} Pa, sliding strength μs·σ = {:.1} Pa",
             N(facts.self_weight_stress_pa),
             N(facts.strength_pa)
@@ -116,12 +118,12 @@ pub fn run(a: Args) -> Result<()> {
     } else {
         ""
     };
-    println!("  critical step {lo:.4e} … {hi:.4e} s {which}{how}; paper's 0.6·Lc/Cp = {:.4e} s", facts.paper_bound_s);
+    outln!("  critical step {lo:.4e} … {hi:.4e} s {which}{how}; paper's 0.6·Lc/Cp = {:.4e} s", facts.paper_bound_s);
     match scene.time_step {
         TimeStep::Fraction(f) => {
-            println!("  time step: {f} of each seed's critical step ({:.4e} … {:.4e} s)", f * lo, f * hi)
+            outln!("  time step: {f} of each seed's critical step ({:.4e} … {:.4e} s)", f * lo, f * hi)
         }
-        TimeStep::Fixed(dt) => println!("  time step: {dt:e} s ({:.3} of the smallest critical step)", N(dt / lo)),
+        TimeStep::Fixed(dt) => outln!("  time step: {dt:e} s ({:.3} of the smallest critical step)", N(dt / lo)),
     }
     // Run length at the smallest Δt over the seeds inspected: refused when a run could not count
     // its steps (whatever --allow-long says), then a timed probe of its steps.
@@ -131,6 +133,13 @@ pub fn run(a: Args) -> Result<()> {
     };
     stickslip_solver::run::check_step_count(&model, dt)
         .map_err(|e| anyhow::anyhow!("{}", stickslip_config::keys::describe(&e)))?;
+    // The record interval against the largest Δt: the seed with it would refuse it.
+    let dt_largest = match scene.time_step {
+        TimeStep::Fraction(f) => f * hi,
+        TimeStep::Fixed(dt) => dt,
+    };
+    stickslip_solver::run::check_record_interval(&model, dt_largest)
+        .map_err(|e| anyhow::anyhow!("{}", stickslip_config::keys::describe(&e)))?;
     let (settle, shear) = run_steps(scene, dt);
     let parallel = pipeline.seeds.len() < threads && model.layout().splits();
     let per_step = probe_step_time(&model, seeds[0], dt, parallel, 0.5)?;
@@ -139,7 +148,7 @@ pub fn run(a: Args) -> Result<()> {
     let on = if parallel { format!("{threads} threads") } else { "one thread".into() };
     // With the skip-ahead the count bounds the run: the quasi-static stretches are jumped.
     let bound = if scene.skip_ahead.enabled { "at most " } else { "" };
-    println!(
+    outln!(
         "  run: {bound}{} steps per seed ({}shear {shear}), {bound}{updates:.3e} bar-updates; {bound}about {} per seed on \
          {on} (a timed probe: {:.3e} s per step, {:.3e} bar-updates/s){}",
         settle + shear,
@@ -157,7 +166,7 @@ pub fn run(a: Args) -> Result<()> {
     );
     let batches = Batches::of_ensemble(pipeline.seeds.len(), threads, scene.skip_ahead.enabled);
     let all = estimate(scene, batches, samples(scene, dt)).ok();
-    println!(
+    outln!(
         "  memory: about {} for one seed ({:.0} bytes per bar){}; available {}",
         human(one.total),
         one.bytes_per_bar(),
@@ -173,7 +182,7 @@ pub fn run(a: Args) -> Result<()> {
     if let (Some(e), Some((limit, _))) = (all, &available)
         && e.total > *limit
     {
-        println!(
+        outln!(
             "    → the pipeline's seeds do not fit at once: `stickslip pipeline` refuses them; give it fewer --threads"
         );
     }
@@ -184,7 +193,7 @@ pub fn run(a: Args) -> Result<()> {
             TimeStep::Fixed(dt) => (k(dt), k(dt)),
         };
         let steps = if k_lo == k_hi { format!("{k_lo}") } else { format!("{k_lo}–{k_hi}") };
-        println!("  recorded every {steps} steps (the nearest whole number to {} s; Δt does not depend on it)", N(iv));
+        outln!("  recorded every {steps} steps (the nearest whole number to {} s; Δt does not depend on it)", N(iv));
     }
     let on = if facts.moduli_of == scene.dims {
         String::new()
@@ -196,12 +205,12 @@ pub fn run(a: Args) -> Result<()> {
         )
     };
     if let Some(why) = &facts.unsolved {
-        println!("  effective stiffness{on}: not solved ({why}); the run does not need it");
+        outln!("  effective stiffness{on}: not solved ({why}); the run does not need it");
     }
     for m in &facts.moduli {
         let name = |a: usize| ["x", "y", "z"][a];
         let others: Vec<usize> = (0..3).filter(|&a| a != m.axis).collect();
-        println!(
+        outln!(
             "  effective stiffness along {}{on} (static solve, uniaxial stress, seed {}): E = {:.4e} Pa ({:.3} of E), \
              ν_{}{} = {:.3}, ν_{}{} = {:.3}",
             name(m.axis),
@@ -217,17 +226,17 @@ pub fn run(a: Args) -> Result<()> {
         );
     }
     if scene.shear.drivers.is_empty() {
-        println!("  drivers: none");
+        outln!("  drivers: none");
     } else {
         let d = &scene.shear.drivers;
-        println!(
+        outln!(
             "  drivers: {}{}",
             d.iter().take(12).map(|&d| position(&model, d)).collect::<Vec<_>>().join("; "),
             if d.len() > 12 { format!("; … and {} more", d.len() - 12) } else { String::new() }
         );
     }
     if let Some(p) = &scene.plate {
-        println!(
+        outln!(
             "  loading plate: face {} ({} nodes) on springs of {:.4e} N/m in all, moving by Eq. 12 in x",
             p.face.name(),
             p.nodes.len(),
@@ -235,13 +244,13 @@ pub fn run(a: Args) -> Result<()> {
         );
     }
     if let Some(n) = &scene.normal_load {
-        println!("  normal load: {} Pa on the top face ({:.4e} N)", N(n.pressure_pa), n.total());
+        outln!("  normal load: {} Pa on the top face ({:.4e} N)", N(n.pressure_pa), n.total());
     }
     if let Some(map) = &scene.friction.map {
-        println!("  friction map ({} base nodes):", map.nodes.len());
+        outln!("  friction map ({} base nodes):", map.nodes.len());
         let background = map.region.iter().filter(|r| r.is_none()).count();
         if background > 0 {
-            println!("    background ([friction]): {background} nodes");
+            outln!("    background ([friction]): {background} nodes");
         }
         let span = |values: &mut dyn Iterator<Item = f64>| {
             values.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)))
@@ -250,7 +259,7 @@ pub fn run(a: Args) -> Result<()> {
         for (i, r) in map.regions.iter().enumerate() {
             let members: Vec<usize> = (0..map.nodes.len()).filter(|&c| map.region[c] == Some(i as u16)).collect();
             if members.is_empty() {
-                println!("    {}: no base node (covered by patches of higher priority)", r.name);
+                outln!("    {}: no base node (covered by patches of higher priority)", r.name);
                 continue;
             }
             let range = |k: usize| {
@@ -259,7 +268,7 @@ pub fn run(a: Args) -> Result<()> {
             };
             let (x0, x1) = span(&mut members.iter().map(|&c| model.lattice().position(contact[c])[0]));
             let (x0, x1) = (round(x0), round(x1));
-            println!(
+            outln!(
                 "    {} ({}): {} nodes, x {}…{} m, {}",
                 r.name,
                 r.kind.name(),
@@ -283,13 +292,17 @@ pub fn run(a: Args) -> Result<()> {
                     facts.bars
                 ),
             };
-            println!(
+            outln!(
                 "  as a spring-slider: N = {:.4e} N, strength μs·N = {:.4e} N, tips at {:.4e} N; k not solved ({why}), \
                  plate springs {:.4e} N/m, k_c = (μs − μd)·N/Dc = {:.4e} N/m",
-                sl.normal_n, sl.strength_n, sl.tipping_n, sl.plate_n_m, sl.critical_n_m
+                sl.normal_n,
+                sl.strength_n,
+                sl.tipping_n,
+                sl.plate_n_m,
+                sl.critical_n_m
             );
         } else {
-            println!(
+            outln!(
                 "  as a spring-slider: N = {:.4e} N, strength μs·N = {:.4e} N, tips at {:.4e} N; k = {:.4e} N/m (block \
                  under the load {:.4e}, plate springs {:.4e}), k_c = (μs − μd)·N/Dc = {:.4e} N/m, swing damping D/(2ω) = \
                  {:.3}",
@@ -303,7 +316,7 @@ pub fn run(a: Args) -> Result<()> {
                 N(sl.damping_ratio)
             );
         }
-        println!(
+        outln!(
             "    → {} (the rigid slider's reading; docs/model.md §12 says where a lattice block differs)",
             stickslip_config::keys::verdict(sl)
         );
@@ -311,14 +324,14 @@ pub fn run(a: Args) -> Result<()> {
     let sw = &scene.self_weight;
     let sh = &scene.shear;
     if scene.is_fault() {
-        println!(
+        outln!(
             "  run: {} s from the prestressed state at rest, D = {} 1/s, no self-weight stage{}",
             N(sh.duration_s),
             N(sh.damping_per_s),
             if sh.drivers.is_empty() { ", no driver" } else { "" }
         );
     } else {
-        println!(
+        outln!(
             "  self-weight: {}",
             match sw.method {
                 SettleMethod::Static =>
@@ -330,7 +343,7 @@ pub fn run(a: Args) -> Result<()> {
                 ),
             }
         );
-        println!(
+        outln!(
             "  shear: u̇f = {} m/s (t0 = {} s), D = {} 1/s, for {} s",
             N(sh.velocity_m_s),
             N(sh.rise_time_s),
@@ -339,7 +352,7 @@ pub fn run(a: Args) -> Result<()> {
         );
     }
     let r = &scene.record;
-    println!(
+    outln!(
         "  record: {}, interface {}{}{}{}",
         r.interval_s.map_or("every step".to_string(), |iv| format!("every {} s", N(iv))),
         r.interface.iter().map(|q| q.name()).collect::<Vec<_>>().join(", "),
@@ -358,10 +371,10 @@ pub fn run(a: Args) -> Result<()> {
     // Every control node, also those given by position or by a set (the README promises it).
     let contact = model.lattice().contact_nodes();
     for (node, what) in &groups {
-        println!("  control {}: {}", position(&model, *node), what.join(", "));
+        outln!("  control {}: {}", position(&model, *node), what.join(", "));
     }
     for (node, _) in groups.iter().filter(|(n, _)| contact.contains(n)) {
-        println!(
+        outln!(
             "  warning: control node {} is a base contact node: it records the motion of the frictional contact \
              (held, sliding or lifting), not of the block above it (a number written for another block size names \
              another node on this one: give at_m instead)",
@@ -369,7 +382,7 @@ pub fn run(a: Args) -> Result<()> {
         );
     }
     let ev = &pipeline.analysis.events;
-    println!(
+    outln!(
         "  events: smoothing {} s, slip rate on {} / off {} m/s for {} s, merge gap {} s, min drop {} Pa, main shocks ≥ {} of the largest",
         N(ev.smoothing_s),
         N(ev.v_on_m_s),
@@ -382,9 +395,9 @@ pub fn run(a: Args) -> Result<()> {
     let si = &pipeline.analysis.similarity;
     let lambda = if scene.is_fault() { 1.0 } else { si.prototype_length_m / e[0] };
     if scene.is_fault() {
-        println!("  scale: its own (λ = 1); each event's Mw from its slip, M0 = μ·A·ΔD̄");
+        outln!("  scale: its own (λ = 1); each event's Mw from its slip, M0 = μ·A·ΔD̄");
     } else {
-        println!(
+        outln!(
             "  similarity: L_p = {} m (λ = {}), u̇_p = {:e} m/s, model area: {}",
             N(si.prototype_length_m),
             approx(lambda),
@@ -414,11 +427,11 @@ pub fn run(a: Args) -> Result<()> {
                 RecordSpan::WholeRun => "the whole shear stage".into(),
             };
             let formats: Vec<&str> = a.formats.iter().map(|f| f.name()).collect();
-            println!(
+            outln!(
                 "  records: {span}, nodes {nodes}; files {}",
                 if formats.is_empty() { "none".into() } else { formats.join(", ") }
             );
-            println!(
+            outln!(
                 "  usable band: up to f_max = {:.1} Hz at model scale ({:.4} Hz prototype, λ = {}): plane waves \
                  within {}% of their long-wave speed; filter {} Hz … {} Hz, order {}",
                 N(a.resolved_hz),
@@ -430,10 +443,10 @@ pub fn run(a: Args) -> Result<()> {
                 a.order
             );
         }
-        None => println!("  records: off (no [accelerograms] or [spectra] section)"),
+        None => outln!("  records: off (no [accelerograms] or [spectra] section)"),
     }
     match &pipeline.analysis.spectra {
-        Some(s) => println!(
+        Some(s) => outln!(
             "  spectra: {} periods {:.3e} … {:.3e} s, dampings {}, {} reading of the samples, {} window for the \
              Fourier spectrum{}{}",
             s.periods.len(),
@@ -451,11 +464,11 @@ pub fn run(a: Args) -> Result<()> {
             if s.rotd { ", RotD50/RotD100" } else { "" },
             if s.attenuation { ", attenuation" } else { "" }
         ),
-        None => println!("  spectra: off (no [spectra] section)"),
+        None => outln!("  spectra: off (no [spectra] section)"),
     }
     if let Some(set) = &pipeline.set {
         let (a, b) = set.options.range.bounds().unwrap_or((f64::NAN, f64::NAN));
-        println!(
+        outln!(
             "  set: {} records ({} at most per {}), {} spectra at {}%, periods {} … {} s (prototype), scale factors {} … {}; target {}",
             set.options.count,
             set.options.per_group,
@@ -471,16 +484,16 @@ pub fn run(a: Args) -> Result<()> {
     }
     let sk = &scene.skip_ahead;
     if sk.enabled {
-        println!(
+        outln!(
             "  skip-ahead: on (tolerance {:e}, {} explicit steps before each transition{})",
             sk.tolerance,
             sk.margin_steps,
             sk.record_interval_s.map_or(String::new(), |iv| format!(", one sample per {} s while skipping", N(iv)))
         );
     }
-    println!("  report: {}", if pipeline.report.enabled { "on" } else { "off" });
+    outln!("  report: {}", if pipeline.report.enabled { "on" } else { "off" });
     for w in &pipeline.warnings {
-        println!("  warning: {w}");
+        outln!("  warning: {w}");
     }
     Ok(())
 }
@@ -493,7 +506,7 @@ fn print_fault(model: &Model, first_seed: u64) {
     let mpa = |(a, b): (f64, f64)| {
         if a == b { format!("{:.2} MPa", N(a / 1e6)) } else { format!("{:.2} … {:.2} MPa", N(a / 1e6), N(b / 1e6)) }
     };
-    println!(
+    outln!(
         "  fault (the base as one side of a planar fault, slip = 2 × the face's displacement; friction heals: {}): \
          normal stress {}, initial shear stress {}",
         scene.friction.heals,
@@ -501,7 +514,7 @@ fn print_fault(model: &Model, first_seed: u64) {
         mpa(r.shear_pa)
     );
     if let Some(n) = scene.fault.as_ref().and_then(|f| f.nucleation) {
-        println!(
+        outln!(
             "  nucleation per seed: a {} m square at {:.2} MPa along x, its centre drawn uniformly in x {}…{} m, \
              y {}…{} m (seed {}: at ({:.0}, {:.0}) m)",
             N(n.size_m),
@@ -517,19 +530,19 @@ fn print_fault(model: &Model, first_seed: u64) {
     }
     let per_seed = scene.fault.as_ref().is_some_and(|f| f.nucleation.is_some());
     if r.overstressed.0 == 0 && per_seed {
-        println!(
+        outln!(
             "  before the seed's square: {} nodes can slip (above μd·σn){}",
             r.can_slip,
             r.median_s
                 .map_or(String::new(), |s| format!(", median strength excess S = (τs − τ0)/(τ0 − τd) = {:.2}", N(s)))
         );
     } else if r.overstressed.0 == 0 {
-        println!(
+        outln!(
             "  ⚠ no node starts above its static strength μs·σn: nothing nucleates unless a random field or a patch \
              overstresses some ([[fault.patches]] with shear_stress_pa above μs·normal_stress_pa)"
         );
     } else {
-        println!(
+        outln!(
             "  nucleation: {} nodes ({:.4e} m²) start above their static strength μs·σn and slide from the first step; \
              {} nodes can slip (above μd·σn){}",
             r.overstressed.0,
@@ -541,7 +554,7 @@ fn print_fault(model: &Model, first_seed: u64) {
     }
     if let Some(l) = r.cohesive_zone_m {
         let per = l / scene.lc_m;
-        println!(
+        outln!(
             "  cohesive zone Λ0 = (9π/32)·μ·Dc/(τs − τd) ≥ {l:.4e} m = {:.1} × Lc{}",
             N(per),
             if per < 3.0 {
@@ -554,7 +567,7 @@ fn print_fault(model: &Model, first_seed: u64) {
     let (zp, zs) = impedances(scene);
     let rho = scene.density_kg_m3;
     if !scene.absorbing.is_empty() {
-        println!(
+        outln!(
             "  absorbing faces {} (dashpots ρCp = {:.4e} and ρCs = {:.4e} Pa·s/m per m² of face)",
             scene.absorbing.iter().map(|f| f.name()).collect::<Vec<_>>().join(", "),
             zp,
@@ -565,5 +578,20 @@ fn print_fault(model: &Model, first_seed: u64) {
         .usable_band(0.05)
         .map(|b| format!(", waves within 5% of these speeds up to {:.3} Hz", N(b.f_max_hz)))
         .unwrap_or_default();
-    println!("  lattice wave speeds Cp = {:.1} m/s, Cs = {:.1} m/s{band}", N(zp / rho), N(zs / rho));
+    outln!("  lattice wave speeds Cp = {:.1} m/s, Cs = {:.1} m/s{band}", N(zp / rho), N(zs / rho));
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{N, round};
+
+    #[test]
+    fn positions_are_written_without_round_off_at_any_size() {
+        assert_eq!(round(0.1 * 28.0).to_string(), "2.8");
+        assert_eq!(round(3.0 * 0.1).to_string(), "0.3");
+        assert_eq!(round(1.2e7 + 2.0 * f64::EPSILON * 1.2e7).to_string(), "12000000");
+        assert_eq!(round(0.1 * 3.0 * 1e-6).to_string(), N(3e-7).to_string());
+        assert_eq!(round(0.0).to_string(), "0");
+        assert_eq!(round(1e300).to_string(), "1e300");
+    }
 }

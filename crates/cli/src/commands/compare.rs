@@ -17,11 +17,11 @@ pub struct Args {
 pub fn run(a: Args) -> Result<()> {
     let diffs = stickslip_store::compare::compare_tables(&a.a, &a.b, &["wall_time_s"])?;
     if diffs.is_empty() {
-        println!("{} and {} hold the same tables (wall times aside)", a.a.display(), a.b.display());
+        outln!("{} and {} hold the same tables (wall times aside)", a.a.display(), a.b.display());
         return Ok(());
     }
     for d in &diffs {
-        println!("{d}");
+        outln!("{d}");
     }
     anyhow::bail!("{} differences between {} and {}", diffs.len(), a.a.display(), a.b.display())
 }

@@ -40,10 +40,10 @@ pub fn run(a: Args) -> Result<()> {
     if models.is_empty() {
         bail!("--models: at least one of bssa14, ask14");
     }
-    if let Some(v) = a.vs30 {
-        if !(v.is_finite() && (100.0..=5000.0).contains(&v)) {
-            bail!("--vs30 = {}: a V_S30 from 100 to 5000 m/s", N(v));
-        }
+    if let Some(v) = a.vs30
+        && !(v.is_finite() && (100.0..=5000.0).contains(&v))
+    {
+        bail!("--vs30 = {}: a V_S30 from 100 to 5000 m/s", N(v));
     }
     let folder = Folder::new(&a.folder);
     folder.require_output()?;
@@ -58,12 +58,12 @@ pub fn run(a: Args) -> Result<()> {
     };
     write(&folder, &c)?;
     print(&c, &opts);
-    println!("\ntables → {} (gmm_residuals, gmm_bias)", folder.tables().display());
+    outln!("\ntables → {} (gmm_residuals, gmm_bias)", folder.tables().display());
     let pipeline = Pipeline::load(&folder.pipeline_copy())
         .with_context(|| format!("reading the pipeline of {}", a.folder.display()))?;
     if pipeline.report.enabled {
         let r = stickslip_report::write_report(&a.folder, &pipeline)?;
-        println!("report: rewritten → {} (gmm_bias.png)", r.index.display());
+        outln!("report: rewritten → {} (gmm_bias.png)", r.index.display());
     }
     Ok(())
 }
@@ -75,7 +75,7 @@ pub fn print(c: &GmmComparison, opts: &GmmOptions) {
     } else {
         format!("{:.0}–{:.0} m/s", N(c.vs30_range[0]), N(c.vs30_range[1]))
     };
-    println!(
+    outln!(
         "{} records ({} seeds × stations), Mw {:.2}–{:.2}, V_S30 {vs30}; against {} and their average \
          (ln medians averaged)",
         c.records,
@@ -84,12 +84,20 @@ pub fn print(c: &GmmComparison, opts: &GmmOptions) {
         N(c.mw_range[1]),
         opts.models.iter().map(|m| m.name().to_uppercase()).collect::<Vec<_>>().join(", ")
     );
-    println!(
+    outln!(
         "{:<12} {:>5} {:>8} {:>18} {:>8} {:>7} {:>7} {:>14} {:>8}",
-        "measure", "n", "bias", "90% interval", "σ_rec", "±1σ", "Part B", "slope Δ (±se)", "outside"
+        "measure",
+        "n",
+        "bias",
+        "90% interval",
+        "σ_rec",
+        "±1σ",
+        "Part B",
+        "slope Δ (±se)",
+        "outside"
     );
     if c.without_psa > 0 {
-        println!(
+        outln!(
             "{} of the {} records have no model period in their usable band: PGA and PGV only",
             c.without_psa, c.records
         );
@@ -103,7 +111,7 @@ pub fn print(c: &GmmComparison, opts: &GmmOptions) {
         let slope = b.slope.and_then(|s| s[2].map(|d| (d, s[3]))).map_or("–".to_string(), |(d, se)| {
             se.map_or(format!("{:.2}", N(d)), |se| format!("{:.2} ± {:.2}", N(d), N(se)))
         });
-        println!(
+        outln!(
             "{:<12} {:>5} {:>8} {:>18} {:>8} {:>6.0}% {:>7} {:>14} {:>8}",
             name,
             b.records,
@@ -120,7 +128,7 @@ pub fn print(c: &GmmComparison, opts: &GmmOptions) {
             b.outside_records
         );
     }
-    println!(
+    outln!(
         "(bias = mean ln(simulated/model) of RotD50, ✗ outside the ±{BIAS_BAND_LN} pass band; σ_rec the between-record \
          standard deviation; ±1σ the share of records within one model σ; slope Δ = d ln(sim/model)/d ln R_rup; \
          outside = records where a model extrapolates)"

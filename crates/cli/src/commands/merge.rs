@@ -22,7 +22,7 @@ pub struct Args {
 /// `stickslip merge`.
 pub fn run(a: Args) -> Result<()> {
     let r = stickslip_ensemble::merge::merge(&a.out, a.pipeline.as_deref(), a.shards)?;
-    println!(
+    outln!(
         "merged {} ({} failed) in {:.1} s → {}",
         crate::text::count(r.seeds, "seed", "seeds"),
         r.failed,

@@ -68,12 +68,12 @@ pub fn run(a: Args) -> Result<()> {
     }
     let prev =
         shock.strip_prefix('S').and_then(|n| n.parse::<u32>().ok()).filter(|&n| n > 1).map(|n| format!("S{}", n - 1));
-    println!(
+    outln!(
         "| seed | main shocks | {shock} stress drop | {shock} duration | {shock} stress falls in | {} | {shock} M (paper) | σ range, raw | σ range, {} ms mean |",
         prev.as_ref().map_or("recurrence".into(), |p| format!("{p} → {shock} recurrence")),
         AVERAGE_S * 1e3
     );
-    println!("|---|---|---|---|---|---|---|---|---|");
+    outln!("|---|---|---|---|---|---|---|---|---|");
     let floats = |df: &DataFrame, c: &str| -> Vec<f64> {
         df.column(c)
             .ok()
@@ -103,7 +103,7 @@ pub fn run(a: Args) -> Result<()> {
             let sigma: Vec<f64> = rows.iter().map(|&i| series_sigma[i]).collect();
             swing(&t, &sigma, sigma0)
         };
-        println!(
+        outln!(
             "| {seed} | {} | {} | {} | {} | {} | {} | {raw} | {averaged} |",
             mains[r].map_or("–".into(), |n| n.to_string()),
             value(&events, ev, col::STRESS_DROP_PA, 1e-3, 2, " kPa"),
@@ -113,7 +113,7 @@ pub fn run(a: Args) -> Result<()> {
             value(&similarity, si, col::M_RIERA_PAPER_INTERPLATE, 1.0, 2, ""),
         );
     }
-    println!(
+    outln!(
         "\nσ range: lowest and highest normal stress of the shear stage (t ≥ 0) as a change from the self-weight \
          σ0 = ρgh = {:.2} kPa; raw samples, and averaged over a centred {} ms window",
         sigma0 * 1e-3,

@@ -59,7 +59,7 @@ pub fn cancel_on_ctrl_c() -> Result<Arc<AtomicBool>> {
         if flag.swap(true, Ordering::SeqCst) {
             std::process::exit(130);
         }
-        eprintln!("\ninterrupt: finishing the seeds being written (Ctrl-C again to stop at once)");
+        errln!("\ninterrupt: finishing the seeds being written (Ctrl-C again to stop at once)");
     })
     .context("installing the Ctrl-C handler")?;
     Ok(cancel)
@@ -84,7 +84,7 @@ pub fn ensemble(
 pub fn print_set_result(pipeline: &Pipeline, set: Option<&Result<SetOutcome, String>>, out: &Path) {
     match (set, &pipeline.set) {
         (Some(Ok(o)), Some(s)) => crate::commands::select::print_set(o, &s.target_name, &Folder::new(out)),
-        (Some(Err(e)), _) => println!("set: none chosen: {e}"),
+        (Some(Err(e)), _) => outln!("set: none chosen: {e}"),
         _ => {}
     }
 }
@@ -102,27 +102,27 @@ pub fn finish(pipeline: &Pipeline, out: &Path) -> Result<()> {
         // A fault's events are its ruptures: the source from its own slip says what they were, and
         // the stations against the ground-motion models how they shook.
         if let Some(text) = source_digest(&folder)? {
-            println!("{text}");
+            outln!("{text}");
         } else {
-            println!("{}", no_events(pipeline, &folder, &regimes));
+            outln!("{}", no_events(pipeline, &folder, &regimes));
         }
         let opts = stickslip_ensemble::gmm::GmmOptions::default();
         if let Some(c) = stickslip_ensemble::gmm::compare(&folder, &opts)? {
             crate::commands::gmm::print(&c, &opts);
         }
     } else if events.is_some_and(|e| e.height() > 0) || !ran {
-        println!("{}", digest(&folder)?);
+        outln!("{}", digest(&folder)?);
         if let Some(text) = regimes.sliding_text() {
-            println!("{text}");
-            println!("  as a spring-slider (stickslip check): {}", slider_verdict(pipeline));
+            outln!("{text}");
+            outln!("  as a spring-slider (stickslip check): {}", slider_verdict(pipeline));
         }
     } else {
-        println!("{}", no_events(pipeline, &folder, &regimes));
+        outln!("{}", no_events(pipeline, &folder, &regimes));
     }
     if pipeline.report.enabled {
         let start = Instant::now();
         let r = stickslip_report::write_report(out, pipeline)?;
-        println!(
+        outln!(
             "report: {} in {:.1} s → {}{}",
             count(r.figures.len(), "figure", "figures"),
             start.elapsed().as_secs_f64(),
@@ -381,7 +381,7 @@ pub fn run(a: Args) -> Result<()> {
             let drawn: Vec<String> =
                 p.report.seeds.iter().filter(|s| !given.contains(*s)).map(|s| s.to_string()).collect();
             if !drawn.is_empty() && p.report.enabled {
-                eprintln!(
+                errln!(
                     "warning: {}: report.seeds {} are not among --seeds: the report draws the first seeds that ran \
                      instead",
                     p.name,
@@ -431,7 +431,7 @@ pub fn run(a: Args) -> Result<()> {
             }
             None => (ensemble(pipeline, &options, a.quiet, &cancel)?, None),
         };
-        println!(
+        outln!(
             "{}{}: {} ({} run now, {} already done, {} failed) in {:.1} s → {}",
             pipeline.name,
             a.shard.map_or(String::new(), |(k, n)| format!(" shard {k}/{n}")),
@@ -443,10 +443,10 @@ pub fn run(a: Args) -> Result<()> {
             report.out.join("tables").display()
         );
         for (seed, msg) in report.failed.iter().take(5) {
-            println!("  seed {seed} failed: {msg}");
+            outln!("  seed {seed} failed: {msg}");
         }
         if let Some(p) = &precision {
-            println!("{}", p.describe());
+            outln!("{}", p.describe());
         }
         let total = report.ran + report.skipped;
         let nothing = total > 0 && report.failed.len() == total;
@@ -454,7 +454,7 @@ pub fn run(a: Args) -> Result<()> {
             if nothing {
                 unfinished.push(format!("{}: every seed of the shard failed ({total})", pipeline.name));
             } else {
-                println!("  merge the shards with: stickslip merge {}", out.display());
+                outln!("  merge the shards with: stickslip merge {}", out.display());
             }
             continue;
         }
@@ -479,6 +479,6 @@ pub fn finished(unfinished: Vec<String>) -> Result<()> {
 /// Prints a pipeline's warnings (values accepted that could mislead) to stderr.
 pub fn print_warnings(pipeline: &Pipeline) {
     for w in &pipeline.warnings {
-        eprintln!("warning: {}: {w}", pipeline.name);
+        errln!("warning: {}: {w}", pipeline.name);
     }
 }

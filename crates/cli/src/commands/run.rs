@@ -83,7 +83,7 @@ pub fn run(a: Args) -> Result<()> {
     } else {
         format!("settle {}", runs.settle_steps[0])
     };
-    println!(
+    outln!(
         "seed {}: {steps} steps ({settle} + shear {}) of Δt = {:.4e} s ({:.2} of critical {:.4e} s) in {wall:.2} s \
          ({:.3e} steps/s, {:.3e} bar-updates/s){}",
         a.seed,
@@ -95,7 +95,7 @@ pub fn run(a: Args) -> Result<()> {
         (steps - skipped) as f64 * bars as f64 / wall,
         if skipped > 0 { format!("; {skipped} steps skipped by the skip-ahead") } else { String::new() },
     );
-    println!("tables → {}", folder.tables().display());
+    outln!("tables → {}", folder.tables().display());
     finish(&pipeline, &out)
 }
 

@@ -43,7 +43,7 @@ pub fn run(a: Args) -> Result<()> {
     // The page and its record-set figure show the set just chosen, not the one before.
     if pipeline.report.enabled {
         let r = stickslip_report::write_report(&a.folder, &pipeline)?;
-        println!("report: rewritten with the new set → {}", r.index.display());
+        outln!("report: rewritten with the new set → {}", r.index.display());
     }
     Ok(())
 }
@@ -75,7 +75,7 @@ fn keep_set_section(path: &std::path::Path, folder: &Folder) -> Result<()> {
 /// Prints a chosen set.
 pub fn print_set(o: &SetOutcome, target: &str, folder: &Folder) {
     let s = &o.selection;
-    println!(
+    outln!(
         "set: {} of {} records ({} eligible), periods {:.3} … {:.3} s, matched to {target}",
         s.records.len(),
         o.candidates,
@@ -83,7 +83,7 @@ pub fn print_set(o: &SetOutcome, target: &str, folder: &Folder) {
         s.range.0,
         s.range.1
     );
-    println!(
+    outln!(
         "  mean / target ≥ {:.1}% over the range (at T = {:.3} s), mean squared log misfit {:.4}{}",
         100.0 * s.min_ratio,
         s.min_ratio_period,
@@ -94,11 +94,11 @@ pub fn print_set(o: &SetOutcome, target: &str, folder: &Folder) {
             String::new()
         }
     );
-    println!("  {:>4}  {:>10}  {:<14} {:>8}  {:>8}", "rank", "seed", "record", "scale", "misfit");
+    outln!("  {:>4}  {:>10}  {:<14} {:>8}  {:>8}", "rank", "seed", "record", "scale", "misfit");
     for (k, r) in o.rows.iter().enumerate() {
-        println!("  {:>4}  {:>10}  {:<14} {:>8.3}  {:>8.4}", k + 1, r.seed, r.record, r.scale_factor, r.misfit);
+        outln!("  {:>4}  {:>10}  {:<14} {:>8.3}  {:>8.4}", k + 1, r.seed, r.record, r.scale_factor, r.misfit);
     }
-    println!(
+    outln!(
         "  the set table → {}; its scaled records (AT2, SAC) → {}",
         folder.gathered(&stickslip_store::schema::SET).display(),
         folder.set_dir().display()

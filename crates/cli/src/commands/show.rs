@@ -31,6 +31,6 @@ pub fn run(a: Args) -> Result<()> {
         std::env::set_var("POLARS_TABLE_WIDTH", "400");
     }
     let view = View { rows: a.rows, columns: a.columns, transpose: a.transpose };
-    println!("{}", describe(&a.table, &view)?);
+    outln!("{}", describe(&a.table, &view)?);
     Ok(())
 }

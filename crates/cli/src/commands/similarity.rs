@@ -65,8 +65,8 @@ pub fn run(a: Args) -> Result<()> {
         model_rate_m_s: a.model_rate_m_s,
     };
     let s = scale(&e, &params);
-    let row = |k: &str, v: String| println!("  {} {v}", pad(k, 44));
-    println!("similarity (docs/model.md §9): λ = L_p/L_m");
+    let row = |k: &str, v: String| outln!("  {} {v}", pad(k, 44));
+    outln!("similarity (docs/model.md §9): λ = L_p/L_m");
     row("λ", format!("{:.6e}", s.lambda));
     row("prototype rupture area A_p = λ²·A_m", format!("{:.4e} m²", s.prototype_area_m2));
     if let Some(d) = s.prototype_duration_s {

@@ -151,7 +151,7 @@ pub fn run(a: Args) -> Result<()> {
     for (name, df) in [("spectra", &mut spectra), ("fourier", &mut fourier), ("intensity", &mut intensity)] {
         write_parquet_atomic(df, &out.join(format!("{name}.parquet")))?;
     }
-    println!(
+    outln!(
         "{}: {} samples every {:.6e} s ({:.4} s){}",
         a.record.display(),
         record.accel.len(),
@@ -159,7 +159,7 @@ pub fn run(a: Args) -> Result<()> {
         duration,
         if record.description.is_empty() { String::new() } else { format!(" — {}", record.description) }
     );
-    println!("{}", describe(&out.join("intensity.parquet"), &View { rows: 1, columns: vec![], transpose: true })?);
+    outln!("{}", describe(&out.join("intensity.parquet"), &View { rows: 1, columns: vec![], transpose: true })?);
     let figure = out.join("spectra.png");
     stickslip_report::figures::record_figure(
         &figure,
@@ -180,7 +180,7 @@ pub fn run(a: Args) -> Result<()> {
             in_g: matches!(a.plot_units, PlotUnits::G),
         },
     )?;
-    println!(
+    outln!(
         "spectra ({} periods from {tmin:.4e} s to {tmax:.4e} s, {} damping) → {} (spectra, fourier and intensity \
          tables; the figure spectra.png)",
         periods.len(),

@@ -51,6 +51,8 @@ pub(super) fn plan(
 ) -> RecordPlan {
     RecordPlan {
         interval_s: r.interval_s,
+        // Set by the pipeline when it processes accelerograms.
+        resampled: false,
         interface,
         energy: r.energy,
         settling: r.settling,

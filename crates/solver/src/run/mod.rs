@@ -162,6 +162,7 @@ pub(crate) fn prepare(model: &Model, seed: u64, options: RunOptions) -> Result<(
         }
     };
     check_step_count(model, dt_s)?;
+    check_record_interval(model, dt_s)?;
     Ok((LaneSetup { dt_s, stiffness, friction, strength, fault }, critical))
 }
 
@@ -185,10 +186,49 @@ pub fn check_step_count(model: &Model, dt_s: f64) -> Result<(), SolverError> {
     Ok(())
 }
 
+/// Refuses a recording interval finer than half the time step `dt_s` when the records are
+/// resampled to it ([`crate::scene::RecordPlan::resampled`], [`SolverError::RecordIntervalTooFine`]):
+/// a run samples every `round(interval/Δt)` steps, at least one, so its records would be
+/// resampled to an interval between its steps (and an absurd one would not fit in memory).
+/// Checked before the first step, once Δt is known. Without records, a finer interval samples
+/// every step.
+pub fn check_record_interval(model: &Model, dt_s: f64) -> Result<(), SolverError> {
+    let record = &model.scene().record;
+    match record.interval_s {
+        Some(interval_s) if record.resampled && interval_s < 0.5 * dt_s => {
+            Err(SolverError::RecordIntervalTooFine { interval_s, dt_s })
+        }
+        _ => Ok(()),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::scene::Scene;
+
+    #[test]
+    fn a_record_interval_finer_than_half_the_step_is_refused_before_the_run() {
+        let mut scene = Scene::paper();
+        scene.record.resampled = true;
+        scene.record.interval_s = Some(0.5e-5);
+        assert!(check_record_interval(&Model::new(scene.clone()), 1e-5).is_ok(), "half a step: sampled every step");
+        scene.record.interval_s = Some(0.49e-5);
+        let e = check_record_interval(&Model::new(scene.clone()), 1e-5).unwrap_err();
+        let text = e.to_string();
+        assert!(
+            text.contains("record.interval_s = 4.9e-6 s") && text.contains("at least Δt/2 = 5.0000e-6 s"),
+            "{text}"
+        );
+        // Without records resampled to it, the run samples every step.
+        scene.record.resampled = false;
+        assert!(check_record_interval(&Model::new(scene.clone()), 1e-5).is_ok());
+        // The run of a seed stops there, before its first step.
+        scene.record.resampled = true;
+        scene.record.interval_s = Some(1e-17);
+        let out = run_seed(&Model::new(scene), 1, RunOptions::default(), &mut |_| ControlFlow::Continue(()));
+        assert!(matches!(out, Err(SolverError::RecordIntervalTooFine { interval_s: 1e-17, .. })), "{:?}", out.err());
+    }
 
     #[test]
     fn a_stage_longer_than_the_run_can_count_is_refused_before_it_starts() {
