@@ -439,6 +439,23 @@ fn range(scale: Scale, values: impl Iterator<Item = f64>) -> (f64, f64) {
     }
 }
 
+/// Largest magnitude an axis spans: plotters' tick search does not end on an infinite or
+/// overflowing range (a friction coefficient of 1.8e308 padded by 5% is infinite).
+const AXIS_LIMIT: f64 = 1e300;
+
+/// An axis range plotters can draw: finite, increasing, within ±[`AXIS_LIMIT`] (positive on a log
+/// axis); anything else falls back to the unit range.
+fn drawable((lo, hi): (f64, f64), scale: Scale) -> (f64, f64) {
+    let (lo, hi) = (lo.clamp(-AXIS_LIMIT, AXIS_LIMIT), hi.clamp(-AXIS_LIMIT, AXIS_LIMIT));
+    let ok = lo.is_finite() && hi.is_finite() && hi > lo && (hi - lo).is_finite();
+    match scale {
+        Scale::Linear if ok => (lo, hi),
+        Scale::Log if ok && lo > 0.0 => (lo.max(1.0 / AXIS_LIMIT), hi),
+        Scale::Linear => (0.0, 1.0),
+        Scale::Log => (0.1, 1.0),
+    }
+}
+
 /// Draws a 1-px polyline (already clipped, pixel coordinates).
 fn stroke_1px(
     root: &DrawingArea<BitMapBackend<'_>, Shift>,
@@ -676,7 +693,7 @@ fn draw_panel(
         .chain(panel.bands.iter().flat_map(|b| b.points.iter().map(|p| p.0)))
         .chain(panel.points.iter().flat_map(|g| g.points.iter().map(|p| p.0)))
         .chain(panel.markers.iter().map(|m| m.at.0));
-    let x = panel.x_range.unwrap_or_else(|| range(panel.x_scale, xs));
+    let x = drawable(panel.x_range.unwrap_or_else(|| range(panel.x_scale, xs)), panel.x_scale);
     let ys = panel
         .lines
         .iter()
@@ -695,6 +712,7 @@ fn draw_panel(
         let m = y.0.abs().max(y.1.abs());
         y = (-m, m);
     }
+    let y = drawable(y, panel.y_scale);
 
     // Heading, the strip kept for outside labels, then the axes.
     let mut rest = area.clone();
@@ -922,4 +940,33 @@ fn draw_panel(
     }
     let want = Reserve { top: want.top.max(reserve.top), right: want.right.max(reserve.right) };
     Ok((DrawnPanel { area: f.area, name: panel.name.clone(), labels: placed, dropped, data }, want))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A friction coefficient of 1.8e308 (a fuzzed pipeline) made the friction map's axis
+    /// infinite, and plotters' tick search never ended: every such range is drawn at once.
+    #[test]
+    fn huge_or_infinite_ranges_are_drawn_at_once() {
+        let (tx, rx) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            let cases: Vec<(Vec<(f64, f64)>, Option<(f64, f64)>, Scale)> = vec![
+                (vec![(0.0, 0.3), (1.0, 1.7e308)], None, Scale::Linear),
+                (vec![(0.0, -f64::MAX), (1.0, f64::MAX)], None, Scale::Linear),
+                (vec![(0.0, 1.0), (1.0, 2.0)], Some((0.0, f64::INFINITY)), Scale::Linear),
+                (vec![(0.0, 1.0), (1.0, 1.7e308)], None, Scale::Log),
+            ];
+            for (points, y_range, y_scale) in cases {
+                let mut p = Panel::linear("x", "y");
+                p.y_scale = y_scale;
+                p.y_range = y_range;
+                p.lines.push(Line::new("a", points, 0));
+                render(&Sheet::new("t", 1, vec![p])).unwrap();
+            }
+            tx.send(()).unwrap();
+        });
+        assert!(rx.recv_timeout(std::time::Duration::from_secs(60)).is_ok(), "a chart took over a minute");
+    }
 }

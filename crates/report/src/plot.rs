@@ -92,8 +92,9 @@ pub fn padded_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     if hi - lo <= f64::EPSILON * hi.abs().max(1.0) {
         return (lo - 1.0, hi + 1.0);
     }
-    let pad = 0.05 * (hi - lo);
-    (lo - pad, hi + pad)
+    // Halves first, so that a span near f64::MAX does not overflow.
+    let pad = 0.1 * (0.5 * hi - 0.5 * lo);
+    ((lo - pad).max(-f64::MAX), (hi + pad).min(f64::MAX))
 }
 
 /// Range of the positive finite values for a log axis, padded by a factor 1.3 and widened down

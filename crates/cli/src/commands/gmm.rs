@@ -99,7 +99,8 @@ pub fn print(c: &GmmComparison, opts: &GmmOptions) {
     if c.without_psa > 0 {
         outln!(
             "{} of the {} records have no model period in their usable band: PGA and PGV only",
-            c.without_psa, c.records
+            c.without_psa,
+            c.records
         );
     }
     for b in c.bias.iter().filter(|b| b.model == "average") {

@@ -70,6 +70,8 @@ pub(crate) struct ShearClock {
 
 /// Looks at one motion before trusting its leftover amplitude (they span
 /// `MIN_LOOKS·SKIP_CHECK_EVERY` steps, a few periods of the block's slowest modes).
+/// Steps of a jump between two questions whether to go on (an interrupt ends a jump there).
+const JUMP_POLL: u64 = 1 << 22;
 const MIN_LOOKS: u32 = 8;
 /// Looks a configuration must last before its motion is solved.
 const STABLE_LOOKS: u32 = 8;
@@ -127,6 +129,7 @@ impl Skipper {
         clock: &ShearClock,
         recorder: &mut Recorder,
         track_energy: bool,
+        keep_going: &mut dyn FnMut(u64) -> bool,
     ) -> Result<(), SolverError> {
         assert_eq!(L, 1, "skip-ahead moves the step counter of the whole state");
         let model = params.model;
@@ -189,7 +192,8 @@ impl Skipper {
         if to < view + MIN_JUMP {
             return Ok(());
         }
-        self.jump(params, state, l, JumpSpan { view, to, next }, clock, &coef, recorder, track_energy);
+        let to =
+            self.jump(params, state, l, JumpSpan { view, to, next }, clock, &coef, recorder, track_energy, keep_going);
         self.stats.jumps += 1;
         self.stats.skipped_steps += to - view;
         self.last_key = None;
@@ -305,7 +309,8 @@ impl Skipper {
         coef: &impl Fn(u64) -> Vector3<f64>,
         recorder: &mut Recorder,
         track: bool,
-    ) {
+        keep_going: &mut dyn FnMut(u64) -> bool,
+    ) -> u64 {
         let motion: &Motion = self.motion.as_ref().expect("a jump follows a motion");
         let model = params.model;
         let dt = params.dt(l);
@@ -334,7 +339,16 @@ impl Skipper {
             acc.body_work += body_jump;
             acc.damping += e.kinetic + e.elastic - kinetic(&c0, &c1) - elastic(&c0, &c1) + body_jump;
         }
-        for s in view + 1..=to {
+        // A jump walks every step it skips (energy sums, samples): over a very slow loading that
+        // is billions of steps, so it asks every `JUMP_POLL` steps whether to go on, and an
+        // interrupt ends it where it is (the run then stops at its next progress check).
+        let full = to;
+        let mut to = full;
+        for s in view + 1..=full {
+            if (s - view).is_multiple_of(JUMP_POLL) && !keep_going(s) {
+                to = s;
+                break;
+            }
             let (cm, c, cp) = (coef(s - 1), coef(s), coef(s + 1));
             if track {
                 let d2 = cp - cm;
@@ -377,5 +391,6 @@ impl Skipper {
             target,
         );
         state.energy[l] = acc;
+        to
     }
 }

@@ -276,7 +276,12 @@ pub fn run_lanes<const L: usize>(
                         });
                         let clock = ShearClock { origin, end: origin + steps, stride: skip_stride };
                         let track_energy = stepper.tracking().energy;
-                        if let Err(e) = skipper.look(&params, &mut state, l, &clock, recorder, track_energy) {
+                        // Long jumps report their progress (and see an interrupt) as they go.
+                        let mut keep_going =
+                            |s: u64| progress(((s - origin) as f64 / steps as f64).min(1.0)).is_continue();
+                        if let Err(e) =
+                            skipper.look(&params, &mut state, l, &clock, recorder, track_energy, &mut keep_going)
+                        {
                             lane.fail(e, &mut params, &mut state, l);
                         }
                     }
