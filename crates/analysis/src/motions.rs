@@ -16,7 +16,7 @@
 //!   peaks, RotD100 the largest. PGA and PGV RotD50 directly on the processed acceleration and
 //!   velocity; PSA by [`RotDPlan`].
 
-use stickslip_seismo::accelerogram::processing::{ProcessingOptions, RecordBand, process};
+use stickslip_seismo::accelerogram::processing::{ProcessingOptions, RecordBand, butterworth_gain, process};
 use stickslip_seismo::fit::{BruneFit, fit_brune};
 use stickslip_seismo::spectra::fourier::{Window, fourier_amplitude};
 use stickslip_seismo::spectra::response::Reading;
@@ -57,8 +57,8 @@ pub struct Motion {
     pub rotd50_m_s2: Vec<f64>,
     /// RotD100 PSA at each period (m/s²).
     pub rotd100_m_s2: Vec<f64>,
-    /// Fourier amplitude of the horizontal displacement, `√(|X|² + |Z|²)` (m·s), at the
-    /// frequencies of the usable band: `(f, amplitude)`.
+    /// Fourier amplitude of the horizontal displacement, `√(|X|² + |Z|²)` (m·s), divided by the
+    /// band-pass's gain, at the frequencies of the usable band: `(f, amplitude)`.
     pub displacement_spectrum: Vec<(f64, f64)>,
 }
 
@@ -128,7 +128,9 @@ pub fn motion(rec: &Recording, node: NodeId, resolved_hz: f64) -> Result<Motion,
         .iter()
         .zip(fx.amplitude.iter().zip(&fz.amplitude))
         .filter(|(f, _)| **f >= band.usable_low_hz && **f <= band.usable_high_hz)
-        .map(|(f, (a, b))| (*f, a.hypot(*b)))
+        // The band-pass's own gain divided out (it is 0.71 at the corners), so that a fitted
+        // corner is the source's, not the filter's.
+        .map(|(f, (a, b))| (*f, a.hypot(*b) / butterworth_gain(*f, band.f_low_hz, Some(band.f_high_hz), opts.order)))
         .collect();
     Ok(Motion {
         displacement_spectrum,

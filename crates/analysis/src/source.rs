@@ -14,7 +14,7 @@
 //! position `(x, z)`; the rupture's distances are measured to the ruptured nodes `(x_i, y_i, 0)`:
 //! R_rup to the nearest, R_JB to the nearest point of their surface projection (the trace segment
 //! `z = 0` between the ruptured x's), R_x = z (perpendicular to the trace), epicentral and
-//! hypocentral to the first node to rupture.
+//! hypocentral to the hypocentre (the centroid of the first nodes to rupture).
 
 use stickslip_solver::material::lattice_elastic_constants;
 use stickslip_solver::scene::{Kinematic, Station};
@@ -43,7 +43,8 @@ pub struct Source {
     pub peak_slip_rate_m_s: f64,
     /// Median over the ruptured nodes of their peak slip rate (m/s).
     pub median_peak_slip_rate_m_s: f64,
-    /// Hypocentre: the first node to rupture, `(x, y)` on the fault (m).
+    /// Hypocentre: the centroid of the first nodes to rupture (those of the earliest rupture
+    /// time), `(x, y)` on the fault (m).
     pub hypocentre_m: [f64; 2],
     /// Time the last ruptured node ruptured (s of the shear stage).
     pub rupture_duration_s: f64,
@@ -101,9 +102,16 @@ pub fn source(rec: &Recording, model: &Model) -> Option<Source> {
     let m0 = c44 * potency;
     let mut peaks: Vec<f64> = ruptured.iter().map(|&i| f.peak_slip_rate_m_s[i]).collect();
     peaks.sort_by(f64::total_cmp);
-    let first = *ruptured.iter().min_by(|&&a, &&b| f.rupture_time_s[a].total_cmp(&f.rupture_time_s[b])).expect("some");
+    // The hypocentre: where the first nodes to rupture are. A nucleation patch starts all its
+    // nodes on the same step, so the earliest are a tie; their centroid, not the first of them in
+    // node order (a corner of the patch).
     let position = |i: usize| lattice.position(f.nodes[i]);
-    let h = position(first);
+    let t_first = ruptured.iter().map(|&i| f.rupture_time_s[i]).fold(f64::INFINITY, f64::min);
+    let first: Vec<usize> = ruptured.iter().copied().filter(|&i| f.rupture_time_s[i] == t_first).collect();
+    let h = first.iter().fold([0.0; 2], |[x, y], &i| {
+        let p = position(i);
+        [x + p[0] / first.len() as f64, y + p[1] / first.len() as f64]
+    });
     let range = |axis: usize| {
         ruptured
             .iter()

@@ -9,8 +9,8 @@ use stickslip_seismo::stats::percentile_sorted;
 use stickslip_store::frame::Columns;
 use stickslip_store::io::write_parquet_atomic;
 use stickslip_store::schema::{
-    self, ATTENUATION, ATTENUATION_FIT, EVENTS_TABLE, PSA_STATS, ROTD, RUNS, SIMILARITY, SPECTRA, STATIONS, SUMMARY,
-    Scope, TableSpec, col,
+    self, ATTENUATION, ATTENUATION_FIT, EVENTS_TABLE, GMM_BIAS, GMM_RESIDUALS, PSA_STATS, ROTD, RUNS, SIMILARITY,
+    SPECTRA, STATIONS, SUMMARY, Scope, TableSpec, col,
 };
 use stickslip_store::tables::runs::Runs;
 use stickslip_store::tables::stats::{FitRow, PsaStatsRow, attenuation_fit_frame, psa_stats_frame, summary_frame};
@@ -115,14 +115,23 @@ pub fn gather(out: &Folder, seeds: &[u64], memory: Gathering) -> Result<Option<R
     }
     // A fault scenario's stations against the ground-motion models, with the defaults of
     // `stickslip gmm` (both models, V_S30 the medium's S-wave speed).
-    if get(STATIONS.name).is_some() {
-        match crate::gmm::compare(out, &crate::gmm::GmmOptions::default()) {
-            Ok(Some(c)) => crate::gmm::write(out, &c)?,
-            Ok(None) => {}
-            Err(crate::error::EnsembleError::Store(e)) => return Err(e),
-            // A model refusing a record's inputs does not undo the ensemble: the comparison is
-            // left out here, and `stickslip gmm` says why.
-            Err(_) => {}
+    // Without one, an earlier comparison's tables go: they would describe other seeds.
+    let written = match get(STATIONS.name).map(|_| crate::gmm::compare(out, &crate::gmm::GmmOptions::default())) {
+        Some(Ok(Some(c))) => {
+            crate::gmm::write(out, &c)?;
+            true
+        }
+        Some(Err(crate::error::EnsembleError::Store(e))) => return Err(e),
+        // A model refusing a record's inputs does not undo the ensemble: the comparison is left
+        // out here, and `stickslip gmm` says why.
+        Some(Ok(None) | Err(_)) | None => false,
+    };
+    if !written {
+        for table in [GMM_RESIDUALS, GMM_BIAS] {
+            let path = out.gathered(&table);
+            if path.exists() {
+                std::fs::remove_file(&path).map_err(|e| StoreError::io(&path, e))?;
+            }
         }
     }
     Ok(runs)

@@ -47,9 +47,15 @@ struct Record {
     rupture: Rupture,
     site: Site,
     azimuth_deg: f64,
+    /// Highest frequency the record resolves (Hz), if processed.
+    f_high_hz: Option<f64>,
     /// (imt, simulated RotD50).
     motions: Vec<(Imt, f64)>,
 }
+
+/// Lowest record bandwidth at which PGA is compared (Hz): PGA is carried by frequencies up to
+/// about 10 Hz, which a coarse lattice filters out.
+pub const PGA_MIN_BAND_HZ: f64 = 10.0;
 
 /// The comparison: every residual row and every bias row.
 #[derive(Clone, Debug, Default)]
@@ -106,6 +112,7 @@ fn records(folder: &Folder, vs30: Option<f64>) -> Result<Option<Vec<Record>>, St
     let (r_rup, r_jb, r_x, r_y0) =
         (c.f64s(col::R_RUP_M)?, c.f64s(col::R_JB_M)?, c.f64s(col::R_X_M)?, c.f64s(col::R_Y0_M)?);
     let az = c.f64s(col::AZIMUTH_DEG)?;
+    let f_high = if c.has(col::F_HIGH_HZ) { c.opt_f64s(col::F_HIGH_HZ)? } else { vec![None; seed.len()] };
     let pga = if c.has(col::PGA_ROTD50_M_S2) { c.opt_f64s(col::PGA_ROTD50_M_S2)? } else { vec![None; seed.len()] };
     let pgv = if c.has(col::PGV_ROTD50_M_S) { c.opt_f64s(col::PGV_ROTD50_M_S)? } else { vec![None; seed.len()] };
     let mut psa: HashMap<(u64, String), Vec<(f64, f64)>> = HashMap::new();
@@ -146,6 +153,7 @@ fn records(folder: &Folder, vs30: Option<f64>) -> Result<Option<Vec<Record>>, St
                 vs30_measured: true,
             },
             azimuth_deg: az[i],
+            f_high_hz: f_high[i],
             motions,
         });
     }
@@ -229,6 +237,14 @@ pub fn compare(folder: &Folder, opts: &GmmOptions) -> Result<Option<GmmCompariso
             sigmas.push(sig);
             outside_counts.push(outside);
         }
+        let band = who.iter().filter_map(|r| r.f_high_hz).fold(f64::INFINITY, f64::min);
+        let note = (matches!(imt, Imt::Pga) && band < PGA_MIN_BAND_HZ).then(|| {
+            format!(
+                "not comparable: the records resolve up to {:.2} Hz, PGA is carried by frequencies up to about \
+                 {PGA_MIN_BAND_HZ} Hz",
+                band
+            )
+        });
         let columns: Vec<ModelColumn> =
             medians.iter().zip(&sigmas).map(|(m, s)| ModelColumn { median: m, sigma: s }).collect();
         let v = validate_period(&sim, &columns).map_err(err)?;
@@ -252,6 +268,7 @@ pub fn compare(folder: &Folder, opts: &GmmOptions) -> Result<Option<GmmCompariso
                 part_b_pass: None,
                 slope: slope(&medians[k]),
                 outside_records: outside_counts[k],
+                note: note.clone(),
             });
         }
         // The models' average: ln medians and σ averaged per record.
@@ -292,6 +309,7 @@ pub fn compare(folder: &Folder, opts: &GmmOptions) -> Result<Option<GmmCompariso
             part_b_pass: Some(v.part_b.pass),
             slope: slope(&avg_median),
             outside_records: outside_counts.iter().copied().max().unwrap_or(0),
+            note,
         });
     }
     let mut seeds: Vec<u64> = records.iter().map(|r| r.seed).collect();
@@ -302,8 +320,11 @@ pub fn compare(folder: &Folder, opts: &GmmOptions) -> Result<Option<GmmCompariso
     };
     out.mw_range = range(&|r| r.rupture.mw);
     out.vs30_range = range(&|r| r.site.vs30_m_s);
-    out.records = records.len();
-    out.without_psa = records.iter().filter(|r| !r.motions.iter().any(|(m, _)| matches!(m, Imt::Psa(_)))).count();
+    out.records = records.iter().filter(|r| !r.motions.is_empty()).count();
+    out.without_psa = records
+        .iter()
+        .filter(|r| !r.motions.is_empty() && !r.motions.iter().any(|(m, _)| matches!(m, Imt::Psa(_))))
+        .count();
     out.seeds = seeds;
     Ok(Some(out))
 }

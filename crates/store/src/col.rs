@@ -244,6 +244,7 @@ pub const MOTION_NOTE: &str = "motion_note";
 pub const ROTD50_M_S2: &str = "rotd50_m_s2";
 pub const ROTD100_M_S2: &str = "rotd100_m_s2";
 pub const IMT: &str = "imt";
+pub const NOTE: &str = "note";
 pub const FITTED_CORNER_HZ: &str = "fitted_corner_hz";
 pub const MODEL: &str = "model";
 pub const R_RUP_KM: &str = "r_rup_km";

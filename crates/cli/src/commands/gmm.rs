@@ -116,7 +116,17 @@ pub fn print(c: &GmmComparison, opts: &GmmOptions) {
             "{:<12} {:>5} {:>8} {:>18} {:>8} {:>6.0}% {:>7} {:>14} {:>8}",
             name,
             b.records,
-            format!("{:.2}{}", N(b.mean_bias_ln), if b.mean_bias_ln.abs() <= BIAS_BAND_LN { "" } else { " ✗" }),
+            format!(
+                "{:.2}{}",
+                N(b.mean_bias_ln),
+                if b.note.is_some() {
+                    " ¬"
+                } else if b.mean_bias_ln.abs() <= BIAS_BAND_LN {
+                    ""
+                } else {
+                    " ✗"
+                }
+            ),
             ci,
             b.between_record_std_ln.map_or("–".to_string(), |s| format!("{:.2}", N(s))),
             100.0 * b.within_one_sigma,
@@ -134,4 +144,9 @@ pub fn print(c: &GmmComparison, opts: &GmmOptions) {
          standard deviation; ±1σ the share of records within one model σ; slope Δ = d ln(sim/model)/d ln R_rup; \
          outside = records where a model extrapolates)"
     );
+    for b in c.bias.iter().filter(|b| b.model == "average") {
+        if let Some(note) = &b.note {
+            outln!("¬ {}: {note}", b.imt);
+        }
+    }
 }

@@ -107,8 +107,11 @@ pub fn finish(pipeline: &Pipeline, out: &Path) -> Result<()> {
             outln!("{}", no_events(pipeline, &folder, &regimes));
         }
         let opts = stickslip_ensemble::gmm::GmmOptions::default();
-        if let Some(c) = stickslip_ensemble::gmm::compare(&folder, &opts)? {
-            crate::commands::gmm::print(&c, &opts);
+        match stickslip_ensemble::gmm::compare(&folder, &opts) {
+            Ok(Some(c)) => crate::commands::gmm::print(&c, &opts),
+            Ok(None) => {}
+            Err(stickslip_ensemble::EnsembleError::Store(e)) => return Err(e.into()),
+            Err(e) => outln!("no comparison with the ground-motion models: {e}"),
         }
     } else if events.is_some_and(|e| e.height() > 0) || !ran {
         outln!("{}", digest(&folder)?);

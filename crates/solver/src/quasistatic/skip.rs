@@ -68,10 +68,10 @@ pub(crate) struct ShearClock {
     pub stride: u64,
 }
 
-/// Looks at one motion before trusting its leftover amplitude (they span
-/// `MIN_LOOKS·SKIP_CHECK_EVERY` steps, a few periods of the block's slowest modes).
 /// Steps of a jump between two questions whether to go on (an interrupt ends a jump there).
 const JUMP_POLL: u64 = 1 << 22;
+/// Looks at one motion before trusting its leftover amplitude (they span
+/// `MIN_LOOKS·SKIP_CHECK_EVERY` steps, a few periods of the block's slowest modes).
 const MIN_LOOKS: u32 = 8;
 /// Looks a configuration must last before its motion is solved.
 const STABLE_LOOKS: u32 = 8;
@@ -345,10 +345,6 @@ impl Skipper {
         let full = to;
         let mut to = full;
         for s in view + 1..=full {
-            if (s - view).is_multiple_of(JUMP_POLL) && !keep_going(s) {
-                to = s;
-                break;
-            }
             let (cm, c, cp) = (coef(s - 1), coef(s), coef(s + 1));
             if track {
                 let d2 = cp - cm;
@@ -375,6 +371,11 @@ impl Skipper {
                 if traced && let Some(t) = recorder.tracer.as_mut() {
                     t.observe(&shown, s);
                 }
+            }
+            // Step `s` is complete (its energy and sample): the jump may end here.
+            if s < full && (s - view).is_multiple_of(JUMP_POLL) && !keep_going(s) {
+                to = s;
+                break;
             }
         }
         recorder.skip_steps.push((view, to, next));

@@ -18,7 +18,8 @@
 //! rows only, null on the others), `slope_simulated`, `slope_model`, `slope_difference`,
 //! `slope_difference_se` f64 (d ln Y/d ln R_rup of the simulations and the model medians, and
 //! their difference with its standard error), `outside_records` u32 (records whose prediction
-//! extrapolates the model).
+//! extrapolates the model), `note` str (why a measure is not comparable: PGA beyond the records'
+//! band; null otherwise).
 
 use polars::prelude::DataFrame;
 
@@ -77,6 +78,7 @@ pub const GMM_BIAS: TableSpec = TableSpec {
         col::SLOPE_DIFFERENCE,
         col::SLOPE_DIFFERENCE_SE,
         col::OUTSIDE_RECORDS,
+        col::NOTE,
     ],
     variable: None,
 };
@@ -143,6 +145,8 @@ pub struct BiasRow {
     pub slope: Option<[Option<f64>; 4]>,
     /// Records whose prediction extrapolates the model.
     pub outside_records: usize,
+    /// Why the measure cannot be compared (PGA beyond the records' band); `None` otherwise.
+    pub note: Option<String>,
 }
 
 /// The pass band of the mean bias (ln units) of the SCEC Broadband Platform's validation.
@@ -193,5 +197,6 @@ pub fn bias_frame(rows: &[BiasRow]) -> Result<DataFrame, StoreError> {
         .opt_f64(col::SLOPE_DIFFERENCE, slope(2))
         .opt_f64(col::SLOPE_DIFFERENCE_SE, slope(3))
         .u32(col::OUTSIDE_RECORDS, rows.iter().map(|r| r.outside_records as u32).collect())
+        .opt_str(col::NOTE, rows.iter().map(|r| r.note.clone()).collect())
         .finish(GMM_BIAS.name)
 }

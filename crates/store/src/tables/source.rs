@@ -18,7 +18,7 @@
 //! `y_m` (depth), `z_m` (distance from the fault plane), `epicentral_m`, `hypocentral_m`,
 //! `r_rup_m`, `r_jb_m`, `r_x_m`, `r_y0_m`, `azimuth_deg`, `pga_m_s2`, `pgv_m_s`, `pgd_m`
 //! (horizontal: largest |(x, z)| of the raw record), `pga_vertical_m_s2` f64; of the processed
-//! record (docs/model.md §15): `pga_rotd50_m_s2`, `pgv_rotd50_m_s`, `f_low_hz`, `f_high_hz` (its
+//! record (docs/model.md §16.2): `pga_rotd50_m_s2`, `pgv_rotd50_m_s`, `f_low_hz`, `f_high_hz` (its
 //! band-pass), `usable_min_period_s`, `usable_max_period_s` f64 (null without a processed record),
 //! `motion_note` str (why there is none; null otherwise).
 //!
