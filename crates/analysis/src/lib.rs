@@ -126,7 +126,12 @@ pub fn analyse(
     let mut source = source::source(&run.recording, model);
     let stations = source.as_ref().map_or_else(Vec::new, |s| source::stations(&run.recording, model, s));
     if let Some(src) = source.as_mut() {
-        src.fitted_corner_hz = motions::fitted_corner(&stations).map(|b| b.corner_hz);
+        // The surface stations (depth 0) with a processed record.
+        let surface = stations
+            .iter()
+            .filter(|s| s.position_m[1] == 0.0)
+            .filter_map(|s| s.motion.as_ref().ok().map(|m| (m, s.hypocentral_m)));
+        src.fitted_corner_hz = motions::fitted_corner(surface).map(|b| b.corner_hz);
     }
     events_s += thread_cpu_s() - started;
     Ok(SeedAnalysis {

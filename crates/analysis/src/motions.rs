@@ -145,17 +145,13 @@ pub fn motion(rec: &Recording, node: NodeId, resolved_hz: f64) -> Result<Motion,
 }
 
 /// The corner frequency of the rupture seen by the surface stations (docs/model.md §16.2): each
-/// station's horizontal displacement spectrum times its hypocentral distance (undoing the 1/R
-/// spreading of body waves), stacked as a geometric mean over the stations on a common frequency
-/// grid, fitted with an ω-square spectrum in the band all of them resolve ([`fit_brune`]).
-/// `None` with fewer than 3 such stations or no fit.
-pub fn fitted_corner(stations: &[crate::source::StationRow]) -> Option<BruneFit> {
-    let used: Vec<(&Motion, f64)> = stations
-        .iter()
-        .filter(|s| s.position_m[1] == 0.0)
-        .filter_map(|s| s.motion.as_ref().ok().map(|m| (m, s.hypocentral_m)))
-        .filter(|(m, r)| !m.displacement_spectrum.is_empty() && *r > 0.0)
-        .collect();
+/// station's horizontal displacement spectrum (`stations`: its motion and its hypocentral
+/// distance) times that distance (undoing the 1/R spreading of body waves), stacked as a
+/// geometric mean over the stations on a common frequency grid, fitted with an ω-square spectrum
+/// in the band all of them resolve ([`fit_brune`]). `None` with fewer than 3 stations or no fit.
+pub fn fitted_corner<'a>(stations: impl IntoIterator<Item = (&'a Motion, f64)>) -> Option<BruneFit> {
+    let used: Vec<(&Motion, f64)> =
+        stations.into_iter().filter(|(m, r)| !m.displacement_spectrum.is_empty() && *r > 0.0).collect();
     if used.len() < 3 {
         return None;
     }

@@ -952,7 +952,8 @@ mod tests {
     fn huge_or_infinite_ranges_are_drawn_at_once() {
         let (tx, rx) = std::sync::mpsc::channel();
         std::thread::spawn(move || {
-            let cases: Vec<(Vec<(f64, f64)>, Option<(f64, f64)>, Scale)> = vec![
+            type Case = (Vec<(f64, f64)>, Option<(f64, f64)>, Scale);
+            let cases: Vec<Case> = vec![
                 (vec![(0.0, 0.3), (1.0, 1.7e308)], None, Scale::Linear),
                 (vec![(0.0, -f64::MAX), (1.0, f64::MAX)], None, Scale::Linear),
                 (vec![(0.0, 1.0), (1.0, 2.0)], Some((0.0, f64::INFINITY)), Scale::Linear),

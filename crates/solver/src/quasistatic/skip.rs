@@ -121,6 +121,7 @@ impl Skipper {
     /// Looks at lane `l` at its viewed step and, if the quasi-static motion is reached and the
     /// next transition is far enough, jumps: records the skipped samples into `recorder` and
     /// moves the lane's state to the end of the jump. Single-lane states only.
+    #[allow(clippy::too_many_arguments)] // the lane's state and recording, and the run's interrupt
     pub(crate) fn look<const L: usize>(
         &mut self,
         params: &Params<'_, L>,
@@ -304,7 +305,7 @@ impl Skipper {
         params: &Params<'_, L>,
         state: &mut State<L>,
         l: usize,
-        JumpSpan { view, to, next }: JumpSpan,
+        JumpSpan { view, to: planned, next }: JumpSpan,
         clock: &ShearClock,
         coef: &impl Fn(u64) -> Vector3<f64>,
         recorder: &mut Recorder,
@@ -342,9 +343,8 @@ impl Skipper {
         // A jump walks every step it skips (energy sums, samples): over a very slow loading that
         // is billions of steps, so it asks every `JUMP_POLL` steps whether to go on, and an
         // interrupt ends it where it is (the run then stops at its next progress check).
-        let full = to;
-        let mut to = full;
-        for s in view + 1..=full {
+        let mut to = planned;
+        for s in view + 1..=planned {
             let (cm, c, cp) = (coef(s - 1), coef(s), coef(s + 1));
             if track {
                 let d2 = cp - cm;
@@ -373,7 +373,7 @@ impl Skipper {
                 }
             }
             // Step `s` is complete (its energy and sample): the jump may end here.
-            if s < full && (s - view).is_multiple_of(JUMP_POLL) && !keep_going(s) {
+            if s < planned && (s - view).is_multiple_of(JUMP_POLL) && !keep_going(s) {
                 to = s;
                 break;
             }
