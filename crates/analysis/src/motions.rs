@@ -23,7 +23,7 @@ use stickslip_seismo::spectra::response::Reading;
 use stickslip_seismo::spectra::rotd::{ANGLES, RotDPlan, RotDScratch, RotDSpectrum};
 use stickslip_solver::Recording;
 use stickslip_solver::geometry::NodeId;
-use stickslip_solver::scene::Kinematic;
+use stickslip_solver::scene::{Component, ControlChannel, Kinematic};
 
 /// The periods (s) PSA is computed at, where usable: those of BSSA14's table from 0.1 s (the
 /// lattice resolves nothing shorter at the scales it is used at), which ASK14 shares or
@@ -66,13 +66,10 @@ pub struct Motion {
 /// its sampling interval; `None` when the stage's sampling is not uniform or too short.
 fn pair(rec: &Recording, node: NodeId) -> Option<(&[f64], &[f64], f64)> {
     let span = rec.uniform_shear()?;
-    let series = |axis: usize| {
-        rec.control
-            .iter()
-            .find(|(c, _)| c.node == node && c.quantity == Kinematic::Acceleration && c.component.axis() == axis)
-            .map(|(_, v)| &v[span.clone()])
+    let series = |component| {
+        rec.control(ControlChannel { node, quantity: Kinematic::Acceleration, component }).map(|v| &v[span.clone()])
     };
-    let (x, z) = (series(0)?, series(2)?);
+    let (x, z) = (series(Component::X)?, series(Component::Z)?);
     let t = &rec.time_s[span.clone()];
     if t.len() < 8 {
         return None;

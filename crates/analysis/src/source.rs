@@ -17,7 +17,7 @@
 //! hypocentral to the hypocentre (the centroid of the first nodes to rupture).
 
 use stickslip_solver::material::lattice_elastic_constants;
-use stickslip_solver::scene::{Kinematic, Station};
+use stickslip_solver::scene::{Component, ControlChannel, Kinematic, Station};
 use stickslip_solver::{Model, Recording};
 
 use crate::motions::Motion;
@@ -200,14 +200,12 @@ pub fn stations(rec: &Recording, model: &Model, src: &Source) -> Vec<StationRow>
             } else {
                 0.0
             };
-            let series = |q: Kinematic, axis: usize| -> &[f64] {
-                rec.control
-                    .iter()
-                    .find(|(c, _)| c.node == st.node && c.quantity == q && c.component.axis() == axis)
-                    .map_or(&[][..], |(_, v)| &v[shear.min(v.len())..])
+            let series = |quantity: Kinematic, component: Component| -> &[f64] {
+                rec.control(ControlChannel { node: st.node, quantity, component })
+                    .map_or(&[][..], |v| &v[shear.min(v.len())..])
             };
             let horizontal = |q: Kinematic| -> f64 {
-                let (x, z) = (series(q, 0), series(q, 2));
+                let (x, z) = (series(q, Component::X), series(q, Component::Z));
                 x.iter().zip(z).map(|(a, b)| a.hypot(*b)).fold(0.0, f64::max)
             };
             let dx = p[0] - h[0];
@@ -224,7 +222,9 @@ pub fn stations(rec: &Recording, model: &Model, src: &Source) -> Vec<StationRow>
                 pga_m_s2: horizontal(Kinematic::Acceleration),
                 pgv_m_s: horizontal(Kinematic::Velocity),
                 pgd_m: horizontal(Kinematic::Displacement),
-                pga_vertical_m_s2: series(Kinematic::Acceleration, 1).iter().fold(0.0, |m, v| m.max(v.abs())),
+                pga_vertical_m_s2: series(Kinematic::Acceleration, Component::Y)
+                    .iter()
+                    .fold(0.0, |m, v| m.max(v.abs())),
                 motion: crate::motions::motion(rec, st.node, resolved_hz),
             }
         })

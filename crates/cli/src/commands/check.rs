@@ -529,13 +529,10 @@ fn print_fault(model: &Model, first_seed: u64) {
         );
     }
     let per_seed = scene.fault.as_ref().is_some_and(|f| f.nucleation.is_some());
+    let excess =
+        r.median_s.map_or(String::new(), |s| format!(", median strength excess S = (τs − τ0)/(τ0 − τd) = {:.2}", N(s)));
     if r.overstressed.0 == 0 && per_seed {
-        outln!(
-            "  before the seed's square: {} nodes can slip (above μd·σn){}",
-            r.can_slip,
-            r.median_s
-                .map_or(String::new(), |s| format!(", median strength excess S = (τs − τ0)/(τ0 − τd) = {:.2}", N(s)))
-        );
+        outln!("  before the seed's square: {} nodes can slip (above μd·σn){excess}", r.can_slip);
     } else if r.overstressed.0 == 0 {
         outln!(
             "  ⚠ no node starts above its static strength μs·σn: nothing nucleates unless a random field or a patch \
@@ -544,12 +541,10 @@ fn print_fault(model: &Model, first_seed: u64) {
     } else {
         outln!(
             "  nucleation: {} nodes ({:.4e} m²) start above their static strength μs·σn and slide from the first step; \
-             {} nodes can slip (above μd·σn){}",
+             {} nodes can slip (above μd·σn){excess}",
             r.overstressed.0,
             r.overstressed.1,
-            r.can_slip,
-            r.median_s
-                .map_or(String::new(), |s| format!(", median strength excess S = (τs − τ0)/(τ0 − τd) = {:.2}", N(s)))
+            r.can_slip
         );
     }
     if let Some(l) = r.cohesive_zone_m {
