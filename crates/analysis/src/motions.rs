@@ -10,13 +10,14 @@
 //!   zero pads, an acausal 4th-order Butterworth band-pass from `f_low = 2/T_record` (two cycles
 //!   of the low corner in the record) to the lattice's `f_max` (waves within 5% of their
 //!   long-wave speeds), at most 80% of Nyquist ([`RecordBand`]).
-//! - Usable periods: from `1/f_high` to `1/(1.25·f_low)`; PSA is computed at the models' tabulated
-//!   periods inside it ([`GMM_PERIODS_S`]), none outside.
+//! - Usable periods: from `1/f_high` to `1/(1.25·f_low)`; PSA is computed inside it, none outside,
+//!   at [`spectrum_periods`]: the models' tabulated periods ([`GMM_PERIODS_S`]) and a log grid of
+//!   20 per decade between them, on which a record set is matched to a design spectrum.
 //! - RotD: the 180 rotations θ = 0…179° of `(a_x cos θ + a_z sin θ)`; RotD50 the median of the 180
 //!   peaks, RotD100 the largest. PGA and PGV RotD50 directly on the processed acceleration and
 //!   velocity; PSA by [`RotDPlan`].
 
-use stickslip_seismo::accelerogram::processing::{ProcessingOptions, RecordBand, butterworth_gain, process};
+use stickslip_seismo::accelerogram::processing::{Processed, ProcessingOptions, RecordBand, butterworth_gain, process};
 use stickslip_seismo::fit::{BruneFit, fit_brune};
 use stickslip_seismo::spectra::fourier::{Window, fourier_amplitude};
 use stickslip_seismo::spectra::response::Reading;
@@ -30,6 +31,25 @@ use stickslip_solver::scene::{Component, ControlChannel, Kinematic};
 /// interpolates.
 pub const GMM_PERIODS_S: [f64; 16] =
     [0.1, 0.15, 0.2, 0.25, 0.3, 0.4, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 7.5, 10.0];
+
+/// Periods per decade of the log grid of [`spectrum_periods`].
+pub const PERIODS_PER_DECADE: usize = 20;
+
+/// The periods (s) a station's PSA is computed at where usable, ascending: [`GMM_PERIODS_S`] and
+/// the log grid `10^(k/20)` from 0.1 to 10 s, a grid point within 1% of a model period left out
+/// (the model's period kept, bit for bit, so that the comparison reads it back exactly).
+pub fn spectrum_periods() -> Vec<f64> {
+    let decades = 2;
+    let mut out: Vec<f64> = GMM_PERIODS_S.to_vec();
+    for k in 0..=decades * PERIODS_PER_DECADE {
+        let t = 0.1 * 10f64.powf(k as f64 / PERIODS_PER_DECADE as f64);
+        if !GMM_PERIODS_S.iter().any(|&g| (t / g - 1.0).abs() < 0.01) {
+            out.push(t);
+        }
+    }
+    out.sort_by(f64::total_cmp);
+    out
+}
 
 /// Damping ratio of the PSA.
 pub const DAMPING: f64 = 0.05;
@@ -51,7 +71,7 @@ pub struct Motion {
     pub pga_rotd50_m_s2: f64,
     /// RotD50 of the peak ground velocity (m/s).
     pub pgv_rotd50_m_s: f64,
-    /// Periods of the PSA, those of [`GMM_PERIODS_S`] in the usable band (s).
+    /// Periods of the PSA, those of [`spectrum_periods`] in the usable band (s).
     pub periods_s: Vec<f64>,
     /// RotD50 PSA at each period (m/s²).
     pub rotd50_m_s2: Vec<f64>,
@@ -90,6 +110,22 @@ pub fn rotd50_peak(x: &[f64], z: &[f64]) -> f64 {
     0.5 * (peaks[ANGLES / 2 - 1] + peaks[ANGLES / 2])
 }
 
+/// A station's horizontal pair `(x, z)` sampled every `dt` processed by the records' chain with
+/// the band-pass `f_low`–`f_high` (Hz): what [`motion`] measures, and what a record set of a
+/// scenario writes (the same function, so the same bits).
+pub fn processed_pair(
+    x: &[f64],
+    z: &[f64],
+    dt: f64,
+    f_low: f64,
+    f_high: f64,
+) -> Result<(Processed, Processed), String> {
+    let opts = ProcessingOptions::new(f_low, Some(f_high));
+    let px = process(x, dt, &opts).map_err(|e| format!("x: {e}"))?;
+    let pz = process(z, dt, &opts).map_err(|e| format!("z: {e}"))?;
+    Ok((px, pz))
+}
+
 /// The motion of the station at `node`, on a lattice that resolves waves up to `resolved_hz`;
 /// `Err` says why it has none (sampling, band, numerics).
 pub fn motion(rec: &Recording, node: NodeId, resolved_hz: f64) -> Result<Motion, String> {
@@ -100,12 +136,11 @@ pub fn motion(rec: &Recording, node: NodeId, resolved_hz: f64) -> Result<Motion,
     let duration = (x.len() - 1) as f64 * dt;
     let band = RecordBand::new(duration, dt, resolved_hz, Some(LOW_CORNER_CYCLES / duration), None)
         .map_err(|e| format!("band: {e}"))?;
+    let (px, pz) = processed_pair(x, z, dt, band.f_low_hz, band.f_high_hz)?;
     let opts = ProcessingOptions::new(band.f_low_hz, Some(band.f_high_hz));
-    let px = process(x, dt, &opts).map_err(|e| format!("x: {e}"))?;
-    let pz = process(z, dt, &opts).map_err(|e| format!("z: {e}"))?;
     let usable = [1.0 / band.usable_high_hz, 1.0 / band.usable_low_hz];
     let periods: Vec<f64> =
-        GMM_PERIODS_S.iter().copied().filter(|&t| t >= usable[0] * (1.0 - 1e-9) && t <= usable[1]).collect();
+        spectrum_periods().into_iter().filter(|&t| t >= usable[0] * (1.0 - 1e-9) && t <= usable[1]).collect();
     let (mut rotd50, mut rotd100) = (Vec::new(), Vec::new());
     if !periods.is_empty() {
         let plan = RotDPlan::new(dt, &periods, &[DAMPING], Reading::BandLimited, 4).map_err(|e| format!("{e}"))?;
@@ -184,6 +219,24 @@ mod tests {
         let lo = a * 45.5f64.to_radians().cos();
         let hi = a * 44.5f64.to_radians().cos();
         assert!(r >= lo && r <= hi, "{r} not in [{lo}, {hi}]");
+    }
+
+    #[test]
+    fn the_spectrum_grid_holds_every_model_period_bit_for_bit_and_no_gap_wider_than_a_twentieth_decade() {
+        let t = spectrum_periods();
+        for g in GMM_PERIODS_S {
+            assert_eq!(t.iter().filter(|p| p.to_bits() == g.to_bits()).count(), 1, "{g} s");
+        }
+        assert_eq!((t[0], t[t.len() - 1]), (0.1, 10.0));
+        for w in t.windows(2) {
+            let step = (w[1] / w[0]).log10();
+            // Ascending; a log-grid point dropped beside a model period leaves at most a step of
+            // 1/20 decade + 1%.
+            assert!(step > 0.0 && step <= 0.05 + 0.0044, "{} → {}", w[0], w[1]);
+        }
+        // 41 grid points, those within 1% of a model period dropped (0.1, 0.2, 0.5, 1, 2, 5, 10
+        // and their neighbours on the grid), plus the 16 model periods.
+        assert!((45..=57).contains(&t.len()), "{}", t.len());
     }
 
     #[test]

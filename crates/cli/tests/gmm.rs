@@ -204,7 +204,66 @@ fn a_scenario_s_stations_are_compared_with_the_models_as_they_predict() {
         assert!(m == "bssa14" || m == "average");
         assert!(b.is_finite());
     }
+    a_scenario_s_set_is_chosen_by_magnitude_and_distance(&dir, &names, &st_seed, &f64s(&st, "r_rup_m"), &mw);
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `stickslip select` on the scenario: 4 stations by RotD50, at most 2 of a seed, R_rup ≤ 7 km,
+/// matched to ASCE 7 over 1–4 s (the smoke's usable band is 0.86–4.8 s); the files are the
+/// analysed records scaled, read back with the SAC reader and measured again.
+fn a_scenario_s_set_is_chosen_by_magnitude_and_distance(
+    dir: &Path,
+    names: &[String],
+    st_seed: &[f64],
+    r_rup_m: &[f64],
+    mw: &[f64],
+) {
+    use stickslip_seismo::accelerogram::sac::read_sac;
+    use stickslip_seismo::spectra::response::Reading;
+    use stickslip_seismo::spectra::rotd::{RotDPlan, RotDScratch, RotDSpectrum};
+    let set = "[set]\ntarget = \"asce7\"\nt1_s = 0.0\nperiod_min_s = 1.0\nperiod_max_s = 4.0\ncount = 4\nmax_per = 2\n\
+               per = \"seed\"\ncomponent = \"rotd50\"\nscale_min = 0.001\nscale_max = 1000.0\nmagnitude_min = 3.0\n\
+               distance_max_km = 7.0\n";
+    std::fs::write(dir.join("set.toml"), set).unwrap();
+    let out = stickslip(&["select", "out", "--set", "set.toml"], dir);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("surface stations at Mw ≥ 3, R_rup ≤ 7 km"), "{text}");
+    let tables = dir.join("out/tables");
+    let chosen = read(&tables.join("set.parquet"));
+    let (seed, station, scale) = (f64s(&chosen, "seed"), strs(&chosen, "record"), f64s(&chosen, "scale_factor"));
+    let (set_mw, set_r) = (f64s(&chosen, "mw"), f64s(&chosen, "r_rup_km"));
+    assert_eq!(seed.len(), 4);
+    for k in 0..4 {
+        assert!(seed.iter().filter(|s| **s == seed[k]).count() <= 2, "at most 2 of a seed: {seed:?}");
+        let j = (0..names.len()).find(|&j| names[j] == station[k] && st_seed[j] == seed[k]).unwrap();
+        assert!((set_r[k] - r_rup_m[j] / 1e3).abs() < 1e-9 && set_r[k] <= 7.0, "{} km", set_r[k]);
+        assert_eq!(set_mw[k], mw[seed[k] as usize - 1]);
+    }
+    // The best record's two components, read back: their RotD50 is the station's, scaled.
+    let spectra = read(&tables.join("station_spectra.parquet"));
+    let (sp_seed, sp_name, sp_t, sp_v) =
+        (f64s(&spectra, "seed"), strs(&spectra, "station"), f64s(&spectra, "period_s"), f64s(&spectra, "rotd50_m_s2"));
+    let stem = format!("scenario-smoke_set01_seed{}_{}", seed[0], station[0]);
+    let listing: Vec<_> = std::fs::read_dir(dir.join("out/set")).unwrap().flatten().map(|e| e.file_name()).collect();
+    let fp = read_sac(&dir.join(format!("out/set/{stem}_FP.SAC"))).unwrap_or_else(|e| panic!("{e}: {listing:?}"));
+    let fn_ = read_sac(&dir.join(format!("out/set/{stem}_FN.SAC"))).unwrap();
+    assert!((fp.meta.magnitude.unwrap() as f64 - set_mw[0]).abs() < 1e-5);
+    assert!(dir.join(format!("out/set/{stem}_FP.AT2")).exists() && dir.join(format!("out/set/{stem}_FN.AT2")).exists());
+    let mut checked = 0;
+    for i in (0..sp_seed.len()).filter(|&i| sp_seed[i] == seed[0] && sp_name[i] == station[0]) {
+        let t = sp_t[i];
+        if !(1.0..=4.0).contains(&t) {
+            continue;
+        }
+        let plan = RotDPlan::new(fp.dt, &[t], &[0.05], Reading::BandLimited, 4).unwrap();
+        let mut r = RotDSpectrum::default();
+        plan.compute(&fp.accel_si().unwrap(), &fn_.accel_si().unwrap(), &mut RotDScratch::default(), &mut r).unwrap();
+        let psa = (2.0 * std::f64::consts::PI / t).powi(2) * r.rotd50[0];
+        assert!((psa / (scale[0] * sp_v[i]) - 1.0).abs() < 1e-4, "T = {t} s: {psa} vs {} × {}", scale[0], sp_v[i]);
+        checked += 1;
+    }
+    assert!(checked >= 5, "the set's grid holds the log grid between the models' periods: {checked}");
 }
 
 #[test]
@@ -241,5 +300,53 @@ fn a_scenario_too_short_for_any_model_period_is_told_before_it_runs() {
         let said = String::from_utf8_lossy(&out.stdout).contains("holds none of the ground-motion");
         assert_eq!(said, warned, "duration {duration}: {}", String::from_utf8_lossy(&out.stdout));
     }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_scenario_s_set_is_refused_before_it_runs_where_it_cannot_be_chosen() {
+    let dir = std::env::temp_dir().join(format!("stickslip-gmm-set-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let with = |set: &str| format!("{SMOKE}\n[set]\n{set}\n");
+    for (file, expect) in [
+        // The stations' pairs are matched by RotD50 or RotD100, not one component.
+        (
+            with("component = \"x\"\nt1_s = 0.0\nperiod_min_s = 1.0\nperiod_max_s = 4.0"),
+            "set.component = x is not allowed: \"rotd50\" or \"rotd100\"",
+        ),
+        // T₁ = 1 s asks for 0.2–2 s; the smoke's stations are usable from 0.86 s.
+        (
+            with("component = \"rotd100\"\nt1_s = 1.0"),
+            "set.t1_s = 1 is not allowed: a period range (0.2 … 2 s) inside the stations' usable periods",
+        ),
+        (
+            with("component = \"rotd50\"\nmagnitude_min = 6.5\nmagnitude_max = 6.0"),
+            "set.magnitude_max = 6 is not allowed: above set.magnitude_min",
+        ),
+        (with("component = \"rotd50\"\ndistance_min_km = -1.0"), "set.distance_min_km = -1"),
+        // Bins and RotD100 belong to scenarios, not to the records of events.
+        (
+            "version = 1\n[spectra]\n[set]\nmagnitude_min = 5.0\n".to_string(),
+            "set.magnitude_min = 5 is not allowed: absent",
+        ),
+        ("version = 1\n[spectra]\n[set]\ncomponent = \"rotd100\"\n".to_string(), "set.component = rotd100"),
+    ] {
+        std::fs::write(dir.join("p.toml"), &file).unwrap();
+        let out = stickslip(&["check", "p.toml"], &dir);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "accepted: {file}");
+        assert!(err.contains(expect), "expected {expect:?} in: {err}");
+    }
+    // A set the stations can give is accepted, and check says where it comes from.
+    std::fs::write(
+        dir.join("p.toml"),
+        with("component = \"rotd100\"\nt1_s = 0.0\nperiod_min_s = 1.0\nperiod_max_s = 4.0\ndistance_max_km = 30.0"),
+    )
+    .unwrap();
+    let out = stickslip(&["check", "p.toml"], &dir);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("chosen from the surface stations of every seed"), "{text}");
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -32,7 +32,7 @@ use crate::sections::{
     EventsSection, ReportSection, ReportSettings, SimilaritySection, SpectraSection, shortest_period,
 };
 use crate::seeds::MAX_SEEDS;
-use crate::set::{SetSection, SetSettings};
+use crate::set::{SetPool, SetSection, SetSettings};
 
 /// The pipeline-file version this build reads.
 pub const PIPELINE_VERSION: i64 = 1;
@@ -428,11 +428,17 @@ impl Pipeline {
             _ => None,
         };
         let set = file.set.as_ref().and_then(|s| {
-            let grid = spectra.as_ref().zip(scene.as_ref()).map(|(sp, sc)| prototype_grid(sp, sc, &similarity));
-            s.build(base, grid, &mut ck)
+            let pool = match scene.as_ref().and_then(station_band) {
+                Some((shortest, longest)) => SetPool::Stations { shortest, longest },
+                None => SetPool::Records(
+                    spectra.as_ref().zip(scene.as_ref()).map(|(sp, sc)| prototype_grid(sp, sc, &similarity)),
+                ),
+            };
+            s.build(base, pool, &mut ck)
         });
         if let (Some(set), Some(acc), Some(scene)) = (&set, &accelerograms, &scene)
             && ck.is_clean()
+            && station_band(scene).is_none()
         {
             check_set_band(&mut ck, file.set.as_ref().expect("a set"), set, acc, scene, &similarity);
         }
@@ -497,20 +503,26 @@ fn random_fields(file: &PipelineFile) -> Vec<&'static str> {
     out
 }
 
-/// Warns when a fault scene's surface stations can give no PSA at any of the ground-motion models'
-/// periods (docs/model.md §16.2): their usable band runs from `1/f_max` (the lattice's, at most
-/// 80% of the record interval's Nyquist) to `1.25·T/2`, `T` the shear stage.
-fn warn_gmm_band(scene: &stickslip_solver::Scene, ck: &mut Checker) {
-    use stickslip_analysis::motions::{DEPARTURE, GMM_PERIODS_S, LOW_CORNER_CYCLES};
+/// The usable periods `(shortest, longest)` (s) of a fault scene's surface stations (docs/model.md
+/// §16.2): from `1/f_max` (the lattice's, at most 80% of the record interval's Nyquist) to
+/// `T/(2·1.25)`, `T` the shear stage; `None` for a scene without a fault or surface stations.
+fn station_band(scene: &stickslip_solver::Scene) -> Option<(f64, f64)> {
+    use stickslip_analysis::motions::{DEPARTURE, LOW_CORNER_CYCLES};
     let lattice = scene.lattice();
     let surface = scene.stations.iter().any(|s| lattice.position(s.node)[1] == 0.0);
     if !scene.is_fault() || !surface {
-        return;
+        return None;
     }
-    let Ok(band) = scene.usable_band(DEPARTURE) else { return };
+    let band = scene.usable_band(DEPARTURE).ok()?;
     let nyquist = scene.record.interval_s.map_or(f64::INFINITY, |iv| 0.8 * 0.5 / iv);
-    let shortest = 1.0 / band.f_max_hz.min(nyquist);
-    let longest = scene.shear.duration_s / (LOW_CORNER_CYCLES * 1.25);
+    Some((1.0 / band.f_max_hz.min(nyquist), scene.shear.duration_s / (LOW_CORNER_CYCLES * 1.25)))
+}
+
+/// Warns when a fault scene's surface stations can give no PSA at any of the ground-motion models'
+/// periods ([`station_band`]).
+fn warn_gmm_band(scene: &stickslip_solver::Scene, ck: &mut Checker) {
+    use stickslip_analysis::motions::GMM_PERIODS_S;
+    let Some((shortest, longest)) = station_band(scene) else { return };
     if !GMM_PERIODS_S.iter().any(|&t| t >= shortest && t <= longest) {
         ck.warn(
             "shear.duration_s",
@@ -654,10 +666,21 @@ impl Pipeline {
         Some(OutputCopy { text: out, inputs })
     }
 
-    /// What a `[set]` is checked against: the spectra's dampings and prototype-scale period grid.
-    pub fn set_grid(&self) -> Option<(&[f64], (f64, f64))> {
+    /// What a `[set]` is chosen from and checked against: a fault scenario's surface stations
+    /// (their usable periods), or the records' spectra (their dampings and prototype-scale period
+    /// grid).
+    pub fn set_pool(&self) -> SetPool<'_> {
+        if let Some((shortest, longest)) = station_band(&self.scene) {
+            return SetPool::Stations { shortest, longest };
+        }
         let a = &self.analysis;
-        a.spectra.as_ref().map(|sp| prototype_grid(sp, &self.scene, &a.similarity))
+        SetPool::Records(a.spectra.as_ref().map(|sp| prototype_grid(sp, &self.scene, &a.similarity)))
+    }
+
+    /// Whether a `[set]` is chosen from a fault scenario's surface stations (not the records of
+    /// events).
+    pub fn sets_from_stations(&self) -> bool {
+        station_band(&self.scene).is_some()
     }
 
     /// Whether the report compares this pipeline with the paper (its figure numbers and its

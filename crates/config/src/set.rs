@@ -34,13 +34,23 @@ pub enum SetComponent {
     Y,
     /// z only.
     Z,
-    /// The x–y pair of a node, by its RotD50 spectrum (both components are scaled alike).
+    /// The x–y pair of a node, by its RotD50 spectrum (both components are scaled alike); a
+    /// scenario station's horizontal pair (x, z).
     Rotd50,
+    /// A scenario station's horizontal pair (x, z) by its RotD100 spectrum, the maximum direction
+    /// of ASCE 7-16 §16.2.3 (both components scaled alike).
+    Rotd100,
 }
 
 impl Named for SetComponent {
-    const ALL: &'static [Self] =
-        &[SetComponent::Horizontal, SetComponent::X, SetComponent::Y, SetComponent::Z, SetComponent::Rotd50];
+    const ALL: &'static [Self] = &[
+        SetComponent::Horizontal,
+        SetComponent::X,
+        SetComponent::Y,
+        SetComponent::Z,
+        SetComponent::Rotd50,
+        SetComponent::Rotd100,
+    ];
     fn name(self) -> &'static str {
         match self {
             SetComponent::Horizontal => "horizontal",
@@ -48,6 +58,7 @@ impl Named for SetComponent {
             SetComponent::Y => "y",
             SetComponent::Z => "z",
             SetComponent::Rotd50 => "rotd50",
+            SetComponent::Rotd100 => "rotd100",
         }
     }
 }
@@ -153,6 +164,14 @@ pub struct SetSection {
     pub component: String,
     /// Damping ratio of the spectra matched (one of `[spectra] dampings`). Default 0.05.
     pub damping: f64,
+    /// A scenario's stations only: smallest moment magnitude of the seed's rupture.
+    pub magnitude_min: Option<f64>,
+    /// A scenario's stations only: largest moment magnitude of the seed's rupture.
+    pub magnitude_max: Option<f64>,
+    /// A scenario's stations only: smallest rupture distance R_rup (km).
+    pub distance_min_km: Option<f64>,
+    /// A scenario's stations only: largest rupture distance R_rup (km).
+    pub distance_max_km: Option<f64>,
 }
 
 impl Default for SetSection {
@@ -176,6 +195,10 @@ impl Default for SetSection {
             scale_max: 4.0,
             component: SetComponent::Horizontal.name().into(),
             damping: 0.05,
+            magnitude_min: None,
+            magnitude_max: None,
+            distance_min_km: None,
+            distance_max_km: None,
         }
     }
 }
@@ -197,12 +220,33 @@ pub struct SetSettings {
     pub damping: f64,
     /// The CSV target's file as read (a CSV target only).
     pub input: Option<InputFile>,
+    /// A scenario's stations only: the rupture's moment magnitude bin `[min, max]` (either end
+    /// open as ±∞).
+    pub magnitude: Option<(f64, f64)>,
+    /// A scenario's stations only: the rupture distance bin `[min, max]` (km).
+    pub distance_km: Option<(f64, f64)>,
+}
+
+/// What a `[set]` chooses from, and the spectra it is matched on.
+#[derive(Clone, Copy, Debug)]
+pub enum SetPool<'a> {
+    /// The records of events (`[accelerograms]`, `[spectra]`): the spectra's dampings and
+    /// prototype-scale period grid `(shortest, longest)` (s); `None` without `[spectra]`.
+    Records(Option<(&'a [f64], (f64, f64))>),
+    /// The surface stations of a fault scenario (`stations`, `station_spectra`): 5%-damped RotD50
+    /// and RotD100 of each station's horizontal pair, usable from `shortest` to `longest` (s).
+    Stations {
+        /// Shortest usable period (s).
+        shortest: f64,
+        /// Longest usable period (s).
+        longest: f64,
+    },
 }
 
 /// Reads the `[set]` section of a TOML file (a pipeline file, or a file holding only that
-/// section) and builds it against `spectra` (see [`SetSection::build`]), a CSV target relative to
+/// section) and builds it against `pool` (see [`SetSection::build`]), a CSV target relative to
 /// the file.
-pub fn read_set_file(path: &Path, spectra: Option<(&[f64], (f64, f64))>) -> Result<SetSettings, ConfigError> {
+pub fn read_set_file(path: &Path, pool: SetPool) -> Result<SetSettings, ConfigError> {
     #[derive(Deserialize)]
     struct SetFile {
         set: Option<SetSection>,
@@ -223,18 +267,25 @@ pub fn read_set_file(path: &Path, spectra: Option<(&[f64], (f64, f64))>) -> Resu
     })?;
     let mut ck = Checker::default();
     let base = path.parent().unwrap_or(Path::new("."));
-    let built = section.build(base, spectra, &mut ck);
+    let built = section.build(base, pool, &mut ck);
     ck.finish().map_err(file)?;
     built.ok_or_else(|| file(ConfigError::Syntax("the set could not be built".into())))
 }
 
 impl SetSection {
     /// The settings; a CSV target is read relative to `base` (the pipeline file's folder).
-    /// `spectra` gives the dampings computed and the prototype-scale period grid `(shortest,
-    /// longest)` (s), which must hold the period range. Every refused value is recorded in `ck`;
-    /// `None` when the target could not be built.
-    pub fn build(&self, base: &Path, spectra: Option<(&[f64], (f64, f64))>, ck: &mut Checker) -> Option<SetSettings> {
-        let dampings = spectra.map(|s| s.0);
+    /// `pool` says what the set is chosen from: the records' spectra (their dampings and
+    /// prototype-scale period grid, which must hold the period range), or a scenario's stations
+    /// (5% damping, RotD50 or RotD100, the range inside their usable band; magnitude and distance
+    /// bins allowed). Every refused value is recorded in `ck`; `None` when the target could not be
+    /// built.
+    pub fn build(&self, base: &Path, pool: SetPool, ck: &mut Checker) -> Option<SetSettings> {
+        const STATION_DAMPINGS: [f64; 1] = [0.05];
+        let (dampings, spectra) = match pool {
+            SetPool::Records(spectra) => (spectra.map(|s| s.0), spectra.map(|s| s.1)),
+            SetPool::Stations { shortest, longest } => (Some(&STATION_DAMPINGS[..]), Some((shortest, longest))),
+        };
+        let stations = matches!(pool, SetPool::Stations { .. });
         let mut input = None;
         let kind = ck.named::<TargetKind>("set.target", &self.target)?;
         let (target, target_name) = match kind {
@@ -302,21 +353,34 @@ impl SetSection {
             }
             PeriodRange::Explicit { t_a: self.period_min_s, t_b: self.period_max_s }
         };
-        if let (Some((_, (lo, hi))), Ok((t_a, t_b))) = (spectra, range.bounds()) {
+        if let (Some((lo, hi)), Ok((t_a, t_b))) = (spectra, range.bounds()) {
             // Relative slack: the grid's ends are exact, a range given by hand may round.
             if t_a < lo * (1.0 - 1e-9) || t_b > hi * (1.0 + 1e-9) {
                 let field = if self.t1_s > 0.0 { "set.t1_s" } else { "set.period_min_s" };
                 let value = if self.t1_s > 0.0 { self.t1_s } else { self.period_min_s };
+                let within = if stations {
+                    format!(
+                        "the stations' usable periods ({} … {} s: from the lattice's f_max, at most 0.8 of the \
+                         record interval's Nyquist, to 1/1.25 of half the shear stage)",
+                        approx(lo),
+                        approx(hi)
+                    )
+                } else {
+                    format!(
+                        "the spectra's periods ({} … {} s at prototype scale: [spectra] period_min_s, period_max_s × \
+                         λ)",
+                        approx(lo),
+                        approx(hi)
+                    )
+                };
                 ck.push(
                     field,
                     value,
                     format!(
-                        "a period range ({} … {} s at prototype scale) inside the spectra's periods \
-                         ({} … {} s at prototype scale: [spectra] period_min_s, period_max_s × λ)",
+                        "a period range ({} … {} s{}) inside {within}",
                         approx(t_a),
                         approx(t_b),
-                        approx(lo),
-                        approx(hi)
+                        if stations { "" } else { " at prototype scale" }
                     ),
                 );
             }
@@ -330,6 +394,36 @@ impl SetSection {
             ck.push("set.scale_max", self.scale_max, format!("at least scale_min ({}), finite", num(self.scale_min)));
         }
         let component = ck.named("set.component", &self.component).unwrap_or(SetComponent::Horizontal);
+        let pair = matches!(component, SetComponent::Rotd50 | SetComponent::Rotd100);
+        if stations && !pair {
+            ck.push(
+                "set.component",
+                &self.component,
+                "\"rotd50\" or \"rotd100\" for a scenario's stations (their horizontal pair, both components \
+                 scaled alike; ASCE 7-16 §16.2.3 matches the maximum direction, RotD100)",
+            );
+        } else if !stations && component == SetComponent::Rotd100 {
+            ck.push(
+                "set.component",
+                &self.component,
+                "\"horizontal\", \"x\", \"y\", \"z\" or \"rotd50\" for the records of events (\"rotd100\" is for a \
+                 scenario's stations: a fault scene with [[stations]] on the surface)",
+            );
+        }
+        let magnitude = self.bin(
+            ck,
+            ("set.magnitude_min", self.magnitude_min),
+            ("set.magnitude_max", self.magnitude_max),
+            (-2.0, 10.0),
+            stations,
+        );
+        let distance_km = self.bin(
+            ck,
+            ("set.distance_min_km", self.distance_min_km),
+            ("set.distance_max_km", self.distance_max_km),
+            (0.0, 1e4),
+            stations,
+        );
         match dampings {
             Some(d) if !d.iter().any(|&x| (x - self.damping).abs() <= 1e-12) => {
                 ck.push("set.damping", self.damping, format!("one of the spectra's dampings {d:?}"));
@@ -344,7 +438,50 @@ impl SetSection {
             scale_max: self.scale_max,
             ..SelectionOptions::new(range)
         };
-        Some(SetSettings { target: target?, target_name, options, per, component, damping: self.damping, input })
+        Some(SetSettings {
+            target: target?,
+            target_name,
+            options,
+            per,
+            component,
+            damping: self.damping,
+            input,
+            magnitude,
+            distance_km,
+        })
+    }
+
+    /// A magnitude or distance bin `[lo, hi]` from its two optional ends (an absent end open),
+    /// each inside `limits`, `lo < hi`; refused unless the set is chosen from a scenario's
+    /// stations. `None` when neither end is given.
+    fn bin(
+        &self,
+        ck: &mut Checker,
+        (lo_field, lo): (&str, Option<f64>),
+        (hi_field, hi): (&str, Option<f64>),
+        limits: (f64, f64),
+        stations: bool,
+    ) -> Option<(f64, f64)> {
+        if lo.is_none() && hi.is_none() {
+            return None;
+        }
+        if !stations {
+            let (field, value) = if let Some(v) = lo { (lo_field, v) } else { (hi_field, hi.unwrap_or(f64::NAN)) };
+            ck.push(
+                field,
+                value,
+                "absent: magnitude and distance bins choose among a scenario's stations (a fault scene with \
+                 [[stations]] on the surface), not among the records of events",
+            );
+            return None;
+        }
+        let lo_ok = lo.is_none_or(|v| ck.range(lo_field, v, limits.0, false, limits.1, false));
+        let hi_ok = hi.is_none_or(|v| ck.range(hi_field, v, limits.0, false, limits.1, false));
+        let (a, b) = (lo.unwrap_or(f64::NEG_INFINITY), hi.unwrap_or(f64::INFINITY));
+        if lo_ok && hi_ok && a >= b {
+            ck.push(hi_field, b, format!("above {lo_field} ({})", num(a)));
+        }
+        Some((a, b))
     }
 }
 

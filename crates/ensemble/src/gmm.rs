@@ -13,6 +13,7 @@
 
 use std::collections::HashMap;
 
+use stickslip_analysis::motions::GMM_PERIODS_S;
 use stickslip_seismo::gmm::validation::{ModelColumn, attenuation_slope, validate_period};
 use stickslip_seismo::gmm::{Imt, Mechanism, Model, Rupture, Site};
 use stickslip_store::frame::Columns;
@@ -121,7 +122,10 @@ fn records(folder: &Folder, vs30: Option<f64>) -> Result<Option<Vec<Record>>, St
         let (s, n, t, v) =
             (c.u64s(col::SEED)?, c.strs(col::STATION)?, c.f64s(col::PERIOD_S)?, c.f64s(col::ROTD50_M_S2)?);
         for i in 0..s.len() {
-            psa.entry((s[i], n[i].clone())).or_default().push((t[i], v[i]));
+            // The models' own periods only: the grid between them is for matching record sets.
+            if GMM_PERIODS_S.iter().any(|g| g.to_bits() == t[i].to_bits()) {
+                psa.entry((s[i], n[i].clone())).or_default().push((t[i], v[i]));
+            }
         }
     }
     let mut out = Vec::new();

@@ -17,6 +17,7 @@ pub mod gmm;
 pub mod merge;
 pub mod precision;
 pub mod run;
+pub mod scenario_set;
 pub mod set;
 pub mod summary;
 

@@ -3,6 +3,10 @@
 //! finished seed (each horizontal component, one component, or each node's x–y pair by its
 //! RotD50), with the usable band each was processed to; the chosen records are written scaled, as
 //! AT2 and SAC files under `<out>/set/`, with the `set` table.
+//!
+//! A fault scenario's set is chosen from its surface stations instead ([`crate::scenario_set`]):
+//! each station's horizontal pair by its RotD50 or RotD100, inside the magnitude and distance
+//! bins asked.
 
 use std::collections::{BTreeMap, HashMap};
 
@@ -38,6 +42,9 @@ pub struct SetOutcome {
     pub spectra: Vec<Vec<f64>>,
     /// Candidates considered.
     pub candidates: usize,
+    /// What the candidates are, when a bin or a rule left some out (e.g. "stations of ruptures
+    /// Mw 6–6.5 at R_rup 10–30 km: 37 of 144").
+    pub pool: Option<String>,
 }
 
 /// One candidate's data besides its spectrum.
@@ -50,9 +57,74 @@ struct Meta {
     usable_hz: (f64, f64),
 }
 
+/// The spectra a set is chosen among, on a common grid, and what each candidate is.
+pub(crate) struct Pool<M> {
+    /// The period grid (s).
+    pub grid: Vec<f64>,
+    /// Each candidate: its group, PSA on `grid`, usable periods `(shortest, longest)` (s) and
+    /// what it is.
+    pub members: Vec<Member<M>>,
+}
+
+/// One candidate of a [`Pool`].
+pub(crate) struct Member<M> {
+    /// Identifier.
+    pub id: String,
+    /// Group (at most `max_per` of one group).
+    pub group: String,
+    /// PSA on the pool's grid (m/s²).
+    pub psa: Vec<f64>,
+    /// Usable periods (s).
+    pub usable_s: (f64, f64),
+    /// What it is.
+    pub meta: M,
+}
+
+/// What a selection over a pool chose: the selection, sorted by misfit, and the target on the
+/// grid where it is defined.
+pub(crate) struct Chosen {
+    pub selection: Selection,
+    pub periods: Vec<f64>,
+    pub target: Vec<f64>,
+    pub spectra: Vec<Vec<f64>>,
+}
+
+/// Matches `settings` among `pool` (the target where it is defined on the pool's grid), the
+/// records ranked by misfit, best first.
+pub(crate) fn choose<M>(pool: &Pool<M>, settings: &SetSettings) -> Result<Chosen, EnsembleError> {
+    // The target where it is defined (a CSV table may not span the whole grid).
+    let on_grid: Vec<(usize, f64)> =
+        pool.grid.iter().enumerate().filter_map(|(k, &t)| settings.target.psa(t).ok().map(|v| (k, v))).collect();
+    let periods: Vec<f64> = on_grid.iter().map(|&(k, _)| pool.grid[k]).collect();
+    let target: Vec<f64> = on_grid.iter().map(|&(_, v)| v).collect();
+    let candidates: Vec<Candidate> = pool
+        .members
+        .iter()
+        .map(|m| Candidate {
+            id: m.id.clone(),
+            group: m.group.clone(),
+            psa: on_grid.iter().map(|&(k, _)| m.psa[k]).collect(),
+            usable_min: m.usable_s.0,
+            usable_max: m.usable_s.1,
+        })
+        .collect();
+    let mut selection = select(&periods, &target, &candidates, &settings.options).map_err(EnsembleError::Set)?;
+    // Ranked by misfit, best first: the set table's rank, the files' numbers and the printout.
+    selection.records.sort_by(|a, b| a.misfit.total_cmp(&b.misfit).then(a.index.cmp(&b.index)));
+    let spectra = selection
+        .records
+        .iter()
+        .map(|c| on_grid.iter().map(|&(k, _)| pool.members[c.index].psa[k]).collect())
+        .collect();
+    Ok(Chosen { selection, periods, target, spectra })
+}
+
 /// Selects the set of `settings` among the records of the finished seeds in `out`, writes its
 /// table and files, and returns it; refuses with the rule it cannot meet.
 pub fn select_set(out: &Folder, pipeline: &Pipeline, settings: &SetSettings) -> Result<SetOutcome, EnsembleError> {
+    if pipeline.sets_from_stations() {
+        return crate::scenario_set::select_station_set(out, pipeline, settings);
+    }
     let missing =
         |what: &str| EnsembleError::Setup(format!("{}: no {what} to choose a set from", out.root().display()));
     let records = read_parquet_if_present(&out.gathered(&RECORDS))?.ok_or_else(|| missing("records table"))?;
@@ -97,6 +169,8 @@ pub fn select_set(out: &Folder, pipeline: &Pipeline, settings: &SetSettings) -> 
         SetComponent::Y => comp == "y",
         SetComponent::Z => comp == "z",
         SetComponent::Rotd50 => comp == "rotd50",
+        // Refused by the configuration for the records of events.
+        SetComponent::Rotd100 => false,
     };
     let mut grid: Vec<f64> = Vec::new();
     let mut psa: BTreeMap<(u64, String), (String, Vec<f64>)> = BTreeMap::new();
@@ -115,14 +189,7 @@ pub fn select_set(out: &Folder, pipeline: &Pipeline, settings: &SetSettings) -> 
             grid.push(spectra.period_s[i]);
         }
     }
-    // The target where it is defined (a CSV table may not span the whole grid).
-    let on_grid: Vec<(usize, f64)> =
-        grid.iter().enumerate().filter_map(|(k, &t)| settings.target.psa(t).ok().map(|v| (k, v))).collect();
-    let periods: Vec<f64> = on_grid.iter().map(|&(k, _)| grid[k]).collect();
-    let target: Vec<f64> = on_grid.iter().map(|&(_, v)| v).collect();
-    let mut metas = Vec::new();
-    let mut candidates = Vec::new();
-    let mut full = Vec::new();
+    let mut members = Vec::new();
     for ((seed, record), (component, values)) in psa {
         let Some(&(lo, hi, ref label, node)) = band.get(&(seed, record.clone())) else { continue };
         if values.len() != grid.len() {
@@ -132,24 +199,21 @@ pub fn select_set(out: &Folder, pipeline: &Pipeline, settings: &SetSettings) -> 
             SetGroup::Event => format!("seed {seed} / {label}"),
             SetGroup::Seed => format!("seed {seed}"),
         };
-        candidates.push(Candidate {
+        members.push(Member {
             id: format!("{seed}/{record}"),
             group,
-            psa: on_grid.iter().map(|&(k, _)| values[k]).collect(),
-            usable_min: 1.0 / hi,
-            usable_max: if lo > 0.0 { 1.0 / lo } else { f64::INFINITY },
+            psa: values,
+            usable_s: (1.0 / hi, if lo > 0.0 { 1.0 / lo } else { f64::INFINITY }),
+            meta: Meta { seed, record, label: label.clone(), node, component, usable_hz: (lo, hi) },
         });
-        full.push(values);
-        metas.push(Meta { seed, record, label: label.clone(), node, component, usable_hz: (lo, hi) });
     }
-    let mut selection = select(&periods, &target, &candidates, &settings.options).map_err(EnsembleError::Set)?;
-    // Ranked by misfit, best first: the set table's rank, the files' numbers and the printout.
-    selection.records.sort_by(|a, b| a.misfit.total_cmp(&b.misfit).then(a.index.cmp(&b.index)));
+    let pool = Pool { grid, members };
+    let Chosen { selection, periods, target, spectra } = choose(&pool, settings)?;
     let rows: Vec<SetRow> = selection
         .records
         .iter()
         .map(|c| {
-            let m = &metas[c.index];
+            let m = &pool.members[c.index].meta;
             SetRow {
                 seed: m.seed,
                 record: m.record.clone(),
@@ -159,13 +223,25 @@ pub fn select_set(out: &Folder, pipeline: &Pipeline, settings: &SetSettings) -> 
                 scale_factor: c.scale,
                 misfit: c.misfit,
                 usable_hz: m.usable_hz,
+                scenario: None,
             }
         })
         .collect();
     write_parquet_atomic(&mut set_frame(&rows)?, &out.gathered(&SET))?;
+    clear_set_dir(out)?;
     write_set_files(out, pipeline, settings, &rows, &records)?;
-    let spectra = selection.records.iter().map(|c| on_grid.iter().map(|&(k, _)| full[c.index][k]).collect()).collect();
-    Ok(SetOutcome { selection, rows, periods, target, spectra, candidates: candidates.len() })
+    Ok(SetOutcome { selection, rows, periods, target, spectra, candidates: pool.members.len(), pool: None })
+}
+
+/// Empties `<out>/set/`: a new set replaces the old one whole.
+pub(crate) fn clear_set_dir(out: &Folder) -> Result<(), EnsembleError> {
+    let dir = out.set_dir();
+    if dir.exists() {
+        for e in std::fs::read_dir(&dir).map_err(|e| stickslip_store::StoreError::io(&dir, e))?.flatten() {
+            let _ = std::fs::remove_file(e.path());
+        }
+    }
+    Ok(())
 }
 
 /// Writes the chosen records, scaled, at prototype scale: AT2 and SAC (scale factor and usable
@@ -181,12 +257,6 @@ fn write_set_files(
     records: &Records,
 ) -> Result<(), EnsembleError> {
     let dir = out.set_dir();
-    if dir.exists() {
-        // A new set replaces the old one whole.
-        for e in std::fs::read_dir(&dir).map_err(|e| stickslip_store::StoreError::io(&dir, e))?.flatten() {
-            let _ = std::fs::remove_file(e.path());
-        }
-    }
     let Some(acc_settings) = &pipeline.analysis.accelerograms else { return Ok(()) };
     let lambda = pipeline.analysis.similarity.prototype_length_m / pipeline.scene.lattice().extent()[0];
     let mut by_seed: BTreeMap<u64, Vec<(usize, &SetRow)>> = BTreeMap::new();

@@ -129,7 +129,7 @@ impl<'a> ReportInput<'a> {
 /// or the pipeline's when there is none (or it no longer builds).
 fn chosen_set(folder: &Folder, pipeline: &Pipeline) -> Option<SetSettings> {
     let kept = folder.set_dir().join("set.toml");
-    kept.is_file().then(|| read_set_file(&kept, pipeline.set_grid()).ok()).flatten().or_else(|| pipeline.set.clone())
+    kept.is_file().then(|| read_set_file(&kept, pipeline.set_pool()).ok()).flatten().or_else(|| pipeline.set.clone())
 }
 
 /// How many seeds the time-history figures draw when `[report] seeds` does not name them.

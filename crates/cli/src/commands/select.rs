@@ -30,7 +30,7 @@ pub fn run(a: Args) -> Result<()> {
     let pipeline = Pipeline::load(&folder.pipeline_copy())
         .with_context(|| format!("reading the pipeline of {}", a.folder.display()))?;
     let settings = match &a.set {
-        Some(path) => read_set_file(path, pipeline.set_grid())?,
+        Some(path) => read_set_file(path, pipeline.set_pool())?,
         None => pipeline.set.clone().with_context(|| {
             format!("the pipeline of {} has no [set] section: give one with --set FILE", a.folder.display())
         })?,
@@ -94,9 +94,39 @@ pub fn print_set(o: &SetOutcome, target: &str, folder: &Folder) {
             String::new()
         }
     );
-    outln!("  {:>4}  {:>10}  {:<14} {:>8}  {:>8}", "rank", "seed", "record", "scale", "misfit");
-    for (k, r) in o.rows.iter().enumerate() {
-        outln!("  {:>4}  {:>10}  {:<14} {:>8.3}  {:>8.4}", k + 1, r.seed, r.record, r.scale_factor, r.misfit);
+    if let Some(pool) = &o.pool {
+        outln!("  from the {pool}");
+    }
+    if o.rows.iter().any(|r| r.scenario.is_some()) {
+        let width = o.rows.iter().map(|r| r.record.chars().count()).max().unwrap_or(6).max(7);
+        outln!(
+            "  {:>4}  {:>10}  {:<width$}  {:>5}  {:>9}  {:>8}  {:>8}",
+            "rank",
+            "seed",
+            "station",
+            "Mw",
+            "R_rup km",
+            "scale",
+            "misfit"
+        );
+        for (k, r) in o.rows.iter().enumerate() {
+            let m = r.scenario.expect("every row of a scenario's set");
+            outln!(
+                "  {:>4}  {:>10}  {:<width$}  {:>5.2}  {:>9.1}  {:>8.3}  {:>8.4}",
+                k + 1,
+                r.seed,
+                r.record,
+                m.mw,
+                m.r_rup_km,
+                r.scale_factor,
+                r.misfit
+            );
+        }
+    } else {
+        outln!("  {:>4}  {:>10}  {:<14} {:>8}  {:>8}", "rank", "seed", "record", "scale", "misfit");
+        for (k, r) in o.rows.iter().enumerate() {
+            outln!("  {:>4}  {:>10}  {:<14} {:>8.3}  {:>8.4}", k + 1, r.seed, r.record, r.scale_factor, r.misfit);
+        }
     }
     outln!(
         "  the set table → {}; its scaled records (AT2, SAC) → {}",

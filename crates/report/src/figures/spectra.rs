@@ -13,7 +13,7 @@ use stickslip_solver::scene::Component;
 
 use stickslip_store::io::{scan_columns, scan_glob};
 use stickslip_store::schema::col;
-use stickslip_store::schema::{FOURIER, ROTD, SET, SPECTRA};
+use stickslip_store::schema::{FOURIER, ROTD, SET, SPECTRA, STATION_SPECTRA};
 use stickslip_store::tables::set::SetTable;
 use stickslip_store::tables::spectra::{Spectra, read_fourier};
 
@@ -292,6 +292,9 @@ pub(super) fn fourier(d: &ReportInput, path: &Path) -> Result<Outcome, ReportErr
     )
 }
 
+/// Each chosen record's spectrum by `(seed, record)`: `(period s, PSA g, in its band)`.
+type SpectraOf = BTreeMap<(u64, String), Vec<(f64, f64, bool)>>;
+
 /// The record set chosen by `[set]` against its design spectrum, prototype scale: the target, each
 /// scaled record, their mean, the rule's fraction of the target, the period range shaded.
 pub(super) fn record_set(d: &ReportInput, path: &Path) -> Result<Outcome, ReportError> {
@@ -300,28 +303,55 @@ pub(super) fn record_set(d: &ReportInput, path: &Path) -> Result<Outcome, Report
         return Ok(Outcome::Skipped("no set table (the selection failed or has not run)".into()));
     };
     let set = SetTable::read(&df)?;
-    let rotd = settings.component == stickslip_config::set::SetComponent::Rotd50;
-    let table = if rotd { ROTD } else { SPECTRA };
-    let prototype = polars::prelude::col(col::SCALE).eq(polars::prelude::lit("prototype"));
-    let Some(sp) = scan_columns(&d.folder.part_glob(&table), &SPECTRUM_READ, Some(prototype))?
-        .map(|df| Spectra::read(&df))
-        .transpose()?
-    else {
-        return Ok(Outcome::Skipped(format!("no {} table", table.name)));
+    use stickslip_config::set::SetComponent;
+    let stations = d.pipeline.sets_from_stations();
+    let rotd = matches!(settings.component, SetComponent::Rotd50 | SetComponent::Rotd100);
+    // A record's prototype spectrum at the set's damping, by increasing period, and whether each
+    // period is in its band: a scenario station's RotD50 or RotD100 (`station_spectra`, computed
+    // only where usable), or a record's spectrum (its RotD50 in the RotD table, which also holds
+    // RotD100).
+    let spectra: SpectraOf = if stations {
+        let Some(df) = stickslip_store::io::read_parquet_if_present(&d.folder.gathered(&STATION_SPECTRA))? else {
+            return Ok(Outcome::Skipped("no station_spectra table".into()));
+        };
+        let c = stickslip_store::frame::Columns::of(&df, STATION_SPECTRA.name);
+        let (seed, name, period) = (c.u64s(col::SEED)?, c.strs(col::STATION)?, c.f64s(col::PERIOD_S)?);
+        let psa =
+            c.f64s(if settings.component == SetComponent::Rotd100 { col::ROTD100_M_S2 } else { col::ROTD50_M_S2 })?;
+        let mut out: SpectraOf = BTreeMap::new();
+        for i in 0..seed.len() {
+            if set.seed.iter().zip(&set.record).any(|(s, r)| *s == seed[i] && *r == name[i]) {
+                out.entry((seed[i], name[i].clone())).or_default().push((period[i], psa[i] / G, true));
+            }
+        }
+        out
+    } else {
+        let table = if rotd { ROTD } else { SPECTRA };
+        let prototype = polars::prelude::col(col::SCALE).eq(polars::prelude::lit("prototype"));
+        let Some(sp) = scan_columns(&d.folder.part_glob(&table), &SPECTRUM_READ, Some(prototype))?
+            .map(|df| Spectra::read(&df))
+            .transpose()?
+        else {
+            return Ok(Outcome::Skipped(format!("no {} table", table.name)));
+        };
+        let mut out: SpectraOf = BTreeMap::new();
+        for i in 0..sp.seed.len() {
+            if sp.scale[i] == "prototype"
+                && (!rotd || sp.component[i] == "rotd50")
+                && (sp.damping[i] - settings.damping).abs() < 1e-12
+                && set.seed.iter().zip(&set.record).any(|(s, r)| *s == sp.seed[i] && *r == sp.record[i])
+            {
+                out.entry((sp.seed[i], sp.record[i].clone())).or_default().push((
+                    sp.period_s[i],
+                    sp.psa_m_s2[i] / G,
+                    sp.in_band[i],
+                ));
+            }
+        }
+        out
     };
-    // A record's prototype spectrum at the set's damping (of its RotD50 in the RotD table, which
-    // also holds RotD100), by increasing period.
     let psa_of = |seed: u64, record: &str| -> Vec<(f64, f64, bool)> {
-        let mut pts: Vec<(f64, f64, bool)> = (0..sp.seed.len())
-            .filter(|&i| {
-                sp.seed[i] == seed
-                    && sp.record[i] == record
-                    && sp.scale[i] == "prototype"
-                    && (!rotd || sp.component[i] == "rotd50")
-                    && (sp.damping[i] - settings.damping).abs() < 1e-12
-            })
-            .map(|i| (sp.period_s[i], sp.psa_m_s2[i] / G, sp.in_band[i]))
-            .collect();
+        let mut pts = spectra.get(&(seed, record.to_string())).cloned().unwrap_or_default();
         pts.sort_by(|a, b| a.0.total_cmp(&b.0));
         pts
     };
@@ -378,13 +408,18 @@ pub(super) fn record_set(d: &ReportInput, path: &Path) -> Result<Outcome, Report
     });
     let panel = Panel { lines, bands, y_range: Some((lo, hi)), ..Panel::loglog("period (s)", "PSA (g)") };
     let count = scaled_all.len();
-    let comp = if rotd { "RotD50".to_string() } else { set.component.first().cloned().unwrap_or_default() };
+    let comp = match settings.component {
+        SetComponent::Rotd50 => "RotD50".to_string(),
+        SetComponent::Rotd100 => "RotD100".to_string(),
+        _ => set.component.first().cloned().unwrap_or_default(),
+    };
+    let what = if stations { "scenario's surface stations" } else { "records" };
     drawn(
         path,
         &Sheet::new(format!("Record set of {count} matched to the target spectrum, prototype scale"), 1, vec![panel]),
         "Record set matched to a design spectrum".into(),
         format!(
-            "The {count} records chosen by [set] ({comp}, {:.0}% damping), each scaled by its factor (grey), their \
+            "The {count} {what} chosen by [set] ({comp}, {:.0}% damping), each scaled by its factor (grey), their \
              mean, the target spectrum ({}) and {:.0}% of it, at prototype scale, in g = {G} m/s²; the shaded band is the period range \
              of the match{}. The set table lists each record, its factor and misfit; the scaled records are under set/.",
             100.0 * settings.damping,

@@ -23,6 +23,9 @@ pub const SET: TableSpec = TableSpec {
         col::MISFIT,
         col::USABLE_LOW_HZ,
         col::USABLE_HIGH_HZ,
+        col::MW,
+        col::R_RUP_KM,
+        col::R_JB_KM,
     ],
     variable: None,
 };
@@ -32,13 +35,14 @@ pub const SET: TableSpec = TableSpec {
 pub struct SetRow {
     /// Seed.
     pub seed: u64,
-    /// Record name within its seed (`S2-n36-x`, or `S2-n36-xy` for a RotD50 pair).
+    /// Record name within its seed (`S2-n36-x`, or `S2-n36-xy` for a RotD50 pair; a scenario's
+    /// station name).
     pub record: String,
-    /// Event label.
+    /// Event label (a scenario's seed is one rupture: `rupture`).
     pub label: String,
     /// Node (LDEM number).
     pub node: u32,
-    /// Component (`x`, `y`, `z` or `rotd50`).
+    /// Component (`x`, `y`, `z`, `rotd50` or `rotd100`).
     pub component: String,
     /// Amplitude scale factor.
     pub scale_factor: f64,
@@ -46,6 +50,20 @@ pub struct SetRow {
     pub misfit: f64,
     /// Usable band at prototype scale (Hz).
     pub usable_hz: (f64, f64),
+    /// A scenario's station: the seed's rupture as the ground-motion models see it, its moment
+    /// magnitude and the station's rupture and Joyner–Boore distances (km).
+    pub scenario: Option<ScenarioMeta>,
+}
+
+/// What a scenario's record is: its rupture's magnitude and its station's distances.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ScenarioMeta {
+    /// Moment magnitude of the seed's rupture.
+    pub mw: f64,
+    /// Rupture distance R_rup (km).
+    pub r_rup_km: f64,
+    /// Joyner–Boore distance R_JB (km).
+    pub r_jb_km: f64,
 }
 
 /// The set table, in the order the records were chosen.
@@ -62,6 +80,9 @@ pub fn set_frame(rows: &[SetRow]) -> Result<DataFrame, StoreError> {
         .f64(col::MISFIT, rows.iter().map(|r| r.misfit).collect())
         .f64(col::USABLE_LOW_HZ, rows.iter().map(|r| r.usable_hz.0).collect())
         .f64(col::USABLE_HIGH_HZ, rows.iter().map(|r| r.usable_hz.1).collect())
+        .opt_f64(col::MW, rows.iter().map(|r| r.scenario.map(|s| s.mw)).collect())
+        .opt_f64(col::R_RUP_KM, rows.iter().map(|r| r.scenario.map(|s| s.r_rup_km)).collect())
+        .opt_f64(col::R_JB_KM, rows.iter().map(|r| r.scenario.map(|s| s.r_jb_km)).collect())
         .finish(SET.name)
 }
 

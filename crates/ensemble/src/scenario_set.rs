@@ -1,0 +1,280 @@
+//! A record set chosen from a fault scenario's surface stations (`[set]` on a fault scene with
+//! `[[stations]]`, docs/model.md §16.5): the candidates are the stations of every finished seed
+//! whose rupture's Mw and whose R_rup fall in the bins asked, each by the RotD50 or RotD100 of its
+//! horizontal pair (5% damping, `station_spectra`, on the grid of
+//! [`stickslip_analysis::motions::spectrum_periods`] where every candidate is usable); a seed is
+//! one rupture, so `max_per` caps the records of one seed. The chosen stations are written scaled
+//! (both components by the same factor) as AT2 and SAC files under `<out>/set/`, each component
+//! processed again from the seed's `control` table by the function the analysis used, so the files
+//! are the records the spectra were computed on, bit for bit; the `set` table gives each record's
+//! Mw, R_rup and R_JB beside its scale factor and misfit.
+
+use std::collections::{BTreeMap, HashMap};
+
+use stickslip_analysis::motions::processed_pair;
+use stickslip_config::set::SetComponent;
+use stickslip_config::{Pipeline, SetSettings};
+use stickslip_seismo::accelerogram::{At2, RecordFile, RecordFormat, Sac};
+use stickslip_solver::scene::{Component, Kinematic};
+use stickslip_store::Folder;
+use stickslip_store::frame::Columns;
+use stickslip_store::io::{read_parquet_if_present, write_bytes_atomic, write_parquet_atomic};
+use stickslip_store::schema::{CONTROL, SET, SOURCE, STATION_SPECTRA, STATIONS, col};
+use stickslip_store::tables::series::read_control;
+use stickslip_store::tables::set::{ScenarioMeta, SetRow, set_frame};
+
+use crate::error::EnsembleError;
+use crate::set::{Chosen, Member, Pool, SetOutcome, choose, clear_set_dir};
+
+/// A candidate station of one seed.
+struct Station {
+    seed: u64,
+    name: String,
+    node: u32,
+    /// Band-pass corners its record was processed with (Hz).
+    band_hz: (f64, f64),
+    /// Its usable band (Hz).
+    usable_hz: (f64, f64),
+    scenario: ScenarioMeta,
+}
+
+/// Whether `v` lies in the bin `[lo, hi]` (no bin: every value).
+fn in_bin(bin: Option<(f64, f64)>, v: f64) -> bool {
+    bin.is_none_or(|(lo, hi)| v >= lo && v <= hi)
+}
+
+/// A bin for the printout: `Mw 6–6.5`, `R_rup ≥ 10 km`.
+fn bin_text(what: &str, unit: &str, bin: Option<(f64, f64)>) -> Option<String> {
+    let (lo, hi) = bin?;
+    Some(match (lo.is_finite(), hi.is_finite()) {
+        (true, true) => format!("{what} {lo}–{hi}{unit}"),
+        (true, false) => format!("{what} ≥ {lo}{unit}"),
+        _ => format!("{what} ≤ {hi}{unit}"),
+    })
+}
+
+/// Selects the set of `settings` among the surface stations of the finished seeds of the
+/// scenario in `out`, writes its table and files, and returns it; refuses with the rule it
+/// cannot meet.
+pub fn select_station_set(
+    out: &Folder,
+    pipeline: &Pipeline,
+    settings: &SetSettings,
+) -> Result<SetOutcome, EnsembleError> {
+    let missing = |what: &str| {
+        EnsembleError::Setup(format!("{}: no {what} to choose a set from (no finished seed?)", out.root().display()))
+    };
+    let source = read_parquet_if_present(&out.gathered(&SOURCE))?.ok_or_else(|| missing("source table"))?;
+    let stations = read_parquet_if_present(&out.gathered(&STATIONS))?.ok_or_else(|| missing("stations table"))?;
+    let spectra =
+        read_parquet_if_present(&out.gathered(&STATION_SPECTRA))?.ok_or_else(|| missing("station_spectra table"))?;
+
+    let c = Columns::of(&source, SOURCE.name);
+    let mw: HashMap<u64, f64> = c.u64s(col::SEED)?.into_iter().zip(c.f64s(col::MW)?).collect();
+
+    let c = Columns::of(&stations, STATIONS.name);
+    let (seed, name, node) = (c.u64s(col::SEED)?, c.strs(col::STATION)?, c.u64s(col::NODE)?);
+    let (depth, r_rup, r_jb) = (c.f64s(col::Y_M)?, c.f64s(col::R_RUP_M)?, c.f64s(col::R_JB_M)?);
+    let (f_low, f_high) = (c.opt_f64s(col::F_LOW_HZ)?, c.opt_f64s(col::F_HIGH_HZ)?);
+    let (t_min, t_max) = (c.opt_f64s(col::USABLE_MIN_PERIOD_S)?, c.opt_f64s(col::USABLE_MAX_PERIOD_S)?);
+    let mut all = 0;
+    let mut found: BTreeMap<(u64, String), Station> = BTreeMap::new();
+    for i in 0..seed.len() {
+        // Engineers' records are surface motions; a buried station is not a candidate.
+        let (Some(&m), Some(lo), Some(hi), Some(t0), Some(t1)) =
+            (mw.get(&seed[i]), f_low[i], f_high[i], t_min[i], t_max[i])
+        else {
+            continue;
+        };
+        if depth[i].abs() > 1e-6 {
+            continue;
+        }
+        all += 1;
+        let scenario = ScenarioMeta { mw: m, r_rup_km: r_rup[i] / 1e3, r_jb_km: r_jb[i] / 1e3 };
+        if !in_bin(settings.magnitude, m) || !in_bin(settings.distance_km, scenario.r_rup_km) {
+            continue;
+        }
+        let station = Station {
+            seed: seed[i],
+            name: name[i].clone(),
+            node: node[i] as u32,
+            band_hz: (lo, hi),
+            usable_hz: (1.0 / t1, 1.0 / t0),
+            scenario,
+        };
+        found.insert((seed[i], name[i].clone()), station);
+    }
+
+    // Each candidate's spectrum, then the grid every one of them covers.
+    let c = Columns::of(&spectra, STATION_SPECTRA.name);
+    let (s_seed, s_name, period) = (c.u64s(col::SEED)?, c.strs(col::STATION)?, c.f64s(col::PERIOD_S)?);
+    let values = match settings.component {
+        SetComponent::Rotd100 => c.f64s(col::ROTD100_M_S2)?,
+        _ => c.f64s(col::ROTD50_M_S2)?,
+    };
+    let mut psa: BTreeMap<(u64, String), Vec<(f64, f64)>> = BTreeMap::new();
+    for i in 0..s_seed.len() {
+        let key = (s_seed[i], s_name[i].clone());
+        if found.contains_key(&key) {
+            psa.entry(key).or_default().push((period[i], values[i]));
+        }
+    }
+    let mut grid: Option<Vec<f64>> = None;
+    for v in psa.values() {
+        let periods: Vec<f64> = v.iter().map(|p| p.0).collect();
+        grid = Some(match grid {
+            None => periods,
+            Some(g) => g.into_iter().filter(|t| periods.iter().any(|p| p.to_bits() == t.to_bits())).collect(),
+        });
+    }
+    let mut grid = grid.unwrap_or_default();
+    grid.sort_by(f64::total_cmp);
+    let mut members = Vec::new();
+    for (key, v) in &psa {
+        let at = |t: f64| v.iter().find(|p| p.0.to_bits() == t.to_bits()).map(|p| p.1);
+        let Some(values) = grid.iter().map(|&t| at(t)).collect::<Option<Vec<f64>>>() else { continue };
+        if grid.is_empty() || values.iter().any(|v| !(*v > 0.0)) {
+            continue;
+        }
+        members.push(Member {
+            id: format!("{}/{}", key.0, key.1),
+            group: format!("seed {}", key.0),
+            psa: values,
+            usable_s: (grid[0], grid[grid.len() - 1]),
+            meta: key.clone(),
+        });
+    }
+    let bins: Vec<String> = [bin_text("Mw", "", settings.magnitude), bin_text("R_rup", " km", settings.distance_km)]
+        .into_iter()
+        .flatten()
+        .collect();
+    let note = format!(
+        "surface stations{}: {} of {}, each by its {} (the grid {} … {} s, where every one is usable)",
+        if bins.is_empty() { String::new() } else { format!(" at {}", bins.join(", ")) },
+        members.len(),
+        all,
+        if settings.component == SetComponent::Rotd100 { "RotD100" } else { "RotD50" },
+        grid.first().map_or("-".into(), |t| format!("{t:.3}")),
+        grid.last().map_or("-".into(), |t| format!("{t:.3}")),
+    );
+    if members.is_empty() {
+        return Err(EnsembleError::Setup(format!(
+            "set: no record to choose from: {note} (widen set.magnitude_min/max or set.distance_min_km/max_km, or run \
+             more seeds)"
+        )));
+    }
+    let pool = Pool { grid, members };
+    let Chosen { selection, periods, target, spectra } =
+        choose(&pool, settings).map_err(|e| EnsembleError::Setup(format!("{e}; the candidates: {note}")))?;
+    let component = if settings.component == SetComponent::Rotd100 { "rotd100" } else { "rotd50" };
+    let rows: Vec<SetRow> = selection
+        .records
+        .iter()
+        .map(|c| {
+            let st = &found[&pool.members[c.index].meta];
+            SetRow {
+                seed: st.seed,
+                record: st.name.clone(),
+                label: "rupture".into(),
+                node: st.node,
+                component: component.into(),
+                scale_factor: c.scale,
+                misfit: c.misfit,
+                usable_hz: st.usable_hz,
+                scenario: Some(st.scenario),
+            }
+        })
+        .collect();
+    write_parquet_atomic(&mut set_frame(&rows)?, &out.gathered(&SET))?;
+    clear_set_dir(out)?;
+    let chosen: Vec<&Station> = rows.iter().map(|r| &found[&(r.seed, r.record.clone())]).collect();
+    write_station_files(out, pipeline, settings, &rows, &chosen)?;
+    Ok(SetOutcome { selection, rows, periods, target, spectra, candidates: pool.members.len(), pool: Some(note) })
+}
+
+/// Writes each chosen station's two horizontal components scaled by its factor, as AT2 and SAC:
+/// `FP` the fault-parallel component (x, along strike), `FN` the fault-normal one (z); the
+/// magnitude in the header, the factor, the usable band and the distances in the SAC `USER`
+/// numbers.
+fn write_station_files(
+    out: &Folder,
+    pipeline: &Pipeline,
+    settings: &SetSettings,
+    rows: &[SetRow],
+    chosen: &[&Station],
+) -> Result<(), EnsembleError> {
+    let dir = out.set_dir();
+    let mut by_seed: BTreeMap<u64, Vec<usize>> = BTreeMap::new();
+    for (k, r) in rows.iter().enumerate() {
+        by_seed.entry(r.seed).or_default().push(k);
+    }
+    for (seed, ks) in by_seed {
+        let Some(control) = read_parquet_if_present(&out.part(&CONTROL, seed))? else {
+            return Err(EnsembleError::Setup(format!("seed {seed}: no control table to write the set's records from")));
+        };
+        for k in ks {
+            let (r, st) = (&rows[k], chosen[k]);
+            let read = |component| -> Result<(Vec<f64>, Vec<f64>), EnsembleError> {
+                read_control(&control, st.node as u64, component, Kinematic::Acceleration)?.ok_or_else(|| {
+                    EnsembleError::Setup(format!(
+                        "seed {seed}, station {}: no acceleration in the control table",
+                        st.name
+                    ))
+                })
+            };
+            let ((t, x), (_, z)) = (read(Component::X)?, read(Component::Z)?);
+            // The record the analysis processed: the last 2/f_low of the run (the shear stage,
+            // two cycles of the low corner), at the run's own interval.
+            let length = stickslip_analysis::motions::LOW_CORNER_CYCLES / st.band_hz.0;
+            let last = t.len() - 1;
+            let k0 = t.iter().position(|&v| v >= t[last] - length - 0.5 * (t[last] - t[last - 1])).unwrap_or(0);
+            let dt = (t[last] - t[k0]) / (last - k0) as f64;
+            let (px, pz) = processed_pair(&x[k0..], &z[k0..], dt, st.band_hz.0, st.band_hz.1)
+                .map_err(|e| EnsembleError::Setup(format!("seed {seed}, station {}: {e}", st.name)))?;
+            let m = st.scenario;
+            for (code, long, p) in [("FP", "fault-parallel (x)", &px), ("FN", "fault-normal (z)", &pz)] {
+                let a: Vec<f64> = p.accel.iter().map(|v| r.scale_factor * v).collect();
+                let stem = format!("{}_set{:02}_seed{seed}_{}_{code}", pipeline.name, k + 1, st.name);
+                let description = format!(
+                    "stickslip {} set record {} of {}: seed {seed} station {} {long}, Mw {:.2}, R_rup {:.1} km, \
+                     x {:.4}, matched to {}",
+                    pipeline.name,
+                    k + 1,
+                    rows.len(),
+                    st.name,
+                    m.mw,
+                    m.r_rup_km,
+                    r.scale_factor,
+                    settings.target_name
+                );
+                let numbers: [(&str, &[f64]); 3] = [
+                    ("SCALE", &[r.scale_factor]),
+                    ("USABLE", &[r.usable_hz.0, r.usable_hz.1]),
+                    ("RRUP_RJB", &[m.r_rup_km, m.r_jb_km]),
+                ];
+                let station = &format!("S{k:02}", k = k + 1);
+                let record = RecordFile {
+                    description: &description,
+                    accel_m_s2: &a,
+                    dt_s: p.dt,
+                    begin_s: t[k0] + p.t_first,
+                    motion: None,
+                    station,
+                    component: code,
+                    network: "SS",
+                    location: "P",
+                    event: &format!("seed{seed}"),
+                    position_m: None,
+                    orientation: None,
+                    magnitude: Some(m.mw),
+                    numbers: &numbers,
+                };
+                for format in [&At2 as &dyn RecordFormat, &Sac] {
+                    let bytes = format.encode(&record).map_err(EnsembleError::Set)?;
+                    write_bytes_atomic(&dir.join(format!("{stem}.{}", format.extension())), &bytes)?;
+                }
+            }
+        }
+    }
+    Ok(())
+}
