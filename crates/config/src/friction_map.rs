@@ -231,8 +231,15 @@ pub(crate) fn build(
     let mut region: Vec<Option<u16>> = vec![None; contact.len()];
     let mut regions: Vec<Region> = Vec::new();
     let background = law.node(1.0).static_coefficient();
-    let kind =
-        |c: &NodeFriction| if c.static_coefficient() > background { RegionKind::Barrier } else { RegionKind::Weak };
+    let kind = |c: &NodeFriction| {
+        if c.static_coefficient() > background {
+            RegionKind::Barrier
+        } else if c.residual_coefficient() >= c.static_coefficient() {
+            RegionKind::Stable
+        } else {
+            RegionKind::Weak
+        }
+    };
     if let Some(g) = grid.filter(|g| !g.refused) {
         let field = "friction.grid.file";
         if g.rows.len() != contact.len() {

@@ -469,7 +469,7 @@ pub fn run(a: Args) -> Result<()> {
     if let Some(set) = &pipeline.set {
         let (a, b) = set.options.range.bounds().unwrap_or((f64::NAN, f64::NAN));
         outln!(
-            "  set: {} records ({} at most per {}), {} spectra at {}%, periods {} … {} s (prototype), scale factors {} … {}; target {}",
+            "  set: {} records ({} at most per {}), {} spectra at {}%, periods {} … {} s{}, scale factors {} … {}; target {}",
             set.options.count,
             set.options.per_group,
             set.per.name(),
@@ -477,6 +477,7 @@ pub fn run(a: Args) -> Result<()> {
             N(100.0 * set.damping),
             N(a),
             N(b),
+            if pipeline.sets_from_stations() { "" } else { " (prototype)" },
             N(set.options.scale_min),
             N(set.options.scale_max),
             set.target_name

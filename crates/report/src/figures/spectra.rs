@@ -416,7 +416,15 @@ pub(super) fn record_set(d: &ReportInput, path: &Path) -> Result<Outcome, Report
     let what = if stations { "scenario's surface stations" } else { "records" };
     drawn(
         path,
-        &Sheet::new(format!("Record set of {count} matched to the target spectrum, prototype scale"), 1, vec![panel]),
+        &Sheet::new(
+            if stations {
+                format!("Record set of {count} scenario stations matched to the target spectrum")
+            } else {
+                format!("Record set of {count} matched to the target spectrum, prototype scale")
+            },
+            1,
+            vec![panel],
+        ),
         "Record set matched to a design spectrum".into(),
         format!(
             "The {count} {what} chosen by [set] ({comp}, {:.0}% damping), each scaled by its factor (grey), their \

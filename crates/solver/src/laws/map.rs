@@ -33,6 +33,9 @@ pub enum RegionKind {
     Barrier,
     /// μs at most the background's: an asperity where rupture may nucleate.
     Weak,
+    /// μs at most the background's and no weakening (the residual coefficient at least the
+    /// static one): slip there costs what it gains, as in a velocity-strengthening zone.
+    Stable,
 }
 
 impl RegionKind {
@@ -41,6 +44,7 @@ impl RegionKind {
         match self {
             RegionKind::Barrier => "barrier",
             RegionKind::Weak => "weak",
+            RegionKind::Stable => "no weakening",
         }
     }
 }
