@@ -152,6 +152,16 @@ pub struct BiasRow {
 /// The pass band of the mean bias (ln units) of the SCEC Broadband Platform's validation.
 pub const BIAS_BAND_LN: f64 = 0.37;
 
+/// The between-record standard deviation of recorded motions, ln units: a simulation's spread is
+/// expected inside it.
+pub const RECORD_SPREAD_LN: [f64; 2] = [0.4, 0.8];
+
+/// The share of records expected within ±1σ of a model (68% for a normal spread; 60% asked).
+pub const WITHIN_ONE_SIGMA_MIN: f64 = 0.6;
+
+/// The largest difference of attenuation slopes (ln per ln R_rup) taken as following the models.
+pub const SLOPE_TOLERANCE: f64 = 0.2;
+
 /// The `gmm_residuals` table.
 pub fn residuals_frame(rows: &[ResidualRow]) -> Result<DataFrame, StoreError> {
     let f = |g: &dyn Fn(&ResidualRow) -> f64| rows.iter().map(g).collect::<Vec<f64>>();
