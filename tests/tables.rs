@@ -9,7 +9,8 @@ fn assert_no_nan_in_tables(dir: &std::path::Path) {
     for f in files {
         let df = stickslip_support::read_table(&dir.join(&f));
         for col in df.columns() {
-            if col.dtype() == &DataType::Float64 {
+            if matches!(col.dtype(), DataType::Float64 | DataType::Float32) {
+                let col = col.cast(&DataType::Float64).unwrap();
                 let nan = col.f64().unwrap().iter().flatten().filter(|x| x.is_nan()).count();
                 assert_eq!(nan, 0, "{}: column {} has {nan} NaN", f.display(), col.name());
             }

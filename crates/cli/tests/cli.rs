@@ -68,7 +68,9 @@ fn run_writes_series_and_control_tables_that_read_back() {
         assert!(series.column(col).is_ok(), "series lacks {col}");
     }
     assert_eq!(series.column("slipping_nodes").unwrap().dtype(), &DataType::UInt32);
-    let sigma = series.column("normal_stress_pa").unwrap().f64().unwrap().mean().unwrap();
+    assert_eq!(series.column("normal_stress_pa").unwrap().dtype(), &DataType::Float32, "channels in single precision");
+    let sigma =
+        series.column("normal_stress_pa").unwrap().cast(&DataType::Float64).unwrap().f64().unwrap().mean().unwrap();
     let expected = 2400.0 * 9.81 * 0.2; // ρ·g·h
     assert!((sigma / expected - 1.0).abs() < 0.01, "mean σ {sigma} vs ρgh {expected}");
     let control = read(&dir.join("out/tables/control/seed-0000000007.parquet"));

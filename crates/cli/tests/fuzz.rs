@@ -393,6 +393,12 @@ fn non_finite(dir: &Path) -> Vec<(PathBuf, String, usize)> {
     for f in parquet_files(dir) {
         let df = read_table(&dir.join(&f));
         for c in df.columns() {
+            // Single-precision columns (series channels, Fourier amplitudes) are checked as f64.
+            let c = if c.dtype() == &polars::prelude::DataType::Float32 {
+                c.cast(&polars::prelude::DataType::Float64).unwrap()
+            } else {
+                c.clone()
+            };
             let Ok(v) = c.as_materialized_series().f64() else { continue };
             let bad = v.iter().flatten().filter(|x| !x.is_finite()).count();
             if bad > 0 {

@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 
 use anyhow::{Context, Result};
-use polars::prelude::DataFrame;
+use polars::prelude::{DataFrame, DataType};
 use stickslip_config::Pipeline;
 use stickslip_store::Folder;
 use stickslip_store::io::scan_glob;
@@ -77,6 +77,7 @@ pub fn run(a: Args) -> Result<()> {
     let floats = |df: &DataFrame, c: &str| -> Vec<f64> {
         df.column(c)
             .ok()
+            .and_then(|c| c.cast(&DataType::Float64).ok())
             .and_then(|c| c.f64().ok().map(|c| c.iter().map(|v| v.unwrap_or(f64::NAN)).collect()))
             .unwrap_or_default()
     };

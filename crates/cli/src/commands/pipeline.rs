@@ -278,7 +278,9 @@ fn no_events(pipeline: &Pipeline, folder: &Folder, regimes: &Regimes) -> String 
     let sh = &pipeline.scene.shear;
     let series = stickslip_store::io::scan_glob(&folder.part_glob(&stickslip_store::schema::SERIES)).ok().flatten();
     let largest = |c: Channel| -> Option<f64> {
-        let values = series.as_ref()?.column(c.name()).ok()?.f64().ok()?.iter().flatten().collect::<Vec<_>>();
+        // Channels are stored in single precision: read as f64 by a cast.
+        let column = series.as_ref()?.column(c.name()).ok()?.cast(&polars::prelude::DataType::Float64).ok()?;
+        let values = column.f64().ok()?.iter().flatten().collect::<Vec<_>>();
         values.into_iter().reduce(f64::max)
     };
     let sliding = regimes.seeds(SlipRegime::StableSliding);
