@@ -264,6 +264,12 @@ fn a_scenario_s_set_is_chosen_by_magnitude_and_distance(
         checked += 1;
     }
     assert!(checked >= 5, "the set's grid holds the log grid between the models' periods: {checked}");
+    // Bins no rupture falls in: refused, saying how many stations there were.
+    std::fs::write(dir.join("set.toml"), set.replace("magnitude_min = 3.0", "magnitude_min = 9.0")).unwrap();
+    let out = stickslip(&["select", "out", "--set", "set.toml"], dir);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("no record to choose from: surface stations at Mw ≥ 9, R_rup ≤ 7 km: 0 of 10"), "{err}");
 }
 
 #[test]
