@@ -19,6 +19,7 @@ pub mod precision;
 pub mod run;
 pub mod scenario_set;
 pub mod set;
+mod set_pool;
 pub mod summary;
 
 pub use error::EnsembleError;

@@ -24,7 +24,7 @@ use stickslip_store::tables::series::read_control;
 use stickslip_store::tables::set::{ScenarioMeta, SetRow, set_frame};
 
 use crate::error::EnsembleError;
-use crate::set::{Chosen, Member, Pool, SetOutcome, choose, clear_set_dir};
+use crate::set_pool::{Chosen, Member, Pool, SetOutcome, choose, clear_set_dir};
 
 /// A candidate station of one seed.
 struct Station {
