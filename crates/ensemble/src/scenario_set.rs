@@ -223,6 +223,13 @@ fn write_station_files(
                 })
             };
             let ((t, x), (_, z)) = (read(Component::X)?, read(Component::Z)?);
+            if t.len() < 8 || z.len() != t.len() {
+                return Err(EnsembleError::Setup(format!(
+                    "seed {seed}, station {}: its control record has {} samples, too few to write",
+                    st.name,
+                    t.len()
+                )));
+            }
             // The record the analysis processed: the last 2/f_low of the run (the shear stage,
             // two cycles of the low corner), at the run's own interval.
             let length = stickslip_analysis::motions::LOW_CORNER_CYCLES / st.band_hz.0;
