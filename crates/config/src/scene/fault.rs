@@ -478,8 +478,12 @@ pub(super) fn stations(
                 format!("{name} at {p:?} m"),
                 format!(
                     "a station on its own node: {} is already at the nearest node ({}, {}, {}) m (stations closer than \
-                     the lattice spacing Lc = {lc} m are one)",
-                    other.name, q[0], q[1], q[2]
+                     the lattice spacing Lc = {} m are one)",
+                    other.name,
+                    approx(q[0]),
+                    approx(q[1]),
+                    approx(q[2]),
+                    approx(lc)
                 ),
             );
             continue;

@@ -102,6 +102,7 @@ pub fn series_frame(seed: u64, rec: &Recording) -> Result<DataFrame, StoreError>
         if ch.is_count() {
             cols.push(Column::new(ch.name().into(), values.iter().map(|&v| v as u32).collect::<Vec<u32>>()));
         } else {
+            StoreError::check_f32_range(SERIES.name, ch.name(), values)?;
             cols.push(Column::new(ch.name().into(), values.iter().map(|&v| v as f32).collect::<Vec<f32>>()));
         }
     }

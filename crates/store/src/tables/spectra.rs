@@ -212,6 +212,7 @@ pub fn fourier_frame(seed: u64, records: &[RecordData]) -> Result<DataFrame, Sto
         let Some(fs) = &r.fourier else { continue };
         id.extend(std::iter::repeat_n(r.id.as_str(), fs.frequency_hz.len()));
         f.extend_from_slice(&fs.frequency_hz);
+        StoreError::check_f32_range(FOURIER.name, col::AMPLITUDE_M_S, &fs.amplitude)?;
         a.extend(fs.amplitude.iter().map(|&v| v as f32));
     }
     let n = id.len();
