@@ -208,7 +208,7 @@ pub(crate) fn patch_nodes(ck: &mut Checker, field: &str, p: &Shape<'_>, lattice:
         ck.push(
             field,
             "a patch holding no base node",
-            format!("a patch that holds at least one base node (they lie every Lc = {} m)", lattice.lc()),
+            format!("a patch that holds at least one base node (they lie every Lc = {} m)", approx(lattice.lc())),
         );
     }
     held
@@ -251,7 +251,7 @@ pub(crate) fn build(
                     contact.len(),
                     lattice.dims().nx + 1,
                     lattice.dims().ny + 1,
-                    lattice.lc()
+                    approx(lattice.lc())
                 ),
             );
         } else {

@@ -287,7 +287,10 @@ pub(super) fn fault(ck: &mut Checker, file: SceneSections<'_>, lattice: &Lattice
             ck.push(
                 "fault.stochastic.correlation_length_m",
                 s.correlation_length_m,
-                format!("at least 2·Lc = {} m: a field the lattice cannot resolve is noise", 2.0 * lattice.lc()),
+                format!(
+                    "at least 2·Lc = {} m: a field the lattice cannot resolve is noise",
+                    approx(2.0 * lattice.lc())
+                ),
             );
         }
         ck.range("fault.stochastic.hurst", s.hurst, 0.0, true, 1.0, false);
@@ -318,7 +321,7 @@ fn nucleation(ck: &mut Checker, n: &NucleationSection, lattice: &Lattice) -> Nuc
             num(n.size_m),
             format!(
                 "at least 2·Lc = {} m: a square the lattice cannot resolve does not start a rupture",
-                num(2.0 * lc)
+                approx(2.0 * lc)
             ),
         );
     }
@@ -355,7 +358,7 @@ fn grid(ck: &mut Checker, g: &TractionGridSection, lattice: &Lattice, shear: &mu
                 "one row per base node: {n} rows for this block ({} × {} corner nodes every Lc = {} m)",
                 lattice.dims().nx + 1,
                 lattice.dims().ny + 1,
-                lattice.lc()
+                approx(lattice.lc())
             ),
         );
         return;
