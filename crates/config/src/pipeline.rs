@@ -428,13 +428,8 @@ impl Pipeline {
             _ => None,
         };
         let set = file.set.as_ref().and_then(|s| {
-            let pool = match scene.as_ref().and_then(station_band) {
-                Some((shortest, longest)) => SetPool::Stations { shortest, longest },
-                None => SetPool::Records(
-                    spectra.as_ref().zip(scene.as_ref()).map(|(sp, sc)| prototype_grid(sp, sc, &similarity)),
-                ),
-            };
-            s.build(base, pool, &mut ck)
+            let pool = scene.as_ref().map(|sc| set_pool(sc, spectra.as_ref(), &similarity));
+            s.build(base, pool.unwrap_or(SetPool::Records(None)), &mut ck)
         });
         if let (Some(set), Some(acc), Some(scene)) = (&set, &accelerograms, &scene)
             && ck.is_clean()
@@ -587,6 +582,15 @@ fn check_set_band(
     }
 }
 
+/// What a `[set]` of `scene` chooses from: its surface stations when it is a fault scenario with
+/// some, else the records' `spectra` (their dampings and prototype-scale grid, if any).
+fn set_pool<'a>(scene: &Scene, spectra: Option<&'a SpectraSettings>, similarity: &SimilarityParams) -> SetPool<'a> {
+    match station_band(scene) {
+        Some((shortest, longest)) => SetPool::Stations { shortest, longest },
+        None => SetPool::Records(spectra.map(|sp| prototype_grid(sp, scene, similarity))),
+    }
+}
+
 /// The dampings of `spectra` and its period grid's ends at prototype scale (s), with
 /// λ = L_p / (the block's length), as the ensemble scales its records.
 fn prototype_grid<'a>(
@@ -670,11 +674,7 @@ impl Pipeline {
     /// (their usable periods), or the records' spectra (their dampings and prototype-scale period
     /// grid).
     pub fn set_pool(&self) -> SetPool<'_> {
-        if let Some((shortest, longest)) = station_band(&self.scene) {
-            return SetPool::Stations { shortest, longest };
-        }
-        let a = &self.analysis;
-        SetPool::Records(a.spectra.as_ref().map(|sp| prototype_grid(sp, &self.scene, &a.similarity)))
+        set_pool(&self.scene, self.analysis.spectra.as_ref(), &self.analysis.similarity)
     }
 
     /// Whether a `[set]` is chosen from a fault scenario's surface stations (not the records of

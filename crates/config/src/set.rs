@@ -227,6 +227,24 @@ pub struct SetSettings {
     pub distance_km: Option<(f64, f64)>,
 }
 
+impl SetSettings {
+    /// The magnitude and distance bins as text (`Mw 6–6.5, R_rup ≤ 30 km`); `None` without
+    /// either.
+    pub fn bins_text(&self) -> Option<String> {
+        let text = |what: &str, unit: &str, bin: Option<(f64, f64)>| {
+            let (lo, hi) = bin?;
+            Some(match (lo.is_finite(), hi.is_finite()) {
+                (true, true) => format!("{what} {lo}–{hi}{unit}"),
+                (true, false) => format!("{what} ≥ {lo}{unit}"),
+                _ => format!("{what} ≤ {hi}{unit}"),
+            })
+        };
+        let bins: Vec<String> =
+            [text("Mw", "", self.magnitude), text("R_rup", " km", self.distance_km)].into_iter().flatten().collect();
+        (!bins.is_empty()).then(|| bins.join(", "))
+    }
+}
+
 /// What a `[set]` chooses from, and the spectra it is matched on.
 #[derive(Clone, Copy, Debug)]
 pub enum SetPool<'a> {
@@ -280,7 +298,8 @@ impl SetSection {
     /// bins allowed). Every refused value is recorded in `ck`; `None` when the target could not be
     /// built.
     pub fn build(&self, base: &Path, pool: SetPool, ck: &mut Checker) -> Option<SetSettings> {
-        const STATION_DAMPINGS: [f64; 1] = [0.05];
+        // The stations' spectra have the one damping of their motions.
+        const STATION_DAMPINGS: [f64; 1] = [stickslip_analysis::motions::DAMPING];
         let (dampings, spectra) = match pool {
             SetPool::Records(spectra) => (spectra.map(|s| s.0), spectra.map(|s| s.1)),
             SetPool::Stations { shortest, longest } => (Some(&STATION_DAMPINGS[..]), Some((shortest, longest))),
@@ -410,14 +429,14 @@ impl SetSection {
                  scenario's stations: a fault scene with [[stations]] on the surface)",
             );
         }
-        let magnitude = self.bin(
+        let magnitude = checked_bin(
             ck,
             ("set.magnitude_min", self.magnitude_min),
             ("set.magnitude_max", self.magnitude_max),
             (-2.0, 10.0),
             stations,
         );
-        let distance_km = self.bin(
+        let distance_km = checked_bin(
             ck,
             ("set.distance_min_km", self.distance_min_km),
             ("set.distance_max_km", self.distance_max_km),
@@ -449,39 +468,6 @@ impl SetSection {
             magnitude,
             distance_km,
         })
-    }
-
-    /// A magnitude or distance bin `[lo, hi]` from its two optional ends (an absent end open),
-    /// each inside `limits`, `lo < hi`; refused unless the set is chosen from a scenario's
-    /// stations. `None` when neither end is given.
-    fn bin(
-        &self,
-        ck: &mut Checker,
-        (lo_field, lo): (&str, Option<f64>),
-        (hi_field, hi): (&str, Option<f64>),
-        limits: (f64, f64),
-        stations: bool,
-    ) -> Option<(f64, f64)> {
-        if lo.is_none() && hi.is_none() {
-            return None;
-        }
-        if !stations {
-            let (field, value) = if let Some(v) = lo { (lo_field, v) } else { (hi_field, hi.unwrap_or(f64::NAN)) };
-            ck.push(
-                field,
-                value,
-                "absent: magnitude and distance bins choose among a scenario's stations (a fault scene with \
-                 [[stations]] on the surface), not among the records of events",
-            );
-            return None;
-        }
-        let lo_ok = lo.is_none_or(|v| ck.range(lo_field, v, limits.0, false, limits.1, false));
-        let hi_ok = hi.is_none_or(|v| ck.range(hi_field, v, limits.0, false, limits.1, false));
-        let (a, b) = (lo.unwrap_or(f64::NEG_INFINITY), hi.unwrap_or(f64::INFINITY));
-        if lo_ok && hi_ok && a >= b {
-            ck.push(hi_field, b, format!("above {lo_field} ({})", num(a)));
-        }
-        Some((a, b))
     }
 }
 
@@ -519,4 +505,36 @@ fn read_target_csv(given: &str, base: &Path, ck: &mut Checker) -> Option<(Tabula
             None
         }
     }
+}
+
+/// A magnitude or distance bin `[lo, hi]` from its two optional ends (an absent end open),
+/// each inside `limits`, `lo < hi`; refused unless the set is chosen from a scenario's
+/// stations. `None` when neither end is given.
+fn checked_bin(
+    ck: &mut Checker,
+    (lo_field, lo): (&str, Option<f64>),
+    (hi_field, hi): (&str, Option<f64>),
+    limits: (f64, f64),
+    stations: bool,
+) -> Option<(f64, f64)> {
+    if lo.is_none() && hi.is_none() {
+        return None;
+    }
+    if !stations {
+        let (field, value) = if let Some(v) = lo { (lo_field, v) } else { (hi_field, hi.unwrap_or(f64::NAN)) };
+        ck.push(
+            field,
+            value,
+            "absent: magnitude and distance bins choose among a scenario's stations (a fault scene with \
+             [[stations]] on the surface), not among the records of events",
+        );
+        return None;
+    }
+    let lo_ok = lo.is_none_or(|v| ck.range(lo_field, v, limits.0, false, limits.1, false));
+    let hi_ok = hi.is_none_or(|v| ck.range(hi_field, v, limits.0, false, limits.1, false));
+    let (a, b) = (lo.unwrap_or(f64::NEG_INFINITY), hi.unwrap_or(f64::INFINITY));
+    if lo_ok && hi_ok && a >= b {
+        ck.push(hi_field, b, format!("above {lo_field} ({})", num(a)));
+    }
+    Some((a, b))
 }

@@ -12,6 +12,7 @@
 use std::collections::{BTreeMap, HashMap};
 
 use stickslip_analysis::motions::processed_pair;
+use stickslip_config::check::Named;
 use stickslip_config::set::SetComponent;
 use stickslip_config::{Pipeline, SetSettings};
 use stickslip_seismo::accelerogram::{At2, RecordFile, RecordFormat, Sac};
@@ -27,6 +28,7 @@ use crate::error::EnsembleError;
 use crate::set_pool::{Chosen, Member, Pool, SetOutcome, choose, clear_set_dir};
 
 /// A candidate station of one seed.
+#[derive(Clone)]
 struct Station {
     seed: u64,
     name: String,
@@ -41,16 +43,6 @@ struct Station {
 /// Whether `v` lies in the bin `[lo, hi]` (no bin: every value).
 fn in_bin(bin: Option<(f64, f64)>, v: f64) -> bool {
     bin.is_none_or(|(lo, hi)| v >= lo && v <= hi)
-}
-
-/// A bin for the printout: `Mw 6–6.5`, `R_rup ≥ 10 km`.
-fn bin_text(what: &str, unit: &str, bin: Option<(f64, f64)>) -> Option<String> {
-    let (lo, hi) = bin?;
-    Some(match (lo.is_finite(), hi.is_finite()) {
-        (true, true) => format!("{what} {lo}–{hi}{unit}"),
-        (true, false) => format!("{what} ≥ {lo}{unit}"),
-        _ => format!("{what} ≤ {hi}{unit}"),
-    })
 }
 
 /// Selects the set of `settings` among the surface stations of the finished seeds of the
@@ -130,10 +122,10 @@ pub fn select_station_set(
     let mut grid = grid.unwrap_or_default();
     grid.sort_by(f64::total_cmp);
     let mut members = Vec::new();
-    for (key, v) in &psa {
+    for (key, v) in psa.iter().filter(|_| !grid.is_empty()) {
         let at = |t: f64| v.iter().find(|p| p.0.to_bits() == t.to_bits()).map(|p| p.1);
         let Some(values) = grid.iter().map(|&t| at(t)).collect::<Option<Vec<f64>>>() else { continue };
-        if grid.is_empty() || values.iter().any(|v| !(*v > 0.0)) {
+        if values.iter().any(|v| !(*v > 0.0)) {
             continue;
         }
         members.push(Member {
@@ -141,16 +133,12 @@ pub fn select_station_set(
             group: format!("seed {}", key.0),
             psa: values,
             usable_s: (grid[0], grid[grid.len() - 1]),
-            meta: key.clone(),
+            meta: found[key].clone(),
         });
     }
-    let bins: Vec<String> = [bin_text("Mw", "", settings.magnitude), bin_text("R_rup", " km", settings.distance_km)]
-        .into_iter()
-        .flatten()
-        .collect();
     let note = format!(
         "surface stations{}: {} of {}, each by its {} (the grid {} … {} s, where every one is usable)",
-        if bins.is_empty() { String::new() } else { format!(" at {}", bins.join(", ")) },
+        settings.bins_text().map_or(String::new(), |b| format!(" at {b}")),
         members.len(),
         all,
         if settings.component == SetComponent::Rotd100 { "RotD100" } else { "RotD50" },
@@ -166,28 +154,25 @@ pub fn select_station_set(
     let pool = Pool { grid, members };
     let Chosen { selection, periods, target, spectra } =
         choose(&pool, settings).map_err(|e| EnsembleError::Setup(format!("{e}; the candidates: {note}")))?;
-    let component = if settings.component == SetComponent::Rotd100 { "rotd100" } else { "rotd50" };
+    let chosen: Vec<&Station> = selection.records.iter().map(|c| &pool.members[c.index].meta).collect();
     let rows: Vec<SetRow> = selection
         .records
         .iter()
-        .map(|c| {
-            let st = &found[&pool.members[c.index].meta];
-            SetRow {
-                seed: st.seed,
-                record: st.name.clone(),
-                label: "rupture".into(),
-                node: st.node,
-                component: component.into(),
-                scale_factor: c.scale,
-                misfit: c.misfit,
-                usable_hz: st.usable_hz,
-                scenario: Some(st.scenario),
-            }
+        .zip(&chosen)
+        .map(|(c, st)| SetRow {
+            seed: st.seed,
+            record: st.name.clone(),
+            label: "rupture".into(),
+            node: st.node,
+            component: settings.component.name().into(),
+            scale_factor: c.scale,
+            misfit: c.misfit,
+            usable_hz: st.usable_hz,
+            scenario: Some(st.scenario),
         })
         .collect();
     write_parquet_atomic(&mut set_frame(&rows)?, &out.gathered(&SET))?;
     clear_set_dir(out)?;
-    let chosen: Vec<&Station> = rows.iter().map(|r| &found[&(r.seed, r.record.clone())]).collect();
     write_station_files(out, pipeline, settings, &rows, &chosen)?;
     Ok(SetOutcome { selection, rows, periods, target, spectra, candidates: pool.members.len(), pool: Some(note) })
 }

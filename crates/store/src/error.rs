@@ -61,22 +61,6 @@ impl StoreError {
         StoreError::Io { path: path.to_path_buf(), source }
     }
 
-    /// Refuses values of `column` that single precision cannot hold (finite, beyond ±3.4e38):
-    /// stored as f32 they would turn into infinities. No physical scene comes near (stresses,
-    /// forces and energies of a 100 km block stay below 1e30).
-    pub fn check_f32_range(table: &str, column: &str, values: &[f64]) -> Result<(), StoreError> {
-        match values.iter().find(|v| v.is_finite() && v.abs() > f32::MAX as f64) {
-            Some(v) => Err(StoreError::OutOfRange {
-                table: table.into(),
-                what: format!(
-                    "{column} reached {v:.3e}, beyond the ±3.4e38 the table stores (single precision): the scene's \
-                     stresses, forces or energies are far outside any physical scale (check the units of its inputs)"
-                ),
-            }),
-            None => Ok(()),
-        }
-    }
-
     /// A polars error while handling table `what`.
     pub fn table(what: impl Into<String>, source: polars::error::PolarsError) -> Self {
         StoreError::Table { what: what.into(), source }

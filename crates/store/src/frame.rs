@@ -4,6 +4,23 @@ use polars::prelude::*;
 
 use crate::error::StoreError;
 
+/// `values` in single precision, for a table that stores them so (each within 2⁻²⁴ ≈ 6e-8 of its
+/// magnitude); a finite value beyond ±3.4e38, which would turn into an infinity, is refused with
+/// `table` and `column` named. No physical scene comes near (stresses, forces and energies of a
+/// 100 km block stay below 1e30).
+pub fn narrow_f32(table: &str, column: &str, values: &[f64]) -> Result<Vec<f32>, StoreError> {
+    if let Some(v) = values.iter().find(|v| v.is_finite() && v.abs() > f32::MAX as f64) {
+        return Err(StoreError::OutOfRange {
+            table: table.into(),
+            what: format!(
+                "{column} reached {v:.3e}, beyond the ±3.4e38 the table stores (single precision): the scene's \
+                 stresses, forces or energies are far outside any physical scale (check the units of its inputs)"
+            ),
+        });
+    }
+    Ok(values.iter().map(|&v| v as f32).collect())
+}
+
 /// Builds a frame column by column.
 pub struct Frame {
     height: usize,

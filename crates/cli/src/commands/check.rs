@@ -483,14 +483,9 @@ pub fn run(a: Args) -> Result<()> {
             set.target_name
         );
         if pipeline.sets_from_stations() {
-            let bin = |what: &str, unit: &str, b: Option<(f64, f64)>| match b {
-                Some((lo, hi)) => format!(", {what} {} … {}{unit}", N(lo), N(hi)),
-                None => String::new(),
-            };
             outln!(
-                "    chosen from the surface stations of every seed{}{} (a seed is one rupture)",
-                bin("Mw", "", set.magnitude),
-                bin("R_rup", " km", set.distance_km)
+                "    chosen from the surface stations of every seed{} (a seed is one rupture)",
+                set.bins_text().map_or(String::new(), |b| format!(" at {b}"))
             );
         }
     }

@@ -16,7 +16,7 @@ use stickslip_solver::geometry::Lattice;
 
 use crate::col;
 use crate::error::StoreError;
-use crate::frame::{Frame, read_back};
+use crate::frame::{Frame, narrow_f32, read_back};
 use crate::spec::{Scope, SeedTable, SeedView, TableSpec};
 
 /// One row per record and scale: what it is (event, node, component), where it was cut from the
@@ -193,9 +193,10 @@ pub fn accelerograms_frame(seed: u64, records: &[RecordData], _lambda: f64) -> R
         let w = window(p);
         id.extend(std::iter::repeat_n(r.id.as_str(), w.len()));
         time.extend(w.clone().map(|i| r.start_s + p.t_first + i as f64 * p.dt));
-        acc.extend(p.accel[w.clone()].iter().map(|&a| a as f32));
-        vel.extend(p.vel[w.clone()].iter().map(|&v| v as f32));
-        disp.extend(p.disp[w].iter().map(|&d| d as f32));
+        let table = ACCELEROGRAMS.name;
+        acc.extend(narrow_f32(table, col::ACCELERATION_M_S2, &p.accel[w.clone()])?);
+        vel.extend(narrow_f32(table, col::VELOCITY_M_S, &p.vel[w.clone()])?);
+        disp.extend(narrow_f32(table, col::DISPLACEMENT_M, &p.disp[w])?);
     }
     let n = id.len();
     Frame::new(n)

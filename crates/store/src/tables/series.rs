@@ -7,7 +7,7 @@ use stickslip_solver::{Lattice, Recording};
 
 use crate::col;
 use crate::error::StoreError;
-use crate::frame::{Columns, Frame, read_back};
+use crate::frame::{Columns, Frame, narrow_f32, read_back};
 use crate::spec::{Scope, SeedTable, TableSpec};
 
 /// One row per recorded instant.
@@ -102,8 +102,7 @@ pub fn series_frame(seed: u64, rec: &Recording) -> Result<DataFrame, StoreError>
         if ch.is_count() {
             cols.push(Column::new(ch.name().into(), values.iter().map(|&v| v as u32).collect::<Vec<u32>>()));
         } else {
-            StoreError::check_f32_range(SERIES.name, ch.name(), values)?;
-            cols.push(Column::new(ch.name().into(), values.iter().map(|&v| v as f32).collect::<Vec<f32>>()));
+            cols.push(Column::new(ch.name().into(), narrow_f32(SERIES.name, ch.name(), values)?));
         }
     }
     DataFrame::new(n, cols).map_err(|e| StoreError::table(SERIES.name, e))

@@ -16,7 +16,7 @@ use stickslip_solver::geometry::NodeId;
 
 use crate::col;
 use crate::error::StoreError;
-use crate::frame::{Columns, Frame, read_back};
+use crate::frame::{Columns, Frame, narrow_f32, read_back};
 use crate::spec::{Scope, SeedTable, SeedView, TableSpec};
 use crate::tables::records::{INTENSITY, Scale};
 use crate::tables::series::Trace;
@@ -212,8 +212,7 @@ pub fn fourier_frame(seed: u64, records: &[RecordData]) -> Result<DataFrame, Sto
         let Some(fs) = &r.fourier else { continue };
         id.extend(std::iter::repeat_n(r.id.as_str(), fs.frequency_hz.len()));
         f.extend_from_slice(&fs.frequency_hz);
-        StoreError::check_f32_range(FOURIER.name, col::AMPLITUDE_M_S, &fs.amplitude)?;
-        a.extend(fs.amplitude.iter().map(|&v| v as f32));
+        a.extend(narrow_f32(FOURIER.name, col::AMPLITUDE_M_S, &fs.amplitude)?);
     }
     let n = id.len();
     Frame::new(n)
