@@ -156,6 +156,48 @@ fn contains(p: &Shape<'_>, x: f64, y: f64, width: f64, eps: f64) -> bool {
     }
 }
 
+/// The share of each base node's tile (its Lc × Lc tributary area, clipped to the face) that the
+/// patch `p` covers, for every node it covers at all (indices into [`Lattice::contact_nodes`]):
+/// exact for a rectangle, from 16 × 16 points of the tile for an ellipse. A traction laid over a
+/// node in proportion to its share is the patch's traction integrated over the node's area, so a
+/// 3 km square covers 3 km at any spacing (by node membership it would cover 3 km + Lc when its
+/// sides fall on nodes).
+pub(crate) fn tile_shares(p: &Shape<'_>, lattice: &Lattice) -> Vec<(usize, f64)> {
+    let e = lattice.extent();
+    let h = 0.5 * lattice.lc();
+    let overlap = |lo: f64, hi: f64, a: f64, b: f64| (hi.min(b) - lo.max(a)).max(0.0);
+    lattice
+        .contact_nodes()
+        .iter()
+        .enumerate()
+        .filter_map(|(c, id)| {
+            let q = lattice.position(*id);
+            let (x0, x1) = ((q[0] - h).max(0.0), (q[0] + h).min(e[0]));
+            let (y0, y1) = ((q[1] - h).max(0.0), (q[1] + h).min(e[1]));
+            let area = (x1 - x0) * (y1 - y0);
+            let share = match p.shape {
+                "rectangle" => {
+                    let [a0, a1] = p.x_m.unwrap_or([0.0, 0.0]);
+                    let [b0, b1] = p.y_m.unwrap_or([0.0, e[1]]);
+                    overlap(x0, x1, a0, a1) * overlap(y0, y1, b0, b1) / area
+                }
+                _ => {
+                    const N: usize = 16;
+                    let inside = (0..N * N)
+                        .filter(|k| {
+                            let x = x0 + (x1 - x0) * ((k % N) as f64 + 0.5) / N as f64;
+                            let y = y0 + (y1 - y0) * ((k / N) as f64 + 0.5) / N as f64;
+                            contains(p, x, y, e[1], 0.0)
+                        })
+                        .count();
+                    inside as f64 / (N * N) as f64
+                }
+            };
+            (share > 0.0 && area > 0.0).then_some((c, share.min(1.0)))
+        })
+        .collect()
+}
+
 /// The base nodes (indices into [`Lattice::contact_nodes`]) a patch `p` named `field` holds,
 /// its shape checked: a rectangle or an ellipse on the base that holds at least one base node.
 pub(crate) fn patch_nodes(ck: &mut Checker, field: &str, p: &Shape<'_>, lattice: &Lattice) -> Vec<usize> {

@@ -10,7 +10,7 @@ use stickslip_solver::scene::{Component, ControlChannel, Kinematic, Station};
 
 use super::SceneSections;
 use crate::check::{Checker, approx, num};
-use crate::friction_map::{Shape, patch_nodes};
+use crate::friction_map::{Shape, patch_nodes, tile_shares};
 use crate::input::InputFile;
 
 /// `[fault]`: the base face is one side of a planar fault between identical media, with these
@@ -230,10 +230,14 @@ pub(super) fn fault(ck: &mut Checker, file: SceneSections<'_>, lattice: &Lattice
     let mut order: Vec<usize> = (0..f.patches.len()).collect();
     order.sort_by_key(|&i| f.patches[i].priority);
     let mut members: Vec<Vec<usize>> = vec![Vec::new(); f.patches.len()];
+    let mut shares: Vec<Vec<(usize, f64)>> = vec![Vec::new(); f.patches.len()];
     for (i, p) in f.patches.iter().enumerate() {
         let field = format!("fault.patches[{i}]");
         let shape = Shape { shape: &p.shape, x_m: p.x_m, y_m: p.y_m, centre_m: p.centre_m, semi_axes_m: p.semi_axes_m };
         members[i] = patch_nodes(ck, &field, &shape, lattice);
+        if ck.is_clean() {
+            shares[i] = tile_shares(&shape, lattice);
+        }
         if p.shear_stress_pa.is_none() && p.shear_stress_y_pa.is_none() && p.normal_stress_pa.is_none() {
             ck.push(
                 field.clone(),
@@ -265,17 +269,20 @@ pub(super) fn fault(ck: &mut Checker, file: SceneSections<'_>, lattice: &Lattice
             }
         }
     }
+    // Each patch laid over what lies below in proportion to the share of a node's area it covers
+    // (docs/model.md §15.2).
     for i in order {
         let p = &f.patches[i];
-        for &c in &members[i] {
+        let blend = |below: f64, v: f64, w: f64| if w >= 1.0 { v } else { below + w * (v - below) };
+        for &(c, w) in &shares[i] {
             if let Some(v) = p.shear_stress_pa {
-                shear[c][0] = v;
+                shear[c][0] = blend(shear[c][0], v, w);
             }
             if let Some(v) = p.shear_stress_y_pa {
-                shear[c][1] = v;
+                shear[c][1] = blend(shear[c][1], v, w);
             }
             if let Some(v) = p.normal_stress_pa {
-                normal[c] = v;
+                normal[c] = blend(normal[c], v, w);
             }
         }
     }
@@ -426,7 +433,7 @@ pub(super) fn stations(
 ) -> (Vec<Station>, Vec<ControlChannel>) {
     let e = lattice.extent();
     let lc = lattice.lc();
-    let mut out: Vec<(String, [f64; 3], String)> = Vec::new();
+    let mut out: Vec<(String, [f64; 3], String, usize)> = Vec::new();
     for (i, s) in file.stations.iter().enumerate() {
         let field = format!("stations[{i}]");
         let valid_name = !s.name.is_empty() && s.name.chars().all(|c| c.is_ascii_alphanumeric() || "-_.".contains(c));
@@ -434,7 +441,7 @@ pub(super) fn stations(
             ck.push(format!("{field}.name"), format!("{:?}", s.name), "a name of letters, digits, '-', '_' or '.'");
         }
         match (s.at_m, s.from_m, s.to_m, s.count) {
-            (Some(p), None, None, None) => out.push((s.name.clone(), p, format!("{field}.at_m"))),
+            (Some(p), None, None, None) => out.push((s.name.clone(), p, format!("{field}.at_m"), i)),
             (None, Some(a), Some(b), Some(count)) => {
                 let Some(count) =
                     ck.count(&format!("{field}.count"), count, 2, 100_000, " (points on the line, ends included)")
@@ -444,7 +451,7 @@ pub(super) fn stations(
                 for k in 0..count {
                     let t = k as f64 / (count - 1) as f64;
                     let p = [0, 1, 2].map(|a_| a[a_] + t * (b[a_] - a[a_]));
-                    out.push((format!("{}-{k}", s.name), p, format!("{field} point {k}")));
+                    out.push((format!("{}-{k}", s.name), p, format!("{field} point {k}"), i));
                 }
             }
             _ => ck.push(
@@ -455,7 +462,7 @@ pub(super) fn stations(
         }
     }
     let mut stations: Vec<Station> = Vec::new();
-    for (name, p, field) in out {
+    for (name, p, field, i) in out {
         let inside = (0..3).all(|a| p[a].is_finite() && p[a] >= -1e-9 * lc && p[a] <= e[a] + 1e-9 * lc);
         if !inside {
             ck.push(
@@ -492,7 +499,11 @@ pub(super) fn stations(
             continue;
         }
         if stations.iter().any(|s| s.name == name) {
-            ck.push(field, name.clone(), "a name used once");
+            ck.push(
+                format!("stations[{i}].name"),
+                format!("{name:?}"),
+                "a name no other station has (a line's points are named <name>-0, <name>-1, …)",
+            );
             continue;
         }
         stations.push(Station { name, node });
