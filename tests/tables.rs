@@ -173,14 +173,34 @@ fn every_table_matches_its_declaration_and_reads_back_typed() {
                     }
                     "fault_nodes" => {
                         let f = FaultNodes::read(&df).unwrap();
-                        assert_eq!(f.x_m.len(), 81 * 41, "every node of the fault plane");
+                        assert_eq!(f.x_m.len(), 101 * 51, "every node of the fault plane");
                         assert!(f.rupture_time_s.iter().any(|t| t.is_finite()), "nothing ruptured");
                     }
                     "stations" => {
                         let s = Stations::read(&df).unwrap();
-                        assert_eq!(s.station.len(), 4);
-                        // 3 km off the fault plane: R_rup (to the part ruptured in 3 s) is no less.
-                        assert!(s.r_rup_m.iter().all(|r| (2999.0..15000.0).contains(r)), "{:?}", s.r_rup_m);
+                        assert_eq!(s.station.len(), 4 + 19, "the benchmark's four and the surface line");
+                        // 1–19 km off the fault plane: R_rup (to the part ruptured in 3 s) is no less.
+                        assert!(s.r_rup_m.iter().all(|r| (999.0..25000.0).contains(r)), "{:?}", s.r_rup_m);
+                    }
+                    "fault_station_series" if name == "quake" => {
+                        // The 16 on-fault stations at every kept instant, the values the benchmark
+                        // files print: the last slip of the hypocentre's station, read from both.
+                        let c = stickslip_store::frame::Columns::of(&df, "fault_station_series");
+                        let station = c.strs(stickslip_store::col::STATION).unwrap();
+                        let slip = c.f64s(stickslip_store::col::SLIP_X_M).unwrap();
+                        let mut names = station.clone();
+                        names.sort();
+                        names.dedup();
+                        assert_eq!(names.len(), 16, "{names:?}");
+                        let last = (0..station.len()).rfind(|&i| station[i] == "faultst000dp075").unwrap();
+                        let file = std::fs::read_to_string(out.join("scec/seed1/faultst000dp075.dat")).unwrap();
+                        let row = file.lines().last().unwrap();
+                        let h_slip: f64 = row.split_whitespace().nth(1).unwrap().parse().unwrap();
+                        assert!(
+                            (slip[last] - h_slip).abs() <= 1e-6 * h_slip.abs().max(1e-3),
+                            "{} vs {h_slip}",
+                            slip[last]
+                        );
                     }
                     "source" => {
                         let m0 = df.column(stickslip_store::col::M0_N_M).unwrap().f64().unwrap().get(0).unwrap();

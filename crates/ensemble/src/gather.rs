@@ -101,8 +101,15 @@ pub fn gather(out: &Folder, seeds: &[u64], memory: Gathering) -> Result<Option<R
         write_parquet_atomic(&mut psa_stats_frame(&groups.rows())?, &out.gathered(&PSA_STATS))?;
     }
     let get = |name: &str| gathered.iter().find(|(t, _)| *t == name).map(|(_, d)| d);
+    let mut fits = Vec::new();
     if let Some(att) = get(ATTENUATION.name) {
-        write_parquet_atomic(&mut attenuation_fit_frame(&attenuation_fits(att)?)?, &out.gathered(&ATTENUATION_FIT))?;
+        fits.extend(attenuation_fits(att)?);
+    }
+    if let Some(stations) = get(STATIONS.name) {
+        fits.extend(station_attenuation_fits(stations)?);
+    }
+    if !fits.is_empty() {
+        write_parquet_atomic(&mut attenuation_fit_frame(&fits)?, &out.gathered(&ATTENUATION_FIT))?;
     }
     let runs_df = get(RUNS.name);
     let runs = runs_df.map(Runs::read).transpose()?;
@@ -272,6 +279,22 @@ pub fn attenuation_fits(att: &DataFrame) -> Result<Vec<FitRow>, StoreError> {
             if let Some(fit) = log_log_fit(pts) {
                 rows.push(FitRow { group: g.clone(), measure, fit });
             }
+        }
+    }
+    Ok(rows)
+}
+
+/// Log-log fits of a fault scene's stations' peak horizontal motions (PGA, PGV of the raw records,
+/// the largest |(x, z)|) against their rupture distance R_rup, over every seed: group
+/// `stations`.
+pub fn station_attenuation_fits(stations: &DataFrame) -> Result<Vec<FitRow>, StoreError> {
+    let c = Columns::of(stations, STATIONS.name);
+    let r = c.f64s(col::R_RUP_M)?;
+    let mut rows = Vec::new();
+    for measure in [col::PGA_M_S2, col::PGV_M_S] {
+        let y = c.f64s(measure)?;
+        if let Some(fit) = log_log_fit(r.iter().copied().zip(y)) {
+            rows.push(FitRow { group: "stations".into(), measure, fit });
         }
     }
     Ok(rows)

@@ -13,18 +13,19 @@ pub use crate::tables::fronts::{RUPTURE_ONSETS, RUPTURES};
 pub use crate::tables::gmm::{GMM_BIAS, GMM_RESIDUALS};
 pub use crate::tables::records::{ACCELEROGRAMS, ATTENUATION, INTENSITY, RECORDS};
 pub use crate::tables::runs::RUNS;
-pub use crate::tables::series::{CONTROL, FAULT, SERIES, SKIPS};
+pub use crate::tables::series::{CONTROL, FAULT, FAULT_STATION_SERIES, SERIES, SKIPS};
 pub use crate::tables::set::SET;
 pub use crate::tables::source::{FAULT_NODES, SOURCE, STATION_SPECTRA, STATIONS};
 pub use crate::tables::spectra::{FOURIER, ROTD, SPECTRA};
 pub use crate::tables::stats::{ATTENUATION_FIT, PSA_STATS, SUMMARY};
 
 /// Every table, in the order the README documents them.
-pub const ALL: [TableSpec; 35] = [
+pub const ALL: [TableSpec; 36] = [
     RUNS,
     SERIES,
     CONTROL,
     FAULT,
+    FAULT_STATION_SERIES,
     SKIPS,
     EVENTS_TABLE,
     SUB_EVENTS_TABLE,

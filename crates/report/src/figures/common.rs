@@ -152,6 +152,11 @@ pub(super) fn rank_of(label: &str) -> Option<u32> {
     label.strip_prefix('S')?.parse().ok()
 }
 
+/// The standard error of a least-squares slope `b` from its r² over `n` points.
+pub(super) fn slope_se(b: f64, r2: f64, n: f64) -> f64 {
+    if n > 2.0 && r2 > 0.0 { b.abs() * ((1.0 / r2 - 1.0) / (n - 2.0)).sqrt() } else { f64::INFINITY }
+}
+
 #[cfg(test)]
 mod tests {
     use super::spread;

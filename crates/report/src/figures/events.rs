@@ -11,7 +11,7 @@ use stickslip_seismo::spectra::intensity::G;
 use stickslip_store::schema::col;
 
 use super::Outcome;
-use super::common::{drawn, rank_of};
+use super::common::{drawn, rank_of, slope_se};
 use crate::charts::{HLine, Line, Panel, Points, Sheet};
 use crate::plot::colour;
 use crate::{ReportError, ReportInput};
@@ -226,11 +226,6 @@ pub(super) fn attenuation(d: &ReportInput, path: &Path) -> Result<Outcome, Repor
     )
 }
 
-/// The standard error of a least-squares slope `b` from its r² over `n` points.
-fn slope_se(b: f64, r2: f64, n: f64) -> f64 {
-    if n > 2.0 && r2 > 0.0 { b.abs() * ((1.0 / r2 - 1.0) / (n - 2.0)).sqrt() } else { f64::INFINITY }
-}
-
 /// What a slope of log PGA on log R says, given its standard error: a fall with distance only
 /// when the slope is negative by more than two standard errors.
 fn trend(b: f64, se: f64) -> &'static str {
@@ -245,7 +240,8 @@ fn trend(b: f64, se: f64) -> &'static str {
 
 #[cfg(test)]
 mod tests {
-    use super::{slope_se, trend};
+    use super::trend;
+    use crate::figures::common::slope_se;
 
     #[test]
     fn a_positive_or_insignificant_slope_is_not_called_attenuation() {

@@ -4,13 +4,13 @@
 
 use std::path::Path;
 
-use plotters::style::RGBColor;
+use plotters::style::{BLACK, RGBColor};
 
-use stickslip_store::schema::{FAULT_NODES, STATIONS};
+use stickslip_store::schema::{FAULT_NODES, STATIONS, col};
 use stickslip_store::tables::source::{FaultNodes, Stations};
 
 use super::Outcome;
-use super::common::{drawn, seeds_text};
+use super::common::{drawn, seeds_text, slope_se};
 use crate::charts::{Line, Panel, Points, Sheet};
 use crate::contour::contour;
 use crate::{ReportError, ReportInput};
@@ -130,6 +130,35 @@ pub(super) fn ground_motion(d: &ReportInput, path: &Path) -> Result<Outcome, Rep
         colour: crate::plot::colour(1),
         size: 4,
     });
+    // The stations' fits of the attenuation_fit table (log10 y = a + b·log10 R_rup in metres).
+    let mut fit_text = Vec::new();
+    if let Some(fit) = &d.attenuation_fit {
+        let (lo, hi) = km.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| (lo.min(x), hi.max(x)));
+        for (panel, measure, name) in [(&mut pga, col::PGA_M_S2, "PGA"), (&mut pgv, col::PGV_M_S, "PGV")] {
+            let Some(i) = (0..fit.group.len()).find(|&i| fit.group[i] == "stations" && fit.measure[i] == measure)
+            else {
+                continue;
+            };
+            let (a, b, r2, n) = (fit.intercept[i], fit.slope[i], fit.r2[i], fit.points[i]);
+            let se = slope_se(b, r2, n as f64);
+            panel.lines.push(Line {
+                label: format!("fit: {name} ∝ R_rup^({b:.2} ± {se:.2})"),
+                points: [lo, hi].iter().map(|&x| (x, 10f64.powf(a + b * (1e3 * x).log10()))).collect(),
+                colour: BLACK,
+                width: 2,
+                alpha: 1.0,
+            });
+            fit_text.push(format!("{name} ∝ R_rup^({b:.2} ± {se:.2}) (one standard error, r² = {r2:.2}, {n} points)"));
+        }
+    }
+    let fits = if fit_text.is_empty() {
+        String::from("no fit (fewer than 3 stations with a positive peak)")
+    } else {
+        format!(
+            "least-squares lines of log10 peak on log10 R_rup over every station and seed (table attenuation_fit, group stations): {}",
+            fit_text.join("; ")
+        )
+    };
     let mut seeds: Vec<u64> = s.seed.clone();
     seeds.sort();
     seeds.dedup();
@@ -138,9 +167,10 @@ pub(super) fn ground_motion(d: &ReportInput, path: &Path) -> Result<Outcome, Rep
         path,
         &sheet,
         format!("Peak ground motion against distance ({})", seeds_text(&seeds)),
-        "Every station of every seed: the largest horizontal (x and z) acceleration and velocity over the run \
-         against the station's rupture distance (to the nearest node whose slip rate reached [events] \
-         rupture_rate_m_s; docs/model.md §15)."
-            .into(),
+        format!(
+            "Every station of every seed: the largest horizontal (x and z) acceleration and velocity over the run \
+             against the station's rupture distance (to the nearest node whose slip rate reached [events] \
+             rupture_rate_m_s; docs/model.md §15); {fits}."
+        ),
     )
 }

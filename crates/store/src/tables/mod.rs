@@ -20,10 +20,11 @@ use crate::spec::SeedTable;
 
 /// Every per-seed table but `runs` (written last, from the seed's outcome: see
 /// [`crate::seed::write_seed`]), in the order of [`crate::schema::ALL`].
-pub const SEED_TABLES: [SeedTable; 22] = [
+pub const SEED_TABLES: [SeedTable; 23] = [
     series::SERIES_PART,
     series::CONTROL_PART,
     series::FAULT_PART,
+    series::FAULT_STATION_SERIES_PART,
     series::SKIPS_PART,
     events::EVENTS_PART,
     events::SUB_EVENTS_PART,

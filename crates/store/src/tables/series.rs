@@ -56,6 +56,30 @@ pub const FAULT: TableSpec = TableSpec {
     variable: None,
 };
 
+/// The fault stations' time series (the benchmark files' content, `record.fault_stations_m`): one
+/// row per station and instant of `record.fault_interval_s`.
+pub const FAULT_STATION_SERIES: TableSpec = TableSpec {
+    name: "fault_station_series",
+    scope: Scope::PerSeed,
+    key: &[col::SEED, col::STATION, col::TIME_S],
+    columns: &[
+        col::SEED,
+        col::STATION,
+        col::NODE,
+        col::X_M,
+        col::Y_M,
+        col::TIME_S,
+        col::SLIP_X_M,
+        col::SLIP_Y_M,
+        col::SLIP_RATE_X_M_S,
+        col::SLIP_RATE_Y_M_S,
+        col::SHEAR_STRESS_X_PA,
+        col::SHEAR_STRESS_Y_PA,
+        col::NORMAL_STRESS_PA,
+    ],
+    variable: None,
+};
+
 /// One row per quasi-static jump of the skip-ahead.
 pub const SKIPS: TableSpec = TableSpec {
     name: "skips",
@@ -88,6 +112,66 @@ pub const FAULT_PART: SeedTable = SeedTable {
         fault_frame(s.seed, trace, &keep, s.model.lattice())
     },
 };
+
+/// The `fault_station_series` part of a seed with fault stations.
+pub const FAULT_STATION_SERIES_PART: SeedTable = SeedTable {
+    spec: FAULT_STATION_SERIES,
+    write: |s| {
+        let trace = &s.analysis.run.recording.trace;
+        if trace.stations.is_empty() {
+            return Ok(None);
+        }
+        let keep = trace.thinned(s.model.scene().record.fault_interval_s);
+        let origin = s.model.scene().fault.as_ref().map(|f| f.origin_m);
+        fault_station_series_frame(s.seed, trace, &keep, s.model.lattice(), origin).map(Some)
+    },
+};
+
+/// The fault stations' series of one seed at the trace's instants `keep`: `seed` u64, `station`
+/// str (the name of its file: `faultst…` measured from `origin` on a fault scene, `fltst_…` on a
+/// rigid base), `node` u32 (LDEM), `x_m`, `y_m`, `time_s`, then slip, slip rate and shear traction
+/// along x and y and the normal traction (compression positive), f64 — the values the station
+/// files print, in full precision and SI units (stresses in Pa).
+pub fn fault_station_series_frame(
+    seed: u64,
+    trace: &stickslip_solver::trace::Trace,
+    keep: &[usize],
+    lattice: &Lattice,
+    origin: Option<[f64; 2]>,
+) -> Result<DataFrame, StoreError> {
+    let n = keep.len();
+    let rows = trace.stations.len() * n;
+    let mut f = Frame::new(rows).u64(col::SEED, vec![seed; rows]);
+    let (mut name, mut node, mut x, mut y) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for st in &trace.stations {
+        let p = lattice.position(st.node);
+        let label = match origin {
+            Some([x0, y0]) => stickslip_seismo::scec::fault_station_name(p[0] - x0, p[1] - y0),
+            None => stickslip_seismo::seas::station_file_name(p[0], p[1]),
+        };
+        name.extend(std::iter::repeat_n(label, n));
+        node.extend(std::iter::repeat_n(st.node.ldem() as u32, n));
+        x.extend(std::iter::repeat_n(p[0], n));
+        y.extend(std::iter::repeat_n(p[1], n));
+    }
+    let gather = |g: &dyn Fn(&stickslip_solver::trace::StationTrace) -> &[f64]| -> Vec<f64> {
+        trace.stations.iter().flat_map(|st| keep.iter().map(move |&k| g(st)[k])).collect()
+    };
+    f = f
+        .str(col::STATION, name)
+        .u32(col::NODE, node)
+        .f64(col::X_M, x)
+        .f64(col::Y_M, y)
+        .f64(col::TIME_S, trace.stations.iter().flat_map(|_| keep.iter().map(|&k| trace.time_s[k])).collect())
+        .f64(col::SLIP_X_M, gather(&|st| &st.slip_m[0]))
+        .f64(col::SLIP_Y_M, gather(&|st| &st.slip_m[1]))
+        .f64(col::SLIP_RATE_X_M_S, gather(&|st| &st.slip_rate_m_s[0]))
+        .f64(col::SLIP_RATE_Y_M_S, gather(&|st| &st.slip_rate_m_s[1]))
+        .f64(col::SHEAR_STRESS_X_PA, gather(&|st| &st.shear_stress_pa[0]))
+        .f64(col::SHEAR_STRESS_Y_PA, gather(&|st| &st.shear_stress_pa[1]))
+        .f64(col::NORMAL_STRESS_PA, gather(&|st| &st.normal_stress_pa));
+    f.finish(FAULT_STATION_SERIES.name)
+}
 
 /// The series table of one seed: `seed`, `time_s` (f64), then one column per recorded channel
 /// ([`stickslip_solver::Channel::name`]), f32 except node counts (u32). The channels are computed

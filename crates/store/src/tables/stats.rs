@@ -200,7 +200,8 @@ read_back! {
 /// One fit of the attenuation table.
 #[derive(Clone, Debug, PartialEq)]
 pub struct FitRow {
-    /// `S1`, … or `main`.
+    /// `S1`, … or `main` (control nodes against the hypocentre), `stations` (a fault scene's
+    /// stations against R_rup).
     pub group: String,
     /// `pga_m_s2` or `pgv_m_s`.
     pub measure: &'static str,
