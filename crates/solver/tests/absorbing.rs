@@ -236,7 +236,10 @@ fn reflected_closed_form(wave: Wave, angle: f64, lame: f64, mu: f64, rho: f64) -
     // a (both in x–z), after dividing by −iω.
     let residual = |s: [C; 2], a: [C; 2]| -> [C; 2] {
         let div = s[0] * a[0] + s[1] * a[1];
-        [c(mu) * (s[0] * a[1] + s[1] * a[0]) - c(rho * cs) * a[0], c(lame) * div + c(2.0 * mu) * s[1] * a[1] - c(rho * cp) * a[1]]
+        [
+            c(mu) * (s[0] * a[1] + s[1] * a[0]) - c(rho * cs) * a[0],
+            c(lame) * div + c(2.0 * mu) * s[1] * a[1] - c(rho * cp) * a[1],
+        ]
     };
     match wave {
         Wave::Sh => {
