@@ -182,6 +182,12 @@ pub(crate) fn tile_shares(p: &Shape<'_>, lattice: &Lattice) -> Vec<(usize, f64)>
                     overlap(x0, x1, a0, a1) * overlap(y0, y1, b0, b1) / area
                 }
                 _ => {
+                    // Only tiles that reach the ellipse's bounding box are sampled.
+                    let [cx, cy] = p.centre_m.unwrap_or([0.0, 0.0]);
+                    let [a, b] = p.semi_axes_m.unwrap_or([1.0, 1.0]);
+                    if overlap(x0, x1, cx - a, cx + a) * overlap(y0, y1, cy - b, cy + b) == 0.0 {
+                        return None;
+                    }
                     const N: usize = 16;
                     let inside = (0..N * N)
                         .filter(|k| {
@@ -361,4 +367,63 @@ pub(crate) fn build(
         }
     }
     Some(FrictionMap { nodes, region, regions })
+}
+
+#[cfg(test)]
+mod tests {
+    use stickslip_solver::Dims;
+
+    use super::*;
+
+    fn rectangle(x: [f64; 2], y: [f64; 2]) -> Shape<'static> {
+        Shape { shape: "rectangle", x_m: Some(x), y_m: Some(y), centre_m: None, semi_axes_m: None }
+    }
+
+    /// The area a patch loads: Σ share × the node's tile (clipped to the face).
+    fn loaded_area(p: &Shape<'_>, lattice: &Lattice) -> f64 {
+        let (e, h) = (lattice.extent(), 0.5 * lattice.lc());
+        let contact = lattice.contact_nodes();
+        tile_shares(p, lattice)
+            .into_iter()
+            .map(|(c, w)| {
+                let q = lattice.position(contact[c]);
+                let dx = (q[0] + h).min(e[0]) - (q[0] - h).max(0.0);
+                let dy = (q[1] + h).min(e[1]) - (q[1] - h).max(0.0);
+                w * dx * dy
+            })
+            .sum()
+    }
+
+    #[test]
+    fn a_patch_loads_its_own_area_at_any_spacing() {
+        // TPV5's 3 × 3 km square, its sides on rows of nodes at 100 m and 500 m, between rows at
+        // 200 m along x: it loads 9 km² in every case (by whole nodes: 9.61, 9.6 and 12.25 km²).
+        for lc in [100.0, 200.0, 500.0] {
+            let lattice = Lattice::new(Dims::new((40_000.0 / lc) as usize, (20_000.0 / lc) as usize, 2), lc);
+            let square = rectangle([18_500.0, 21_500.0], [6_000.0, 9_000.0]);
+            let area = loaded_area(&square, &lattice);
+            assert!((area - 9e6).abs() < 1e-6 * 9e6, "Lc {lc}: {area} m²");
+            // A side on a row of nodes gives it half, a corner a quarter.
+            let shares = tile_shares(&square, &lattice);
+            let least = shares.iter().map(|s| s.1).fold(1.0, f64::min);
+            assert!(least == 0.25 || (lc == 200.0 && least == 0.5), "Lc {lc}: least share {least}");
+        }
+        // At the face's edge the tile is clipped: a patch over the whole face loads the face.
+        let lattice = Lattice::new(Dims::new(10, 4, 2), 0.5);
+        let all = rectangle([0.0, 5.0], [0.0, 2.0]);
+        assert!((loaded_area(&all, &lattice) - 10.0).abs() < 1e-12);
+        assert!(tile_shares(&all, &lattice).iter().all(|s| s.1 == 1.0));
+        // An ellipse from 16 × 16 points per tile: its area within a percent.
+        let lattice = Lattice::new(Dims::new(40, 40, 2), 100.0);
+        let ellipse = Shape {
+            shape: "ellipse",
+            x_m: None,
+            y_m: None,
+            centre_m: Some([2_000.0, 2_000.0]),
+            semi_axes_m: Some([1_230.0, 770.0]),
+        };
+        let area = loaded_area(&ellipse, &lattice);
+        let exact = std::f64::consts::PI * 1_230.0 * 770.0;
+        assert!((area / exact - 1.0).abs() < 0.01, "{area} against {exact}");
+    }
 }
