@@ -89,7 +89,7 @@ fn tpv5_at_500_m_follows_the_reference() {
         // The waves reached the station: it moved.
         assert!(rows.iter().any(|r| r[2].abs() > 0.1), "{name}: no ground velocity above 0.1 m/s");
     }
-    // The source from the fault's own slip: TPV5 is an Mw ≈ 7 event with a 7–8 MPa drop.
+    // The source from the fault's own slip: TPV5 is an Mw ≈ 7 event with a 7–9 MPa drop.
     let source = stickslip_support::read_table(&out.join("tables").join("source.parquet"));
     let get = |c: &str| source.column(c).unwrap().f64().unwrap().get(0).unwrap();
     let (mw, drop) = (get("mw"), get("stress_drop_pa"));

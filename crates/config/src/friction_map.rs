@@ -188,20 +188,35 @@ pub(crate) fn tile_shares(p: &Shape<'_>, lattice: &Lattice) -> Vec<(usize, f64)>
                     if overlap(x0, x1, cx - a, cx + a) * overlap(y0, y1, cy - b, cy + b) == 0.0 {
                         return None;
                     }
-                    const N: usize = 16;
-                    let inside = (0..N * N)
-                        .filter(|k| {
-                            let x = x0 + (x1 - x0) * ((k % N) as f64 + 0.5) / N as f64;
-                            let y = y0 + (y1 - y0) * ((k / N) as f64 + 0.5) / N as f64;
-                            contains(p, x, y, e[1], 0.0)
-                        })
-                        .count();
-                    inside as f64 / (N * N) as f64
+                    let inside = tile_points(lattice, c).filter(|&[x, y]| covers(p, x, y, lattice)).count();
+                    inside as f64 / TILE_POINTS as f64
                 }
             };
             (share > 0.0 && area > 0.0).then_some((c, share.min(1.0)))
         })
         .collect()
+}
+
+/// How many points of a tile [`tile_points`] gives (16 × 16).
+pub(crate) const TILE_POINTS: usize = 256;
+
+/// The 16 × 16 cell midpoints of base node `c`'s tile (its Lc × Lc tributary area clipped to the
+/// face; `c` indexes [`Lattice::contact_nodes`]). A side through the tile's centre or along its
+/// edge splits them exactly.
+pub(crate) fn tile_points(lattice: &Lattice, c: usize) -> impl Iterator<Item = [f64; 2]> {
+    let e = lattice.extent();
+    let h = 0.5 * lattice.lc();
+    let q = lattice.position(lattice.contact_nodes()[c]);
+    let (x0, x1) = ((q[0] - h).max(0.0), (q[0] + h).min(e[0]));
+    let (y0, y1) = ((q[1] - h).max(0.0), (q[1] + h).min(e[1]));
+    (0..TILE_POINTS).map(move |k| {
+        [x0 + (x1 - x0) * ((k % 16) as f64 + 0.5) / 16.0, y0 + (y1 - y0) * ((k / 16) as f64 + 0.5) / 16.0]
+    })
+}
+
+/// Whether the base point `(x, y)` lies in the patch `p` (no tolerance).
+pub(crate) fn covers(p: &Shape<'_>, x: f64, y: f64, lattice: &Lattice) -> bool {
+    contains(p, x, y, lattice.extent()[1], 0.0)
 }
 
 /// The base nodes (indices into [`Lattice::contact_nodes`]) a patch `p` named `field` holds,

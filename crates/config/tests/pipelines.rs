@@ -74,3 +74,44 @@ fn refusals_write_numbers_short() {
         assert!(!e.contains("00000000000"), "a long number: {e}");
     }
 }
+
+#[test]
+fn abutting_traction_patches_share_the_nodes_on_their_seam() {
+    // TPV5 at 500 m with two patches side by side, their seam on the column of nodes at x = 3 km
+    // and their lower side on the row at y = 1 km: each node takes the average of what covers its
+    // tile (docs/model.md §15.3) — half of each on the seam, a quarter of each and half of the
+    // 70 MPa below at its corner, whatever the order of priority.
+    let base = std::fs::read_to_string(repo_path("pipelines/tpv5-500m.toml")).unwrap();
+    let dir = std::env::temp_dir().join(format!("stickslip-seam-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (a, b) in [(5, 6), (6, 5)] {
+        let text = format!(
+            "{base}\n[[fault.patches]]\nname = \"A\"\nshape = \"rectangle\"\nx_m = [1000.0, 3000.0]\ny_m = [1000.0, \
+             3000.0]\nshear_stress_pa = 90e6\npriority = {a}\n\n[[fault.patches]]\nname = \"B\"\nshape = \
+             \"rectangle\"\nx_m = [3000.0, 5000.0]\ny_m = [1000.0, 3000.0]\nshear_stress_pa = 60e6\npriority = {b}\n"
+        );
+        let path = dir.join("seam.toml");
+        std::fs::write(&path, text).unwrap();
+        let p = Pipeline::load(&path).unwrap();
+        let fault = p.scene.fault.as_ref().unwrap();
+        let lattice = p.scene.lattice();
+        let at = |x: f64, y: f64| {
+            let c = lattice
+                .contact_nodes()
+                .iter()
+                .position(|&id| {
+                    let q = lattice.position(id);
+                    q[0] == x && q[1] == y
+                })
+                .unwrap();
+            fault.shear_pa[c][0]
+        };
+        assert_eq!(at(2000.0, 2000.0), 90e6);
+        assert_eq!(at(4000.0, 2000.0), 60e6);
+        assert!((at(3000.0, 2000.0) - 75e6).abs() < 1e-6, "seam: {}", at(3000.0, 2000.0));
+        assert!((at(3000.0, 1000.0) - 72.5e6).abs() < 1e-6, "corner: {}", at(3000.0, 1000.0));
+        // One patch alone on its side: half of it over what lies below.
+        assert!((at(2000.0, 1000.0) - 80e6).abs() < 1e-6, "side: {}", at(2000.0, 1000.0));
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -293,7 +293,8 @@ pub fn station_attenuation_fits(stations: &DataFrame) -> Result<Vec<FitRow>, Sto
     let mut rows = Vec::new();
     for measure in [col::PGA_M_S2, col::PGV_M_S] {
         let y = c.f64s(measure)?;
-        if let Some(fit) = log_log_fit(r.iter().copied().zip(y)) {
+        // A seed whose fault did not rupture puts its stations at R_rup = ∞: not a point.
+        if let Some(fit) = log_log_fit(r.iter().copied().zip(y).filter(|(r, _)| r.is_finite())) {
             rows.push(FitRow { group: "stations".into(), measure, fit });
         }
     }

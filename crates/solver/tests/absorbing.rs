@@ -375,7 +375,11 @@ fn reflected_beam(wave: Wave, angle: f64, width: f64, window: f64) -> f64 {
 /// and the continuum's, printed, each within `tolerance` of the other and below 5%.
 fn oblique(width: f64, window: f64, tolerance: f64) {
     let scene = column(2, 2, false);
-    let (_, lame, c44) = lattice_elastic_constants(scene.young_pa, scene.poisson);
+    // The lattice is isotropic at ν = 0.25 only (C44 = λ there): its continuum has Lamé constants
+    // λ = C11 − 2·C44 and μ = C44.
+    assert_eq!(scene.poisson, 0.25);
+    let (c11, _, c44) = lattice_elastic_constants(scene.young_pa, scene.poisson);
+    let lame = c11 - 2.0 * c44;
     for wave in [Wave::P, Wave::Sv, Wave::Sh] {
         for degrees in [30.0f64, 45.0] {
             let angle = degrees.to_radians();
@@ -402,13 +406,14 @@ fn beams_at_30_and_45_degrees_reflect_what_the_dashpots_closed_form_says() {
     // Lysmer–Kuhlemeyer dashpots absorb a plane wave at normal incidence exactly and reflect more
     // as the wave tilts (the closed form: 0.03% / 0.39% of a P wave at 30° / 45°, 3.6% / 2.9% of
     // an SV wave, 0.5% / 2.9% of an SH wave). A lattice beam 3 Lc long and 16 Lc wide, measured
-    // against a slab with no face in reach, reflects that within 1.5 points of energy (what the
-    // lattice's face and the beam's spread of angles add: up to +1.0 point here).
-    oblique(3.0, 16.0, 0.015);
+    // against a slab with no face in reach, reflects that within 1.2 points of energy (what the
+    // lattice's face and the beam's spread of angles add: −0.6 … +1.03 points here, the lattice
+    // being deterministic; the normal-incidence P pulse already comes back with 0.41%).
+    oblique(3.0, 16.0, 0.012);
 }
 
 #[test]
 #[ignore = "49 s: the same beams longer and wider (4 × 32 Lc), figures in the README"]
 fn wider_beams_at_30_and_45_degrees() {
-    oblique(4.0, 32.0, 0.015);
+    oblique(4.0, 32.0, 0.012);
 }

@@ -10,7 +10,7 @@ use stickslip_solver::scene::{Component, ControlChannel, Kinematic, Station};
 
 use super::SceneSections;
 use crate::check::{Checker, approx, num};
-use crate::friction_map::{Shape, patch_nodes, tile_shares};
+use crate::friction_map::{Shape, TILE_POINTS, covers, patch_nodes, tile_points, tile_shares};
 use crate::input::InputFile;
 
 /// `[fault]`: the base face is one side of a planar fault between identical media, with these
@@ -231,12 +231,16 @@ pub(super) fn fault(ck: &mut Checker, file: SceneSections<'_>, lattice: &Lattice
     order.sort_by_key(|&i| f.patches[i].priority);
     let mut members: Vec<Vec<usize>> = vec![Vec::new(); f.patches.len()];
     let mut shares: Vec<Vec<(usize, f64)>> = vec![Vec::new(); f.patches.len()];
+    let shapes: Vec<Shape<'_>> = f
+        .patches
+        .iter()
+        .map(|p| Shape { shape: &p.shape, x_m: p.x_m, y_m: p.y_m, centre_m: p.centre_m, semi_axes_m: p.semi_axes_m })
+        .collect();
     for (i, p) in f.patches.iter().enumerate() {
         let field = format!("fault.patches[{i}]");
-        let shape = Shape { shape: &p.shape, x_m: p.x_m, y_m: p.y_m, centre_m: p.centre_m, semi_axes_m: p.semi_axes_m };
-        members[i] = patch_nodes(ck, &field, &shape, lattice);
+        members[i] = patch_nodes(ck, &field, &shapes[i], lattice);
         if ck.is_clean() {
-            shares[i] = tile_shares(&shape, lattice);
+            shares[i] = tile_shares(&shapes[i], lattice);
         }
         if p.shear_stress_pa.is_none() && p.shear_stress_y_pa.is_none() && p.normal_stress_pa.is_none() {
             ck.push(
@@ -255,7 +259,7 @@ pub(super) fn fault(ck: &mut Checker, file: SceneSections<'_>, lattice: &Lattice
             ck.positive(&format!("{field}.normal_stress_pa"), v);
         }
         for j in 0..i {
-            let shared = members[i].iter().filter(|c| members[j].contains(c)).count();
+            let shared = members[i].iter().filter(|c| members[j].binary_search(c).is_ok()).count();
             if shared > 0 && f.patches[i].priority == f.patches[j].priority {
                 ck.push(
                     format!("{field}.priority"),
@@ -269,21 +273,47 @@ pub(super) fn fault(ck: &mut Checker, file: SceneSections<'_>, lattice: &Lattice
             }
         }
     }
-    // Each patch laid over what lies below in proportion to the share of a node's area it covers
-    // (docs/model.md §15.2).
-    for i in order {
-        let p = &f.patches[i];
-        let blend = |below: f64, v: f64, w: f64| if w >= 1.0 { v } else { below + w * (v - below) };
+    // Each node's traction is the average over its tile of the patches laid in order of priority
+    // over what lies below (docs/model.md §15.3): a node only one patch reaches blends by the
+    // share of its tile the patch covers (exact); one that several reach, from the 16 × 16 points
+    // of its tile, each taking the highest-priority patch that covers it and names the component.
+    let mut reached = vec![0u32; n];
+    for s in &shares {
+        for &(c, _) in s {
+            reached[c] += 1;
+        }
+    }
+    let values = |p: &TractionPatchSection| [p.shear_stress_pa, p.shear_stress_y_pa, p.normal_stress_pa];
+    let below: Vec<[f64; 3]> = (0..n).map(|c| [shear[c][0], shear[c][1], normal[c]]).collect();
+    let mut set = |c: usize, k: usize, v: f64| match k {
+        0 | 1 => shear[c][k] = v,
+        _ => normal[c] = v,
+    };
+    for &i in &order {
         for &(c, w) in &shares[i] {
-            if let Some(v) = p.shear_stress_pa {
-                shear[c][0] = blend(shear[c][0], v, w);
+            if reached[c] != 1 {
+                continue;
             }
-            if let Some(v) = p.shear_stress_y_pa {
-                shear[c][1] = blend(shear[c][1], v, w);
+            for (k, v) in values(&f.patches[i]).into_iter().enumerate() {
+                if let Some(v) = v {
+                    set(c, k, if w >= 1.0 { v } else { below[c][k] + w * (v - below[c][k]) });
+                }
             }
-            if let Some(v) = p.normal_stress_pa {
-                normal[c] = blend(normal[c], v, w);
+        }
+    }
+    for c in (0..n).filter(|&c| reached[c] > 1) {
+        let mut sum = [0.0; 3];
+        for [x, y] in tile_points(lattice, c) {
+            for (k, total) in sum.iter_mut().enumerate() {
+                let top = order
+                    .iter()
+                    .rev()
+                    .find_map(|&i| values(&f.patches[i])[k].filter(|_| covers(&shapes[i], x, y, lattice)));
+                *total += top.unwrap_or(below[c][k]);
             }
+        }
+        for (k, total) in sum.into_iter().enumerate() {
+            set(c, k, total / TILE_POINTS as f64);
         }
     }
     let stochastic = f.stochastic.map(|s| {

@@ -133,7 +133,10 @@ pub(super) fn ground_motion(d: &ReportInput, path: &Path) -> Result<Outcome, Rep
     // The stations' fits of the attenuation_fit table (log10 y = a + b·log10 R_rup in metres).
     let mut fit_text = Vec::new();
     if let Some(fit) = &d.attenuation_fit {
-        let (lo, hi) = km.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| (lo.min(x), hi.max(x)));
+        let (lo, hi) = km
+            .iter()
+            .filter(|x| x.is_finite())
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| (lo.min(x), hi.max(x)));
         for (panel, measure, name) in [(&mut pga, col::PGA_M_S2, "PGA"), (&mut pgv, col::PGV_M_S, "PGV")] {
             let Some(i) = (0..fit.group.len()).find(|&i| fit.group[i] == "stations" && fit.measure[i] == measure)
             else {

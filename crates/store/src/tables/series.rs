@@ -61,7 +61,8 @@ pub const FAULT: TableSpec = TableSpec {
 pub const FAULT_STATION_SERIES: TableSpec = TableSpec {
     name: "fault_station_series",
     scope: Scope::PerSeed,
-    key: &[col::SEED, col::STATION, col::TIME_S],
+    // Two stations closer than the names' 100 m (on a finer lattice) share a name, not a node.
+    key: &[col::SEED, col::STATION, col::NODE, col::TIME_S],
     columns: &[
         col::SEED,
         col::STATION,
