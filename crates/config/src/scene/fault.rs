@@ -463,7 +463,17 @@ pub(super) fn stations(
 ) -> (Vec<Station>, Vec<ControlChannel>) {
     let e = lattice.extent();
     let lc = lattice.lc();
-    let mut out: Vec<(String, [f64; 3], String, usize)> = Vec::new();
+    let inside = |p: [f64; 3]| (0..3).all(|a| p[a].is_finite() && p[a] >= -1e-9 * lc && p[a] <= e[a] + 1e-9 * lc);
+    let block_text = || {
+        format!(
+            "a point of the block, 0 ≤ x ≤ {} m, 0 ≤ y ≤ {} m, 0 ≤ z ≤ {} m",
+            approx(e[0]),
+            approx(e[1]),
+            approx(e[2])
+        )
+    };
+    // Name, position, the field a refusal names, the station's index, the position as shown.
+    let mut out: Vec<(String, [f64; 3], String, usize, String)> = Vec::new();
     for (i, s) in file.stations.iter().enumerate() {
         let field = format!("stations[{i}]");
         let valid_name = !s.name.is_empty() && s.name.chars().all(|c| c.is_ascii_alphanumeric() || "-_.".contains(c));
@@ -471,17 +481,30 @@ pub(super) fn stations(
             ck.push(format!("{field}.name"), format!("{:?}", s.name), "a name of letters, digits, '-', '_' or '.'");
         }
         match (s.at_m, s.from_m, s.to_m, s.count) {
-            (Some(p), None, None, None) => out.push((s.name.clone(), p, format!("{field}.at_m"), i)),
+            (Some(p), None, None, None) => out.push((s.name.clone(), p, format!("{field}.at_m"), i, format!("{p:?}"))),
             (None, Some(a), Some(b), Some(count)) => {
                 let Some(count) =
                     ck.count(&format!("{field}.count"), count, 2, 100_000, " (points on the line, ends included)")
                 else {
                     continue;
                 };
+                // Both ends in the block put every point of the line in it (the block is convex);
+                // a point on a node already taken says the line has too many points.
+                let mut ends_inside = true;
+                for (key, end) in [("from_m", a), ("to_m", b)] {
+                    if !inside(end) {
+                        ends_inside = false;
+                        ck.push(format!("{field}.{key}"), format!("{end:?} m"), block_text());
+                    }
+                }
+                if !ends_inside {
+                    continue;
+                }
                 for k in 0..count {
                     let t = k as f64 / (count - 1) as f64;
                     let p = [0, 1, 2].map(|a_| a[a_] + t * (b[a_] - a[a_]));
-                    out.push((format!("{}-{k}", s.name), p, format!("{field} point {k}"), i));
+                    let shown = format!("[{}, {}, {}]", approx(p[0]), approx(p[1]), approx(p[2]));
+                    out.push((format!("{}-{k}", s.name), p, format!("{field}.count"), i, shown));
                 }
             }
             _ => ck.push(
@@ -492,19 +515,9 @@ pub(super) fn stations(
         }
     }
     let mut stations: Vec<Station> = Vec::new();
-    for (name, p, field, i) in out {
-        let inside = (0..3).all(|a| p[a].is_finite() && p[a] >= -1e-9 * lc && p[a] <= e[a] + 1e-9 * lc);
-        if !inside {
-            ck.push(
-                field,
-                format!("{p:?} m"),
-                format!(
-                    "a point of the block, 0 ≤ x ≤ {} m, 0 ≤ y ≤ {} m, 0 ≤ z ≤ {} m",
-                    approx(e[0]),
-                    approx(e[1]),
-                    approx(e[2])
-                ),
-            );
+    for (name, p, field, i, shown) in out {
+        if !inside(p) {
+            ck.push(field, format!("{shown} m"), block_text());
             continue;
         }
         // The nearest corner node.
@@ -515,7 +528,7 @@ pub(super) fn stations(
             let q = lattice.position(node);
             ck.push(
                 field,
-                format!("{name} at {p:?} m"),
+                format!("{name} at {shown} m"),
                 format!(
                     "a station on its own node: {} is already at the nearest node ({}, {}, {}) m (stations closer than \
                      the lattice spacing Lc = {} m are one)",
