@@ -346,6 +346,41 @@ pub(super) fn fault(ck: &mut Checker, file: SceneSections<'_>, lattice: &Lattice
     Some(Fault { shear_pa: shear, normal_pa: normal, stochastic, nucleation, origin_m: f.origin_m })
 }
 
+/// On a fault, two fault stations (`record.fault_stations_m`, on different nodes) whose
+/// benchmark file names coincide — `faultst<strike>dp<depth>` counts hectometres from
+/// `[fault] origin_m` — would write one file over the other: the second is refused.
+pub(super) fn refuse_shared_station_names(
+    ck: &mut Checker,
+    at_m: &[[f64; 2]],
+    fault: Option<&Fault>,
+    lattice: &Lattice,
+) {
+    let Some(f) = fault else { return };
+    let lc = lattice.lc();
+    let snap = |v: f64| (v / lc).round() * lc;
+    let mut seen: Vec<([f64; 2], String, usize)> = Vec::new();
+    for (i, p) in at_m.iter().enumerate() {
+        if !p.iter().all(|v| v.is_finite()) {
+            continue;
+        }
+        let node = [snap(p[0]), snap(p[1])];
+        let name = stickslip_seismo::scec::fault_station_name(node[0] - f.origin_m[0], node[1] - f.origin_m[1]);
+        match seen.iter().find(|(_, n, _)| *n == name) {
+            // The same node: refused as such by the record's checks.
+            Some((other, _, _)) if *other == node => {}
+            Some((_, _, j)) => ck.push(
+                format!("record.fault_stations_m[{i}]"),
+                format!("[{}, {}] m", num(p[0]), num(p[1])),
+                format!(
+                    "a station whose benchmark file differs from station {j}'s ({name}.dat): the names count \
+                     hectometres from [fault] origin_m, so fault stations lie at least 100 m apart"
+                ),
+            ),
+            None => seen.push((node, name, i)),
+        }
+    }
+}
+
 /// `[fault.nucleation]` checked: a square of at least 2·Lc whose centre's range keeps it on the
 /// fault, with a positive traction (whether it exceeds the strength where it lands is the
 /// friction map's business: `check` prints the nucleation).
