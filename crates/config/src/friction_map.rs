@@ -164,16 +164,10 @@ fn contains(p: &Shape<'_>, x: f64, y: f64, width: f64, eps: f64) -> bool {
 /// sides fall on nodes).
 pub(crate) fn tile_shares(p: &Shape<'_>, lattice: &Lattice) -> Vec<(usize, f64)> {
     let e = lattice.extent();
-    let h = 0.5 * lattice.lc();
     let overlap = |lo: f64, hi: f64, a: f64, b: f64| (hi.min(b) - lo.max(a)).max(0.0);
-    lattice
-        .contact_nodes()
-        .iter()
-        .enumerate()
-        .filter_map(|(c, id)| {
-            let q = lattice.position(*id);
-            let (x0, x1) = ((q[0] - h).max(0.0), (q[0] + h).min(e[0]));
-            let (y0, y1) = ((q[1] - h).max(0.0), (q[1] + h).min(e[1]));
+    (0..lattice.contact_nodes().len())
+        .filter_map(|c| {
+            let [[x0, x1], [y0, y1]] = tile(lattice, c);
             let area = (x1 - x0) * (y1 - y0);
             let share = match p.shape {
                 "rectangle" => {
@@ -197,6 +191,14 @@ pub(crate) fn tile_shares(p: &Shape<'_>, lattice: &Lattice) -> Vec<(usize, f64)>
         .collect()
 }
 
+/// Base node `c`'s tile, `[[x0, x1], [y0, y1]]` (m): its Lc × Lc tributary area clipped to the
+/// face (`c` indexes [`Lattice::contact_nodes`]).
+pub(crate) fn tile(lattice: &Lattice, c: usize) -> [[f64; 2]; 2] {
+    let (e, h) = (lattice.extent(), 0.5 * lattice.lc());
+    let q = lattice.position(lattice.contact_nodes()[c]);
+    [[(q[0] - h).max(0.0), (q[0] + h).min(e[0])], [(q[1] - h).max(0.0), (q[1] + h).min(e[1])]]
+}
+
 /// How many points of a tile [`tile_points`] gives (16 × 16).
 pub(crate) const TILE_POINTS: usize = 256;
 
@@ -204,11 +206,7 @@ pub(crate) const TILE_POINTS: usize = 256;
 /// face; `c` indexes [`Lattice::contact_nodes`]). A side through the tile's centre or along its
 /// edge splits them exactly.
 pub(crate) fn tile_points(lattice: &Lattice, c: usize) -> impl Iterator<Item = [f64; 2]> {
-    let e = lattice.extent();
-    let h = 0.5 * lattice.lc();
-    let q = lattice.position(lattice.contact_nodes()[c]);
-    let (x0, x1) = ((q[0] - h).max(0.0), (q[0] + h).min(e[0]));
-    let (y0, y1) = ((q[1] - h).max(0.0), (q[1] + h).min(e[1]));
+    let [[x0, x1], [y0, y1]] = tile(lattice, c);
     (0..TILE_POINTS).map(move |k| {
         [x0 + (x1 - x0) * ((k % 16) as f64 + 0.5) / 16.0, y0 + (y1 - y0) * ((k / 16) as f64 + 0.5) / 16.0]
     })
@@ -396,15 +394,11 @@ mod tests {
 
     /// The area a patch loads: Σ share × the node's tile (clipped to the face).
     fn loaded_area(p: &Shape<'_>, lattice: &Lattice) -> f64 {
-        let (e, h) = (lattice.extent(), 0.5 * lattice.lc());
-        let contact = lattice.contact_nodes();
         tile_shares(p, lattice)
             .into_iter()
             .map(|(c, w)| {
-                let q = lattice.position(contact[c]);
-                let dx = (q[0] + h).min(e[0]) - (q[0] - h).max(0.0);
-                let dy = (q[1] + h).min(e[1]) - (q[1] - h).max(0.0);
-                w * dx * dy
+                let [[x0, x1], [y0, y1]] = tile(lattice, c);
+                w * (x1 - x0) * (y1 - y0)
             })
             .sum()
     }

@@ -5,7 +5,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 use stickslip_solver::fault::{Fault, Nucleation, StochasticStress};
-use stickslip_solver::geometry::{Face, Lattice, NodeKind};
+use stickslip_solver::geometry::{Face, Lattice, NodeId, NodeKind};
 use stickslip_solver::scene::{Component, ControlChannel, Kinematic, Station};
 
 use super::SceneSections;
@@ -352,32 +352,27 @@ pub(super) fn fault(ck: &mut Checker, file: SceneSections<'_>, lattice: &Lattice
 pub(super) fn refuse_shared_station_names(
     ck: &mut Checker,
     at_m: &[[f64; 2]],
+    nodes: &[NodeId],
     fault: Option<&Fault>,
     lattice: &Lattice,
 ) {
-    let Some(f) = fault else { return };
-    let lc = lattice.lc();
-    let snap = |v: f64| (v / lc).round() * lc;
-    let mut seen: Vec<([f64; 2], String, usize)> = Vec::new();
-    for (i, p) in at_m.iter().enumerate() {
-        if !p.iter().all(|v| v.is_finite()) {
-            continue;
-        }
-        let node = [snap(p[0]), snap(p[1])];
-        let name = stickslip_seismo::scec::fault_station_name(node[0] - f.origin_m[0], node[1] - f.origin_m[1]);
-        match seen.iter().find(|(_, n, _)| *n == name) {
-            // The same node: refused as such by the record's checks.
-            Some((other, _, _)) if *other == node => {}
-            Some((_, _, j)) => ck.push(
+    // With a station refused (outside, or on a taken node) the record has said what is wrong.
+    let Some(f) = fault.filter(|_| nodes.len() == at_m.len()) else { return };
+    let mut names: Vec<String> = Vec::new();
+    for (i, (&node, p)) in nodes.iter().zip(at_m).enumerate() {
+        let q = lattice.position(node);
+        let name = stickslip_seismo::scec::fault_station_name(q[0] - f.origin_m[0], q[1] - f.origin_m[1]);
+        if let Some(j) = names.iter().position(|n| *n == name) {
+            ck.push(
                 format!("record.fault_stations_m[{i}]"),
                 format!("[{}, {}] m", num(p[0]), num(p[1])),
                 format!(
                     "a station whose benchmark file differs from station {j}'s ({name}.dat): the names count \
                      hectometres from [fault] origin_m, so fault stations lie at least 100 m apart"
                 ),
-            ),
-            None => seen.push((node, name, i)),
+            );
         }
+        names.push(name);
     }
 }
 

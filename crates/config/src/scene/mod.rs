@@ -118,7 +118,13 @@ pub(crate) fn build(file: SceneSections<'_>, ck: &mut Checker) -> Option<Scene> 
     };
     time::refuse_skip_ahead_with(ck, file.skip_ahead, file.loading_plate.is_some(), time::WITH_PLATE);
     let record = record::plan(ck, file.record, interface, control, &lattice);
-    fault::refuse_shared_station_names(ck, &file.record.fault_stations_m, fault.as_ref(), &lattice);
+    fault::refuse_shared_station_names(
+        ck,
+        &file.record.fault_stations_m,
+        &record.fault_stations,
+        fault.as_ref(),
+        &lattice,
+    );
     let (b, m) = (file.block, file.material);
     Some(Scene {
         dims: lattice.dims(),

@@ -10,9 +10,7 @@
 
 use std::time::{SystemTime, UNIX_EPOCH};
 
-use stickslip_seismo::scec::{
-    Header, OffFault, OnFault, cplot_text, fault_station_name, off_fault_text, on_fault_text,
-};
+use stickslip_seismo::scec::{Header, OffFault, OnFault, cplot_text, off_fault_text, on_fault_text};
 use stickslip_solver::scene::{Component, Kinematic};
 
 use crate::error::StoreError;
@@ -53,7 +51,7 @@ pub fn write(out: &Folder, view: &SeedView<'_>, stamp: &Stamp<'_>) -> Result<(),
         let (th, tv) = (pick(&st.shear_stress_pa[0]), pick(&st.shear_stress_pa[1]));
         let series = OnFault { time_s: &t, slip_m: [&sh, &sv], slip_rate_m_s: [&rh, &rv], shear_stress_pa: [&th, &tv] };
         write_text_atomic(
-            &dir.join(format!("{}.dat", fault_station_name(strike, depth))),
+            &dir.join(format!("{}.dat", super::fault_station_file(p, Some(fault.origin_m)))),
             &on_fault_text(&header, &series),
         )?;
     }

@@ -1,7 +1,7 @@
 //! One SEAS-layout station file per fault station of the scene (docs/model.md §13), under
 //! `<out>/fault_stations/seed<seed>/`, at the instants of the `fault` table.
 
-use stickslip_seismo::seas::{StationHeader, StationSeries, station_file_name, station_text};
+use stickslip_seismo::seas::{StationHeader, StationSeries, station_text};
 
 use crate::error::StoreError;
 use crate::files::Stamp;
@@ -42,7 +42,7 @@ pub fn write(out: &Folder, view: &SeedView<'_>, stamp: &Stamp<'_>) -> Result<(),
             normal_stress_pa: &sigma,
         };
         write_text_atomic(
-            &dir.join(format!("{}.dat", station_file_name(p[0], p[1]))),
+            &dir.join(format!("{}.dat", super::fault_station_file(p, None))),
             &station_text(&header, &series),
         )?;
     }

@@ -146,11 +146,7 @@ pub fn fault_station_series_frame(
     let (mut name, mut node, mut x, mut y) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     for st in &trace.stations {
         let p = lattice.position(st.node);
-        let label = match origin {
-            Some([x0, y0]) => stickslip_seismo::scec::fault_station_name(p[0] - x0, p[1] - y0),
-            None => stickslip_seismo::seas::station_file_name(p[0], p[1]),
-        };
-        name.extend(std::iter::repeat_n(label, n));
+        name.extend(std::iter::repeat_n(crate::files::fault_station_file(p, origin), n));
         node.extend(std::iter::repeat_n(st.node.ldem() as u32, n));
         x.extend(std::iter::repeat_n(p[0], n));
         y.extend(std::iter::repeat_n(p[1], n));
