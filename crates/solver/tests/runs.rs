@@ -5,7 +5,7 @@ mod common;
 use std::ops::ControlFlow;
 
 use common::{repo_path, scene_with};
-use stickslip_config::Pipeline;
+use stickslip_config::{Pipeline, PipelineFile};
 use stickslip_solver::statics::critical_time_step;
 use stickslip_solver::{Model, RunOptions, Scene, SolverError, run_lanes, run_seed};
 
@@ -94,6 +94,29 @@ fn a_run_forced_past_the_critical_step_is_stopped_with_when_and_where() {
         other => panic!("expected a blow-up, got {other}"),
     }
     assert!(msg.contains("went unstable at step") && msg.contains("self-weight stage"), "{msg}");
+}
+
+#[test]
+fn a_blow_up_is_reported_at_the_same_step_and_node_on_one_thread_and_two() {
+    let large = |f: &mut PipelineFile| {
+        (f.block.nx, f.block.ny, f.block.nz) = (40, 20, 10);
+        f.shear.driver_at_m = vec![[0.0, 0.0, 0.1]];
+    };
+    let probe = Model::new(scene_with(large));
+    let crit = critical_time_step(&probe, &probe.bar_stiffness(3).unwrap()).unwrap().dt_s;
+    let model = Model::new(scene_with(|f| {
+        large(f);
+        f.time.dt_s = Some(1.02 * crit);
+    }));
+    assert!(model.lattice().node_count() > 1 << 14, "more than one chunk of the parallel scan");
+    let unstable = |parallel_step: bool| {
+        let options = RunOptions { allow_unstable_time_step: true, parallel_step, ..RunOptions::default() };
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
+        let err = pool.install(|| run_seed(&model, 3, options, &mut go)).unwrap_err();
+        assert!(matches!(err, SolverError::Unstable { .. }), "{err}");
+        err.to_string()
+    };
+    assert_eq!(unstable(true), unstable(false));
 }
 
 #[test]
