@@ -529,10 +529,19 @@ fn kernel_table() -> &'static [f64] {
 /// the kernel; the tests `resampling_…` check the flat part and the rejection). Samples outside
 /// `x` count as zero.
 pub fn resample(x: &[f64], dt_in: f64, dt_out: f64) -> Vec<f64> {
-    if x.is_empty() {
-        return Vec::new();
+    let [y] = resample_together([x], dt_in, dt_out);
+    y
+}
+
+/// [`resample`] of several series of the same length at once: the kernel's weights of each new
+/// sample are computed once and applied to every series, in the same order, so each result has
+/// the bits `resample` gives it alone.
+pub fn resample_together<const K: usize>(xs: [&[f64]; K], dt_in: f64, dt_out: f64) -> [Vec<f64>; K] {
+    let n = xs.first().map_or(0, |x| x.len());
+    debug_assert!(xs.iter().all(|x| x.len() == n), "series of one record have one length");
+    if n == 0 {
+        return std::array::from_fn(|_| Vec::new());
     }
-    let n = x.len();
     let m = ((n - 1) as f64 * dt_in / dt_out * (1.0 + 1e-12)).floor() as usize + 1;
     let table = kernel_table();
     let r = (dt_in / dt_out).min(1.0);
@@ -547,18 +556,27 @@ pub fn resample(x: &[f64], dt_in: f64, dt_out: f64) -> Vec<f64> {
         let f = pos - i as f64;
         table[i] + f * (table[i + 1] - table[i])
     };
-    (0..m)
-        .map(|i| {
-            let u = i as f64 * dt_out / dt_in;
-            let lo = (u - reach).ceil().max(0.0) as usize;
-            let hi = ((u + reach).floor() as usize).min(n - 1);
-            let mut y = 0.0;
-            for (k, xk) in x.iter().enumerate().take(hi + 1).skip(lo) {
-                y += xk * kernel(u - k as f64);
+    let mut out: [Vec<f64>; K] = std::array::from_fn(|_| Vec::with_capacity(m));
+    let mut weights = Vec::new();
+    for i in 0..m {
+        let u = i as f64 * dt_out / dt_in;
+        let lo = (u - reach).ceil().max(0.0) as usize;
+        let hi = ((u + reach).floor() as usize).min(n - 1);
+        weights.clear();
+        weights.extend((lo..=hi).map(|k| kernel(u - k as f64)));
+        // The series side by side: K independent sums, each in the order `resample` adds.
+        let start = lo.min(n);
+        let mut sums = [0.0; K];
+        for (j, w) in weights.iter().enumerate() {
+            for (sum, x) in sums.iter_mut().zip(&xs) {
+                *sum += x[start + j] * w;
             }
-            r * y
-        })
-        .collect()
+        }
+        for (y, sum) in out.iter_mut().zip(sums) {
+            y.push(r * sum);
+        }
+    }
+    out
 }
 
 /// The interval records are written at: `requested` (the pipeline's `record.interval_s`) when
@@ -583,7 +601,7 @@ impl Processed {
         if dt == self.dt {
             return self.clone();
         }
-        let accel = resample(&self.accel, self.dt, dt);
+        let [accel, vel, disp] = resample_together([&self.accel, &self.vel, &self.disp], self.dt, dt);
         let m = accel.len();
         let pad_front = ((self.pad_front as f64 * self.dt / dt) - 1e-9).ceil().max(0.0) as usize;
         let record_end = (self.accel.len() - self.pad_end) as f64 * self.dt;
@@ -598,8 +616,8 @@ impl Processed {
             order: self.order,
             mean_removed: self.mean_removed,
             baseline: self.baseline.clone(),
-            vel: resample(&self.vel, self.dt, dt),
-            disp: resample(&self.disp, self.dt, dt),
+            vel,
+            disp,
             accel,
         }
     }

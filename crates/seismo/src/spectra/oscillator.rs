@@ -60,6 +60,8 @@ pub struct Oscillator {
     k_slope: f64,
     inv_h: f64,
     inv_wd: f64,
+    /// `(cos, sin)` of `ω_d·h` when it is below π (see [`Oscillator::turn`]).
+    turn: Option<(f64, f64)>,
 }
 
 impl Oscillator {
@@ -83,6 +85,10 @@ impl Oscillator {
             k_slope: 2.0 * xi / (omega * omega * omega),
             inv_h: 1.0 / h,
             inv_wd: 1.0 / wd,
+            turn: (wd * h < PI).then(|| {
+                let (s, c) = (wd * h).sin_cos();
+                (c, s)
+            }),
         }
     }
 
@@ -211,11 +217,7 @@ impl Oscillator {
     /// than π (then `|y|` has an interior maximum in the step only where `Im(z·e^{iω_dτ})`
     /// changes sign, see `rotd`).
     pub(crate) fn turn(&self) -> Option<(f64, f64)> {
-        let phase = self.wd * self.h;
-        (phase < PI).then(|| {
-            let (s, c) = phase.sin_cos();
-            (c, s)
-        })
+        self.turn
     }
 
     /// Largest |u| of the free vibration from `(u0, v0)` (see [`free_vibration_peak`]).

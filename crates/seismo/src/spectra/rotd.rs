@@ -426,10 +426,11 @@ fn run_any(w: &Work, v: &mut Vectors, angle_flag: &mut Vec<u8>, candidates: &mut
     // longer reach their peaks stop (each component's own, and every angle's: the disc
     // inscribed in the hull of the points so far is inside every angle's final peak).
     ext.reset(n);
+    let directions = direction_cosines();
     for k in steps.clone() {
         let (x0, x1) = step_input(w.x, k);
         let (y0, y1) = step_input(w.y, k);
-        first_pass_step(&bank.k, running.first, n, x0, x1, y0, y1, sx, sy, ext);
+        first_pass_step(&bank.k, &directions, running.first, n, x0, x1, y0, y1, sx, sy, ext);
         if w.settle && (k + 1 - first).is_multiple_of(CHECK) {
             let rests = (rest_x[k + 1], rest_y[k + 1], rest_p[k + 1]);
             running.settle(k, n, |o| pair_settled(&bank.k, o, n, sx, sy, ext, rests));
@@ -570,12 +571,22 @@ fn pair_settled(
     })
 }
 
+/// `(cos, sin)` of each of [`DIRECTIONS`].
+fn direction_cosines() -> [(f64, f64); DIRECTIONS.len()] {
+    DIRECTIONS.map(|d| {
+        let (s, c) = d.to_radians().sin_cos();
+        (c, s)
+    })
+}
+
 /// First pass, one step of oscillators `lo..n`: both recurrences in place with each
-/// component's peak at the samples, and the samples where |u_x|, |u_y| and |P| peak.
+/// component's peak at the samples, and the samples where |u_x|, |u_y| and |P| peak
+/// (`directions` from [`direction_cosines`]).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn first_pass_step(
     k: &Coefficients,
+    directions: &[(f64, f64); DIRECTIONS.len()],
     lo: usize,
     n: usize,
     x0: f64,
@@ -603,12 +614,7 @@ fn first_pass_step(
         py[o] = py[o].max(w1.abs());
     }
     for j in 0..POINTS {
-        let (c, s) = if j < DIRECTIONS.len() {
-            let (s, c) = DIRECTIONS[j].to_radians().sin_cos();
-            (c, s)
-        } else {
-            (0.0, 0.0)
-        };
+        let (c, s) = if j < DIRECTIONS.len() { directions[j] } else { (0.0, 0.0) };
         let value = &mut ext.value[j * n + lo..(j + 1) * n];
         let px = &mut ext.px[j * n + lo..(j + 1) * n];
         let py = &mut ext.py[j * n + lo..(j + 1) * n];
