@@ -153,7 +153,21 @@ fn every_table_matches_its_declaration_and_reads_back_typed() {
                     "set" => assert_eq!(SetTable::read(&df).unwrap().record.len(), 1),
                     "cracks" => assert!(!Cracks::read(&df).unwrap().is_empty()),
                     "acoustic_emission" => assert!(!AcousticEmission::read(&df).unwrap().is_empty()),
-                    "fourier" => assert!(read_fourier(&df, "S1-n36-z").unwrap().is_some()),
+                    "fourier" => {
+                        // Every bin of the record's usable band, and none above it.
+                        let (f, _) = read_fourier(&df, "S1-n36-z").unwrap().expect("S1's z record");
+                        let seed = df.column("seed").unwrap().u64().unwrap().get(0).unwrap();
+                        let records = folder.part(&stickslip_store::tables::records::RECORDS, seed);
+                        let r = Records::read(&read_parquet(&records).unwrap()).unwrap();
+                        let i =
+                            (0..r.record.len()).find(|&i| r.record[i] == "S1-n36-z" && r.scale[i] == "model").unwrap();
+                        let (top, df_hz) = (f[f.len() - 1], f[1] - f[0]);
+                        assert!(
+                            top <= r.usable_high_hz[i] && top + df_hz > r.usable_high_hz[i],
+                            "{top} Hz, band {}",
+                            r.usable_high_hz[i]
+                        );
+                    }
                     // The skip-ahead pipeline has no control node: its part is empty, with the schema.
                     "control" => assert_eq!(
                         read_control(&df, 36, Component::Z, Kinematic::Acceleration).unwrap().is_some(),

@@ -322,8 +322,12 @@ pub fn compute(
             let intensity = intensity(&processed.accel, dt, Baseline::None);
             // The response spectra come below: a node's x and y records from the passes of
             // their RotD, the others alone.
+            // Up to the top of the usable band: above it the amplitudes are the filter's roll-off.
             let fourier = spectra.map(|s| {
-                SCRATCH.with(|scratch| fourier_amplitude(&processed.accel, dt, s.window, &mut scratch.borrow_mut().fft))
+                let mut fs = SCRATCH
+                    .with(|scratch| fourier_amplitude(&processed.accel, dt, s.window, &mut scratch.borrow_mut().fft));
+                fs.keep_up_to(band.usable_high_hz);
+                fs
             });
             match ch.component {
                 Component::X => horizontal.entry(ch.node).or_default()[0] = Some(out.records.len()),

@@ -284,7 +284,7 @@ pub(super) fn fourier(d: &ReportInput, path: &Path) -> Result<Outcome, ReportErr
         format!("Fourier spectra, {}", nodes_short(&nodes)),
         format!(
             "Fourier amplitude |X(f)|·Δt of the processed record of main shock S2 for {}, {} (zero-padded to a power \
-             of two; the largest value per 1/200 decade is drawn). At prototype scale the frequencies are divided by \
+             of two; up to the top of the record's usable band; the largest value per 1/200 decade is drawn). At prototype scale the frequencies are divided by \
              λ, the amplitudes unchanged.",
             seeds_text(&d.seeds),
             nodes_text(&nodes, total)

@@ -29,6 +29,16 @@ pub struct FourierSpectrum {
     pub amplitude: Vec<f64>,
 }
 
+impl FourierSpectrum {
+    /// Keeps the frequencies at or below `f_hz` (a record's usable band ends there: above it
+    /// the amplitudes are its filter's roll-off, not the motion).
+    pub fn keep_up_to(&mut self, f_hz: f64) {
+        let n = self.frequency_hz.partition_point(|&f| f <= f_hz);
+        self.frequency_hz.truncate(n);
+        self.amplitude.truncate(n);
+    }
+}
+
 /// Fourier amplitude spectrum of `x` sampled every `dt` seconds.
 pub fn fourier_amplitude(x: &[f64], dt: f64, window: Window, planner: &mut FftPlanner<f64>) -> FourierSpectrum {
     let n = x.len();
@@ -57,6 +67,21 @@ pub fn fourier_amplitude(x: &[f64], dt: f64, window: Window, planner: &mut FftPl
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn keeping_a_band_keeps_its_top_frequency_and_drops_the_rest() {
+        let mut planner = FftPlanner::new();
+        let mut fs = fourier_amplitude(&[1.0; 16], 0.01, Window::Rectangular, &mut planner);
+        assert_eq!(fs.frequency_hz.len(), 9); // 0, 6.25, …, 50 Hz
+        let whole = fs.clone();
+        fs.keep_up_to(25.0);
+        assert_eq!(fs.frequency_hz, &whole.frequency_hz[..5]);
+        assert_eq!(fs.amplitude, &whole.amplitude[..5]);
+        fs.keep_up_to(24.9);
+        assert_eq!(fs.frequency_hz.last(), Some(&18.75));
+        fs.keep_up_to(-1.0);
+        assert!(fs.frequency_hz.is_empty() && fs.amplitude.is_empty());
+    }
 
     #[test]
     fn sine_peak_and_a_naive_dft_agree() {
