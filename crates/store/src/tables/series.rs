@@ -146,7 +146,7 @@ pub fn fault_station_series_frame(
     let (mut name, mut node, mut x, mut y) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     for st in &trace.stations {
         let p = lattice.position(st.node);
-        name.extend(std::iter::repeat_n(crate::files::fault_station_file(p, origin), n));
+        name.extend(std::iter::repeat_n(fault_station_file(p, origin), n));
         node.extend(std::iter::repeat_n(st.node.ldem() as u32, n));
         x.extend(std::iter::repeat_n(p[0], n));
         y.extend(std::iter::repeat_n(p[1], n));
@@ -324,5 +324,16 @@ read_back! {
         time_s: Vec<f64> = c.f64s(col::TIME_S)?,
         /// Slip rate (m/s).
         slip_rate_m_s: Vec<f64> = c.f64s(col::SLIP_RATE_M_S)?,
+    }
+}
+
+/// The name of a fault station's file (without `.dat`) at the base point `p` (m): on a fault
+/// (`origin` its `[fault] origin_m`) the SCEC benchmarks' `faultst<strike>dp<depth>`, on the rigid
+/// base the SEAS layout's `fltst_strk…dp…`. The `fault_station_series` table names its rows so, and
+/// `crate::files` the stations' `.dat` files.
+pub fn fault_station_file(p: [f64; 3], origin: Option<[f64; 2]>) -> String {
+    match origin {
+        Some([x0, y0]) => stickslip_seismo::scec::fault_station_name(p[0] - x0, p[1] - y0),
+        None => stickslip_seismo::seas::station_file_name(p[0], p[1]),
     }
 }
