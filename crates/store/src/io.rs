@@ -1,6 +1,7 @@
 //! Atomic writes (temporary file, then rename) and reads of Parquet tables and text files.
 
 use std::fs::File;
+use std::io::BufWriter;
 use std::path::{Path, PathBuf};
 
 use polars::prelude::*;
@@ -23,12 +24,16 @@ pub fn write_parquet_atomic(df: &mut DataFrame, path: &Path) -> Result<(), Store
     let arrow_schema = polars_parquet::write::schema_to_metadata_key(&df.schema().to_arrow(CompatLevel::oldest()));
     let metadata = KeyValueMetadata::Static(vec![arrow_schema]);
     let result = (|| {
+        // Buffered: the writer hands over each page and piece of metadata as its own write,
+        // thousands of system calls for a table of a few megabytes.
         let file = File::create(&tmp).map_err(|e| StoreError::io(&tmp, e))?;
-        ParquetWriter::new(file)
+        let mut out = BufWriter::with_capacity(1 << 20, file);
+        ParquetWriter::new(&mut out)
             .with_compression(ParquetCompression::Zstd(None))
             .with_key_value_metadata(Some(metadata))
             .finish(df)
             .map_err(|e| StoreError::table(path.display().to_string(), e))?;
+        out.into_inner().map_err(|e| StoreError::io(&tmp, e.into_error()))?;
         std::fs::rename(&tmp, path).map_err(|e| StoreError::io(path, e))
     })();
     if result.is_err() {
