@@ -153,17 +153,20 @@ impl Extremes {
 }
 
 /// A convex polygon symmetric about the origin, as half-planes `n·P ≤ d` (unit outward `n`);
-/// no edge means degenerate (nothing is inside).
+/// no edge means degenerate (nothing is inside). The entries past `edges` are `n = 0`,
+/// `d = +∞`, which every finite point satisfies, so a point is tested against all entries at
+/// once, side by side.
 #[derive(Clone, Copy, Debug)]
 struct Hull {
     edges: usize,
-    n: [[f64; 2]; 2 * POINTS],
+    nx: [f64; 2 * POINTS],
+    ny: [f64; 2 * POINTS],
     d: [f64; 2 * POINTS],
 }
 
 impl Default for Hull {
     fn default() -> Self {
-        Hull { edges: 0, n: [[0.0; 2]; 2 * POINTS], d: [0.0; 2 * POINTS] }
+        Hull { edges: 0, nx: [0.0; 2 * POINTS], ny: [0.0; 2 * POINTS], d: [f64::INFINITY; 2 * POINTS] }
     }
 }
 
@@ -211,7 +214,7 @@ impl Hull {
             let (ex, ey) = (b[0] - a[0], b[1] - a[1]);
             let len = ex.hypot(ey);
             let n = [ey / len, -ex / len];
-            hull.n[hull.edges] = n;
+            (hull.nx[hull.edges], hull.ny[hull.edges]) = (n[0], n[1]);
             hull.d[hull.edges] = n[0] * a[0] + n[1] * a[1];
             hull.edges += 1;
         }
@@ -224,8 +227,13 @@ impl Hull {
     }
 
     /// Whether `p` is inside with at least `margin` to spare from every edge.
+    #[inline(always)]
     fn holds(&self, p: [f64; 2], margin: f64) -> bool {
-        self.edges > 0 && (0..self.edges).all(|i| self.n[i][0] * p[0] + self.n[i][1] * p[1] + margin <= self.d[i])
+        let mut inside = true;
+        for i in 0..2 * POINTS {
+            inside &= self.nx[i] * p[0] + self.ny[i] * p[1] + margin <= self.d[i];
+        }
+        self.edges > 0 && inside
     }
 }
 
@@ -751,6 +759,7 @@ struct Step {
 
 impl Step {
     /// Whether the step may leave `hull` (the end sample, or the bounds inside the step).
+    #[inline(always)]
     fn escapes(&self, osc: &Oscillator, hull: &Hull) -> bool {
         let (lx0, lxh, zx) = osc.envelope(self.ux[0], self.vx, self.x[0], self.x[1]);
         let (ly0, lyh, zy) = osc.envelope(self.uy[0], self.vy, self.y[0], self.y[1]);
