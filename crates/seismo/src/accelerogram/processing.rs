@@ -58,6 +58,8 @@
 use rustfft::FftPlanner;
 use rustfft::num_complex::Complex;
 
+use stickslip_isa::{Isa, widest};
+
 use crate::error::SeismoError;
 
 /// How the record's zero level is set before anything else.
@@ -537,46 +539,91 @@ pub fn resample(x: &[f64], dt_in: f64, dt_out: f64) -> Vec<f64> {
 /// sample are computed once and applied to every series, in the same order, so each result has
 /// the bits `resample` gives it alone.
 pub fn resample_together<const K: usize>(xs: [&[f64]; K], dt_in: f64, dt_out: f64) -> [Vec<f64>; K] {
+    let mut out: [Vec<f64>; K] = std::array::from_fn(|_| Vec::new());
+    resample_into(Isa::current(), &xs, dt_in, dt_out, &mut out);
+    out
+}
+
+widest! {
+    /// [`resample_together`] into `out`, in instruction set `isa`.
+    fn resample_into<const K: usize>(xs: &[&[f64]; K], dt_in: f64, dt_out: f64, out: &mut [Vec<f64>; K]) => resample_any
+}
+
+/// The kernel of [`resample_into`], compiled once per instruction set (the same bits).
+#[inline(always)]
+fn resample_any<const K: usize>(xs: &[&[f64]; K], dt_in: f64, dt_out: f64, out: &mut [Vec<f64>; K]) {
     let n = xs.first().map_or(0, |x| x.len());
     debug_assert!(xs.iter().all(|x| x.len() == n), "series of one record have one length");
     if n == 0 {
-        return std::array::from_fn(|_| Vec::new());
+        return;
     }
     let m = ((n - 1) as f64 * dt_in / dt_out * (1.0 + 1e-12)).floor() as usize + 1;
     let table = kernel_table();
     let r = (dt_in / dt_out).min(1.0);
     let reach = RESAMPLE_HALF_WIDTH as f64 / r;
     let per = KERNEL_TABLE_PER_SAMPLE as f64;
+    // The kernel at `u` input samples from the centre: linear between the table's points, zero
+    // past its end. Written without branches so that the taps of a sample run side by side.
     let kernel = |u: f64| -> f64 {
         let pos = (r * u).abs() * per;
         let i = pos as usize;
-        if i + 1 >= table.len() {
-            return 0.0;
-        }
+        let inside = i + 1 < table.len();
+        let k = if inside { i } else { 0 };
+        // SAFETY: `k + 1 < table.len()` (k = 0 when not inside, and the table has two points
+        // or more).
+        let (a, b) = unsafe { (*table.get_unchecked(k), *table.get_unchecked(k + 1)) };
         let f = pos - i as f64;
-        table[i] + f * (table[i + 1] - table[i])
+        if inside { a + f * (b - a) } else { 0.0 }
     };
-    let mut out: [Vec<f64>; K] = std::array::from_fn(|_| Vec::with_capacity(m));
-    let mut weights = Vec::new();
-    for i in 0..m {
-        let u = i as f64 * dt_out / dt_in;
-        let lo = (u - reach).ceil().max(0.0) as usize;
-        let hi = ((u + reach).floor() as usize).min(n - 1);
-        weights.clear();
-        weights.extend((lo..=hi).map(|k| kernel(u - k as f64)));
-        // The series side by side: K independent sums, each in the order `resample` adds.
-        let start = lo.min(n);
-        let mut sums = [0.0; K];
-        for (j, w) in weights.iter().enumerate() {
-            for (sum, x) in sums.iter_mut().zip(&xs) {
-                *sum += x[start + j] * w;
+    for y in out.iter_mut() {
+        y.clear();
+        y.reserve(m);
+    }
+    // New samples BLOCK at a time, their sums side by side (each still adds its taps in order):
+    // a sum is a chain of dependent additions, and independent chains overlap.
+    const BLOCK: usize = 4;
+    let mut weights: [Vec<f64>; BLOCK] = std::array::from_fn(|_| Vec::new());
+    let mut first = 0;
+    while first < m {
+        let count = BLOCK.min(m - first);
+        let mut start = [0usize; BLOCK];
+        for b in 0..count {
+            let u = (first + b) as f64 * dt_out / dt_in;
+            let lo = (u - reach).ceil().max(0.0) as usize;
+            let hi = ((u + reach).floor() as usize).min(n - 1);
+            let w = &mut weights[b];
+            w.clear();
+            w.resize((hi + 1).saturating_sub(lo), 0.0);
+            for (j, w) in w.iter_mut().enumerate() {
+                *w = kernel(u - (lo + j) as f64);
+            }
+            start[b] = lo.min(n);
+        }
+        let common = weights[..count].iter().map(Vec::len).min().unwrap_or(0);
+        let mut sums = [[0.0; K]; BLOCK];
+        if count == BLOCK {
+            for j in 0..common {
+                for b in 0..BLOCK {
+                    let w = weights[b][j];
+                    for (sum, x) in sums[b].iter_mut().zip(xs) {
+                        *sum += x[start[b] + j] * w;
+                    }
+                }
             }
         }
-        for (y, sum) in out.iter_mut().zip(sums) {
-            y.push(r * sum);
+        for b in 0..count {
+            let from = if count == BLOCK { common } else { 0 };
+            for (j, w) in weights[b].iter().enumerate().skip(from) {
+                for (sum, x) in sums[b].iter_mut().zip(xs) {
+                    *sum += x[start[b] + j] * w;
+                }
+            }
+            for (y, sum) in out.iter_mut().zip(sums[b]) {
+                y.push(r * sum);
+            }
         }
+        first += count;
     }
-    out
 }
 
 /// The interval records are written at: `requested` (the pipeline's `record.interval_s`) when
