@@ -567,7 +567,7 @@ fn resample_any<const K: usize>(xs: &[&[f64]; K], dt_in: f64, dt_out: f64, out: 
     let kernel = |u: f64| -> f64 {
         let pos = (r * u).abs() * per;
         let i = pos as usize;
-        let inside = i + 1 < table.len();
+        let inside = i < table.len() - 1;
         let k = if inside { i } else { 0 };
         // SAFETY: `k + 1 < table.len()` (k = 0 when not inside, and the table has two points
         // or more).
