@@ -553,7 +553,7 @@ widest! {
 #[inline(always)]
 fn resample_any<const K: usize>(xs: &[&[f64]; K], dt_in: f64, dt_out: f64, out: &mut [Vec<f64>; K]) {
     let n = xs.first().map_or(0, |x| x.len());
-    debug_assert!(xs.iter().all(|x| x.len() == n), "series of one record have one length");
+    assert!(xs.iter().all(|x| x.len() == n), "series resampled together have one length");
     if n == 0 {
         return;
     }
