@@ -9,6 +9,7 @@
 pub mod at2;
 pub mod csv;
 pub mod processing;
+pub mod resample;
 pub mod sac;
 
 use std::path::Path;
