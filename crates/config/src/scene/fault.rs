@@ -376,6 +376,20 @@ pub(super) fn refuse_shared_station_names(
     }
 }
 
+/// One station point of `[[stations]]` before it is placed on a node.
+struct StationPoint {
+    /// The station's name (`<name>-<k>` for a line's points).
+    name: String,
+    /// Its position (m).
+    at: [f64; 3],
+    /// The field a refusal names.
+    field: String,
+    /// Index of its `[[stations]]` entry.
+    index: usize,
+    /// The position as a refusal shows it.
+    shown: String,
+}
+
 /// `[fault.nucleation]` checked: a square of at least 2·Lc whose centre's range keeps it on the
 /// fault, with a positive traction (whether it exceeds the strength where it lands is the
 /// friction map's business: `check` prints the nucleation).
@@ -502,8 +516,7 @@ pub(super) fn stations(
             approx(e[2])
         )
     };
-    // Name, position, the field a refusal names, the station's index, the position as shown.
-    let mut out: Vec<(String, [f64; 3], String, usize, String)> = Vec::new();
+    let mut out: Vec<StationPoint> = Vec::new();
     for (i, s) in file.stations.iter().enumerate() {
         let field = format!("stations[{i}]");
         let valid_name = !s.name.is_empty() && s.name.chars().all(|c| c.is_ascii_alphanumeric() || "-_.".contains(c));
@@ -511,7 +524,13 @@ pub(super) fn stations(
             ck.push(format!("{field}.name"), format!("{:?}", s.name), "a name of letters, digits, '-', '_' or '.'");
         }
         match (s.at_m, s.from_m, s.to_m, s.count) {
-            (Some(p), None, None, None) => out.push((s.name.clone(), p, format!("{field}.at_m"), i, format!("{p:?}"))),
+            (Some(p), None, None, None) => out.push(StationPoint {
+                name: s.name.clone(),
+                at: p,
+                field: format!("{field}.at_m"),
+                index: i,
+                shown: format!("{p:?}"),
+            }),
             (None, Some(a), Some(b), Some(count)) => {
                 let Some(count) =
                     ck.count(&format!("{field}.count"), count, 2, 100_000, " (points on the line, ends included)")
@@ -534,7 +553,13 @@ pub(super) fn stations(
                     let t = k as f64 / (count - 1) as f64;
                     let p = [0, 1, 2].map(|a_| a[a_] + t * (b[a_] - a[a_]));
                     let shown = format!("[{}, {}, {}]", approx(p[0]), approx(p[1]), approx(p[2]));
-                    out.push((format!("{}-{k}", s.name), p, format!("{field}.count"), i, shown));
+                    out.push(StationPoint {
+                        name: format!("{}-{k}", s.name),
+                        at: p,
+                        field: format!("{field}.count"),
+                        index: i,
+                        shown,
+                    });
                 }
             }
             _ => ck.push(
@@ -545,7 +570,7 @@ pub(super) fn stations(
         }
     }
     let mut stations: Vec<Station> = Vec::new();
-    for (name, p, field, i, shown) in out {
+    for StationPoint { name, at: p, field, index: i, shown } in out {
         if !inside(p) {
             ck.push(field, format!("{shown} m"), block_text());
             continue;
