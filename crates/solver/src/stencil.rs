@@ -21,8 +21,11 @@
 //! **Slabs.** The layers are cut into slabs of at least two layers. A layer's bars write its own
 //! nodes and the layer above's, so the bars of every layer but a slab's top one can run for all
 //! slabs at once (phase 0), then the top layers' (phase 1, each writing two layers no other top
-//! layer writes). The partition depends only on the block, so every thread count gives the same
-//! bits.
+//! layer writes). The lattice's top layer (corners only, whose bars join nodes of that layer) is a
+//! slab of its own when the layer count is odd, run in phase 0: the other layers then split
+//! evenly, so two threads get the same work in each phase (21 layers in ten slabs of two and one
+//! of three gave one thread six layers' bars in phase 0 and the other five). The partition
+//! depends only on the block, so every thread count gives the same bits.
 
 use std::ops::Range;
 
@@ -185,8 +188,13 @@ impl StencilLayout {
         }
         let layer_nodes = (0..=nz).map(layer).chain([dims.node_count()]).collect();
         let layers = nz + 1;
-        let count = (layers / 2).clamp(1, MAX_SLABS);
-        let slabs = (0..=count).map(|s| s * layers / count).collect();
+        let top_alone = layers % 2 == 1 && layers >= 5;
+        let below = if top_alone { layers - 1 } else { layers };
+        let count = (below / 2).clamp(1, MAX_SLABS);
+        let mut slabs: Vec<usize> = (0..=count).map(|s| s * below / count).collect();
+        if top_alone {
+            slabs.push(layers);
+        }
         StencilLayout { runs, layer_runs, layer_nodes, slabs, bars }
     }
 
@@ -228,6 +236,23 @@ impl StencilLayout {
     /// The layers of each slab, bottom up.
     pub fn slabs(&self) -> impl Iterator<Item = Range<usize>> + '_ {
         self.slabs.windows(2).map(|w| w[0]..w[1])
+    }
+
+    /// The layers whose bars slab `slab` runs in `phase` (0 or 1): all but its top one in phase 0
+    /// and the top one in phase 1, or, for the lattice's top layer alone (whose bars write only
+    /// its own nodes), that layer in phase 0 and nothing in phase 1.
+    pub fn phase_layers(&self, slab: &Range<usize>, phase: u8) -> Range<usize> {
+        match (Self::top_alone(slab), phase) {
+            (true, 0) => slab.clone(),
+            (true, _) => slab.end..slab.end,
+            (false, 0) => slab.start..slab.end - 1,
+            (false, _) => slab.end - 1..slab.end,
+        }
+    }
+
+    /// Whether `slab` is the lattice's top layer alone (the only slab of one layer).
+    pub fn top_alone(slab: &Range<usize>) -> bool {
+        slab.len() == 1
     }
 
     /// Longest run (bars).
@@ -359,10 +384,14 @@ mod tests {
                     assert_eq!(rs[index].at(m, r.len as usize), listed_k[c], "{dims:?}: nominal of bar {c}");
                 }
             }
-            // Layers hold consecutive nodes; slabs at least two layers each.
+            // Layers hold consecutive nodes; slabs at least two layers each, but the top layer
+            // alone when the layer count is odd (five or more).
             assert_eq!(s.layer_nodes(0).start, 0);
             assert_eq!(s.layer_nodes(s.layers() - 1).end, s.nodes());
-            assert!(s.slabs().all(|sl| sl.len() >= 2));
+            let slabs: Vec<_> = s.slabs().collect();
+            let top_alone = s.layers() % 2 == 1 && s.layers() >= 5;
+            assert_eq!(slabs.last().map(|sl| sl.len() == 1), Some(top_alone), "{dims:?}: {slabs:?}");
+            assert!(slabs[..slabs.len() - usize::from(top_alone)].iter().all(|sl| sl.len() >= 2));
             // A layer's bars start in it and end in it or the next.
             for k in 0..s.layers() {
                 for r in s.layer_runs(k) {

@@ -12,6 +12,7 @@ use nalgebra::{DMatrix, SymmetricEigen};
 use rand::SeedableRng;
 use rand::distr::{Distribution, StandardUniform};
 use rand::rngs::ChaCha8Rng;
+use rayon::prelude::*;
 
 use crate::error::SolverError;
 use crate::field::Field;
@@ -122,8 +123,9 @@ fn lanczos_with(model: &Model, k: StiffnessRef<'_, 1>, how: Lanczos, cap: f64) -
     let inv_sqrt_m: Vec<f64> = model.inv_mass().iter().map(|v| v.sqrt()).collect();
     // Four vectors of 3n: q, q_prev (flat, component-major), x = M^{-1/2}q and the forces
     // (fields), x then holding w. Each iteration: the bar pass, then two fused passes over the
-    // nodes (w and α = w·q; w −= αq and β² = w·w), then q = w/β with the next x: the same
-    // arithmetic, in the same order, as one pass per operation.
+    // nodes (w and α = w·q, clearing the forces; w −= αq and β² = w·w), then q = w/β with the
+    // next x: the same arithmetic, in the same order, as one pass per operation. On a stencil the
+    // passes run block by block ([`STENCIL_BLOCK`]), on the pool with `parallel`.
     let mut x = Field::<1>::zeros(n);
     let mut f = Field::<1>::zeros(n);
     // Boundary conditions with springs (the loading plate's) add `k_i/m_i` to the diagonal of
@@ -142,35 +144,48 @@ fn lanczos_with(model: &Model, k: StiffnessRef<'_, 1>, how: Lanczos, cap: f64) -
     let (mut alphas, mut betas) = (Vec::new(), Vec::new());
     let max_iter = dof.min(max_iter);
     let mut best: Option<(f64, f64)> = None;
+    // A listed lattice's sums run over every degree of freedom in one block (in order); a
+    // stencil's in blocks of `STENCIL_BLOCK`, the blocks' sums then added in order.
+    let block = if matches!(model.layout(), Bars::Stencil(_)) { STENCIL_BLOCK } else { usize::MAX };
+    let par = parallel && block != usize::MAX;
     for it in 1..=max_iter {
-        // f = −K·M^{-1/2}q.
-        f.fill_zero();
+        // f = −K·M^{-1/2}q (f is zero: cleared by the pass below as it is read).
         match (model.layout(), parallel) {
             (Bars::Stencil(layout), true) => crate::step::stencil::forces_parallel(layout, k1, &x, &mut f),
             _ => bar_forces(model.layout(), k1, &x, &mut f),
         }
-        // w = −M^{-1/2}f − β_prev·q_prev (into x), α = w·q.
+        // w = −M^{-1/2}f − β_prev·q_prev (into x, f cleared), α = w·q.
         let beta_prev = betas.last().copied().unwrap_or(0.0);
-        let mut alpha = -0.0;
-        for c in 0..3 {
-            let (w, fc) = (&mut x.c[c], &f.c[c]);
-            let (qc, qp) = (&q[c * n..(c + 1) * n], &q_prev[c * n..(c + 1) * n]);
-            for i in 0..n {
-                let v = -fc[i][0] * inv_sqrt_m[i] - beta_prev * qp[i];
-                w[i][0] = v;
-                alpha += v * qc[i];
+        let (q_r, qp_r, ism) = (&q, &q_prev, &inv_sqrt_m);
+        let alpha = sum_blocks(blocks(&mut x, Some(&mut f), block), par, |b| {
+            let mut s = -0.0;
+            let mut d = b.start;
+            for p in b.pieces {
+                let fp = p.f.expect("pass with forces");
+                for (i, (w, fi)) in p.w.iter_mut().zip(fp.iter_mut()).enumerate() {
+                    let v = -fi[0] * ism[p.node + i] - beta_prev * qp_r[d];
+                    w[0] = v;
+                    fi[0] = 0.0;
+                    s += v * q_r[d];
+                    d += 1;
+                }
             }
-        }
+            s
+        });
         // w −= α·q, β² = w·w.
-        let mut beta2 = -0.0;
-        for c in 0..3 {
-            let (w, qc) = (&mut x.c[c], &q[c * n..(c + 1) * n]);
-            for i in 0..n {
-                let v = w[i][0] - alpha * qc[i];
-                w[i][0] = v;
-                beta2 += v * v;
+        let beta2 = sum_blocks(blocks(&mut x, None, block), par, |b| {
+            let mut s = -0.0;
+            let mut d = b.start;
+            for p in b.pieces {
+                for w in p.w.iter_mut() {
+                    let v = w[0] - alpha * q_r[d];
+                    w[0] = v;
+                    s += v * v;
+                    d += 1;
+                }
             }
-        }
+            s
+        });
         let beta: f64 = beta2.sqrt();
         alphas.push(alpha);
         betas.push(beta);
@@ -196,19 +211,91 @@ fn lanczos_with(model: &Model, k: StiffnessRef<'_, 1>, how: Lanczos, cap: f64) -
         }
         // q_prev ← q, q ← w/β, x ← M^{-1/2}q.
         std::mem::swap(&mut q_prev, &mut q);
-        for c in 0..3 {
-            let (w, qc) = (&mut x.c[c], &mut q[c * n..(c + 1) * n]);
-            for i in 0..n {
-                let v = w[i][0] / beta;
-                qc[i] = v;
-                w[i][0] = v * inv_sqrt_m[i];
+        let next = |(b, qc): (Block<'_>, &mut [f64])| {
+            let mut d = 0;
+            for p in b.pieces {
+                for (i, w) in p.w.iter_mut().enumerate() {
+                    let v = w[0] / beta;
+                    qc[d] = v;
+                    w[0] = v * ism[p.node + i];
+                    d += 1;
+                }
             }
+        };
+        let bl = blocks(&mut x, None, block);
+        if par {
+            bl.into_par_iter().zip(q.par_chunks_mut(block)).for_each(next);
+        } else {
+            bl.into_iter().zip(q.chunks_mut(block)).for_each(next);
         }
     }
     let (theta, residual) = best.unwrap_or((gershgorin, 0.0));
     Err(SolverError::Numerical(format!(
         "critical step: Lanczos did not converge (θ = {theta:e}, residual {residual:e})"
     )))
+}
+
+/// Degrees of freedom per block of Lanczos's vector passes on a stencil lattice: each block's
+/// sums run in order, then the blocks' sums in block order, so the numbers do not depend on how
+/// many threads run the blocks.
+const STENCIL_BLOCK: usize = 1 << 15;
+
+/// A run of consecutive degrees of freedom of the flat vectors (component-major), as pieces of
+/// the fields' components.
+struct Block<'a> {
+    /// Flat index of its first degree of freedom.
+    start: usize,
+    pieces: Vec<Piece<'a>>,
+}
+
+/// Nodes `node..node + w.len()` of one component of `x` (and of the forces).
+struct Piece<'a> {
+    node: usize,
+    w: &'a mut [[f64; 1]],
+    f: Option<&'a mut [[f64; 1]]>,
+}
+
+/// `x` (and `f`) cut into blocks of `block` degrees of freedom in flat order.
+fn blocks<'a>(x: &'a mut Field<1>, mut f: Option<&'a mut Field<1>>, block: usize) -> Vec<Block<'a>> {
+    let mut out = Vec::new();
+    let mut current = Block { start: 0, pieces: Vec::new() };
+    let (mut filled, mut flat) = (0, 0);
+    let mut fs = f.take().map(|f| f.c.each_mut().map(|c| c.as_mut_slice()));
+    for (c, xc) in x.c.iter_mut().enumerate() {
+        let mut w = xc.as_mut_slice();
+        let mut fc = fs.as_mut().map(|fs| std::mem::take(&mut fs[c]));
+        let mut node = 0;
+        while !w.is_empty() {
+            let take = (block - filled).min(w.len());
+            let (head, tail) = std::mem::take(&mut w).split_at_mut(take);
+            w = tail;
+            let f_head = fc.as_mut().map(|fc| {
+                let (head, tail) = std::mem::take(fc).split_at_mut(take);
+                *fc = tail;
+                head
+            });
+            current.pieces.push(Piece { node, w: head, f: f_head });
+            node += take;
+            filled += take;
+            flat += take;
+            if filled == block {
+                out.push(std::mem::replace(&mut current, Block { start: flat, pieces: Vec::new() }));
+                filled = 0;
+            }
+        }
+    }
+    if !current.pieces.is_empty() {
+        out.push(current);
+    }
+    out
+}
+
+/// `Σ sum(block)` over `blocks`, each block's sum in order and the blocks' in order (the same bits
+/// with `parallel` or without: it only runs the blocks on the current rayon pool).
+fn sum_blocks<'a>(blocks: Vec<Block<'a>>, parallel: bool, sum: impl Fn(Block<'a>) -> f64 + Sync + Send) -> f64 {
+    let partial: Vec<f64> =
+        if parallel { blocks.into_par_iter().map(sum).collect() } else { blocks.into_iter().map(sum).collect() };
+    partial.into_iter().fold(-0.0, |total, s| total + s)
 }
 
 /// Largest Ritz value of the Lanczos tridiagonal and its residual `β_m·|s_m|`.
@@ -366,6 +453,26 @@ mod tests {
             }
         }
     }
+    #[test]
+    fn a_stencils_blocked_passes_give_one_bound_on_any_thread_count_and_the_listed_one() {
+        let scene = Scene { poisson: 0.25, young_cv: 0.05, ..Scene::paper() }.sample(Dims::new(40, 20, 10));
+        let stencil = Model::with_stencil(scene.clone());
+        assert!(3 * stencil.node_count() > STENCIL_BLOCK, "more than one block, each across two components");
+        let k = stencil.lane_stiffness(5).unwrap();
+        let serial = critical_step_on(&stencil, &k, false).unwrap();
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
+        let parallel = pool.install(|| critical_step_on(&stencil, &k, true)).unwrap();
+        assert_eq!(serial.dt_s.to_bits(), parallel.dt_s.to_bits(), "{serial:?} against {parallel:?}");
+        assert_eq!(serial.iterations, parallel.iterations);
+        assert!(serial.iterations > 0, "Lanczos converged: {serial:?}");
+        // The same lattice listed, its sums in one block: the same bound to the Lanczos tolerance
+        // and the stencil's f32 Weibull factors (≈ 6e-8 relative in ω²).
+        let listed = Model::with_listed_bars(scene);
+        let reference = critical_time_step(&listed, &listed.bar_stiffness(5).unwrap()).unwrap();
+        let ratio = serial.omega_max / reference.omega_max;
+        assert!((ratio - 1.0).abs() < 1e-6, "stencil ω_max / listed = {ratio}");
+    }
+
     #[test]
     fn the_node_bound_is_above_the_dense_eigensolve() {
         let scenes = [

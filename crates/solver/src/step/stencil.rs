@@ -15,8 +15,9 @@
 //!
 //! The layers run slab by slab (see the layout's doc): in phase 0 every slab's layers but its top
 //! one, integrating each layer as soon as its forces are complete; in phase 1 each slab's top
-//! layer, integrating it and the layer above. On one thread the same slabs and phases run in
-//! order, so the result does not depend on the thread count.
+//! layer, integrating it and the layer above (the lattice's top layer, when it is a slab of its
+//! own, runs in phase 0 and is integrated by the slab below it). On one thread the same slabs and
+//! phases run in order, so the result does not depend on the thread count.
 
 use std::ops::Range;
 
@@ -105,13 +106,11 @@ pub fn forces<'k, const L: usize>(
     check(layout, k, u, f);
     let (isa, p) = (Isa::current(), pass(k, u, f));
     let mut t = vec![0.0; layout.longest_run() * L];
-    for slab in layout.slabs() {
-        // SAFETY: checked arrays, one thread.
-        unsafe { layers_dispatch(isa, layout, slab.start..slab.end - 1, p, &mut t) };
-    }
-    for slab in layout.slabs() {
-        // SAFETY: as above.
-        unsafe { layers_dispatch(isa, layout, slab.end - 1..slab.end, p, &mut t) };
+    for phase in 0..2 {
+        for slab in layout.slabs() {
+            // SAFETY: checked arrays, one thread.
+            unsafe { layers_dispatch(isa, layout, layout.phase_layers(&slab, phase), p, &mut t) };
+        }
     }
 }
 
@@ -124,9 +123,8 @@ pub fn forces_parallel<const L: usize>(layout: &StencilLayout, k: StiffnessRef<'
         slabs.par_iter().for_each_init(
             || vec![0.0; layout.longest_run() * L],
             |t, slab| {
-                let layers = if phase == 0 { slab.start..slab.end - 1 } else { slab.end - 1..slab.end };
                 // SAFETY: checked arrays; the slabs of one phase write disjoint layers.
-                unsafe { layers_dispatch(isa, layout, layers, p, t) };
+                unsafe { layers_dispatch(isa, layout, layout.phase_layers(slab, phase), p, t) };
             },
         );
     }
@@ -159,7 +157,13 @@ pub fn forces_and_trial<const L: usize>(
         let top = slab.end - 1;
         // SAFETY: checked arrays; the tasks of one phase touch disjoint layers (module doc).
         unsafe {
-            if phase == 0 {
+            if StencilLayout::top_alone(slab) {
+                // The lattice's top layer alone: its bars in phase 0, its nodes integrated by the
+                // slab below once that slab's top layer has run (phase 1).
+                if phase == 0 {
+                    layers_dispatch(isa, layout, slab.clone(), p, t);
+                }
+            } else if phase == 0 {
                 layers_dispatch(isa, layout, slab.start..top, p, t);
                 // A slab's bottom layer is complete once the layer below has run (phase 1), but
                 // for the lattice's first layer.
@@ -350,8 +354,7 @@ pub fn reference<'k, const L: usize>(
     let mut order: Vec<usize> = Vec::new();
     for phase in 0..2 {
         for slab in layout.slabs() {
-            let layers = if phase == 0 { slab.start..slab.end - 1 } else { slab.end - 1..slab.end };
-            order.extend(layers);
+            order.extend(layout.phase_layers(&slab, phase));
         }
     }
     for layer in order {
