@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 use polars::prelude::*;
 
 use crate::error::StoreError;
+use crate::parquet_write::write_table;
 
 /// Writes `df` to `path` atomically: a hidden temporary file in the same folder, then a rename,
 /// so a reader (or a resumed run) never sees a half-written table.
@@ -22,17 +23,12 @@ pub fn write_parquet_atomic(df: &mut DataFrame, path: &Path) -> Result<(), Store
     let table = path.display().to_string();
     positive_zeros(df).map_err(|e| StoreError::table(&table, e))?;
     let arrow_schema = polars_parquet::write::schema_to_metadata_key(&df.schema().to_arrow(CompatLevel::oldest()));
-    let metadata = KeyValueMetadata::Static(vec![arrow_schema]);
     let result = (|| {
         // Buffered: the writer hands over each page and piece of metadata as its own write,
         // thousands of system calls for a table of a few megabytes.
         let file = File::create(&tmp).map_err(|e| StoreError::io(&tmp, e))?;
         let mut out = BufWriter::with_capacity(1 << 20, file);
-        ParquetWriter::new(&mut out)
-            .with_compression(ParquetCompression::Zstd(None))
-            .with_key_value_metadata(Some(metadata))
-            .finish(df)
-            .map_err(|e| StoreError::table(path.display().to_string(), e))?;
+        write_table(df, &mut out, vec![arrow_schema]).map_err(|e| StoreError::table(path.display().to_string(), e))?;
         out.into_inner().map_err(|e| StoreError::io(&tmp, e.into_error()))?;
         std::fs::rename(&tmp, path).map_err(|e| StoreError::io(path, e))
     })();

@@ -17,6 +17,7 @@ pub mod files;
 pub mod frame;
 pub mod io;
 pub mod layout;
+pub mod parquet_write;
 pub mod schema;
 pub mod seed;
 pub mod spec;
