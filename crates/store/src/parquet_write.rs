@@ -108,15 +108,15 @@ where
         let part = array.clone().sliced(start, len);
         let mut buffer = Vec::new();
         write_def_levels(&mut buffer, optional, part.validity(), len, Version::V1)?;
-        let present: Vec<T::Native> = part.iter().flatten().copied().collect();
-        T::Native::split(&present, &mut buffer);
-        let extreme = |pick: fn(T::Native, T::Native) -> bool| {
-            present.iter().copied().reduce(|a, b| if a.nan() || (!b.nan() && !pick(a, b)) { a } else { b })
+        let gathered: Vec<T::Native>;
+        let present: &[T::Native] = if part.validity().is_none_or(|v| v.unset_bits() == 0) {
+            part.values().as_slice()
+        } else {
+            gathered = part.iter().flatten().copied().collect();
+            &gathered
         };
-        let (min_value, max_value) = match present.iter().find(|v| v.nan()) {
-            Some(&nan) => (Some(nan), Some(nan)),
-            None => (extreme(|a, b| b < a), extreme(|a, b| b > a)),
-        };
+        T::Native::split(present, &mut buffer);
+        let (min_value, max_value) = if with_statistics { T::Native::min_max(present) } else { (None, None) };
         let statistics = PrimitiveStatistics {
             primitive_type: primitive.clone(),
             null_count: Some((len - present.len()) as i64),
@@ -142,11 +142,11 @@ where
 }
 
 /// A float's little-endian bytes, stream by stream.
-pub trait SplitBytes: Copy + PartialOrd {
+pub trait SplitBytes: Copy {
     /// Appends byte 0 of every value, then byte 1 of every value, … to `out`.
     fn split(values: &[Self], out: &mut Vec<u8>);
-    /// Whether it is NaN.
-    fn nan(self) -> bool;
+    /// The smallest and largest of `values` (NaN for both if any is NaN; `None` if empty).
+    fn min_max(values: &[Self]) -> (Option<Self>, Option<Self>);
 }
 
 macro_rules! split_bytes {
@@ -165,8 +165,19 @@ macro_rules! split_bytes {
                 }
             }
 
-            fn nan(self) -> bool {
-                self.is_nan()
+            fn min_max(values: &[Self]) -> (Option<Self>, Option<Self>) {
+                let Some(&first) = values.first() else { return (None, None) };
+                let (mut lo, mut hi, mut nan) = (first, first, false);
+                for &v in values {
+                    nan |= v.is_nan();
+                    if v < lo {
+                        lo = v;
+                    }
+                    if v > hi {
+                        hi = v;
+                    }
+                }
+                if nan { (Some(<$t>::NAN), Some(<$t>::NAN)) } else { (Some(lo), Some(hi)) }
             }
         }
     };
