@@ -34,7 +34,7 @@ use rayon::prelude::*;
 use crate::geometry::{Dims, Direction};
 use crate::material::SeekableWeibull;
 
-/// Most slabs of a lattice (the parallelism of one step).
+/// Most slabs of a lattice (the parallelism of one step), not counting a top layer alone.
 pub const MAX_SLABS: usize = 16;
 
 /// Bars of one direction class whose lower ends are `start..start + len`, upper ends `offset`

@@ -2,11 +2,13 @@
 //! are written BYTE_STREAM_SPLIT (the Parquet encoding that stores the first byte of every value,
 //! then the second, …), then zstd-compressed as polars does.
 //!
-//! polars 0.55 writes floats PLAIN whatever encoding it is asked for; a float's sign, exponent and
-//! high mantissa bytes repeat from one sample to the next, but PLAIN interleaves them with the
-//! noisy low bytes, so zstd finds little. Split, the slowly varying bytes compress well: paper-100's
-//! tables take 61 MB instead of 71 for the same values, bit for bit (read back with polars and
-//! pyarrow, `scripts/compare_outputs.py`). The encoding is part of Parquet's format since 2.8.
+//! polars 0.55 writes floats PLAIN (or with a dictionary when few values differ) whatever encoding
+//! it is asked for; a float's sign, exponent and high mantissa bytes repeat from one sample to the
+//! next, but PLAIN interleaves them with the noisy low bytes, so zstd finds little. Split, the
+//! slowly varying bytes compress well: with the small tables below, paper-100's tables take 57 MB
+//! instead of 71 for the same values, bit for bit (read back with polars and pyarrow,
+//! `scripts/compare_outputs.py`). The encoding is part of Parquet's format since 2.8 (pyarrow,
+//! polars, DuckDB from 0.10; older readers may refuse it).
 
 use std::io::Write;
 
@@ -27,7 +29,8 @@ use polars_parquet::write::{
 /// Rows per row group (polars' default).
 const ROW_GROUP_ROWS: usize = 512 * 512;
 
-/// Tables of at most this many rows are written without dictionaries or statistics.
+/// Tables of at most this many rows are written without dictionaries (but categorical columns) or
+/// statistics.
 const SMALL_TABLE_ROWS: usize = 1024;
 
 /// Values per page of a float column (1 MiB of `f64`, polars' page size).
@@ -38,8 +41,9 @@ pub fn write_table<W: Write>(df: &DataFrame, out: W, metadata: Vec<KeyValue>) ->
     let schema = df.schema().to_arrow(CompatLevel::newest());
     let parquet_schema = to_parquet_schema(&schema)?;
     // A small table (a seed's events, its run's row) is mostly Parquet's own bookkeeping: each
-    // column's dictionary page and min/max statistics cost more than they save there, so it is
-    // written plain and without statistics (a fifth of its bytes).
+    // column's dictionary page and min/max statistics cost more than they save there, so its
+    // columns are written without dictionaries (but categorical ones, which are dictionaries) and
+    // without statistics (a fifth of its bytes); its floats are still split.
     let small = df.height() <= SMALL_TABLE_ROWS;
     let options = WriteOptions {
         statistics: if small { StatisticsOptions::empty() } else { StatisticsOptions::default() },
@@ -49,8 +53,14 @@ pub fn write_table<W: Write>(df: &DataFrame, out: W, metadata: Vec<KeyValue>) ->
     };
     let encodings: Vec<Vec<Encoding>> = schema
         .iter_values()
-        .map(|f| get_dtype_encoding(&f.dtype))
-        .map(|e| if small { e.iter().map(|_| Encoding::Plain).collect() } else { e })
+        .map(|f| {
+            let encodings = get_dtype_encoding(&f.dtype);
+            if small && !matches!(f.dtype, ArrowDataType::Dictionary(..)) {
+                encodings.iter().map(|_| Encoding::Plain).collect()
+            } else {
+                encodings
+            }
+        })
         .collect();
     let mut writer = FileWriter::new_with_parquet_schema(out, schema, parquet_schema.clone(), options);
     let mut offset = 0;
@@ -103,7 +113,8 @@ where
     let array = ca.downcast_as_array();
     let mut pages = Vec::new();
     let mut start = 0;
-    while start < array.len() || (start == 0 && pages.is_empty()) {
+    // At least one page, empty for an empty column.
+    loop {
         let len = PAGE_VALUES.min(array.len() - start);
         let part = array.clone().sliced(start, len);
         let mut buffer = Vec::new();
@@ -134,7 +145,7 @@ where
         let descriptor = Descriptor { primitive_type: primitive.clone(), max_def_level: 0, max_rep_level: 0 };
         pages.push(Ok(Page::Data(DataPage::new(header, CowBuffer::Owned(buffer), descriptor, len))));
         start += len;
-        if len == 0 {
+        if start >= array.len() {
             break;
         }
     }
@@ -248,7 +259,7 @@ mod tests {
     }
 
     #[test]
-    fn a_small_table_is_written_plain_without_statistics_and_read_back() {
+    fn a_small_table_is_written_without_dictionaries_or_statistics_and_read_back() {
         let df = df!("t" => [0.5f64, -0.0, f64::NAN], "kind" => ["a", "b", "a"], "n" => [1u32, 2, 3]).unwrap();
         let (back, meta) = write_and_read(&df);
         assert!(back.equals_missing(&df));
