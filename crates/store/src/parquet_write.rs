@@ -7,8 +7,8 @@
 //! next, but PLAIN interleaves them with the noisy low bytes, so zstd finds little. Split, the
 //! slowly varying bytes compress well: with the small tables below, paper-100's tables take 57 MB
 //! instead of 71 for the same values, bit for bit (read back with polars and pyarrow,
-//! `scripts/compare_outputs.py`). The encoding is part of Parquet's format since 2.8 (pyarrow,
-//! polars, DuckDB from 0.10; older readers may refuse it).
+//! `scripts/compare_outputs.py`). The encoding is part of Parquet's format since 2.8; pyarrow and
+//! polars read it, readers older than that format version may refuse it.
 
 use std::io::Write;
 
