@@ -256,11 +256,11 @@ struct Piece<'a> {
 }
 
 /// `x` (and `f`) cut into blocks of `block` degrees of freedom in flat order.
-fn blocks<'a>(x: &'a mut Field<1>, mut f: Option<&'a mut Field<1>>, block: usize) -> Vec<Block<'a>> {
+fn blocks<'a>(x: &'a mut Field<1>, f: Option<&'a mut Field<1>>, block: usize) -> Vec<Block<'a>> {
     let mut out = Vec::new();
     let mut current = Block { start: 0, pieces: Vec::new() };
     let (mut filled, mut flat) = (0, 0);
-    let mut fs = f.take().map(|f| f.c.each_mut().map(|c| c.as_mut_slice()));
+    let mut fs = f.map(|f| f.c.each_mut().map(|c| c.as_mut_slice()));
     for (c, xc) in x.c.iter_mut().enumerate() {
         let mut w = xc.as_mut_slice();
         let mut fc = fs.as_mut().map(|fs| std::mem::take(&mut fs[c]));
