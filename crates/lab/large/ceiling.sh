@@ -8,19 +8,14 @@
 #   crates/lab/large/ceiling.sh [NXxNYxNZ:DURATION_S]
 set -euo pipefail
 cd "$(dirname "$0")/../../.."
-if [ -z "${STICKSLIP:-}" ]; then
-    cargo build --release -q -p stickslip
-    STICKSLIP="${CARGO_TARGET_DIR:-target}/release/stickslip"
-fi
+. crates/lab/large/scene.sh
+stickslip_binary
 size=${1:-200x50x20:0.02}
 dims=${size%%:*}; duration=${size#*:}
-IFS=x read -r nx ny nz <<<"$dims"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 toml=$work/large-$dims.toml
-sed -e "s/^nx = .*/nx = $nx/" -e "s/^ny = .*/ny = $ny/" -e "s/^nz = .*/nz = $nz/" \
-    -e "s/^duration_s = .*/duration_s = $duration/" -e "s/^name = .*/name = \"large-$dims\"/" \
-    pipelines/large-block.toml >"$toml"
+large_block "$dims" "$duration" "$toml"
 wall() { # threads out -> seconds
     local start end
     start=$(date +%s.%N)

@@ -10,10 +10,8 @@
 # bytes per bar, bytes per node, bar-updates/s of the whole run.
 set -euo pipefail
 cd "$(dirname "$0")/../../.."
-if [ -z "${STICKSLIP:-}" ]; then
-    cargo build --release -q -p stickslip
-    STICKSLIP="${CARGO_TARGET_DIR:-target}/release/stickslip"
-fi
+. crates/lab/large/scene.sh
+stickslip_binary
 sizes=("$@")
 [ ${#sizes[@]} -gt 0 ] || sizes=(200x50x20:0.02 400x100x36:0.0095 500x150x48:0.0095)
 work=$(mktemp -d)
@@ -26,9 +24,7 @@ for size in "${sizes[@]}"; do
     dims=${size%%:*}; duration=${size#*:}
     IFS=x read -r nx ny nz <<<"$dims"
     toml=$work/large-$dims.toml
-    sed -e "s/^nx = .*/nx = $nx/" -e "s/^ny = .*/ny = $ny/" -e "s/^nz = .*/nz = $nz/" \
-        -e "s/^duration_s = .*/duration_s = $duration/" -e "s/^name = .*/name = \"large-$dims\"/" \
-        pipelines/large-block.toml >"$toml"
+    large_block "$dims" "$duration" "$toml"
     # Closed forms of docs/model.md §1.
     bars=$(( nx*(ny+1)*(nz+1) + (nx+1)*ny*(nz+1) + (nx+1)*(ny+1)*nz + 8*nx*ny*nz + (nx-1)*ny*nz + nx*(ny-1)*nz + nx*ny*(nz-1) ))
     nodes=$(( (nx+1)*(ny+1)*(nz+1) + nx*ny*nz ))
