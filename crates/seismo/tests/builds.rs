@@ -136,23 +136,25 @@ fn every_build_of_rotd_agrees_with_the_plain_loop_on_the_rotated_record() {
     let (px, py): (Vec<f64>, Vec<f64>) = x.iter().map(|a| (0.6 * a, 0.8 * a)).unzip();
     for (reading, end) in CASES {
         let plan = plan(reading, end);
-        let rotd_plan = RotDPlan::from_plan(plan.clone());
+        let (summary_plan, rotd_plan) =
+            (RotDPlan::from_plan(plan.clone()), RotDPlan::from_plan(plan.clone()).every_angle());
         for (name, x, y) in [("random", &x, &y), ("polarised", &px, &py)] {
-            let got: Vec<RotDSpectrum> = builds
-                .iter()
-                .map(|&isa| {
-                    let mut out = RotDSpectrum::default();
-                    Isa::pinned(isa, || rotd_plan.compute(x, y, &mut RotDScratch::default(), &mut out)).unwrap();
-                    out
-                })
-                .collect();
+            let compute = |plan: &RotDPlan, isa| {
+                let mut out = RotDSpectrum::default();
+                Isa::pinned(isa, || plan.compute(x, y, &mut RotDScratch::default(), &mut out)).unwrap();
+                out
+            };
+            let got: Vec<RotDSpectrum> = builds.iter().map(|&isa| compute(&rotd_plan, isa)).collect();
+            let summaries: Vec<RotDSpectrum> = builds.iter().map(|&isa| compute(&summary_plan, isa)).collect();
             let first = &got[0];
-            for (isa, g) in builds.iter().zip(&got) {
+            for ((isa, g), s) in builds.iter().zip(&got).zip(&summaries) {
                 let what = format!("{reading:?} {end:?}, {name}: {isa:?} against {:?}", builds[0]);
                 assert_eq!(bits(&g.per_angle), bits(&first.per_angle), "{what}, per angle");
-                assert_eq!(bits(&g.rotd50), bits(&first.rotd50), "{what}, RotD50");
-                assert_eq!(bits(&g.rotd100), bits(&first.rotd100), "{what}, RotD100");
-                assert_eq!(bits(&g.rotd100_angle_deg), bits(&first.rotd100_angle_deg), "{what}, angle");
+                for (got, rotd) in [(g, "every angle"), (s, "RotD's angles only")] {
+                    assert_eq!(bits(&got.rotd50), bits(&first.rotd50), "{what}, RotD50, {rotd}");
+                    assert_eq!(bits(&got.rotd100), bits(&first.rotd100), "{what}, RotD100, {rotd}");
+                    assert_eq!(bits(&got.rotd100_angle_deg), bits(&first.rotd100_angle_deg), "{what}, angle, {rotd}");
+                }
             }
             if reading == Reading::Linear {
                 let want = per_angle_by_rotation(x, y, |rotated| plain_sd(&plan, rotated));

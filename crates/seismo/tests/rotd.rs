@@ -18,6 +18,10 @@ fn per_angle_by_rotation(plan: &SpectrumPlan, x: &[f64], y: &[f64]) -> Vec<f64> 
     })
 }
 
+fn bits(x: &[f64]) -> Vec<u64> {
+    x.iter().map(|v| v.to_bits()).collect()
+}
+
 fn rotd(plan: &RotDPlan, x: &[f64], y: &[f64]) -> RotDSpectrum {
     let mut out = RotDSpectrum::default();
     plan.compute(x, y, &mut RotDScratch::default(), &mut out).unwrap();
@@ -36,7 +40,18 @@ fn rotd_agrees_with_rotating_the_record_for_every_angle() {
     ] {
         let plan = SpectrumPlan::new(dt, &periods, &[0.02, 0.05], reading, 4).unwrap().with_record_end(end);
         let reference = per_angle_by_rotation(&plan, &x, &y);
-        let got = rotd(&RotDPlan::from_plan(plan.clone()), &x, &y);
+        let got = rotd(&RotDPlan::from_plan(plan.clone()).every_angle(), &x, &y);
+        let summary = rotd(&RotDPlan::from_plan(plan.clone()), &x, &y);
+        assert!(summary.per_angle.is_empty(), "no per-angle peaks unless asked");
+        for (a, b) in [
+            (&summary.rotd50, &got.rotd50),
+            (&summary.rotd100, &got.rotd100),
+            (&summary.rotd100_angle_deg, &got.rotd100_angle_deg),
+            (&summary.x, &got.x),
+            (&summary.y, &got.y),
+        ] {
+            assert_eq!(bits(a), bits(b), "{reading:?} {end:?}: the same bits with every angle solved");
+        }
         let mut worst = 0.0f64;
         for o in 0..plan.len() {
             let scale = reference[o * ANGLES..(o + 1) * ANGLES].iter().fold(0.0f64, |m, &v| m.max(v));
@@ -62,7 +77,7 @@ fn rotd_at_zero_and_ninety_degrees_are_the_components_spectra() {
     let dt = 0.01;
     let (x, y) = (random_record(300, 5), random_record(300, 6));
     let plan = SpectrumPlan::new(dt, &[0.03, 0.3, 3.0], &[0.05], Reading::Linear, 1).unwrap();
-    let got = rotd(&RotDPlan::from_plan(plan.clone()), &x, &y);
+    let got = rotd(&RotDPlan::from_plan(plan.clone()).every_angle(), &x, &y);
     let (mut sx, mut sy) = (vec![0.0; 3], vec![0.0; 3]);
     plan.compute(&x, &mut SpectrumScratch::default(), &mut sx).unwrap();
     plan.compute(&y, &mut SpectrumScratch::default(), &mut sy).unwrap();
@@ -80,7 +95,7 @@ fn a_linearly_polarised_record_gives_cos_theta_minus_phi_times_its_spectrum() {
     let plan = SpectrumPlan::new(dt, &periods, &[0.05], Reading::Linear, 1).unwrap();
     let mut one = vec![0.0; plan.len()];
     plan.compute(&a, &mut SpectrumScratch::default(), &mut one).unwrap();
-    let rotd_plan = RotDPlan::from_plan(plan);
+    let rotd_plan = RotDPlan::from_plan(plan).every_angle();
     for phi_deg in [0.0, 30.0, 117.3] {
         let phi = f64::to_radians(phi_deg);
         let x: Vec<f64> = a.iter().map(|v| v * phi.cos()).collect();

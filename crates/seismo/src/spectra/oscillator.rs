@@ -224,6 +224,13 @@ impl Oscillator {
         (l0, l0 + p1 * self.h, [y0, -(v0 - p1 + self.xi * self.omega * y0) * self.inv_wd])
     }
 
+    /// `e^{λt}` as `[re, im]`: the homogeneous part `y(t) = Re(z·e^{λt})` of a step (see
+    /// [`Oscillator::envelope`]) `t` seconds into it.
+    pub(crate) fn phase(&self, t: f64) -> [f64; 2] {
+        let e = (self.lambda * t).exp();
+        [e.re, e.im]
+    }
+
     /// `(cos, sin)` of the phase `ω_d·h` the damped harmonic turns through in one step, if less
     /// than π (then `|y|` has an interior maximum in the step only where `Im(z·e^{iω_dτ})`
     /// changes sign, see `rotd`).
