@@ -67,13 +67,47 @@ pub fn resample(x: &[f64], dt_in: f64, dt_out: f64) -> Vec<f64> {
 /// the bits `resample` gives it alone.
 pub fn resample_together<const K: usize>(xs: [&[f64]; K], dt_in: f64, dt_out: f64) -> [Vec<f64>; K] {
     let mut out: [Vec<f64>; K] = std::array::from_fn(|_| Vec::new());
-    resample_into(Isa::current(), &xs, dt_in, dt_out, &mut out);
+    let n = xs.first().map_or(0, |x| x.len());
+    assert!(xs.iter().all(|x| x.len() == n), "series resampled together have one length");
+    if n == 0 {
+        return out;
+    }
+    let m = ((n - 1) as f64 * dt_in / dt_out * (1.0 + 1e-12)).floor() as usize + 1;
+    let r = (dt_in / dt_out).min(1.0);
+    for y in out.iter_mut() {
+        y.reserve(m);
+    }
+    let isa = Isa::current();
+    let taps = 2 * (RESAMPLE_HALF_WIDTH as f64 / r).ceil() as usize + 1;
+    if m.saturating_mul(taps) <= KEPT_WEIGHTS {
+        KEPT.with_borrow_mut(|kept| {
+            if !kept.hold(dt_in, dt_out, m) {
+                kept.fill(dt_in, dt_out, 0, m);
+            }
+            add_up(isa, &xs, n, r, kept, 0..m, &mut out);
+        });
+    } else {
+        let mut weights = Weights::default();
+        for from in (0..m).step_by(WEIGHT_BLOCK) {
+            let to = (from + WEIGHT_BLOCK).min(m);
+            weights.fill(dt_in, dt_out, from, to);
+            add_up(isa, &xs, n, r, &weights, from..to, &mut out);
+        }
+    }
     out
 }
 
 widest! {
-    /// [`resample_together`] into `out`, in instruction set `isa`.
-    fn resample_into<const K: usize>(xs: &[&[f64]; K], dt_in: f64, dt_out: f64, out: &mut [Vec<f64>; K]) => resample_any
+    /// New samples `new` of the series `xs` (of `n` samples) with `weights`, appended to `out`,
+    /// in instruction set `isa`.
+    fn add_up<const K: usize>(
+        xs: &[&[f64]; K],
+        n: usize,
+        r: f64,
+        weights: &Weights,
+        new: std::ops::Range<usize>,
+        out: &mut [Vec<f64>; K],
+    ) => add_up_any
 }
 
 /// The kernel's weights of new samples `first..first + lo.len()` between two intervals: new
@@ -142,41 +176,9 @@ impl Weights {
     }
 }
 
-/// The kernel of [`resample_into`], compiled once per instruction set (the same bits).
+/// The kernel of [`add_up`], compiled once per instruction set (the same bits).
 #[inline(always)]
-fn resample_any<const K: usize>(xs: &[&[f64]; K], dt_in: f64, dt_out: f64, out: &mut [Vec<f64>; K]) {
-    let n = xs.first().map_or(0, |x| x.len());
-    assert!(xs.iter().all(|x| x.len() == n), "series resampled together have one length");
-    if n == 0 {
-        return;
-    }
-    let m = ((n - 1) as f64 * dt_in / dt_out * (1.0 + 1e-12)).floor() as usize + 1;
-    let r = (dt_in / dt_out).min(1.0);
-    for y in out.iter_mut() {
-        y.clear();
-        y.reserve(m);
-    }
-    let taps = 2 * (RESAMPLE_HALF_WIDTH as f64 / r).ceil() as usize + 1;
-    if m.saturating_mul(taps) <= KEPT_WEIGHTS {
-        KEPT.with_borrow_mut(|kept| {
-            if !kept.hold(dt_in, dt_out, m) {
-                kept.fill(dt_in, dt_out, 0, m);
-            }
-            add_up(xs, n, r, kept, 0..m, out);
-        });
-    } else {
-        let mut weights = Weights::default();
-        for from in (0..m).step_by(WEIGHT_BLOCK) {
-            let to = (from + WEIGHT_BLOCK).min(m);
-            weights.fill(dt_in, dt_out, from, to);
-            add_up(xs, n, r, &weights, from..to, out);
-        }
-    }
-}
-
-/// New samples `new` of the series `xs` (of `n` samples) with `weights`, appended to `out`.
-#[inline(always)]
-fn add_up<const K: usize>(
+fn add_up_any<const K: usize>(
     xs: &[&[f64]; K],
     n: usize,
     r: f64,
