@@ -14,14 +14,16 @@ use std::io::Write;
 
 use polars::prelude::*;
 use polars_parquet::parquet::CowBuffer;
-use polars_parquet::parquet::error::ParquetError;
+use polars_parquet::parquet::compression::Compression;
 use polars_parquet::parquet::metadata::Descriptor;
-use polars_parquet::parquet::page::{DataPage, DataPageHeader, DataPageHeaderV1};
+use polars_parquet::parquet::page::{
+    CompressedDataPage, CompressedDictPage, CompressedPage, DataPage, DataPageHeader, DataPageHeaderV1,
+};
 use polars_parquet::parquet::schema::Repetition;
 use polars_parquet::parquet::statistics::PrimitiveStatistics;
 use polars_parquet::parquet::types::NativeType;
 use polars_parquet::write::{
-    CompressionOptions, Compressor, DynIter, DynStreamingIterator, Encoding, FallibleStreamingIterator, FileWriter,
+    CompressionOptions, DynIter, DynStreamingIterator, Encoding, FallibleStreamingIterator, FileWriter,
     KeyValue, Page, ParquetType, StatisticsOptions, Version, WriteOptions, array_to_columns, get_dtype_encoding,
     to_parquet_schema, write_def_levels,
 };
@@ -79,13 +81,7 @@ pub fn write_table<W: Write>(df: &DataFrame, out: W, metadata: Vec<KeyValue>) ->
                 }
             };
             for column_pages in pages {
-                let compressed = Compressor::new_from_vec(
-                    column_pages.map(|page| page.map_err(|e| ParquetError::FeatureNotSupported(e.to_string()))),
-                    options.compression,
-                    Vec::new(),
-                )
-                .map_err(PolarsError::from);
-                columns.push(Ok(DynStreamingIterator::new(compressed)));
+                columns.push(Ok(DynStreamingIterator::new(Zstd { pages: column_pages, current: None })));
             }
         }
         writer.write(rows as u64, DynIter::new(columns.into_iter()))?;
@@ -272,4 +268,83 @@ mod tests {
             );
         }
     }
+}
+
+thread_local! {
+    /// This thread's zstd context, reused page after page: polars compresses each page with
+    /// zstd's one-shot call, which makes and frees a context (and its tables) every time — most of
+    /// the cost of a small table's pages.
+    static ZSTD: std::cell::RefCell<Option<zstd::bulk::Compressor<'static>>> = const { std::cell::RefCell::new(None) };
+}
+
+/// `input` compressed by zstd at its default level (polars' `Zstd(None)`), appended to `out`:
+/// the same bytes as polars' compression of the page.
+fn zstd_into(input: &[u8], out: &mut Vec<u8>) -> PolarsResult<()> {
+    ZSTD.with_borrow_mut(|context| {
+        if context.is_none() {
+            *context = Some(zstd::bulk::Compressor::new(0)?);
+        }
+        let compressor = context.as_mut().expect("made above");
+        let start = out.len();
+        out.resize(start + zstd::zstd_safe::compress_bound(input.len()), 0);
+        let written = compressor.compress_to_buffer(input, &mut out[start..])?;
+        out.truncate(start + written);
+        Ok::<(), std::io::Error>(())
+    })
+    .map_err(|e| PolarsError::ComputeError(format!("zstd: {e}").into()))
+}
+
+/// A column's pages compressed by [`zstd_into`], as the file writer takes them.
+struct Zstd<I: Iterator<Item = PolarsResult<Page>>> {
+    pages: I,
+    current: Option<CompressedPage>,
+}
+
+impl<I: Iterator<Item = PolarsResult<Page>>> FallibleStreamingIterator for Zstd<I> {
+    type Item = CompressedPage;
+    type Error = PolarsError;
+
+    fn advance(&mut self) -> PolarsResult<()> {
+        self.current = match self.pages.next() {
+            None => None,
+            Some(page) => Some(compress(page?)?),
+        };
+        Ok(())
+    }
+
+    fn get(&self) -> Option<&CompressedPage> {
+        self.current.as_ref()
+    }
+}
+
+/// One page compressed (version 1 data pages, as this writer makes, and dictionary pages).
+fn compress(page: Page) -> PolarsResult<CompressedPage> {
+    let mut buffer = Vec::new();
+    Ok(match page {
+        Page::Data(page) => {
+            if !matches!(page.header(), DataPageHeader::V1(_)) {
+                polars_bail!(ComputeError: "a version 2 data page, where this writer makes version 1");
+            }
+            zstd_into(page.buffer(), &mut buffer)?;
+            let rows = page.num_rows().ok_or_else(|| polars_err!(ComputeError: "a data page without its row count"))?;
+            CompressedPage::Data(CompressedDataPage::new(
+                page.header().clone(),
+                CowBuffer::Owned(buffer),
+                Compression::Zstd,
+                page.buffer().len(),
+                page.descriptor.clone(),
+                rows,
+            ))
+        }
+        Page::Dict(page) => {
+            zstd_into(&page.buffer, &mut buffer)?;
+            CompressedPage::Dict(CompressedDictPage::new(
+                CowBuffer::Owned(buffer),
+                Compression::Zstd,
+                page.buffer.len(),
+                page.num_values,
+                page.is_sorted,
+            ))
+        }
+    })
 }
