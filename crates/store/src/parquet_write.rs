@@ -23,9 +23,9 @@ use polars_parquet::parquet::schema::Repetition;
 use polars_parquet::parquet::statistics::PrimitiveStatistics;
 use polars_parquet::parquet::types::NativeType;
 use polars_parquet::write::{
-    CompressionOptions, DynIter, DynStreamingIterator, Encoding, FallibleStreamingIterator, FileWriter,
-    KeyValue, Page, ParquetType, StatisticsOptions, Version, WriteOptions, array_to_columns, get_dtype_encoding,
-    to_parquet_schema, write_def_levels,
+    CompressionOptions, DynIter, DynStreamingIterator, Encoding, FallibleStreamingIterator, FileWriter, KeyValue, Page,
+    ParquetType, StatisticsOptions, Version, WriteOptions, array_to_columns, get_dtype_encoding, to_parquet_schema,
+    write_def_levels,
 };
 
 /// Rows per row group (polars' default).

@@ -213,21 +213,49 @@ pub fn bandpass_in_place(x: &mut [f64], dt: f64, f_low: f64, f_high: Option<f64>
     if m == 0 {
         return;
     }
-    let mut planner = FftPlanner::<f64>::new();
-    let forward = planner.plan_fft_forward(m);
-    let inverse = planner.plan_fft_inverse(m);
-    let mut buf: Vec<Complex<f64>> = x.iter().map(|&v| Complex::new(v, 0.0)).collect();
-    forward.process(&mut buf);
-    let df = 1.0 / (m as f64 * dt);
-    for (k, c) in buf.iter_mut().enumerate() {
-        let f = k.min(m - k) as f64 * df;
-        *c *= butterworth_gain(f, f_low, f_high, order);
-    }
-    inverse.process(&mut buf);
-    let scale = 1.0 / m as f64;
-    for (v, c) in x.iter_mut().zip(&buf) {
-        *v = c.re * scale;
-    }
+    // The plans and the gains are this thread's for the next record of the same length and
+    // filter (a seed's components share them): the same values, made once.
+    BANDPASS.with_borrow_mut(|kept| {
+        let key = (m, dt.to_bits(), f_low.to_bits(), f_high.map(f64::to_bits), order);
+        if kept.key != Some(key) {
+            let df = 1.0 / (m as f64 * dt);
+            kept.gain.clear();
+            kept.gain.extend((0..m).map(|k| butterworth_gain(k.min(m - k) as f64 * df, f_low, f_high, order)));
+            // A planner of its own, as each record had: one that planned other lengths may build
+            // this one from other pieces, which rounds differently.
+            let mut planner = FftPlanner::<f64>::new();
+            kept.forward = Some(planner.plan_fft_forward(m));
+            kept.inverse = Some(planner.plan_fft_inverse(m));
+            kept.key = Some(key);
+        }
+        let buf = &mut kept.buffer;
+        buf.clear();
+        buf.extend(x.iter().map(|&v| Complex::new(v, 0.0)));
+        kept.forward.as_ref().expect("planned above").process(buf);
+        for (c, &g) in buf.iter_mut().zip(&kept.gain) {
+            *c *= g;
+        }
+        kept.inverse.as_ref().expect("planned above").process(buf);
+        let scale = 1.0 / m as f64;
+        for (v, c) in x.iter_mut().zip(buf.iter()) {
+            *v = c.re * scale;
+        }
+    });
+}
+
+/// The band-pass's FFT plans and gains of the last record a thread filtered.
+#[derive(Default)]
+struct Bandpass {
+    /// (length, Δt, f_low, f_high, order), bits of the floats.
+    key: Option<(usize, u64, u64, Option<u64>, u32)>,
+    forward: Option<std::sync::Arc<dyn rustfft::Fft<f64>>>,
+    inverse: Option<std::sync::Arc<dyn rustfft::Fft<f64>>>,
+    gain: Vec<f64>,
+    buffer: Vec<Complex<f64>>,
+}
+
+thread_local! {
+    static BANDPASS: std::cell::RefCell<Bandpass> = std::cell::RefCell::new(Bandpass::default());
 }
 
 /// Legendre `P_k(x)`, `P_k'(x)`, `P_k''(x)` for `k = 0..count`.
