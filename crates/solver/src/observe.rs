@@ -33,6 +33,10 @@ impl<const L: usize> Observed for LaneView<'_, '_, L> {
         self.params.model.contact().len()
     }
 
+    fn interface(&self) -> Interface {
+        LaneView::interface(self)
+    }
+
     fn driver_force(&self) -> f64 {
         LaneView::driver_force(self)
     }

@@ -7,7 +7,7 @@ use std::ops::ControlFlow;
 use common::{repo_path, roller, scene_with};
 use stickslip_solver::material::lattice_elastic_constants;
 use stickslip_solver::statics::critical_time_step;
-use stickslip_solver::step::{Batch, LaneSetup, LaneStiffness};
+use stickslip_solver::step::{Batch, Interface, LaneSetup, LaneStiffness};
 use stickslip_solver::{Channel, Model, RunOptions, Scene, run_seed};
 
 fn go(_: f64) -> ControlFlow<()> {
@@ -115,6 +115,9 @@ fn push_block(mu: f64) -> (f64, f64, f64) {
         s.step();
         t += dt;
         let face = s.view(0).interface();
+        // The interface as the observer sums it is the sum of its contact nodes, bit for bit.
+        let nodes = (0..model.contact().len()).map(|ci| s.view(0).node_contact(ci));
+        assert_eq!(face, Interface::sum(nodes), "interface at t = {t}");
         // Gross sliding: the contact nodes move on average faster than 1 µm/s (elastic
         // micro-slip under the slow ramp stays near 0.05 µm/s), for 50 steps in a row.
         if face.mean_slip_rate > 1e-6 {
