@@ -138,41 +138,58 @@ thread_local! {
 impl Weights {
     /// Makes these the weights of new samples `from..to` from `dt_in` to `dt_out`.
     fn fill(&mut self, dt_in: f64, dt_out: f64, from: usize, to: usize) {
-        let table = kernel_table();
-        let r = (dt_in / dt_out).min(1.0);
-        let reach = RESAMPLE_HALF_WIDTH as f64 / r;
-        let per = KERNEL_TABLE_PER_SAMPLE as f64;
-        // The kernel at `u` input samples from the centre: linear between the table's points,
-        // zero past its end.
-        let kernel = |u: f64| -> f64 {
-            let pos = (r * u).abs() * per;
-            let i = pos as usize;
-            if i < table.len() - 1 {
-                let (a, b) = (table[i], table[i + 1]);
-                a + (pos - i as f64) * (b - a)
-            } else {
-                0.0
-            }
-        };
-        self.key = (dt_in.to_bits(), dt_out.to_bits());
-        self.first = from;
-        self.lo.clear();
-        self.at.clear();
-        self.w.clear();
-        self.at.push(0);
-        for i in from..to {
-            let u = i as f64 * dt_out / dt_in;
-            let lo = (u - reach).ceil().max(0.0) as usize;
-            let hi = (u + reach).floor() as usize;
-            self.lo.push(lo);
-            self.w.extend((lo..=hi).map(|k| kernel(u - k as f64)));
-            self.at.push(self.w.len());
-        }
+        fill_weights(Isa::current(), self, dt_in, dt_out, from, to);
     }
 
     /// Whether these are the weights of new samples `0..m` from `dt_in` to `dt_out`.
     fn hold(&self, dt_in: f64, dt_out: f64, m: usize) -> bool {
         self.key == (dt_in.to_bits(), dt_out.to_bits()) && self.first == 0 && self.lo.len() >= m
+    }
+}
+
+widest! {
+    /// [`Weights::fill`] in instruction set `isa`.
+    fn fill_weights(weights: &mut Weights, dt_in: f64, dt_out: f64, from: usize, to: usize) => fill_any
+}
+
+/// The kernel of [`fill_weights`], compiled once per instruction set (the same bits).
+#[inline(always)]
+fn fill_any(weights: &mut Weights, dt_in: f64, dt_out: f64, from: usize, to: usize) {
+    let table = kernel_table();
+    let r = (dt_in / dt_out).min(1.0);
+    let reach = RESAMPLE_HALF_WIDTH as f64 / r;
+    let per = KERNEL_TABLE_PER_SAMPLE as f64;
+    // The kernel at `u` input samples from the centre: linear between the table's points, zero
+    // past its end. Written without branches so that the taps of a sample run side by side.
+    let kernel = |u: f64| -> f64 {
+        let pos = (r * u).abs() * per;
+        let i = pos as usize;
+        let inside = i < table.len() - 1;
+        let k = if inside { i } else { 0 };
+        // SAFETY: `k + 1 < table.len()` (k = 0 when not inside, and the table has two points
+        // or more).
+        let (a, b) = unsafe { (*table.get_unchecked(k), *table.get_unchecked(k + 1)) };
+        let f = pos - i as f64;
+        if inside { a + f * (b - a) } else { 0.0 }
+    };
+    let Weights { key, first, lo: los, at, w } = weights;
+    *key = (dt_in.to_bits(), dt_out.to_bits());
+    *first = from;
+    los.clear();
+    at.clear();
+    w.clear();
+    at.push(0);
+    for i in from..to {
+        let u = i as f64 * dt_out / dt_in;
+        let lo = (u - reach).ceil().max(0.0) as usize;
+        let hi = (u + reach).floor() as usize;
+        los.push(lo);
+        let start = w.len();
+        w.resize(start + (hi + 1 - lo), 0.0);
+        for (j, w) in w[start..].iter_mut().enumerate() {
+            *w = kernel(u - (lo + j) as f64);
+        }
+        at.push(w.len());
     }
 }
 

@@ -405,10 +405,8 @@ impl RotDPlan {
             }
             out.rotd100[at] = best;
             out.rotd100_angle_deg[at] = angle as f64;
-            sorted.clear();
-            sorted.extend_from_slice(peaks);
-            sorted.sort_unstable_by(f64::total_cmp);
-            out.rotd50[at] = 0.5 * (sorted[ANGLES / 2 - 1] + sorted[ANGLES / 2]);
+            let (ninetieth, ninety_first) = middle(peaks, sorted);
+            out.rotd50[at] = 0.5 * (ninetieth + ninety_first);
         }
         Ok(())
     }
