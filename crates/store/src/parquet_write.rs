@@ -210,6 +210,24 @@ mod tests {
     }
 
     #[test]
+    fn the_reused_zstd_context_gives_the_one_shot_calls_bytes() {
+        // Pages of every kind the writer makes, one after the other on one context: each must
+        // compress to what zstd's one-shot call (polars' compression of a page) gives it alone.
+        let floats: Vec<u8> = (0..40_000).flat_map(|i| ((i as f64) * 1e-3).sin().to_le_bytes()).collect();
+        let text: Vec<u8> = b"S1-n36-x model S2-n36-y prototype ".repeat(500);
+        let pages: [&[u8]; 5] = [&floats, &text, &[], &floats[..100], &[7u8; 3]];
+        for round in 0..2 {
+            for (k, page) in pages.iter().enumerate() {
+                let mut ours = vec![1u8, 2, 3];
+                zstd_into(page, &mut ours).unwrap();
+                let one_shot = zstd::bulk::compress(page, 0).unwrap();
+                assert_eq!(&ours[..3], &[1, 2, 3], "appended, not overwritten");
+                assert_eq!(ours[3..], one_shot[..], "round {round}, page {k}");
+            }
+        }
+    }
+
+    #[test]
     fn floats_are_written_split_and_read_back_bit_for_bit() {
         // Four row groups (512² rows each at most) and several pages per float column; nulls,
         // NaN, infinities, subnormals and zeros of both signs among the values.

@@ -724,30 +724,35 @@ mod tests {
     #[test]
     fn the_kept_plans_and_gains_give_a_fresh_filters_bits() {
         // The band-pass as each record had it: its own planner, gains computed bin by bin.
-        let fresh = |x: &[f64], dt: f64, f_low: f64, f_high: Option<f64>| {
+        let fresh = |x: &[f64], dt: f64, f_low: f64, f_high: Option<f64>, order: u32| {
             let m = x.len();
             let mut planner = FftPlanner::<f64>::new();
             let (forward, inverse) = (planner.plan_fft_forward(m), planner.plan_fft_inverse(m));
             let mut buf: Vec<Complex<f64>> = x.iter().map(|&v| Complex::new(v, 0.0)).collect();
             forward.process(&mut buf);
             for (k, c) in buf.iter_mut().enumerate() {
-                *c *= butterworth_gain(k.min(m - k) as f64 * (1.0 / (m as f64 * dt)), f_low, f_high, 4);
+                *c *= butterworth_gain(k.min(m - k) as f64 * (1.0 / (m as f64 * dt)), f_low, f_high, order);
             }
             inverse.process(&mut buf);
             buf.iter().map(|c| (c.re * (1.0 / m as f64)).to_bits()).collect::<Vec<u64>>()
         };
-        // Lengths and filters changing and coming back (the kept ones reused or replaced).
+        // Lengths, intervals and filters changing and coming back (the kept ones reused or
+        // replaced).
         let (a, b) = (sine(37.0, 1e-3, 1009), sine(11.0, 1e-3, 2048));
-        for (x, f_low, f_high) in [
-            (&a, 1.0, Some(200.0)),
-            (&a, 1.0, Some(200.0)),
-            (&b, 1.0, Some(200.0)),
-            (&a, 2.0, None),
-            (&a, 1.0, Some(200.0)),
-        ] {
+        let cases = [
+            (&a, 1e-3, 1.0, Some(200.0), 4),
+            (&a, 1e-3, 1.0, Some(200.0), 4),
+            (&b, 1e-3, 1.0, Some(200.0), 4),
+            (&a, 1e-3, 2.0, None, 4),
+            (&a, 1.1e-3, 2.0, None, 4),
+            (&a, 1.1e-3, 2.0, None, 2),
+            (&a, 1e-3, 1.0, Some(200.0), 4),
+        ];
+        for (x, dt, f_low, f_high, order) in cases {
             let mut y = x.clone();
-            bandpass_in_place(&mut y, 1e-3, f_low, f_high, 4);
-            assert_eq!(y.iter().map(|v| v.to_bits()).collect::<Vec<u64>>(), fresh(x, 1e-3, f_low, f_high));
+            bandpass_in_place(&mut y, dt, f_low, f_high, order);
+            let got: Vec<u64> = y.iter().map(|v| v.to_bits()).collect();
+            assert_eq!(got, fresh(x, dt, f_low, f_high, order), "Δt {dt}, {f_low}–{f_high:?} Hz, order {order}");
         }
     }
 

@@ -289,12 +289,13 @@ mod tests {
 
     #[test]
     fn kept_and_blocked_weights_give_the_plain_sums_bits() {
-        // Records that share their intervals (the kept weights, then reused by a shorter and a
-        // longer record), another pair of intervals in between, coarser and finer, and one too
-        // long for the kept weights (computed a block at a time).
+        // Records that share their intervals (the kept weights, reused by a shorter record, then
+        // grown for a longer one), another pair of intervals in between, coarser and finer, and
+        // one too long for the kept weights (computed a block at a time).
         let cases = [
             (3000, 5.37e-5, 5e-5),
             (1200, 5.37e-5, 5e-5),
+            (3600, 5.37e-5, 5e-5),
             (900, 4.1e-5, 5e-5),
             (3500, 5.37e-5, 5e-5),
             (2000, 1.0, 1.3),

@@ -42,20 +42,21 @@
 //! smallest peak and RotD100 the largest, so most angles need no exact peak, only to be known on
 //! which side of those values they lie. The 90th smallest peak is at least
 //! `cos 45.5°·max_t|P(t)|` (every angle within 45.5° of `P`'s direction sees that much of it, and
-//! a closed arc of 91° holds 91 of the 180 angles), so steps whose bounds stay below it (less a
-//! margin of 1e-6) — and below the 90th smallest of the hull's projections — are not looked at,
-//! and an oscillator stops once its response to come stays below it. Each kept step then
-//! gives every angle an interval: below, `|u_θ|` a quarter, half and three quarters into the
-//! step; above, the smaller of the bounds above and the largest of those five points plus
-//! `((h/4)²/8)·ω²|z_θ|`. An angle is solved exactly (the same steps, in the same order, from the
-//! same peak as when every angle is) while its interval meets the range where the middle values
-//! or the largest may lie; when none does, those are values of solved angles and exact
-//! ([`RotDPlan::every_angle`] solves all 180 and returns them; the tests check that both give
-//! the same bits). For the paper's records (8 000 samples, 100 periods at 5%) this solves about
-//! 19 angles per oscillator instead of all that the bounds leave in doubt, and halves the cost.
+//! a closed arc of 91° holds 91 of the 180 angles), so steps whose bounds stay below it or below
+//! the 90th smallest of the hull's projections, whichever is larger (less a margin of 1e-6), are
+//! not looked at, and an oscillator stops once its response to come stays below it. Each kept
+//! step then gives every angle an interval: below, `|u_θ|` a quarter, half and three quarters into
+//! the step; above, the smaller of the bounds above and the largest of those five points plus
+//! `((h/4)²/8)·ω²|z_θ|`. An angle is solved exactly, by the same exact step solves as when every
+//! angle is, while its interval meets the range where the middle values or the largest may lie;
+//! when none does, those are values of solved angles and exact ([`RotDPlan::every_angle`] solves
+//! all 180 and returns them; the tests check that both give the same bits). For the paper's
+//! records (8 000 samples, 100 periods at 5%) this solves about 19 angles per oscillator and
+//! halves the cost.
 //!
-//! About 9× faster than the straightforward computation for a record of 11 800 samples and
-//! 100 periods (`benches/response_spectra.rs`), every angle solved; the steps solved exactly are mostly those of
+//! With every angle solved, about 9× faster than the straightforward computation for a record of
+//! 11 800 samples and 100 periods (`benches/response_spectra.rs` when it was measured); the steps
+//! solved exactly are mostly those of
 //! periods of a few Δt, where the samples say little about the peaks. A linearly polarised pair
 //! has a flat hull, so every step is looked at across the angles: still exact, about 5× slower
 //! (still faster than the straightforward computation).
@@ -95,7 +96,8 @@ pub struct RotDSpectrum {
     pub rotd100: Vec<f64>,
     /// Angle of RotD100 (degrees from x towards y, 0…179; the smallest if tied).
     pub rotd100_angle_deg: Vec<f64>,
-    /// Spectral displacement of every oscillator at every angle: `per_angle[o·180 + θ]`.
+    /// Spectral displacement of every oscillator at every angle, `per_angle[o·180 + θ]`, from a
+    /// plan made with [`RotDPlan::every_angle`]; empty otherwise.
     pub per_angle: Vec<f64>,
     /// Spectral displacement of the x component alone, bit for bit what
     /// [`SpectrumPlan::compute`] gives for it (the same passes give both).
@@ -105,8 +107,13 @@ pub struct RotDSpectrum {
 }
 
 impl RotDSpectrum {
-    /// The 180 spectral displacements of output `o` (θ = 0°…179°).
+    /// The 180 spectral displacements of output `o` (θ = 0°…179°). Panics unless the plan was
+    /// made with [`RotDPlan::every_angle`].
     pub fn angles(&self, o: usize) -> &[f64] {
+        assert!(
+            !self.per_angle.is_empty() || self.rotd50.is_empty(),
+            "per-angle peaks are returned by a plan made with RotDPlan::every_angle"
+        );
         &self.per_angle[o * ANGLES..(o + 1) * ANGLES]
     }
 }
@@ -307,9 +314,10 @@ impl RotDPlan {
         self.plan.is_empty()
     }
 
-    /// RotD50, RotD100 (and its angle) and the 180 per-angle spectral displacements of the
-    /// horizontal components `x` and `y` (accelerations sampled alike, in one unit) into `out`
-    /// (resized to `len()` outputs). Two empty records give zeros.
+    /// RotD50, RotD100 (and its angle), each component's spectrum and, with
+    /// [`RotDPlan::every_angle`], the 180 per-angle spectral displacements of the horizontal
+    /// components `x` and `y` (accelerations sampled alike, in one unit) into `out` (resized to
+    /// `len()` outputs). Two empty records give zeros.
     pub fn compute(
         &self,
         x: &[f64],
@@ -694,15 +702,23 @@ struct Selection {
 }
 
 /// Solves the angles RotD50 and RotD100 depend on, and no other: `pk` holds each angle's peak
-/// at the samples (a lower bound, complete above `floor`), the kept steps and the free vibration
-/// give each an upper bound, and an angle is solved exactly (as with every angle: the same
-/// steps, in the same order, from the same peak) while its interval `[pk, upper]` meets the
-/// range `[L, U]` where the 90th…91st smallest, or the largest, peak may lie (`L` from the lower
-/// bounds, `U` from the upper ones). When no interval of an unsolved angle meets them, each
-/// unsolved angle lies wholly below or above them, so `L` and `U` are values of solved angles
-/// and equal: the 90th, 91st and largest of the lower bounds are the exact ones, and the largest
-/// is reached first at a solved angle. Every angle's peak is at least `floor`'s disc and nothing
-/// below `floor` was looked at, so `floor` is every upper bound's least.
+/// at the samples (a lower bound, complete above `floor`), the kept steps give each angle a
+/// tighter lower bound and, with the free vibration, an upper bound, and an angle is solved
+/// exactly while its interval `[lower, upper]` meets the range `[L, U]` where the 90th…91st
+/// smallest, or the largest, peak may lie (`L` from the lower bounds, `U` from the upper ones).
+/// When no interval of an unsolved angle meets them, each unsolved angle lies wholly below or
+/// above them, so `L` and `U` are values of solved angles and equal: the 90th, 91st and largest of
+/// the lower bounds are the exact ones, and the largest is reached first at a solved angle.
+/// Nothing below `floor` was looked at, and `floor` is below the 90th smallest peak: every upper
+/// bound is at least `floor`, which keeps what was not looked at on its side of the middle values.
+///
+/// A solved angle goes through the same exact step solves, in step order, as with every angle,
+/// but may start from a lower peak at the samples (steps and samples below `floor` are not looked
+/// at here) and against a smaller disc, so its solves see a lower floor. `step_peak` returns
+/// `max(floor, extremum)` with the extremum computed independently of the floor, except where one
+/// of its early exits compares a bound with the floor without a margin; the two modes can then
+/// differ only if a computed extremum falls within a rounding of such a bound, for an angle that
+/// decides RotD50 or RotD100 — not seen in the tests, which compare both modes bit for bit.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn select(
