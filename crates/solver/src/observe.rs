@@ -25,16 +25,13 @@ pub(crate) trait Observed {
 }
 
 impl<const L: usize> Observed for LaneView<'_, '_, L> {
+    #[inline(always)]
     fn node_contact(&self, ci: usize) -> NodeContact {
         LaneView::node_contact(self, ci)
     }
 
     fn contacts(&self) -> usize {
         self.params.model.contact().len()
-    }
-
-    fn interface(&self) -> Interface {
-        LaneView::interface(self)
     }
 
     fn driver_force(&self) -> f64 {

@@ -51,6 +51,7 @@ pub struct NodeContact {
 
 impl Interface {
     /// The resultants of the contact nodes, summed in their order.
+    #[inline(always)]
     pub fn sum(nodes: impl ExactSizeIterator<Item = NodeContact>) -> Interface {
         let n = nodes.len() as f64;
         let mut s = Interface { max_slip_rate: f64::NEG_INFINITY, ..Interface::default() };
@@ -112,31 +113,13 @@ impl<const L: usize> LaneView<'_, '_, L> {
 
     /// Interface resultants.
     pub fn interface(&self) -> Interface {
-        // What `Interface::sum` of every `node_contact` gives, the same sums in the same order,
-        // reading only the fields it sums (the observer looks at every step of every lane).
-        let (l, u, r) = (self.lane, &self.state.u, &self.state.contact.reaction);
-        let factor = self.params.model.scene().slip_factor();
-        let h = 0.5 / self.params.dt(l) * factor;
-        let contact = self.params.model.contact();
-        let n = contact.len() as f64;
-        let mut s = Interface { max_slip_rate: f64::NEG_INFINITY, ..Interface::default() };
-        for (ci, &p) in contact.iter().enumerate() {
-            let p = p as usize;
-            let slip_rate = (u.np1.c[0][p][l] - u.nm1.c[0][p][l]) * h;
-            s.friction_x += r[0][ci][l];
-            s.normal += r[2][ci][l];
-            s.mean_slip += u.n.c[0][p][l] * factor;
-            s.mean_slip_rate += slip_rate;
-            s.max_slip_rate = s.max_slip_rate.max(slip_rate);
-            s.slipping += usize::from(self.state.contact.sliding[ci][l]);
-            s.lifted += usize::from(r[2][ci][l] == 0.0);
-        }
-        s.mean_slip /= n;
-        s.mean_slip_rate /= n;
-        s
+        Interface::sum((0..self.params.model.contact().len()).map(|ci| self.node_contact(ci)))
     }
 
-    /// Contact node `ci` (order of [`crate::Model::contact`]) at the viewed time.
+    /// Contact node `ci` (order of [`crate::Model::contact`]) at the viewed time. Inlined: the
+    /// observer sums every contact node of every lane at every step, and only the fields it adds
+    /// need reading.
+    #[inline(always)]
     pub fn node_contact(&self, ci: usize) -> NodeContact {
         let (l, u, r) = (self.lane, &self.state.u, &self.state.contact.reaction);
         let factor = self.params.model.scene().slip_factor();
