@@ -70,9 +70,14 @@ use stickslip_isa::{Isa, widest};
 
 use crate::spectra::oscillator::Oscillator;
 use crate::spectra::response::{
-    Bank, CHECK, Coefficients, LANES, Reading, RecordEnd, Resampler, Running, SETTLED, SpectrumError, SpectrumPlan,
-    State, check_finite, settled, step_input, step_range, suffix_max,
+    Bank, CHECK, Reading, RecordEnd, Resampler, Running, SpectrumError, SpectrumPlan, State, check_finite, step_input,
+    step_range, suffix_max,
 };
+use passes::{Extremes, Hull, POINTS, direction_cosines, first_pass_step, pair_settled, second_pass_step};
+use select::{Selection, below_middle, median_floor, middle, select};
+
+mod passes;
+mod select;
 
 /// Number of rotation angles: θ = 0°, 1°, …, 179°.
 pub const ANGLES: usize = 180;
@@ -136,7 +141,8 @@ pub struct RotDScratch {
     ext: Extremes,
     /// Their symmetric hull, per oscillator.
     hull: Vec<Hull>,
-    /// Radius of the disc inscribed in each hull (padded).
+    /// Radius of the disc inscribed in each hull (padded), the second pass's disc: without every
+    /// angle, at least the floor below RotD50.
     inradius: Vec<f64>,
     flag: Vec<u8>,
     angle_flag: Vec<u8>,
@@ -148,120 +154,6 @@ pub struct RotDScratch {
     /// The 180 peaks of every oscillator in the bank's order, and |(x, y)| of each sample.
     per_angle: Vec<f64>,
     points: Vec<f64>,
-}
-
-/// Directions (degrees) along which the first pass records where the samples reach farthest.
-const DIRECTIONS: [f64; 8] = [0.0, 22.5, 45.0, 67.5, 90.0, 112.5, 135.0, 157.5];
-/// Points recorded per oscillator: one per direction, and the largest |P|.
-const POINTS: usize = DIRECTIONS.len() + 1;
-
-/// Largest |P·e| along each of [`DIRECTIONS`] and largest |P|² seen at the samples, and the
-/// points `P = (u_x, u_y)` where, for every oscillator: entry `j·n + o` (structure of arrays,
-/// so the first pass runs across oscillators).
-#[derive(Debug, Default)]
-struct Extremes {
-    value: Vec<f64>,
-    px: Vec<f64>,
-    py: Vec<f64>,
-}
-
-impl Extremes {
-    fn reset(&mut self, n: usize) {
-        for a in [&mut self.value, &mut self.px, &mut self.py] {
-            a.clear();
-            a.resize(POINTS * n, 0.0);
-        }
-    }
-
-    /// The recorded points of oscillator `o` of `n`.
-    fn points(&self, o: usize, n: usize) -> [[f64; 2]; POINTS] {
-        std::array::from_fn(|j| [self.px[j * n + o], self.py[j * n + o]])
-    }
-}
-
-/// A convex polygon symmetric about the origin, as half-planes `n·P ≤ d` (unit outward `n`);
-/// no edge means degenerate (nothing is inside). The entries past `edges` are `n = 0`,
-/// `d = +∞`, which every finite point satisfies, so a point is tested against all entries at
-/// once, side by side.
-#[derive(Clone, Copy, Debug)]
-struct Hull {
-    edges: usize,
-    nx: [f64; 2 * POINTS],
-    ny: [f64; 2 * POINTS],
-    d: [f64; 2 * POINTS],
-}
-
-impl Default for Hull {
-    fn default() -> Self {
-        Hull { edges: 0, nx: [0.0; 2 * POINTS], ny: [0.0; 2 * POINTS], d: [f64::INFINITY; 2 * POINTS] }
-    }
-}
-
-impl Hull {
-    /// The symmetric convex hull of `±points` (zero points ignored).
-    fn of(points: &[[f64; 2]; POINTS]) -> Hull {
-        let mut p = [[0.0; 2]; 2 * POINTS];
-        let mut m = 0;
-        for q in points {
-            if q[0] != 0.0 || q[1] != 0.0 {
-                p[m] = *q;
-                p[m + 1] = [-q[0], -q[1]];
-                m += 2;
-            }
-        }
-        let p = &mut p[..m];
-        p.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
-        // Andrew's monotone chain, counter-clockwise, collinear points dropped.
-        let cross =
-            |o: [f64; 2], a: [f64; 2], b: [f64; 2]| (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
-        let mut h = [[0.0; 2]; 4 * POINTS + 1];
-        let mut k = 0;
-        for &q in p.iter() {
-            while k >= 2 && cross(h[k - 2], h[k - 1], q) <= 0.0 {
-                k -= 1;
-            }
-            h[k] = q;
-            k += 1;
-        }
-        let lower = k + 1;
-        for &q in p.iter().rev().skip(1) {
-            while k >= lower && cross(h[k - 2], h[k - 1], q) <= 0.0 {
-                k -= 1;
-            }
-            h[k] = q;
-            k += 1;
-        }
-        let vertices = k.saturating_sub(1);
-        let mut hull = Hull::default();
-        if vertices < 3 {
-            return hull;
-        }
-        for i in 0..vertices.min(2 * POINTS) {
-            let (a, b) = (h[i], h[i + 1]);
-            let (ex, ey) = (b[0] - a[0], b[1] - a[1]);
-            let len = ex.hypot(ey);
-            let n = [ey / len, -ex / len];
-            (hull.nx[hull.edges], hull.ny[hull.edges]) = (n[0], n[1]);
-            hull.d[hull.edges] = n[0] * a[0] + n[1] * a[1];
-            hull.edges += 1;
-        }
-        hull
-    }
-
-    /// Radius of the inscribed disc about the origin (0 if degenerate).
-    fn inradius(&self) -> f64 {
-        if self.edges == 0 { 0.0 } else { self.d[..self.edges].iter().fold(f64::INFINITY, |m, &d| m.min(d)).max(0.0) }
-    }
-
-    /// Whether `p` is inside with at least `margin` to spare from every edge.
-    #[inline(always)]
-    fn holds(&self, p: [f64; 2], margin: f64) -> bool {
-        let mut inside = true;
-        for i in 0..2 * POINTS {
-            inside &= self.nx[i] * p[0] + self.ny[i] * p[1] + margin <= self.d[i];
-        }
-        self.edges > 0 && inside
-    }
 }
 
 impl RotDPlan {
@@ -525,7 +417,7 @@ fn run_any(
         // Without every angle, the 90th smallest of these is below RotD50 too: a larger disc
         // for the second pass.
         if !w.every_angle {
-            floor[o] = floor[o].max(middle(pk, &mut selection.work).0 * (1.0 - 1e-6));
+            floor[o] = floor[o].max(below_middle(pk, &mut selection.work));
             inradius[o] = inradius[o].max(floor[o]);
         }
     }
@@ -645,18 +537,6 @@ impl Free {
     }
 }
 
-/// The fraction of the largest `|P|` at the samples below which RotD50 cannot be: any angle
-/// within 45.5° of P's direction sees at least `cos 45.5°·|P|`, and a closed arc of 91° holds 91 of
-/// the 180 angles, so the 91st largest (the 90th smallest) peak is at least that; a relative
-/// margin of 1e-6 covers the roundings of the projections and of the bounds compared with it.
-const MEDIAN_BELOW: f64 = 0.700_909_264_299_851 * (1.0 - 1e-6);
-
-/// A value below the 90th smallest of the 180 peaks of an oscillator whose largest `|P|²` at the
-/// samples is `p2`: what no step below it can change of RotD50 and RotD100.
-fn median_floor(p2: f64) -> f64 {
-    MEDIAN_BELOW * p2.sqrt()
-}
-
 /// Work arrays of the refinement (reused across records).
 #[derive(Default)]
 struct Refinement {
@@ -689,318 +569,6 @@ impl Refinement {
             fill[c.o] += 1;
         }
     }
-}
-
-/// Work arrays of [`select`].
-#[derive(Default)]
-struct Selection {
-    lower: Vec<f64>,
-    upper: Vec<f64>,
-    solved: Vec<bool>,
-    pending: Vec<usize>,
-    work: Vec<f64>,
-}
-
-/// Solves the angles RotD50 and RotD100 depend on, and no other: `pk` holds each angle's peak
-/// at the samples (a lower bound, complete above `floor`), the kept steps give each angle a
-/// tighter lower bound and, with the free vibration, an upper bound, and an angle is solved
-/// exactly while its interval `[lower, upper]` meets the range `[L, U]` where the 90th…91st
-/// smallest, or the largest, peak may lie (`L` from the lower bounds, `U` from the upper ones).
-/// When no interval of an unsolved angle meets them, each unsolved angle lies wholly below or
-/// above them, so `L` and `U` are values of solved angles and equal: the 90th, 91st and largest of
-/// the lower bounds are the exact ones, and the largest is reached first at a solved angle.
-/// Nothing below `floor` was looked at, and `floor` is below the 90th smallest peak: every upper
-/// bound is at least `floor`, which keeps what was not looked at on its side of the middle values.
-///
-/// A solved angle goes through the same exact step solves, in step order, as with every angle,
-/// but may start from a lower peak at the samples (steps and samples below `floor` are not looked
-/// at here) and against a smaller disc, so its solves see a lower floor. `step_peak` returns
-/// `max(floor, extremum)` with the extremum computed independently of the floor, except where one
-/// of its early exits compares a bound with the floor without a margin; the two modes can then
-/// differ only if a computed extremum falls within a rounding of such a bound, for an angle that
-/// decides RotD50 or RotD100 — not seen in the tests, which compare both modes bit for bit.
-#[allow(clippy::too_many_arguments)]
-#[inline(always)]
-fn select(
-    osc: &Oscillator,
-    kept: &[Step],
-    free: Option<&Free>,
-    floor: f64,
-    cos: &[f64],
-    sin: &[f64],
-    pk: &mut [f64],
-    s: &mut Selection,
-) {
-    let Selection { lower, upper, solved, pending, work } = s;
-    let disc = pk.iter().fold(f64::INFINITY, |m, &p| m.min(p));
-    // Nor can a step that stays inside the disc below the peaks' 90th smallest lower bound
-    // change anything RotD50 or RotD100 depend on.
-    let below = floor.max(disc).max(middle(pk, work).0 * (1.0 - 1e-6));
-    let h = osc.h();
-    let phases = [osc.phase(0.25 * h), osc.phase(0.5 * h), osc.phase(0.75 * h)];
-    lower.clear();
-    lower.extend_from_slice(pk);
-    upper.clear();
-    upper.extend(pk.iter().map(|&p| p.max(below)));
-    for step in kept {
-        step.raise_bounds(osc, below, &phases, cos, sin, lower, upper);
-    }
-    if let Some(free) = free {
-        for t in 0..ANGLES {
-            let envelope = free.envelope(cos[t], sin[t]).2;
-            if envelope > pk[t] {
-                upper[t] = upper[t].max(envelope * (1.0 + 1e-9));
-            }
-        }
-    }
-    solved.clear();
-    solved.extend(pk.iter().zip(upper.iter()).map(|(p, u)| u <= p));
-    loop {
-        doubtful(lower, upper, solved, pending, work);
-        if pending.is_empty() {
-            // The unsolved angles take their lower bounds: on their side of the middle values.
-            for t in 0..ANGLES {
-                if !solved[t] {
-                    pk[t] = lower[t];
-                }
-            }
-            break;
-        }
-        for step in kept {
-            step.solve(osc, disc, cos, sin, pk, pending);
-        }
-        for &t in pending.iter() {
-            if let Some(free) = free {
-                pk[t] = free.raise(osc, cos[t], sin[t], pk[t]);
-            }
-            solved[t] = true;
-            (lower[t], upper[t]) = (pk[t], pk[t]);
-        }
-    }
-}
-
-/// Into `pending`, the angles not `solved` whose interval `[lower, upper]` meets
-/// the range where the 90th…91st smallest or the largest peak may lie (see [`select`]).
-#[inline(always)]
-fn doubtful(lower: &[f64], upper: &[f64], solved: &[bool], pending: &mut Vec<usize>, work: &mut Vec<f64>) {
-    let (l90, _) = middle(lower, work);
-    let (_, u91) = middle(upper, work);
-    let l180 = lower.iter().fold(0.0, |m: f64, &p| m.max(p));
-    let u180 = upper.iter().fold(0.0, |m: f64, &p| m.max(p));
-    pending.clear();
-    pending.extend(
-        (0..ANGLES).filter(|&t| {
-            !solved[t] && ((lower[t] <= u91 && upper[t] >= l90) || (lower[t] <= u180 && upper[t] >= l180))
-        }),
-    );
-}
-
-/// The 90th and 91st smallest of the 180 values (RotD50 is their mean).
-#[inline(always)]
-fn middle(values: &[f64], work: &mut Vec<f64>) -> (f64, f64) {
-    work.clear();
-    work.extend_from_slice(values);
-    let (_, lower, above) = work.select_nth_unstable_by(ANGLES / 2 - 1, f64::total_cmp);
-    let lower = *lower;
-    (lower, above.iter().fold(f64::INFINITY, |m, &v| m.min(v)))
-}
-
-/// Whether none of the [`LANES`] oscillators from `o` (of `n`) can raise any of its peaks any
-/// more: each component's (see [`settled`]) and every angle's — from the states the free
-/// vibration of `u_θ` stays within the joint amplitude `|Z| = (A_x² + A_y²)^½` and the forced
-/// response within `rest_p·∫|h|` (`rest_p` the largest |(a_x, a_y)| to come), and when their
-/// sum is inside the disc inscribed in the hull of the points recorded so far, it is inside
-/// every angle's final peak. Without `every_angle`, once that sum is below [`median_floor`] of
-/// the largest |P| so far: the angles it could still raise stay below RotD50.
-#[allow(clippy::too_many_arguments)]
-fn pair_settled(
-    k: &Coefficients,
-    o: usize,
-    n: usize,
-    x: &State,
-    y: &State,
-    e: &Extremes,
-    (rx, ry, rp): (f64, f64, f64),
-    every_angle: bool,
-) -> bool {
-    if !(settled(k, o, &x.u, &x.v, &x.peak, rx) && settled(k, o, &y.u, &y.v, &y.peak, ry)) {
-        return false;
-    }
-    (o..o + LANES).all(|o| {
-        let wx = (x.v[o] + k.xw[o] * x.u[o]) * k.iwd[o];
-        let wy = (y.v[o] + k.xw[o] * y.u[o]) * k.iwd[o];
-        let forced = if rp == 0.0 { 0.0 } else { rp * k.gain[o] };
-        let reach = (x.u[o] * x.u[o] + wx * wx + y.u[o] * y.u[o] + wy * wy).sqrt() + forced;
-        if !every_angle {
-            // Below RotD50 (see `median_floor`), no angle that RotD50 and RotD100 depend on moves.
-            return reach <= median_floor(e.value[(POINTS - 1) * n + o]);
-        }
-        // The disc is inside the extent along every direction: a cheap test first.
-        let extent = (0..DIRECTIONS.len()).fold(f64::INFINITY, |m, j| m.min(e.value[j * n + o]));
-        reach <= SETTLED * extent && reach <= SETTLED * Hull::of(&e.points(o, n)).inradius()
-    })
-}
-
-/// `(cos, sin)` of each of [`DIRECTIONS`].
-fn direction_cosines() -> [(f64, f64); DIRECTIONS.len()] {
-    DIRECTIONS.map(|d| {
-        let (s, c) = d.to_radians().sin_cos();
-        (c, s)
-    })
-}
-
-/// First pass, one step of oscillators `lo..n`: both recurrences in place with each
-/// component's peak at the samples, and the samples where |u_x|, |u_y| and |P| peak
-/// (`directions` from [`direction_cosines`]).
-#[inline(always)]
-#[allow(clippy::too_many_arguments)]
-fn first_pass_step(
-    k: &Coefficients,
-    directions: &[(f64, f64); DIRECTIONS.len()],
-    lo: usize,
-    n: usize,
-    x0: f64,
-    x1: f64,
-    y0: f64,
-    y1: f64,
-    sx: &mut State,
-    sy: &mut State,
-    ext: &mut Extremes,
-) {
-    let (a11, a12, a21, a22) = (&k.a11[lo..n], &k.a12[lo..n], &k.a21[lo..n], &k.a22[lo..n]);
-    let (bu0, bu1, bv0, bv1) = (&k.bu0[lo..n], &k.bu1[lo..n], &k.bv0[lo..n], &k.bv1[lo..n]);
-    let (ux, vx, px) = (&mut sx.u[lo..n], &mut sx.v[lo..n], &mut sx.peak[lo..n]);
-    let (uy, vy, py) = (&mut sy.u[lo..n], &mut sy.v[lo..n], &mut sy.peak[lo..n]);
-    for o in 0..n - lo {
-        let (u0, v0) = (ux[o], vx[o]);
-        let u1 = a11[o] * u0 + a12[o] * v0 + bu0[o] * x0 + bu1[o] * x1;
-        vx[o] = a21[o] * u0 + a22[o] * v0 + bv0[o] * x0 + bv1[o] * x1;
-        ux[o] = u1;
-        px[o] = px[o].max(u1.abs());
-        let (u0, v0) = (uy[o], vy[o]);
-        let w1 = a11[o] * u0 + a12[o] * v0 + bu0[o] * y0 + bu1[o] * y1;
-        vy[o] = a21[o] * u0 + a22[o] * v0 + bv0[o] * y0 + bv1[o] * y1;
-        uy[o] = w1;
-        py[o] = py[o].max(w1.abs());
-    }
-    for j in 0..POINTS {
-        let (c, s) = if j < DIRECTIONS.len() { directions[j] } else { (0.0, 0.0) };
-        let value = &mut ext.value[j * n + lo..(j + 1) * n];
-        let px = &mut ext.px[j * n + lo..(j + 1) * n];
-        let py = &mut ext.py[j * n + lo..(j + 1) * n];
-        let (ux, uy) = (&ux[..n - lo], &uy[..n - lo]);
-        for o in 0..n - lo {
-            let (u, w) = (ux[o], uy[o]);
-            let along = if j < DIRECTIONS.len() { (c * u + s * w).abs() } else { u * u + w * w };
-            let take = along > value[o];
-            value[o] = if take { along } else { value[o] };
-            px[o] = if take { u } else { px[o] };
-            py[o] = if take { w } else { py[o] };
-        }
-    }
-}
-
-/// Second pass, one step of oscillators `lo..n`: both recurrences into the next states, each
-/// component's bounds against its own peak (flags in `sx.flag`, `sy.flag`, as
-/// [`crate::spectra::response`] computes them), and whether the joint step may leave the disc
-/// inscribed in the hull (`flag`). Returns whether any is flagged, per kind.
-#[inline(always)]
-#[allow(clippy::too_many_arguments)]
-fn second_pass_step(
-    k: &Coefficients,
-    lo: usize,
-    n: usize,
-    x0: f64,
-    x1: f64,
-    y0: f64,
-    y1: f64,
-    sx: &mut State,
-    sy: &mut State,
-    inradius: &[f64],
-    flag: &mut [u8],
-) -> [bool; 3] {
-    let any = joint_step(k, lo, n, x0, x1, y0, y1, sx, sy, inradius, flag);
-    [component_bounds(k, lo, n, x0, x1, sx), component_bounds(k, lo, n, y0, y1, sy), any]
-}
-
-/// Both recurrences of oscillators `lo..n` into the next states, flagging where the joint step
-/// may leave the disc inscribed in the hull; returns whether any is flagged.
-#[inline(always)]
-#[allow(clippy::too_many_arguments)]
-fn joint_step(
-    k: &Coefficients,
-    lo: usize,
-    n: usize,
-    x0: f64,
-    x1: f64,
-    y0: f64,
-    y1: f64,
-    sx: &mut State,
-    sy: &mut State,
-    inradius: &[f64],
-    flag: &mut [u8],
-) -> bool {
-    let (a11, a12, a21, a22) = (&k.a11[lo..n], &k.a12[lo..n], &k.a21[lo..n], &k.a22[lo..n]);
-    let (bu0, bu1, bv0, bv1) = (&k.bu0[lo..n], &k.bu1[lo..n], &k.bv0[lo..n], &k.bv1[lo..n]);
-    let (ky0, ky1, kd, xw) = (&k.ky0[lo..n], &k.ky1[lo..n], &k.kd[lo..n], &k.xw[lo..n]);
-    let (iwd, iw2, c2) = (&k.iwd[lo..n], &k.iw2[lo..n], &k.c2[lo..n]);
-    let (ux, vx, uxn, vxn) = (&sx.u[lo..n], &sx.v[lo..n], &mut sx.u_next[lo..n], &mut sx.v_next[lo..n]);
-    let (uy, vy, uyn, vyn) = (&sy.u[lo..n], &sy.v[lo..n], &mut sy.u_next[lo..n], &mut sy.v_next[lo..n]);
-    let (inradius, flag) = (&inradius[lo..n], &mut flag[lo..n]);
-    let (dx, dy) = (x1 - x0, y1 - y0);
-    let mut any = 0u8;
-    for o in 0..n - lo {
-        let (u0, v0, w0, q0) = (ux[o], vx[o], uy[o], vy[o]);
-        let u1 = a11[o] * u0 + a12[o] * v0 + bu0[o] * x0 + bu1[o] * x1;
-        vxn[o] = a21[o] * u0 + a22[o] * v0 + bv0[o] * x0 + bv1[o] * x1;
-        uxn[o] = u1;
-        let w1 = a11[o] * w0 + a12[o] * q0 + bu0[o] * y0 + bu1[o] * y1;
-        vyn[o] = a21[o] * w0 + a22[o] * q0 + bv0[o] * y0 + bv1[o] * y1;
-        uyn[o] = w1;
-        // |z_x|² + |z_y|² at the step's start, and −L of each component at both ends.
-        let (lx, ly) = (ky0[o] * x0 + ky1[o] * x1, ky0[o] * y0 + ky1[o] * y1);
-        let (yx, yy) = (u0 + lx, w0 + ly);
-        let sxx = (v0 + kd[o] * dx + xw[o] * yx) * iwd[o];
-        let syy = (q0 + kd[o] * dy + xw[o] * yy) * iwd[o];
-        let zz = yx * yx + sxx * sxx + yy * yy + syy * syy;
-        let (lxh, lyh) = (lx + iw2[o] * dx, ly + iw2[o] * dy);
-        let p2 = (u0 * u0 + w0 * w0).max(u1 * u1 + w1 * w1);
-        let l2 = (lx * lx + ly * ly).max(lxh * lxh + lyh * lyh);
-        let b2 = p2.sqrt() + (c2[o] * zz).sqrt();
-        let b1 = l2.sqrt() + zz.sqrt();
-        let f = (b2.min(b1) > inradius[o]) as u8;
-        flag[o] = f;
-        any |= f;
-    }
-    any != 0
-}
-
-/// One component's bounds of |u| inside the step just taken (from `s.u`, `s.v` to `s.u_next`),
-/// against its own peak, for oscillators `lo..n`: the flags of `response::step_bounds`, from the
-/// same arithmetic; returns whether any is flagged.
-#[inline(always)]
-fn component_bounds(k: &Coefficients, lo: usize, n: usize, x0: f64, x1: f64, s: &mut State) -> bool {
-    let (ky0, ky1, kd, xw) = (&k.ky0[lo..n], &k.ky1[lo..n], &k.kd[lo..n], &k.xw[lo..n]);
-    let (iwd, iw2, c2) = (&k.iwd[lo..n], &k.iw2[lo..n], &k.c2[lo..n]);
-    let (u, v, un) = (&s.u[lo..n], &s.v[lo..n], &s.u_next[lo..n]);
-    let (pk, flag) = (&s.peak[lo..n], &mut s.flag[lo..n]);
-    let dx = x1 - x0;
-    let mut any = 0u8;
-    for o in 0..n - lo {
-        let (u0, v0, u1) = (u[o], v[o], un[o]);
-        let q = ky0[o] * x0 + ky1[o] * x1;
-        let y0 = u0 + q;
-        let w = (v0 + kd[o] * dx + xw[o] * y0) * iwd[o];
-        let z2 = y0 * y0 + w * w;
-        let g2 = pk[o] - u0.abs().max(u1.abs());
-        let b2 = g2 * g2 < c2[o] * z2;
-        let g1 = pk[o] - q.abs().max((q + iw2[o] * dx).abs());
-        let b1 = (g1 < 0.0) | (g1 * g1 < z2);
-        let f = (b1 & b2) as u8;
-        flag[o] = f;
-        any |= f;
-    }
-    any != 0
 }
 
 /// One step of one oscillator, both components: states at its start (and displacements at its
@@ -1137,68 +705,6 @@ impl Step {
             }
         }
     }
-
-    /// Raises the lower bounds of the 180 peaks to `|u_θ|` at a quarter, half and
-    /// three quarters of the step (`phases`: `e^{λτ}` there), less a rounding allowance, and
-    /// their upper bounds to what the step can reach: the smaller of [`Step::bound`] and the
-    /// largest of those five points plus `((h/4)²/8)·ω²|z_θ|` (|ü_θ| ≤ ω²|z_θ|, so between two
-    /// of the points |u_θ| stays within that of their chord), with the same allowance. Nothing
-    /// when the step stays inside the disc of radius `disc`.
-    #[inline(always)]
-    #[allow(clippy::too_many_arguments)]
-    fn raise_bounds(
-        &self,
-        osc: &Oscillator,
-        disc: f64,
-        phases: &[[f64; 2]; 3],
-        cos: &[f64],
-        sin: &[f64],
-        lower: &mut [f64],
-        upper: &mut [f64],
-    ) {
-        let Some(r) = self.reach(osc, disc) else { return };
-        let [lx0, ly0, lxh, lyh] = r.l;
-        let (zx, zy) = (r.zx, r.zy);
-        let q: [[f64; 2]; 3] = std::array::from_fn(|j| {
-            let (f, e) = ((j + 1) as f64 * 0.25, phases[j]);
-            [lx0 + (lxh - lx0) * f + zx[0] * e[0] - zx[1] * e[1], ly0 + (lyh - ly0) * f + zy[0] * e[0] - zy[1] * e[1]]
-        });
-        let slack = 1e-12
-            * (lx0.abs() + lxh.abs() + ly0.abs() + lyh.abs() + zx[0].abs() + zx[1].abs() + zy[0].abs() + zy[1].abs());
-        let inner = Inner { q, slack, quarter: r.k / 16.0 };
-        let (cos, sin, lower, upper) = (&cos[..ANGLES], &sin[..ANGLES], &mut lower[..ANGLES], &mut upper[..ANGLES]);
-        for t in 0..ANGLES {
-            let (l, u) = self.bounds_at(&r, &inner, cos[t], sin[t]);
-            lower[t] = lower[t].max(l);
-            upper[t] = upper[t].max(u);
-        }
-    }
-
-    /// `(lower, upper)` bounds of the largest |u_θ| inside the step at angle `(c, s)` (see
-    /// [`Step::raise_bounds`]).
-    #[inline(always)]
-    fn bounds_at(&self, r: &Reach, inner: &Inner, c: f64, s: f64) -> (f64, f64) {
-        let q = &inner.q;
-        let inside = (c * q[0][0] + s * q[0][1])
-            .abs()
-            .max((c * q[1][0] + s * q[1][1]).abs())
-            .max((c * q[2][0] + s * q[2][1]).abs());
-        let ends = (c * r.p0[0] + s * r.p0[1]).abs().max((c * r.p1[0] + s * r.p1[1]).abs());
-        let (zr, zi) = (c * r.zx[0] + s * r.zy[0], c * r.zx[1] + s * r.zy[1]);
-        let pieces = inside.max(ends) + inner.quarter * (zr * zr + zi * zi).sqrt() + inner.slack;
-        (inside - inner.slack, self.bound(r, c, s).min(pieces) * (1.0 + 1e-9))
-    }
-
-    /// [`Step::refine`] at the angles `angles` only: for each, the same test and solve.
-    #[inline(always)]
-    fn solve(&self, osc: &Oscillator, disc: f64, cos: &[f64], sin: &[f64], pk: &mut [f64], angles: &[usize]) {
-        let Some(r) = self.reach(osc, disc) else { return };
-        for &t in angles {
-            if self.bound(&r, cos[t], sin[t]) * (1.0 + 1e-9) > pk[t] {
-                pk[t] = self.solve_at(osc, cos[t], sin[t], pk[t]);
-            }
-        }
-    }
 }
 
 /// What a kept step's bounds share across angles (see [`Step::reach`]).
@@ -1215,36 +721,4 @@ struct Reach {
     rounding: f64,
     /// `(cos, sin)` of ω_d·h and whether it is below π.
     turn: (f64, f64, bool),
-}
-
-/// The points a quarter, half and three quarters into a step, their rounding allowance, and
-/// `((h/4)²/8)·ω²` (see [`Step::raise_bounds`]).
-struct Inner {
-    q: [[f64; 2]; 3],
-    slack: f64,
-    quarter: f64,
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn at_least_91_of_the_180_angles_see_cos_45_5_degrees_of_any_direction() {
-        let cos455 = 45.5f64.to_radians().cos();
-        assert!((MEDIAN_BELOW / (1.0 - 1e-6) - cos455).abs() < 1e-15, "{MEDIAN_BELOW} against {cos455}");
-        // Directions on, between and near the grid, and spread over the half-turn: the 91st
-        // largest |cos(θ − φ)| over θ = 0°…179° (the 90th smallest) is never below cos 45.5°, and
-        // at half-degree offsets it is cos 45.5° itself, so nothing larger would hold.
-        let mut tightest = f64::INFINITY;
-        for i in 0..36_000 {
-            let phi = (i as f64 * 0.005 + 1e-7 * (i % 7) as f64).to_radians();
-            let mut seen: Vec<f64> = (0..ANGLES).map(|t| ((t as f64).to_radians() - phi).cos().abs()).collect();
-            seen.sort_by(f64::total_cmp);
-            let ninetieth = seen[ANGLES / 2 - 1];
-            assert!(ninetieth >= cos455 * (1.0 - 1e-12), "φ = {}°: {ninetieth}", phi.to_degrees());
-            tightest = tightest.min(ninetieth);
-        }
-        assert!((tightest / cos455 - 1.0).abs() < 1e-6, "{tightest}");
-    }
 }
