@@ -8,6 +8,7 @@
 
 pub mod at2;
 pub mod csv;
+pub mod filter;
 pub mod processing;
 pub mod resample;
 pub mod sac;
