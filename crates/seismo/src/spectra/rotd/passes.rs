@@ -280,13 +280,29 @@ fn joint_step(
         let (lxh, lyh) = (lx + iw2[o] * dx, ly + iw2[o] * dy);
         let p2 = (u0 * u0 + w0 * w0).max(u1 * u1 + w1 * w1);
         let l2 = (lx * lx + ly * ly).max(lxh * lxh + lyh * lyh);
-        let b2 = p2.sqrt() + (c2[o] * zz).sqrt();
-        let b1 = l2.sqrt() + zz.sqrt();
-        let f = (b2.min(b1) > inradius[o]) as u8;
+        // min(√p2 + √(c2·zz), √l2 + √zz) beyond the disc, shrunk so that every step the
+        // square roots would flag is flagged (see `beyond`).
+        let r = inradius[o] * SHRUNK;
+        let f = (beyond(p2, c2[o] * zz, r * r) & beyond(l2, zz, r * r)) as u8;
         flag[o] = f;
         any |= f;
     }
     any != 0
+}
+
+/// What the disc's radius is multiplied by in [`joint_step`]: a relative margin far above the
+/// roundings of either way of testing `√a + √b > r`, so that the test without square roots flags
+/// every step the one with them would (and, within 1e-9 of the disc's edge, a few more, which
+/// then go through the hull's own test, [`super::Step::escapes`]).
+const SHRUNK: f64 = 1.0 - 1e-9;
+
+/// Whether `√a + √b > √r2` (`a`, `b`, `r2` ≥ 0) without square roots (four a step and
+/// oscillator were a tenth of the second pass): with `d = r2 − a − b`, `(√a + √b)² =
+/// a + b + 2√(ab)` exceeds `r2` when `d < 0`, and otherwise exactly when `4ab > d²`.
+#[inline(always)]
+fn beyond(a: f64, b: f64, r2: f64) -> bool {
+    let d = r2 - a - b;
+    (d < 0.0) | (4.0 * a * b > d * d)
 }
 
 /// One component's bounds of |u| inside the step just taken (from `s.u`, `s.v` to `s.u_next`),
@@ -315,4 +331,51 @@ fn component_bounds(k: &Coefficients, lo: usize, n: usize, x0: f64, x1: f64, s: 
         any |= f;
     }
     any != 0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{RngExt, SeedableRng};
+
+    /// `beyond` is the square-root test `√a + √b > r` to rounding, and with the disc shrunk by
+    /// [`SHRUNK`] it flags every pair the square roots flag against the whole disc: on random
+    /// magnitudes over many decades, on pairs placed within a few roundings of the disc's edge,
+    /// and at the ends (a zero term, a zero radius, an infinite radius).
+    #[test]
+    fn the_test_without_square_roots_flags_whatever_the_square_roots_flag() {
+        let mut rng = rand::rngs::ChaCha8Rng::seed_from_u64(7);
+        let sqrt_test = |a: f64, b: f64, r: f64| a.sqrt() + b.sqrt() > r;
+        let (mut tried, mut near, mut extra) = (0, 0, 0);
+        for i in 0..400_000 {
+            let scale = 10f64.powi(rng.random_range(-30..10));
+            let (a, b) = (rng.random_range(0.0..1.0) * scale, rng.random_range(0.0..1.0) * scale);
+            let r = if i % 2 == 0 {
+                rng.random_range(0.0..3.0) * scale.sqrt()
+            } else {
+                // On the edge, give or take a few roundings.
+                near += 1;
+                (a.sqrt() + b.sqrt()) * (1.0 + rng.random_range(-8.0..8.0) * f64::EPSILON)
+            };
+            tried += 1;
+            let exact = sqrt_test(a, b, r);
+            if exact {
+                assert!(beyond(a, b, (r * SHRUNK).powi(2)), "a = {a:e}, b = {b:e}, r = {r:e}: flagged by √ only");
+            }
+            let plain = beyond(a, b, r * r);
+            if plain != exact {
+                // Only within roundings of the edge.
+                let s = a.sqrt() + b.sqrt();
+                assert!((s / r - 1.0).abs() < 1e-12, "a = {a:e}, b = {b:e}, r = {r:e}: {plain} against {exact}");
+            }
+            extra += (!exact && beyond(a, b, (r * SHRUNK).powi(2))) as usize;
+        }
+        // The shrunk disc flags a few more, all near the edge.
+        assert!(near > 100_000 && extra < near, "{tried} tried, {near} near the edge, {extra} more flagged");
+        for (a, b) in [(0.0, 4.0), (4.0, 0.0), (1.0, 1.0)] {
+            assert!(beyond(a, b, 1.9 * 1.9) && !beyond(a, b, 2.1 * 2.1), "{a}, {b}");
+        }
+        assert!(beyond(1e-30, 0.0, 0.0) && !beyond(0.0, 0.0, 0.0), "a zero radius");
+        assert!(!beyond(1e300, 1e300, f64::INFINITY), "an infinite radius");
+    }
 }
