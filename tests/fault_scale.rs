@@ -30,7 +30,7 @@ fn follows_the_reference(
     field_rms: f64,
     time: f64,
     slip: std::ops::Range<f64>,
-) -> (std::path::PathBuf, std::path::PathBuf, Pipeline) {
+) -> (stickslip_support::Scratch, std::path::PathBuf, Pipeline) {
     let dir = stickslip_support::scratch_dir(name);
     let p = Pipeline::load(&stickslip_support::repo_path(pipeline)).unwrap();
     let out = dir.join("tpv5");
@@ -71,13 +71,12 @@ fn follows_the_reference(
 #[ignore = "80 s on two threads: TPV5 at 200 m, 44 M bars"]
 fn tpv5_at_200_m_follows_the_reference() {
     // Measured: field RMS 1.55%, stations −1.2 … +4.1%, slips +1.1 … +5.6% (docs/model.md §15.6).
-    let (dir, _, _) = follows_the_reference("tpv5-200m", "pipelines/tpv5.toml", 0.025, 0.05, 0.97..1.08);
-    let _ = std::fs::remove_dir_all(&dir);
+    follows_the_reference("tpv5-200m", "pipelines/tpv5.toml", 0.025, 0.05, 0.97..1.08);
 }
 
 #[test]
 fn tpv5_at_500_m_follows_the_reference() {
-    let (dir, out, _) = follows_the_reference("tpv5-500m", "pipelines/tpv5-500m.toml", 0.25, 0.30, 0.95..1.3);
+    let (_dir, out, _) = follows_the_reference("tpv5-500m", "pipelines/tpv5-500m.toml", 0.25, 0.30, 0.95..1.3);
     let scec = out.join("scec").join("seed1");
 
     // The off-fault stations in the benchmark's layout, and the rupture-time file over every node.
@@ -98,5 +97,4 @@ fn tpv5_at_500_m_follows_the_reference() {
     // Ruptured: the whole 30 × 15 km fault, and nothing in the barrier.
     let area = get("ruptured_area_m2");
     assert!((0.9 * 450e6..1.1 * 450e6).contains(&area), "ruptured area {area} m²");
-    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -1,6 +1,6 @@
 //! Helpers shared by the whole-product tests in `tests/` and the crates' tests that run pipelines.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use stickslip_config::PipelineFile;
 use stickslip_solver::Scene;
@@ -22,12 +22,41 @@ pub fn scene_with(edit: impl FnOnce(&mut PipelineFile)) -> Scene {
     file.scene().expect("test scene is valid")
 }
 
-/// A fresh empty folder under the system temp dir, unique per test name and process.
-pub fn scratch_dir(name: &str) -> PathBuf {
+/// A fresh empty folder under the system temp dir, unique per test name and process, removed
+/// when the returned guard is dropped, unless the test is failing (then it is kept, and its path
+/// printed, to look into). It reads as a `Path` (`dir.join(..)`, `&dir`).
+pub fn scratch_dir(name: &str) -> Scratch {
     let dir = std::env::temp_dir().join(format!("stickslip-test-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("create scratch dir");
-    dir
+    Scratch(dir)
+}
+
+/// A test's scratch folder (see [`scratch_dir`]).
+#[derive(Debug)]
+pub struct Scratch(PathBuf);
+
+impl std::ops::Deref for Scratch {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl AsRef<Path> for Scratch {
+    fn as_ref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        if std::thread::panicking() {
+            eprintln!("kept for a look: {}", self.0.display());
+        } else {
+            let _ = std::fs::remove_dir_all(&self.0);
+        }
+    }
 }
 
 /// Every file under `dir` (recursively), as paths relative to `dir`, sorted.

@@ -1,6 +1,6 @@
 //! The `stickslip` binary end to end: outputs read back with polars, errors and exit codes.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output};
 
 use polars::prelude::*;
@@ -9,11 +9,9 @@ fn stickslip(args: &[&str], cwd: &Path) -> Output {
     Command::new(env!("CARGO_BIN_EXE_stickslip")).args(args).current_dir(cwd).output().expect("run stickslip")
 }
 
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("stickslip-cli-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// A scratch folder, removed when the test passes (see `stickslip_support::scratch_dir`).
+fn scratch(name: &str) -> stickslip_support::Scratch {
+    stickslip_support::scratch_dir(&format!("cli-{name}"))
 }
 
 const SMALL: &str = r#"

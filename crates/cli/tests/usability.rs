@@ -17,23 +17,24 @@ fn text(o: &Output) -> (String, String) {
     (String::from_utf8_lossy(&o.stdout).into_owned(), String::from_utf8_lossy(&o.stderr).into_owned())
 }
 
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("stickslip-usability-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// A scratch folder, removed when the test passes (see `stickslip_support::scratch_dir`).
+fn scratch(name: &str) -> stickslip_support::Scratch {
+    stickslip_support::scratch_dir(&format!("usability-{name}"))
 }
 
 /// `pipelines/paper.toml` run once for every test of this file (3 seeds, a few seconds).
 fn paper() -> &'static Path {
-    static OUT: OnceLock<PathBuf> = OnceLock::new();
-    OUT.get_or_init(|| {
+    // The folder lives as long as the process (a static is never dropped).
+    static OUT: OnceLock<(stickslip_support::Scratch, PathBuf)> = OnceLock::new();
+    &OUT.get_or_init(|| {
         let dir = scratch("paper");
         let pipeline = repo().join("pipelines/paper.toml");
         let o = stickslip(&["pipeline", pipeline.to_str().unwrap(), "--quiet", "--out", "paper"], &dir);
         assert!(o.status.success(), "{}", text(&o).1);
-        dir.join("paper")
+        let out = dir.join("paper");
+        (dir, out)
     })
+    .1
 }
 
 fn readme() -> String {
