@@ -292,7 +292,10 @@ fn wall_times(r: &Runner) -> Result<String, LabError> {
             &out,
         ])?;
         walls.push(wall);
-        let _ = std::fs::remove_dir_all(r.root.join(&out));
+    }
+    // Deleted after both runs, not between them (see `ensemble_cost::set_aside`).
+    for threads in ["1", "2"] {
+        let _ = std::fs::remove_dir_all(r.root.join(format!("reports/bench/readme-paper-100-threads-{threads}")));
     }
     Ok(format!(
         "Ensemble wall time of `paper-100` (100 seeds, with each main shock's records and their response spectra \

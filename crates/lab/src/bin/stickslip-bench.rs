@@ -597,7 +597,9 @@ fn ensemble(
     repeats: usize,
     out: Option<PathBuf>,
 ) -> Result<()> {
-    use stickslip_lab::ensemble_cost::{Build, number_after, profile, sizes, time_merge, time_pipeline};
+    use stickslip_lab::ensemble_cost::{
+        Build, number_after, profile, remove_set_aside, sizes, time_merge, time_pipeline,
+    };
     let p = Pipeline::load(pipeline)?;
     let beside = std::env::current_exe()?.with_file_name("stickslip");
     let after = Build { label: "after".into(), binary: after.unwrap_or(beside) };
@@ -692,6 +694,7 @@ fn ensemble(
             std::fs::remove_dir_all(folder(b, t)).ok();
         }
     }
+    remove_set_aside(&out);
     // Gathering and report of a large folder.
     if let Some(large) = large {
         let lp = Pipeline::load(large)?;
@@ -714,8 +717,12 @@ fn ensemble(
             }
             let (bytes, _) = sizes(&dir);
             println!("| {} | {m:.2} s | {g:.2} s | {r:.2} s | {:.0} MB |", b.label, bytes as f64 / 1e6);
-            std::fs::remove_dir_all(&dir).ok();
         }
+        // Deleted once every merge is timed (see `ensemble_cost::set_aside`).
+        for b in &builds {
+            std::fs::remove_dir_all(out.join(format!("{}-{}", lp.name, b.label))).ok();
+        }
+        remove_set_aside(&out);
     }
     Ok(())
 }
