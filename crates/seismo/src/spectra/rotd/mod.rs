@@ -660,7 +660,7 @@ impl Step {
         let [lx0, ly0, lxh, lyh] = r.l;
         let (zr, zi) = (c * r.zx[0] + s * r.zy[0], c * r.zx[1] + s * r.zy[1]);
         let z = (zr * zr + zi * zi).sqrt();
-        let g = (c * r.p0[0] + s * r.p0[1]).abs().max((c * r.p1[0] + s * r.p1[1]).abs());
+        let g = r.ends(c, s);
         let l = (c * lx0 + s * ly0).abs().max((c * lxh + s * lyh).abs());
         let (v0, v1) = (c * self.vx + s * self.vy, c * self.vx1 + s * self.vy1);
         let monotone = (v0 * v1 > 0.0) & (v0.abs().min(v1.abs()) > r.curve * z + r.rounding);
@@ -704,6 +704,14 @@ impl Step {
                 pk[t] = self.solve_at(osc, cos[t], sin[t], pk[t]);
             }
         }
+    }
+}
+
+impl Reach {
+    /// The larger `|u_θ|` of the step's two ends at angle `(c, s)`.
+    #[inline(always)]
+    fn ends(&self, c: f64, s: f64) -> f64 {
+        (c * self.p0[0] + s * self.p0[1]).abs().max((c * self.p1[0] + s * self.p1[1]).abs())
     }
 }
 
