@@ -636,7 +636,6 @@ fn fuzz(per_pipeline: usize, runs: usize, seed: u64, run_bound: Duration, thread
         drop(t);
         let _ = std::fs::remove_dir_all(&dir);
     });
-    let _ = std::fs::remove_dir_all(&root);
     tally.into_inner().unwrap()
 }
 

@@ -53,9 +53,11 @@ pub fn time_pipeline(build: &Build, pipeline: &Path, threads: usize, out: &Path)
 
 /// Moves an earlier `out` aside (renamed to a sibling `<name>.set-aside-<n>`) instead of deleting
 /// it just before a timed run: on an ext4 file system without a journal (this project's
-/// development machine), creating files within seconds of deleting as many makes the kernel skip
-/// each recently freed inode one by one, which was seen to add up to a second of system time to a
-/// run of paper-100's 1 234 files. [`remove_set_aside`] deletes them once the timing is done.
+/// development machine), creating files within a minute or so of deleting many makes the kernel
+/// step over each recently freed inode one by one (`recently_deleted` in its inode allocator),
+/// which was seen to add up to a second of system time to a run of paper-100 (1 234 files).
+/// [`remove_set_aside`] deletes them once the timing is done (they take the disk of every repeat
+/// until then).
 pub fn set_aside(out: &Path) -> Result<()> {
     if !out.exists() {
         return Ok(());

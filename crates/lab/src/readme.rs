@@ -281,6 +281,9 @@ fn wall_times(r: &Runner) -> Result<String, LabError> {
     let mut walls = Vec::new();
     for threads in ["1", "2"] {
         let out = format!("reports/bench/readme-paper-100-threads-{threads}");
+        // A folder left by an earlier, interrupted run would be resumed, not run: moved aside
+        // (not deleted just before a timed run, see `ensemble_cost::set_aside`).
+        crate::ensemble_cost::set_aside(&r.root.join(&out))?;
         let (_, wall) = r.run(&[
             "pipeline",
             "pipelines/paper-100.toml",
@@ -293,10 +296,11 @@ fn wall_times(r: &Runner) -> Result<String, LabError> {
         ])?;
         walls.push(wall);
     }
-    // Deleted after both runs, not between them (see `ensemble_cost::set_aside`).
+    // Deleted after both runs, not between them.
     for threads in ["1", "2"] {
         let _ = std::fs::remove_dir_all(r.root.join(format!("reports/bench/readme-paper-100-threads-{threads}")));
     }
+    crate::ensemble_cost::remove_set_aside(&r.root.join("reports/bench"));
     Ok(format!(
         "Ensemble wall time of `paper-100` (100 seeds, with each main shock's records and their response spectra \
          and RotD, and the report) on the machine that last ran `stickslip-bench readme` ({}): {:.1} s with \

@@ -688,14 +688,8 @@ fn ensemble(
             pair / (2.0 * alone)
         );
     }
-    std::fs::remove_dir_all(&dir).ok();
-    for b in &builds {
-        for t in [1, 2] {
-            std::fs::remove_dir_all(folder(b, t)).ok();
-        }
-    }
-    remove_set_aside(&out);
-    // Gathering and report of a large folder.
+    // Gathering and report of a large folder (every folder is deleted at the end, after the
+    // last timed run).
     if let Some(large) = large {
         let lp = Pipeline::load(large)?;
         println!(
@@ -718,12 +712,18 @@ fn ensemble(
             let (bytes, _) = sizes(&dir);
             println!("| {} | {m:.2} s | {g:.2} s | {r:.2} s | {:.0} MB |", b.label, bytes as f64 / 1e6);
         }
-        // Deleted once every merge is timed (see `ensemble_cost::set_aside`).
         for b in &builds {
             std::fs::remove_dir_all(out.join(format!("{}-{}", lp.name, b.label))).ok();
         }
-        remove_set_aside(&out);
     }
+    // Deleted once everything is timed (see `ensemble_cost::set_aside`).
+    std::fs::remove_dir_all(&dir).ok();
+    for b in &builds {
+        for t in [1, 2] {
+            std::fs::remove_dir_all(folder(b, t)).ok();
+        }
+    }
+    remove_set_aside(&out);
     Ok(())
 }
 

@@ -637,6 +637,7 @@ impl Step {
             k,
             curve: 2.0 * k * osc.omega(),
             rounding: 1e-9 * (self.vx.abs() + self.vy.abs() + self.vx1.abs() + self.vy1.abs()),
+            zn,
             turn: (tc, ts, turns),
         })
     }
@@ -729,4 +730,6 @@ struct Reach {
     rounding: f64,
     /// `(cos, sin)` of ω_d·h and whether it is below π.
     turn: (f64, f64, bool),
+    /// The joint amplitude `|Z| = (|z_x|² + |z_y|²)^½`.
+    zn: f64,
 }

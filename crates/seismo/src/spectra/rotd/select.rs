@@ -40,6 +40,7 @@ pub(super) struct Selection {
 /// Angles whose upper bounds a step computes together when one of them may rise (see
 /// [`Step::raise_bounds`]): 15 groups of 12, side by side.
 const GROUP: usize = 12;
+const _: () = assert!(ANGLES.is_multiple_of(GROUP));
 
 /// Solves the angles RotD50 and RotD100 depend on, and no other: `pk` holds each angle's peak
 /// at the samples (a lower bound, complete above `floor`), the kept steps give each angle a
@@ -158,7 +159,9 @@ impl Step {
     /// roundings of |z_θ|) does not exceed an angle's upper bound so far, the step cannot raise it,
     /// and the tight bounds are computed only for the groups of [`GROUP`] angles where one may
     /// rise: the same upper bounds as computing them all (for paper-100's records, a quarter of
-    /// the groups of the kept steps are computed).
+    /// the groups of the kept steps are computed). When `|Z|²` is not comfortably a normal
+    /// number (below 1e-290 its squares lose digits, and so may |z_θ|'s; above 1e290 they
+    /// overflow) every group is computed.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     fn raise_bounds(
@@ -182,14 +185,14 @@ impl Step {
             * (lx0.abs() + lxh.abs() + ly0.abs() + lyh.abs() + zx[0].abs() + zx[1].abs() + zy[0].abs() + zy[1].abs());
         let inner = Inner { q, slack, quarter: r.k / 16.0 };
         let (cos, sin, lower, upper) = (&cos[..ANGLES], &sin[..ANGLES], &mut lower[..ANGLES], &mut upper[..ANGLES]);
-        let joint = (zx[0] * zx[0] + zx[1] * zx[1] + zy[0] * zy[0] + zy[1] * zy[1]).sqrt() * (1.0 + 1e-12);
-        let reach = r.k * joint;
+        let normal = r.zn > 1e-145 && r.zn < 1e145;
+        let beyond_z = if normal { r.k * (r.zn * (1.0 + 1e-12)) } else { f64::INFINITY };
         for g in (0..ANGLES).step_by(GROUP) {
             let mut any = false;
             for t in g..g + GROUP {
                 let (c, s) = (cos[t], sin[t]);
                 lower[t] = lower[t].max(inner.inside(c, s) - inner.slack);
-                any |= (r.ends(c, s) + reach) * (1.0 + 1e-9) > upper[t];
+                any |= (r.ends(c, s) + beyond_z) * (1.0 + 1e-9) > upper[t];
             }
             if any {
                 for t in g..g + GROUP {
