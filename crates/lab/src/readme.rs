@@ -279,26 +279,18 @@ fn paper_precise(r: &Runner) -> Result<String, LabError> {
 
 fn wall_times(r: &Runner) -> Result<String, LabError> {
     let mut walls = Vec::new();
-    for threads in ["1", "2"] {
-        let out = format!("reports/bench/readme-paper-100-threads-{threads}");
+    let outs = ["1", "2"].map(|threads| (threads, format!("reports/bench/readme-paper-100-threads-{threads}")));
+    for (threads, out) in &outs {
         // A folder left by an earlier, interrupted run would be resumed, not run: moved aside
         // (not deleted just before a timed run, see `ensemble_cost::set_aside`).
-        crate::ensemble_cost::set_aside(&r.root.join(&out))?;
-        let (_, wall) = r.run(&[
-            "pipeline",
-            "pipelines/paper-100.toml",
-            "--fresh",
-            "--quiet",
-            "--threads",
-            threads,
-            "--out",
-            &out,
-        ])?;
+        crate::ensemble_cost::set_aside(&r.root.join(out))?;
+        let (_, wall) =
+            r.run(&["pipeline", "pipelines/paper-100.toml", "--fresh", "--quiet", "--threads", threads, "--out", out])?;
         walls.push(wall);
     }
     // Deleted after both runs, not between them.
-    for threads in ["1", "2"] {
-        let _ = std::fs::remove_dir_all(r.root.join(format!("reports/bench/readme-paper-100-threads-{threads}")));
+    for (_, out) in &outs {
+        let _ = std::fs::remove_dir_all(r.root.join(out));
     }
     crate::ensemble_cost::remove_set_aside(&r.root.join("reports/bench"));
     Ok(format!(

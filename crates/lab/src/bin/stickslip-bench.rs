@@ -698,8 +698,9 @@ fn ensemble(
         );
         println!("| build | merge | gathering | report | folder |");
         println!("|---|---|---|---|---|");
+        let large_folder = |b: &Build| out.join(format!("{}-{}", lp.name, b.label));
         for b in &builds {
-            let dir = out.join(format!("{}-{}", lp.name, b.label));
+            let dir = large_folder(b);
             let (wall, _) = time_pipeline(b, large, 2, &dir)?;
             eprintln!("{}: {} ran in {wall:.1} s", b.label, lp.name);
             let (mut m, mut g, mut r) = (f64::INFINITY, f64::INFINITY, f64::INFINITY);
@@ -713,7 +714,7 @@ fn ensemble(
             println!("| {} | {m:.2} s | {g:.2} s | {r:.2} s | {:.0} MB |", b.label, bytes as f64 / 1e6);
         }
         for b in &builds {
-            std::fs::remove_dir_all(out.join(format!("{}-{}", lp.name, b.label))).ok();
+            std::fs::remove_dir_all(large_folder(b)).ok();
         }
     }
     // Deleted once everything is timed (see `ensemble_cost::set_aside`).
