@@ -129,6 +129,69 @@ pub fn sizes(dir: &Path) -> (u64, Vec<(String, u64)>) {
     (walk(dir), parts)
 }
 
+/// One rung of [`floors`]: a variant of a pipeline that leaves out an analysis stage and
+/// everything after it.
+#[derive(Clone, Debug)]
+pub struct Floor {
+    /// What the run does, for the table.
+    pub label: &'static str,
+    /// The variant's pipeline file.
+    pub pipeline: PathBuf,
+}
+
+/// Variants of `pipeline` (its file as read) without RotD (`[spectra] rotd = false`), without
+/// any spectra (no `[spectra]`: no response or Fourier spectra, no attenuation) and without
+/// records (no `[accelerograms]` either), the stepping and what it writes left as they are;
+/// written into `dir` as TOML, cheapest first, only those that differ from the pipeline. The
+/// wall time of each against the next says what a stage adds to a run
+/// (`stickslip-bench ensemble --floors`). A pipeline that reads input files (a friction grid, a
+/// CSV target) is refused: they are found relative to the pipeline's own folder.
+pub fn floors(pipeline: &Pipeline, dir: &Path) -> Result<Vec<Floor>> {
+    let text = pipeline.text.as_deref().ok_or_else(|| setup("--floors needs a pipeline read from a file"))?;
+    if !pipeline.inputs.is_empty() {
+        return Err(setup(format!(
+            "--floors: {} reads input files ({}), which its variants, written to {}, would not find",
+            pipeline.name,
+            pipeline.inputs.iter().map(|f| f.path.display().to_string()).collect::<Vec<_>>().join(", "),
+            dir.display()
+        )));
+    }
+    let full: toml::Table = toml::from_str(text).map_err(|e| setup(format!("the pipeline file: {e}")))?;
+    let spectra = full.get("spectra").and_then(|v| v.as_table());
+    let rotd = spectra.is_some() && spectra.and_then(|t| t.get("rotd")).and_then(|v| v.as_bool()) != Some(false);
+    let mut variants: Vec<(&'static str, toml::Table)> = Vec::new();
+    if full.contains_key("accelerograms") {
+        let mut t = full.clone();
+        t.remove("accelerograms");
+        t.remove("spectra");
+        variants.push(("stepping, events and series (no [accelerograms], no [spectra])", t));
+    }
+    if spectra.is_some() {
+        let mut t = full.clone();
+        t.remove("spectra");
+        variants.push(("+ records: processing, intensity measures, the accelerograms table (no [spectra])", t));
+    }
+    if rotd {
+        let mut t = full.clone();
+        if let Some(toml::Value::Table(s)) = t.get_mut("spectra") {
+            s.insert("rotd".into(), toml::Value::Boolean(false));
+        }
+        variants.push(("+ response spectra of each record alone, Fourier spectra (rotd = false)", t));
+    }
+    std::fs::create_dir_all(dir).map_err(|e| setup(format!("{}: {e}", dir.display())))?;
+    variants
+        .into_iter()
+        .enumerate()
+        .map(|(k, (label, t))| {
+            let path = dir.join(format!("{}-floor-{k}.toml", pipeline.name));
+            let body = toml::to_string(&t).map_err(|e| setup(format!("writing a variant: {e}")))?;
+            std::fs::write(&path, body).map_err(|e| setup(format!("{}: {e}", path.display())))?;
+            Pipeline::load(&path)?;
+            Ok(Floor { label, pipeline: path })
+        })
+        .collect()
+}
+
 /// The profile of one ensemble run in this process on `threads` threads (fresh, into `out`),
 /// with the report's time; returns (profile, wall time of the ensemble, report time).
 pub fn profile(pipeline: &Pipeline, threads: usize, out: &Path) -> Result<(Profile, f64, f64)> {
@@ -139,4 +202,47 @@ pub fn profile(pipeline: &Pipeline, threads: usize, out: &Path) -> Result<(Profi
     let start = Instant::now();
     stickslip_report::write_report(out, pipeline)?;
     Ok((r.profile, r.wall_time_s, start.elapsed().as_secs_f64()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn pipeline(name: &str) -> Pipeline {
+        Pipeline::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("../../pipelines").join(name)).unwrap()
+    }
+
+    #[test]
+    fn the_floors_of_paper_100_leave_out_rotd_then_spectra_then_records_and_nothing_else() {
+        let dir = std::env::temp_dir().join(format!("stickslip-floors-{}", std::process::id()));
+        let full = pipeline("paper-100.toml");
+        assert!(full.analysis.spectra.as_ref().is_some_and(|s| s.rotd) && full.analysis.accelerograms.is_some());
+        let rungs = floors(&full, &dir).unwrap();
+        let loaded: Vec<Pipeline> = rungs.iter().map(|f| Pipeline::load(&f.pipeline).unwrap()).collect();
+        std::fs::remove_dir_all(&dir).unwrap();
+        assert_eq!(loaded.len(), 3);
+        let records = |p: &Pipeline| p.analysis.accelerograms.is_some();
+        let spectra = |p: &Pipeline| p.analysis.spectra.clone();
+        assert!(!records(&loaded[0]) && spectra(&loaded[0]).is_none());
+        assert!(records(&loaded[1]) && spectra(&loaded[1]).is_none());
+        assert!(records(&loaded[2]) && spectra(&loaded[2]).is_some_and(|s| !s.rotd));
+        // The stepping is the same scene over the same seeds in each (`resampled` only decides
+        // whether a record interval finer than half a step is refused before the run).
+        for p in &loaded {
+            let mut scene = p.scene.clone();
+            scene.record.resampled = full.scene.record.resampled;
+            assert_eq!((&p.seeds, &scene, &p.file.record), (&full.seeds, &full.scene, &full.file.record));
+        }
+    }
+
+    #[test]
+    fn a_pipeline_without_analysis_has_no_floors() {
+        let dir = std::env::temp_dir().join(format!("stickslip-floors-none-{}", std::process::id()));
+        let mut p = pipeline("paper-100.toml");
+        let text = p.text.take().unwrap();
+        let cut = &text[..text.find("[accelerograms]").unwrap()];
+        p.text = Some(cut.to_string());
+        assert!(floors(&p, &dir).unwrap().is_empty());
+        std::fs::remove_dir_all(&dir).ok();
+    }
 }

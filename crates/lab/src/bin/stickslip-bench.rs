@@ -116,6 +116,11 @@ enum Command {
         /// Runs of each build and thread count (the best counts).
         #[arg(long, default_value_t = 3)]
         repeats: usize,
+        /// Also time this build on 2 threads without RotD, without any spectra and without
+        /// records (variants of the pipeline, see `ensemble_cost::floors`): what each analysis
+        /// stage adds to the run.
+        #[arg(long)]
+        floors: bool,
         /// Scratch folder for the outputs [default: the system's temporary folder].
         #[arg(long)]
         out: Option<PathBuf>,
@@ -225,9 +230,9 @@ fn run(c: Command) -> Result<()> {
             println!("ours_8 {:e}", t.eight_seeds);
             Ok(())
         }
-        Command::Ensemble { pipeline, before, after, large, repeats, out } => {
+        Command::Ensemble { pipeline, before, after, large, repeats, floors, out } => {
             anyhow::ensure!(repeats >= 1, "--repeats = 0 is not allowed: at least 1");
-            ensemble(&pipeline, before, after, large.as_deref(), repeats, out)
+            ensemble(&pipeline, before, after, large.as_deref(), repeats, floors, out)
         }
         Command::Readme { check, only, binary } => readme(check, &only, binary),
         Command::Setup { pipeline, nx, ny, nz, steps } => {
@@ -595,6 +600,7 @@ fn ensemble(
     after: Option<PathBuf>,
     large: Option<&Path>,
     repeats: usize,
+    floors: bool,
     out: Option<PathBuf>,
 ) -> Result<()> {
     use stickslip_lab::ensemble_cost::{
@@ -644,6 +650,36 @@ fn ensemble(
             best[0][0] / best[1][0],
             best[0][1] / best[1][1]
         );
+    }
+    if floors {
+        let after = builds.last().expect("this build is always timed");
+        let rungs = stickslip_lab::ensemble_cost::floors(&p, &out.join("floors"))?;
+        let rung_folder = |k: usize| out.join(format!("{}-floor-{k}", p.name));
+        let mut rung_best = vec![f64::INFINITY; rungs.len()];
+        for rep in 0..repeats {
+            for (k, f) in rungs.iter().enumerate() {
+                let (wall, _) = time_pipeline(after, &f.pipeline, 2, &rung_folder(k))?;
+                eprintln!("run {}: {} on 2 threads: {wall:.2} s", rep + 1, f.label);
+                rung_best[k] = rung_best[k].min(wall);
+            }
+        }
+        println!(
+            "\n{}: what each analysis stage adds to this build's run (2 threads, best of {repeats}; each row adds \
+             its stage to the row above)",
+            p.name
+        );
+        println!("| run | 2 threads | added |");
+        println!("|---|---|---|");
+        let mut rows: Vec<(&str, f64)> = rungs.iter().map(|f| f.label).zip(rung_best).collect();
+        rows.push(("the pipeline as given (+ RotD where it asks for it)", best[builds.len() - 1][1]));
+        for (k, (label, wall)) in rows.iter().enumerate() {
+            let added = if k == 0 { String::new() } else { format!("{:+.2} s", wall - rows[k - 1].1) };
+            println!("| {label} | {wall:.2} s | {added} |");
+        }
+        for k in 0..rungs.len() {
+            std::fs::remove_dir_all(rung_folder(k)).ok();
+        }
+        std::fs::remove_dir_all(out.join("floors")).ok();
     }
     for b in &builds {
         let (bytes, parts) = sizes(&folder(b, 2));
