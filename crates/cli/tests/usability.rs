@@ -23,18 +23,32 @@ fn scratch(name: &str) -> stickslip_support::Scratch {
 }
 
 /// `pipelines/paper.toml` run once for every test of this file (3 seeds, a few seconds).
+///
+/// A static is never dropped, so its folder outlives the process: it goes under cargo's scratch
+/// folder for tests (`target/tmp`), not the system's, and a run removes the folders earlier runs
+/// left there once they are an hour old (a run of these tests takes minutes; a younger one may
+/// belong to a run still going).
 fn paper() -> &'static Path {
-    // The folder lives as long as the process (a static is never dropped).
-    static OUT: OnceLock<(stickslip_support::Scratch, PathBuf)> = OnceLock::new();
-    &OUT.get_or_init(|| {
-        let dir = scratch("paper");
+    static OUT: OnceLock<PathBuf> = OnceLock::new();
+    OUT.get_or_init(|| {
+        let parent = Path::new(env!("CARGO_TARGET_TMPDIR"));
+        let stale = |e: &std::fs::DirEntry| {
+            e.file_name().to_string_lossy().starts_with("usability-paper-")
+                && e.metadata()
+                    .and_then(|m| m.modified())
+                    .is_ok_and(|t| t.elapsed().is_ok_and(|age| age > std::time::Duration::from_secs(3600)))
+        };
+        for e in std::fs::read_dir(parent).into_iter().flatten().flatten().filter(stale) {
+            let _ = std::fs::remove_dir_all(e.path());
+        }
+        let dir = parent.join(format!("usability-paper-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
         let pipeline = repo().join("pipelines/paper.toml");
         let o = stickslip(&["pipeline", pipeline.to_str().unwrap(), "--quiet", "--out", "paper"], &dir);
         assert!(o.status.success(), "{}", text(&o).1);
-        let out = dir.join("paper");
-        (dir, out)
+        dir.join("paper")
     })
-    .1
 }
 
 fn readme() -> String {

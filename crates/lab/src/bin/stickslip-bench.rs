@@ -616,6 +616,7 @@ fn ensemble(
         builds.push(Build { label: "before".into(), binary: b });
     }
     builds.push(after);
+    let default_out = out.is_none();
     let out = out.unwrap_or_else(|| std::env::temp_dir().join("stickslip-bench-ensemble"));
     std::fs::create_dir_all(&out)?;
     let folder = |b: &Build, t: usize| out.join(format!("{}-{}-{t}", p.name, b.label));
@@ -761,6 +762,10 @@ fn ensemble(
         }
     }
     remove_set_aside(&out);
+    if default_out {
+        // Only if empty: another run may be using it.
+        std::fs::remove_dir(&out).ok();
+    }
     Ok(())
 }
 
