@@ -25,18 +25,26 @@ fn scratch(name: &str) -> stickslip_support::Scratch {
 /// `pipelines/paper.toml` run once for every test of this file (3 seeds, a few seconds).
 ///
 /// A static is never dropped, so its folder outlives the process: it goes under cargo's scratch
-/// folder for tests (`target/tmp`), not the system's, and a run removes the folders earlier runs
-/// left there once they are an hour old (a run of these tests takes minutes; a younger one may
-/// belong to a run still going).
+/// folder for tests (`target/tmp`), named by the process, and a run removes the ones earlier runs
+/// left there: those whose process is gone where `/proc` tells, else those over an hour old (a
+/// run of these tests takes minutes).
 fn paper() -> &'static Path {
     static OUT: OnceLock<PathBuf> = OnceLock::new();
     OUT.get_or_init(|| {
         let parent = Path::new(env!("CARGO_TARGET_TMPDIR"));
+        let proc = Path::new("/proc/self").exists();
         let stale = |e: &std::fs::DirEntry| {
-            e.file_name().to_string_lossy().starts_with("usability-paper-")
-                && e.metadata()
+            let name = e.file_name().to_string_lossy().into_owned();
+            let Some(pid) = name.strip_prefix("usability-paper-").and_then(|p| p.parse::<u32>().ok()) else {
+                return false;
+            };
+            if proc {
+                pid != std::process::id() && !Path::new("/proc").join(pid.to_string()).exists()
+            } else {
+                e.metadata()
                     .and_then(|m| m.modified())
                     .is_ok_and(|t| t.elapsed().is_ok_and(|age| age > std::time::Duration::from_secs(3600)))
+            }
         };
         for e in std::fs::read_dir(parent).into_iter().flatten().flatten().filter(stale) {
             let _ = std::fs::remove_dir_all(e.path());

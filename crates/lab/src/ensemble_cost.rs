@@ -129,25 +129,29 @@ pub fn sizes(dir: &Path) -> (u64, Vec<(String, u64)>) {
     (walk(dir), parts)
 }
 
-/// One rung of [`floors`]: a variant of a pipeline that leaves out an analysis stage and
-/// everything after it.
+/// One rung of [`floors`]: the pipeline, or a variant of it that leaves out an analysis stage
+/// and everything after it.
 #[derive(Clone, Debug)]
 pub struct Floor {
-    /// What the run does, for the table.
-    pub label: &'static str,
-    /// The variant's pipeline file.
+    /// What the rung adds to the one before, for the table.
+    pub label: String,
+    /// Its pipeline file.
     pub pipeline: PathBuf,
 }
 
-/// Variants of `pipeline` (its file as read) without RotD (`[spectra] rotd = false`), without
-/// any spectra (no `[spectra]`: no response or Fourier spectra, no attenuation) and without
-/// records (no `[accelerograms]` either), the stepping and what it writes left as they are;
-/// written into `dir` as TOML, cheapest first, only those that differ from the pipeline. The
-/// wall time of each against the next says what a stage adds to a run
-/// (`stickslip-bench ensemble --floors`). A pipeline that reads input files (a friction grid, a
-/// CSV target) is refused: they are found relative to the pipeline's own folder.
+/// The rungs of `stickslip-bench ensemble --floors`, cheapest first, the pipeline as given last:
+/// variants of `pipeline` (its file as read) without records (no `[accelerograms]`, `[spectra]`
+/// or `[set]`), without spectra (no `[spectra]` — no response or Fourier spectra, no
+/// attenuation — and no `[set]`) and without RotD (`[spectra] rotd = false`, no `[set]`, which
+/// may match RotD50), only those that differ from the pipeline; the stepping and what it records
+/// are left as they are. The wall time of each rung against the one before says what a stage
+/// adds to a run. Every variant is validated before any is written into `dir` (as TOML). A
+/// pipeline that reads input files (a friction grid, a CSV target) is refused: they are found
+/// relative to the pipeline's own folder.
 pub fn floors(pipeline: &Pipeline, dir: &Path) -> Result<Vec<Floor>> {
-    let text = pipeline.text.as_deref().ok_or_else(|| setup("--floors needs a pipeline read from a file"))?;
+    let (Some(text), Some(source)) = (pipeline.text.as_deref(), pipeline.source.as_ref()) else {
+        return Err(setup("--floors needs a pipeline read from a file"));
+    };
     if !pipeline.inputs.is_empty() {
         return Err(setup(format!(
             "--floors: {} reads input files ({}), which its variants, written to {}, would not find",
@@ -157,39 +161,75 @@ pub fn floors(pipeline: &Pipeline, dir: &Path) -> Result<Vec<Floor>> {
         )));
     }
     let full: toml::Table = toml::from_str(text).map_err(|e| setup(format!("the pipeline file: {e}")))?;
-    let spectra = full.get("spectra").and_then(|v| v.as_table());
-    let rotd = spectra.is_some() && spectra.and_then(|t| t.get("rotd")).and_then(|v| v.as_bool()) != Some(false);
-    let mut variants: Vec<(&'static str, toml::Table)> = Vec::new();
-    if full.contains_key("accelerograms") {
+    let has = |key: &str| full.contains_key(key);
+    let without = |keys: &[&str]| {
         let mut t = full.clone();
-        t.remove("accelerograms");
-        t.remove("spectra");
-        variants.push(("stepping, events and series (no [accelerograms], no [spectra])", t));
+        for k in keys {
+            t.remove(*k);
+        }
+        t
+    };
+    // `[spectra]` without `[accelerograms]` still makes records, with the default settings.
+    let records = has("accelerograms") || has("spectra");
+    let rotd = full
+        .get("spectra")
+        .and_then(|v| v.as_table())
+        .is_some_and(|s| s.get("rotd").and_then(|v| v.as_bool()) != Some(false));
+    let mut variants: Vec<(&str, toml::Table)> = Vec::new();
+    if records {
+        variants.push((
+            "stepping, events and series (no [accelerograms], [spectra] or [set])",
+            without(&["accelerograms", "spectra", "set"]),
+        ));
     }
-    if spectra.is_some() {
-        let mut t = full.clone();
-        t.remove("spectra");
+    if has("spectra") {
+        let mut t = without(&["spectra", "set"]);
+        t.entry("accelerograms").or_insert_with(|| toml::Value::Table(toml::Table::new()));
         variants.push(("+ records: processing, intensity measures, the accelerograms table (no [spectra])", t));
     }
     if rotd {
-        let mut t = full.clone();
+        let mut t = without(&["set"]);
         if let Some(toml::Value::Table(s)) = t.get_mut("spectra") {
             s.insert("rotd".into(), toml::Value::Boolean(false));
         }
         variants.push(("+ response spectra of each record alone, Fourier spectra (rotd = false)", t));
     }
-    std::fs::create_dir_all(dir).map_err(|e| setup(format!("{}: {e}", dir.display())))?;
-    variants
-        .into_iter()
+    let bodies = variants
+        .iter()
         .enumerate()
-        .map(|(k, (label, t))| {
-            let path = dir.join(format!("{}-floor-{k}.toml", pipeline.name));
-            let body = toml::to_string(&t).map_err(|e| setup(format!("writing a variant: {e}")))?;
-            std::fs::write(&path, body).map_err(|e| setup(format!("{}: {e}", path.display())))?;
-            Pipeline::load(&path)?;
-            Ok(Floor { label, pipeline: path })
+        .map(|(k, (_, t))| {
+            let body = toml::to_string(t).map_err(|e| setup(format!("writing a variant: {e}")))?;
+            Pipeline::from_toml(&body, &pipeline.name)
+                .map_err(|e| setup(format!("--floors: variant {k} of {} is refused: {e}", pipeline.name)))?;
+            Ok(body)
         })
-        .collect()
+        .collect::<Result<Vec<String>>>()?;
+    std::fs::create_dir_all(dir).map_err(|e| setup(format!("{}: {e}", dir.display())))?;
+    let mut rungs = Vec::new();
+    for (k, ((label, _), body)) in variants.iter().zip(bodies).enumerate() {
+        let path = dir.join(format!("{}-floor-{k}.toml", pipeline.name));
+        if let Err(e) = std::fs::write(&path, body) {
+            std::fs::remove_dir_all(dir).ok();
+            return Err(setup(format!("{}: {e}", path.display())));
+        }
+        rungs.push(Floor { label: label.to_string(), pipeline: path });
+    }
+    let last = if rotd {
+        "RotD"
+    } else if has("spectra") {
+        "response and Fourier spectra"
+    } else if records {
+        "records"
+    } else {
+        ""
+    };
+    let label = match (last, has("set")) {
+        ("", _) => "the pipeline as given".to_string(),
+        (stage, false) => format!("the pipeline as given (+ {stage})"),
+        (stage, true) => format!("the pipeline as given (+ {stage} and the record set)"),
+    };
+    rungs.push(Floor { label, pipeline: source.clone() });
+    Ok(rungs)
 }
 
 /// The profile of one ensemble run in this process on `threads` threads (fresh, into `out`),
@@ -213,36 +253,72 @@ mod tests {
     }
 
     #[test]
-    fn the_floors_of_paper_100_leave_out_rotd_then_spectra_then_records_and_nothing_else() {
+    fn the_floors_of_paper_100_leave_out_records_then_spectra_then_rotd_and_nothing_else() {
         let dir = std::env::temp_dir().join(format!("stickslip-floors-{}", std::process::id()));
         let full = pipeline("paper-100.toml");
         assert!(full.analysis.spectra.as_ref().is_some_and(|s| s.rotd) && full.analysis.accelerograms.is_some());
-        let rungs = floors(&full, &dir).unwrap();
-        let loaded: Vec<Pipeline> = rungs.iter().map(|f| Pipeline::load(&f.pipeline).unwrap()).collect();
+        let rungs = floors(&full, &dir);
+        let loaded: Option<Vec<Pipeline>> =
+            rungs.as_ref().ok().map(|r| r.iter().map(|f| Pipeline::load(&f.pipeline).unwrap()).collect());
         std::fs::remove_dir_all(&dir).unwrap();
-        assert_eq!(loaded.len(), 3);
+        let (rungs, loaded) = (rungs.unwrap(), loaded.unwrap());
+        assert_eq!(loaded.len(), 4);
+        assert_eq!(rungs[3].pipeline, full.source.clone().unwrap());
+        assert_eq!(rungs[3].label, "the pipeline as given (+ RotD)");
         let records = |p: &Pipeline| p.analysis.accelerograms.is_some();
         let spectra = |p: &Pipeline| p.analysis.spectra.clone();
         assert!(!records(&loaded[0]) && spectra(&loaded[0]).is_none());
         assert!(records(&loaded[1]) && spectra(&loaded[1]).is_none());
         assert!(records(&loaded[2]) && spectra(&loaded[2]).is_some_and(|s| !s.rotd));
-        // The stepping is the same scene over the same seeds in each (`resampled` only decides
-        // whether a record interval finer than half a step is refused before the run).
+        // Everything else is the pipeline's own, sections and defaults.
         for p in &loaded {
-            let mut scene = p.scene.clone();
-            scene.record.resampled = full.scene.record.resampled;
-            assert_eq!((&p.seeds, &scene, &p.file.record), (&full.seeds, &full.scene, &full.file.record));
+            let mut file = p.file.clone();
+            file.accelerograms.clone_from(&full.file.accelerograms);
+            file.spectra.clone_from(&full.file.spectra);
+            assert_eq!(file, full.file);
+            assert_eq!(p.seeds, full.seeds);
         }
     }
 
     #[test]
-    fn a_pipeline_without_analysis_has_no_floors() {
+    fn spectra_without_accelerograms_still_have_their_records_in_the_floors() {
+        let dir = std::env::temp_dir().join(format!("stickslip-floors-spectra-{}", std::process::id()));
+        let mut p = pipeline("paper-100.toml");
+        let text = p.text.take().unwrap();
+        let (a, b) = (text.find("[accelerograms]").unwrap(), text.find("[spectra]").unwrap());
+        p.text = Some(format!("{}{}", &text[..a], &text[b..]));
+        let rungs = floors(&p, &dir);
+        let loaded: Option<Vec<Pipeline>> =
+            rungs.as_ref().ok().map(|r| r.iter().map(|f| Pipeline::load(&f.pipeline).unwrap()).collect());
+        std::fs::remove_dir_all(&dir).unwrap();
+        let loaded = loaded.unwrap();
+        // The rung without spectra keeps the records `[spectra]` made with the default settings.
+        assert!(loaded[0].analysis.accelerograms.is_none() && loaded[1].analysis.accelerograms.is_some());
+    }
+
+    #[test]
+    fn a_pipeline_without_analysis_is_its_only_floor() {
         let dir = std::env::temp_dir().join(format!("stickslip-floors-none-{}", std::process::id()));
         let mut p = pipeline("paper-100.toml");
         let text = p.text.take().unwrap();
         let cut = &text[..text.find("[accelerograms]").unwrap()];
         p.text = Some(cut.to_string());
-        assert!(floors(&p, &dir).unwrap().is_empty());
+        let rungs = floors(&p, &dir).unwrap();
         std::fs::remove_dir_all(&dir).ok();
+        assert_eq!(rungs.len(), 1);
+        assert_eq!(rungs[0].label, "the pipeline as given");
+    }
+
+    #[test]
+    fn a_variant_the_configuration_refuses_writes_nothing() {
+        let dir = std::env::temp_dir().join(format!("stickslip-floors-refused-{}", std::process::id()));
+        let mut p = pipeline("paper-100.toml");
+        // An unknown key in `[spectra]`: the variant that keeps the section is refused, the
+        // others are not, and none is written.
+        let text = p.text.take().unwrap();
+        p.text = Some(text.replace("period_count = 100", "period_count = 100\nno_such_key = 1"));
+        let e = floors(&p, &dir).unwrap_err().to_string();
+        assert!(e.contains("variant") && e.contains("refused"), "{e}");
+        assert!(!dir.exists(), "files left behind: {}", dir.display());
     }
 }

@@ -116,9 +116,9 @@ enum Command {
         /// Runs of each build and thread count (the best counts).
         #[arg(long, default_value_t = 3)]
         repeats: usize,
-        /// Also time this build on 2 threads without RotD, without any spectra and without
-        /// records (variants of the pipeline, see `ensemble_cost::floors`): what each analysis
-        /// stage adds to the run.
+        /// Also time this build on 2 threads without records, without spectra, without RotD
+        /// (variants of the pipeline, see `ensemble_cost::floors`) and as given, in one loop:
+        /// what each analysis stage adds to the run.
         #[arg(long)]
         floors: bool,
         /// Scratch folder for the outputs [default: the system's temporary folder].
@@ -620,6 +620,9 @@ fn ensemble(
     let out = out.unwrap_or_else(|| std::env::temp_dir().join("stickslip-bench-ensemble"));
     std::fs::create_dir_all(&out)?;
     let folder = |b: &Build, t: usize| out.join(format!("{}-{}-{t}", p.name, b.label));
+    // The variants are checked before anything is timed.
+    let rungs = if floors { stickslip_lab::ensemble_cost::floors(&p, &out.join("floors"))? } else { Vec::new() };
+    let rung_folder = |k: usize| out.join(format!("{}-floor-{k}", p.name));
     // Wall times, the builds alternating.
     let mut best = vec![[f64::INFINITY; 2]; builds.len()];
     for rep in 0..repeats {
@@ -652,10 +655,8 @@ fn ensemble(
             best[0][1] / best[1][1]
         );
     }
-    if floors {
+    if !rungs.is_empty() {
         let after = builds.last().expect("this build is always timed");
-        let rungs = stickslip_lab::ensemble_cost::floors(&p, &out.join("floors"))?;
-        let rung_folder = |k: usize| out.join(format!("{}-floor-{k}", p.name));
         let mut rung_best = vec![f64::INFINITY; rungs.len()];
         for rep in 0..repeats {
             for (k, f) in rungs.iter().enumerate() {
@@ -671,16 +672,10 @@ fn ensemble(
         );
         println!("| run | 2 threads | added |");
         println!("|---|---|---|");
-        let mut rows: Vec<(&str, f64)> = rungs.iter().map(|f| f.label).zip(rung_best).collect();
-        rows.push(("the pipeline as given (+ RotD where it asks for it)", best[builds.len() - 1][1]));
-        for (k, (label, wall)) in rows.iter().enumerate() {
-            let added = if k == 0 { String::new() } else { format!("{:+.2} s", wall - rows[k - 1].1) };
-            println!("| {label} | {wall:.2} s | {added} |");
+        for (k, f) in rungs.iter().enumerate() {
+            let added = if k == 0 { String::new() } else { format!("{:+.2} s", rung_best[k] - rung_best[k - 1]) };
+            println!("| {} | {:.2} s | {added} |", f.label, rung_best[k]);
         }
-        for k in 0..rungs.len() {
-            std::fs::remove_dir_all(rung_folder(k)).ok();
-        }
-        std::fs::remove_dir_all(out.join("floors")).ok();
     }
     for b in &builds {
         let (bytes, parts) = sizes(&folder(b, 2));
@@ -761,9 +756,14 @@ fn ensemble(
             std::fs::remove_dir_all(folder(b, t)).ok();
         }
     }
+    for k in 0..rungs.len() {
+        std::fs::remove_dir_all(rung_folder(k)).ok();
+    }
+    std::fs::remove_dir_all(out.join("floors")).ok();
     remove_set_aside(&out);
     if default_out {
-        // Only if empty: another run may be using it.
+        // Only if empty (two runs with the default folder would set each other's outputs aside:
+        // give each its own --out to run them side by side).
         std::fs::remove_dir(&out).ok();
     }
     Ok(())
