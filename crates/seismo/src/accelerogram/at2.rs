@@ -43,15 +43,49 @@ impl RecordFormat for At2 {
 
 /// `v` as Fortran E15.7: ` -1.2345678E-03`.
 fn e15_7(v: f64) -> String {
-    if v == 0.0 || !v.is_finite() {
-        return format!("{:>15}", if v.is_finite() { "0.0000000E+00".to_string() } else { format!("{v}") });
+    let mut out = String::with_capacity(15);
+    push_e15_7(&mut out, v);
+    out
+}
+
+/// A few bytes of text on the stack (a number's digits), without an allocation.
+struct Digits {
+    buf: [u8; 32],
+    len: usize,
+}
+
+impl std::fmt::Write for Digits {
+    fn write_str(&mut self, s: &str) -> std::fmt::Result {
+        let end = self.len + s.len();
+        self.buf.get_mut(self.len..end).ok_or(std::fmt::Error)?.copy_from_slice(s.as_bytes());
+        self.len = end;
+        Ok(())
     }
-    let s = format!("{v:.7E}");
-    // `{:.7E}` always prints one `E` followed by an integer exponent.
-    let (mantissa, exp) = s.split_once('E').unwrap_or((&s, "0"));
+}
+
+/// Appends `v` as Fortran E15.7 (right-aligned in 15 characters, a mantissa of eight digits, a
+/// signed exponent of at least two) without allocating: a record's file is hundreds of thousands
+/// of these.
+fn push_e15_7(out: &mut String, v: f64) {
+    use std::fmt::Write;
+    if v == 0.0 || !v.is_finite() {
+        let _ = write!(out, "{:>15}", if v.is_finite() { "0.0000000E+00".to_string() } else { format!("{v}") });
+        return;
+    }
+    let mut d = Digits { buf: [0; 32], len: 0 };
+    // `{:.7E}` always prints one `E` followed by an integer exponent, at most 15 bytes for an f64.
+    write!(d, "{v:.7E}").expect("an f64 in E format fits in 32 bytes");
+    let s = std::str::from_utf8(&d.buf[..d.len]).expect("ASCII");
+    let (mantissa, exp) = s.split_once('E').unwrap_or((s, "0"));
     let exp: i32 = exp.parse().unwrap_or(0);
-    let sign = if exp < 0 { '-' } else { '+' };
-    format!("{:>15}", format!("{mantissa}E{sign}{:02}", exp.abs()))
+    let digits = if exp.abs() >= 100 { 3 } else { 2 };
+    for _ in (mantissa.len() + 2 + digits)..15 {
+        out.push(' ');
+    }
+    out.push_str(mantissa);
+    out.push('E');
+    out.push(if exp < 0 { '-' } else { '+' });
+    let _ = write!(out, "{:02}", exp.abs());
 }
 
 /// The text of an AT2 file for `accel` (m/s²) sampled every `dt` seconds.
@@ -64,7 +98,7 @@ pub fn at2_text(accel: &[f64], dt: f64, description: &str) -> String {
     out.push_str(&format!("NPTS= {:>7}, DT= {} SEC\n", accel.len(), e15_7(dt).trim()));
     for chunk in accel.chunks(5) {
         for v in chunk {
-            out.push_str(&e15_7(v / G));
+            push_e15_7(&mut out, v / G);
         }
         out.push('\n');
     }
@@ -143,6 +177,64 @@ pub fn parse_at2(text: &str, path: &Path) -> Result<Accelerogram, SeismoError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The formatting as first written (three strings per value), the oracle of `push_e15_7`.
+    fn e15_7_by_strings(v: f64) -> String {
+        if v == 0.0 || !v.is_finite() {
+            return format!("{:>15}", if v.is_finite() { "0.0000000E+00".to_string() } else { format!("{v}") });
+        }
+        let s = format!("{v:.7E}");
+        let (mantissa, exp) = s.split_once('E').unwrap_or((&s, "0"));
+        let exp: i32 = exp.parse().unwrap_or(0);
+        let sign = if exp < 0 { '-' } else { '+' };
+        format!("{:>15}", format!("{mantissa}E{sign}{:02}", exp.abs()))
+    }
+
+    #[test]
+    fn e15_7_without_allocations_writes_the_bytes_of_the_string_formatting() {
+        let mut values = vec![
+            0.0,
+            -0.0,
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::MAX,
+            f64::MIN,
+            f64::MIN_POSITIVE,
+            -f64::MIN_POSITIVE,
+            5e-324,
+            -5e-324,
+            1.0,
+            -1.0,
+            9.99999995,
+            9.999999949999,
+            -9.99999995e-100,
+            9.99999995e99,
+            1e100,
+            1e-100,
+            1e-99,
+            0.1,
+            1.5e-5,
+        ];
+        // Every decade from the subnormals to the largest, both signs, with a spread of mantissas.
+        let mut x = 0x2545_f491_4f6c_dd1d_u64;
+        for e in -324..=308 {
+            for _ in 0..8 {
+                x ^= x << 13;
+                x ^= x >> 7;
+                x ^= x << 17;
+                let m = 1.0 + (x >> 11) as f64 / (1u64 << 53) as f64 * 9.0;
+                let v = m * 10f64.powi(e);
+                values.push(if x & 1 == 0 { v } else { -v });
+            }
+        }
+        for v in values {
+            let mut pushed = String::from("x");
+            push_e15_7(&mut pushed, v);
+            assert_eq!(&pushed[1..], e15_7_by_strings(v), "{v:e}");
+            assert_eq!(e15_7(v), e15_7_by_strings(v), "{v:e}");
+        }
+    }
 
     #[test]
     fn at2_round_trip_within_printed_precision() {
