@@ -223,8 +223,28 @@ fn machine() -> String {
     format!("{cores} cores of {cpu}")
 }
 
+/// The main command, run once per `stickslip-bench readme` from empty folders: a finished folder
+/// of the same pipeline would be resumed, not run (`--fresh` discards only another pipeline's
+/// results), and the time would be the resume's (1.5 s instead of 10, seen). The folders it
+/// writes are moved aside first (see `ensemble_cost::set_aside`) and deleted by
+/// [`remove_main_set_aside`] once everything is measured.
+fn main_run(r: &Runner) -> Result<(String, f64), LabError> {
+    if !r.done.borrow().contains_key(&MAIN.join(" ")) {
+        for file in MAIN.iter().filter(|a| a.ends_with(".toml")) {
+            let name = stickslip_config::Pipeline::load(&r.root.join(file))?.name;
+            crate::ensemble_cost::set_aside(&r.root.join("reports").join(name))?;
+        }
+    }
+    r.run(&MAIN)
+}
+
+/// Deletes the earlier report folders [`main_run`] moved aside.
+pub fn remove_main_set_aside(root: &Path) {
+    crate::ensemble_cost::remove_set_aside(&root.join("reports"));
+}
+
 fn main_command(r: &Runner) -> Result<String, LabError> {
-    let (_, wall) = r.run(&MAIN)?;
+    let (_, wall) = main_run(r)?;
     Ok(format!(
         "After the first build (see Install) the main command took {wall:.1} s on the machine that last ran \
          `stickslip-bench readme` ({}).\n",
@@ -233,7 +253,7 @@ fn main_command(r: &Runner) -> Result<String, LabError> {
 }
 
 fn paper_100(r: &Runner) -> Result<String, LabError> {
-    let (out, _) = r.run(&MAIN)?;
+    let (out, _) = main_run(r)?;
     Ok(fenced(&lines_between(&out, "paper-100:", "report:")?))
 }
 
@@ -247,7 +267,7 @@ fn du(path: &Path) -> u64 {
 }
 
 fn disk_use(r: &Runner) -> Result<String, LabError> {
-    r.run(&MAIN)?;
+    main_run(r)?;
     let mb = |p: &Path| du(p) as f64 / 1e6;
     let mut rows = Vec::new();
     for name in ["paper-100", "accelerograms"] {
@@ -305,7 +325,7 @@ fn wall_times(r: &Runner) -> Result<String, LabError> {
 }
 
 fn calibration(r: &Runner) -> Result<String, LabError> {
-    r.run(&MAIN)?;
+    main_run(r)?;
     let (out, _) = r.run(&["seeds", "reports/paper"])?;
     Ok(format!("{}\n", out.trim_end()))
 }

@@ -774,7 +774,7 @@ type S2 = (f64, f64, f64);
 
 /// `stickslip-bench readme`.
 fn readme(check: bool, only: &[String], binary: Option<PathBuf>) -> Result<()> {
-    use stickslip_lab::readme::{Runner, rewrite};
+    use stickslip_lab::readme::{Runner, remove_main_set_aside, rewrite};
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..").canonicalize()?;
     let binary = binary
         .or_else(|| std::env::var_os("STICKSLIP").map(PathBuf::from))
@@ -785,7 +785,9 @@ fn readme(check: bool, only: &[String], binary: Option<PathBuf>) -> Result<()> {
         })?;
     let path = root.join("README.md");
     let old = std::fs::read_to_string(&path)?;
-    let (new, outcomes) = rewrite(&old, &Runner::new(binary, root), only)?;
+    let rewritten = rewrite(&old, &Runner::new(binary, root.clone()), only);
+    remove_main_set_aside(&root);
+    let (new, outcomes) = rewritten?;
     for o in &outcomes {
         println!(
             "{:<14} {}{}",
