@@ -72,6 +72,38 @@ fn push_e15_7(out: &mut String, v: f64) {
         let _ = write!(out, "{:>15}", if v.is_finite() { "0.0000000E+00".to_string() } else { format!("{v}") });
         return;
     }
+    if let Some((digits, exp)) = eight_digits(v) {
+        // ` -1.2345678E-03`: the sign, a digit, a point, seven digits, `E`, a signed exponent.
+        let mut text = [b' '; 16];
+        let mut end = 16;
+        let mut e = exp.unsigned_abs();
+        for _ in 0..if e >= 100 { 3 } else { 2 } {
+            end -= 1;
+            text[end] = b'0' + (e % 10) as u8;
+            e /= 10;
+        }
+        end -= 1;
+        text[end] = if exp < 0 { b'-' } else { b'+' };
+        end -= 1;
+        text[end] = b'E';
+        let mut d = digits;
+        for k in 0..8 {
+            if k == 7 {
+                end -= 1;
+                text[end] = b'.';
+            }
+            end -= 1;
+            text[end] = b'0' + (d % 10) as u8;
+            d /= 10;
+        }
+        if v < 0.0 {
+            end -= 1;
+            text[end] = b'-';
+        }
+        let start = end.min(16 - 15);
+        out.push_str(std::str::from_utf8(&text[start..]).expect("ASCII"));
+        return;
+    }
     let mut d = Digits { buf: [0; 32], len: 0 };
     // `{:.7E}` always prints one `E` followed by an integer exponent, at most 15 bytes for an f64.
     write!(d, "{v:.7E}").expect("an f64 in E format fits in 32 bytes");
@@ -86,6 +118,48 @@ fn push_e15_7(out: &mut String, v: f64) {
     out.push('E');
     out.push(if exp < 0 { '-' } else { '+' });
     let _ = write!(out, "{:02}", exp.abs());
+}
+
+/// Powers of ten, 1e-300 to 1e300, each the double nearest to it (parsed, not multiplied).
+fn pow10(n: i32) -> f64 {
+    static TABLE: std::sync::OnceLock<Vec<f64>> = std::sync::OnceLock::new();
+    TABLE.get_or_init(|| (-300..=300).map(|k| format!("1e{k}").parse().expect("a power of ten")).collect())
+        [(n + 300) as usize]
+}
+
+/// `|v|` rounded to eight significant digits as `(d, e)`, `|v| ≈ d·10^(e−7)` with
+/// `10⁷ ≤ d < 10⁸`, the digits `{:.7E}` prints; `None` where this shortcut cannot be sure of them,
+/// for `{:.7E}` to decide (its exact arithmetic is several times slower).
+///
+/// `|v|·10^(7−e)` is computed in doubles: the power within half an ulp, the product within half an
+/// ulp more, so within 3e-16 of its value relative, 3e-8 absolute below 10⁸. Its rounding to an
+/// integer is then certain unless its fraction lies within 1e-6 of one half (a tie or nearly);
+/// those, and magnitudes outside 1e-290…1e290 (where the powers would leave the table or the
+/// normal numbers), are left to `{:.7E}`.
+fn eight_digits(v: f64) -> Option<(u32, i32)> {
+    let a = v.abs();
+    if !(1e-290..=1e290).contains(&a) {
+        return None;
+    }
+    let mut e = a.log10().floor() as i32;
+    // log10 may miss a power of ten by one either way.
+    for _ in 0..3 {
+        let scaled = a * pow10(7 - e);
+        if scaled < 1e7 {
+            e -= 1;
+        } else if scaled >= 1e8 {
+            e += 1;
+        } else {
+            let whole = scaled.floor();
+            let fraction = scaled - whole;
+            if (fraction - 0.5).abs() < 1e-6 {
+                return None;
+            }
+            let d = whole as u32 + u32::from(fraction > 0.5);
+            return Some(if d == 100_000_000 { (10_000_000, e + 1) } else { (d, e) });
+        }
+    }
+    None
 }
 
 /// The text of an AT2 file for `accel` (m/s²) sampled every `dt` seconds.
@@ -228,6 +302,29 @@ mod tests {
                 values.push(if x & 1 == 0 { v } else { -v });
             }
         }
+        // Ties and near-ties at the eighth digit, and the edges of every decade.
+        for k in -20..=20 {
+            let p = 10f64.powi(k);
+            for m in [12345678.5, 12345679.5, 99999999.5, 99999999.49999, 10000000.5, 9999999.5, 1e7, 1e8] {
+                values.push(m * p);
+                values.push(-m * p);
+            }
+            values.push(9.99999995 * p);
+            values.push(p);
+            values.push(f64::from_bits(p.to_bits() - 1));
+            values.push(f64::from_bits(p.to_bits() + 1));
+        }
+        // Random bit patterns: every exponent, every mantissa.
+        for _ in 0..200_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            values.push(f64::from_bits(x));
+        }
+        // The shortcut decides nearly every value of a record's range, not only the easy ones.
+        let decided = values.iter().filter(|v| (1e-290..=1e290).contains(&v.abs())).map(|&v| eight_digits(v).is_some());
+        let (yes, all) = decided.fold((0, 0), |(y, n), d| (y + usize::from(d), n + 1));
+        assert!(yes as f64 > 0.999 * all as f64 - 200.0, "{yes} of {all} decided by the shortcut");
         for v in values {
             let mut pushed = String::from("x");
             push_e15_7(&mut pushed, v);
