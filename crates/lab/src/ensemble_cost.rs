@@ -58,15 +58,17 @@ pub fn time_pipeline(build: &Build, pipeline: &Path, threads: usize, out: &Path)
 /// which was seen to add up to a second of system time to a run of paper-100 (1 234 files).
 /// [`remove_set_aside`] deletes them once the timing is done (they take the disk of every repeat
 /// until then).
-pub fn set_aside(out: &Path) -> Result<()> {
+/// Returns where it was moved, if it existed.
+pub fn set_aside(out: &Path) -> Result<Option<PathBuf>> {
     if !out.exists() {
-        return Ok(());
+        return Ok(None);
     }
     let name = out.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
     for n in 0.. {
         let aside = out.with_file_name(format!("{name}.set-aside-{n}"));
         if !aside.exists() {
-            return std::fs::rename(out, &aside).map_err(|e| setup(format!("moving {} aside: {e}", out.display())));
+            std::fs::rename(out, &aside).map_err(|e| setup(format!("moving {} aside: {e}", out.display())))?;
+            return Ok(Some(aside));
         }
     }
     unreachable!("some name is free")

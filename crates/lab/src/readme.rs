@@ -227,15 +227,26 @@ fn machine() -> String {
 /// of the same pipeline would be resumed, not run (`--fresh` discards only another pipeline's
 /// results), and the time would be the resume's (1.5 s instead of 10, seen). The folders it
 /// writes are moved aside first (see `ensemble_cost::set_aside`) and deleted by
-/// [`remove_main_set_aside`] once everything is measured.
+/// [`remove_main_set_aside`] once everything is measured; if the command fails they are put back
+/// in place of what it wrote.
 fn main_run(r: &Runner) -> Result<(String, f64), LabError> {
+    let mut moved = Vec::new();
     if !r.done.borrow().contains_key(&MAIN.join(" ")) {
         for file in MAIN.iter().filter(|a| a.ends_with(".toml")) {
-            let name = stickslip_config::Pipeline::load(&r.root.join(file))?.name;
-            crate::ensemble_cost::set_aside(&r.root.join("reports").join(name))?;
+            let folder = r.root.join("reports").join(stickslip_config::Pipeline::load(&r.root.join(file))?.name);
+            if let Some(aside) = crate::ensemble_cost::set_aside(&folder)? {
+                moved.push((folder, aside));
+            }
         }
     }
-    r.run(&MAIN)
+    let run = r.run(&MAIN);
+    if run.is_err() {
+        for (folder, aside) in &moved {
+            let _ = std::fs::remove_dir_all(folder);
+            let _ = std::fs::rename(aside, folder);
+        }
+    }
+    run
 }
 
 /// Deletes the earlier report folders [`main_run`] moved aside.
