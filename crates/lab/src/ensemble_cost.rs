@@ -57,8 +57,7 @@ pub fn time_pipeline(build: &Build, pipeline: &Path, threads: usize, out: &Path)
 /// step over each recently freed inode one by one (`recently_deleted` in its inode allocator),
 /// which was seen to add up to a second of system time to a run of paper-100 (1 234 files).
 /// [`remove_set_aside`] deletes them once the timing is done (they take the disk of every repeat
-/// until then).
-/// Returns where it was moved, if it existed.
+/// until then). Returns where it was moved, if it existed.
 pub fn set_aside(out: &Path) -> Result<Option<PathBuf>> {
     if !out.exists() {
         return Ok(None);
@@ -163,7 +162,6 @@ pub fn floors(pipeline: &Pipeline, dir: &Path) -> Result<Vec<Floor>> {
         )));
     }
     let full: toml::Table = toml::from_str(text).map_err(|e| setup(format!("the pipeline file: {e}")))?;
-    let has = |key: &str| full.contains_key(key);
     let without = |keys: &[&str]| {
         let mut t = full.clone();
         for k in keys {
@@ -171,12 +169,12 @@ pub fn floors(pipeline: &Pipeline, dir: &Path) -> Result<Vec<Floor>> {
         }
         t
     };
-    // `[spectra]` without `[accelerograms]` still makes records, with the default settings.
-    let records = has("accelerograms") || has("spectra");
-    let rotd = full
-        .get("spectra")
-        .and_then(|v| v.as_table())
-        .is_some_and(|s| s.get("rotd").and_then(|v| v.as_bool()) != Some(false));
+    // What the pipeline computes, as validated (`[spectra]` without `[accelerograms]` still makes
+    // records, with the default settings).
+    let analysis = &pipeline.analysis;
+    let (records, spectra) = (analysis.accelerograms.is_some(), analysis.spectra.is_some());
+    let rotd = analysis.spectra.as_ref().is_some_and(|s| s.rotd);
+    let set = pipeline.set.is_some();
     let mut variants: Vec<(&str, toml::Table)> = Vec::new();
     if records {
         variants.push((
@@ -184,7 +182,7 @@ pub fn floors(pipeline: &Pipeline, dir: &Path) -> Result<Vec<Floor>> {
             without(&["accelerograms", "spectra", "set"]),
         ));
     }
-    if has("spectra") {
+    if spectra {
         let mut t = without(&["spectra", "set"]);
         t.entry("accelerograms").or_insert_with(|| toml::Value::Table(toml::Table::new()));
         variants.push(("+ records: processing, intensity measures, the accelerograms table (no [spectra])", t));
@@ -218,14 +216,14 @@ pub fn floors(pipeline: &Pipeline, dir: &Path) -> Result<Vec<Floor>> {
     }
     let last = if rotd {
         "RotD"
-    } else if has("spectra") {
+    } else if spectra {
         "response and Fourier spectra"
     } else if records {
         "records"
     } else {
         ""
     };
-    let label = match (last, has("set")) {
+    let label = match (last, set) {
         ("", _) => "the pipeline as given".to_string(),
         (stage, false) => format!("the pipeline as given (+ {stage})"),
         (stage, true) => format!("the pipeline as given (+ {stage} and the record set)"),
@@ -252,6 +250,13 @@ mod tests {
 
     fn pipeline(name: &str) -> Pipeline {
         Pipeline::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("../../pipelines").join(name)).unwrap()
+    }
+
+    /// `text` as a pipeline file of its own (beside the system's temporary files), loaded.
+    fn edited(tag: &str, text: &str) -> (Pipeline, PathBuf) {
+        let file = std::env::temp_dir().join(format!("stickslip-floors-{tag}-{}.toml", std::process::id()));
+        std::fs::write(&file, text).unwrap();
+        (Pipeline::load(&file).unwrap(), file)
     }
 
     #[test]
@@ -285,14 +290,14 @@ mod tests {
     #[test]
     fn spectra_without_accelerograms_still_have_their_records_in_the_floors() {
         let dir = std::env::temp_dir().join(format!("stickslip-floors-spectra-{}", std::process::id()));
-        let mut p = pipeline("paper-100.toml");
-        let text = p.text.take().unwrap();
+        let text = pipeline("paper-100.toml").text.unwrap();
         let (a, b) = (text.find("[accelerograms]").unwrap(), text.find("[spectra]").unwrap());
-        p.text = Some(format!("{}{}", &text[..a], &text[b..]));
+        let (p, file) = edited("spectra", &format!("{}{}", &text[..a], &text[b..]));
         let rungs = floors(&p, &dir);
         let loaded: Option<Vec<Pipeline>> =
             rungs.as_ref().ok().map(|r| r.iter().map(|f| Pipeline::load(&f.pipeline).unwrap()).collect());
         std::fs::remove_dir_all(&dir).unwrap();
+        std::fs::remove_file(file).unwrap();
         let loaded = loaded.unwrap();
         // The rung without spectra keeps the records `[spectra]` made with the default settings.
         assert!(loaded[0].analysis.accelerograms.is_none() && loaded[1].analysis.accelerograms.is_some());
@@ -301,12 +306,11 @@ mod tests {
     #[test]
     fn a_pipeline_without_analysis_is_its_only_floor() {
         let dir = std::env::temp_dir().join(format!("stickslip-floors-none-{}", std::process::id()));
-        let mut p = pipeline("paper-100.toml");
-        let text = p.text.take().unwrap();
-        let cut = &text[..text.find("[accelerograms]").unwrap()];
-        p.text = Some(cut.to_string());
+        let text = pipeline("paper-100.toml").text.unwrap();
+        let (p, file) = edited("none", &text[..text.find("[accelerograms]").unwrap()]);
         let rungs = floors(&p, &dir).unwrap();
         std::fs::remove_dir_all(&dir).ok();
+        std::fs::remove_file(file).unwrap();
         assert_eq!(rungs.len(), 1);
         assert_eq!(rungs[0].label, "the pipeline as given");
     }

@@ -72,52 +72,49 @@ fn push_e15_7(out: &mut String, v: f64) {
         let _ = write!(out, "{:>15}", if v.is_finite() { "0.0000000E+00".to_string() } else { format!("{v}") });
         return;
     }
-    if let Some((digits, exp)) = eight_digits(v) {
-        // ` -1.2345678E-03`: the sign, a digit, a point, seven digits, `E`, a signed exponent.
-        let mut text = [b' '; 16];
-        let mut end = 16;
-        let mut e = exp.unsigned_abs();
-        for _ in 0..if e >= 100 { 3 } else { 2 } {
-            end -= 1;
-            text[end] = b'0' + (e % 10) as u8;
-            e /= 10;
-        }
+    let (digits, exp) = eight_digits(v).unwrap_or_else(|| exact_eight_digits(v));
+    // ` -1.2345678E-03`: the sign, a digit, a point, seven digits, `E`, a signed exponent.
+    let mut text = [b' '; 16];
+    let mut end = 16;
+    let mut e = exp.unsigned_abs();
+    for _ in 0..if e >= 100 { 3 } else { 2 } {
         end -= 1;
-        text[end] = if exp < 0 { b'-' } else { b'+' };
-        end -= 1;
-        text[end] = b'E';
-        let mut d = digits;
-        for k in 0..8 {
-            if k == 7 {
-                end -= 1;
-                text[end] = b'.';
-            }
-            end -= 1;
-            text[end] = b'0' + (d % 10) as u8;
-            d /= 10;
-        }
-        if v < 0.0 {
-            end -= 1;
-            text[end] = b'-';
-        }
-        let start = end.min(16 - 15);
-        out.push_str(std::str::from_utf8(&text[start..]).expect("ASCII"));
-        return;
+        text[end] = b'0' + (e % 10) as u8;
+        e /= 10;
     }
+    end -= 1;
+    text[end] = if exp < 0 { b'-' } else { b'+' };
+    end -= 1;
+    text[end] = b'E';
+    let mut d = digits;
+    for k in 0..8 {
+        if k == 7 {
+            end -= 1;
+            text[end] = b'.';
+        }
+        end -= 1;
+        text[end] = b'0' + (d % 10) as u8;
+        d /= 10;
+    }
+    if v < 0.0 {
+        end -= 1;
+        text[end] = b'-';
+    }
+    let start = end.min(16 - 15);
+    out.push_str(std::str::from_utf8(&text[start..]).expect("ASCII"));
+}
+
+/// [`eight_digits`] as `{:.7E}` prints them, for any finite non-zero `v`.
+fn exact_eight_digits(v: f64) -> (u32, i32) {
+    use std::fmt::Write;
     let mut d = Digits { buf: [0; 32], len: 0 };
-    // `{:.7E}` always prints one `E` followed by an integer exponent, at most 15 bytes for an f64.
-    write!(d, "{v:.7E}").expect("an f64 in E format fits in 32 bytes");
+    // `{:.7E}` prints a sign, one digit, a point, seven digits, `E` and an integer exponent, at
+    // most 15 bytes for an f64.
+    write!(d, "{:.7E}", v.abs()).expect("an f64 in E format fits in 32 bytes");
     let s = std::str::from_utf8(&d.buf[..d.len]).expect("ASCII");
-    let (mantissa, exp) = s.split_once('E').unwrap_or((s, "0"));
-    let exp: i32 = exp.parse().unwrap_or(0);
-    let digits = if exp.abs() >= 100 { 3 } else { 2 };
-    for _ in (mantissa.len() + 2 + digits)..15 {
-        out.push(' ');
-    }
-    out.push_str(mantissa);
-    out.push('E');
-    out.push(if exp < 0 { '-' } else { '+' });
-    let _ = write!(out, "{:02}", exp.abs());
+    let (mantissa, exp) = s.split_once('E').expect("E format");
+    let digits = mantissa.bytes().filter(u8::is_ascii_digit).fold(0u32, |n, b| n * 10 + u32::from(b - b'0'));
+    (digits, exp.parse().expect("an integer exponent"))
 }
 
 /// Powers of ten, 1e-300 to 1e300, each the double nearest to it (parsed, not multiplied).
@@ -129,7 +126,7 @@ fn pow10(n: i32) -> f64 {
 
 /// `|v|` rounded to eight significant digits as `(d, e)`, `|v| ≈ d·10^(e−7)` with
 /// `10⁷ ≤ d < 10⁸`, the digits `{:.7E}` prints; `None` where this shortcut cannot be sure of them,
-/// for `{:.7E}` to decide (its exact arithmetic is several times slower).
+/// for `{:.7E}` to decide ([`exact_eight_digits`]; its exact arithmetic is several times slower).
 ///
 /// `|v|·10^(7−e)` is computed in doubles: the power within half an ulp, the product within half an
 /// ulp more, so within 3e-16 of its value relative, 3e-8 absolute below 10⁸. Its rounding to an
