@@ -169,6 +169,7 @@ fn a_scenario_s_stations_are_compared_with_the_models_as_they_predict() {
             dip_deg: 90.0,
             ztor_km: y0[k] / 1e3,
             width_km: (y1[k] - y0[k]) / 1e3,
+            hypo_depth_km: None,
         };
         let site = Site {
             r_rup_km: r_rup[i],
@@ -177,6 +178,7 @@ fn a_scenario_s_stations_are_compared_with_the_models_as_they_predict() {
             r_y0_km: Some(ry0[j] / 1e3),
             vs30_m_s: 760.0,
             z1_km: None,
+            z25_km: None,
             vs30_measured: true,
         };
         let m = match imt[i].as_str() {

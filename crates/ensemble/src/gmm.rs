@@ -104,6 +104,7 @@ fn records(folder: &Folder, vs30: Option<f64>) -> Result<Option<Vec<Record>>, St
             dip_deg: 90.0,
             ztor_km: y0[i] / 1e3,
             width_km: ((y1[i] - y0[i]) / 1e3).max(1e-3),
+            hypo_depth_km: None,
         };
         ruptures.insert(seeds[i], (rupture, vs30.unwrap_or(vs[i])));
     }
@@ -154,6 +155,7 @@ fn records(folder: &Folder, vs30: Option<f64>) -> Result<Option<Vec<Record>>, St
                 r_y0_km: Some(r_y0[i] / 1e3),
                 vs30_m_s: vs30,
                 z1_km: None,
+                z25_km: None,
                 vs30_measured: true,
             },
             azimuth_deg: az[i],

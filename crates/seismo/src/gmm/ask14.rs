@@ -250,7 +250,14 @@ mod tests {
     #[test]
     fn the_hanging_wall_term_vanishes_where_the_paper_says() {
         let c = &ASK14[N_PSA];
-        let r = Rupture { mw: 7.0, mechanism: Mechanism::Reverse, dip_deg: 45.0, ztor_km: 0.0, width_km: 20.0 };
+        let r = Rupture {
+            mw: 7.0,
+            mechanism: Mechanism::Reverse,
+            dip_deg: 45.0,
+            ztor_km: 0.0,
+            width_km: 20.0,
+            hypo_depth_km: None,
+        };
         let s = Site {
             r_rup_km: 5.0,
             r_jb_km: 0.0,
@@ -258,6 +265,7 @@ mod tests {
             r_y0_km: Some(0.0),
             vs30_m_s: 760.0,
             z1_km: None,
+            z25_km: None,
             vs30_measured: true,
         };
         // On the hanging wall above the rupture: all tapers positive. T1 = 1, T2 = 1.1, T4 = 1,

@@ -109,9 +109,17 @@ impl PlanarFault {
         self.ztor_km + self.width_km * self.dip_deg.to_radians().sin()
     }
 
-    /// The rupture of this fault for the models, given its magnitude and mechanism.
+    /// The rupture of this fault for the models, given its magnitude and mechanism (its hypocentral
+    /// depth left to CB14's estimate).
     pub fn rupture(&self, mw: f64, mechanism: Mechanism) -> Rupture {
-        Rupture { mw, mechanism, dip_deg: self.dip_deg, ztor_km: self.ztor_km, width_km: self.width_km }
+        Rupture {
+            mw,
+            mechanism,
+            dip_deg: self.dip_deg,
+            ztor_km: self.ztor_km,
+            width_km: self.width_km,
+            hypo_depth_km: None,
+        }
     }
 
     fn dip_direction(&self) -> [f64; 2] {

@@ -1,15 +1,17 @@
 //! NGA-West2 ground-motion models, fault-to-site distances, and the validation statistics of the
 //! SCEC Broadband Platform.
 //!
-//! - [`Model`]: BSSA14 (Boore, Stewart, Seyhan & Atkinson 2014, [`bssa14`]) and ASK14 (Abrahamson,
-//!   Silva & Kamai 2014, [`ask14`]), each giving the median and the aleatory standard deviations
+//! - [`Model`]: BSSA14 (Boore, Stewart, Seyhan & Atkinson 2014, [`bssa14`]), ASK14 (Abrahamson,
+//!   Silva & Kamai 2014, [`ask14`]), CB14 (Campbell & Bozorgnia 2014, [`cb14`]) and CY14 (Chiou &
+//!   Youngs 2014, [`cy14`]), each giving the median and the aleatory standard deviations
 //!   (between-event τ, within-event φ, total σ = √(τ² + φ²), natural-log units) of RotD50 PGA, PGV
-//!   and 5%-damped PSA for a [`Rupture`] and a [`Site`]. Coefficients: [`tables`](self) (sources
-//!   named there). Models are used with their California/global defaults (no regional terms) for
-//!   mainshocks.
+//!   and 5%-damped PSA for a [`Rupture`] and a [`Site`]. Coefficients: [`tables`](self) and
+//!   `tables_nga2` (sources named there). Models are used with their California/global defaults (no
+//!   regional terms) for mainshocks; an input a model needs and the caller lacks (Z_1.0, Z_2.5,
+//!   Z_hyp) takes that model's own default, named in its module.
 //! - Periods between two tabulated periods: the model is evaluated at both and `ln Y`, `τ` and `φ`
 //!   are interpolated linearly in `ln T` (σ recomputed from them); a period outside the table
-//!   (0.01–10 s for both models) is refused.
+//!   (0.01–10 s for all four models) is refused.
 //! - Applicability: each model's magnitude, distance and V_S30 ranges are data ([`Limits`]); a
 //!   prediction outside them is still computed (the equations are smooth there) but carries
 //!   [`Applicability::Outside`] naming every excursion, never silently.
@@ -24,8 +26,11 @@
 
 pub mod ask14;
 pub mod bssa14;
+pub mod cb14;
+pub mod cy14;
 pub mod fault;
 mod tables;
+mod tables_nga2;
 pub mod validation;
 
 use std::fmt;
@@ -78,6 +83,9 @@ pub struct Rupture {
     pub ztor_km: f64,
     /// Down-dip width W (km, > 0).
     pub width_km: f64,
+    /// Depth of the hypocentre Z_hyp (km, ≥ 0), used by CB14 only; `None` lets CB14 estimate it
+    /// from M, δ, Z_tor and W ([`cb14::hypo_depth_km`], the paper's eq. 35–37).
+    pub hypo_depth_km: Option<f64>,
 }
 
 /// The site and its distances to the rupture (km), as the models use them.
@@ -95,16 +103,20 @@ pub struct Site {
     pub r_y0_km: Option<f64>,
     /// Time-averaged shear-wave velocity of the top 30 m V_S30 (m/s, > 0).
     pub vs30_m_s: f64,
-    /// Depth to V_S = 1 km/s Z_1.0 (km, ≥ 0); `None` uses each model's V_S30-based default, which
-    /// switches its basin term off.
+    /// Depth to V_S = 1 km/s Z_1.0 (km, ≥ 0), used by BSSA14, ASK14 and CY14; `None` uses each
+    /// model's V_S30-based default, which switches its basin term off.
     pub z1_km: Option<f64>,
-    /// Whether V_S30 was measured (ASK14's within-event φ uses s1m/s2m) or inferred (s1e/s2e).
+    /// Depth to V_S = 2.5 km/s Z_2.5 (km, ≥ 0), used by CB14 only; `None` uses CB14's California
+    /// V_S30 relation ([`cb14::z25_california_km`], the paper's eq. 33).
+    pub z25_km: Option<f64>,
+    /// Whether V_S30 was measured (ASK14's within-event φ uses s1m/s2m, CY14's 0.7) or inferred
+    /// (s1e/s2e, σ3).
     pub vs30_measured: bool,
 }
 
 impl Site {
     /// A site at the given distances on ground of the given V_S30 (m/s), with the models' default
-    /// Z_1.0 and a measured V_S30 (a simulated site's V_S30 is known exactly).
+    /// Z_1.0 and Z_2.5 and a measured V_S30 (a simulated site's V_S30 is known exactly).
     pub fn new(distances: fault::Distances, vs30_m_s: f64) -> Site {
         Site {
             r_rup_km: distances.r_rup_km,
@@ -113,6 +125,7 @@ impl Site {
             r_y0_km: Some(distances.r_y0_km),
             vs30_m_s,
             z1_km: None,
+            z25_km: None,
             vs30_measured: true,
         }
     }
@@ -276,17 +289,23 @@ pub enum Model {
     Bssa14,
     /// Abrahamson, Silva & Kamai (2014).
     Ask14,
+    /// Campbell & Bozorgnia (2014).
+    Cb14,
+    /// Chiou & Youngs (2014).
+    Cy14,
 }
 
 impl Model {
     /// Every model, in the order of their names.
-    pub const ALL: [Model; 2] = [Model::Bssa14, Model::Ask14];
+    pub const ALL: [Model; 4] = [Model::Bssa14, Model::Ask14, Model::Cb14, Model::Cy14];
 
-    /// The short name (`bssa14`, `ask14`), as a command line spells it.
+    /// The short name (`bssa14`, `ask14`, `cb14`, `cy14`), as a command line spells it.
     pub fn name(self) -> &'static str {
         match self {
             Model::Bssa14 => "bssa14",
             Model::Ask14 => "ask14",
+            Model::Cb14 => "cb14",
+            Model::Cy14 => "cy14",
         }
     }
 
@@ -299,6 +318,8 @@ impl Model {
             Model::Ask14 => {
                 "Abrahamson, Silva & Kamai (2014), Earthquake Spectra 30(3):1025-1055, doi:10.1193/070913EQS198M"
             }
+            Model::Cb14 => "Campbell & Bozorgnia (2014), Earthquake Spectra 30(3):1087-1115, doi:10.1193/062913EQS175M",
+            Model::Cy14 => "Chiou & Youngs (2014), Earthquake Spectra 30(3):1117-1153, doi:10.1193/072813EQS219M",
         }
     }
 
@@ -316,6 +337,8 @@ impl Model {
         match self {
             Model::Bssa14 => bssa14::LIMITS,
             Model::Ask14 => ask14::LIMITS,
+            Model::Cb14 => cb14::LIMITS,
+            Model::Cy14 => cy14::LIMITS,
         }
     }
 
@@ -328,15 +351,17 @@ impl Model {
         match self {
             Model::Bssa14 => &bssa14::PERIODS,
             Model::Ask14 => &ask14::PERIODS,
+            Model::Cb14 => &cb14::PERIODS,
+            Model::Cy14 => &cy14::PERIODS,
         }
     }
 
     /// Median and standard deviations of `imt` for `rupture` recorded at `site`.
     ///
     /// Refused (nothing computed): non-finite inputs, M_w outside [0, 10], δ outside (0°, 90°],
-    /// Z_tor < 0, W ≤ 0, negative distances, R_JB > R_rup, V_S30 ≤ 0, Z_1.0 < 0, a period outside
-    /// the model's table. Flagged ([`Applicability::Outside`]) but computed: M_w, distance or
-    /// V_S30 outside the model's [`Limits`].
+    /// Z_tor < 0, W ≤ 0, Z_hyp < 0, negative distances, R_JB > R_rup, V_S30 ≤ 0, Z_1.0 < 0,
+    /// Z_2.5 < 0, a period outside the model's table. Flagged ([`Applicability::Outside`]) but
+    /// computed: M_w, distance or V_S30 outside the model's [`Limits`].
     pub fn predict(self, rupture: &Rupture, site: &Site, imt: Imt) -> Result<Prediction, SeismoError> {
         check_inputs(rupture, site)?;
         let est = self.estimate(rupture, site, imt)?;
@@ -373,6 +398,8 @@ impl Model {
         match self {
             Model::Bssa14 => bssa14::estimate(row, rupture, site),
             Model::Ask14 => ask14::estimate(row, rupture, site),
+            Model::Cb14 => cb14::estimate(row, rupture, site),
+            Model::Cy14 => cy14::estimate(row, rupture, site),
         }
     }
 
@@ -405,6 +432,8 @@ impl fmt::Display for Model {
         f.write_str(match self {
             Model::Bssa14 => "BSSA14",
             Model::Ask14 => "ASK14",
+            Model::Cb14 => "CB14",
+            Model::Cy14 => "CY14",
         })
     }
 }
@@ -439,6 +468,9 @@ fn check_inputs(rupture: &Rupture, site: &Site) -> Result<(), SeismoError> {
     finite("dip_deg", r.dip_deg, "°", r.dip_deg > 0.0 && r.dip_deg <= 90.0, "0° < dip ≤ 90°")?;
     finite("ztor_km", r.ztor_km, " km", r.ztor_km >= 0.0, "Z_tor ≥ 0 km")?;
     finite("width_km", r.width_km, " km", r.width_km > 0.0, "W > 0 km")?;
+    if let Some(zhyp) = r.hypo_depth_km {
+        finite("hypo_depth_km", zhyp, " km", zhyp >= 0.0, "Z_hyp ≥ 0 km")?;
+    }
     let s = site;
     finite("r_jb_km", s.r_jb_km, " km", s.r_jb_km >= 0.0, "R_JB ≥ 0 km")?;
     finite("r_rup_km", s.r_rup_km, " km", s.r_rup_km >= 0.0, "R_rup ≥ 0 km")?;
@@ -457,12 +489,15 @@ fn check_inputs(rupture: &Rupture, site: &Site) -> Result<(), SeismoError> {
     if let Some(z1) = s.z1_km {
         finite("z1_km", z1, " km", z1 >= 0.0, "Z_1.0 ≥ 0 km")?;
     }
+    if let Some(z25) = s.z25_km {
+        finite("z25_km", z25, " km", z25 >= 0.0, "Z_2.5 ≥ 0 km")?;
+    }
     Ok(())
 }
 
-/// Z_1.0 (km) of the California V_S30 relation of Chiou & Youngs (2014, eq. 1), which BSSA14 uses
-/// as the centre of its basin term: ln μ_z1 = −7.15/4 · ln((V_S30⁴ + 570.94⁴)/(1360⁴ + 570.94⁴)) −
-/// ln 1000.
+/// Z_1.0 (km) of the California V_S30 relation of Chiou & Youngs (2014, eq. 1), which BSSA14 and
+/// CY14 use as the centre of their basin terms: ln μ_z1 = −7.15/4 · ln((V_S30⁴ + 570.94⁴)/(1360⁴ +
+/// 570.94⁴)) − ln 1000.
 pub fn z1_cy14_california_km(vs30_m_s: f64) -> f64 {
     let p = |v: f64| v.powi(4);
     (-7.15 / 4.0 * ((p(vs30_m_s) + p(570.94)) / (p(1360.0) + p(570.94))).ln()).exp() / 1000.0
@@ -480,7 +515,14 @@ mod tests {
     use super::*;
 
     fn rupture() -> Rupture {
-        Rupture { mw: 6.5, mechanism: Mechanism::StrikeSlip, dip_deg: 90.0, ztor_km: 0.0, width_km: 12.0 }
+        Rupture {
+            mw: 6.5,
+            mechanism: Mechanism::StrikeSlip,
+            dip_deg: 90.0,
+            ztor_km: 0.0,
+            width_km: 12.0,
+            hypo_depth_km: None,
+        }
     }
 
     fn site() -> Site {
@@ -491,6 +533,7 @@ mod tests {
             r_y0_km: Some(0.0),
             vs30_m_s: 760.0,
             z1_km: None,
+            z25_km: None,
             vs30_measured: true,
         }
     }
@@ -545,12 +588,15 @@ mod tests {
             ("dip_deg", Rupture { dip_deg: 95.0, ..rupture() }, site()),
             ("ztor_km", Rupture { ztor_km: -1.0, ..rupture() }, site()),
             ("width_km", Rupture { width_km: 0.0, ..rupture() }, site()),
+            ("hypo_depth_km", Rupture { hypo_depth_km: Some(-1.0), ..rupture() }, site()),
+            ("hypo_depth_km", Rupture { hypo_depth_km: Some(f64::NAN), ..rupture() }, site()),
             ("r_jb_km", rupture(), Site { r_jb_km: -1.0, ..site() }),
             ("r_jb_km", rupture(), Site { r_jb_km: 25.0, ..site() }),
             ("r_rup_km", rupture(), Site { r_rup_km: f64::INFINITY, ..site() }),
             ("r_y0_km", rupture(), Site { r_y0_km: Some(-2.0), ..site() }),
             ("vs30_m_s", rupture(), Site { vs30_m_s: 0.0, ..site() }),
             ("z1_km", rupture(), Site { z1_km: Some(-0.1), ..site() }),
+            ("z25_km", rupture(), Site { z25_km: Some(-0.1), ..site() }),
         ];
         for model in Model::ALL {
             for (field, r, s) in &cases {
@@ -580,6 +626,21 @@ mod tests {
         let a = Model::Ask14.applicability(&Rupture { mw: 2.5, ..rupture() }, &Site { vs30_m_s: 1100.0, ..site() });
         let Applicability::Outside(x) = a else { panic!("not flagged") };
         assert_eq!(x.iter().map(|e| e.range.quantity).collect::<Vec<_>>(), [Quantity::Magnitude, Quantity::Vs30]);
+        // CB14: normal faults to M 7.5, reverse to 8, strike-slip to 8.5, from M 3.3; V_S30 from 150.
+        let cb =
+            |mw: f64, mechanism: Mechanism| Model::Cb14.applicability(&Rupture { mw, mechanism, ..rupture() }, &site());
+        assert!(cb(7.5, Mechanism::Normal).is_inside() && !cb(7.6, Mechanism::Normal).is_inside());
+        assert!(cb(8.0, Mechanism::Reverse).is_inside() && !cb(8.1, Mechanism::Reverse).is_inside());
+        assert!(cb(8.5, Mechanism::StrikeSlip).is_inside() && !cb(3.2, Mechanism::StrikeSlip).is_inside());
+        assert!(Model::Cb14.applicability(&rupture(), &Site { vs30_m_s: 150.0, ..site() }).is_inside());
+        // CY14: M 3.5–8.0 reverse and normal, to 8.5 strike-slip; R_rup to 300 km; V_S30 180–1500.
+        let cy =
+            |mw: f64, mechanism: Mechanism| Model::Cy14.applicability(&Rupture { mw, mechanism, ..rupture() }, &site());
+        assert!(cy(8.0, Mechanism::Normal).is_inside() && !cy(8.1, Mechanism::Normal).is_inside());
+        assert!(cy(8.5, Mechanism::StrikeSlip).is_inside() && !cy(3.4, Mechanism::StrikeSlip).is_inside());
+        let far_soft = Site { r_rup_km: 310.0, r_jb_km: 310.0, vs30_m_s: 170.0, ..site() };
+        let Applicability::Outside(x) = Model::Cy14.applicability(&rupture(), &far_soft) else { panic!("not flagged") };
+        assert_eq!(x.iter().map(|e| e.range.quantity).collect::<Vec<_>>(), [Quantity::RRup, Quantity::Vs30]);
     }
 
     #[test]
@@ -588,8 +649,9 @@ mod tests {
             assert_eq!(Model::parse(m.name()).unwrap(), m);
             assert_eq!(Model::parse(&m.to_string()).unwrap(), m);
         }
-        let e = Model::parse("cb14").unwrap_err().to_string();
-        assert!(e.contains("bssa14, ask14"), "{e}");
+        let e = Model::parse("i14").unwrap_err().to_string();
+        assert!(e.contains("bssa14, ask14, cb14, cy14"), "{e}");
+        assert_eq!(Model::parse(" CB14 ").unwrap(), Model::Cb14);
     }
 
     #[test]
