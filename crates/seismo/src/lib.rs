@@ -8,7 +8,8 @@
 //! selection of record sets matched to them ([`selection`]), rupture fronts ([`front`]), SEAS fault
 //! station files ([`seas`]), SCEC dynamic-rupture benchmark files ([`scec`]), acoustic-emission
 //! clusters of bar breaks ([`emission`]), and the NGA-West2 ground-motion models with fault-to-site
-//! distances and the Broadband Platform's validation statistics ([`gmm`]).
+//! distances and the Broadband Platform's validation statistics ([`gmm`]), and broadband records by the
+//! Platform's hybrid method ([`broadband`]).
 //!
 //! Must not know: the solver, the pipeline file, tables or figures. Every function takes slices
 //! and plain parameter structs, so it can be used on any record, simulated or recorded; the
@@ -16,6 +17,7 @@
 #![deny(missing_docs)]
 
 pub mod accelerogram;
+pub mod broadband;
 pub mod catalogue;
 pub mod design;
 pub mod emission;

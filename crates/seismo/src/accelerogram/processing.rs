@@ -176,7 +176,7 @@ pub fn cosine_taper(x: &mut [f64], n_start: usize, n_end: usize) {
 }
 
 /// Smallest `m ≥ n` whose only prime factors are 2, 3 and 5.
-fn fast_len(n: usize) -> usize {
+pub(crate) fn fast_len(n: usize) -> usize {
     let mut m = n.max(1);
     loop {
         let mut r = m;

@@ -86,6 +86,25 @@ fn site_term(c: &Bssa14Row, vs30: f64, z1_km: Option<f64>, pga_r: f64) -> f64 {
     f_lin + f_nl + f_dz1
 }
 
+/// The linear site term of PGA, `c·ln(min(V_S30, V_c)/760)` (eq. 6 at the PGA row): ln of the
+/// factor from a site of `vs30_m_s` to reference rock (760 m/s) is its negative.
+pub fn pga_linear_site_ln(vs30_m_s: f64) -> f64 {
+    let c = &BSSA14[PGA_ROW];
+    c.c * (vs30_m_s.min(c.vc) / V_REF).ln()
+}
+
+/// The BSSA14 site amplification of a site of `vs30_m_s` relative to one of `vref_m_s`,
+/// `exp(F_S(V_S30) − F_S(V_ref))` with F_S the linear and nonlinear terms (eqs. 6–8; no basin
+/// term), for a reference-rock PGA `pga_760_g` (g), at each tabulated PSA period: `(T, factor)`,
+/// T ascending, then PGA as `(0, factor)`. The nonlinear term is evaluated at both sites, as the
+/// Broadband Platform's `wcc_siteamp14` does (it vanishes at 760 m/s and above).
+pub fn site_amplification(vs30_m_s: f64, vref_m_s: f64, pga_760_g: f64) -> Vec<(f64, f64)> {
+    BSSA14[..=PGA_ROW]
+        .iter()
+        .map(|c| (c.t, (site_term(c, vs30_m_s, None, pga_760_g) - site_term(c, vref_m_s, None, pga_760_g)).exp()))
+        .collect()
+}
+
 /// τ and φ of row `c`.
 fn sigma(c: &Bssa14Row, m: f64, r_jb: f64, vs30: f64) -> (f64, f64) {
     let w = (m - 4.5).clamp(0.0, 1.0);
@@ -121,6 +140,27 @@ mod tests {
         // The basin coefficients are tabulated (not the −9.9 placeholder) exactly where the basin
         // term applies.
         assert!(BSSA14.iter().all(|c| (c.t >= 0.65) == (c.f6 != -9.9)));
+    }
+
+    #[test]
+    fn the_site_amplification_is_one_between_equal_sites_and_follows_the_linear_term_on_rock() {
+        for (t, a) in site_amplification(500.0, 500.0, 0.3) {
+            assert!((a - 1.0).abs() < 1e-12, "{t}: {a}");
+        }
+        // Above 760 m/s the nonlinear term vanishes: the ratio is that of the linear terms, with
+        // V_S30 capped at V_c (both sites above V_c: no amplification at all).
+        let amp = site_amplification(760.0, 1200.0, 0.5);
+        for ((t, a), c) in amp.iter().zip(&BSSA14) {
+            let expected = (c.c * ((760.0f64).min(c.vc) / 760.0).ln() - c.c * (1200.0f64.min(c.vc) / 760.0).ln()).exp();
+            assert!((a - expected).abs() < 1e-12 * expected, "{t}");
+        }
+        assert!(site_amplification(1600.0, 3464.0, 0.5).iter().all(|(_, a)| (a - 1.0).abs() < 1e-12));
+        // A soft site amplifies less under strong shaking (the nonlinear term, f4 < 0 at PGA).
+        let weak = site_amplification(300.0, 760.0, 0.01).last().unwrap().1;
+        let strong = site_amplification(300.0, 760.0, 0.8).last().unwrap().1;
+        assert!(weak > strong && strong > 0.5, "{weak} {strong}");
+        assert_eq!(site_amplification(400.0, 760.0, 0.1).last().unwrap().0, 0.0);
+        assert!((pga_linear_site_ln(760.0)).abs() < 1e-15);
     }
 
     #[test]
