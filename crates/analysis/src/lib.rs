@@ -6,7 +6,7 @@
 //! ([`records`]), the attenuation of peak motions with distance ([`attenuation`]), the rupture
 //! front of each event ([`fronts`]), the bar breaks as acoustic emission ([`emission`]), and on a
 //! fault the source from its own slip and the stations against the rupture ([`source`]) with
-//! their processed RotD motions ([`motions`]) — and
+//! their processed RotD motions ([`motions`]) and broadband records ([`broadband`]) — and
 //! what it is asked to do ([`settings`]). It is a pure function of the run, the model and the
 //! settings: it can be tested without files.
 //!
@@ -15,6 +15,7 @@
 #![deny(missing_docs)]
 
 pub mod attenuation;
+pub mod broadband;
 pub mod emission;
 pub mod events;
 pub mod fronts;
@@ -124,12 +125,19 @@ pub fn analyse(
     );
     let lambda = events::lambda(model, &settings.similarity);
     let mut source = source::source(&run.recording, model);
-    let stations = source.as_ref().map_or_else(Vec::new, |s| source::stations(&run.recording, model, s));
+    let mut stations = source.as_ref().map_or_else(Vec::new, |s| source::stations(&run.recording, model, s));
+    if let (Some(src), Some(bb)) = (source.as_mut(), settings.broadband.as_ref()) {
+        let (rows, stochastic) = broadband::records(stations, &run.recording, model, src, bb, run.seed);
+        stations = rows;
+        src.stochastic = stochastic;
+    }
     if let Some(src) = source.as_mut() {
-        // The surface stations (depth 0) with a processed record.
+        // The surface stations (depth 0) with a processed record, each scene station once (a
+        // station simulated on several sites has one lattice record).
+        let mut seen = std::collections::HashSet::new();
         let surface = stations
             .iter()
-            .filter(|s| s.position_m[1] == 0.0)
+            .filter(|s| s.position_m[1] == 0.0 && seen.insert(s.station.node))
             .filter_map(|s| s.motion.as_ref().ok().map(|m| (m, s.hypocentral_m)));
         src.fitted_corner_hz = motions::fitted_corner(surface).map(|b| b.corner_hz);
     }

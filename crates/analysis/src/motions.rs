@@ -20,29 +20,30 @@
 use stickslip_seismo::accelerogram::processing::{Processed, ProcessingOptions, RecordBand, butterworth_gain, process};
 use stickslip_seismo::fit::{BruneFit, fit_brune};
 use stickslip_seismo::spectra::fourier::{Window, fourier_amplitude};
+use stickslip_seismo::spectra::intensity::{Baseline, intensity};
 use stickslip_seismo::spectra::response::Reading;
 use stickslip_seismo::spectra::rotd::{ANGLES, RotDPlan, RotDScratch, RotDSpectrum};
 use stickslip_solver::Recording;
 use stickslip_solver::geometry::NodeId;
 use stickslip_solver::scene::{Component, ControlChannel, Kinematic};
 
-/// The periods (s) PSA is computed at, where usable: those of BSSA14's table from 0.1 s (the
-/// lattice resolves nothing shorter at the scales it is used at), which ASK14 shares or
-/// interpolates.
-pub const GMM_PERIODS_S: [f64; 16] =
-    [0.1, 0.15, 0.2, 0.25, 0.3, 0.4, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 7.5, 10.0];
+/// The periods (s) PSA is compared with the ground-motion models at, where usable: the 21 periods
+/// of the Broadband Platform's Part-B tables (0.01–10 s), each tabulated by BSSA14 and ASK14 (CB14
+/// and CY14 tabulate or interpolate them).
+pub const GMM_PERIODS_S: [f64; 21] =
+    [0.01, 0.02, 0.03, 0.05, 0.075, 0.1, 0.15, 0.2, 0.25, 0.3, 0.4, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 7.5, 10.0];
 
 /// Periods per decade of the log grid of [`spectrum_periods`].
 pub const PERIODS_PER_DECADE: usize = 20;
 
 /// The periods (s) a station's PSA is computed at where usable, ascending: [`GMM_PERIODS_S`] and
-/// the log grid `10^(k/20)` from 0.1 to 10 s, a grid point within 1% of a model period left out
+/// the log grid `10^(k/20)` from 0.01 to 10 s, a grid point within 1% of a model period left out
 /// (the model's period kept, bit for bit, so that the comparison reads it back exactly).
 pub fn spectrum_periods() -> Vec<f64> {
-    let decades = 2;
+    let decades = 3;
     let mut out: Vec<f64> = GMM_PERIODS_S.to_vec();
     for k in 0..=decades * PERIODS_PER_DECADE {
-        let t = 0.1 * 10f64.powf(k as f64 / PERIODS_PER_DECADE as f64);
+        let t = 0.01 * 10f64.powf(k as f64 / PERIODS_PER_DECADE as f64);
         if !GMM_PERIODS_S.iter().any(|&g| (t / g - 1.0).abs() < 0.01) {
             out.push(t);
         }
@@ -77,6 +78,12 @@ pub struct Motion {
     pub rotd50_m_s2: Vec<f64>,
     /// RotD100 PSA at each period (m/s²).
     pub rotd100_m_s2: Vec<f64>,
+    /// Arias intensity, the mean of the two horizontal components' (m/s).
+    pub arias_m_s: f64,
+    /// Significant duration D5–95, the mean of the two components' (s).
+    pub d5_95_s: f64,
+    /// Cumulative absolute velocity, the mean of the two components' (m/s).
+    pub cav_m_s: f64,
     /// Fourier amplitude of the horizontal displacement, `√(|X|² + |Z|²)` (m·s), divided by the
     /// band-pass's gain, at the frequencies of the usable band: `(f, amplitude)`.
     pub displacement_spectrum: Vec<(f64, f64)>,
@@ -133,17 +140,31 @@ pub fn motion(rec: &Recording, node: NodeId, resolved_hz: f64) -> Result<Motion,
         "no uniform record of the shear stage (the skip-ahead sampled it sparsely, or it is shorter than 8 samples)"
             .to_string()
     })?;
+    motion_of_pair(x, z, dt, resolved_hz, None)
+}
+
+/// The motion of a horizontal pair `(x, z)` sampled every `dt`, whose source resolves waves up to
+/// `resolved_hz` (infinite: a broadband record, filtered only at 0.8 of its Nyquist frequency);
+/// `shortest_s` lowers the shortest usable period below the band's top (a broadband record's PSA
+/// at 0.01 s, which for a record without content above the top is its PGA).
+pub fn motion_of_pair(
+    x: &[f64],
+    z: &[f64],
+    dt: f64,
+    resolved_hz: f64,
+    shortest_s: Option<f64>,
+) -> Result<Motion, String> {
     let duration = (x.len() - 1) as f64 * dt;
     let band = RecordBand::new(duration, dt, resolved_hz, Some(LOW_CORNER_CYCLES / duration), None)
         .map_err(|e| format!("band: {e}"))?;
     let (px, pz) = processed_pair(x, z, dt, band.f_low_hz, band.f_high_hz)?;
     let opts = ProcessingOptions::new(band.f_low_hz, Some(band.f_high_hz));
-    let usable = [1.0 / band.usable_high_hz, 1.0 / band.usable_low_hz];
+    let usable = [shortest_s.unwrap_or(1.0 / band.usable_high_hz), 1.0 / band.usable_low_hz];
     let periods: Vec<f64> =
         spectrum_periods().into_iter().filter(|&t| t >= usable[0] * (1.0 - 1e-9) && t <= usable[1]).collect();
     let (mut rotd50, mut rotd100) = (Vec::new(), Vec::new());
     if !periods.is_empty() {
-        let plan = RotDPlan::new(dt, &periods, &[DAMPING], Reading::BandLimited, 4).map_err(|e| format!("{e}"))?;
+        let plan = RotDPlan::new(px.dt, &periods, &[DAMPING], Reading::BandLimited, 4).map_err(|e| format!("{e}"))?;
         let mut out = RotDSpectrum::default();
         plan.compute(&px.accel, &pz.accel, &mut RotDScratch::default(), &mut out).map_err(|e| format!("{e}"))?;
         for (k, &t) in periods.iter().enumerate() {
@@ -152,6 +173,7 @@ pub fn motion(rec: &Recording, node: NodeId, resolved_hz: f64) -> Result<Motion,
             rotd100.push(w2 * out.rotd100[k]);
         }
     }
+    let [ix, iz] = [&px, &pz].map(|p| intensity(&p.accel, p.dt, Baseline::None));
     let mut planner = rustfft::FftPlanner::new();
     let fx = fourier_amplitude(&px.disp, dt, Window::Rectangular, &mut planner);
     let fz = fourier_amplitude(&pz.disp, dt, Window::Rectangular, &mut planner);
@@ -173,6 +195,9 @@ pub fn motion(rec: &Recording, node: NodeId, resolved_hz: f64) -> Result<Motion,
         periods_s: periods,
         rotd50_m_s2: rotd50,
         rotd100_m_s2: rotd100,
+        arias_m_s: 0.5 * (ix.arias + iz.arias),
+        d5_95_s: 0.5 * (ix.d5_95() + iz.d5_95()),
+        cav_m_s: 0.5 * (ix.cav + iz.cav),
     })
 }
 
@@ -227,16 +252,16 @@ mod tests {
         for g in GMM_PERIODS_S {
             assert_eq!(t.iter().filter(|p| p.to_bits() == g.to_bits()).count(), 1, "{g} s");
         }
-        assert_eq!((t[0], t[t.len() - 1]), (0.1, 10.0));
+        assert_eq!((t[0], t[t.len() - 1]), (0.01, 10.0));
         for w in t.windows(2) {
             let step = (w[1] / w[0]).log10();
             // Ascending; a log-grid point dropped beside a model period leaves at most a step of
             // 1/20 decade + 1%.
             assert!(step > 0.0 && step <= 0.05 + 0.0044, "{} → {}", w[0], w[1]);
         }
-        // 41 grid points, those within 1% of a model period dropped (0.1, 0.2, 0.5, 1, 2, 5, 10
-        // and their neighbours on the grid), plus the 16 model periods.
-        assert!((45..=57).contains(&t.len()), "{}", t.len());
+        // 61 grid points, those within 1% of a model period dropped (0.01, 0.02, 0.05, 0.1, 0.2,
+        // 0.5, 1, 2, 5, 10 and a few neighbours on the grid), plus the 21 model periods.
+        assert!((66..=82).contains(&t.len()), "{}", t.len());
     }
 
     #[test]

@@ -25,6 +25,8 @@ pub struct Settings {
     pub spectra: Option<SpectraSettings>,
     /// How bar breaks group into acoustic-emission events, when the bars crack.
     pub emission: Option<ClusterParams>,
+    /// Broadband records of a fault scene's surface stations, if asked (`[broadband]`).
+    pub broadband: Option<crate::broadband::BroadbandSettings>,
 }
 
 /// Which stretches of the run become records.

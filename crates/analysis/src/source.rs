@@ -59,6 +59,8 @@ pub struct Source {
     /// The corner fitted to the surface stations' displacement spectra
     /// ([`crate::motions::fitted_corner`]), when there are enough of them.
     pub fitted_corner_hz: Option<f64>,
+    /// The stochastic part of the broadband records, when the pipeline asks for them.
+    pub stochastic: Option<crate::broadband::StochasticSource>,
 }
 
 /// Brune's (1970) corner frequency `0.4906·β·(Δσ/M0)^(1/3)` (Hz; β in m/s, Δσ in Pa, M0 in N·m).
@@ -135,6 +137,7 @@ pub fn source(rec: &Recording, model: &Model) -> Option<Source> {
         s_speed_m_s: s_speed,
         brune_corner_hz: brune_corner_hz(s_speed, drop, m0),
         fitted_corner_hz: None,
+        stochastic: None,
     })
 }
 
@@ -168,8 +171,19 @@ pub struct StationRow {
     pub pgd_m: f64,
     /// Peak vertical acceleration `max |a_y|` (m/s²).
     pub pga_vertical_m_s2: f64,
-    /// Its processed horizontal motion as RotD50/RotD100 ([`crate::motions`]), or why it has none.
+    /// Its processed horizontal motion as RotD50/RotD100 ([`crate::motions`]), or why it has none:
+    /// the lattice's record.
     pub motion: Result<Motion, String>,
+    /// Its broadband record at its site ([`crate::broadband`]), when the pipeline asks for them.
+    pub broadband: Option<crate::broadband::StationBroadband>,
+}
+
+impl StationRow {
+    /// The motion engineers get from this station: the broadband record's when there is one, else
+    /// the lattice's.
+    pub fn record_motion(&self) -> &Result<Motion, String> {
+        self.broadband.as_ref().map_or(&self.motion, |b| &b.motion)
+    }
 }
 
 /// The stations of a fault scene against the rupture of `src` (the fault summary's ruptured
@@ -226,6 +240,7 @@ pub fn stations(rec: &Recording, model: &Model, src: &Source) -> Vec<StationRow>
                     .iter()
                     .fold(0.0, |m, v| m.max(v.abs())),
                 motion: crate::motions::motion(rec, st.node, resolved_hz),
+                broadband: None,
             }
         })
         .collect()

@@ -51,8 +51,8 @@ enum Command {
     /// Catalogue statistics of an ensemble: Gutenberg–Richter b-values, recurrence CV and
     /// renewal fits, Omori–Utsu aftershock decay, scaling exponents (rewrites their tables).
     Catalogue(catalogue::Args),
-    /// A fault scenario's stations against the NGA-West2 ground-motion models BSSA14 and ASK14:
-    /// residuals of RotD50 PGA, PGV and PSA, bias per period, as tables and a figure.
+    /// A fault scenario's stations against the NGA-West2 ground-motion models BSSA14, ASK14, CB14, CY14:
+    /// residuals of RotD50 PGA, PGV and PSA, bias per site and period, the Part-B test, as tables and a figure.
     Gmm(gmm::Args),
 }
 

@@ -11,6 +11,7 @@
 #![deny(missing_docs)]
 
 pub mod accelerograms;
+pub mod broadband;
 pub mod check;
 pub mod error;
 pub mod friction_map;

@@ -18,6 +18,7 @@ use stickslip_seismo::similarity::SimilarityParams;
 use stickslip_solver::{Scene, TracePlan};
 
 use crate::accelerograms::AccelerogramsSection;
+use crate::broadband::BroadbandSection;
 use crate::check::Checker;
 use crate::check::{approx, num};
 use crate::error::{ConfigError, Warning};
@@ -132,6 +133,10 @@ pub struct PipelineFile {
     pub accelerograms: Option<AccelerogramsSection>,
     /// `[spectra]`: spectra of the records; absent = skipped.
     pub spectra: Option<SpectraSection>,
+    /// `[broadband]`: broadband records of a fault scene's surface stations; absent = the
+    /// lattice's motion only.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub broadband: Option<BroadbandSection>,
     /// `[set]`: a set of records matched to a design spectrum (not part of the hash: it is chosen
     /// from finished seeds and changes no seed's table).
     pub set: Option<SetSection>,
@@ -166,6 +171,7 @@ impl Default for PipelineFile {
             similarity: SimilaritySection::default(),
             accelerograms: None,
             spectra: None,
+            broadband: None,
             set: None,
             report: ReportSection::default(),
         }
@@ -182,6 +188,8 @@ struct Hashed<'a> {
     similarity: &'a SimilaritySection,
     accelerograms: &'a Option<AccelerogramsSection>,
     spectra: &'a Option<SpectraSection>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    broadband: &'a Option<BroadbandSection>,
 }
 
 /// Top-level keys of a pipeline file that are not part of the hash.
@@ -207,6 +215,7 @@ impl PipelineFile {
             similarity: &self.similarity,
             accelerograms: &self.accelerograms,
             spectra: &self.spectra,
+            broadband: &self.broadband,
         };
         let canonical = toml::to_string(&hashed).expect("pipeline sections serialise");
         let mut h: u64 = 0xcbf2_9ce4_8422_2325;
@@ -427,13 +436,17 @@ impl Pipeline {
             }
             _ => None,
         };
+        let broadband = match (&file.broadband, &scene) {
+            (Some(b), Some(scene)) => b.build(scene, &file.stations, &mut ck),
+            _ => None,
+        };
         let set = file.set.as_ref().and_then(|s| {
-            let pool = scene.as_ref().map(|sc| set_pool(sc, spectra.as_ref(), &similarity));
+            let pool = scene.as_ref().map(|sc| set_pool(sc, spectra.as_ref(), &similarity, broadband.is_some()));
             s.build(base, pool.unwrap_or(SetPool::Records(None)), &mut ck)
         });
         if let (Some(set), Some(acc), Some(scene)) = (&set, &accelerograms, &scene)
             && ck.is_clean()
-            && station_band(scene).is_none()
+            && station_band(scene, broadband.is_some()).is_none()
         {
             check_set_band(&mut ck, file.set.as_ref().expect("a set"), set, acc, scene, &similarity);
         }
@@ -458,7 +471,7 @@ impl Pipeline {
                 scene.record.resampled = accelerograms.is_some();
                 scene
             },
-            analysis: Settings { events, similarity, accelerograms, spectra, emission },
+            analysis: Settings { events, similarity, accelerograms, spectra, emission, broadband },
             set,
             report,
             hash: file.hash(),
@@ -499,9 +512,10 @@ fn random_fields(file: &PipelineFile) -> Vec<&'static str> {
 }
 
 /// The usable periods `(shortest, longest)` (s) of a fault scene's surface stations (docs/model.md
-/// §16.2): from `1/f_max` (the lattice's, at most 80% of the record interval's Nyquist) to
-/// `T/(2·1.25)`, `T` the shear stage; `None` for a scene without a fault or surface stations.
-fn station_band(scene: &stickslip_solver::Scene) -> Option<(f64, f64)> {
+/// §16.2): from `1/f_max` (the lattice's, at most 80% of the record interval's Nyquist), or 0.01 s
+/// for broadband records (§17), to `T/(2·1.25)`, `T` the shear stage; `None` for a scene without a
+/// fault or surface stations.
+fn station_band(scene: &stickslip_solver::Scene, broadband: bool) -> Option<(f64, f64)> {
     use stickslip_analysis::motions::{DEPARTURE, LOW_CORNER_CYCLES};
     let lattice = scene.lattice();
     let surface = scene.stations.iter().any(|s| lattice.position(s.node)[1] == 0.0);
@@ -510,21 +524,23 @@ fn station_band(scene: &stickslip_solver::Scene) -> Option<(f64, f64)> {
     }
     let band = scene.usable_band(DEPARTURE).ok()?;
     let nyquist = scene.record.interval_s.map_or(f64::INFINITY, |iv| 0.8 * 0.5 / iv);
-    Some((1.0 / band.f_max_hz.min(nyquist), scene.shear.duration_s / (LOW_CORNER_CYCLES * 1.25)))
+    let shortest =
+        if broadband { stickslip_analysis::broadband::SHORTEST_PERIOD_S } else { 1.0 / band.f_max_hz.min(nyquist) };
+    Some((shortest, scene.shear.duration_s / (LOW_CORNER_CYCLES * 1.25)))
 }
 
 /// Warns when a fault scene's surface stations can give no PSA at any of the ground-motion models'
 /// periods ([`station_band`]).
 fn warn_gmm_band(scene: &stickslip_solver::Scene, ck: &mut Checker) {
     use stickslip_analysis::motions::GMM_PERIODS_S;
-    let Some((shortest, longest)) = station_band(scene) else { return };
+    let Some((shortest, longest)) = station_band(scene, false) else { return };
     if !GMM_PERIODS_S.iter().any(|&t| t >= shortest && t <= longest) {
         ck.warn(
             "shear.duration_s",
             scene.shear.duration_s,
             format!(
                 "the surface stations' PSA is usable from {} s to {} s, which holds none of the ground-motion \
-                 models' periods (0.1–10 s): `stickslip gmm` can compare only PGA and PGV (a longer run or a \
+                 models' periods (0.01–10 s): `stickslip gmm` can compare only PGA and PGV (a longer run or a \
                  finer lattice widens the band)",
                 num(shortest),
                 num(longest)
@@ -584,8 +600,13 @@ fn check_set_band(
 
 /// What a `[set]` of `scene` chooses from: its surface stations when it is a fault scenario with
 /// some, else the records' `spectra` (their dampings and prototype-scale grid, if any).
-fn set_pool<'a>(scene: &Scene, spectra: Option<&'a SpectraSettings>, similarity: &SimilarityParams) -> SetPool<'a> {
-    match station_band(scene) {
+fn set_pool<'a>(
+    scene: &Scene,
+    spectra: Option<&'a SpectraSettings>,
+    similarity: &SimilarityParams,
+    broadband: bool,
+) -> SetPool<'a> {
+    match station_band(scene, broadband) {
         Some((shortest, longest)) => SetPool::Stations { shortest, longest },
         None => SetPool::Records(spectra.map(|sp| prototype_grid(sp, scene, similarity))),
     }
@@ -674,13 +695,18 @@ impl Pipeline {
     /// (their usable periods), or the records' spectra (their dampings and prototype-scale period
     /// grid).
     pub fn set_pool(&self) -> SetPool<'_> {
-        set_pool(&self.scene, self.analysis.spectra.as_ref(), &self.analysis.similarity)
+        set_pool(
+            &self.scene,
+            self.analysis.spectra.as_ref(),
+            &self.analysis.similarity,
+            self.analysis.broadband.is_some(),
+        )
     }
 
     /// Whether a `[set]` is chosen from a fault scenario's surface stations (not the records of
     /// events).
     pub fn sets_from_stations(&self) -> bool {
-        station_band(&self.scene).is_some()
+        station_band(&self.scene, self.analysis.broadband.is_some()).is_some()
     }
 
     /// Whether the report compares this pipeline with the paper (its figure numbers and its

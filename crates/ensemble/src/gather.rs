@@ -9,8 +9,8 @@ use stickslip_seismo::stats::percentile_sorted;
 use stickslip_store::frame::Columns;
 use stickslip_store::io::write_parquet_atomic;
 use stickslip_store::schema::{
-    self, ATTENUATION, ATTENUATION_FIT, EVENTS_TABLE, GMM_BIAS, GMM_RESIDUALS, PSA_STATS, ROTD, RUNS, SIMILARITY,
-    SPECTRA, STATIONS, SUMMARY, Scope, TableSpec, col,
+    self, ATTENUATION, ATTENUATION_FIT, EVENTS_TABLE, GMM_BIAS, GMM_PART_B, GMM_RESIDUALS, PSA_STATS, ROTD, RUNS,
+    SIMILARITY, SPECTRA, STATIONS, SUMMARY, Scope, TableSpec, col,
 };
 use stickslip_store::tables::runs::Runs;
 use stickslip_store::tables::stats::{FitRow, PsaStatsRow, attenuation_fit_frame, psa_stats_frame, summary_frame};
@@ -134,7 +134,7 @@ pub fn gather(out: &Folder, seeds: &[u64], memory: Gathering) -> Result<Option<R
         Some(Ok(None) | Err(_)) | None => false,
     };
     if !written {
-        for table in [GMM_RESIDUALS, GMM_BIAS] {
+        for table in [GMM_RESIDUALS, GMM_BIAS, GMM_PART_B] {
             let path = out.gathered(&table);
             if path.exists() {
                 std::fs::remove_file(&path).map_err(|e| StoreError::io(&path, e))?;

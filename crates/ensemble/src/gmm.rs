@@ -8,18 +8,22 @@
 //! on the free surface (depth y = 0) are compared, as the models are for surface motions. Each seed's
 //! rupture goes to the models as a vertical strike-slip fault (dip 90°, rake 0°) with the seed's
 //! Mw (from its slip), Z_tor and width from its ruptured extent down dip; each station with its
-//! R_rup, R_JB, R_x and R_y0; V_S30 the scene's S-wave speed at the surface unless given. Where
-//! an input lies outside a model's ranges the prediction is still made and flagged (`outside`).
+//! R_rup, R_JB, R_x and R_y0; V_S30 the station's site for a broadband record (docs/model.md §17),
+//! else the scene's S-wave speed at the surface unless given. Records are compared site by site
+//! (grouped by their V_S30), and per R_rup bin by the Part-B test. Where an input lies outside a
+//! model's ranges the prediction is still made and flagged (`outside`).
 
 use std::collections::HashMap;
 
 use stickslip_analysis::motions::GMM_PERIODS_S;
-use stickslip_seismo::gmm::validation::{ModelColumn, attenuation_slope, validate_period};
+use stickslip_seismo::gmm::validation::{ModelColumn, attenuation_slope, part_b, validate_period};
 use stickslip_seismo::gmm::{Imt, Mechanism, Model, Rupture, Site};
 use stickslip_store::frame::Columns;
 use stickslip_store::io::{read_parquet_if_present, write_parquet_atomic};
-use stickslip_store::schema::{GMM_BIAS, GMM_RESIDUALS, SOURCE, STATION_SPECTRA, STATIONS, col};
-use stickslip_store::tables::gmm::{BiasRow, ResidualRow, bias_frame, residuals_frame};
+use stickslip_store::schema::{GMM_BIAS, GMM_PART_B, GMM_RESIDUALS, SOURCE, STATION_SPECTRA, STATIONS, col};
+use stickslip_store::tables::gmm::{
+    BiasRow, PART_B_BINS_KM, PART_B_JUDGED_MAX_S, PartBRow, ResidualRow, bias_frame, part_b_frame, residuals_frame,
+};
 use stickslip_store::{Folder, StoreError};
 
 use crate::error::EnsembleError;
@@ -29,7 +33,9 @@ use crate::error::EnsembleError;
 pub struct GmmOptions {
     /// The models (at least one).
     pub models: Vec<Model>,
-    /// V_S30 given to the models (m/s); `None`: each seed's S-wave speed (a homogeneous medium).
+    /// V_S30 given to the models for records without a site of their own (lattice records, m/s);
+    /// `None`: each seed's S-wave speed (a homogeneous medium). A broadband record is compared at
+    /// its station's V_S30.
     pub vs30_m_s: Option<f64>,
 }
 
@@ -63,8 +69,10 @@ pub const PGA_MIN_BAND_HZ: f64 = 10.0;
 pub struct GmmComparison {
     /// Per record, intensity measure and model (and the models' average).
     pub residuals: Vec<ResidualRow>,
-    /// Per intensity measure and model (and the models' average).
+    /// Per site, intensity measure and model (and the models' average).
     pub bias: Vec<BiasRow>,
+    /// The Part-B test per site, intensity measure and distance bin.
+    pub part_b: Vec<PartBRow>,
     /// Seeds compared.
     pub seeds: Vec<u64>,
     /// Records (station × seed) compared.
@@ -114,6 +122,7 @@ fn records(folder: &Folder, vs30: Option<f64>) -> Result<Option<Vec<Record>>, St
     let (r_rup, r_jb, r_x, r_y0) =
         (c.f64s(col::R_RUP_M)?, c.f64s(col::R_JB_M)?, c.f64s(col::R_X_M)?, c.f64s(col::R_Y0_M)?);
     let az = c.f64s(col::AZIMUTH_DEG)?;
+    let site = if c.has(col::VS30_M_S) { c.opt_f64s(col::VS30_M_S)? } else { vec![None; seed.len()] };
     let f_high = if c.has(col::F_HIGH_HZ) { c.opt_f64s(col::F_HIGH_HZ)? } else { vec![None; seed.len()] };
     let pga = if c.has(col::PGA_ROTD50_M_S2) { c.opt_f64s(col::PGA_ROTD50_M_S2)? } else { vec![None; seed.len()] };
     let pgv = if c.has(col::PGV_ROTD50_M_S) { c.opt_f64s(col::PGV_ROTD50_M_S)? } else { vec![None; seed.len()] };
@@ -153,7 +162,7 @@ fn records(folder: &Folder, vs30: Option<f64>) -> Result<Option<Vec<Record>>, St
                 r_jb_km: (r_jb[i] / 1e3).min(r_rup[i] / 1e3),
                 r_x_km: r_x[i] / 1e3,
                 r_y0_km: Some(r_y0[i] / 1e3),
-                vs30_m_s: vs30,
+                vs30_m_s: site[i].unwrap_or(vs30),
                 z1_km: None,
                 z25_km: None,
                 vs30_measured: true,
@@ -182,9 +191,79 @@ pub fn compare(folder: &Folder, opts: &GmmOptions) -> Result<Option<GmmCompariso
     if records.is_empty() {
         return Ok(None);
     }
+    let mut out = GmmComparison::default();
+    // Site by site: records of one V_S30 together, in ascending V_S30.
+    let mut sites: Vec<f64> = records.iter().map(|r| r.site.vs30_m_s).collect();
+    sites.sort_by(f64::total_cmp);
+    sites.dedup();
+    for vs30 in sites {
+        let group: Vec<&Record> = records.iter().filter(|r| r.site.vs30_m_s == vs30).collect();
+        compare_site(vs30, &group, opts, &mut out)?;
+    }
+    let mut seeds: Vec<u64> = records.iter().map(|r| r.seed).collect();
+    seeds.sort_unstable();
+    seeds.dedup();
+    let range = |f: &dyn Fn(&Record) -> f64| {
+        records.iter().map(f).fold([f64::INFINITY, f64::NEG_INFINITY], |[lo, hi], v| [lo.min(v), hi.max(v)])
+    };
+    out.mw_range = range(&|r| r.rupture.mw);
+    out.vs30_range = range(&|r| r.site.vs30_m_s);
+    out.records = records.iter().filter(|r| !r.motions.is_empty()).count();
+    out.without_psa = records
+        .iter()
+        .filter(|r| !r.motions.is_empty() && !r.motions.iter().any(|(m, _)| matches!(m, Imt::Psa(_))))
+        .count();
+    out.seeds = seeds;
+    Ok(Some(out))
+}
+
+/// The Part-B test of the records `who` (their simulations `sim`, each model's medians
+/// `medians[k]`) in each R_rup bin that holds some.
+fn part_b_bins(vs30: f64, imt: Imt, who: &[&Record], sim: &[f64], medians: &[Vec<f64>]) -> Vec<PartBRow> {
+    let (name, period) = imt_name(imt);
+    let judged = match imt {
+        Imt::Pga => true,
+        Imt::Pgv => false,
+        Imt::Psa(t) => t <= PART_B_JUDGED_MAX_S * (1.0 + 1e-9),
+    };
+    let geo = |v: &[f64]| (v.iter().map(|x| x.ln()).sum::<f64>() / v.len() as f64).exp();
+    let mut out = Vec::new();
+    for bin in PART_B_BINS_KM {
+        let inside: Vec<usize> =
+            (0..who.len()).filter(|&i| who[i].site.r_rup_km >= bin[0] && who[i].site.r_rup_km < bin[1]).collect();
+        if inside.is_empty() {
+            continue;
+        }
+        let s: Vec<f64> = inside.iter().map(|&i| sim[i]).collect();
+        let model_medians: Vec<f64> =
+            medians.iter().map(|m| geo(&inside.iter().map(|&i| m[i]).collect::<Vec<f64>>())).collect();
+        let Ok(p) = part_b(geo(&s), &model_medians) else { continue };
+        out.push(PartBRow {
+            vs30_m_s: vs30,
+            imt: name,
+            period_s: period,
+            distance_km: bin,
+            records: inside.len(),
+            simulated_median: p.simulated_median,
+            models_mean: p.model_mean,
+            band: [p.low, p.high],
+            pass: p.pass,
+            judged,
+        });
+    }
+    out
+}
+
+/// The comparison of the records of one site (`vs30`), appended to `out`.
+fn compare_site(
+    vs30: f64,
+    records: &[&Record],
+    opts: &GmmOptions,
+    out: &mut GmmComparison,
+) -> Result<(), EnsembleError> {
     let err = EnsembleError::Gmm;
     let mut groups: Vec<((u8, u64), Imt)> = Vec::new();
-    for r in &records {
+    for r in records {
         for &(imt, _) in &r.motions {
             if !groups.iter().any(|(k, _)| *k == imt_key(imt)) {
                 groups.push((imt_key(imt), imt));
@@ -192,13 +271,12 @@ pub fn compare(folder: &Folder, opts: &GmmOptions) -> Result<Option<GmmCompariso
         }
     }
     groups.sort_by_key(|(k, _)| *k);
-    let mut out = GmmComparison::default();
     for (key, imt) in groups {
         let (name, period) = imt_name(imt);
         // The records that have this measure.
         let mut sim = Vec::new();
-        let mut who = Vec::new();
-        for r in &records {
+        let mut who: Vec<&Record> = Vec::new();
+        for r in records {
             if let Some(&(_, v)) = r.motions.iter().find(|(m, _)| imt_key(*m) == key) {
                 sim.push(v);
                 who.push(r);
@@ -263,6 +341,7 @@ pub fn compare(folder: &Folder, opts: &GmmOptions) -> Result<Option<GmmCompariso
         for (k, &m) in opts.models.iter().enumerate() {
             let b = &v.per_model[k];
             out.bias.push(BiasRow {
+                vs30_m_s: vs30,
                 imt: name,
                 period_s: period,
                 model: m.name(),
@@ -302,8 +381,10 @@ pub fn compare(folder: &Folder, opts: &GmmOptions) -> Result<Option<GmmCompariso
                 outside: None,
             });
         }
+        let bins = part_b_bins(vs30, imt, &who, &sim, &medians);
         let a = &v.average;
         out.bias.push(BiasRow {
+            vs30_m_s: vs30,
             imt: name,
             period_s: period,
             model: "average",
@@ -312,32 +393,20 @@ pub fn compare(folder: &Folder, opts: &GmmOptions) -> Result<Option<GmmCompariso
             ci90_ln: a.ci90,
             between_record_std_ln: a.between_record_std,
             within_one_sigma: a.within_one_sigma,
-            part_b_pass: Some(v.part_b.pass),
+            part_b_pass: Some(bins.iter().all(|b| b.pass)),
             slope: slope(&avg_median),
             outside_records: outside_counts.iter().copied().max().unwrap_or(0),
             note,
         });
+        out.part_b.extend(bins);
     }
-    let mut seeds: Vec<u64> = records.iter().map(|r| r.seed).collect();
-    seeds.sort_unstable();
-    seeds.dedup();
-    let range = |f: &dyn Fn(&Record) -> f64| {
-        records.iter().map(f).fold([f64::INFINITY, f64::NEG_INFINITY], |[lo, hi], v| [lo.min(v), hi.max(v)])
-    };
-    out.mw_range = range(&|r| r.rupture.mw);
-    out.vs30_range = range(&|r| r.site.vs30_m_s);
-    out.records = records.iter().filter(|r| !r.motions.is_empty()).count();
-    out.without_psa = records
-        .iter()
-        .filter(|r| !r.motions.is_empty() && !r.motions.iter().any(|(m, _)| matches!(m, Imt::Psa(_))))
-        .count();
-    out.seeds = seeds;
-    Ok(Some(out))
+    Ok(())
 }
 
 /// Writes the comparison's tables into `folder`'s tables (atomically, replacing earlier ones).
 pub fn write(folder: &Folder, c: &GmmComparison) -> Result<(), StoreError> {
     write_parquet_atomic(&mut residuals_frame(&c.residuals)?, &folder.gathered(&GMM_RESIDUALS))?;
     write_parquet_atomic(&mut bias_frame(&c.bias)?, &folder.gathered(&GMM_BIAS))?;
+    write_parquet_atomic(&mut part_b_frame(&c.part_b)?, &folder.gathered(&GMM_PART_B))?;
     Ok(())
 }

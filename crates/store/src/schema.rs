@@ -4,13 +4,14 @@
 
 pub use crate::col;
 pub use crate::spec::{Scope, SeedTable, SeedView, SeedWriter, TableSpec};
+pub use crate::tables::broadband::STATION_RECORDS;
 pub use crate::tables::catalogue::{
     AFTERSHOCKS_TABLE, B_VALUES, CATALOGUE, MAGNITUDE_FREQUENCY, OMORI, RECURRENCE_STATS, SCALING,
 };
 pub use crate::tables::cracks::{ACOUSTIC_EMISSION, CRACKS};
 pub use crate::tables::events::{EVENTS_TABLE, SIMILARITY, SUB_EVENTS_TABLE};
 pub use crate::tables::fronts::{RUPTURE_ONSETS, RUPTURES};
-pub use crate::tables::gmm::{GMM_BIAS, GMM_RESIDUALS};
+pub use crate::tables::gmm::{GMM_BIAS, GMM_PART_B, GMM_RESIDUALS};
 pub use crate::tables::records::{ACCELEROGRAMS, ATTENUATION, INTENSITY, RECORDS};
 pub use crate::tables::runs::RUNS;
 pub use crate::tables::series::{CONTROL, FAULT, FAULT_STATION_SERIES, SERIES, SKIPS};
@@ -20,7 +21,7 @@ pub use crate::tables::spectra::{FOURIER, ROTD, SPECTRA};
 pub use crate::tables::stats::{ATTENUATION_FIT, PSA_STATS, SUMMARY};
 
 /// Every table, in the order the README documents them.
-pub const ALL: [TableSpec; 36] = [
+pub const ALL: [TableSpec; 38] = [
     RUNS,
     SERIES,
     CONTROL,
@@ -43,6 +44,7 @@ pub const ALL: [TableSpec; 36] = [
     FAULT_NODES,
     STATIONS,
     STATION_SPECTRA,
+    STATION_RECORDS,
     CRACKS,
     ACOUSTIC_EMISSION,
     SUMMARY,
@@ -57,6 +59,7 @@ pub const ALL: [TableSpec; 36] = [
     SCALING,
     GMM_RESIDUALS,
     GMM_BIAS,
+    GMM_PART_B,
 ];
 
 /// Per-seed tables in the order a seed's parts are written: `runs` last, so a seed counts as

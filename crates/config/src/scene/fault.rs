@@ -194,6 +194,10 @@ pub struct StationSection {
     /// Points on the line, ends included (≥ 2).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub count: Option<i64>,
+    /// The station's V_S30 for its broadband records (m/s), one or several; absent: `[broadband]
+    /// vs30_m_s`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub vs30_m_s: Option<crate::broadband::Vs30>,
 }
 
 /// The fault of `[fault]` on `lattice`'s base; `None` without one.

@@ -10,11 +10,12 @@
 //! rupture time the mean over its ruptured nodes; a cell with no ruptured node has no moment but
 //! is counted in N, the number of subfaults, as the Platform counts every cell of the plane.
 //!
-//! **Local rupture speed.** The slowness `|∇t_r|` is the least-squares plane `t_r = a + b·x + c·y`
-//! through the ruptured nodes of the cell and of its eight neighbours; the speed `1/|∇t_r|` is
-//! kept within [0.2, 1.4]·β (1.4 is the Platform's cap; a nucleation patch breaks at once and has
-//! no slowness). A cell whose neighbourhood gives no plane (fewer than three ruptured nodes, or
-//! all on a line) takes the median speed of the others.
+//! **Local rupture speed.** At each ruptured node the slowness `|∇t_r|` by differences of the
+//! rupture times of its neighbours on the node grid (central where both neighbours ruptured,
+//! one-sided where one did), and a cell's speed the median over its nodes of `1/|∇t_r|`, kept
+//! within [0.2, 1.4]·β (1.4 is the Platform's cap on its rupture speeds). The nodes that broke
+//! first, all at the same instant, are left out (an overstressed nucleation patch breaks at once: no
+//! front propagated there); a cell with no node left takes the median speed of the others.
 
 use crate::error::SeismoError;
 
@@ -63,6 +64,8 @@ pub struct FiniteFault {
     pub moment_n_m: f64,
     /// The ruptured nodes' area (m²).
     pub area_m2: f64,
+    /// Depth of the hypocentre: the mean depth of the nodes that broke first (m).
+    pub hypocentre_depth_m: f64,
 }
 
 /// Smallest and largest rupture speed kept, as fractions of β.
@@ -117,25 +120,45 @@ impl FiniteFault {
             time_sum[c] += n.rupture_time_s;
             members[c].push(k);
         }
-        // Local rupture speed from the plane through the cell's and its neighbours' nodes.
-        let mut speed: Vec<Option<f64>> = vec![None; cells];
-        for j in 0..ny {
-            for i in 0..nx {
-                if members[j * nx + i].is_empty() {
-                    continue;
-                }
-                let mut pts: Vec<&FaultNode> = Vec::new();
-                for jj in j.saturating_sub(1)..(j + 2).min(ny) {
-                    for ii in i.saturating_sub(1)..(i + 2).min(nx) {
-                        pts.extend(members[jj * nx + ii].iter().map(|&k| ruptured[k]));
-                    }
-                }
-                speed[j * nx + i] = slowness(&pts).map(|s| {
-                    let ratio = if s > 0.0 { 1.0 / (s * s_speed_m_s) } else { f64::INFINITY };
-                    ratio.clamp(SPEED_RATIO_RANGE[0], SPEED_RATIO_RANGE[1])
-                });
+        // Local rupture speed: the slowness at each node from its grid neighbours' rupture times,
+        // the nodes that broke at the first instant left out.
+        let first = ruptured.iter().map(|n| n.rupture_time_s).fold(f64::INFINITY, f64::min);
+        let grid_index = |v: f64, origin: f64| ((v - origin) / spacing_m).round() as i64;
+        let (gx0, gy0) = (x0 + half, y0.min(ruptured.iter().map(|n| n.depth_m).fold(f64::INFINITY, f64::min)));
+        let times: std::collections::HashMap<(i64, i64), f64> = ruptured
+            .iter()
+            .filter(|n| n.rupture_time_s > first)
+            .map(|n| ((grid_index(n.x_m, gx0), grid_index(n.depth_m, gy0)), n.rupture_time_s))
+            .collect();
+        let derivative = |at: (i64, i64), step: (i64, i64)| -> Option<f64> {
+            let t0 = times.get(&at)?;
+            let ahead = times.get(&(at.0 + step.0, at.1 + step.1));
+            let behind = times.get(&(at.0 - step.0, at.1 - step.1));
+            match (behind, ahead) {
+                (Some(b), Some(a)) => Some((a - b) / (2.0 * spacing_m)),
+                (None, Some(a)) => Some((a - t0) / spacing_m),
+                (Some(b), None) => Some((t0 - b) / spacing_m),
+                (None, None) => None,
             }
+        };
+        let mut node_speeds: Vec<Vec<f64>> = vec![Vec::new(); cells];
+        for n in &ruptured {
+            let at = (grid_index(n.x_m, gx0), grid_index(n.depth_m, gy0));
+            let (Some(gx), Some(gy)) = (derivative(at, (1, 0)), derivative(at, (0, 1))) else { continue };
+            let (i, j) = cell_of(n);
+            let slowness = gx.hypot(gy);
+            let ratio = if slowness > 0.0 { 1.0 / (slowness * s_speed_m_s) } else { f64::INFINITY };
+            node_speeds[j * nx + i].push(ratio.clamp(SPEED_RATIO_RANGE[0], SPEED_RATIO_RANGE[1]));
         }
+        let speed: Vec<Option<f64>> = node_speeds
+            .iter_mut()
+            .map(|v| {
+                v.sort_by(f64::total_cmp);
+                (!v.is_empty()).then(|| {
+                    if v.len() % 2 == 1 { v[v.len() / 2] } else { 0.5 * (v[v.len() / 2 - 1] + v[v.len() / 2]) }
+                })
+            })
+            .collect();
         let mut known: Vec<f64> = speed.iter().flatten().copied().collect();
         known.sort_by(f64::total_cmp);
         let fallback = if known.is_empty() { 0.8 } else { known[known.len() / 2] };
@@ -153,7 +176,9 @@ impl FiniteFault {
                 }
             })
             .collect();
+        let hypo: Vec<f64> = ruptured.iter().filter(|n| n.rupture_time_s == first).map(|n| n.depth_m).collect();
         Ok(Some(FiniteFault {
+            hypocentre_depth_m: hypo.iter().sum::<f64>() / hypo.len() as f64,
             subfaults,
             cells,
             size_m: (dx * dy).sqrt(),
@@ -161,33 +186,6 @@ impl FiniteFault {
             area_m2: ruptured.iter().map(|n| n.area_m2).sum(),
         }))
     }
-}
-
-/// `|∇t|` (s/m) of the least-squares plane `t = a + b·x + c·y` through `pts`, or `None` when they
-/// do not fix one (fewer than three, or on a line).
-fn slowness(pts: &[&FaultNode]) -> Option<f64> {
-    let n = pts.len() as f64;
-    if pts.len() < 3 {
-        return None;
-    }
-    let (mx, my, mt) =
-        pts.iter().fold((0.0, 0.0, 0.0), |(a, b, c), p| (a + p.x_m / n, b + p.depth_m / n, c + p.rupture_time_s / n));
-    let (mut sxx, mut sxy, mut syy, mut sxt, mut syt) = (0.0, 0.0, 0.0, 0.0, 0.0);
-    for p in pts {
-        let (x, y, t) = (p.x_m - mx, p.depth_m - my, p.rupture_time_s - mt);
-        sxx += x * x;
-        sxy += x * y;
-        syy += y * y;
-        sxt += x * t;
-        syt += y * t;
-    }
-    let det = sxx * syy - sxy * sxy;
-    if !(det > 1e-9 * (sxx * syy).max(f64::MIN_POSITIVE)) {
-        return None;
-    }
-    let b = (sxt * syy - syt * sxy) / det;
-    let c = (syt * sxx - sxt * sxy) / det;
-    Some(b.hypot(c))
 }
 
 #[cfg(test)]
@@ -241,7 +239,27 @@ mod tests {
         // A fault that never ruptured has no subfaults.
         let none = nodes(3000.0, |_, _| 0.0);
         assert!(FiniteFault::from_nodes(&none, 500.0, 1000.0, 3e10, 3464.0).unwrap().is_none());
-        // Speeds are bounded: the nucleation (hypocentre) cell has a finite ratio ≤ 1.4.
+        // Speeds are bounded.
         assert!(f.subfaults.iter().all(|s| (0.2..=1.4).contains(&s.speed_ratio)));
+    }
+
+    #[test]
+    fn a_patch_that_breaks_at_once_takes_the_median_speed() {
+        // A 3 × 3 km patch at the hypocentre ruptures at t = 0 (an overstressed nucleation), the
+        // rest spreads from it at 2800 m/s: the patch's nodes are left out, its cells measure the
+        // front around it or take the median.
+        let mut n = nodes(2800.0, |_, _| 1.0);
+        for p in n.iter_mut() {
+            if (p.x_m - 5000.0).abs() < 1500.0 && (p.depth_m - 4000.0).abs() < 1500.0 {
+                p.rupture_time_s = 0.0;
+            }
+        }
+        let f = FiniteFault::from_nodes(&n, 500.0, 1000.0, 3e10, 3464.0).unwrap().unwrap();
+        let centre =
+            f.subfaults.iter().find(|s| (s.x_m - 4500.0).abs() < 1.0 && (s.depth_m - 3500.0).abs() < 1.0).unwrap();
+        let mut ratios: Vec<f64> = f.subfaults.iter().map(|s| s.speed_ratio).collect();
+        ratios.sort_by(f64::total_cmp);
+        assert!(centre.speed_ratio < 1.4, "{}", centre.speed_ratio);
+        assert!((centre.speed_ratio * 3464.0 / 2800.0 - 1.0).abs() < 0.1, "{}", centre.speed_ratio * 3464.0);
     }
 }

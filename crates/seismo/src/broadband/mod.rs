@@ -8,12 +8,14 @@
 //! - [`window`]: the Saragoni–Hart envelope;
 //! - [`params`]: the parameters and their Western-US defaults;
 //! - [`site`]: the crust of the stochastic part and the BSSA14 site terms of both parts;
-//! - [`merge`]: the matched filters that join the parts.
+//! - [`merge`]: the matched filters that join the parts;
+//! - [`hybrid`]: a station's record: both parts taken to its site and joined.
 //!
 //! Equations and the choices made for the lattice's homogeneous crust: docs/model.md, section
 //! "Broadband records".
 
 pub mod fault;
+pub mod hybrid;
 pub mod merge;
 pub mod params;
 pub mod site;
@@ -22,7 +24,8 @@ pub mod synth;
 pub mod window;
 
 pub use fault::{FaultNode, FiniteFault, Subfault};
+pub use hybrid::{HybridComponent, HybridRecord, HybridSite, hybrid};
 pub use merge::{Crossover, Joined, join};
-pub use params::Stochastic;
+pub use params::{CornerSpeed, Stochastic};
 pub use site::{Crust, SiteFactor};
 pub use stochastic::{Medium, Synthesis};

@@ -21,6 +21,52 @@ pub fn path_duration_s(r_km: f64) -> f64 {
     d0 + (d1 - d0) * (r - r0) / (r1 - r0)
 }
 
+/// Which rupture speed sets a subfault's corner frequency.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CornerSpeed {
+    /// The Platform's (`hb_high`'s `rvfac`): a seed's factor drawn uniformly in 0.775 ± 0.1,
+    /// × 0.6 above 5 km depth (back to 1 by 8 km) and again from max(15 km, the hypocentre's
+    /// depth) to 5 km deeper, each subfault's × exp(0.1·N(0, 1)), at most 1.4: the rupture speed
+    /// the method's stress parameter was calibrated with.
+    Platform,
+    /// The deterministic rupture's own local speed at the subfault ([`super::fault`]).
+    Lattice,
+}
+
+/// The Platform's mean rupture speed over β.
+pub const PLATFORM_SPEED_RATIO: f64 = 0.775;
+
+/// Half-width of the uniform spread of a seed's speed factor around [`PLATFORM_SPEED_RATIO`].
+pub const PLATFORM_SPEED_SPREAD: f64 = 0.1;
+
+/// Standard deviation of a subfault's ln speed factor.
+pub const PLATFORM_SPEED_SIGMA: f64 = 0.1;
+
+/// The largest subfault speed factor.
+pub const PLATFORM_SPEED_CAP: f64 = 1.4;
+
+/// The Platform's depth taper of the rupture speed at `depth_m` for a hypocentre at
+/// `hypocentre_depth_m`, times [`PLATFORM_SPEED_RATIO`] (its mean speed over β).
+pub fn platform_speed_ratio(depth_m: f64, hypocentre_depth_m: f64) -> f64 {
+    let z = depth_m / 1000.0;
+    let shallow = if z < 5.0 {
+        0.6
+    } else if z < 8.0 {
+        0.6 + 0.4 * (z - 5.0) / 3.0
+    } else {
+        1.0
+    };
+    let deep_min = (hypocentre_depth_m / 1000.0).max(15.0);
+    let deep = if z <= deep_min {
+        1.0
+    } else if z < deep_min + 5.0 {
+        1.0 - 0.4 * (z - deep_min) / 5.0
+    } else {
+        0.6
+    };
+    PLATFORM_SPEED_RATIO * shallow * deep
+}
+
 /// The stochastic (high-frequency) part's parameters.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Stochastic {
@@ -51,6 +97,8 @@ pub struct Stochastic {
     pub interval_s: f64,
     /// The crust of the stochastic part. Default generic rock.
     pub crust: Crust,
+    /// The rupture speed of the subfault corners. Default the Platform's.
+    pub corner_speed: CornerSpeed,
 }
 
 impl Default for Stochastic {
@@ -68,6 +116,7 @@ impl Default for Stochastic {
             window: SaragoniHart { epsilon: 0.2, eta: 0.05, duration_factor: 1.0 },
             interval_s: 0.01,
             crust: Crust::GenericRock,
+            corner_speed: CornerSpeed::Platform,
         }
     }
 }
@@ -160,6 +209,15 @@ mod tests {
         assert_eq!(off.stress_parameter(6.0, 1.0), 5e6);
         // Q0 of the lattice's rock: 57 + 34·3.464 = 174.8.
         assert!((p.q0_for(3464.0) - 174.776).abs() < 1e-9);
+    }
+
+    #[test]
+    fn the_platform_rupture_speed_is_slow_near_the_surface_and_deep() {
+        assert!((platform_speed_ratio(2000.0, 8000.0) - 0.465).abs() < 1e-12);
+        assert!((platform_speed_ratio(6500.0, 8000.0) - 0.775 * 0.8).abs() < 1e-12);
+        assert!((platform_speed_ratio(10_000.0, 8000.0) - 0.775).abs() < 1e-12);
+        assert!((platform_speed_ratio(17_500.0, 8000.0) - 0.775 * 0.8).abs() < 1e-12);
+        assert!((platform_speed_ratio(21_000.0, 18_000.0) - 0.775 * (1.0 - 0.4 * 0.6)).abs() < 1e-12);
     }
 
     #[test]

@@ -12,7 +12,8 @@
 //! [`Stochastic::radiation_horizontal`], [`Stochastic::radiation_vertical`]), `w_i` the
 //! subfault's moment over the mean moment of the N subfaults of the rupture's rectangle, Δσ_p the
 //! stress parameter scaled with the rupture's area ([`Stochastic::stress_parameter`]), dl the
-//! subfault size and `v_r,i` its local rupture speed from the deterministic rupture times. The
+//! subfault size and `v_r,i` its rupture speed ([`CornerSpeed`]: the Platform's kinematic one, with
+//! which its stress parameter was calibrated, or the deterministic rupture's local one). The
 //! Brune spectrum times Frankel's factor is a single-corner ω² spectrum of moment `C·m_e` and
 //! corner `f_c/√C`; N such subfaults with independent random phases add up to M0 below the corner
 //! and to a high-frequency level that does not depend on dl (Graves & Pitarka 2015; the method's
@@ -33,8 +34,13 @@
 use rand::SeedableRng;
 use rand::rngs::ChaCha8Rng;
 
-use super::fault::{FiniteFault, Subfault};
-use super::params::{Stochastic, path_duration_s};
+use rand_distr::{Distribution, Open01, StandardNormal};
+
+use super::fault::FiniteFault;
+use super::params::{
+    CornerSpeed, PLATFORM_SPEED_CAP, PLATFORM_SPEED_RATIO, PLATFORM_SPEED_SIGMA, PLATFORM_SPEED_SPREAD, Stochastic,
+    path_duration_s, platform_speed_ratio,
+};
 use super::synth::{bin_frequencies, fft_length, realization};
 
 /// The medium the stochastic part travels through.
@@ -69,6 +75,8 @@ pub struct Synthesis<'a> {
     frankel: f64,
     /// Q at 1 Hz.
     q0: f64,
+    /// Each subfault's rupture speed over β (in the order of the fault's subfaults).
+    speeds: Vec<f64>,
 }
 
 /// The Fourier amplitude of one subfault at one station, without its radiation coefficient.
@@ -126,12 +134,40 @@ pub fn stream(seed: u64, station: u64, component: usize, cell: usize) -> ChaCha8
 }
 
 impl<'a> Synthesis<'a> {
-    /// The synthesis of `fault` (of moment magnitude `mw`) in `medium` with `params`.
-    pub fn new(fault: &'a FiniteFault, mw: f64, medium: Medium, params: &'a Stochastic) -> Synthesis<'a> {
+    /// The synthesis of `fault` (of moment magnitude `mw`) in `medium` with `params`, its random
+    /// rupture speeds (if the Platform's) drawn from `seed`.
+    pub fn new(fault: &'a FiniteFault, mw: f64, medium: Medium, params: &'a Stochastic, seed: u64) -> Synthesis<'a> {
         let stress_pa = params.stress_parameter(mw, fault.area_m2);
         let subevent_n_m = stress_pa * fault.size_m.powi(3);
         let frankel = fault.moment_n_m / (subevent_n_m * (fault.cells as f64).sqrt());
-        Synthesis { fault, params, medium, stress_pa, subevent_n_m, frankel, q0: params.q0_for(medium.s_speed_m_s) }
+        let speeds = match params.corner_speed {
+            CornerSpeed::Lattice => fault.subfaults.iter().map(|s| s.speed_ratio).collect(),
+            CornerSpeed::Platform => {
+                // The seed's factor, then each subfault's perturbation: streams of the seed no
+                // station uses (station key 0).
+                let u: f64 = Open01.sample(&mut stream(seed, 0, 3, usize::MAX));
+                let factor = 1.0 + PLATFORM_SPEED_SPREAD / PLATFORM_SPEED_RATIO * (2.0 * u - 1.0);
+                fault
+                    .subfaults
+                    .iter()
+                    .map(|s| {
+                        let g: f64 = StandardNormal.sample(&mut stream(seed, 0, 3, s.cell));
+                        let r = factor * platform_speed_ratio(s.depth_m, fault.hypocentre_depth_m);
+                        (r * (PLATFORM_SPEED_SIGMA * g).exp()).min(PLATFORM_SPEED_CAP)
+                    })
+                    .collect()
+            }
+        };
+        Synthesis {
+            fault,
+            params,
+            medium,
+            stress_pa,
+            subevent_n_m,
+            frankel,
+            q0: params.q0_for(medium.s_speed_m_s),
+            speeds,
+        }
     }
 
     /// The stress parameter after its area scaling (Pa).
@@ -144,15 +180,22 @@ impl<'a> Synthesis<'a> {
         self.frankel
     }
 
-    /// The spectrum of subfault `s` at `distance_m`.
-    pub fn spectrum(&self, s: &Subfault, distance_m: f64) -> SubfaultSpectrum {
+    /// The rupture speed over β of each subfault (in the fault's order).
+    pub fn speeds(&self) -> &[f64] {
+        &self.speeds
+    }
+
+    /// The spectrum of the fault's `k`-th subfault at `distance_m`.
+    pub fn spectrum(&self, k: usize, distance_m: f64) -> SubfaultSpectrum {
+        let s = &self.fault.subfaults[k];
         let (beta, rho) = (self.medium.s_speed_m_s, self.medium.density_kg_m3);
         let mean = self.fault.moment_n_m / self.fault.cells as f64;
         let weight = s.moment_n_m / mean;
-        let k = FREE_SURFACE / (4.0 * std::f64::consts::PI * rho * beta.powi(3));
+        let constant = FREE_SURFACE / (4.0 * std::f64::consts::PI * rho * beta.powi(3));
+        let speed = self.speeds[k];
         SubfaultSpectrum {
-            level: k * weight * self.subevent_n_m,
-            corner_hz: self.params.corner_constant * s.speed_ratio * beta / (std::f64::consts::PI * self.fault.size_m),
+            level: constant * weight * self.subevent_n_m,
+            corner_hz: self.params.corner_constant * speed * beta / (std::f64::consts::PI * self.fault.size_m),
             frankel: self.frankel,
             kappa_s: self.params.kappa_s,
             q0: self.q0,
@@ -179,13 +222,13 @@ impl<'a> Synthesis<'a> {
         let radiation =
             [self.params.radiation_horizontal, self.params.radiation_vertical, self.params.radiation_horizontal];
         let eps = self.params.window.epsilon;
-        for s in &self.fault.subfaults {
+        for (k, s) in self.fault.subfaults.iter().enumerate() {
             if s.moment_n_m < MIN_WEIGHT * mean {
                 continue;
             }
             let [x, y, z] = station_m;
             let r = ((x - s.x_m).powi(2) + (y - s.depth_m).powi(2) + z * z).sqrt().max(1.0);
-            let spectrum = self.spectrum(s, r);
+            let spectrum = self.spectrum(k, r);
             let t_w = self.duration_s(spectrum.corner_hz, r);
             let travel = r / beta;
             let start = s.rupture_time_s + (travel - eps * t_w).max(0.5 * travel);
@@ -240,7 +283,7 @@ mod tests {
     fn the_subfaults_add_up_to_the_moment_below_the_corner_and_to_dl_free_levels_above() {
         let f = fault();
         let p = Stochastic::default();
-        let syn = Synthesis::new(&f, 6.0, MEDIUM, &p);
+        let syn = Synthesis::new(&f, 6.0, MEDIUM, &p, 1);
         // Incoherent sum of N subfaults at f → 0: √(Σ (w_i·C·m_e)²) = M0 for equal weights.
         let n = f.cells as f64;
         assert!((syn.frankel * syn.subevent_n_m * n.sqrt() / f.moment_n_m - 1.0).abs() < 1e-12);
@@ -258,8 +301,8 @@ mod tests {
                 v
             };
             let f = FiniteFault::from_nodes(&nodes, 500.0, target, 3.2e10, 3464.0).unwrap().unwrap();
-            let syn = Synthesis::new(&f, 6.0, MEDIUM, &p);
-            let s = syn.spectrum(&f.subfaults[0], 20e3);
+            let syn = Synthesis::new(&f, 6.0, MEDIUM, &p, 1);
+            let s = syn.spectrum(0, 20e3);
             // At 30 Hz without κ and Q: the high-frequency plateau of one subfault times √N.
             let plateau = s.at(30.0, 1.0)
                 / (-std::f64::consts::PI * 30.0 * (s.kappa_s + s.travel_s / (s.q0 * 30f64.powf(s.q_exponent)))).exp();
@@ -270,10 +313,50 @@ mod tests {
     }
 
     #[test]
+    fn the_subfaults_add_up_incoherently_to_the_sum_of_their_spectra() {
+        // Over realizations, the record's power spectrum in 1–15 Hz is Σ_i A_i² (independent
+        // phases): the weights, the placement and the truncations keep every subfault's energy.
+        let f = fault();
+        let p = Stochastic::default();
+        let syn = Synthesis::new(&f, 6.0, MEDIUM, &p, 1);
+        let (len, dt) = (8192usize, p.interval_s);
+        let station = [6000.0, 0.0, 10_000.0];
+        let df = 1.0 / (len as f64 * dt);
+        let band: Vec<usize> = (0..=len / 2).filter(|&j| (1.0..=15.0).contains(&(j as f64 * df))).collect();
+        let mut planner = rustfft::FftPlanner::new();
+        let fft = planner.plan_fft_forward(len);
+        let runs = 40;
+        let mut measured = 0.0;
+        for seed in 0..runs {
+            let [x, _, _] = syn.record(station, len, seed, station_key("s"));
+            let mut buf: Vec<rustfft::num_complex::Complex<f64>> =
+                x.iter().map(|&v| rustfft::num_complex::Complex::new(v, 0.0)).collect();
+            fft.process(&mut buf);
+            measured += band.iter().map(|&j| (dt * buf[j].norm()).powi(2) * df).sum::<f64>() / runs as f64;
+        }
+        let expected: f64 = f
+            .subfaults
+            .iter()
+            .enumerate()
+            .map(|(k, s)| {
+                let r = ((station[0] - s.x_m).powi(2) + s.depth_m.powi(2) + station[2].powi(2)).sqrt();
+                let a = syn.spectrum(k, r);
+                band.iter()
+                    .map(|&j| {
+                        let fj = j as f64 * df;
+                        (a.at(fj, p.crust.amplification(fj)) * p.radiation_horizontal).powi(2) * df
+                    })
+                    .sum::<f64>()
+            })
+            .sum();
+        assert!((measured / expected - 1.0).abs() < 0.05, "{measured} vs {expected}");
+    }
+
+    #[test]
     fn a_station_record_is_the_same_alone_or_among_others_and_differs_between_seeds() {
         let f = fault();
         let p = Stochastic::default();
-        let syn = Synthesis::new(&f, 6.0, MEDIUM, &p);
+        let syn = Synthesis::new(&f, 6.0, MEDIUM, &p, 1);
         let a = syn.record([6000.0, 0.0, 10_000.0], 3000, 7, station_key("a"));
         let _ = syn.record([9000.0, 0.0, 20_000.0], 3000, 7, station_key("b"));
         let again = syn.record([6000.0, 0.0, 10_000.0], 3000, 7, station_key("a"));

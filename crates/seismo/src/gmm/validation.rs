@@ -15,13 +15,18 @@
 //! Against several models together the reference is their equal-weight average in ln units:
 //! ln μ_i = mean over models of ln μ_i,k, and σ_i the mean of σ_i,k.
 //!
-//! **Part-B test** (Goulet et al. 2015) for a group of records (a scenario, a distance bin): the
-//! simulated median Ŷ = exp(mean ln Y_i) passes when it lies inside
+//! **Part-B test** (Goulet et al. 2015) for a group of records (a scenario, a distance bin), as the
+//! Broadband Platform's own code draws it (`bbp/utils/batch/gmpe_boxplot_gen.py` of SCECcode/bbp,
+//! whose stored bands this reproduces): the simulated median Ŷ = exp(mean ln Y_i) (the geometric
+//! mean over stations and realizations) passes when it lies inside
 //! ```text
-//! [min(0.85·min_k μ̂_k, μ̄/2), max(1.15·max_k μ̂_k, 2·μ̄)]
+//! [min(μ̄·e^−0.3665, 0.85·min_k μ̂_k), max(μ̄·e^+0.3665, 1.15·max_k μ̂_k)]
 //! ```
 //! with μ̂_k = exp(mean_i ln μ_i,k) the median of model k over the same records and μ̄ the
-//! geometric mean of the μ̂_k (the average of the models in ln units, as above).
+//! **arithmetic** mean of the μ̂_k (e^0.3665 = 1.4427 = 1/ln 2, the Platform's constant). The
+//! Platform judges 0.01–3 s and draws 3–10 s for information only. (An earlier version of this
+//! test used μ̄/2 and 2·μ̄ around the geometric mean — a band about twice as wide, from a wrong
+//! statement of the test.)
 //!
 //! **Attenuation slope**: least-squares fits ln Y_i = a + b·ln R_i of the simulations and of the
 //! model medians over the same records; their difference is the slope of the residuals r_i against
@@ -67,11 +72,11 @@ pub struct PartB {
     pub lowest_model: f64,
     /// Highest model median over the group.
     pub highest_model: f64,
-    /// Geometric mean of the model medians.
+    /// Arithmetic mean of the model medians.
     pub model_mean: f64,
-    /// Lower end of the band, min(0.85·lowest, mean/2).
+    /// Lower end of the band, min(mean·e^−0.3665, 0.85·lowest).
     pub low: f64,
-    /// Upper end of the band, max(1.15·highest, 2·mean).
+    /// Upper end of the band, max(mean·e^+0.3665, 1.15·highest).
     pub high: f64,
     /// Whether the simulated median lies inside [low, high].
     pub pass: bool,
@@ -165,6 +170,10 @@ fn average(models: &[ModelColumn], n: usize) -> (Vec<f64>, Vec<f64>) {
     (ln, sigma)
 }
 
+/// Half-width of the Part-B band around the models' mean, in natural-log units (e^0.3665 =
+/// 1.4427, the Platform's `1/ln 2`).
+pub const PART_B_HALF_WIDTH_LN: f64 = 0.3665;
+
 /// The Part-B band of Goulet et al. (2015) around the model medians `model_medians` (one per
 /// model, > 0) and whether `simulated_median` lies inside it.
 pub fn part_b(simulated_median: f64, model_medians: &[f64]) -> Result<PartB, SeismoError> {
@@ -175,9 +184,9 @@ pub fn part_b(simulated_median: f64, model_medians: &[f64]) -> Result<PartB, Sei
     check_positive("simulated_median", &[simulated_median], 1)?;
     let lowest = model_medians.iter().copied().fold(f64::INFINITY, f64::min);
     let highest = model_medians.iter().copied().fold(0.0, f64::max);
-    let mean = (model_medians.iter().map(|m| m.ln()).sum::<f64>() / model_medians.len() as f64).exp();
-    let low = (0.85 * lowest).min(0.5 * mean);
-    let high = (1.15 * highest).max(2.0 * mean);
+    let mean = model_medians.iter().sum::<f64>() / model_medians.len() as f64;
+    let low = (0.85 * lowest).min(mean * (-PART_B_HALF_WIDTH_LN).exp());
+    let high = (1.15 * highest).max(mean * PART_B_HALF_WIDTH_LN.exp());
     Ok(PartB {
         simulated_median,
         lowest_model: lowest,
@@ -304,20 +313,26 @@ mod tests {
         let g = 6f64.powf(1.0 / 3.0);
         assert!((v.part_b.simulated_median - g).abs() < 1e-12);
         assert!((v.part_b.lowest_model - g * (-0.2f64).exp()).abs() < 1e-12);
-        assert!((v.part_b.model_mean - g).abs() < 1e-12);
+        // The band's centre is the arithmetic mean of the two models' medians: g·cosh(0.2).
+        assert!((v.part_b.model_mean - g * 0.2f64.cosh()).abs() < 1e-12);
         assert!(v.part_b.pass);
     }
 
     #[test]
     fn the_part_b_band_follows_its_definition() {
-        // Close models: the factor-of-two arm is the wider one. Medians 1.0 and 1.2: mean √1.2.
+        // Close models: the ±0.3665 arm around their arithmetic mean is the wider one. Medians
+        // 1.0 and 1.2: mean 1.1, band [1.1/1.4427, 1.1·1.4427].
         let m = [1.0, 1.2];
-        let mean = 1.2f64.sqrt();
+        let w = PART_B_HALF_WIDTH_LN.exp();
         let b = part_b(1.0, &m).unwrap();
-        assert!((b.low - 0.5 * mean).abs() < 1e-12 && (b.high - 2.0 * mean).abs() < 1e-12);
-        assert!(part_b(2.0 * mean * 0.999, &m).unwrap().pass);
-        assert!(!part_b(2.0 * mean * 1.001, &m).unwrap().pass);
-        assert!(!part_b(0.5 * mean * 0.999, &m).unwrap().pass);
+        assert!((b.model_mean - 1.1).abs() < 1e-12);
+        assert!((b.low - 1.1 / w).abs() < 1e-12 && (b.high - 1.1 * w).abs() < 1e-12);
+        assert!(part_b(1.1 * w * 0.999, &m).unwrap().pass);
+        assert!(!part_b(1.1 * w * 1.001, &m).unwrap().pass);
+        assert!(!part_b(1.1 / w * 0.999, &m).unwrap().pass);
+        // The band the earlier, wrong statement gave ([μ̄/2, 2μ̄]) is twice as wide in ln units:
+        // 1.9 × the geometric mean of 1.0 and 1.2 passed there and fails here.
+        assert!(!part_b(1.9 * 1.2f64.sqrt(), &m).unwrap().pass);
         // Models a factor of 10 apart: the ±15% arms around the extremes are the wider ones.
         let m = [0.1, 1.0];
         let b = part_b(1.0, &m).unwrap();

@@ -8,6 +8,7 @@
 //!   the initial velocity), which keeps a small offset of the record from growing into a drifting
 //!   displacement; without correction the integrals are the record's own;
 //! - Arias intensity `Ia = π/(2g)·∫a²dt` (trapezoidal, g = 9.80665 m/s²), in m/s;
+//! - cumulative absolute velocity `CAV = ∫|a|dt` (trapezoidal), in m/s;
 //! - significant duration D5–95: the time between the instants the cumulative Arias intensity
 //!   reaches 5% and 95% of its total, each found by linear interpolation between samples.
 
@@ -34,6 +35,8 @@ pub struct Intensity {
     pub pgd: f64,
     /// Arias intensity (m/s for m/s² input).
     pub arias: f64,
+    /// Cumulative absolute velocity `∫|a|dt` (m/s for m/s² input).
+    pub cav: f64,
     /// Time the cumulative Arias intensity reaches 5% (s from the first sample).
     pub t5: f64,
     /// … and 95%.
@@ -85,6 +88,7 @@ pub fn intensity(a: &[f64], dt: f64, baseline: Baseline) -> Intensity {
         pgv: peak(&v),
         pgd: peak(&d),
         arias: std::f64::consts::PI / (2.0 * G) * total,
+        cav: a.windows(2).map(|w| 0.5 * (w[0].abs() + w[1].abs()) * dt).sum(),
         t5: crossing(&h, 0.05 * total, dt),
         t95: crossing(&h, 0.95 * total, dt),
     }
@@ -118,6 +122,9 @@ mod tests {
         let im = intensity(&a, dt, Baseline::None);
         let arias = PI / (2.0 * G) * amp * amp * len / 2.0;
         assert!((im.arias / arias - 1.0).abs() < 1e-6, "Ia {} vs {arias}", im.arias);
+        // CAV = A·L·2/π over whole periods.
+        let cav = amp * len * 2.0 / PI;
+        assert!((im.cav / cav - 1.0).abs() < 1e-6, "CAV {} vs {cav}", im.cav);
         // Husid H(t) ∝ t/2 − T·sin(4πt/T)/(8π); solve H(t) = p·L/2 by bisection.
         let husid = |t: f64| t / 2.0 - period * (4.0 * PI * t / period).sin() / (8.0 * PI);
         let solve = |p: f64| {

@@ -2,7 +2,7 @@
 //! (docs/model.md §16), written by `stickslip gmm`.
 //!
 //! **gmm_residuals**, one row per seed, station, intensity measure and model (`bssa14`, `ask14`,
-//! and `average`: the models' mean in ln units): `seed` u64, `station` str, `imt` str (`PGA`,
+//! `cb14`, `cy14` and `average`: the models' mean in ln units): `seed` u64, `station` str, `imt` str (`PGA`,
 //! `PGV`, `PSA`), `period_s` f64 (null for PGA and PGV), `model` str, `mw`, `r_rup_km`,
 //! `r_jb_km`, `azimuth_deg`, `vs30_m_s`, `simulated` (RotD50: m/s² for PGA and PSA, m/s for PGV),
 //! `median` (the model's, same unit), `sigma`, `tau`, `phi` (natural log; τ and φ null on the
@@ -10,16 +10,26 @@
 //! (ln(simulated/median)), `residual_sigma` (residual_ln/σ) f64, `outside` str (the quantities
 //! outside the model's ranges; null inside them).
 //!
-//! **gmm_bias**, one row per intensity measure and model over every record: `imt` str,
-//! `period_s` f64 (null for PGA and PGV), `model` str, `records` u32, `mean_bias_ln`,
+//! **gmm_bias**, one row per site (records grouped by their V_S30), intensity measure and model
+//! over its records: `vs30_m_s` f64, `imt` str, `period_s` f64 (null for PGA and PGV), `model`
+//! str, `records` u32, `mean_bias_ln`,
 //! `ci90_low_ln`, `ci90_high_ln` (Student's t), `between_record_std_ln`, `within_one_sigma`
 //! (fraction of records with |residual| ≤ σ) f64, `within_band` bool (|mean bias| ≤ 0.37, the
-//! Broadband Platform's pass band), `part_b_pass` bool (Goulet et al. 2015's test; on the average
-//! rows only, null on the others), `slope_simulated`, `slope_model`, `slope_difference`,
+//! Broadband Platform's pass band), `part_b_pass` bool (Goulet et al. 2015's test in every distance
+//! bin of `gmm_part_b`; on the average rows only, null on the others), `slope_simulated`, `slope_model`, `slope_difference`,
 //! `slope_difference_se` f64 (d ln Y/d ln R_rup of the simulations and the model medians, and
 //! their difference with its standard error), `outside_records` u32 (records whose prediction
 //! extrapolates the model), `note` str (why a measure is not comparable: PGA beyond the records'
 //! band; null otherwise).
+//!
+//! **gmm_part_b**, one row per site, intensity measure and R_rup bin with records: the Part-B test
+//! of Goulet et al. (2015) as the Broadband Platform computes it (docs/model.md §16.3): `vs30_m_s`
+//! f64, `imt` str, `period_s` f64 (null for PGA and PGV), `distance_min_km`, `distance_max_km` f64
+//! (the bin, [min, max)), `records` u32, `simulated_median` (the geometric mean of RotD50 over the
+//! bin's stations and seeds), `models_mean` (the arithmetic mean of the models' medians over the
+//! bin), `band_low`, `band_high` (min(mean·e^−0.3665, 0.85·lowest model), max(mean·e^+0.3665,
+//! 1.15·highest model)) f64 (the simulations' unit), `pass` bool, `judged` bool (PGA and PSA at
+//! 0.01–3 s, as the Platform judges; 3–10 s and PGV informational).
 
 use polars::prelude::DataFrame;
 
@@ -60,8 +70,9 @@ pub const GMM_RESIDUALS: TableSpec = TableSpec {
 pub const GMM_BIAS: TableSpec = TableSpec {
     name: "gmm_bias",
     scope: Scope::AcrossSeeds,
-    key: &[col::IMT, col::PERIOD_S, col::MODEL],
+    key: &[col::VS30_M_S, col::IMT, col::PERIOD_S, col::MODEL],
     columns: &[
+        col::VS30_M_S,
         col::IMT,
         col::PERIOD_S,
         col::MODEL,
@@ -83,6 +94,79 @@ pub const GMM_BIAS: TableSpec = TableSpec {
     variable: None,
 };
 
+/// The Part-B test per site, intensity measure and distance bin.
+pub const GMM_PART_B: TableSpec = TableSpec {
+    name: "gmm_part_b",
+    scope: Scope::AcrossSeeds,
+    key: &[col::VS30_M_S, col::IMT, col::PERIOD_S, col::DISTANCE_MIN_KM],
+    columns: &[
+        col::VS30_M_S,
+        col::IMT,
+        col::PERIOD_S,
+        col::DISTANCE_MIN_KM,
+        col::DISTANCE_MAX_KM,
+        col::RECORDS,
+        col::SIMULATED_MEDIAN,
+        col::MODELS_MEAN,
+        col::BAND_LOW,
+        col::BAND_HIGH,
+        col::PASS,
+        col::JUDGED,
+    ],
+    variable: None,
+};
+
+/// One row of `gmm_part_b`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PartBRow {
+    /// The site group's V_S30 (m/s).
+    pub vs30_m_s: f64,
+    /// `PGA`, `PGV` or `PSA`.
+    pub imt: &'static str,
+    /// Period of a PSA (s).
+    pub period_s: Option<f64>,
+    /// The R_rup bin [min, max) (km).
+    pub distance_km: [f64; 2],
+    /// Records in it.
+    pub records: usize,
+    /// Geometric mean of the simulations.
+    pub simulated_median: f64,
+    /// Arithmetic mean of the models' medians.
+    pub models_mean: f64,
+    /// The band.
+    pub band: [f64; 2],
+    /// Whether the simulations' median lies in it.
+    pub pass: bool,
+    /// Whether the Platform judges this measure (PGA, PSA at 0.01–3 s).
+    pub judged: bool,
+}
+
+/// The R_rup bins of the Part-B test (km): the Broadband Platform's distance bins of its
+/// goodness-of-fit summaries.
+pub const PART_B_BINS_KM: [[f64; 2]; 4] = [[0.0, 5.0], [5.0, 20.0], [20.0, 70.0], [70.0, 300.0]];
+
+/// The longest period the Platform judges Part B at (s).
+pub const PART_B_JUDGED_MAX_S: f64 = 3.0;
+
+/// The `gmm_part_b` table.
+pub fn part_b_frame(rows: &[PartBRow]) -> Result<DataFrame, StoreError> {
+    let f = |g: &dyn Fn(&PartBRow) -> f64| rows.iter().map(g).collect::<Vec<f64>>();
+    Frame::new(rows.len())
+        .f64(col::VS30_M_S, f(&|r| r.vs30_m_s))
+        .static_str(col::IMT, rows.iter().map(|r| r.imt).collect())
+        .opt_f64(col::PERIOD_S, rows.iter().map(|r| r.period_s).collect())
+        .f64(col::DISTANCE_MIN_KM, f(&|r| r.distance_km[0]))
+        .f64(col::DISTANCE_MAX_KM, f(&|r| r.distance_km[1]))
+        .u32(col::RECORDS, rows.iter().map(|r| r.records as u32).collect())
+        .f64(col::SIMULATED_MEDIAN, f(&|r| r.simulated_median))
+        .f64(col::MODELS_MEAN, f(&|r| r.models_mean))
+        .f64(col::BAND_LOW, f(&|r| r.band[0]))
+        .f64(col::BAND_HIGH, f(&|r| r.band[1]))
+        .bool(col::PASS, rows.iter().map(|r| r.pass).collect())
+        .bool(col::JUDGED, rows.iter().map(|r| r.judged).collect())
+        .finish(GMM_PART_B.name)
+}
+
 /// One row of `gmm_residuals`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ResidualRow {
@@ -94,7 +178,7 @@ pub struct ResidualRow {
     pub imt: &'static str,
     /// Period of a PSA (s).
     pub period_s: Option<f64>,
-    /// `bssa14`, `ask14` or `average`.
+    /// `bssa14`, `ask14`, `cb14`, `cy14` or `average`.
     pub model: &'static str,
     /// The seed's Mw.
     pub mw: f64,
@@ -123,11 +207,13 @@ pub struct ResidualRow {
 /// One row of `gmm_bias`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BiasRow {
+    /// The site group's V_S30 (m/s).
+    pub vs30_m_s: f64,
     /// `PGA`, `PGV` or `PSA`.
     pub imt: &'static str,
     /// Period of a PSA (s).
     pub period_s: Option<f64>,
-    /// `bssa14`, `ask14` or `average`.
+    /// `bssa14`, `ask14`, `cb14`, `cy14` or `average`.
     pub model: &'static str,
     /// Records.
     pub records: usize,
@@ -191,6 +277,7 @@ pub fn residuals_frame(rows: &[ResidualRow]) -> Result<DataFrame, StoreError> {
 pub fn bias_frame(rows: &[BiasRow]) -> Result<DataFrame, StoreError> {
     let slope = |k: usize| rows.iter().map(|r| r.slope.and_then(|s| s[k])).collect::<Vec<Option<f64>>>();
     Frame::new(rows.len())
+        .f64(col::VS30_M_S, rows.iter().map(|r| r.vs30_m_s).collect())
         .static_str(col::IMT, rows.iter().map(|r| r.imt).collect())
         .opt_f64(col::PERIOD_S, rows.iter().map(|r| r.period_s).collect())
         .static_str(col::MODEL, rows.iter().map(|r| r.model).collect())

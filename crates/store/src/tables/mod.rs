@@ -3,6 +3,7 @@
 //! types; a per-seed table's declaration carries its writer ([`crate::spec::SeedTable`]), and
 //! [`SEED_TABLES`] lists them in the order a seed's parts are written.
 
+pub mod broadband;
 pub mod catalogue;
 pub mod cracks;
 pub mod events;
@@ -20,7 +21,7 @@ use crate::spec::SeedTable;
 
 /// Every per-seed table but `runs` (written last, from the seed's outcome: see
 /// [`crate::seed::write_seed`]), in the order of [`crate::schema::ALL`].
-pub const SEED_TABLES: [SeedTable; 23] = [
+pub const SEED_TABLES: [SeedTable; 24] = [
     series::SERIES_PART,
     series::CONTROL_PART,
     series::FAULT_PART,
@@ -42,6 +43,7 @@ pub const SEED_TABLES: [SeedTable; 23] = [
     source::FAULT_NODES_PART,
     source::STATIONS_PART,
     source::STATION_SPECTRA_PART,
+    broadband::STATION_RECORDS_PART,
     cracks::CRACKS_PART,
     cracks::ACOUSTIC_EMISSION_PART,
 ];

@@ -7,7 +7,9 @@
 //! the last node ruptured), `rupture_x_min_m`, `rupture_x_max_m`, `rupture_y_min_m`,
 //! `rupture_y_max_m`, `shear_modulus_pa`, `s_speed_m_s`, `brune_corner_hz` f64, `fitted_corner_hz` f64
 //! (the ω-square corner of the surface stations' stacked displacement spectra; null with fewer than
-//! 3 surface stations).
+//! 3 surface stations); with `[broadband]` (null otherwise) the stochastic part's
+//! `hf_stress_parameter_pa` (after its area scaling), `hf_subfaults` u32 (with a moment),
+//! `hf_subfault_m`, `hf_frankel_c` f64.
 //!
 //! **fault_nodes**, one row per seed and node of the fault: `seed` u64, `node` u32 (LDEM), `x_m`,
 //! `y_m`, `area_m2`, `rupture_time_s` (null: never reached `[events] rupture_rate_m_s`),
@@ -18,9 +20,13 @@
 //! `y_m` (depth), `z_m` (distance from the fault plane), `epicentral_m`, `hypocentral_m`,
 //! `r_rup_m`, `r_jb_m`, `r_x_m`, `r_y0_m`, `azimuth_deg`, `pga_m_s2`, `pgv_m_s`, `pgd_m`
 //! (horizontal: largest |(x, z)| of the raw record), `pga_vertical_m_s2` f64; of the processed
-//! record (docs/model.md §16.2): `pga_rotd50_m_s2`, `pgv_rotd50_m_s`, `f_low_hz`, `f_high_hz` (its
-//! band-pass), `usable_min_period_s`, `usable_max_period_s` f64 (null without a processed record),
-//! `motion_note` str (why there is none; null otherwise).
+//! record (docs/model.md §16.2; with `[broadband]` the broadband record of §17 at the station's
+//! site): `record_kind` str (`lattice` or `broadband`), `vs30_m_s` (the site; null for a lattice
+//! record), `pga_rotd50_m_s2`, `pgv_rotd50_m_s`, `arias_m_s`, `d5_95_s`, `cav_m_s` (each the mean
+//! of the two horizontal components'), `f_low_hz`, `f_high_hz` (its band-pass),
+//! `usable_min_period_s`, `usable_max_period_s` f64 (null without a processed record),
+//! `motion_note` str (why there is none; null otherwise). A station simulated on several sites
+//! has one row per site, named `<station>_vs<V_S30>`.
 //!
 //! **station_spectra**, one row per seed, station and period in the station's usable band:
 //! `seed` u64, `station` str, `period_s`, `rotd50_m_s2`, `rotd100_m_s2` f64 (5%-damped PSA of the
@@ -64,6 +70,10 @@ pub const SOURCE: TableSpec = TableSpec {
         col::S_SPEED_M_S,
         col::BRUNE_CORNER_HZ,
         col::FITTED_CORNER_HZ,
+        col::HF_STRESS_PARAMETER_PA,
+        col::HF_SUBFAULTS,
+        col::HF_SUBFAULT_M,
+        col::HF_FRANKEL_C,
     ],
     variable: None,
 };
@@ -115,8 +125,13 @@ pub const STATIONS: TableSpec = TableSpec {
         col::PGV_M_S,
         col::PGD_M,
         col::PGA_VERTICAL_M_S2,
+        col::RECORD_KIND,
+        col::VS30_M_S,
         col::PGA_ROTD50_M_S2,
         col::PGV_ROTD50_M_S,
+        col::ARIAS_M_S,
+        col::D5_95_S,
+        col::CAV_M_S,
         col::F_LOW_HZ,
         col::F_HIGH_HZ,
         col::USABLE_MIN_PERIOD_S,
@@ -160,7 +175,7 @@ pub const STATION_SPECTRA_PART: SeedTable = SeedTable {
     spec: STATION_SPECTRA,
     write: |s| {
         let rows = &s.analysis.stations;
-        if rows.iter().all(|r| r.motion.as_ref().map_or(true, |m| m.periods_s.is_empty())) {
+        if rows.iter().all(|r| r.record_motion().as_ref().map_or(true, |m| m.periods_s.is_empty())) {
             Ok(None)
         } else {
             station_spectra_frame(s.seed, rows).map(Some)
@@ -172,7 +187,7 @@ pub const STATION_SPECTRA_PART: SeedTable = SeedTable {
 pub fn station_spectra_frame(seed: u64, rows: &[StationRow]) -> Result<DataFrame, StoreError> {
     let (mut name, mut period, mut r50, mut r100) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     for r in rows {
-        let Ok(m) = &r.motion else { continue };
+        let Ok(m) = r.record_motion() else { continue };
         for k in 0..m.periods_s.len() {
             name.push(r.station.name.clone());
             period.push(m.periods_s[k]);
@@ -213,6 +228,10 @@ pub fn source_frame(seed: u64, s: &Source) -> Result<DataFrame, StoreError> {
         .f64(col::S_SPEED_M_S, vec![s.s_speed_m_s])
         .f64(col::BRUNE_CORNER_HZ, vec![s.brune_corner_hz])
         .opt_f64(col::FITTED_CORNER_HZ, vec![s.fitted_corner_hz])
+        .opt_f64(col::HF_STRESS_PARAMETER_PA, vec![s.stochastic.as_ref().map(|h| h.stress_parameter_pa)])
+        .opt_u32(col::HF_SUBFAULTS, vec![s.stochastic.as_ref().map(|h| h.subfaults as u32)])
+        .opt_f64(col::HF_SUBFAULT_M, vec![s.stochastic.as_ref().map(|h| h.subfault_m)])
+        .opt_f64(col::HF_FRANKEL_C, vec![s.stochastic.as_ref().map(|h| h.frankel)])
         .finish(SOURCE.name)
 }
 
@@ -244,8 +263,9 @@ pub fn fault_nodes_frame(seed: u64, f: &FaultSummary, model: &Model) -> Result<D
 pub fn stations_frame(seed: u64, rows: &[StationRow]) -> Result<DataFrame, StoreError> {
     let n = rows.len();
     let pick = |g: &dyn Fn(&StationRow) -> f64| rows.iter().map(g).collect::<Vec<f64>>();
-    let motion =
-        |g: &dyn Fn(&Motion) -> f64| rows.iter().map(|r| r.motion.as_ref().ok().map(g)).collect::<Vec<Option<f64>>>();
+    let motion = |g: &dyn Fn(&Motion) -> f64| {
+        rows.iter().map(|r| r.record_motion().as_ref().ok().map(g)).collect::<Vec<Option<f64>>>()
+    };
     Frame::new(n)
         .u64(col::SEED, vec![seed; n])
         .str(col::STATION, rows.iter().map(|r| r.station.name.clone()).collect())
@@ -264,13 +284,21 @@ pub fn stations_frame(seed: u64, rows: &[StationRow]) -> Result<DataFrame, Store
         .f64(col::PGV_M_S, pick(&|r| r.pgv_m_s))
         .f64(col::PGD_M, pick(&|r| r.pgd_m))
         .f64(col::PGA_VERTICAL_M_S2, pick(&|r| r.pga_vertical_m_s2))
+        .static_str(
+            col::RECORD_KIND,
+            rows.iter().map(|r| if r.broadband.is_some() { "broadband" } else { "lattice" }).collect(),
+        )
+        .opt_f64(col::VS30_M_S, rows.iter().map(|r| r.broadband.as_ref().map(|b| b.vs30_m_s)).collect())
         .opt_f64(col::PGA_ROTD50_M_S2, motion(&|m| m.pga_rotd50_m_s2))
         .opt_f64(col::PGV_ROTD50_M_S, motion(&|m| m.pgv_rotd50_m_s))
+        .opt_f64(col::ARIAS_M_S, motion(&|m| m.arias_m_s))
+        .opt_f64(col::D5_95_S, motion(&|m| m.d5_95_s))
+        .opt_f64(col::CAV_M_S, motion(&|m| m.cav_m_s))
         .opt_f64(col::F_LOW_HZ, motion(&|m| m.band_hz[0]))
         .opt_f64(col::F_HIGH_HZ, motion(&|m| m.band_hz[1]))
         .opt_f64(col::USABLE_MIN_PERIOD_S, motion(&|m| m.usable_s[0]))
         .opt_f64(col::USABLE_MAX_PERIOD_S, motion(&|m| m.usable_s[1]))
-        .opt_str(col::MOTION_NOTE, rows.iter().map(|r| r.motion.as_ref().err().cloned()).collect())
+        .opt_str(col::MOTION_NOTE, rows.iter().map(|r| r.record_motion().as_ref().err().cloned()).collect())
         .finish(STATIONS.name)
 }
 
