@@ -47,6 +47,61 @@ pub struct BroadbandSettings {
     pub sites: Vec<SiteSpec>,
 }
 
+impl BroadbandSettings {
+    /// What the broadband records will be, for `stickslip check`: one line each, for a lattice of
+    /// S-wave speed `s_speed_m_s` and usable `f_max_hz`.
+    pub fn describe(&self, s_speed_m_s: f64, f_max_hz: f64) -> Vec<String> {
+        let p = &self.stochastic;
+        let g = |v: f64| format!("{}", (v * 1e4).round() / 1e4);
+        let mut sites: Vec<f64> = self.sites.iter().map(|s| s.vs30_m_s).collect();
+        sites.sort_by(f64::total_cmp);
+        sites.dedup();
+        let stations = self.sites.iter().map(|s| s.station.as_str()).collect::<std::collections::BTreeSet<_>>().len();
+        vec![
+            format!(
+                "broadband: {} records ({} surface stations × sites V_S30 {} m/s) every {} s, 0.01 s to the lattice \
+                 record's long-period end; the lattice below f_m = {} Hz (its usable f_max {} Hz), a stochastic \
+                 finite-fault synthesis of the same rupture above",
+                self.sites.len(),
+                stations,
+                sites.iter().map(|v| g(*v)).collect::<Vec<_>>().join(", "),
+                g(p.interval_s),
+                g(self.crossover.hz),
+                g(f_max_hz)
+            ),
+            format!(
+                "    stochastic part (Graves–Pitarka): stress parameter {} MPa × (A0/A)^{}, κ0 {} s, Q(f) = {}·f^{}, \
+                 subfaults {} m, corner {}·v_r/(π·dl) with v_r {}, radiation {} (horizontal) {} (vertical), window \
+                 ε {} η {} at {} T_gm",
+                g(p.stress_parameter_pa / 1e6),
+                g(p.stress_area_exponent),
+                g(p.kappa_s),
+                g(p.q0_for(s_speed_m_s)),
+                g(p.q_exponent),
+                g(p.subfault_m),
+                g(p.corner_constant),
+                match p.corner_speed {
+                    stickslip_seismo::broadband::CornerSpeed::Platform =>
+                        "the Platform's (0.775 ± 0.1 β, slower above 5 km)",
+                    stickslip_seismo::broadband::CornerSpeed::Lattice => "the lattice rupture's own",
+                },
+                g(p.radiation_horizontal),
+                g(p.radiation_vertical),
+                g(p.window.epsilon),
+                g(p.window.eta),
+                g(p.window.duration_factor)
+            ),
+            format!(
+                "    sites: BSSA14 site terms from {} m/s (the lattice's rock) and {} m/s (the stochastic part's {} crust) \
+                 to each station's V_S30",
+                g(s_speed_m_s),
+                g(p.crust.vs30_m_s()),
+                p.crust.name().replace('_', " ")
+            ),
+        ]
+    }
+}
+
 /// The stochastic part of a seed's rupture, as a summary.
 #[derive(Clone, Debug, PartialEq)]
 pub struct StochasticSource {

@@ -8,7 +8,6 @@ use stickslip_analysis::broadband::{BroadbandSettings, SiteSpec};
 use stickslip_seismo::broadband::window::SaragoniHart;
 use stickslip_seismo::broadband::{CornerSpeed, Crossover, Crust, Stochastic};
 use stickslip_solver::Scene;
-use stickslip_solver::material::lattice_elastic_constants;
 
 use crate::check::{Checker, approx};
 use crate::scene::StationSection;
@@ -145,13 +144,7 @@ impl BroadbandSection {
     /// The stochastic part's parameters as given (unchecked).
     pub fn stochastic(&self, scene: Option<&Scene>) -> Stochastic {
         let crust = match self.crust.as_str() {
-            "homogeneous" => {
-                let s_speed = scene.map_or(f64::NAN, |sc| {
-                    let (_, _, c44) = lattice_elastic_constants(sc.young_pa, sc.poisson);
-                    (c44 / sc.density_kg_m3).sqrt()
-                });
-                Crust::Homogeneous { s_speed_m_s: s_speed }
-            }
+            "homogeneous" => Crust::Homogeneous { s_speed_m_s: scene.map_or(f64::NAN, Scene::s_wave_speed) },
             _ => Crust::GenericRock,
         };
         Stochastic {

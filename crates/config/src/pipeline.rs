@@ -444,6 +444,9 @@ impl Pipeline {
             let pool = scene.as_ref().map(|sc| set_pool(sc, spectra.as_ref(), &similarity, broadband.is_some()));
             s.build(base, pool.unwrap_or(SetPool::Records(None)), &mut ck)
         });
+        if let Some(section) = file.set.as_ref() {
+            check_set_site(&mut ck, section.vs30_m_s, broadband.as_ref());
+        }
         if let (Some(set), Some(acc), Some(scene)) = (&set, &accelerograms, &scene)
             && ck.is_clean()
             && station_band(scene, broadband.is_some()).is_none()
@@ -527,6 +530,35 @@ fn station_band(scene: &stickslip_solver::Scene, broadband: bool) -> Option<(f64
     let shortest =
         if broadband { stickslip_analysis::broadband::SHORTEST_PERIOD_S } else { 1.0 / band.f_max_hz.min(nyquist) };
     Some((shortest, scene.shear.duration_s / (LOW_CORNER_CYCLES * 1.25)))
+}
+
+/// Refuses a `[set] vs30_m_s` that names no site of the broadband records, and its absence when
+/// they stand on several sites.
+fn check_set_site(
+    ck: &mut Checker,
+    vs30: Option<f64>,
+    broadband: Option<&stickslip_analysis::broadband::BroadbandSettings>,
+) {
+    let mut sites: Vec<f64> = broadband.map_or_else(Vec::new, |b| b.sites.iter().map(|s| s.vs30_m_s).collect());
+    sites.sort_by(f64::total_cmp);
+    sites.dedup();
+    let listed = sites.iter().map(|v| num(*v)).collect::<Vec<_>>().join(", ");
+    match vs30 {
+        Some(v) if broadband.is_none() => ck.push(
+            "set.vs30_m_s",
+            v,
+            "absent: the records of a set stand on a site only when they are broadband records ([broadband] on a fault              scene with surface [[stations]])",
+        ),
+        Some(v) if !sites.contains(&v) => {
+            ck.push("set.vs30_m_s", v, format!("one of the sites the stations are simulated on: {listed} m/s"))
+        }
+        None if sites.len() > 1 => ck.push(
+            "set.vs30_m_s",
+            "(absent)",
+            format!("the site of the records to choose: the stations stand on {listed} m/s ([broadband] vs30_m_s)"),
+        ),
+        _ => {}
+    }
 }
 
 /// Warns when a fault scene's surface stations can give no PSA at any of the ground-motion models'

@@ -172,6 +172,10 @@ pub struct SetSection {
     pub distance_min_km: Option<f64>,
     /// A scenario's stations only: largest rupture distance R_rup (km).
     pub distance_max_km: Option<f64>,
+    /// A scenario's broadband stations only: the site (V_S30, m/s) of the records chosen, one of
+    /// `[broadband]`'s; needed when the stations stand on several sites.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub vs30_m_s: Option<f64>,
 }
 
 impl Default for SetSection {
@@ -195,6 +199,7 @@ impl Default for SetSection {
             scale_max: 4.0,
             component: SetComponent::Horizontal.name().into(),
             damping: 0.05,
+            vs30_m_s: None,
             magnitude_min: None,
             magnitude_max: None,
             distance_min_km: None,
@@ -225,6 +230,8 @@ pub struct SetSettings {
     pub magnitude: Option<(f64, f64)>,
     /// A scenario's stations only: the rupture distance bin `[min, max]` (km).
     pub distance_km: Option<(f64, f64)>,
+    /// A scenario's broadband stations only: the site of the records chosen (V_S30, m/s).
+    pub vs30_m_s: Option<f64>,
 }
 
 impl SetSettings {
@@ -467,6 +474,7 @@ impl SetSection {
             input,
             magnitude,
             distance_km,
+            vs30_m_s: self.vs30_m_s,
         })
     }
 }

@@ -5,22 +5,27 @@
 //! [`stickslip_analysis::motions::spectrum_periods`] where every candidate is usable); a seed is
 //! one rupture, so `max_per` caps the records of one seed. The chosen stations are written scaled
 //! (both components by the same factor) as AT2 and SAC files under `<out>/set/`, each component
-//! processed again from the seed's `control` table by the function the analysis used, so the files
-//! are the records the spectra were computed on, bit for bit; the `set` table gives each record's
-//! Mw, R_rup and R_JB beside its scale factor and misfit.
+//! processed again by the function the analysis used, from the seed's `control` table (lattice
+//! records) or its `station_records` table (broadband records, docs/model.md §17, with their
+//! vertical component), so the files are the records the spectra were computed on, bit for bit;
+//! the `set` table gives each record's Mw, R_rup and R_JB beside its scale factor and misfit. With
+//! broadband records on several sites, `[set] vs30_m_s` says which site's records are chosen.
 
 use std::collections::{BTreeMap, HashMap};
 
+use polars::prelude::DataFrame;
 use stickslip_analysis::motions::processed_pair;
 use stickslip_config::check::Named;
 use stickslip_config::set::SetComponent;
 use stickslip_config::{Pipeline, SetSettings};
+use stickslip_seismo::accelerogram::processing::{Processed, ProcessingOptions, process};
 use stickslip_seismo::accelerogram::{At2, RecordFile, RecordFormat, Sac};
 use stickslip_solver::scene::{Component, Kinematic};
 use stickslip_store::Folder;
 use stickslip_store::frame::Columns;
 use stickslip_store::io::{read_parquet_if_present, write_bytes_atomic, write_parquet_atomic};
-use stickslip_store::schema::{CONTROL, SET, SOURCE, STATION_SPECTRA, STATIONS, col};
+use stickslip_store::schema::{CONTROL, SET, SOURCE, STATION_RECORDS, STATION_SPECTRA, STATIONS, col};
+use stickslip_store::tables::broadband::{ComponentRecord, read_station_record};
 use stickslip_store::tables::series::read_control;
 use stickslip_store::tables::set::{ScenarioMeta, SetRow, set_frame};
 
@@ -37,6 +42,8 @@ struct Station {
     band_hz: (f64, f64),
     /// Its usable band (Hz).
     usable_hz: (f64, f64),
+    /// Its site, when it is a broadband record.
+    vs30_m_s: Option<f64>,
     scenario: ScenarioMeta,
 }
 
@@ -69,6 +76,7 @@ pub fn select_station_set(
     let (depth, r_rup, r_jb) = (c.f64s(col::Y_M)?, c.f64s(col::R_RUP_M)?, c.f64s(col::R_JB_M)?);
     let (f_low, f_high) = (c.opt_f64s(col::F_LOW_HZ)?, c.opt_f64s(col::F_HIGH_HZ)?);
     let (t_min, t_max) = (c.opt_f64s(col::USABLE_MIN_PERIOD_S)?, c.opt_f64s(col::USABLE_MAX_PERIOD_S)?);
+    let site = if c.has(col::VS30_M_S) { c.opt_f64s(col::VS30_M_S)? } else { vec![None; seed.len()] };
     let mut all = 0;
     let mut found: BTreeMap<(u64, String), Station> = BTreeMap::new();
     for i in 0..seed.len() {
@@ -79,6 +87,9 @@ pub fn select_station_set(
             continue;
         };
         if depth[i].abs() > 1e-6 {
+            continue;
+        }
+        if settings.vs30_m_s.is_some_and(|v| site[i] != Some(v)) {
             continue;
         }
         all += 1;
@@ -92,6 +103,7 @@ pub fn select_station_set(
             node: node[i] as u32,
             band_hz: (lo, hi),
             usable_hz: (1.0 / t1, 1.0 / t0),
+            vs30_m_s: site[i],
             scenario,
         };
         found.insert((seed[i], name[i].clone()), station);
@@ -137,7 +149,8 @@ pub fn select_station_set(
         });
     }
     let note = format!(
-        "surface stations{}: {} of {}, each by its {} (the grid {} … {} s, where every one is usable)",
+        "surface stations{}{}: {} of {}, each by its {} (the grid {} … {} s, where every one is usable)",
+        settings.vs30_m_s.map_or(String::new(), |v| format!(" on V_S30 = {v} m/s")),
         settings.bins_text().map_or(String::new(), |b| format!(" at {b}")),
         members.len(),
         all,
@@ -177,10 +190,76 @@ pub fn select_station_set(
     Ok(SetOutcome { selection, rows, periods, target, spectra, candidates: pool.members.len(), pool: Some(note) })
 }
 
-/// Writes each chosen station's two horizontal components scaled by its factor, as AT2 and SAC:
-/// `FP` the fault-parallel component (x, along strike), `FN` the fault-normal one (z); the
-/// magnitude in the header, the factor, the usable band and the distances in the SAC `USER`
-/// numbers.
+/// A chosen station's record, processed as the analysis processed it: each component with its
+/// code and name, and the time of the record's first input sample (s of the run).
+struct Components {
+    parts: Vec<(&'static str, &'static str, Processed)>,
+    begin_s: f64,
+}
+
+/// The lattice record of `st` from the seed's control table: the last 2/f_low of the run at the
+/// run's own interval, the horizontal pair.
+fn lattice_components(control: &DataFrame, seed: u64, st: &Station) -> Result<Components, EnsembleError> {
+    let read = |component| -> Result<(Vec<f64>, Vec<f64>), EnsembleError> {
+        read_control(control, st.node as u64, component, Kinematic::Acceleration)?.ok_or_else(|| {
+            EnsembleError::Setup(format!("seed {seed}, station {}: no acceleration in the control table", st.name))
+        })
+    };
+    let ((t, x), (_, z)) = (read(Component::X)?, read(Component::Z)?);
+    if t.len() < 8 || z.len() != t.len() {
+        return Err(EnsembleError::Setup(format!(
+            "seed {seed}, station {}: its control record has {} samples, too few to write",
+            st.name,
+            t.len()
+        )));
+    }
+    // The record the analysis processed: the last 2/f_low of the run (the shear stage, two
+    // cycles of the low corner), at the run's own interval.
+    let length = stickslip_analysis::motions::LOW_CORNER_CYCLES / st.band_hz.0;
+    let last = t.len() - 1;
+    let k0 = t.iter().position(|&v| v >= t[last] - length - 0.5 * (t[last] - t[last - 1])).unwrap_or(0);
+    let dt = (t[last] - t[k0]) / (last - k0) as f64;
+    let (px, pz) = processed_pair(&x[k0..], &z[k0..], dt, st.band_hz.0, st.band_hz.1)
+        .map_err(|e| EnsembleError::Setup(format!("seed {seed}, station {}: {e}", st.name)))?;
+    Ok(Components { parts: vec![("FP", "fault-parallel (x)", px), ("FN", "fault-normal (z)", pz)], begin_s: t[k0] })
+}
+
+/// The broadband record of `st` from the seed's station_records table: the whole record at its
+/// interval, the horizontal pair as the analysis processed it and the vertical component with the
+/// same processing.
+fn broadband_components(records: &DataFrame, seed: u64, st: &Station) -> Result<Components, EnsembleError> {
+    let read = |component: &str| -> Result<ComponentRecord, EnsembleError> {
+        read_station_record(records, &st.name, component)?.ok_or_else(|| {
+            EnsembleError::Setup(format!(
+                "seed {seed}, station {}: no {component} in the station_records table",
+                st.name
+            ))
+        })
+    };
+    let (x, y, z) = (read("x")?, read("y")?, read("z")?);
+    if x.time_s.len() < 8 {
+        return Err(EnsembleError::Setup(format!(
+            "seed {seed}, station {}: its broadband record is too short",
+            st.name
+        )));
+    }
+    // The analysis processed the record at its own interval, which is the first instant after 0.
+    let dt = x.time_s[1] - x.time_s[0];
+    let fail = |e: String| EnsembleError::Setup(format!("seed {seed}, station {}: {e}", st.name));
+    let (px, pz) =
+        processed_pair(&x.broadband_m_s2, &z.broadband_m_s2, dt, st.band_hz.0, st.band_hz.1).map_err(fail)?;
+    let py = process(&y.broadband_m_s2, dt, &ProcessingOptions::new(st.band_hz.0, Some(st.band_hz.1)))
+        .map_err(|e| fail(format!("y: {e}")))?;
+    Ok(Components {
+        parts: vec![("FP", "fault-parallel (x)", px), ("FN", "fault-normal (z)", pz), ("UP", "vertical (y)", py)],
+        begin_s: x.time_s[0],
+    })
+}
+
+/// Writes each chosen station's components scaled by its factor, as AT2 and SAC: `FP` the
+/// fault-parallel component (x, along strike), `FN` the fault-normal one (z) and, for a broadband
+/// record, `UP` the vertical one (y); the magnitude in the header, the factor, the usable band and
+/// the distances in the SAC `USER` numbers.
 fn write_station_files(
     out: &Folder,
     pipeline: &Pipeline,
@@ -194,41 +273,28 @@ fn write_station_files(
         by_seed.entry(r.seed).or_default().push(k);
     }
     for (seed, ks) in by_seed {
-        let Some(control) = read_parquet_if_present(&out.part(&CONTROL, seed))? else {
-            return Err(EnsembleError::Setup(format!("seed {seed}: no control table to write the set's records from")));
+        let broadband = ks.iter().any(|&k| chosen[k].vs30_m_s.is_some());
+        let table = if broadband { STATION_RECORDS } else { CONTROL };
+        let Some(frame) = read_parquet_if_present(&out.part(&table, seed))? else {
+            return Err(EnsembleError::Setup(format!(
+                "seed {seed}: no {} table to write the set's records from",
+                table.name
+            )));
         };
         for k in ks {
             let (r, st) = (&rows[k], chosen[k]);
-            let read = |component| -> Result<(Vec<f64>, Vec<f64>), EnsembleError> {
-                read_control(&control, st.node as u64, component, Kinematic::Acceleration)?.ok_or_else(|| {
-                    EnsembleError::Setup(format!(
-                        "seed {seed}, station {}: no acceleration in the control table",
-                        st.name
-                    ))
-                })
+            let components = if st.vs30_m_s.is_some() {
+                broadband_components(&frame, seed, st)?
+            } else {
+                lattice_components(&frame, seed, st)?
             };
-            let ((t, x), (_, z)) = (read(Component::X)?, read(Component::Z)?);
-            if t.len() < 8 || z.len() != t.len() {
-                return Err(EnsembleError::Setup(format!(
-                    "seed {seed}, station {}: its control record has {} samples, too few to write",
-                    st.name,
-                    t.len()
-                )));
-            }
-            // The record the analysis processed: the last 2/f_low of the run (the shear stage,
-            // two cycles of the low corner), at the run's own interval.
-            let length = stickslip_analysis::motions::LOW_CORNER_CYCLES / st.band_hz.0;
-            let last = t.len() - 1;
-            let k0 = t.iter().position(|&v| v >= t[last] - length - 0.5 * (t[last] - t[last - 1])).unwrap_or(0);
-            let dt = (t[last] - t[k0]) / (last - k0) as f64;
-            let (px, pz) = processed_pair(&x[k0..], &z[k0..], dt, st.band_hz.0, st.band_hz.1)
-                .map_err(|e| EnsembleError::Setup(format!("seed {seed}, station {}: {e}", st.name)))?;
             let m = st.scenario;
-            for (code, long, p) in [("FP", "fault-parallel (x)", &px), ("FN", "fault-normal (z)", &pz)] {
+            for (code, long, p) in &components.parts {
                 let a: Vec<f64> = p.accel.iter().map(|v| r.scale_factor * v).collect();
                 let stem = format!("{}_set{:02}_seed{seed}_{}_{code}", pipeline.name, k + 1, st.name);
+                let site = st.vs30_m_s.map_or(String::new(), |v| format!(", V_S30 {v} m/s"));
                 let description = format!(
-                    "stickslip {} set record {} of {}: seed {seed} station {} {long}, Mw {:.2}, R_rup {:.1} km, \
+                    "stickslip {} set record {} of {}: seed {seed} station {} {long}, Mw {:.2}, R_rup {:.1} km{site}, \
                      x {:.4}, matched to {}",
                     pipeline.name,
                     k + 1,
@@ -249,7 +315,7 @@ fn write_station_files(
                     description: &description,
                     accel_m_s2: &a,
                     dt_s: p.dt,
-                    begin_s: t[k0] + p.t_first,
+                    begin_s: components.begin_s + p.t_first,
                     motion: None,
                     station,
                     component: code,

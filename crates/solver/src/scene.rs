@@ -523,6 +523,12 @@ impl Scene {
         (c11 / self.density_kg_m3).sqrt()
     }
 
+    /// S-wave speed `√(C44/ρ)` of the unbounded lattice (m/s).
+    pub fn s_wave_speed(&self) -> f64 {
+        let (_, _, c44) = crate::material::lattice_elastic_constants(self.young_pa, self.poisson);
+        (c44 / self.density_kg_m3).sqrt()
+    }
+
     /// The paper's bound `0.6·Lc/Cp` (Eq. 5) in seconds, for comparison with the true one.
     pub fn paper_time_step_bound(&self) -> f64 {
         0.6 * self.lc_m / self.p_wave_speed()

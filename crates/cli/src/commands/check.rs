@@ -466,6 +466,12 @@ pub fn run(a: Args) -> Result<()> {
         ),
         None => outln!("  spectra: off (no [spectra] section)"),
     }
+    if let Some(bb) = &pipeline.analysis.broadband {
+        let f_max = scene.usable_band(stickslip_analysis::motions::DEPARTURE).map_or(f64::NAN, |b| b.f_max_hz);
+        for line in bb.describe(scene.s_wave_speed(), f_max) {
+            outln!("  {line}");
+        }
+    }
     if let Some(set) = &pipeline.set {
         let (a, b) = set.options.range.bounds().unwrap_or((f64::NAN, f64::NAN));
         outln!(

@@ -14,8 +14,15 @@ use super::common::drawn;
 use crate::charts::{Band, HLine, Line, Panel, Points, Scale, Sheet};
 use crate::{ReportError, ReportInput};
 
-/// The bias of the scenario's RotD50 PSA against each model and their average, per period, and
-/// the residuals against distance.
+/// The NGA-West2 models drawn beside their average.
+const MODELS: [&str; 4] = ["bssa14", "ask14", "cb14", "cy14"];
+
+/// Where PGA and PGV are drawn on the period axis (s): left of the shortest period, labelled.
+const PGA_AT_S: f64 = 0.0062;
+const PGV_AT_S: f64 = 0.0078;
+
+/// The bias of the scenario's RotD50 against each model and their average, per period (PGA and
+/// PGV at the left edge), one panel per site, and the residuals against distance.
 pub(super) fn gmm_bias(d: &ReportInput, path: &Path) -> Result<Outcome, ReportError> {
     let Some(df) = stickslip_store::io::read_parquet_if_present(&d.folder.gathered(&GMM_BIAS))? else {
         return Ok(Outcome::Skipped(
@@ -26,55 +33,88 @@ pub(super) fn gmm_bias(d: &ReportInput, path: &Path) -> Result<Outcome, ReportEr
     let (imt, period, model) = (c.strs(col::IMT)?, c.opt_f64s(col::PERIOD_S)?, c.strs(col::MODEL)?);
     let (mean, lo, hi) = (c.f64s(col::MEAN_BIAS_LN)?, c.opt_f64s(col::CI90_LOW_LN)?, c.opt_f64s(col::CI90_HIGH_LN)?);
     let records = c.u64s(col::RECORDS)?;
-    let psa = |m: &str| -> Vec<usize> {
-        let mut i: Vec<usize> =
-            (0..imt.len()).filter(|&i| imt[i] == "PSA" && model[i] == m && period[i].is_some()).collect();
-        i.sort_by(|&a, &b| period[a].unwrap_or(0.0).total_cmp(&period[b].unwrap_or(0.0)));
-        i
-    };
-    let avg = psa("average");
-    if avg.is_empty() {
+    let site = if c.has(col::VS30_M_S) { c.f64s(col::VS30_M_S)? } else { vec![f64::NAN; imt.len()] };
+    let mut sites: Vec<f64> = site.clone();
+    sites.sort_by(f64::total_cmp);
+    sites.dedup_by(|a, b| a.to_bits() == b.to_bits());
+    let mut panels = Vec::new();
+    let mut ts_all: Vec<f64> = Vec::new();
+    let mut n = 0;
+    for &v in &sites {
+        let here = |i: usize| site[i].to_bits() == v.to_bits();
+        let psa = |m: &str| -> Vec<usize> {
+            let mut i: Vec<usize> = (0..imt.len())
+                .filter(|&i| here(i) && imt[i] == "PSA" && model[i] == m && period[i].is_some())
+                .collect();
+            i.sort_by(|&a, &b| period[a].unwrap_or(0.0).total_cmp(&period[b].unwrap_or(0.0)));
+            i
+        };
+        let avg = psa("average");
+        if avg.is_empty() {
+            continue;
+        }
+        let ts: Vec<f64> = avg.iter().map(|&i| period[i].unwrap_or(0.0)).collect();
+        ts_all.extend(&ts);
+        n = n.max(avg.iter().map(|&i| records.get(i).copied().unwrap_or(0)).max().unwrap_or(0));
+        let (t0, t1) = (ts[0].min(PGA_AT_S) / 1.3, ts[ts.len() - 1] * 1.3);
+        let mut bias = Panel::linear("period (s)", "mean bias ln(simulated / model)");
+        bias.x_scale = Scale::Log;
+        bias.minor_grid = false;
+        bias.x_range = Some((t0, t1));
+        bias.title = if v.is_finite() { format!("V_S30 {v} m/s") } else { "RotD50 PSA, 5% damping".into() };
+        bias.bands.push(Band {
+            points: vec![(t0, -BIAS_BAND_LN, BIAS_BAND_LN), (t1, -BIAS_BAND_LN, BIAS_BAND_LN)],
+            colour: RGBColor(150, 150, 150),
+            label: format!("pass band ±{BIAS_BAND_LN}"),
+        });
+        bias.bands.push(Band {
+            points: avg.iter().filter_map(|&i| Some((period[i]?, lo[i]?, hi[i]?))).collect(),
+            colour: crate::plot::colour(0),
+            label: "90% interval (average)".into(),
+        });
+        for (k, m) in MODELS.into_iter().enumerate() {
+            let rows = psa(m);
+            if !rows.is_empty() {
+                let mut l = Line::new(
+                    m.to_uppercase(),
+                    rows.iter().map(|&i| (period[i].unwrap_or(0.0), mean[i])).collect(),
+                    k + 1,
+                );
+                l.width = 1;
+                bias.lines.push(l);
+            }
+        }
+        let mut l =
+            Line::new("average of the models", avg.iter().map(|&i| (period[i].unwrap_or(0.0), mean[i])).collect(), 0);
+        l.width = 3;
+        bias.dots = true;
+        bias.lines.push(l);
+        // PGA and PGV against the models' average, at the left edge.
+        for (k, (what, at)) in [("PGA", PGA_AT_S), ("PGV", PGV_AT_S)].into_iter().enumerate() {
+            if let Some(i) = (0..imt.len()).find(|&i| here(i) && imt[i] == what && model[i] == "average") {
+                bias.points.push(Points {
+                    label: format!("{what} (drawn at {at} s)"),
+                    points: vec![(at, mean[i])],
+                    colour: crate::plot::colour(k + 6),
+                    size: 6,
+                });
+            }
+        }
+        bias.hlines.push(HLine { y: 0.0, text: String::new(), colour: RGBColor(60, 60, 60) });
+        let spread =
+            avg.iter().flat_map(|&i| [Some(mean[i]), lo[i], hi[i]]).flatten().fold(1.0f64, |m, v| m.max(v.abs()));
+        bias.y_range = Some((-(spread * 1.1).max(1.0), (spread * 1.1).max(1.0)));
+        panels.push(bias);
+    }
+    if panels.is_empty() {
         return Ok(Outcome::Skipped("no PSA in any station's usable band".into()));
     }
-    let ts: Vec<f64> = avg.iter().map(|&i| period[i].unwrap_or(0.0)).collect();
-    let (t0, t1) = (ts[0] / 1.3, ts[ts.len() - 1] * 1.3);
-    let mut bias = Panel::linear("period (s)", "mean bias ln(simulated / model)");
-    bias.x_scale = Scale::Log;
-    bias.minor_grid = false;
-    bias.x_range = Some((t0, t1));
-    bias.title = "RotD50 PSA, 5% damping".into();
-    bias.bands.push(Band {
-        points: vec![(t0, -BIAS_BAND_LN, BIAS_BAND_LN), (t1, -BIAS_BAND_LN, BIAS_BAND_LN)],
-        colour: RGBColor(150, 150, 150),
-        label: format!("pass band ±{BIAS_BAND_LN}"),
-    });
-    bias.bands.push(Band {
-        points: avg.iter().filter_map(|&i| Some((period[i]?, lo[i]?, hi[i]?))).collect(),
-        colour: crate::plot::colour(0),
-        label: "90% interval (average)".into(),
-    });
-    for (k, m) in ["bssa14", "ask14"].into_iter().enumerate() {
-        let rows = psa(m);
-        if !rows.is_empty() {
-            let mut l =
-                Line::new(m.to_uppercase(), rows.iter().map(|&i| (period[i].unwrap_or(0.0), mean[i])).collect(), k + 1);
-            l.width = 1;
-            bias.lines.push(l);
-        }
-    }
-    let mut l =
-        Line::new("average of the models", avg.iter().map(|&i| (period[i].unwrap_or(0.0), mean[i])).collect(), 0);
-    l.width = 3;
-    bias.dots = true;
-    bias.lines.push(l);
-    bias.hlines.push(HLine { y: 0.0, text: String::new(), colour: RGBColor(60, 60, 60) });
-    let spread = mean.iter().chain(lo.iter().flatten()).chain(hi.iter().flatten()).fold(1.0f64, |m, v| m.max(v.abs()));
-    bias.y_range = Some((-(spread * 1.1).max(1.0), (spread * 1.1).max(1.0)));
+    let ts = ts_all;
 
     // Residuals against distance (the models' average) for PGA, PGV and PSA at 1 s.
     let mut dist = Panel::linear("rupture distance R_rup (km)", "residual ln(simulated / model)");
     dist.x_scale = Scale::Log;
-    dist.title = "every record against the models' average".into();
+    dist.title = "each record, models' average".into();
     if let Some(rd) = stickslip_store::io::read_parquet_if_present(&d.folder.gathered(&GMM_RESIDUALS))? {
         let c = Columns::of(&rd, GMM_RESIDUALS.name);
         let (imt, period, model) = (c.strs(col::IMT)?, c.opt_f64s(col::PERIOD_S)?, c.strs(col::MODEL)?);
@@ -101,18 +141,20 @@ pub(super) fn gmm_bias(d: &ReportInput, path: &Path) -> Result<Outcome, ReportEr
         });
         dist.hlines.push(HLine { y: 0.0, text: String::new(), colour: RGBColor(60, 60, 60) });
     }
-    let n = avg.iter().map(|&i| records.get(i).copied().unwrap_or(0)).max().unwrap_or(0);
-    let sheet = Sheet::new("Simulated ground motion against the NGA-West2 models", 2, vec![bias, dist]);
+    panels.push(dist);
+    let columns = if panels.len() > 2 { 3 } else { 2 };
+    let sheet = Sheet::new("Simulated ground motion against the NGA-West2 models", columns, panels);
     drawn(
         path,
         &sheet,
         "Ground motion against the NGA-West2 models".into(),
         format!(
-            "Left: the mean over {n} records (stations × seeds) of ln(simulated/model) for 5%-damped RotD50 PSA at \
-             each period in the stations' usable band, against BSSA14, ASK14 and their average (ln medians \
+            "Left, one panel per site (V_S30): the mean over the records (up to {n}: stations × seeds) of \
+             ln(simulated/model) for 5%-damped RotD50 PSA at each period in the stations' usable band, and for PGA \
+             and PGV (the dots at the left edge), against BSSA14, ASK14, CB14, CY14 and their average (ln medians \
              averaged), with the average's 90% interval and the Broadband Platform's ±{BIAS_BAND_LN} pass band. \
-             Right: each record's residual against the models' average, by rupture distance. Tables gmm_bias and \
-             gmm_residuals; docs/model.md §16."
+             Right: each record's residual against the models' average, by rupture distance. Tables gmm_bias, \
+             gmm_part_b and gmm_residuals; docs/model.md §16."
         ),
     )
 }

@@ -9,6 +9,7 @@
 //! (`cracks`) and the event catalogue
 //! (`catalogue`); what several topics share is in `common`.
 
+mod broadband;
 mod catalogue;
 mod common;
 mod cracks;
@@ -52,7 +53,7 @@ pub enum Outcome {
 pub type Draw = fn(&ReportInput, &Path) -> Result<Outcome, ReportError>;
 
 /// Every figure, in page order.
-pub const ALL: [(&str, Draw); 27] = [
+pub const ALL: [(&str, Draw); 28] = [
     ("shear_stress.png", interface::shear_stress),
     ("normal_stress.png", interface::normal_stress),
     ("mean_slip.png", interface::mean_slip),
@@ -72,6 +73,7 @@ pub const ALL: [(&str, Draw); 27] = [
     ("space_time.png", fault::space_time),
     ("rupture_time.png", rupture::rupture_time),
     ("ground_motion.png", rupture::ground_motion),
+    ("broadband_record.png", broadband::broadband_record),
     ("gmm_bias.png", gmm::gmm_bias),
     ("cracks.png", cracks::crack_map),
     ("acoustic_emission.png", cracks::emission),

@@ -353,6 +353,13 @@ pub struct Stations {
     pub pga_m_s2: Vec<f64>,
     /// Peak horizontal velocity (m/s).
     pub pgv_m_s: Vec<f64>,
+    /// The site of a broadband record (m/s); `None` for a lattice record (or a folder written
+    /// before broadband records existed).
+    pub vs30_m_s: Vec<Option<f64>>,
+    /// RotD50 PGA of the station's processed record (m/s²), if it has one.
+    pub pga_rotd50_m_s2: Vec<Option<f64>>,
+    /// Its usable periods: shortest and longest (s), if it has a processed record.
+    pub usable_s: Vec<Option<[f64; 2]>>,
 }
 
 impl Stations {
@@ -367,6 +374,14 @@ impl Stations {
             azimuth_deg: c.f64s(col::AZIMUTH_DEG)?,
             pga_m_s2: c.f64s(col::PGA_M_S2)?,
             pgv_m_s: c.f64s(col::PGV_M_S)?,
+            vs30_m_s: if c.has(col::VS30_M_S) { c.opt_f64s(col::VS30_M_S)? } else { vec![None; c.height()] },
+            pga_rotd50_m_s2: c.opt_f64s(col::PGA_ROTD50_M_S2)?,
+            usable_s: c
+                .opt_f64s(col::USABLE_MIN_PERIOD_S)?
+                .into_iter()
+                .zip(c.opt_f64s(col::USABLE_MAX_PERIOD_S)?)
+                .map(|(a, b)| Some([a?, b?]))
+                .collect(),
         })
     }
 }
