@@ -169,8 +169,16 @@ impl BroadbandSection {
     }
 
     /// The validated settings for `scene` with its `[[stations]]`, every refusal recorded in `ck`.
-    pub fn build(&self, scene: &Scene, stations: &[StationSection], ck: &mut Checker) -> Option<BroadbandSettings> {
-        let before = ck.is_clean();
+    pub fn build(
+        &self,
+        scene: &Scene,
+        stations: &[StationSection],
+        checker: &mut Checker,
+    ) -> Option<BroadbandSettings> {
+        // Its own refusals, so that one elsewhere in the file does not make this section's
+        // settings absent (and the set's checks wrong).
+        let mut own = Checker::default();
+        let ck = &mut own;
         if !scene.is_fault() {
             ck.push(
                 "broadband",
@@ -178,6 +186,7 @@ impl BroadbandSection {
                 "a fault scene: the stochastic part is synthesized from the rupture of [fault] (its slip and rupture \
                  times)",
             );
+            checker.absorb(own);
             return None;
         }
         if !["generic_rock", "homogeneous"].contains(&self.crust.as_str()) {
@@ -247,10 +256,87 @@ impl BroadbandSection {
                 );
             }
         }
-        (before && ck.is_clean()).then_some(BroadbandSettings {
-            stochastic: p,
-            crossover: Crossover::new(self.crossover_hz),
-            sites: specs,
-        })
+        let valid = own.is_clean();
+        checker.absorb(own);
+        valid.then_some(BroadbandSettings { stochastic: p, crossover: Crossover::new(self.crossover_hz), sites: specs })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::Pipeline;
+
+    const SCENE: &str = r#"
+version = 1
+[block]
+nx = 24
+ny = 8
+nz = 12
+lc_m = 500.0
+[material]
+young_pa = 8.0104e10
+density_kg_m3 = 2670.0
+poisson = 0.25
+[friction]
+mu_static = 0.6
+mu_dynamic = 0.525
+slip_weakening_m = 0.2
+heals = false
+[fault]
+normal_stress_pa = 120e6
+shear_stress_pa = 66.5e6
+[self_weight]
+gravity_m_s2 = 0.0
+[shear]
+damping_per_s = 0.0
+duration_s = 5.0
+[[stations]]
+name = "near"
+at_m = [6000.0, 0.0, 2000.0]
+[[stations]]
+name = "soft"
+at_m = [6000.0, 0.0, 4000.0]
+vs30_m_s = 300.0
+[[stations]]
+name = "deep"
+at_m = [6000.0, 2000.0, 2000.0]
+[[stations]]
+name = "line"
+from_m = [1000.0, 0.0, 5000.0]
+to_m = [3000.0, 0.0, 5000.0]
+count = 2
+"#;
+
+    fn sites(extra: &str) -> Vec<(String, String, f64)> {
+        let p = Pipeline::from_toml(&format!("{SCENE}{extra}"), "t").unwrap();
+        let b = p.analysis.broadband.expect("broadband settings");
+        b.sites.into_iter().map(|s| (s.station, s.record, s.vs30_m_s)).collect()
+    }
+
+    #[test]
+    fn each_surface_station_gives_one_record_per_site_named_by_it_with_several() {
+        // One default site: the stations' own names; a station's own V_S30 wins; the buried
+        // station has none; a line's points take the line's.
+        let one = sites("[broadband]\nvs30_m_s = 760.0\n");
+        let mut names: Vec<(&str, f64)> = one.iter().map(|s| (s.1.as_str(), s.2)).collect();
+        names.sort_by(|a, b| a.0.cmp(b.0));
+        assert_eq!(names, [("line-0", 760.0), ("line-1", 760.0), ("near", 760.0), ("soft", 300.0)]);
+        // Two sites: <name>_vs<V_S30>; the station with its own single site keeps its name.
+        let two = sites("[broadband]\nvs30_m_s = [760.0, 400.0]\n");
+        let near: Vec<&str> = two.iter().filter(|s| s.0 == "near").map(|s| s.1.as_str()).collect();
+        assert_eq!(near, ["near_vs760", "near_vs400"]);
+        assert!(two.iter().any(|s| s.1 == "soft" && s.2 == 300.0));
+        assert!(!two.iter().any(|s| s.0 == "deep"));
+    }
+
+    #[test]
+    fn the_defaults_are_the_platforms_and_change_the_hash_only_when_present() {
+        let without = Pipeline::from_toml(SCENE, "t").unwrap();
+        let with = Pipeline::from_toml(&format!("{SCENE}[broadband]\n"), "t").unwrap();
+        assert!(without.analysis.broadband.is_none());
+        assert_ne!(without.hash, with.hash);
+        let b = with.analysis.broadband.unwrap();
+        assert_eq!(b.crossover.hz, 1.0);
+        assert_eq!(b.stochastic, stickslip_seismo::broadband::Stochastic::default());
     }
 }

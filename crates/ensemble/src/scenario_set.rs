@@ -77,6 +77,16 @@ pub fn select_station_set(
     let (f_low, f_high) = (c.opt_f64s(col::F_LOW_HZ)?, c.opt_f64s(col::F_HIGH_HZ)?);
     let (t_min, t_max) = (c.opt_f64s(col::USABLE_MIN_PERIOD_S)?, c.opt_f64s(col::USABLE_MAX_PERIOD_S)?);
     let site = if c.has(col::VS30_M_S) { c.opt_f64s(col::VS30_M_S)? } else { vec![None; seed.len()] };
+    let mut sites: Vec<f64> = site.iter().flatten().copied().collect();
+    sites.sort_by(f64::total_cmp);
+    sites.dedup();
+    if settings.vs30_m_s.is_none() && sites.len() > 1 {
+        let listed = sites.iter().map(|v| v.to_string()).collect::<Vec<_>>().join(", ");
+        return Err(EnsembleError::Setup(format!(
+            "set.vs30_m_s: absent, but the stations' broadband records stand on several sites ({listed} m/s): say which \
+             site's records to choose (set.vs30_m_s = one of them)"
+        )));
+    }
     let mut all = 0;
     let mut found: BTreeMap<(u64, String), Station> = BTreeMap::new();
     for i in 0..seed.len() {
