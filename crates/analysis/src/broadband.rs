@@ -115,8 +115,10 @@ pub struct StochasticSource {
     pub subfault_m: f64,
     /// Frankel's C.
     pub frankel: f64,
-    /// CPU seconds of the synthesis and the joins.
-    pub cpu_s: f64,
+    /// CPU seconds of the stochastic synthesis and the joins (the subfaults included).
+    pub synthesis_cpu_s: f64,
+    /// CPU seconds of the broadband records' processing and measures (RotD, intensity).
+    pub motions_cpu_s: f64,
 }
 
 /// A station's broadband record and its motion.
@@ -186,6 +188,8 @@ pub fn records(
     let medium = Medium { s_speed_m_s: src.s_speed_m_s, density_kg_m3: model.scene().density_kg_m3 };
     let synthesis = Synthesis::new(&fault, src.mw, medium, p, seed);
     let mut out = Vec::with_capacity(rows.len());
+    let mut synthesis_cpu_s = crate::thread_cpu_s() - started;
+    let mut motions_cpu_s = 0.0;
     for row in rows {
         let specs: Vec<&SiteSpec> = settings.sites.iter().filter(|s| s.station == row.station.name).collect();
         let surface = row.position_m[1] == 0.0;
@@ -197,16 +201,22 @@ pub fn records(
         let dt = p.interval_s;
         let duration = t0 + (det[0].len() - 1) as f64 * det_dt;
         let len = (duration / dt).floor() as usize + 1;
+        let started = crate::thread_cpu_s();
         let stochastic = synthesis.record(row.position_m, len, seed, station_key(&row.station.name));
+        synthesis_cpu_s += crate::thread_cpu_s() - started;
         for spec in specs {
             let site = HybridSite {
                 vs30_m_s: spec.vs30_m_s,
                 deterministic_vref_m_s: src.s_speed_m_s,
                 stochastic_vref_m_s: p.crust.vs30_m_s(),
             };
+            let started = crate::thread_cpu_s();
             let record = hybrid(det, det_dt, t0, &stochastic, dt, settings.crossover, site);
+            let joined = crate::thread_cpu_s();
+            synthesis_cpu_s += joined - started;
             let [x, _, z] = &record.components;
             let motion = motion_of_pair(&x.broadband, &z.broadband, dt, f64::INFINITY, Some(SHORTEST_PERIOD_S));
+            motions_cpu_s += crate::thread_cpu_s() - joined;
             let mut r = row.clone();
             r.station.name = spec.record.clone();
             r.broadband = Some(StationBroadband { vs30_m_s: spec.vs30_m_s, record, motion });
@@ -219,7 +229,8 @@ pub fn records(
         cells: fault.cells,
         subfault_m: fault.size_m,
         frankel: synthesis.frankel(),
-        cpu_s: crate::thread_cpu_s() - started,
+        synthesis_cpu_s,
+        motions_cpu_s,
     };
     (out, Some(summary))
 }

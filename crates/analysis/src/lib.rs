@@ -77,7 +77,8 @@ pub struct SeedAnalysis {
     /// The rupture front of each event, when the scene records slip onsets or the fault.
     pub fronts: Option<SeedFronts>,
     /// CPU seconds spent finding the events, scaling them and their fronts, and a fault's
-    /// source and stations (a profile; the records' stages are in [`SeedRecords::timings`]).
+    /// source and stations (a profile; the records' stages are in [`SeedRecords::timings`], the
+    /// broadband records' in [`broadband::StochasticSource`]).
     pub events_s: f64,
     /// On a fault (docs/model.md §15): the source from the fault's own slip, and the stations'
     /// distances to the rupture and peak motions.
@@ -142,6 +143,10 @@ pub fn analyse(
         src.fitted_corner_hz = motions::fitted_corner(surface).map(|b| b.corner_hz);
     }
     events_s += thread_cpu_s() - started;
+    // The broadband records have their own stages in the profile.
+    if let Some(h) = source.as_ref().and_then(|s| s.stochastic.as_ref()) {
+        events_s -= h.synthesis_cpu_s + h.motions_cpu_s;
+    }
     Ok(SeedAnalysis {
         run,
         catalogue,

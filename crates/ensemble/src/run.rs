@@ -77,6 +77,10 @@ pub struct Profile {
     pub spectra_s: f64,
     /// RotD of each horizontal pair (with the pair's own spectra, from the same passes).
     pub rotd_s: f64,
+    /// The stochastic synthesis of broadband records and their joins.
+    pub broadband_s: f64,
+    /// The broadband records' processing and measures (RotD, intensity).
+    pub broadband_motions_s: f64,
     /// Writing each seed's parts and files (the writing thread).
     pub writing_s: f64,
     /// Gathering the tables and the statistics across seeds at the end.
@@ -250,6 +254,10 @@ pub fn run_ensemble(
                 Ok(a) => {
                     integrated_steps += a.run.integrated_steps();
                     profile.events_s += a.events_s;
+                    if let Some(h) = a.source.as_ref().and_then(|s| s.stochastic.as_ref()) {
+                        profile.broadband_s += h.synthesis_cpu_s;
+                        profile.broadband_motions_s += h.motions_cpu_s;
+                    }
                     if let Some(t) = a.records.as_ref().map(|r| r.timings) {
                         profile.records_s += t.records_s;
                         profile.spectra_s += t.spectra_s;

@@ -16,6 +16,7 @@
 #![deny(missing_docs)]
 
 pub mod accuracy;
+pub mod broadband_cost;
 pub mod calibrate;
 pub mod convergence;
 pub mod ensemble_cost;

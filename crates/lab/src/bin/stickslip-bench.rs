@@ -125,6 +125,19 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+    /// What broadband records cost: a pipeline with `[broadband]` on 2 threads side by side with
+    /// the same pipeline without it, alternately (best of the repeats), and the CPU seconds of the
+    /// stochastic synthesis and the joins against the whole run's (in this process).
+    Broadband {
+        /// Pipeline file with a `[broadband]` section, e.g. pipelines/scenario-m6.toml.
+        pipeline: PathBuf,
+        /// Runs of each variant (the best counts).
+        #[arg(long, default_value_t = 2)]
+        repeats: usize,
+        /// Scratch folder [default: the system's temporary folder].
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
     /// What a run does before its first step against a step: the pipeline's scene at the given
     /// size (e.g. `large-block.toml 500 150 48`), its first seed, on one thread and on all of them.
     Setup {
@@ -235,6 +248,35 @@ fn run(c: Command) -> Result<()> {
             ensemble(&pipeline, before, after, large.as_deref(), repeats, floors, out)
         }
         Command::Readme { check, only, binary } => readme(check, &only, binary),
+        Command::Broadband { pipeline, repeats, out } => {
+            anyhow::ensure!(repeats >= 1, "--repeats = 0 is not allowed: at least 1");
+            let binary = std::env::current_exe()?.with_file_name("stickslip");
+            anyhow::ensure!(binary.exists(), "{}: no such binary (build it)", binary.display());
+            let build = stickslip_lab::ensemble_cost::Build { label: "this build".into(), binary };
+            let out = out.unwrap_or_else(|| std::env::temp_dir().join("stickslip-bench-broadband"));
+            let c = stickslip_lab::broadband_cost::measure(&pipeline, &build, repeats, &out)?;
+            println!("| {} on 2 threads (best of {repeats}) | wall time |", pipeline.display());
+            println!("|---|---|");
+            println!("| with [broadband] | {:.1} s |", c.wall_s[0]);
+            println!("| without it (the lattice's records only) | {:.1} s |", c.wall_s[1]);
+            println!(
+                "| added | {:+.1} s ({:+.1}%) |",
+                c.wall_s[0] - c.wall_s[1],
+                100.0 * (c.wall_s[0] / c.wall_s[1] - 1.0)
+            );
+            println!(
+                "profile (2 threads, in this process, wall {:.1} s): stochastic synthesis and joins {:.1} CPU-s ({:.1}% of \
+                 {:.1} CPU-s), the broadband records' processing, RotD and measures {:.1} CPU-s ({:.1}%)",
+                c.profile_wall_s,
+                c.synthesis_cpu_s,
+                100.0 * c.synthesis_cpu_s / c.total_cpu_s,
+                c.total_cpu_s,
+                c.motions_cpu_s,
+                100.0 * c.motions_cpu_s / c.total_cpu_s
+            );
+            let _ = std::fs::remove_dir_all(&out);
+            Ok(())
+        }
         Command::Setup { pipeline, nx, ny, nz, steps } => {
             let p = Pipeline::load(&pipeline)?;
             let mut scene = p.scene.clone();
@@ -692,6 +734,8 @@ fn ensemble(
         ("records (processing, intensity, Fourier)", prof.records_s),
         ("response spectra (records alone)", prof.spectra_s),
         ("RotD (with its pair's x and y spectra)", prof.rotd_s),
+        ("broadband: stochastic synthesis and joins", prof.broadband_s),
+        ("broadband: the records' processing, RotD, measures", prof.broadband_motions_s),
         ("writing (its own thread)", prof.writing_s),
         ("gathering", prof.gather_s),
         ("report (wall)", report),
