@@ -91,10 +91,12 @@ fn every_table_matches_its_declaration_and_reads_back_typed() {
         .unwrap()
         .replace("range = { first = 1, count = 8 }", "list = [1]")
         .replace("duration_s = 0.3", "duration_s = 0.12");
-    // TPV5 at 500 m for its first 3 s: the source, the fault's nodes and the off-fault stations.
+    // TPV5 at 500 m for its first 3 s: the source, the fault's nodes and the off-fault stations,
+    // with broadband records on one site.
     let quake = std::fs::read_to_string(stickslip_support::repo_path("pipelines/tpv5-500m.toml"))
         .unwrap()
-        .replace("duration_s = 12.0", "duration_s = 3.0");
+        .replace("duration_s = 12.0", "duration_s = 3.0")
+        + "\n[broadband]\nvs30_m_s = 760.0\n";
     let mut seen = std::collections::BTreeSet::new();
     for (name, text) in [
         ("paper", paper.as_str()),
@@ -215,6 +217,37 @@ fn every_table_matches_its_declaration_and_reads_back_typed() {
                             "{} vs {h_slip}",
                             slip[last]
                         );
+                    }
+                    "station_records" => {
+                        // Three components of every surface station's record, each the sum of its
+                        // parts, at the broadband interval from t = 0.
+                        let c = stickslip_store::frame::Columns::of(&df, "station_records");
+                        let station = c.strs(stickslip_store::col::STATION).unwrap();
+                        let t = c.f64s(stickslip_store::col::TIME_S).unwrap();
+                        let (d, s_, b) = (
+                            c.f64s(stickslip_store::col::DETERMINISTIC_M_S2).unwrap(),
+                            c.f64s(stickslip_store::col::STOCHASTIC_M_S2).unwrap(),
+                            c.f64s(stickslip_store::col::BROADBAND_M_S2).unwrap(),
+                        );
+                        assert!((0..b.len()).all(|i| (b[i] - d[i] - s_[i]).abs() <= 1e-12 * b[i].abs().max(1e-9)));
+                        let first = station[0].clone();
+                        let rows: Vec<usize> = (0..station.len()).filter(|&i| station[i] == first).collect();
+                        assert_eq!(rows.len(), 3 * 301, "3 components × 3 s at 0.01 s");
+                        assert!((t[rows[1]] - 0.01).abs() < 1e-15);
+                        let r = stickslip_store::tables::broadband::read_station_record(&df, &first, "y").unwrap();
+                        assert_eq!(r.unwrap().time_s.len(), 301);
+                    }
+                    "gmm_part_b" => {
+                        let c = stickslip_store::frame::Columns::of(&df, "gmm_part_b");
+                        let (lo, hi) = (
+                            c.f64s(stickslip_store::col::BAND_LOW).unwrap(),
+                            c.f64s(stickslip_store::col::BAND_HIGH).unwrap(),
+                        );
+                        let mean = c.f64s(stickslip_store::col::MODELS_MEAN).unwrap();
+                        assert!((0..lo.len()).all(|i| lo[i] < mean[i] && mean[i] < hi[i]));
+                        // Broadband records are compared from 0.01 s.
+                        let t = c.opt_f64s(stickslip_store::col::PERIOD_S).unwrap();
+                        assert!(t.contains(&Some(0.01)), "{t:?}");
                     }
                     "source" => {
                         let m0 = df.column(stickslip_store::col::M0_N_M).unwrap().f64().unwrap().get(0).unwrap();

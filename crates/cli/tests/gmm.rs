@@ -281,7 +281,7 @@ fn gmm_refuses_what_it_cannot_compare() {
     std::fs::create_dir_all(&dir).unwrap();
     for (args, expect) in [
         (vec!["gmm", ".", "--vs30", "50"], "--vs30 = 50: a V_S30 from 100 to 5000 m/s"),
-        (vec!["gmm", ".", "--models", "cy14"], "--models"),
+        (vec!["gmm", ".", "--models", "i14"], "--models"),
         (vec!["gmm", ".", "--models", "bssa14,bssa14"], "given twice"),
         (vec!["gmm", "."], "not"),
     ] {
