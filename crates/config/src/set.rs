@@ -384,10 +384,18 @@ impl SetSection {
             if t_a < lo * (1.0 - 1e-9) || t_b > hi * (1.0 + 1e-9) {
                 let field = if self.t1_s > 0.0 { "set.t1_s" } else { "set.period_min_s" };
                 let value = if self.t1_s > 0.0 { self.t1_s } else { self.period_min_s };
-                let within = if stations {
+                let within = if stations && lo > 0.011 {
                     format!(
                         "the stations' usable periods ({} … {} s: from the lattice's f_max, at most 0.8 of the \
-                         record interval's Nyquist, to 1/1.25 of half the shear stage)",
+                         record interval's Nyquist, to 1/1.25 of half the shear stage; a [broadband] section makes \
+                         the stations' records usable from 0.01 s, docs/model.md §17)",
+                        approx(lo),
+                        approx(hi)
+                    )
+                } else if stations {
+                    format!(
+                        "the stations' usable periods ({} … {} s: from 0.01 s, the broadband records', to 1/1.25 of \
+                         half the shear stage: a longer shear stage reaches longer periods)",
                         approx(lo),
                         approx(hi)
                     )

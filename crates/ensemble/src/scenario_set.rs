@@ -19,7 +19,7 @@ use stickslip_config::check::Named;
 use stickslip_config::set::SetComponent;
 use stickslip_config::{Pipeline, SetSettings};
 use stickslip_seismo::accelerogram::processing::{Processed, ProcessingOptions, process};
-use stickslip_seismo::accelerogram::{At2, RecordFile, RecordFormat, Sac};
+use stickslip_seismo::accelerogram::{At2, Orientation, RecordFile, RecordFormat, Sac};
 use stickslip_solver::scene::{Component, Kinematic};
 use stickslip_store::Folder;
 use stickslip_store::frame::Columns;
@@ -207,6 +207,25 @@ struct Components {
     begin_s: f64,
 }
 
+/// `v` to three significant digits.
+fn approx3(v: f64) -> String {
+    let digits = (2 - v.abs().log10().floor() as i32).max(0) as usize;
+    format!("{v:.digits$}")
+}
+
+/// A component's SEED channel code (band `H` at 80 Hz or more, else `B`; instrument `N`, an
+/// accelerometer; orientation `1` along strike, `2` fault-normal, `Z` up) and its orientation in
+/// the files: the strike taken as north, the fault-normal side as east.
+fn channel(code: &str, dt_s: f64) -> (String, Orientation) {
+    let band = if 1.0 / dt_s >= 80.0 { 'H' } else { 'B' };
+    let (axis, orientation) = match code {
+        "FP" => ('1', Orientation { incidence_deg: 90.0, azimuth_deg: 0.0 }),
+        "FN" => ('2', Orientation { incidence_deg: 90.0, azimuth_deg: 90.0 }),
+        _ => ('Z', Orientation { incidence_deg: 0.0, azimuth_deg: 0.0 }),
+    };
+    (format!("{band}N{axis}"), orientation)
+}
+
 /// The lattice record of `st` from the seed's control table: the last 2/f_low of the run at the
 /// run's own interval, the horizontal pair.
 fn lattice_components(control: &DataFrame, seed: u64, st: &Station) -> Result<Components, EnsembleError> {
@@ -303,9 +322,11 @@ fn write_station_files(
                 let a: Vec<f64> = p.accel.iter().map(|v| r.scale_factor * v).collect();
                 let stem = format!("{}_set{:02}_seed{seed}_{}_{code}", pipeline.name, k + 1, st.name);
                 let site = st.vs30_m_s.map_or(String::new(), |v| format!(", V_S30 {v} m/s"));
+                let (seed_channel, orientation) = channel(code, p.dt);
                 let description = format!(
-                    "stickslip {} set record {} of {}: seed {seed} station {} {long}, Mw {:.2}, R_rup {:.1} km{site}, \
-                     x {:.4}, matched to {}",
+                    "stickslip {} set record {} of {}: seed {seed} station {} {long} ({seed_channel}), Mw {:.2} (the \
+                     rupture's moment magnitude, also in MAG), R_rup {:.1} km{site}, x {:.4}, usable {} … {} s \
+                     (band-pass {:.4} … {:.4} Hz), matched to {}",
                     pipeline.name,
                     k + 1,
                     rows.len(),
@@ -313,6 +334,10 @@ fn write_station_files(
                     m.mw,
                     m.r_rup_km,
                     r.scale_factor,
+                    approx3(1.0 / r.usable_hz.1),
+                    approx3(1.0 / r.usable_hz.0),
+                    st.band_hz.0,
+                    st.band_hz.1,
                     settings.target_name
                 );
                 let numbers: [(&str, &[f64]); 3] = [
@@ -328,12 +353,12 @@ fn write_station_files(
                     begin_s: components.begin_s + p.t_first,
                     motion: None,
                     station,
-                    component: code,
+                    component: &seed_channel,
                     network: "SS",
                     location: "P",
                     event: &format!("seed{seed}"),
                     position_m: None,
-                    orientation: None,
+                    orientation: Some(orientation),
                     magnitude: Some(m.mw),
                     numbers: &numbers,
                 };

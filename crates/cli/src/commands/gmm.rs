@@ -59,6 +59,15 @@ pub fn run(a: Args) -> Result<()> {
     };
     write(&folder, &c)?;
     print(&c, &opts);
+    if let Some(v) = a.vs30 {
+        outln!(
+            "note: --vs30 {} is what the models are asked for the lattice's records (those without a broadband site); \
+             those records stand on the lattice's own rock and carry no site response, so their bias at that V_S30 is \
+             the site term the lattice lacks, not a fault of the rupture (a [broadband] section takes each record to \
+             its station's V_S30: docs/model.md §17)",
+            N(v)
+        );
+    }
     outln!("\ntables → {} (gmm_residuals, gmm_bias, gmm_part_b)", folder.tables().display());
     let pipeline = Pipeline::load(&folder.pipeline_copy())
         .with_context(|| format!("reading the pipeline of {}", a.folder.display()))?;
