@@ -6,15 +6,18 @@
 For each chosen record of `<folder>/set/` (a scenario's set: `FP` and `FN` horizontal pairs): the
 SAC files read by ObsPy, the AT2 files by a plain parser of the PEER format written here, the
 pair's 5%-damped RotD100 recomputed by pyrotd (A. Kottke's frequency-domain oscillators) at the
-periods of the set's range, and compared with stickslip's own RotD100 of the record (its
-`station_spectra` row) times the record's scale factor (the `set` table). Prints the largest
-relative difference per record and format; exits 1 above 1e-3.
+periods of stickslip's grid inside the set's matching range (`[set]` of `<folder>/set/set.toml`,
+written by `stickslip select --set`, else of the folder's pipeline: 0.2·T₁ … 2·T₁ or period_min_s
+… period_max_s), and compared with stickslip's own RotD100 of the record (its `station_spectra`
+row) times the record's scale factor (the `set` table). Prints the largest relative difference per
+record and format; exits 1 above 1e-3.
 
 Needs obspy, pyrotd, numpy and polars (pip install obspy pyrotd polars pyarrow).
 """
 import glob
 import os
 import sys
+import tomllib
 
 import numpy as np
 import obspy
@@ -36,7 +39,22 @@ def read_at2(path):
     return values * 9.80665, dt
 
 
+def matching_range(folder):
+    """The set's period range (s): from set/set.toml if `stickslip select --set` wrote one."""
+    for path in (os.path.join(folder, "set", "set.toml"), os.path.join(folder, "pipeline.toml")):
+        if os.path.exists(path):
+            with open(path, "rb") as f:
+                section = tomllib.load(f).get("set")
+            if section:
+                t1 = section.get("t1_s", 1.0)
+                if t1 > 0:
+                    return 0.2 * t1, 2.0 * t1
+                return section["period_min_s"], section["period_max_s"]
+    raise SystemExit(f"{folder}: no [set] section")
+
+
 def main(folder):
+    lo, hi = matching_range(folder)
     set_table = pl.read_parquet(os.path.join(folder, "tables", "set.parquet"))
     spectra = pl.read_parquet(os.path.join(folder, "tables", "station_spectra.parquet"))
     name = os.path.basename(os.path.normpath(folder))
@@ -58,7 +76,7 @@ def main(folder):
                     pair.append(read_at2(path))
             (x, dt), (z, _) = pair
             periods = own["period_s"].to_numpy()
-            keep = (periods >= 0.05) & (periods <= 5.0)
+            keep = (periods >= lo * (1 - 1e-9)) & (periods <= hi * (1 + 1e-9))
             freqs = 1.0 / periods[keep]
             # Resampled (in pyrotd, by zero-padding the spectrum) to 40 samples per oscillator period, so
             # that its peaks are read between the 0.01 s samples as stickslip's band-limited reading does.
@@ -72,7 +90,7 @@ def main(folder):
             worst_all = max(worst_all, worst)
             print(f"{name} record {rank:2d} (seed {seed}, {station}, ×{scale:.3f}) {fmt.upper()}: "
                   f"{len(x)} samples every {dt} s, RotD100 at {keep.sum()} periods within {worst:.1e}")
-    print(f"largest relative difference: {worst_all:.2e} (tolerance {TOLERANCE})")
+    print(f"largest relative difference over {lo:g} … {hi:g} s: {worst_all:.2e} (tolerance {TOLERANCE})")
     return 0 if worst_all <= TOLERANCE else 1
 
 
