@@ -243,6 +243,41 @@ fn check_shows_nodes_by_position_every_stage_and_the_critical_range_over_the_see
     assert!(text(&o).0.contains("over its first 2 of 8 seeds"), "{}", text(&o).0);
 }
 
+/// `check` on a scene far too large for the machine prints its size, memory and time from the
+/// block's counts first and refuses it, naming what does not fit and what is available, instead
+/// of building it: scenario-m6 at 100 m modules (1.17·10⁹ bars, 21 GB for one seed) under a
+/// 4 GB address-space limit aborted on an 8 GB allocation before printing anything.
+#[test]
+fn check_prints_the_cost_of_a_huge_scene_first_and_refuses_it_before_building() {
+    let dir = scratch("check-huge");
+    let scene = std::fs::read_to_string(repo().join("pipelines/scenario-m6.toml"))
+        .unwrap()
+        .replace("nx = 160\n", "nx = 800\n")
+        .replace("ny = 40\n", "ny = 200\n")
+        .replace("nz = 104\n", "nz = 520\n")
+        .replace("lc_m = 500.0", "lc_m = 100.0");
+    assert!(scene.contains("nx = 800\nny = 200\nnz = 520\nlc_m = 100.0"), "scenario-m6's block changed");
+    std::fs::write(dir.join("m6-100.toml"), scene).unwrap();
+    let started = std::time::Instant::now();
+    let out = Command::new("sh")
+        .args(["-c", "ulimit -v 4000000 && exec \"$0\" \"$@\"", env!("CARGO_BIN_EXE_stickslip")])
+        .args(["check", "m6-100.toml"])
+        .env_remove("STICKSLIP_MEMORY_LIMIT")
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let took = started.elapsed();
+    let (stdout, err) = text(&out);
+    assert_eq!(out.status.code(), Some(1), "not refused:\n{stdout}{err}");
+    assert!(took.as_secs() < 60, "took {took:?}");
+    assert!(stdout.contains("before building: 167081521 nodes, 1165481520 bars"), "{stdout}");
+    assert!(stdout.contains("memory: about ") && stdout.contains("per seed at"), "{stdout}");
+    assert!(stdout.contains("under the address-space limit, ulimit -v"), "{stdout}");
+    for want in ["one seed of this scene", "does not fit in memory", "ulimit -v", "block.lc_m"] {
+        assert!(err.contains(want), "the refusal lacks {want:?}: {err}");
+    }
+}
+
 #[test]
 fn slurm_check_refuses_a_machine_with_a_slurm_it_did_not_create_and_changes_nothing() {
     let dir = scratch("slurm");
