@@ -440,6 +440,21 @@ fn wrong_arguments_are_refused_with_what_is_allowed() {
     assert!(!err.contains("-- -1"), "clap's tip misleads: {err}");
     let o = stickslip(&["run", p, "--seed", "1", "--threads", "0"], &repo());
     assert!(text(&o).1.contains("--threads 0"), "{}", text(&o).1);
+    // A negative thread count is refused with the range, not clap's tip to write `-- -1`.
+    for cmd in ["run", "pipeline"] {
+        let args: Vec<&str> =
+            if cmd == "run" { vec![cmd, p, "--seed", "1", "--threads", "-1"] } else { vec![cmd, p, "--threads", "-1"] };
+        let o = stickslip(&args, &repo());
+        let (_, err) = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{cmd}: {err}");
+        assert!(err.contains("-1 threads: give a whole number ≥ 1"), "{cmd}: {err}");
+        assert!(!err.contains("-- -1"), "{cmd}: clap's tip misleads: {err}");
+    }
+    // A seed named twice is refused before anything runs, not dropped silently.
+    let o = stickslip(&["pipeline", p, "--seeds", "1,1,2", "--out", "/nonexistent/never-written"], &repo());
+    let (_, err) = text(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("seed 1 is named twice in \"1,1,2\""), "{err}");
     let folder = paper().to_str().unwrap().to_string();
     for (shock, want) in
         [("foo", "\"foo\" is not a main shock"), ("S0", "\"S0\" is not a main shock"), ("S9", "has a main shock S9")]

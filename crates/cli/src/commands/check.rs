@@ -404,6 +404,7 @@ pub fn run(a: Args) -> Result<()> {
             }
         );
     }
+    let stations = scene.is_fault() && !scene.stations.is_empty();
     match &pipeline.analysis.accelerograms {
         Some(a) => {
             let nodes = if a.nodes.is_empty() {
@@ -439,6 +440,12 @@ pub fn run(a: Args) -> Result<()> {
                 a.order
             );
         }
+        // A fault's stations are recorded and processed whatever [accelerograms] says.
+        None if stations => outln!(
+            "  records: the {} stations' ([[stations]]): each recorded, band-passed inside its usable band and \
+             written with RotD50 PGA/PGV (stations table, record files); no event records ([accelerograms])",
+            scene.stations.len()
+        ),
         None => outln!("  records: off (no [accelerograms] or [spectra] section)"),
     }
     match &pipeline.analysis.spectra {
@@ -459,6 +466,11 @@ pub fn run(a: Args) -> Result<()> {
             },
             if s.rotd { ", RotD50/RotD100" } else { "" },
             if s.attenuation { ", attenuation" } else { "" }
+        ),
+        None if stations => outln!(
+            "  spectra: the stations' 5%-damped RotD50 and RotD100 PSA over each one's usable band (station_spectra \
+             table){}; no [spectra] section for control nodes",
+            if pipeline.set.is_some() { ", which the set below is chosen by" } else { "" }
         ),
         None => outln!("  spectra: off (no [spectra] section)"),
     }

@@ -33,7 +33,7 @@ pub struct Args {
     #[arg(long)]
     pub seeds: Option<String>,
     /// Worker threads [default: one per core].
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true, value_parser = crate::commands::pipeline::parse_threads)]
     pub threads: Option<usize>,
     /// Discard results of a different pipeline found in the output folder.
     #[arg(long)]
@@ -360,6 +360,16 @@ fn no_events(pipeline: &Pipeline, folder: &Folder, regimes: &Regimes) -> String 
         ));
     }
     lines.join("\n")
+}
+
+/// Parses `--threads N`: a whole number of threads ≥ 1 (a negative number is read as a value, so
+/// that it is refused with the range rather than taken by clap for an unknown flag).
+pub fn parse_threads(s: &str) -> Result<usize, String> {
+    match s.trim().parse::<i128>() {
+        Ok(v) if v >= 1 => usize::try_from(v).map_err(|_| format!("{v} threads: at most {}", usize::MAX)),
+        Ok(v) => Err(format!("{v} threads: give a whole number ≥ 1 (or leave --threads out for one per core)")),
+        Err(_) => Err(format!("{s:?} is not a number of threads: give a whole number ≥ 1")),
+    }
 }
 
 /// `stickslip pipeline`.
