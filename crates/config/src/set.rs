@@ -15,6 +15,9 @@
 
 use std::path::Path;
 
+/// Ground motions ASCE 7-16 §16.2.2 asks of a suite for nonlinear response history analysis.
+pub const ASCE7_MIN_RECORDS: usize = 11;
+
 use serde::{Deserialize, Serialize};
 use stickslip_seismo::design::{Asce7, DesignSpectrum, Ec8, Ec8Type, GroundType, Tabulated};
 use stickslip_seismo::selection::{PeriodRange, SelectionOptions};
@@ -405,6 +408,17 @@ impl SetSection {
             }
         }
         let count = ck.count("set.count", self.count, 1, 1000, "").unwrap_or(11);
+        if kind == TargetKind::Asce7 && count < ASCE7_MIN_RECORDS {
+            ck.warn(
+                "set.count",
+                count,
+                format!(
+                    "ASCE 7-16 §16.2.2 asks for at least {ASCE7_MIN_RECORDS} ground motions (each a pair of horizontal \
+                     components) for a nonlinear response history analysis: a set of {count} is chosen and scaled to \
+                     this target, but it is not a suite ASCE 7-16 accepts (set.count = {ASCE7_MIN_RECORDS} or more)"
+                ),
+            );
+        }
         let max_per = ck.count("set.max_per", self.max_per, 1, 1000, "").unwrap_or(2);
         let per = ck.named("set.per", &self.per).unwrap_or(SetGroup::Event);
         if ck.positive("set.scale_min", self.scale_min)
