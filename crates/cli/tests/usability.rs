@@ -450,6 +450,16 @@ fn wrong_arguments_are_refused_with_what_is_allowed() {
         assert!(err.contains("-1 threads: give a whole number ≥ 1"), "{cmd}: {err}");
         assert!(!err.contains("-- -1"), "{cmd}: clap's tip misleads: {err}");
     }
+    // A station set that the seeds cannot fill is refused before anything runs: 2 ruptures of
+    // scenario-m6 give at most 2 × set.max_per = 4 of its 11 records.
+    let m6 = repo().join("pipelines/scenario-m6.toml");
+    let started = std::time::Instant::now();
+    let o = stickslip(&["pipeline", m6.to_str().unwrap(), "--seeds", "1,2", "--out", "/nonexistent/never"], &repo());
+    let (_, err) = text(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("set.count = 11 is not allowed with 2 seeds: at most 4 records, 2 per seed"), "{err}");
+    assert!(err.contains("allowed: set.count ≤ 4") && err.contains("at least 6 seeds"), "{err}");
+    assert!(started.elapsed().as_secs() < 20, "refused only after {:?}", started.elapsed());
     // A seed named twice is refused before anything runs, not dropped silently.
     let o = stickslip(&["pipeline", p, "--seeds", "1,1,2", "--out", "/nonexistent/never-written"], &repo());
     let (_, err) = text(&o);

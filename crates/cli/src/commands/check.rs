@@ -74,6 +74,7 @@ pub fn run(a: Args) -> Result<()> {
     );
     // What the scene costs, from the block's counts alone, before anything is built: printed
     // first, and a scene that does not fit is refused here (building it would fill memory).
+    crate::commands::pipeline::check_set_capacity(&pipeline, pipeline.seeds.len())?;
     let bars = cost_before_building(&pipeline, threads, a.allow_long)?;
     let model = Model::new(scene.clone());
     let build_s = started.elapsed().as_secs_f64();
