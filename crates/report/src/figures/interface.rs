@@ -261,7 +261,7 @@ pub(super) fn mean_slip(d: &ReportInput, path: &Path) -> Result<Outcome, ReportE
             Line::new(format!("seed {seed}"), decimate(t, &v, WIDTH as usize), k)
         })
         .collect();
-    let panel = Panel { lines, ..Panel::linear("time since the start of shearing (s)", &format!("δ ({unit})")) };
+    let panel = Panel { lines, ..Panel::linear("time since the start of shearing (s)", format!("δ ({unit})")) };
     let sheet = Sheet::new(format!("Mean displacement of the contact surface{}", paper_fig(d, 5)), 1, vec![panel]);
     let caption = if d.pipeline.scene.is_fault() {
         format!(
