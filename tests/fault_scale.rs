@@ -76,7 +76,7 @@ fn tpv5_at_200_m_follows_the_reference() {
 
 #[test]
 fn tpv5_at_500_m_follows_the_reference() {
-    let (_dir, out, _) = follows_the_reference("tpv5-500m", "pipelines/tpv5-500m.toml", 0.25, 0.30, 0.95..1.3);
+    let (_dir, out, p) = follows_the_reference("tpv5-500m", "pipelines/tpv5-500m.toml", 0.25, 0.30, 0.95..1.3);
     let scec = out.join("scec").join("seed1");
 
     // The off-fault stations in the benchmark's layout, and the rupture-time file over every node.
@@ -97,6 +97,15 @@ fn tpv5_at_500_m_follows_the_reference() {
     // Ruptured: the whole 30 × 15 km fault, and nothing in the barrier.
     let area = get("ruptured_area_m2");
     assert!((0.9 * 450e6..1.1 * 450e6).contains(&area), "ruptured area {area} m²");
+
+    // Its report page says the same: Mw and stress drop from the source table, and none of the
+    // block's similarity magnitudes (which put this rupture at M 5.65 / Mw 5.87).
+    let report = stickslip_report::write_report(&out, &p).unwrap();
+    let html = std::fs::read_to_string(&report.index).unwrap();
+    assert!(html.contains(&format!("<td>{mw:.2}</td>")), "the page does not give Mw {mw:.2}");
+    assert!(html.contains(&format!("<td>{:.2}</td>", drop / 1e6)), "the page does not give Δσ {drop} Pa");
+    assert!(!html.contains("Main shocks across seeds") && !html.contains("M (paper's M0)"));
+    assert!(!out.join("figures/magnitude.png").exists() && !out.join("figures/scaling.png").exists());
 }
 
 /// Broadband records (docs/model.md §17) are the same on one thread and on two: TPV5 at 500 m for

@@ -13,8 +13,9 @@ use stickslip_solver::memory::{
 pub const MEMORY_LIMIT_VAR: &str = "STICKSLIP_MEMORY_LIMIT";
 
 /// The memory a run may use (bytes) and where the number comes from: [`MEMORY_LIMIT_VAR`] if
-/// set, else the smaller of the kernel's `MemAvailable` and the room left under the cgroup's
-/// `memory.max` (a Slurm job's limit); `None` where neither can be read.
+/// set, else the smallest of the kernel's `MemAvailable`, the room left under the cgroup's
+/// `memory.max` (a Slurm job's limit) and the room left under the process's address-space limit
+/// (`ulimit -v`); `None` where none can be read.
 pub fn available_memory() -> Result<Option<(u64, String)>> {
     if let Ok(v) = std::env::var(MEMORY_LIMIT_VAR) {
         let bytes = parse_bytes(&v).ok_or_else(|| {
@@ -31,12 +32,31 @@ pub fn available_memory() -> Result<Option<(u64, String)>> {
     let read = |p: &str| std::fs::read_to_string(p).ok().and_then(|t| t.trim().parse::<u64>().ok());
     let cgroup = read("/sys/fs/cgroup/memory.max")
         .map(|max| max.saturating_sub(read("/sys/fs/cgroup/memory.current").unwrap_or(0)));
-    Ok(match (meminfo, cgroup) {
-        (Some(m), Some(c)) if c < m => Some((c, "the room left under the cgroup's memory.max".into())),
-        (Some(m), _) => Some((m, "MemAvailable of /proc/meminfo".into())),
-        (None, Some(c)) => Some((c, "the room left under the cgroup's memory.max".into())),
-        (None, None) => None,
-    })
+    let limits = [
+        meminfo.map(|m| (m, "MemAvailable of /proc/meminfo")),
+        cgroup.map(|c| (c, "the room left under the cgroup's memory.max")),
+        address_space_room().map(|a| (a, "the room left under the address-space limit, ulimit -v")),
+    ];
+    Ok(limits.into_iter().flatten().min_by_key(|(b, _)| *b).map(|(b, source)| (b, source.to_string())))
+}
+
+/// Bytes of address space this process may still map under its `RLIMIT_AS` (`ulimit -v`): the
+/// limit less the process's virtual size (`VmSize` of /proc/self/status); `None` without a limit.
+/// A run's arrays are mapped address space before they are resident memory, so a scene that does
+/// not fit under it would abort at its first large allocation.
+fn address_space_room() -> Option<u64> {
+    let mut lim = libc::rlimit { rlim_cur: 0, rlim_max: 0 };
+    // SAFETY: getrlimit writes the limit into the struct it is given.
+    if unsafe { libc::getrlimit(libc::RLIMIT_AS, &mut lim) } != 0 || lim.rlim_cur == libc::RLIM_INFINITY {
+        return None;
+    }
+    let size = std::fs::read_to_string("/proc/self/status").ok().and_then(|t| {
+        t.lines()
+            .find_map(|l| l.strip_prefix("VmSize:"))
+            .and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<u64>().ok())
+            .map(|kb| kb * 1024)
+    });
+    Some(lim.rlim_cur.saturating_sub(size.unwrap_or(0)))
 }
 
 fn parse_bytes(v: &str) -> Option<u64> {
@@ -134,6 +154,11 @@ pub fn check_memory(scene: &Scene, seeds: usize, threads: usize, what: &str) -> 
     )
 }
 
+/// Bar-updates per second of one thread of the development machine on a large lattice (whole
+/// runs of 2.8–50 M bars, 3.3·10⁸: BENCHMARKS.md §8): the rate of what a run will take, estimated
+/// before its lattice is built (`check` then times this machine).
+pub const NOMINAL_RATE: f64 = 3.3e8;
+
 /// The keys of a pipeline file that set a run's length.
 const LENGTH_KEYS: &str =
     "shear.duration_s, self_weight.max_duration_s, time.dt_fraction, time.dt_s, block.nx, block.ny, block.nz";
@@ -161,7 +186,7 @@ pub fn check_count(scene: &Scene, bars: u64, dt: f64, what: &str) -> Result<()> 
 /// longest): refused above [`LONG_RUN_BAR_UPDATES`] without `allow_long`, and refused whatever
 /// `allow_long` says when a stage has more steps than a run can count ([`MAX_STEPS`], or 2^64
 /// bar-updates: the limit the run of each seed enforces, `run::check_step_count`).
-/// `rate` is the bar-updates per second of a timed probe (2·10⁸ when none was made).
+/// `rate` is the bar-updates per second of a timed probe ([`NOMINAL_RATE`] when none was made).
 pub fn check_length(scene: &Scene, bars: u64, dt: f64, rate: Option<f64>, allow_long: bool, what: &str) -> Result<f64> {
     check_count(scene, bars, dt, what)?;
     let (settle, shear) = run_steps(scene, dt);
@@ -177,8 +202,8 @@ pub fn check_length(scene: &Scene, bars: u64, dt: f64, rate: Option<f64>, allow_
              --allow-long to run it, or shorten shear.duration_s, or use fewer modules (pipeline keys: {LENGTH_KEYS})",
             settle + shear,
             if settle > 0 { format!("self-weight up to {settle} + ") } else { String::new() },
-            duration(updates / rate.unwrap_or(2e8)),
-            rate.unwrap_or(2e8),
+            duration(updates / rate.unwrap_or(NOMINAL_RATE)),
+            rate.unwrap_or(NOMINAL_RATE),
             if rate.is_some() { ", a timed probe" } else { "" }
         );
     }

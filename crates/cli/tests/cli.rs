@@ -207,3 +207,47 @@ fn figures_render_the_same_without_any_system_font() {
     let b = std::fs::read(dir.join("without/figures/shear_stress.png")).unwrap();
     assert_eq!(a, b, "figures differ without system fonts");
 }
+
+/// `stickslip catalogue` says which magnitude column each b-value is of, over how many bins above
+/// Mc it was fitted, and warns when that is too narrow a range for a Gutenberg–Richter slope (the
+/// paper's scene: a characteristic size, a b from two or three bins).
+#[test]
+fn the_b_value_names_its_column_and_warns_when_fitted_from_too_few_bins() {
+    let dir = scratch("catalogue-bins");
+    let text = std::fs::read_to_string(stickslip_support::repo_path("pipelines/paper.toml"))
+        .unwrap()
+        .replace("list = [123, 200, 7]", "range = [1, 24]")
+        .replace("[report]\n", "[report]\nenabled = false\n");
+    assert!(text.contains("range = [1, 24]"), "paper.toml's seeds changed");
+    std::fs::write(dir.join("p.toml"), text).unwrap();
+    let out = stickslip(&["pipeline", "p.toml", "--out", "out", "--quiet"], &dir);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = stickslip(&["catalogue", "out"], &dir);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    // The pooled fit of mw_consistent, from the tables the command rewrote.
+    let b = read(&dir.join("out/tables/b_values.parquet"));
+    let pooled = |df: &DataFrame, i: usize| {
+        df.column("seed").unwrap().u64().unwrap().get(i).is_none()
+            && df.column("quantity").unwrap().str().unwrap().get(i) == Some("mw_consistent")
+    };
+    let row = (0..b.height()).find(|&i| pooled(&b, i)).expect("a pooled mw_consistent row");
+    let mc = b.column("mc").unwrap().f64().unwrap().get(row).expect("paper scene: a b-value is fitted");
+    let f = read(&dir.join("out/tables/magnitude_frequency.parquet"));
+    let centre = f.column("bin_centre").unwrap().f64().unwrap();
+    let incremental = f.column("incremental").unwrap().cast(&DataType::UInt64).unwrap();
+    let incremental = incremental.u64().unwrap();
+    let top = (0..f.height())
+        .filter(|&i| pooled(&f, i) && incremental.get(i).unwrap() > 0)
+        .map(|i| centre.get(i).unwrap())
+        .fold(f64::NEG_INFINITY, f64::max);
+    let bins = ((top - mc) / 0.1).round() as i64 + 1;
+    assert!((1..10).contains(&bins), "the paper's sizes cluster: {bins} bins from Mc {mc} to {top}");
+    assert!(stdout.contains(&format!("in {bins} bins (Mc to {top:.1})")), "{stdout}");
+    assert!(
+        stdout.contains(&format!("warning: mw_consistent: b fitted from {bins} magnitude bins above Mc")),
+        "{stdout}"
+    );
+    assert!(stdout.contains("at least 1.0 unit above Mc (10 bins of 0.1)"), "{stdout}");
+    assert!(stdout.contains("m_riera_paper_interplate: Riera's M") && stdout.contains("\"M (paper)\""), "{stdout}");
+}

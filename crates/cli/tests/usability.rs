@@ -243,6 +243,41 @@ fn check_shows_nodes_by_position_every_stage_and_the_critical_range_over_the_see
     assert!(text(&o).0.contains("over its first 2 of 8 seeds"), "{}", text(&o).0);
 }
 
+/// `check` on a scene far too large for the machine prints its size, memory and time from the
+/// block's counts first and refuses it, naming what does not fit and what is available, instead
+/// of building it: scenario-m6 at 100 m modules (1.17·10⁹ bars, 21 GB for one seed) under a
+/// 4 GB address-space limit aborted on an 8 GB allocation before printing anything.
+#[test]
+fn check_prints_the_cost_of_a_huge_scene_first_and_refuses_it_before_building() {
+    let dir = scratch("check-huge");
+    let scene = std::fs::read_to_string(repo().join("pipelines/scenario-m6.toml"))
+        .unwrap()
+        .replace("nx = 160\n", "nx = 800\n")
+        .replace("ny = 40\n", "ny = 200\n")
+        .replace("nz = 104\n", "nz = 520\n")
+        .replace("lc_m = 500.0", "lc_m = 100.0");
+    assert!(scene.contains("nx = 800\nny = 200\nnz = 520\nlc_m = 100.0"), "scenario-m6's block changed");
+    std::fs::write(dir.join("m6-100.toml"), scene).unwrap();
+    let started = std::time::Instant::now();
+    let out = Command::new("sh")
+        .args(["-c", "ulimit -v 4000000 && exec \"$0\" \"$@\"", env!("CARGO_BIN_EXE_stickslip")])
+        .args(["check", "m6-100.toml"])
+        .env_remove("STICKSLIP_MEMORY_LIMIT")
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let took = started.elapsed();
+    let (stdout, err) = text(&out);
+    assert_eq!(out.status.code(), Some(1), "not refused:\n{stdout}{err}");
+    assert!(took.as_secs() < 60, "took {took:?}");
+    assert!(stdout.contains("before building: 167081521 nodes, 1165481520 bars"), "{stdout}");
+    assert!(stdout.contains("memory: about ") && stdout.contains("per seed at"), "{stdout}");
+    assert!(stdout.contains("under the address-space limit, ulimit -v"), "{stdout}");
+    for want in ["one seed of this scene", "does not fit in memory", "ulimit -v", "block.lc_m"] {
+        assert!(err.contains(want), "the refusal lacks {want:?}: {err}");
+    }
+}
+
 #[test]
 fn slurm_check_refuses_a_machine_with_a_slurm_it_did_not_create_and_changes_nothing() {
     let dir = scratch("slurm");
@@ -405,6 +440,31 @@ fn wrong_arguments_are_refused_with_what_is_allowed() {
     assert!(!err.contains("-- -1"), "clap's tip misleads: {err}");
     let o = stickslip(&["run", p, "--seed", "1", "--threads", "0"], &repo());
     assert!(text(&o).1.contains("--threads 0"), "{}", text(&o).1);
+    // A negative thread count is refused with the range, not clap's tip to write `-- -1`.
+    for cmd in ["run", "pipeline"] {
+        let args: Vec<&str> =
+            if cmd == "run" { vec![cmd, p, "--seed", "1", "--threads", "-1"] } else { vec![cmd, p, "--threads", "-1"] };
+        let o = stickslip(&args, &repo());
+        let (_, err) = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{cmd}: {err}");
+        assert!(err.contains("-1 threads: give a whole number ≥ 1"), "{cmd}: {err}");
+        assert!(!err.contains("-- -1"), "{cmd}: clap's tip misleads: {err}");
+    }
+    // A station set that the seeds cannot fill is refused before anything runs: 2 ruptures of
+    // scenario-m6 give at most 2 × set.max_per = 4 of its 11 records.
+    let m6 = repo().join("pipelines/scenario-m6.toml");
+    let started = std::time::Instant::now();
+    let o = stickslip(&["pipeline", m6.to_str().unwrap(), "--seeds", "1,2", "--out", "/nonexistent/never"], &repo());
+    let (_, err) = text(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("set.count = 11 is not allowed with 2 seeds: at most 4 records, 2 per seed"), "{err}");
+    assert!(err.contains("allowed: set.count ≤ 4") && err.contains("at least 6 seeds"), "{err}");
+    assert!(started.elapsed().as_secs() < 20, "refused only after {:?}", started.elapsed());
+    // A seed named twice is refused before anything runs, not dropped silently.
+    let o = stickslip(&["pipeline", p, "--seeds", "1,1,2", "--out", "/nonexistent/never-written"], &repo());
+    let (_, err) = text(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("seed 1 is named twice in \"1,1,2\""), "{err}");
     let folder = paper().to_str().unwrap().to_string();
     for (shock, want) in
         [("foo", "\"foo\" is not a main shock"), ("S0", "\"S0\" is not a main shock"), ("S9", "has a main shock S9")]

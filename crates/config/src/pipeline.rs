@@ -561,11 +561,48 @@ fn check_set_site(
     }
 }
 
-/// Warns when a fault scene's surface stations can give no PSA at any of the ground-motion models'
-/// periods ([`station_band`]).
+/// Refuses a fault scene whose surface stations' usable band is empty (its shortest period at or
+/// above its longest: a soft material or coarse modules put the lattice's f_max below the run's
+/// low corner, and the run failed at its first step), naming the field that limits it; warns when
+/// the band holds none of the ground-motion models' periods ([`station_band`]).
 fn warn_gmm_band(scene: &stickslip_solver::Scene, ck: &mut Checker) {
     use stickslip_analysis::motions::GMM_PERIODS_S;
     let Some((shortest, longest)) = station_band(scene, false) else { return };
+    if shortest >= longest {
+        let nyquist = scene.record.interval_s.map(|iv| 0.8 * 0.5 / iv);
+        let by_sampling = nyquist.is_some_and(|n| 1.0 / n >= shortest * (1.0 - 1e-12));
+        let why = format!(
+            "the surface stations' usable band is empty: its shortest period, {} s, is not below its longest, {} s \
+             (shear.duration_s / 2.5)",
+            approx(shortest),
+            approx(longest)
+        );
+        if by_sampling {
+            let iv = scene.record.interval_s.unwrap_or(f64::NAN);
+            ck.push(
+                "record.interval_s",
+                iv,
+                format!(
+                    "{why}, set by the sampling (0.8 of its Nyquist): record.interval_s < {} s, or a longer \
+                     shear.duration_s",
+                    approx(iv * shortest / longest)
+                ),
+            );
+        } else {
+            // f_max grows as √E: the Young's modulus that would put 1/f_max at the longest period.
+            ck.push(
+                "material.young_pa",
+                scene.young_pa,
+                format!(
+                    "{why}, set by the lattice's f_max = {} Hz (waves of this E, ρ and Lc): material.young_pa > {} Pa \
+                     for this block, or smaller modules (block.lc_m), or a longer shear.duration_s",
+                    approx(1.0 / shortest),
+                    approx(scene.young_pa * (shortest / longest).powi(2))
+                ),
+            );
+        }
+        return;
+    }
     if !GMM_PERIODS_S.iter().any(|&t| t >= shortest && t <= longest) {
         ck.warn(
             "shear.duration_s",
@@ -574,8 +611,8 @@ fn warn_gmm_band(scene: &stickslip_solver::Scene, ck: &mut Checker) {
                 "the surface stations' PSA is usable from {} s to {} s, which holds none of the ground-motion \
                  models' periods (0.01–10 s): `stickslip gmm` can compare only PGA and PGV (a longer run or a \
                  finer lattice widens the band)",
-                num(shortest),
-                num(longest)
+                approx(shortest),
+                approx(longest)
             ),
         );
     }

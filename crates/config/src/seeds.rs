@@ -36,8 +36,25 @@ pub fn parse_seeds(text: &str) -> Result<Vec<u64>, String> {
     if parts.is_empty() {
         return Err("--seeds: no seed given".into());
     }
+    // A seed named twice would run once: refused, so that the count asked is the count run.
     let mut seen = std::collections::HashSet::new();
-    Ok(parts.into_iter().flat_map(|(a, b)| a..=b).filter(|s| seen.insert(*s)).collect())
+    let mut seeds = Vec::new();
+    for (k, &(a, b)) in parts.iter().enumerate() {
+        for s in a..=b {
+            if !seen.insert(s) {
+                let first = parts.iter().position(|&(x, y)| (x..=y).contains(&s)).unwrap_or(k);
+                let name = |(x, y): (u64, u64)| if x == y { format!("{x}") } else { format!("{x}-{y}") };
+                return Err(format!(
+                    "--seeds: seed {s} is named twice in {text:?} (by {} and by {}): each seed runs once, so name it \
+                     once",
+                    name(parts[first]),
+                    name(parts[k])
+                ));
+            }
+            seeds.push(s);
+        }
+    }
+    Ok(seeds)
 }
 
 /// Parses "K/N" (1 ≤ K ≤ N).
@@ -59,8 +76,12 @@ mod tests {
 
     #[test]
     fn seed_lists_keep_their_order_once_each_and_refuse_what_does_not_fit() {
-        assert_eq!(parse_seeds("123,200,123").unwrap(), vec![123, 200]);
-        assert_eq!(parse_seeds("5, 1-3 ,2").unwrap(), vec![5, 1, 2, 3]);
+        assert_eq!(parse_seeds("5, 1-3 ,7").unwrap(), vec![5, 1, 2, 3, 7]);
+        // A seed named twice is refused (it used to be dropped silently).
+        let e = parse_seeds("1,1,2").unwrap_err();
+        assert!(e.contains("seed 1 is named twice in \"1,1,2\" (by 1 and by 1)"), "{e}");
+        let e = parse_seeds("5, 1-3 ,2").unwrap_err();
+        assert!(e.contains("seed 2 is named twice") && e.contains("(by 1-3 and by 2)"), "{e}");
         assert_eq!(parse_seeds("18446744073709551615").unwrap(), vec![u64::MAX]);
         for (bad, says) in [
             ("0-18446744073709551615", "more than 10000000 seeds"),

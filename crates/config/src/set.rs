@@ -15,6 +15,9 @@
 
 use std::path::Path;
 
+/// Ground motions ASCE 7-16 §16.2.2 asks of a suite for nonlinear response history analysis.
+pub const ASCE7_MIN_RECORDS: usize = 11;
+
 use serde::{Deserialize, Serialize};
 use stickslip_seismo::design::{Asce7, DesignSpectrum, Ec8, Ec8Type, GroundType, Tabulated};
 use stickslip_seismo::selection::{PeriodRange, SelectionOptions};
@@ -252,6 +255,41 @@ impl SetSettings {
     }
 }
 
+/// The most records a set of a scenario's surface stations can hold over `seeds` seeds, known
+/// before anything runs, and why: each seed is one rupture giving at most `max_per` records, of
+/// the surface stations that can fall in the distance bin (a station `z` m from the fault plane
+/// has R_rup ≥ z, so one farther than the bin's far end never does). The magnitude bin can only
+/// lower it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SetCapacity {
+    /// Records at most.
+    pub records: usize,
+    /// Records at most from one seed.
+    pub per_seed: usize,
+    /// Surface stations that can fall in the distance bin.
+    pub stations: usize,
+    /// Surface stations.
+    pub surface: usize,
+}
+
+impl SetCapacity {
+    /// Of `set` chosen from `scene`'s surface stations over `seeds` seeds.
+    pub fn of(set: &SetSettings, scene: &stickslip_solver::Scene, seeds: usize) -> SetCapacity {
+        let lattice = scene.lattice();
+        let far_m = set.distance_km.map_or(f64::INFINITY, |(_, hi)| hi * 1e3);
+        let surface: Vec<f64> = scene
+            .stations
+            .iter()
+            .map(|s| lattice.position(s.node))
+            .filter(|p| p[1] == 0.0)
+            .map(|p| p[2].abs())
+            .collect();
+        let stations = surface.iter().filter(|&&z| z <= far_m * (1.0 + 1e-12)).count();
+        let per_seed = stations.min(set.options.per_group);
+        SetCapacity { records: per_seed.saturating_mul(seeds), per_seed, stations, surface: surface.len() }
+    }
+}
+
 /// What a `[set]` chooses from, and the spectra it is matched on.
 #[derive(Clone, Copy, Debug)]
 pub enum SetPool<'a> {
@@ -420,6 +458,17 @@ impl SetSection {
             }
         }
         let count = ck.count("set.count", self.count, 1, 1000, "").unwrap_or(11);
+        if kind == TargetKind::Asce7 && count < ASCE7_MIN_RECORDS {
+            ck.warn(
+                "set.count",
+                count,
+                format!(
+                    "ASCE 7-16 §16.2.2 asks for at least {ASCE7_MIN_RECORDS} ground motions (each a pair of horizontal \
+                     components) for a nonlinear response history analysis: a set of {count} is chosen and scaled to \
+                     this target, but it is not a suite ASCE 7-16 accepts (set.count = {ASCE7_MIN_RECORDS} or more)"
+                ),
+            );
+        }
         let max_per = ck.count("set.max_per", self.max_per, 1, 1000, "").unwrap_or(2);
         let per = ck.named("set.per", &self.per).unwrap_or(SetGroup::Event);
         if ck.positive("set.scale_min", self.scale_min)

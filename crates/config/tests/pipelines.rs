@@ -115,3 +115,21 @@ fn abutting_traction_patches_share_the_nodes_on_their_seam() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A set for an ASCE 7-16 target of fewer than the 11 ground motions its §16.2.2 asks for runs,
+/// with a warning that quotes the rule; 11 gives none.
+#[test]
+fn an_asce7_set_of_fewer_than_eleven_records_is_warned_of_with_the_rule() {
+    let dir = std::env::temp_dir().join(format!("stickslip-asce7-count-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let text = std::fs::read_to_string(repo_path("pipelines/scenario-m6.toml")).unwrap();
+    assert!(text.contains("target = \"asce7\"") && text.contains("count = 11\n"), "scenario-m6's set changed");
+    std::fs::write(dir.join("p.toml"), text.replace("count = 11\n", "count = 7\n")).unwrap();
+    let p = Pipeline::load(&dir.join("p.toml")).unwrap();
+    let w = p.warnings.iter().find(|w| w.field == "set.count").unwrap_or_else(|| panic!("{:?}", p.warnings));
+    assert_eq!(w.value, "7");
+    assert!(w.why.contains("ASCE 7-16 §16.2.2 asks for at least 11 ground motions"), "{}", w.why);
+    let shipped = Pipeline::load(&repo_path("pipelines/scenario-m6.toml")).unwrap();
+    assert!(!shipped.warnings.iter().any(|w| w.field == "set.count"), "{:?}", shipped.warnings);
+    let _ = std::fs::remove_dir_all(&dir);
+}

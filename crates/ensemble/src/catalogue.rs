@@ -55,6 +55,27 @@ pub const AFTERSHOCK_BINS_PER_DECADE: usize = 5;
 /// The magnitude columns of the similarity table that get a distribution and a b-value.
 pub const MAGNITUDES: [&str; 4] =
     [col::MW_CONSISTENT, col::MW_PAPER, col::M_RIERA_PAPER_INTERPLATE, col::M_RIERA_CONSISTENT_INTERPLATE];
+/// What each column of [`MAGNITUDES`] is (docs/model.md §9): the same events' two moments, each
+/// through two magnitude scales.
+pub fn magnitude_convention(column: &str) -> &'static str {
+    match column {
+        col::MW_CONSISTENT => "Mw = (2/3)·log10 M0 − 10.7 of the consistent moment Δσ·L_p·A_p (the page's \"Mw\")",
+        col::MW_PAPER => "Mw of the paper's moment Δσ·L_p·A_p·λ (Eq. 15 as printed)",
+        col::M_RIERA_PAPER_INTERPLATE => {
+            "Riera's M = 0.6536·(log10 M0 − 15.51) of the paper's moment: the \"M (paper)\" of the pipeline's \
+             printout and the paper's M = 6.77"
+        }
+        col::M_RIERA_CONSISTENT_INTERPLATE => "Riera's M of the consistent moment",
+        _ => "",
+    }
+}
+
+/// Magnitude units above Mc that a b-value needs before it is read as the slope of a power law: a
+/// maximum-likelihood b from a narrower range measures how closely the sizes cluster, and moves
+/// with where the bins fall (on paper-100, b over 2–3 bins, 0.2–0.3 units, was 3.45–7.35 for four scales
+/// that a power law would give within 2% of each other).
+pub const B_VALUE_MIN_RANGE: f64 = 1.0;
+
 /// The columns counted in logarithmic bins.
 pub const LOG_QUANTITIES: [&str; 2] = [col::M0_CONSISTENT_DYNE_CM, col::STRESS_DROP_PA];
 

@@ -159,14 +159,16 @@ pub fn select_station_set(
         });
     }
     let note = format!(
-        "surface stations{}{}: {} of {}, each by its {} (the grid {} … {} s, where every one is usable)",
+        "surface stations{}{}: {} of {}, each by its {} ({})",
         settings.vs30_m_s.map_or(String::new(), |v| format!(" on V_S30 = {v} m/s")),
         settings.bins_text().map_or(String::new(), |b| format!(" at {b}")),
         members.len(),
         all,
         if settings.component == SetComponent::Rotd100 { "RotD100" } else { "RotD50" },
-        grid.first().map_or("-".into(), |t| format!("{t:.3}")),
-        grid.last().map_or("-".into(), |t| format!("{t:.3}")),
+        match (grid.first(), grid.last()) {
+            (Some(a), Some(b)) => format!("the grid {a:.3} … {b:.3} s, where every one is usable"),
+            _ => "no period where every one is usable".into(),
+        },
     );
     if members.is_empty() {
         return Err(EnsembleError::Setup(format!(

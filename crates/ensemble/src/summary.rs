@@ -140,5 +140,12 @@ pub fn digest(out: &Folder) -> Result<String, StoreError> {
             cis.join(", ")
         ));
     }
+    // Four magnitudes are written; this is the one the paper's M = 6.77 is, not `mw_paper`.
+    lines.push(format!(
+        "(M (paper) is Riera's M of the paper's moment, Eq. 15 with its λ: column {} of tables/similarity.parquet; \
+         {} is the Mw of the same moment)",
+        col::M_RIERA_PAPER_INTERPLATE,
+        col::MW_PAPER
+    ));
     Ok(lines.join("\n"))
 }

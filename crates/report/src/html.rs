@@ -10,10 +10,10 @@ use stickslip_solver::laws::describe;
 use stickslip_store::schema::{col, seed_tables};
 use stickslip_store::tables::runs::RunStatus;
 
-use crate::{Figure, ReportError, ReportInput};
+use crate::{Figure, ReportError, ReportInput, fault_page};
 
 /// Escapes text for HTML.
-fn esc(s: &str) -> String {
+pub(crate) fn esc(s: &str) -> String {
     s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
 }
 
@@ -66,10 +66,28 @@ fn files(d: &ReportInput, dir: &str, ext: &str) -> Vec<String> {
     v
 }
 
-/// The page.
-pub(crate) fn page(d: &ReportInput, figures: &[Figure], skipped: &[(String, String)]) -> Result<String, ReportError> {
+/// A figure as the page shows it: heading, image and caption.
+pub(crate) fn figure_html(f: &Figure) -> String {
+    format!(
+        "<figure id=\"{id}\">\n<h3>{title}</h3>\n<img src=\"figures/{file}\" alt=\"{title}\">\n<figcaption>{caption}</figcaption>\n</figure>\n",
+        id = esc(f.file.trim_end_matches(".png")),
+        title = esc(&f.title),
+        file = esc(&f.file),
+        caption = esc(&f.caption)
+    )
+}
+
+/// The page. A fault scene's leads with its source and stations and leaves out what measures a
+/// block by the paper's similarity scaling (`left_out`).
+pub(crate) fn page(
+    d: &ReportInput,
+    figures: &[Figure],
+    skipped: &[(String, String)],
+    left_out: &[(String, String)],
+) -> Result<String, ReportError> {
     let p = d.pipeline;
     let s = &p.scene;
+    let fault = s.is_fault();
     let mut h = String::new();
     let w = &mut h;
     let _ = write!(
@@ -102,7 +120,8 @@ pub(crate) fn page(d: &ReportInput, figures: &[Figure], skipped: &[(String, Stri
         ok_failed.0,
         ok_failed.1
     );
-    if let Some(r) = &d.runs {
+    // A fault's rupture is said by its source section.
+    if let Some(r) = d.runs.as_ref().filter(|_| !fault) {
         let regimes: Vec<(&str, &str)> = vec![
             ("stick_slip", "stick-slip"),
             ("stick_slip_then_sliding", "stick-slip, then stable sliding to the end"),
@@ -140,10 +159,14 @@ pub(crate) fn page(d: &ReportInput, figures: &[Figure], skipped: &[(String, Stri
         }
         let _ = write!(w, "</ul>\n");
     }
+    if fault {
+        fault_page::source_section(w, d, figures);
+        fault_page::stations_section(w, d);
+    }
     let lattice = s.lattice();
     let e = lattice.extent();
     let _ = write!(w, "<h2>Parameters</h2>\n<table>\n");
-    let rows: Vec<(&str, String)> = vec![
+    let mut rows: Vec<(&str, String)> = vec![
         (
             "block",
             format!(
@@ -184,22 +207,79 @@ pub(crate) fn page(d: &ReportInput, figures: &[Figure], skipped: &[(String, Stri
                 stickslip_solver::scene::TimeStep::Fixed(dt) => format!("Δt = {dt:e} s"),
             },
         ),
+    ];
+    if fault {
+        rows = fault_page::parameters(d, rows);
+    } else {
+        rows.extend(block_stages(d));
+    }
+    for (k, v) in rows {
+        let _ = writeln!(w, "<tr><th class=\"l\">{}</th><td class=\"l\">{}</td></tr>", esc(k), esc(&v));
+    }
+    let _ = write!(w, "</table>\n");
+
+    if !fault {
+        main_shocks(w, d);
+    }
+
+    let _ = write!(w, "<h2>Figures</h2>\n");
+    for f in figures.iter().filter(|f| !(fault && f.file == fault_page::RUPTURE_FIGURE)) {
+        let _ = write!(w, "{}", figure_html(f));
+    }
+    if !skipped.is_empty() {
+        let _ = write!(w, "<p>Not drawn (their data is absent from this run):</p>\n<ul>\n");
+        for (f, why) in skipped {
+            let _ = writeln!(w, "<li><code>{}</code>: {}</li>", esc(f), esc(why));
+        }
+        let _ = write!(w, "</ul>\n");
+    }
+    if !left_out.is_empty() {
+        let _ = write!(
+            w,
+            "<p>Left out on a fault scene: these figures measure a block's events by the paper's similarity scaling \
+             (magnitudes at a prototype scale λ, a catalogue's statistics), while a fault is at its own scale and its \
+             rupture is measured from its slip (the source above):</p>\n<ul>\n"
+        );
+        for (f, why) in left_out {
+            let _ = writeln!(w, "<li><code>{}</code>: {}</li>", esc(f), esc(why));
+        }
+        let _ = write!(w, "</ul>\n");
+    }
+    tables_and_files(w, d, fault);
+    Ok(h)
+}
+
+/// The rows of a block's loading stages: self-weight (when there is gravity), the shear stage
+/// (its drivers or plate), the paper's similarity scaling.
+fn block_stages(d: &ReportInput) -> Vec<(&'static str, String)> {
+    let p = d.pipeline;
+    let s = &p.scene;
+    let e = s.lattice().extent();
+    let sw = &s.self_weight;
+    let loading = if !s.shear.drivers.is_empty() {
+        format!(", driver LDEM {}", s.shear.drivers.iter().map(|n| n.ldem().to_string()).collect::<Vec<_>>().join(", "))
+    } else if let Some(plate) = &s.plate {
+        format!(", a loading plate on face {} through springs", plate.face.name())
+    } else {
+        String::new()
+    };
+    vec![
         (
             "self-weight stage",
-            format!(
-                "g = {} m/s², D = {} 1/s, settled at {:e}",
-                s.self_weight.gravity_m_s2, s.self_weight.damping_per_s, s.self_weight.settle_tolerance
-            ),
+            if sw.gravity_m_s2 == 0.0 {
+                "none (g = 0)".to_string()
+            } else {
+                format!(
+                    "g = {} m/s², D = {} 1/s, settled at {:e}",
+                    sw.gravity_m_s2, sw.damping_per_s, sw.settle_tolerance
+                )
+            },
         ),
         (
             "shear stage",
             format!(
-                "D = {} 1/s, u̇f = {} m/s, t0 = {} s, {} s, driver LDEM {}",
-                s.shear.damping_per_s,
-                s.shear.velocity_m_s,
-                s.shear.rise_time_s,
-                s.shear.duration_s,
-                s.shear.drivers.iter().map(|n| n.ldem().to_string()).collect::<Vec<_>>().join(", ")
+                "D = {} 1/s, u̇f = {} m/s, t0 = {} s, {} s{loading}",
+                s.shear.damping_per_s, s.shear.velocity_m_s, s.shear.rise_time_s, s.shear.duration_s,
             ),
         ),
         (
@@ -211,13 +291,11 @@ pub(crate) fn page(d: &ReportInput, figures: &[Figure], skipped: &[(String, Stri
                 p.analysis.similarity.prototype_rate_m_s
             ),
         ),
-    ];
-    for (k, v) in rows {
-        let _ = writeln!(w, "<tr><th class=\"l\">{}</th><td class=\"l\">{}</td></tr>", esc(k), esc(&v));
-    }
-    let _ = write!(w, "</table>\n");
+    ]
+}
 
-    // Main shocks across seeds.
+/// The table of main shocks across seeds (a block's events, at model and prototype scale).
+fn main_shocks(w: &mut String, d: &ReportInput) {
     let reference = if d.paper {
         " Paper (seed 200, S2): stress drop 7.6 kPa, duration 2.1 ms, S1→S2 recurrence 25.8 ms, M = 6.77; at \
          prototype scale 21 s and 2.83 years."
@@ -258,26 +336,11 @@ pub(crate) fn page(d: &ReportInput, figures: &[Figure], skipped: &[(String, Stri
         );
     }
     let _ = write!(w, "</table>\n");
+}
 
-    let _ = write!(w, "<h2>Figures</h2>\n");
-    for f in figures {
-        let _ = write!(
-            w,
-            "<figure id=\"{id}\">\n<h3>{title}</h3>\n<img src=\"figures/{file}\" alt=\"{title}\">\n<figcaption>{caption}</figcaption>\n</figure>\n",
-            id = esc(f.file.trim_end_matches(".png")),
-            title = esc(&f.title),
-            file = esc(&f.file),
-            caption = esc(&f.caption)
-        );
-    }
-    if !skipped.is_empty() {
-        let _ = write!(w, "<p>Not drawn (their data is absent from this run):</p>\n<ul>\n");
-        for (f, why) in skipped {
-            let _ = writeln!(w, "<li><code>{}</code>: {}</li>", esc(f), esc(why));
-        }
-        let _ = write!(w, "</ul>\n");
-    }
-
+/// The tables, record files, the pipeline file and the conventions.
+fn tables_and_files(w: &mut String, d: &ReportInput, fault: bool) {
+    let p = d.pipeline;
     let _ = write!(
         w,
         "<h2>Tables</h2>\n<p>Parquet files; every per-seed table also reads lazily over all seeds with a glob such as <code>tables/series/*.parquet</code>.</p>\n<ul>\n"
@@ -335,12 +398,16 @@ pub(crate) fn page(d: &ReportInput, figures: &[Figure], skipped: &[(String, Stri
     {
         let _ = write!(w, "<h2>Pipeline file</h2>\n<pre>{}</pre>\n", esc(&text));
     }
+    let conventions = if fault {
+        "τ is the fault's shear traction; times are counted from the start of the run; a node's slip is twice \
+         its face's displacement; Mw = (2/3)·(log10 M0 − 9.1) with M0 = μ·Σ A·|D| over the ruptured nodes"
+    } else {
+        "τ is positive when the base resists the push; times are counted from the start of the shear stage; \
+         \"M (paper's M0)\" uses Eq. 15 as printed (Δσ·L_p·A_p·λ), Mw the consistent moment Δσ·L_p·A_p"
+    };
     let _ = write!(
         w,
-        "<p><small>Written by stickslip {}. Conventions: τ is positive when the base resists the push; times are \
-         counted from the start of the shear stage; \"M (paper's M0)\" uses Eq. 15 as printed (Δσ·L_p·A_p·λ), Mw the \
-         consistent moment Δσ·L_p·A_p.</small></p>\n</body>\n</html>\n",
+        "<p><small>Written by stickslip {}. Conventions: {conventions}.</small></p>\n</body>\n</html>\n",
         env!("CARGO_PKG_VERSION")
     );
-    Ok(h)
 }

@@ -10,13 +10,14 @@ use stickslip_store::Folder;
 use stickslip_store::io::read_parquet_if_present;
 use stickslip_store::schema::{
     ACOUSTIC_EMISSION, ATTENUATION, ATTENUATION_FIT, CRACKS, EVENTS_TABLE, PSA_STATS, RECORDS, RUNS, RUPTURE_ONSETS,
-    RUPTURES, SIMILARITY, SUMMARY, TableSpec,
+    RUPTURES, SIMILARITY, SOURCE, STATIONS, SUMMARY, TableSpec,
 };
 use stickslip_store::tables::cracks::{AcousticEmission, Cracks};
 use stickslip_store::tables::events::{Events, Similarity};
 use stickslip_store::tables::fronts::{RuptureOnsets, Ruptures};
 use stickslip_store::tables::records::{Attenuation, Records};
 use stickslip_store::tables::runs::Runs;
+use stickslip_store::tables::source::{Sources, Stations};
 use stickslip_store::tables::stats::{AttenuationFit, PsaStats, SummaryTable};
 
 use crate::ReportError;
@@ -52,6 +53,10 @@ pub struct ReportInput<'a> {
     pub cracks: Option<Cracks>,
     /// Acoustic-emission events (scenes with `[rupture]`).
     pub emission: Option<AcousticEmission>,
+    /// The source of each seed whose fault ruptured (fault scenes).
+    pub sources: Option<Sources>,
+    /// The stations of each seed (fault scenes with `[[stations]]`).
+    pub stations: Option<Stations>,
     /// Mean Δt over the seeds (s), if any finished.
     pub mean_dt_s: Option<f64>,
     /// The `[set]` the folder's record set was matched to: `set/set.toml`, written by `stickslip
@@ -111,6 +116,8 @@ impl<'a> ReportInput<'a> {
             rupture_onsets: table(&RUPTURE_ONSETS)?.as_ref().map(RuptureOnsets::read).transpose()?,
             cracks: table(&CRACKS)?.as_ref().map(Cracks::read).transpose()?,
             emission: table(&ACOUSTIC_EMISSION)?.as_ref().map(AcousticEmission::read).transpose()?,
+            sources: table(&SOURCE)?.as_ref().map(Sources::read).transpose()?,
+            stations: table(&STATIONS)?.as_ref().map(Stations::read).transpose()?,
             mean_dt_s,
             seeds,
             not_drawn,

@@ -21,6 +21,7 @@ pub mod charts;
 pub mod clip;
 pub mod contour;
 mod error;
+mod fault_page;
 pub mod figures;
 mod html;
 mod input;
@@ -45,6 +46,17 @@ pub fn write_report(out: &Path, pipeline: &Pipeline) -> Result<ReportSummary, Re
     std::fs::create_dir_all(&dir).map_err(|e| ReportError::Io { path: dir.clone(), source: e })?;
     let mut drawn = Vec::new();
     let mut skipped = Vec::new();
+    // A fault scene's page leaves out the figures of the paper's similarity scaling (their data
+    // exists, measured on the block's own scale, and would contradict the source table).
+    let fault = pipeline.scene.is_fault();
+    let applies = |file: &str| !(fault && figures::left_out_on_a_fault(file).is_some());
+    let left_out: Vec<(String, String)> = figures::ALL
+        .iter()
+        .filter_map(|(file, _)| {
+            let why = figures::left_out_on_a_fault(file).filter(|_| fault)?;
+            Some((file.to_string(), why.to_string()))
+        })
+        .collect();
     // The figures are drawn on the available cores, each into a temporary file (then renamed:
     // a reader never sees half a figure); the page lists them in their order.
     let next = std::sync::atomic::AtomicUsize::new(0);
@@ -58,7 +70,11 @@ pub fn write_report(out: &Path, pipeline: &Pipeline) -> Result<ReportSummary, Re
                 loop {
                     let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
                     let Some((file, draw)) = figures::ALL.get(k) else { break };
-                    let outcome = draw(&input, &tmp(file));
+                    let outcome = if applies(file) {
+                        draw(&input, &tmp(file))
+                    } else {
+                        Ok(figures::Outcome::Skipped(String::new()))
+                    };
                     *outcomes[k].lock().expect("figure outcome") = Some(outcome);
                 }
             });
@@ -83,11 +99,13 @@ pub fn write_report(out: &Path, pipeline: &Pipeline) -> Result<ReportSummary, Re
             figures::Outcome::Skipped(why) => {
                 let _ = std::fs::remove_file(&tmp);
                 let _ = std::fs::remove_file(&path);
-                skipped.push((file.to_string(), why));
+                if applies(file) {
+                    skipped.push((file.to_string(), why));
+                }
             }
         }
     }
     let index = input.folder.index();
-    write_text_atomic(&index, &html::page(&input, &drawn, &skipped)?)?;
-    Ok(ReportSummary { index, figures: drawn, skipped })
+    write_text_atomic(&index, &html::page(&input, &drawn, &skipped, &left_out)?)?;
+    Ok(ReportSummary { index, figures: drawn, skipped, left_out })
 }

@@ -150,13 +150,17 @@ pub fn log_ticks(lo: f64, hi: f64) -> (Vec<f64>, Vec<f64>) {
 }
 
 /// Tick label formatter: plain numbers with up to 4 significant digits, scientific when tiny or
-/// huge.
+/// huge (with up to 3 significant digits, so that 3.5e5, 4e5 and 4.5e5 read apart).
 pub fn fmt_tick(v: &f64) -> String {
     let a = v.abs();
     if a < 1e-12 {
         "0".into()
     } else if !(1e-3..1e5).contains(&a) {
-        format!("{v:.0e}")
+        let s = format!("{v:.2e}");
+        let (mantissa, exponent) = s.split_once('e').unwrap_or((&s, "0"));
+        let mantissa =
+            if mantissa.contains('.') { mantissa.trim_end_matches('0').trim_end_matches('.') } else { mantissa };
+        format!("{mantissa}e{exponent}")
     } else {
         let s = format!("{v:.4}");
         let s = s.trim_end_matches('0').trim_end_matches('.');
@@ -185,5 +189,15 @@ mod tests {
         assert!(bold.len() <= 8 && bold.len() >= 5, "{bold:?}");
         assert!(light.iter().all(|v| (v.log10() - v.log10().round()).abs() < 1e-9));
         assert_eq!(log_ticks(0.0, 1.0), (vec![], vec![]));
+    }
+
+    #[test]
+    fn large_and_tiny_ticks_keep_the_digits_that_tell_them_apart() {
+        // The δ(t) axis of a fault in µm read "4e5 4e5 4e5" and "1e6 1e6" before.
+        let labels: Vec<String> = [3.5e5, 4e5, 4.5e5, 1.2e6, 1e6, -2.25e-5].iter().map(fmt_tick).collect();
+        assert_eq!(labels, ["3.5e5", "4e5", "4.5e5", "1.2e6", "1e6", "-2.25e-5"]);
+        assert_eq!(fmt_tick(&12345.0), "12345");
+        assert_eq!(fmt_tick(&0.25), "0.25");
+        assert_eq!(fmt_tick(&0.0), "0");
     }
 }

@@ -29,4 +29,7 @@ pub struct ReportSummary {
     pub figures: Vec<Figure>,
     /// Figures skipped for lack of data, with the reason.
     pub skipped: Vec<(String, String)>,
+    /// Figures that do not apply to this scene (the paper's similarity figures on a fault scene:
+    /// [`crate::figures::LEFT_OUT_ON_A_FAULT`]), with the reason.
+    pub left_out: Vec<(String, String)>,
 }

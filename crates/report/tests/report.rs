@@ -204,3 +204,84 @@ fn the_page_renders_in_headless_chromium() {
     assert_eq!(w, 1300);
     assert!(var > 100.0, "blank screenshot");
 }
+
+/// A fault scene (`[fault]`) is at its own scale: its page leads with the source of its rupture
+/// (the `source` table's numbers) and its stations, and leaves out what measures a block by the
+/// paper's similarity scaling — the main-shock table with model-scale magnitudes, the magnitude,
+/// catalogue and scaling figures, the self-weight and driver lines.
+#[test]
+fn a_fault_scenes_page_leads_with_its_source_and_leaves_the_similarity_out() {
+    let dir = scratch_dir("report-fault");
+    let text = std::fs::read_to_string(repo_path("pipelines/tpv5-500m.toml")).unwrap();
+    let report = run(&dir, &text);
+    let out = dir.join("out");
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    let table = |name: &str| stickslip_support::read_table(&out.join("tables").join(format!("{name}.parquet")));
+    let source = table("source");
+    let get = |c: &str| source.column(c).unwrap().f64().unwrap().get(0).unwrap();
+    let (mw, drop, area) = (get("mw"), get("stress_drop_pa"), get("ruptured_area_m2"));
+    assert!((6.95..7.2).contains(&mw), "TPV5 is an Mw ≈ 7 rupture: {mw}");
+    // The page's numbers are the table's.
+    for cell in [
+        format!("<td>{mw:.2}</td>"),
+        format!("<td>{:.3e}</td>", get("m0_n_m")),
+        format!("<td>{:.2}</td>", drop / 1e6),
+        format!("<td>{:.1}</td>", area / 1e6),
+        format!("<td>{:.2}</td>", get("rupture_duration_s")),
+        format!("<td>{:.2}</td>", get("peak_slip_rate_m_s")),
+    ] {
+        assert!(html.contains(&cell), "the source table's {cell} is not on the page");
+    }
+    // The source and the stations come first, the rupture figure with the source.
+    let at = |s: &str| html.find(s).unwrap_or_else(|| panic!("the page lacks {s}"));
+    assert!(at("<h2>Source</h2>") < at("src=\"figures/rupture_time.png\""));
+    assert!(at("src=\"figures/rupture_time.png\"") < at("<h2>Stations</h2>"));
+    assert!(at("<h2>Stations</h2>") < at("<h2>Parameters</h2>"));
+    assert_eq!(html.matches("src=\"figures/rupture_time.png\"").count(), 1, "the rupture figure shown twice");
+    // The nearest station's distance and peaks, from the stations table.
+    let st = table("stations");
+    let names: Vec<String> =
+        st.column("station").unwrap().str().unwrap().iter().map(|s| s.unwrap().to_string()).collect();
+    let col =
+        |c: &str| st.column(c).unwrap().f64().unwrap().iter().map(|v| v.unwrap_or(f64::NAN)).collect::<Vec<f64>>();
+    let (r_rup, pga, pgv) = (col("r_rup_m"), col("pga_m_s2"), col("pgv_m_s"));
+    let near = (0..names.len()).min_by(|&a, &b| r_rup[a].total_cmp(&r_rup[b])).unwrap();
+    let row = format!("<tr><th class=\"l\">{}</th><td>{:.1}</td>", names[near], r_rup[near] / 1e3);
+    assert!(html.contains(&row), "no row {row}");
+    assert!(
+        html.contains(&format!("<td>{:.3}</td><td>{:.3}</td>", pga[near], pgv[near])),
+        "PGA, PGV of {}",
+        names[near]
+    );
+    assert!(at(&row) < at("<h2>Parameters</h2>"));
+    // What does not apply to a fault.
+    for absent in [
+        "Main shocks across seeds",
+        "M (paper's M0)",
+        "prototype duration",
+        ">self-weight stage<",
+        ">shear stage<",
+        "driver LDEM",
+        "<th class=\"l\">similarity</th>",
+        "What the base did",
+    ] {
+        assert!(!html.contains(absent), "a fault's page shows {absent:?}");
+    }
+    for (file, _) in stickslip_report::figures::LEFT_OUT_ON_A_FAULT {
+        assert!(!report.figures.iter().any(|f| f.file == file), "{file} drawn on a fault's page");
+        assert!(!out.join("figures").join(file).exists(), "{file} written");
+        assert!(report.left_out.iter().any(|(f, _)| f == file), "{file} not said to be left out");
+        assert!(!report.skipped.iter().any(|(f, _)| f == file), "{file} said to lack data");
+    }
+    assert!(html.contains("Left out on a fault scene"));
+    // Slip in metres, the acceleration cut to its motion and said to be cut off by the run's end.
+    let slip = report.figures.iter().find(|f| f.file == "mean_slip.png").unwrap();
+    assert!(slip.caption.contains("twice its face's displacement"), "{}", slip.caption);
+    let acc = report.figures.iter().find(|f| f.file == "acceleration_run.png").unwrap();
+    assert!(acc.caption.contains("to the end of the run at 12.0 s"), "{}", acc.caption);
+    assert!(acc.caption.contains("still shakes"), "{}", acc.caption);
+    assert!(acc.panels.iter().all(|p| p.ends_with(" km")), "{:?}", acc.panels);
+    for f in &report.figures {
+        assert!(f.dropped.is_empty(), "{}: labels left out: {:?}", f.file, f.dropped);
+    }
+}

@@ -26,6 +26,9 @@ pub struct Inspection {
     pub strength_pa: f64,
     /// Critical step of each seed inspected.
     pub critical: Vec<(u64, CriticalStep)>,
+    /// Seconds the first seed's stiffness and critical step took: what a run of the scene spends
+    /// on them before its first step, besides building the lattice.
+    pub setup_s: f64,
     /// The paper's bound `0.6·Lc/Cp` (Eq. 5, s).
     pub paper_bound_s: f64,
     /// Effective moduli along x and along z (static solves of the lattice of the first seed
@@ -272,9 +275,14 @@ pub fn inspect(model: &Model, seeds: &[u64], statics: Statics) -> Result<Inspect
     let scene = model.scene();
     let lattice = model.lattice();
     let mut critical = Vec::with_capacity(seeds.len());
+    let mut setup_s = f64::NAN;
     for &seed in seeds {
         // `check` runs alone: the pool is its.
+        let start = std::time::Instant::now();
         critical.push((seed, critical_step_on(model, &model.lane_stiffness_on(seed, true)?, true)?));
+        if setup_s.is_nan() {
+            setup_s = start.elapsed().as_secs_f64();
+        }
     }
     // The per-bar stiffness only for the static solves on the whole block.
     let k = if statics == Statics::Full { model.bar_stiffness(seeds[0])? } else { Vec::new() };
@@ -306,6 +314,7 @@ pub fn inspect(model: &Model, seeds: &[u64], statics: Statics) -> Result<Inspect
         self_weight_stress_pa: weight / area,
         strength_pa: slider.strength_n / slider.normal_n * weight / area,
         critical,
+        setup_s,
         paper_bound_s: scene.paper_time_step_bound(),
         moduli,
         unsolved,
@@ -314,10 +323,17 @@ pub fn inspect(model: &Model, seeds: &[u64], statics: Statics) -> Result<Inspect
     })
 }
 
+/// Untimed steps before [`probe_step_time`] times any: the three time levels of the state and the
+/// forces are freshly allocated, zero pages the kernel maps at their first write, and each of the
+/// first three steps writes one level for the first time (on a 50 M-bar lattice these steps took
+/// 0.24–0.25 s against 0.15 s for the ones after; timing them put `check`'s estimate 1.6–3× above
+/// the run).
+pub const PROBE_WARM_UP_STEPS: u32 = 3;
+
 /// Seconds per step of one seed of `model` at Δt = `dt` with the scene's tracking (energy terms,
 /// slip onsets), on the current rayon pool (each step split over it with `parallel`): steps timed
-/// from rest under the shear stage's damping, after one untimed step, until `budget_s` has passed
-/// (at least 3 steps, at most 200).
+/// from rest under the shear stage's damping, after [`PROBE_WARM_UP_STEPS`] untimed steps, until
+/// `budget_s` has passed (at least 3 steps, at most 200).
 pub fn probe_step_time(model: &Model, seed: u64, dt: f64, parallel: bool, budget_s: f64) -> Result<f64, SolverError> {
     use crate::step::{Batch, LaneSetup, Tracking};
     let scene = model.scene();
@@ -333,7 +349,9 @@ pub fn probe_step_time(model: &Model, seed: u64, dt: f64, parallel: bool, budget
     batch.params.set_body_acceleration(0, [0.0, 0.0, -scene.self_weight.gravity_m_s2]);
     batch.stepper.set_parallel(parallel && model.layout().splits());
     batch.stepper.set_tracking(Tracking { energy: scene.record.energy, onsets: scene.record.slip_onsets, slid: false });
-    batch.step();
+    for _ in 0..PROBE_WARM_UP_STEPS {
+        batch.step();
+    }
     let start = std::time::Instant::now();
     let mut steps = 0u32;
     while steps < 200 && (steps < 3 || start.elapsed().as_secs_f64() < budget_s) {

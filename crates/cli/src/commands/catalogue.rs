@@ -3,7 +3,9 @@
 use std::path::PathBuf;
 
 use anyhow::{Context, Result, bail};
-use stickslip_ensemble::catalogue::{CatalogueStats, GOF_LEVEL_PERCENT, MAGNITUDE_BIN, rewrite_catalogue};
+use stickslip_ensemble::catalogue::{
+    B_VALUE_MIN_RANGE, CatalogueStats, GOF_LEVEL_PERCENT, MAGNITUDE_BIN, magnitude_convention, rewrite_catalogue,
+};
 use stickslip_store::Folder;
 use stickslip_store::io::read_parquet_if_present;
 use stickslip_store::schema::RUNS;
@@ -64,7 +66,7 @@ pub fn run(a: Args) -> Result<()> {
     Ok(())
 }
 
-fn or_reason<T>(o: &Outcome<T>, f: impl Fn(&T) -> String) -> String {
+fn or_reason<T>(o: &Outcome<T>, mut f: impl FnMut(&T) -> String) -> String {
     match o {
         Ok(v) => f(v),
         Err(why) => format!("no fit: {why}"),
@@ -76,11 +78,54 @@ fn print(s: &CatalogueStats, seed: Option<u64>) {
     outln!(
         "Gutenberg–Richter ({who}; bins of {MAGNITUDE_BIN}, Mc by {GOF_LEVEL_PERCENT}% goodness of fit, else maximum curvature + 0.2)"
     );
+    let mut narrow = Vec::new();
+    let mut fitted = Vec::new();
     for r in s.b_values.iter().filter(|r| r.seed == seed) {
+        // The magnitudes above Mc: from Mc to the largest bin holding events.
+        let largest = |mc: f64| {
+            s.frequency
+                .iter()
+                .filter(|b| b.seed == seed && b.quantity == r.quantity && b.incremental > 0 && b.centre >= mc - 1e-9)
+                .map(|b| b.centre)
+                .fold(f64::NEG_INFINITY, f64::max)
+        };
         let fit = or_reason(&r.fit, |f| {
-            format!("Mc {:.1}, {} events ≥ Mc, b = {:.2} ± {:.2} (Shi–Bolt), a = {:.2}", f.mc, f.n, f.b, f.b_sigma, f.a)
+            let top = largest(f.mc);
+            let bins = ((top - f.mc) / MAGNITUDE_BIN).round() as i64 + 1;
+            let range = bins as f64 * MAGNITUDE_BIN;
+            if range < B_VALUE_MIN_RANGE - 1e-9 {
+                narrow.push((r.quantity.clone(), bins, range));
+            }
+            fitted.push((r.quantity.clone(), f.b));
+            format!(
+                "Mc {:.1}, {} events ≥ Mc in {bins} bins (Mc to {top:.1}), b = {:.2} ± {:.2} (Shi–Bolt), a = {:.2}",
+                f.mc, f.n, f.b, f.b_sigma, f.a
+            )
         });
         outln!("  {:<30} {:>7} events  {fit}", r.quantity, r.events);
+    }
+    outln!("  (the magnitude columns of tables/similarity.parquet:");
+    for r in s.b_values.iter().filter(|r| r.seed == seed) {
+        outln!("    {}: {}", r.quantity, magnitude_convention(&r.quantity));
+    }
+    outln!("  )");
+    for (quantity, bins, range) in &narrow {
+        outln!(
+            "  warning: {quantity}: b fitted from {bins} magnitude bin{} above Mc ({range:.1} units); a b-value reads as \
+             the slope of a Gutenberg–Richter power law only over at least {B_VALUE_MIN_RANGE:.1} unit above Mc ({} \
+             bins of {MAGNITUDE_BIN}): this one measures how closely the sizes cluster",
+            if *bins == 1 { "" } else { "s" },
+            (B_VALUE_MIN_RANGE / MAGNITUDE_BIN).round()
+        );
+    }
+    let (lo, hi) = fitted.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (_, v)| (a.min(*v), b.max(*v)));
+    if fitted.len() > 1 && hi > 1.2 * lo {
+        outln!(
+            "  warning: the {} conventions give b = {lo:.2} … {hi:.2} for the same events: the paper's moment is the \
+             consistent one × λ (a shift of log10 λ) and Riera's M is 0.98 × Mw plus a constant, so a power law would \
+             give b-values within 2% of each other; these follow where the bins fall, not the events' sizes",
+            fitted.len()
+        );
     }
     outln!("Recurrence ({who}; model-scale seconds, intervals within each seed)");
     for r in s.recurrence.iter().filter(|r| r.seed == seed) {

@@ -13,12 +13,14 @@ use stickslip_seismo::spectra::response::Reading;
 use stickslip_solver::Model;
 use stickslip_solver::boundary::absorbing::impedances;
 use stickslip_solver::fault::FaultReading;
-use stickslip_solver::inspect::{Statics, inspect, probe_step_time};
+use stickslip_solver::inspect::{PROBE_WARM_UP_STEPS, Statics, inspect, probe_step_time};
 use stickslip_solver::laws::describe;
-use stickslip_solver::memory::{Batches, LONG_RUN_BAR_UPDATES, estimate, human, run_steps, samples};
+use stickslip_solver::memory::{
+    Batches, LONG_RUN_BAR_UPDATES, counts, dt_estimate, estimate, human, run_steps, samples,
+};
 use stickslip_solver::scene::{SettleMethod, TimeStep};
 
-use crate::budget;
+use crate::budget::{self, NOMINAL_RATE};
 use crate::text::N;
 
 /// Arguments of `stickslip check`.
@@ -26,9 +28,11 @@ use crate::text::N;
 pub struct Args {
     /// Pipeline file (TOML).
     pub pipeline: PathBuf,
-    /// Compute the critical step for at most this many of the pipeline's seeds.
-    #[arg(long, default_value_t = 16)]
-    pub seeds: usize,
+    /// Compute the critical step for at most this many of the pipeline's seeds (default 16, fewer
+    /// on a lattice of more than 6 million bars, where each costs about 100 steps; one when E is
+    /// homogeneous, since every seed's lattice is then the same).
+    #[arg(long)]
+    pub seeds: Option<usize>,
     /// Solve the effective stiffness and the block's stiffness under its load on the whole
     /// lattice even when it is large (by default a lattice of more than 500 000 bars gets them
     /// on a 16×16×16 sample block and no block stiffness: each solve costs thousands of steps).
@@ -54,22 +58,13 @@ fn round(v: f64) -> N {
 
 /// `stickslip check`.
 pub fn run(a: Args) -> Result<()> {
-    anyhow::ensure!(a.seeds >= 1, "--seeds = 0 is not allowed: at least 1");
+    let started = std::time::Instant::now();
+    if a.seeds == Some(0) {
+        anyhow::bail!("--seeds = 0 is not allowed: at least 1 (seeds whose critical step check computes)");
+    }
     let pipeline = Pipeline::load(&a.pipeline)?;
     let scene = &pipeline.scene;
-    // The memory of one seed (what check itself builds and steps) is checked before the lattice
-    // is built; the ensemble's is printed below.
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-    if let Ok(e) = stickslip_solver::memory::estimate(scene, Batches::ONE, 2) {
-        budget::check_count(scene, e.bars, stickslip_solver::memory::dt_estimate(scene), "this scene")?;
-    }
-    let one = budget::check_memory(scene, 1, 1, "one seed of this scene")?;
-    let available = budget::available_memory()?;
-    let model = Model::new(scene.clone());
-    let seeds: Vec<u64> = pipeline.seeds.iter().copied().take(a.seeds).collect();
-    let statics = if a.full_statics { Statics::Full } else { Statics::for_model(&model) };
-    let facts = inspect(&model, &seeds, statics)?;
-    let e = model.lattice().extent();
     outln!("pipeline {} ({}), hash {}", pipeline.name, a.pipeline.display(), pipeline.hash);
     outln!(
         "  seeds: {} ({}{})",
@@ -77,6 +72,23 @@ pub fn run(a: Args) -> Result<()> {
         pipeline.seeds.iter().take(8).map(|s| s.to_string()).collect::<Vec<_>>().join(", "),
         if pipeline.seeds.len() > 8 { ", …" } else { "" }
     );
+    // What the scene costs, from the block's counts alone, before anything is built: printed
+    // first, and a scene that does not fit is refused here (building it would fill memory).
+    crate::commands::pipeline::check_set_capacity(&pipeline, pipeline.seeds.len())?;
+    let bars = cost_before_building(&pipeline, threads, a.allow_long)?;
+    let model = Model::new(scene.clone());
+    let build_s = started.elapsed().as_secs_f64();
+    // Every seed's lattice is the same when E is homogeneous: one critical step stands for all.
+    let homogeneous = scene.young_cv == 0.0;
+    let inspected = match a.seeds {
+        _ if homogeneous => 1,
+        Some(n) => n,
+        None => ((INSPECT_BAR_BUDGET / bars.max(1) as f64).floor() as usize).clamp(1, 16),
+    };
+    let seeds: Vec<u64> = pipeline.seeds.iter().copied().take(inspected).collect();
+    let statics = if a.full_statics { Statics::Full } else { Statics::for_model(&model) };
+    let facts = inspect(&model, &seeds, statics)?;
+    let e = model.lattice().extent();
     outln!(
         "  block {}×{}×{} modules of Lc = {} m ({} × {} × {} m): {} nodes, {} bars, {} contact nodes, mass {} kg",
         scene.dims.nx,
@@ -108,7 +120,9 @@ pub fn run(a: Args) -> Result<()> {
         );
     }
     let (lo, hi) = facts.critical_range_s();
-    let which = if facts.critical.len() == pipeline.seeds.len() {
+    let which = if homogeneous {
+        "for every seed (young_cv = 0: every seed's lattice is the same)".to_string()
+    } else if facts.critical.len() == pipeline.seeds.len() {
         format!("over the pipeline's {} seeds", facts.critical.len())
     } else {
         format!("over its first {} of {} seeds (--seeds N for more)", facts.critical.len(), pipeline.seeds.len())
@@ -148,12 +162,17 @@ pub fn run(a: Args) -> Result<()> {
     let on = if parallel { format!("{threads} threads") } else { "one thread".into() };
     // With the skip-ahead the count bounds the run: the quasi-static stretches are jumped.
     let bound = if scene.skip_ahead.enabled { "at most " } else { "" };
+    // A run's set-up is what check just did for one seed: the lattice, the seed's stiffness and
+    // its critical step.
+    let setup_s = build_s + facts.setup_s;
     outln!(
         "  run: {bound}{} steps per seed ({}shear {shear}), {bound}{updates:.3e} bar-updates; {bound}about {} per seed on \
-         {on} (a timed probe: {:.3e} s per step, {:.3e} bar-updates/s){}",
+         {on} ({} of set-up — the lattice, the seed's stiffness and critical step, as timed here — and the steps at \
+         {:.3e} s each, a timed probe after {PROBE_WARM_UP_STEPS} warm-up steps: {:.3e} bar-updates/s){}",
         settle + shear,
         if settle > 0 { format!("self-weight up to {settle} + ") } else { String::new() },
-        budget::duration(per_step * (settle + shear) as f64),
+        budget::duration(setup_s + per_step * (settle + shear) as f64),
+        budget::duration(setup_s),
         per_step,
         facts.bars as f64 / per_step,
         if scene.skip_ahead.enabled {
@@ -164,28 +183,6 @@ pub fn run(a: Args) -> Result<()> {
             ""
         }
     );
-    let batches = Batches::of_ensemble(pipeline.seeds.len(), threads, scene.skip_ahead.enabled);
-    let all = estimate(scene, batches, samples(scene, dt)).ok();
-    outln!(
-        "  memory: about {} for one seed ({:.0} bytes per bar){}; available {}",
-        human(one.total),
-        one.bytes_per_bar(),
-        all.map_or(String::new(), |e| format!(
-            ", {} for its {} seeds on {threads} threads ({} at once in batches of {})",
-            human(e.total),
-            pipeline.seeds.len(),
-            batches.concurrent,
-            batches.lanes
-        )),
-        available.as_ref().map_or("unknown".into(), |(b, source)| format!("{} ({source})", human(*b)))
-    );
-    if let (Some(e), Some((limit, _))) = (all, &available)
-        && e.total > *limit
-    {
-        outln!(
-            "    → the pipeline's seeds do not fit at once: `stickslip pipeline` refuses them; give it fewer --threads"
-        );
-    }
     if let Some(iv) = scene.record.interval_s {
         let k = |dt: f64| (iv / dt).round().max(1.0);
         let (k_lo, k_hi) = match scene.time_step {
@@ -408,6 +405,7 @@ pub fn run(a: Args) -> Result<()> {
             }
         );
     }
+    let stations = scene.is_fault() && !scene.stations.is_empty();
     match &pipeline.analysis.accelerograms {
         Some(a) => {
             let nodes = if a.nodes.is_empty() {
@@ -443,6 +441,12 @@ pub fn run(a: Args) -> Result<()> {
                 a.order
             );
         }
+        // A fault's stations are recorded and processed whatever [accelerograms] says.
+        None if stations => outln!(
+            "  records: the {} stations' ([[stations]]): each recorded, band-passed inside its usable band and \
+             written with RotD50 PGA/PGV (stations table, record files); no event records ([accelerograms])",
+            scene.stations.len()
+        ),
         None => outln!("  records: off (no [accelerograms] or [spectra] section)"),
     }
     match &pipeline.analysis.spectra {
@@ -463,6 +467,11 @@ pub fn run(a: Args) -> Result<()> {
             },
             if s.rotd { ", RotD50/RotD100" } else { "" },
             if s.attenuation { ", attenuation" } else { "" }
+        ),
+        None if stations => outln!(
+            "  spectra: the stations' 5%-damped RotD50 and RotD100 PSA over each one's usable band (station_spectra \
+             table){}; no [spectra] section for control nodes",
+            if pipeline.set.is_some() { ", which the set below is chosen by" } else { "" }
         ),
         None => outln!("  spectra: off (no [spectra] section)"),
     }
@@ -509,6 +518,73 @@ pub fn run(a: Args) -> Result<()> {
         outln!("  warning: {w}");
     }
     Ok(())
+}
+
+/// Bars × seeds whose critical steps `check` computes by default (each costs about 100 steps of
+/// its lattice): 16 seeds up to 6 million bars, fewer above, one at 100 million.
+const INSPECT_BAR_BUDGET: f64 = 1e8;
+
+/// Prints what `pipeline`'s scene costs from its block's counts alone — nodes, bars, steps at the
+/// Δt of the paper's bound, a time at [`NOMINAL_RATE`], the memory of one seed and of the
+/// ensemble against what is available — and refuses it, before anything is built, when one seed
+/// does not fit (check builds one) or its run is too long. Returns the bar count.
+fn cost_before_building(pipeline: &Pipeline, threads: usize, allow_long: bool) -> Result<u64> {
+    let scene = &pipeline.scene;
+    let (nodes, bars) = counts(scene.dims).map_err(|e| {
+        anyhow::anyhow!("this scene: {e}: use fewer modules (pipeline keys: block.nx, block.ny, block.nz)")
+    })?;
+    let dt = dt_estimate(scene);
+    budget::check_count(scene, bars, dt, "this scene")?;
+    let (settle, shear) = run_steps(scene, dt);
+    let updates = (settle + shear) as f64 * bars as f64;
+    let bound = if scene.skip_ahead.enabled { "at most " } else { "" };
+    // Set-up (the critical step's Lanczos passes and the Weibull draws) is about 100 steps.
+    let guess = (updates + 100.0 * bars as f64) / NOMINAL_RATE;
+    outln!(
+        "  before building: {nodes} nodes, {bars} bars (the block's counts); Δt ≈ {dt:.3e} s from the paper's bound, \
+         {bound}{} steps, {bound}{updates:.3e} bar-updates per seed: about {} per seed at {NOMINAL_RATE:.1e} \
+         bar-updates/s (one thread of the development machine at size; the probe below times this machine)",
+        settle + shear,
+        budget::duration(guess)
+    );
+    let available = budget::available_memory()?;
+    let batches = Batches::of_ensemble(pipeline.seeds.len(), threads, scene.skip_ahead.enabled);
+    let one = estimate(scene, Batches::ONE, samples(scene, dt)).ok();
+    let all = estimate(scene, batches, samples(scene, dt)).ok();
+    outln!(
+        "  memory: about {} for one seed{}{}; available {}",
+        one.map_or("more than 64 bits count".into(), |e| format!(
+            "{} ({:.0} bytes per bar)",
+            human(e.total),
+            e.bytes_per_bar()
+        )),
+        all.map_or(String::new(), |e| format!(
+            ", {} for its {} seeds on {threads} threads ({} at once in batches of {})",
+            human(e.total),
+            pipeline.seeds.len(),
+            batches.concurrent,
+            batches.lanes
+        )),
+        if one.is_some_and(|e| e.total > 1 << 30) { " (check builds one seed)" } else { "" },
+        available.as_ref().map_or("unknown".into(), |(b, source)| format!("{} ({source})", human(*b)))
+    );
+    if let (Some(e), Some((limit, _))) = (all, &available)
+        && e.total > *limit
+    {
+        outln!(
+            "    → the pipeline's seeds do not fit at once: `stickslip pipeline` refuses them; give it fewer --threads"
+        );
+    }
+    budget::check_memory(scene, 1, 1, "one seed of this scene (what check builds)")?;
+    budget::check_length(scene, bars, dt, None, allow_long, "this scene")?;
+    if bars > 20_000_000 {
+        outln!(
+            "  building the lattice, each inspected seed's critical step and a timed probe (about {} each at the rate \
+             above; what is printed so far stands without them)…",
+            budget::duration(100.0 * bars as f64 / NOMINAL_RATE)
+        );
+    }
+    Ok(bars)
 }
 
 /// What `check` says of a fault scene (docs/model.md §15): tractions, where rupture starts, the

@@ -5,8 +5,9 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
-use anyhow::{Context, Result};
+use anyhow::{Context, Result, bail};
 use stickslip_config::Pipeline;
+use stickslip_config::set::SetCapacity;
 use stickslip_ensemble::precision::run_to_precision;
 use stickslip_ensemble::set::SetOutcome;
 use stickslip_ensemble::summary::digest;
@@ -33,7 +34,7 @@ pub struct Args {
     #[arg(long)]
     pub seeds: Option<String>,
     /// Worker threads [default: one per core].
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true, value_parser = crate::commands::pipeline::parse_threads)]
     pub threads: Option<usize>,
     /// Discard results of a different pipeline found in the output folder.
     #[arg(long)]
@@ -362,6 +363,49 @@ fn no_events(pipeline: &Pipeline, folder: &Folder, regimes: &Regimes) -> String 
     lines.join("\n")
 }
 
+/// Refuses, before anything runs, a set of a scenario's stations that `seeds` seeds cannot fill:
+/// each seed is one rupture giving at most `set.max_per` of the surface stations that can lie in
+/// the distance bin ([`SetCapacity`]).
+pub fn check_set_capacity(pipeline: &Pipeline, seeds: usize) -> Result<()> {
+    let Some(set) = pipeline.set.as_ref().filter(|_| pipeline.sets_from_stations()) else { return Ok(()) };
+    let c = SetCapacity::of(set, &pipeline.scene, seeds);
+    let count = set.options.count;
+    if c.records < count {
+        let within = set.distance_km.map_or(String::new(), |(_, hi)| {
+            format!(" that can lie within set.distance_max_km = {hi} km (R_rup is at least a station's distance from the fault plane)")
+        });
+        let need = if c.per_seed == 0 {
+            "no number of seeds".to_string()
+        } else {
+            format!("at least {} seeds", count.div_ceil(c.per_seed))
+        };
+        bail!(
+            "{}: set.count = {count} is not allowed with {seeds} seed{}: at most {} records, {} per seed (one rupture: \
+             set.max_per = {}, of the {} of {} surface stations{within}), whatever the magnitudes; allowed: set.count \
+             ≤ {} for these seeds — or run {need} (--seeds, [seeds]), or widen the distance bin",
+            pipeline.name,
+            if seeds == 1 { "" } else { "s" },
+            c.records,
+            c.per_seed,
+            set.options.per_group,
+            c.stations,
+            c.surface,
+            c.records
+        );
+    }
+    Ok(())
+}
+
+/// Parses `--threads N`: a whole number of threads ≥ 1 (a negative number is read as a value, so
+/// that it is refused with the range rather than taken by clap for an unknown flag).
+pub fn parse_threads(s: &str) -> Result<usize, String> {
+    match s.trim().parse::<i128>() {
+        Ok(v) if v >= 1 => usize::try_from(v).map_err(|_| format!("{v} threads: at most {}", usize::MAX)),
+        Ok(v) => Err(format!("{v} threads: give a whole number ≥ 1 (or leave --threads out for one per core)")),
+        Err(_) => Err(format!("{s:?} is not a number of threads: give a whole number ≥ 1")),
+    }
+}
+
 /// `stickslip pipeline`.
 pub fn run(a: Args) -> Result<()> {
     anyhow::ensure!(a.out.is_none() || a.pipelines.len() == 1, "--out needs exactly one pipeline");
@@ -402,6 +446,10 @@ pub fn run(a: Args) -> Result<()> {
         let mut seeds = given.clone().unwrap_or_else(|| pipeline.seeds.clone());
         if let Some((k, n)) = a.shard {
             seeds = shard(&seeds, k, n);
+        }
+        // A shard's seeds are part of the set's; the merge chooses it from them all.
+        if a.shard.is_none() {
+            check_set_capacity(pipeline, seeds.len())?;
         }
         let what = format!("{}: {} seed{}", pipeline.name, seeds.len(), if seeds.len() == 1 { "" } else { "s" });
         crate::budget::check_before_build(&pipeline.scene, seeds.len(), threads, a.allow_long, &what)?;

@@ -26,7 +26,7 @@ pub struct Args {
     pub out: Option<PathBuf>,
     /// Worker threads [default: one per core]: a large lattice splits each step over them; the
     /// numbers are the same on any thread count.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true, value_parser = crate::commands::pipeline::parse_threads)]
     pub threads: Option<usize>,
     /// Discard results of a different pipeline found in the output folder.
     #[arg(long)]

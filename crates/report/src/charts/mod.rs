@@ -27,6 +27,7 @@
 use std::path::Path;
 
 use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
@@ -388,7 +389,7 @@ fn axes(
                 mesh.x_labels(((x.1 - x.0).round() as usize + 1).min(20));
             }
             if let Some(n) = panel.y_tick_count {
-                mesh.y_labels(n);
+                mesh.y_labels(if panel.y_scale == Scale::Linear { label_hint(y, n) } else { n });
             }
             mesh.draw().map_err(fail)?;
             chart.plotting_area().get_pixel_range()
@@ -412,6 +413,18 @@ fn axes(
         }
     };
     Ok(PixelBox { x0: xr.start, y0: yr.start, x1: xr.end, y1: yr.end })
+}
+
+/// The label count to ask plotters for so that a linear axis over `y` asked for `n` labels gets
+/// at least 3 (0 and one each side on a symmetric axis): plotters' search can give fewer than
+/// asked (one, 0 alone, on ±4…5 asked for 3), so the count is raised until it gives 3, to `2n + 1`
+/// at most.
+pub fn label_hint(y: (f64, f64), n: usize) -> usize {
+    if !(y.0.is_finite() && y.1.is_finite() && y.1 > y.0) {
+        return n;
+    }
+    let axis = RangedCoordf64::from(y.0..y.1);
+    (n..=2 * n + 1).find(|&hint| axis.key_points(hint).len() >= 3.min(n)).unwrap_or(n)
 }
 
 /// Draws one panel into `area` (drawing on `root` in image pixels) and returns what it drew and
@@ -643,9 +656,12 @@ fn draw_panel(
             }
         }
     }
-    // The strip: the items flow left to right over the width of the axes, wrapping.
+    // The strip: the items flow left to right over the width of the axes, wrapping; an item wider
+    // than the axes starts further left, over the tick labels (at the panel's own left edge at
+    // most), so that it ends where the axes end rather than in the next panel or off the image.
     if !strip_items.is_empty() {
         let row_h = strip_items.iter().map(|e| e.0.size.1).max().unwrap_or(0);
+        let left_edge = area.get_pixel_range().0.start;
         let (mut cx, mut row) = (plot.x0, 0);
         let mut spots = Vec::new();
         for (item, sample) in &strip_items {
@@ -653,6 +669,9 @@ fn draw_panel(
             if cx + w > plot.x1 && cx > plot.x0 {
                 cx = plot.x0;
                 row += 1;
+            }
+            if cx == plot.x0 && cx + w > plot.x1 {
+                cx = (plot.x1 - w).max(left_edge);
             }
             spots.push((cx, row));
             cx += w;
@@ -684,6 +703,19 @@ fn draw_panel(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_axis_asked_for_three_labels_gets_three() {
+        let labels = |m: f64| RangedCoordf64::from(-m..m).key_points(label_hint((-m, m), 3));
+        // ±4.6 asked for 3 labels: plotters' own search gave 0 alone.
+        assert_eq!(RangedCoordf64::from(-4.6..4.6).key_points(3), vec![0.0]);
+        assert_eq!(labels(4.6), vec![-4.0, -2.0, 0.0, 2.0, 4.0]);
+        assert_eq!(labels(2.4), vec![-2.0, 0.0, 2.0]);
+        for m in [1e-7, 0.3, 0.99, 3.3, 4.0, 4.99, 9.99, 45.0, 77.0, 4e9] {
+            let t = labels(m);
+            assert!((3..=7).contains(&t.len()), "±{m}: {t:?}");
+        }
+    }
 
     /// A friction coefficient of 1.8e308 (a fuzzed pipeline) made the friction map's axis
     /// infinite, and plotters' tick search never ended: every such range is drawn at once.

@@ -60,10 +60,12 @@ pub struct NodeChannel {
 }
 
 impl NodeChannel {
-    /// "node 36 at (0.2, 0.1, 0.1) m".
+    /// "node 36 at (0.2, 0.1, 0.1) m", or in km on a block of kilometres ("node 195789 at (25, 0,
+    /// 19) km").
     pub fn name(&self) -> String {
-        let [x, y, z] = self.at_m.map(|v| crate::plot::fmt_tick(&v));
-        format!("node {} at ({x}, {y}, {z}) m", self.ldem)
+        let km = self.at_m.iter().any(|v| v.abs() >= 1e3);
+        let [x, y, z] = self.at_m.map(|v| crate::plot::fmt_tick(&if km { v / 1e3 } else { v }));
+        format!("node {} at ({x}, {y}, {z}) {}", self.ldem, if km { "km" } else { "m" })
     }
 }
 

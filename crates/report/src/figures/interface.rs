@@ -229,28 +229,55 @@ pub(super) fn normal_stress(d: &ReportInput, path: &Path) -> Result<Outcome, Rep
     )
 }
 
-pub(super) fn mean_slip(d: &ReportInput, path: &Path) -> Result<Outcome, ReportError> {
-    let mut lines = Vec::new();
-    for (k, &seed) in d.seeds.iter().enumerate() {
-        let Some((t, delta)) = series(d, seed, Channel::MeanSlip.name())? else { continue };
-        let um: Vec<f64> = delta.iter().map(|v| v * 1e6).collect();
-        lines.push(Line::new(format!("seed {seed}"), decimate(&t, &um, WIDTH as usize), k));
+/// The unit a displacement axis reads best in: its name and how many of it make a metre (µm for
+/// a block's jumps, mm or m for a fault's metres of slip).
+pub(crate) fn length_unit(largest_m: f64) -> (&'static str, f64) {
+    if largest_m >= 0.1 {
+        ("m", 1.0)
+    } else if largest_m >= 1e-4 {
+        ("mm", 1e3)
+    } else {
+        ("µm", 1e6)
     }
-    if lines.is_empty() {
+}
+
+pub(super) fn mean_slip(d: &ReportInput, path: &Path) -> Result<Outcome, ReportError> {
+    let mut traces = Vec::new();
+    for &seed in &d.seeds {
+        let Some((t, delta)) = series(d, seed, Channel::MeanSlip.name())? else { continue };
+        traces.push((seed, t, delta));
+    }
+    if traces.is_empty() {
         return Ok(Outcome::Skipped("mean slip not recorded".into()));
     }
-    let panel = Panel { lines, ..Panel::linear("time since the start of shearing (s)", "δ (µm)") };
+    let largest =
+        traces.iter().flat_map(|(_, _, v)| v.iter().map(|x| x.abs())).filter(|x| x.is_finite()).fold(0.0, f64::max);
+    let (unit, per_m) = length_unit(largest);
+    let lines: Vec<Line> = traces
+        .iter()
+        .enumerate()
+        .map(|(k, (seed, t, delta))| {
+            let v: Vec<f64> = delta.iter().map(|x| x * per_m).collect();
+            Line::new(format!("seed {seed}"), decimate(t, &v, WIDTH as usize), k)
+        })
+        .collect();
+    let panel = Panel { lines, ..Panel::linear("time since the start of shearing (s)", format!("δ ({unit})")) };
     let sheet = Sheet::new(format!("Mean displacement of the contact surface{}", paper_fig(d, 5)), 1, vec![panel]);
-    drawn(
-        path,
-        &sheet,
-        "Mean contact displacement δ(t)".into(),
+    let caption = if d.pipeline.scene.is_fault() {
+        format!(
+            "Mean x-displacement of every node of the fault face (barriers included) for {}. A node's slip is twice its \
+             face's displacement, and the source's mean slip is over the ruptured nodes only, so this is not the \
+             source table's mean slip.",
+            seeds_text(&d.seeds)
+        )
+    } else {
         format!(
             "Mean x-displacement of the contact nodes for {}: the block moves in jumps at the stress drops and stands \
              still in between.",
             seeds_text(&d.seeds)
-        ),
-    )
+        )
+    };
+    drawn(path, &sheet, "Mean contact displacement δ(t)".into(), caption)
 }
 
 pub(super) fn energy(d: &ReportInput, path: &Path) -> Result<Outcome, ReportError> {

@@ -49,6 +49,27 @@ pub enum Outcome {
     Skipped(String),
 }
 
+/// The figures a fault scene's page leaves out, and why: they measure events by the paper's
+/// similarity scaling of a block (magnitudes at a prototype scale λ, stress drop against
+/// duration, a catalogue's statistics), while a fault scene is at its own scale and its rupture is
+/// measured from the fault's slip (the `source` table, which the page leads with).
+pub const LEFT_OUT_ON_A_FAULT: [(&str, &str); 9] = [
+    ("acceleration_s2.png", "the paper's window around a block's second main shock"),
+    ("stress_drop_vs_duration.png", "the paper's stress drop against slip-burst duration"),
+    ("recurrence.png", "the paper's recurrence of a block's main shocks"),
+    ("magnitude.png", "magnitudes at the paper's prototype scale λ"),
+    ("catalogue.png", "an event catalogue's magnitudes from the similarity scaling"),
+    ("magnitude_frequency.png", "a Gutenberg–Richter fit, which needs a catalogue, not one rupture per seed"),
+    ("recurrence_fits.png", "renewal fits of a catalogue's recurrence"),
+    ("aftershocks.png", "Omori–Utsu decay of a catalogue's aftershocks"),
+    ("scaling.png", "the similarity scaling of moment with area and duration"),
+];
+
+/// Why a fault scene's page leaves `file` out, if it does.
+pub fn left_out_on_a_fault(file: &str) -> Option<&'static str> {
+    LEFT_OUT_ON_A_FAULT.iter().find(|(f, _)| *f == file).map(|(_, why)| *why)
+}
+
 /// Draws one figure into a file.
 pub type Draw = fn(&ReportInput, &Path) -> Result<Outcome, ReportError>;
 

@@ -131,22 +131,77 @@ pub(super) fn acceleration_run(d: &ReportInput, path: &Path) -> Result<Outcome, 
     if rows.is_empty() {
         return Ok(Outcome::Skipped("no accelerogram recorded".into()));
     }
+    // A fault's waves reach the stations after a quiet lead: the panels span the motion, from just
+    // before its first arrival to the end of the run, and the caption says when the run ends
+    // while the ground still shakes.
+    let span = if d.pipeline.scene.is_fault() { motion_span(&mut rows) } else { None };
     let comps: Vec<&str> = nodes.iter().map(|n| n.component.name()).collect();
-    let sheet = accelerogram_sheet(
-        format!("Acceleration of {} ({}) over the whole run{}", nodes_short(&nodes), comps[0], paper_fig(d, 7)),
-        "time since the start of shearing (s)",
-        rows,
-        nodes.len(),
-    );
-    drawn(
-        path,
-        &sheet,
-        format!("{} acceleration, whole run", capitalised(&nodes_short(&nodes))),
-        format!(
+    let title = match span {
+        Some(_) => format!("Acceleration of {} ({})", nodes_short(&nodes), comps[0]),
+        None => format!("Acceleration of {} ({}) over the whole run{}", nodes_short(&nodes), comps[0], paper_fig(d, 7)),
+    };
+    let sheet = accelerogram_sheet(title, "time since the start of shearing (s)", rows, nodes.len());
+    let caption = match span {
+        Some(MotionSpan { from_s, end_s, still_shaking }) => format!(
+            "Raw acceleration of the run, one row per seed, {} (the fault's own scale; unfiltered, so it holds the \
+             lattice's content above the usable band too: the stations table gives each record's band), from {:.1} s, \
+             just before the first arrival, to the end of the run at {:.1} s.{}",
+            nodes_text(&nodes, total),
+            from_s,
+            end_s,
+            if still_shaking {
+                " The ground still shakes when the run ends (the last tenth of the run holds more than half of a \
+                 panel's peak): a longer shear.duration_s records the rest of the motion."
+            } else {
+                ""
+            }
+        ),
+        None => format!(
             "Acceleration through all the main shocks, one row per seed, {} (model scale).",
             nodes_text(&nodes, total)
         ),
-    )
+    };
+    drawn(path, &sheet, format!("{} acceleration, whole run", capitalised(&nodes_short(&nodes))), caption)
+}
+
+/// Where the motion of accelerogram panels lies: from a twentieth of its length before the first
+/// sample of any panel above 1% of that panel's peak, to the last sample.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct MotionSpan {
+    from_s: f64,
+    end_s: f64,
+    /// The last tenth of the run holds more than half the peak of some panel.
+    still_shaking: bool,
+}
+
+/// Cuts the panels of `rows` to their motion's span (see [`MotionSpan`]); `None` (and the panels
+/// as they were) when there is no motion.
+fn motion_span(rows: &mut [Vec<Panel>]) -> Option<MotionSpan> {
+    let traces = || rows.iter().flatten().flat_map(|p| p.lines.iter().map(|l| &l.points));
+    let end_s = traces().filter_map(|pts| pts.last().map(|p| p.0)).fold(f64::NEG_INFINITY, f64::max);
+    let start_s = traces().filter_map(|pts| pts.first().map(|p| p.0)).fold(f64::INFINITY, f64::min);
+    let peak = |pts: &[(f64, f64)]| pts.iter().map(|p| p.1.abs()).filter(|v| v.is_finite()).fold(0.0, f64::max);
+    let onset = traces()
+        .filter_map(|pts| {
+            let top = peak(pts);
+            (top > 0.0).then(|| pts.iter().find(|p| p.1.abs() >= 0.01 * top).map(|p| p.0)).flatten()
+        })
+        .fold(f64::INFINITY, f64::min);
+    if !(onset.is_finite() && end_s > onset) {
+        return None;
+    }
+    let from_s = (onset - 0.05 * (end_s - onset)).max(start_s);
+    let tail = end_s - 0.1 * (end_s - start_s);
+    let still_shaking = traces().any(|pts| {
+        let late: Vec<(f64, f64)> = pts.iter().copied().filter(|p| p.0 >= tail).collect();
+        peak(&late) > 0.5 * peak(pts)
+    });
+    for p in rows.iter_mut().flatten() {
+        for l in &mut p.lines {
+            l.points.retain(|q| q.0 >= from_s);
+        }
+    }
+    Some(MotionSpan { from_s, end_s, still_shaking })
 }
 
 /// The processed main-shock records of one node and seed: acceleration, velocity and

@@ -126,7 +126,8 @@ pub(super) fn ground_motion(d: &ReportInput, path: &Path) -> Result<Outcome, Rep
     // Broadband records (docs/model.md §17): their RotD50 PGA, at each record's site.
     let broadband: Vec<(f64, f64)> = (0..km.len())
         .filter(|&i| s.vs30_m_s[i].is_some())
-        .filter_map(|i| Some((km[i], s.pga_rotd50_m_s2[i]?)))
+        .map(|i| (km[i], s.pga_rotd50_m_s2[i]))
+        .filter(|p| p.1 > 0.0)
         .collect();
     if !broadband.is_empty() {
         pga.points.push(Points {

@@ -336,52 +336,111 @@ impl FaultNodes {
     }
 }
 
-/// The `stations` table read back: each station's distances and peaks, per seed.
+/// The `stations` table read back: each station's distances, peaks and usable band, per seed.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Stations {
     /// Seed of each row.
     pub seed: Vec<u64>,
     /// Station name.
     pub station: Vec<String>,
+    /// Epicentral distance (m).
+    pub epicentral_m: Vec<f64>,
     /// Rupture distance (m).
     pub r_rup_m: Vec<f64>,
     /// Joyner–Boore distance (m).
     pub r_jb_m: Vec<f64>,
     /// Azimuth from the strike (degrees).
     pub azimuth_deg: Vec<f64>,
-    /// Peak horizontal acceleration (m/s²).
+    /// Peak horizontal acceleration of the raw record (m/s²).
     pub pga_m_s2: Vec<f64>,
-    /// Peak horizontal velocity (m/s).
+    /// Peak horizontal velocity of the raw record (m/s).
     pub pgv_m_s: Vec<f64>,
     /// The site of a broadband record (m/s); `None` for a lattice record (or a folder written
     /// before broadband records existed).
     pub vs30_m_s: Vec<Option<f64>>,
-    /// RotD50 PGA of the station's processed record (m/s²), if it has one.
-    pub pga_rotd50_m_s2: Vec<Option<f64>>,
-    /// Its usable periods: shortest and longest (s), if it has a processed record.
-    pub usable_s: Vec<Option<[f64; 2]>>,
+    /// RotD50 PGA of the processed record (m/s²; NaN without one).
+    pub pga_rotd50_m_s2: Vec<f64>,
+    /// RotD50 PGV of the processed record (m/s; NaN without one).
+    pub pgv_rotd50_m_s: Vec<f64>,
+    /// The processed record's band-pass corners (Hz; NaN without one).
+    pub band_hz: Vec<[f64; 2]>,
+    /// The periods its spectra are usable over (s; NaN without one).
+    pub usable_s: Vec<[f64; 2]>,
+    /// Why the station has no processed record (empty when it has one).
+    pub motion_note: Vec<String>,
 }
 
 impl Stations {
     /// Reads a `stations` frame.
     pub fn read(df: &DataFrame) -> Result<Stations, StoreError> {
         let c = crate::frame::Columns::of(df, STATIONS.name);
+        let pair = |a: Vec<f64>, b: Vec<f64>| a.into_iter().zip(b).map(|(a, b)| [a, b]).collect::<Vec<_>>();
         Ok(Stations {
             seed: c.u64s(col::SEED)?,
             station: c.opt_strs(col::STATION)?.into_iter().map(Option::unwrap_or_default).collect(),
+            epicentral_m: c.f64s(col::EPICENTRAL_M)?,
             r_rup_m: c.f64s(col::R_RUP_M)?,
             r_jb_m: c.f64s(col::R_JB_M)?,
             azimuth_deg: c.f64s(col::AZIMUTH_DEG)?,
             pga_m_s2: c.f64s(col::PGA_M_S2)?,
             pgv_m_s: c.f64s(col::PGV_M_S)?,
             vs30_m_s: if c.has(col::VS30_M_S) { c.opt_f64s(col::VS30_M_S)? } else { vec![None; c.height()] },
-            pga_rotd50_m_s2: c.opt_f64s(col::PGA_ROTD50_M_S2)?,
-            usable_s: c
-                .opt_f64s(col::USABLE_MIN_PERIOD_S)?
-                .into_iter()
-                .zip(c.opt_f64s(col::USABLE_MAX_PERIOD_S)?)
-                .map(|(a, b)| Some([a?, b?]))
-                .collect(),
+            pga_rotd50_m_s2: c.f64s(col::PGA_ROTD50_M_S2)?,
+            pgv_rotd50_m_s: c.f64s(col::PGV_ROTD50_M_S)?,
+            band_hz: pair(c.f64s(col::F_LOW_HZ)?, c.f64s(col::F_HIGH_HZ)?),
+            usable_s: pair(c.f64s(col::USABLE_MIN_PERIOD_S)?, c.f64s(col::USABLE_MAX_PERIOD_S)?),
+            motion_note: c.opt_strs(col::MOTION_NOTE)?.into_iter().map(Option::unwrap_or_default).collect(),
+        })
+    }
+}
+
+/// The `source` table read back: one row per seed whose fault ruptured.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Sources {
+    /// Seed of each row.
+    pub seed: Vec<u64>,
+    /// Nodes that ruptured.
+    pub ruptured_nodes: Vec<u64>,
+    /// Ruptured area (m²).
+    pub ruptured_area_m2: Vec<f64>,
+    /// Seismic moment (N·m).
+    pub m0_n_m: Vec<f64>,
+    /// Moment magnitude.
+    pub mw: Vec<f64>,
+    /// Mean slip over the ruptured nodes (m).
+    pub mean_slip_m: Vec<f64>,
+    /// Largest slip (m).
+    pub max_slip_m: Vec<f64>,
+    /// Stress drop (Pa).
+    pub stress_drop_pa: Vec<f64>,
+    /// Largest peak slip rate (m/s).
+    pub peak_slip_rate_m_s: Vec<f64>,
+    /// Median of the ruptured nodes' peak slip rates (m/s).
+    pub median_peak_slip_rate_m_s: Vec<f64>,
+    /// Hypocentre along strike and down dip (m).
+    pub hypocentre_m: Vec<[f64; 2]>,
+    /// When the last node ruptured (s).
+    pub rupture_duration_s: Vec<f64>,
+}
+
+impl Sources {
+    /// Reads a `source` frame.
+    pub fn read(df: &DataFrame) -> Result<Sources, StoreError> {
+        let c = crate::frame::Columns::of(df, SOURCE.name);
+        let (hx, hy) = (c.f64s(col::HYPOCENTRE_X_M)?, c.f64s(col::HYPOCENTRE_Y_M)?);
+        Ok(Sources {
+            seed: c.u64s(col::SEED)?,
+            ruptured_nodes: c.u64s(col::RUPTURED_NODES)?,
+            ruptured_area_m2: c.f64s(col::RUPTURED_AREA)?,
+            m0_n_m: c.f64s(col::M0_N_M)?,
+            mw: c.f64s(col::MW)?,
+            mean_slip_m: c.f64s(col::MEAN_SLIP_M)?,
+            max_slip_m: c.f64s(col::MAX_SLIP_M)?,
+            stress_drop_pa: c.f64s(col::STRESS_DROP_PA)?,
+            peak_slip_rate_m_s: c.f64s(col::PEAK_SLIP_RATE_M_S)?,
+            median_peak_slip_rate_m_s: c.f64s(col::MEDIAN_PEAK_SLIP_RATE_M_S)?,
+            hypocentre_m: hx.into_iter().zip(hy).map(|(x, y)| [x, y]).collect(),
+            rupture_duration_s: c.f64s(col::RUPTURE_DURATION_S)?,
         })
     }
 }
