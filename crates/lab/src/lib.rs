@@ -5,14 +5,13 @@
 //! quasi-static skip-ahead against full integration ([`skip`]), what recording costs
 //! ([`recording_cost`]), what a run does before its first step ([`setup_cost`]), what an
 //! ensemble costs end to end against a previous build ([`ensemble_cost`]), the LAMMPS
-//! side-by-side ([`peer`], with `lammps/compare.sh`), sweeps of
-//! assumed values ([`calibrate`]), and the criterion benchmarks of the kernels and spectra
-//! ([`recording_cost`]), what a run does before its first step ([`setup_cost`]), the LAMMPS
 //! side-by-side ([`peer`], with `lammps/compare.sh`), sweeps of assumed values ([`calibrate`]),
-//! the README's generated outputs, tables and measured numbers ([`readme`]), and the criterion
-//! benchmarks of the kernels and spectra
-//! (`benches/`). Speed is measured here, never asserted in tests. Must not know: the command
-//! line (it returns rows and writes tables and figures where it is told).
+//! a fault run against a SCEC dynamic-rupture benchmark ([`scec`]), Part A of the Broadband
+//! Platform's validation — a scenario against a real earthquake's recordings ([`part_a`]) — the
+//! README's generated outputs, tables and measured numbers ([`readme`]), and the criterion
+//! benchmarks of the kernels and spectra (`benches/`). Speed is measured here, never asserted in
+//! tests. Must not know: the command line (it returns rows and writes tables and figures where it
+//! is told).
 #![deny(missing_docs)]
 
 pub mod accuracy;
@@ -21,6 +20,7 @@ pub mod calibrate;
 pub mod convergence;
 pub mod ensemble_cost;
 pub mod kernel_scene;
+pub mod part_a;
 pub mod peer;
 pub mod readme;
 pub mod recording_cost;

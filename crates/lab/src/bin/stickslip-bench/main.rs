@@ -2,6 +2,8 @@
 //! `reports/bench/`). A developers' tool beside the product's `stickslip` binary, which does not
 //! link the lab: `cargo run --release -p stickslip-lab --bin stickslip-bench -- <command>`.
 
+mod part_a;
+
 use std::path::{Path, PathBuf};
 
 use anyhow::Result;
@@ -185,6 +187,18 @@ enum Command {
     /// (TPV5): rupture time, final slip and peak slip rate at every on-fault station, the
     /// rupture-time field, and figures (written beside each run's files, in <run>/scec/).
     DynamicRupture(RuptureArgs),
+    /// Part A of the Broadband Platform's validation: a scenario's broadband RotD50 against a real
+    /// earthquake's recordings, ln(observed/simulated) per period (PGA, 0.01–10 s) and over the
+    /// bins 0.01–0.1, 0.1–1, 1–3 and 3.5–10 s, with the 90% Student interval over the stations;
+    /// then each station's residuals.
+    PartA(part_a::PartAArgs),
+    /// The observed side of Part A: RotD50 (PGA, PSA at the product's periods) of recordings in the
+    /// Platform's .bbp format by the product's RotD code, written as a CSV with each station's
+    /// position, R_rup, V_S30 and usable band.
+    PartAObserved(part_a::ObservedArgs),
+    /// The `[[stations]]` of a planar vertical strike-slip scenario at the recordings' R_rup, along-strike
+    /// positions and V_S30 (from the CSV of part-a-observed and the fault trace's ends), printed as TOML.
+    PartAStations(part_a::StationsArgs),
 }
 
 /// `stickslip-bench dynamic-rupture`'s arguments.
@@ -234,6 +248,9 @@ fn run(c: Command) -> Result<()> {
             Ok(())
         }
         Command::DynamicRupture(a) => dynamic_rupture(&a),
+        Command::PartA(a) => part_a::run(&a),
+        Command::PartAObserved(a) => part_a::observed(&a),
+        Command::PartAStations(a) => part_a::stations(&a),
         Command::Peer { nx, ny, nz, steps, out } => {
             anyhow::ensure!(nx >= 1 && ny >= 1 && nz >= 1, "NX NY NZ must be at least 1");
             let t = peer(nx, ny, nz, steps, &out)?;
