@@ -56,7 +56,7 @@ enabled = false
 "#;
 
 #[test]
-fn seed_lists_refuse_what_does_not_fit_at_once_and_run_each_seed_once() {
+fn seed_lists_refuse_what_does_not_fit_or_repeats_and_run_each_seed_once() {
     let dir = scratch_dir("frontdoor-seeds");
     std::fs::write(dir.join("p.toml"), SHORT).unwrap();
     for (seeds, says) in [("0-18446744073709551615", "more than 10000000 seeds"), ("1-300000000", "more than 10000000")]
@@ -67,7 +67,12 @@ fn seed_lists_refuse_what_does_not_fit_at_once_and_run_each_seed_once() {
         assert!(took < Duration::from_secs(5), "{seeds} took {took:?} to refuse");
         assert!(!dir.join("reports").exists(), "{seeds}: something was written");
     }
+    // A seed named twice is refused (it would run once: the user may have meant another).
     let o = stickslip(&["pipeline", "p.toml", "--seeds", "2,3,2", "--quiet", "--out", "o"], &dir);
+    assert_eq!(o.status.code(), Some(1), "{}", err(&o));
+    assert!(err(&o).contains("seed 2 is named twice"), "{}", err(&o));
+    assert!(!dir.join("o").exists(), "something was written");
+    let o = stickslip(&["pipeline", "p.toml", "--seeds", "2,3", "--quiet", "--out", "o"], &dir);
     assert!(o.status.success(), "{}", err(&o));
     assert!(out(&o).contains("short: 2 seeds (2 run now"), "{}", out(&o));
     let runs: Vec<_> = std::fs::read_dir(dir.join("o/tables/runs")).unwrap().collect();

@@ -18,7 +18,7 @@ use stickslip_analysis::motions::processed_pair;
 use stickslip_config::check::Named;
 use stickslip_config::set::SetComponent;
 use stickslip_config::{Pipeline, SetSettings};
-use stickslip_seismo::accelerogram::processing::{Processed, ProcessingOptions, process};
+use stickslip_seismo::accelerogram::processing::{Processed, ProcessingOptions, process, resample_together};
 use stickslip_seismo::accelerogram::{At2, Orientation, RecordFile, RecordFormat, Sac};
 use stickslip_solver::scene::{Component, Kinematic};
 use stickslip_store::Folder;
@@ -230,7 +230,12 @@ fn channel(code: &str, dt_s: f64) -> (String, Orientation) {
 
 /// The lattice record of `st` from the seed's control table: the last 2/f_low of the run at the
 /// run's own interval, the horizontal pair.
-fn lattice_components(control: &DataFrame, seed: u64, st: &Station) -> Result<Components, EnsembleError> {
+fn lattice_components(
+    control: &DataFrame,
+    seed: u64,
+    st: &Station,
+    interval_s: Option<f64>,
+) -> Result<Components, EnsembleError> {
     let read = |component| -> Result<(Vec<f64>, Vec<f64>), EnsembleError> {
         read_control(control, st.node as u64, component, Kinematic::Acceleration)?.ok_or_else(|| {
             EnsembleError::Setup(format!("seed {seed}, station {}: no acceleration in the control table", st.name))
@@ -245,12 +250,21 @@ fn lattice_components(control: &DataFrame, seed: u64, st: &Station) -> Result<Co
         )));
     }
     // The record the analysis processed: the last 2/f_low of the run (the shear stage, two
-    // cycles of the low corner), at the run's own interval.
+    // cycles of the low corner), at the run's own interval (a whole number of steps)...
     let length = stickslip_analysis::motions::LOW_CORNER_CYCLES / st.band_hz.0;
     let last = t.len() - 1;
     let k0 = t.iter().position(|&v| v >= t[last] - length - 0.5 * (t[last] - t[last - 1])).unwrap_or(0);
     let dt = (t[last] - t[k0]) / (last - k0) as f64;
-    let (px, pz) = processed_pair(&x[k0..], &z[k0..], dt, st.band_hz.0, st.band_hz.1)
+    // ... written at exactly the interval asked (record.interval_s), resampled band-limited: the
+    // record's usable band (≤ f_max, a few Hz) lies far below either interval's Nyquist.
+    let (x, z, dt) = match interval_s {
+        Some(iv) if (iv - dt).abs() > 1e-9 * dt => {
+            let [x, z] = resample_together([&x[k0..], &z[k0..]], dt, iv);
+            (x, z, iv)
+        }
+        _ => (x[k0..].to_vec(), z[k0..].to_vec(), dt),
+    };
+    let (px, pz) = processed_pair(&x, &z, dt, st.band_hz.0, st.band_hz.1)
         .map_err(|e| EnsembleError::Setup(format!("seed {seed}, station {}: {e}", st.name)))?;
     Ok(Components { parts: vec![("FP", "fault-parallel (x)", px), ("FN", "fault-normal (z)", pz)], begin_s: t[k0] })
 }
@@ -317,7 +331,7 @@ fn write_station_files(
             let components = if st.vs30_m_s.is_some() {
                 broadband_components(&frame, seed, st)?
             } else {
-                lattice_components(&frame, seed, st)?
+                lattice_components(&frame, seed, st, pipeline.scene.record.interval_s)?
             };
             let m = st.scenario;
             for (code, long, p) in &components.parts {
