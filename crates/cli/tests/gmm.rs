@@ -252,6 +252,12 @@ fn a_scenario_s_set_is_chosen_by_magnitude_and_distance(
     let fn_ = read_sac(&dir.join(format!("out/set/{stem}_FN.SAC"))).unwrap();
     assert!((fp.meta.magnitude.unwrap() as f64 - set_mw[0]).abs() < 1e-5);
     assert!((fp.dt - 0.05).abs() < 1e-9 && (fn_.dt - 0.05).abs() < 1e-9, "record.interval_s = 0.05: {}", fp.dt);
+    // The rupture's start is the origin, at the nominal reference time; the station's position in
+    // USER7–9 (m).
+    use stickslip_seismo::accelerogram::sac::NOMINAL_ORIGIN;
+    assert_eq!((fp.meta.origin, fp.meta.reference), (Some(0.0), Some(NOMINAL_ORIGIN)));
+    assert!(fp.meta.begin.is_finite() && fp.meta.begin < 12.0, "the first sample (its pad's): {}", fp.meta.begin);
+    assert!(fp.meta.user[7..].iter().all(Option::is_some) && fp.meta.user[8] == Some(0.0), "{:?}", fp.meta.user);
     assert!(dir.join(format!("out/set/{stem}_FP.AT2")).exists() && dir.join(format!("out/set/{stem}_FN.AT2")).exists());
     let mut checked = 0;
     for i in (0..sp_seed.len()).filter(|&i| sp_seed[i] == seed[0] && sp_name[i] == station[0]) {

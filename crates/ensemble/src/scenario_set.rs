@@ -38,6 +38,8 @@ struct Station {
     seed: u64,
     name: String,
     node: u32,
+    /// Its position x, y, z (m).
+    position_m: [f64; 3],
     /// Band-pass corners its record was processed with (Hz).
     band_hz: (f64, f64),
     /// Its usable band (Hz).
@@ -74,6 +76,7 @@ pub fn select_station_set(
     let c = Columns::of(&stations, STATIONS.name);
     let (seed, name, node) = (c.u64s(col::SEED)?, c.strs(col::STATION)?, c.u64s(col::NODE)?);
     let (depth, r_rup, r_jb) = (c.f64s(col::Y_M)?, c.f64s(col::R_RUP_M)?, c.f64s(col::R_JB_M)?);
+    let (x_m, z_m) = (c.f64s(col::X_M)?, c.f64s(col::Z_M)?);
     let (f_low, f_high) = (c.opt_f64s(col::F_LOW_HZ)?, c.opt_f64s(col::F_HIGH_HZ)?);
     let (t_min, t_max) = (c.opt_f64s(col::USABLE_MIN_PERIOD_S)?, c.opt_f64s(col::USABLE_MAX_PERIOD_S)?);
     let site = if c.has(col::VS30_M_S) { c.opt_f64s(col::VS30_M_S)? } else { vec![None; seed.len()] };
@@ -111,6 +114,7 @@ pub fn select_station_set(
             seed: seed[i],
             name: name[i].clone(),
             node: node[i] as u32,
+            position_m: [x_m[i], depth[i], z_m[i]],
             band_hz: (lo, hi),
             usable_hz: (1.0 / t1, 1.0 / t0),
             vs30_m_s: site[i],
@@ -373,9 +377,11 @@ fn write_station_files(
                     network: "SS",
                     location: "P",
                     event: &format!("seed{seed}"),
-                    position_m: None,
+                    position_m: Some(st.position_m),
                     orientation: Some(orientation),
                     magnitude: Some(m.mw),
+                    // The rupture starts at t = 0 on the run's clock.
+                    origin_s: Some(0.0),
                     numbers: &numbers,
                 };
                 for format in [&At2 as &dyn RecordFormat, &Sac] {

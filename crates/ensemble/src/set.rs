@@ -233,6 +233,7 @@ fn write_set_files(
                     position_m: None,
                     orientation: None,
                     magnitude: None,
+                    origin_s: None,
                     numbers: &numbers,
                 };
                 for format in [&At2 as &dyn RecordFormat, &Sac] {

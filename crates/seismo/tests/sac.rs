@@ -132,6 +132,7 @@ fn a_records_position_is_metres_in_user7_to_9_not_degrees() {
         position_m: Some([20.0, 10.0, 10.0]),
         orientation: None,
         magnitude: None,
+        origin_s: None,
         numbers: &numbers,
     };
     let bytes = Sac.encode(&record).unwrap();

@@ -19,7 +19,10 @@ pub fn part_a_figure(p: &PartA, observed: &[ObservedStation], title: &str, path:
     let mut bias = Panel::linear("period (s)", "bias ln(observed / simulated)");
     bias.x_scale = Scale::Log;
     bias.x_range = Some((t0, t1));
-    bias.title = "RotD50, 5% damping: mean over stations, 90% interval".into();
+    bias.title = match p.periods.iter().find(|r| r.periods_s[0] == PGA) {
+        Some(pga) => format!("RotD50 (5%), mean over stations, 90% interval; triangle: PGA {:+.2}", pga.mean),
+        None => "RotD50, 5% damping: mean over stations, 90% interval".into(),
+    };
     bias.bands.push(Band {
         points: rows.iter().filter_map(|r| r.ci90.map(|[lo, hi]| (r.periods_s[0], lo, hi))).collect(),
         colour: stickslip_report::plot::colour(0),

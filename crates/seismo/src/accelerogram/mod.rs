@@ -85,6 +85,9 @@ pub struct RecordFile<'a> {
     pub orientation: Option<Orientation>,
     /// Moment magnitude of the event, when known.
     pub magnitude: Option<f64>,
+    /// The event's origin on the record's clock (s), when known (a scenario's rupture starts at
+    /// 0): SAC then carries it as `O`, with the nominal reference time [`sac::NOMINAL_ORIGIN`].
+    pub origin_s: Option<f64>,
     /// Further numbers in labelled groups (e.g. `("USABLE", [low, high])` in Hz), in order.
     pub numbers: &'a [(&'a str, &'a [f64])],
 }

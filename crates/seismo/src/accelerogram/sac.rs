@@ -11,14 +11,17 @@
 //! `DEPMEN` (of the values as stored), `NVHDR = 6`, `IFTYPE = ITIME`, `LEVEN = 1`, `LOVROK = 1`,
 //! `LPSPOL = 1`, `LCALDA = 0` (so SAC never recomputes `DIST`/`AZ` from coordinates that may be
 //! plain model numbers), `IDEP` from [`SacUnit`], `KSTNM`, `KCMPNM`, `KNETWK`, `KEVNM`,
-//! the reference time `NZYEAR…NZMSEC` with `IZTYPE = IB` when given (else undefined and
-//! `IZTYPE = IUNKN`), `O` when the origin time is known, `EVLA`, `EVLO`, `EVDP`, `STLA`, `STLO`,
+//! the reference time `NZYEAR…NZMSEC` with `IZTYPE = IO` when given with `O = 0`, `IB`
+//! otherwise (else undefined and `IZTYPE = IUNKN`), `O` when the origin time is known, `EVLA`, `EVLO`, `EVDP`, `STLA`, `STLO`,
 //! `STEL`, `DIST`, `CMPAZ`, `CMPINC`, `MAG`, `USER0–9` and `KUSER0–2` where given. SAC reads
 //! `EVLA/EVLO/STLA/STLO` as degrees, `EVDP` and `DIST` as km and `STEL` as m: the record format
 //! ([`Sac`]) leaves the degrees undefined and puts a node's position (m) in `USER7–9`.
 //!
 //! Times in SAC are seconds relative to the reference time: `B` is the first sample, `O` the
-//! event origin on the same clock.
+//! event origin on the same clock. A simulated event has no date: the record format ([`Sac`])
+//! gives a record whose origin is known the nominal reference time [`NOMINAL_ORIGIN`]
+//! (2000-01-01T00:00:00.000) at that origin, `O = 0` and `IZTYPE = IO`, so that a reader (ObsPy)
+//! places each sample at origin + `B` + k·`DELTA` instead of at 1970-01-01.
 //!
 //! The reader widens header floats to f64 through their shortest decimal form (a `DELTA` written
 //! from 0.01 reads as 0.01). It takes either byte order (found from `NVHDR`, which must be 6 or 7) and reads only
@@ -130,6 +133,12 @@ const IUNKN: i32 = 5;
 /// `IDEP` of an acceleration trace (values in nm/s²).
 pub const IACC: i32 = 8;
 const IB: i32 = 9;
+const IO: i32 = 11;
+
+/// The nominal reference time of a simulated event's records (2000-01-01T00:00:00.000, day 1):
+/// a simulation has no date; this one is the event's origin, `O = 0` (see the module's notes).
+pub const NOMINAL_ORIGIN: SacTime =
+    SacTime { year: 2000, day_of_year: 1, hour: 0, minute: 0, second: 0, millisecond: 0 };
 
 /// Names of the 23 string fields, in file order.
 pub const STRING_FIELDS: [&str; 23] = [
@@ -387,7 +396,8 @@ pub fn sac_bytes(accel: &[f64], dt: f64, meta: &SacMeta) -> Result<Vec<u8>, Seis
             }
             n[NZYEAR + k] = v;
         }
-        n[IZTYPE] = IB;
+        // The reference is the origin when `O` is 0 there, else the first sample.
+        n[IZTYPE] = if meta.origin == Some(0.0) { IO } else { IB };
     }
     n[LEVEN] = 1;
     n[LPSPOL] = 1;
@@ -478,11 +488,14 @@ impl super::RecordFormat for Sac {
             network: r.network.to_string(),
             location: r.location.to_string(),
             event: r.event.to_string(),
-            begin: r.begin_s,
+            // On the nominal clock the origin is 0: the first sample's time counts from it.
+            begin: r.begin_s - r.origin_s.unwrap_or(0.0),
             station_elevation: r.position_m.map(|p| p[2]),
             component_incidence: r.orientation.map(|o| o.incidence_deg),
             component_azimuth: r.orientation.map(|o| o.azimuth_deg),
             magnitude: r.magnitude,
+            origin: r.origin_s.map(|_| 0.0),
+            reference: r.origin_s.map(|_| NOMINAL_ORIGIN),
             user,
             user_labels,
             unit: SacUnit::NanometrePerSecond2,

@@ -635,6 +635,16 @@ impl Resampler {
     /// `append_zero`, the `r` more up to the first zero of the padding (set to exactly 0).
     pub(crate) fn resample(&mut self, x: &[f64], r: usize, append_zero: bool) -> &[f64] {
         let n = x.len();
+        if r == 1 {
+            // The interpolant at the samples is the samples (and the spectrum's move below would
+            // zero the negative frequencies in place, halving the record).
+            self.fine.clear();
+            self.fine.extend_from_slice(x);
+            if append_zero {
+                self.fine.push(0.0);
+            }
+            return &self.fine;
+        }
         let big = (2 * n).next_power_of_two();
         let fine_len = big * r;
         let planner = self.planner.get_or_insert_with(FftPlanner::new);
@@ -689,6 +699,18 @@ impl Resampler {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn band_limited_resampling_by_one_keeps_the_samples() {
+        let x: Vec<f64> = (0..300).map(|i| (0.37 * i as f64).sin() + 0.1 * (i % 7) as f64).collect();
+        let mut s = Resampler::default();
+        assert_eq!(s.resample(&x, 1, false), &x[..]);
+        let with_zero = s.resample(&x, 1, true).to_vec();
+        assert_eq!((&with_zero[..300], with_zero.len(), with_zero[300]), (&x[..], 301, 0.0));
+        // By 2, the even samples are the record's (to FFT rounding).
+        let fine = s.resample(&x, 2, false).to_vec();
+        assert!(x.iter().enumerate().all(|(i, v)| (fine[2 * i] - v).abs() < 1e-12));
+    }
 
     #[test]
     fn band_limited_resampling_reproduces_a_sampled_sine_between_samples() {

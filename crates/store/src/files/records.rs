@@ -49,6 +49,7 @@ pub fn write(out: &Folder, view: &SeedView<'_>, stamp: &Stamp<'_>) -> Result<(),
                 position_m: Some(file.position),
                 orientation: Orientation::of_axis(r.channel.component.name()),
                 magnitude,
+                origin_s: None,
                 numbers: &numbers,
             };
             for &format in &acc.formats {
