@@ -52,27 +52,6 @@ pub fn spectrum_periods() -> Vec<f64> {
     out
 }
 
-/// Readings per period a broadband record's RotD is computed with at least: its 0.01 s samples
-/// are read `k` times between them (band-limited) with `k` the power of two that gives 80 per
-/// period or more, up to 8: 80 at 0.1 s, where a peak read on straight lines errs by at most
-/// 1 − cos(π/80) = 7.7e-4, and the same readings per period at longer periods for a quarter of the
-/// work at 0.4 s and more (periods below 0.1 s, whose oscillators follow the ground's
-/// acceleration, keep 8).
-pub const POINTS_PER_PERIOD: f64 = 80.0;
-
-/// The oversampling of period `t` (s) on a record sampled every `dt` (s): 4 for a lattice record,
-/// for a broadband one the power of two from 1 to 8 that reads it [`POINTS_PER_PERIOD`] times.
-fn oversampling_for(t: f64, dt: f64, broadband: bool) -> usize {
-    if !broadband {
-        return 4;
-    }
-    let mut k = 1;
-    while k < 8 && t / (dt / k as f64) < POINTS_PER_PERIOD * (1.0 - 1e-9) {
-        k *= 2;
-    }
-    k
-}
-
 /// Damping ratio of the PSA.
 pub const DAMPING: f64 = 0.05;
 
@@ -184,29 +163,21 @@ pub fn motion_of_pair(
     let periods: Vec<f64> =
         spectrum_periods().into_iter().filter(|&t| t >= usable[0] * (1.0 - 1e-9) && t <= usable[1]).collect();
     let (mut rotd50, mut rotd100) = (Vec::new(), Vec::new());
-    // Each period is read with at least [`POINTS_PER_PERIOD`] readings per period, in groups of
-    // periods sharing one oversampling of the record (a lattice record's periods, ≥ 0.4 s at
-    // 0.025 s, all at 4).
-    let mut scratch = RotDScratch::default();
-    let mut out = RotDSpectrum::default();
-    let mut start = 0;
-    while start < periods.len() {
-        let oversampling = oversampling_for(periods[start], px.dt, shortest_s.is_some());
-        let end = start
-            + periods[start..]
-                .iter()
-                .take_while(|&&t| oversampling_for(t, px.dt, shortest_s.is_some()) == oversampling)
-                .count();
-        let group = &periods[start..end];
-        let plan =
-            RotDPlan::new(px.dt, group, &[DAMPING], Reading::BandLimited, oversampling).map_err(|e| format!("{e}"))?;
-        plan.compute(&px.accel, &pz.accel, &mut scratch, &mut out).map_err(|e| format!("{e}"))?;
-        for (k, &t) in group.iter().enumerate() {
+    if !periods.is_empty() {
+        // A broadband record (shortest_s given) is read 8 times between its 0.01 s samples: 80
+        // points per period at 0.1 s, where reading the peak on straight lines between them errs
+        // by at most 1 − cos(π/80) = 7.7e-4; a lattice record's periods (≥ 0.4 s) have 64 or more
+        // at 4.
+        let oversampling = if shortest_s.is_some() { 8 } else { 4 };
+        let plan = RotDPlan::new(px.dt, &periods, &[DAMPING], Reading::BandLimited, oversampling)
+            .map_err(|e| format!("{e}"))?;
+        let mut out = RotDSpectrum::default();
+        plan.compute(&px.accel, &pz.accel, &mut RotDScratch::default(), &mut out).map_err(|e| format!("{e}"))?;
+        for (k, &t) in periods.iter().enumerate() {
             let w2 = (2.0 * std::f64::consts::PI / t).powi(2);
             rotd50.push(w2 * out.rotd50[k]);
             rotd100.push(w2 * out.rotd100[k]);
         }
-        start = end;
     }
     let [ix, iz] = [&px, &pz].map(|p| intensity(&p.accel, p.dt, Baseline::None));
     let mut planner = rustfft::FftPlanner::new();

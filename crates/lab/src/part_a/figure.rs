@@ -20,7 +20,7 @@ pub fn part_a_figure(p: &PartA, observed: &[ObservedStation], title: &str, path:
     bias.x_scale = Scale::Log;
     bias.x_range = Some((t0, t1));
     bias.title = match p.periods.iter().find(|r| r.periods_s[0] == PGA) {
-        Some(pga) => format!("RotD50 (5%), mean over stations, 90% interval; triangle: PGA {:+.2}", pga.mean),
+        Some(pga) => format!("RotD50: bias, 90% interval; triangle: PGA {:+.2}", pga.mean),
         None => "RotD50, 5% damping: mean over stations, 90% interval".into(),
     };
     bias.bands.push(Band {
