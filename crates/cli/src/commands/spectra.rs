@@ -102,8 +102,12 @@ pub fn run(a: Args) -> Result<()> {
         read_accelerogram(&a.record, unit)?
     };
     let duration = record.dt * (record.accel.len().saturating_sub(1)) as f64;
-    let tmin = a.period_min_s.unwrap_or(2.0 * record.dt);
-    let tmax = a.period_max_s.unwrap_or(0.5 * duration);
+    // A record of this product says in its header the periods it describes the ground over (a
+    // lattice record holds nothing real above the lattice's f_max): the default range keeps to
+    // them, and periods asked outside are computed with a warning.
+    let usable = stated_usable_s(&record.description);
+    let tmin = a.period_min_s.unwrap_or(usable.map_or(2.0 * record.dt, |u| u.0.max(2.0 * record.dt)));
+    let tmax = a.period_max_s.unwrap_or(usable.map_or(0.5 * duration, |u| u.1.min(0.5 * duration)));
     let approx = stickslip_config::check::approx;
     anyhow::ensure!(
         tmin > 0.0 && tmax >= tmin && tmax.is_finite(),
@@ -159,6 +163,20 @@ pub fn run(a: Args) -> Result<()> {
         duration,
         if record.description.is_empty() { String::new() } else { format!(" — {}", record.description) }
     );
+    if let Some((lo, hi)) = usable {
+        let outside = tmin < lo * (1.0 - 1e-6) || tmax > hi * (1.0 + 1e-6);
+        outln!(
+            "usable from {} s to {} s (the record's header){}",
+            approx(lo),
+            approx(hi),
+            if outside {
+                ": PSA at the periods asked outside that range is computed but does not describe the ground \
+                 (a lattice record, for one, holds nothing real above the lattice's f_max)"
+            } else {
+                ": the spectra below keep to it (--period-min-s, --period-max-s to ask for others)"
+            }
+        );
+    }
     outln!("{}", describe(&out.join("intensity.parquet"), &View { rows: 1, columns: vec![], transpose: true })?);
     let figure = out.join("spectra.png");
     stickslip_report::figures::record_figure(
@@ -188,6 +206,23 @@ pub fn run(a: Args) -> Result<()> {
         out.display()
     );
     Ok(())
+}
+
+/// The usable periods (s) a record's header states: `usable A … B s` (a set's files) or
+/// `usable A-B Hz` (a run's record files); `None` for other records.
+fn stated_usable_s(description: &str) -> Option<(f64, f64)> {
+    let rest = &description[description.find("usable ")? + "usable ".len()..];
+    let words: Vec<&str> = rest.split_whitespace().take(4).collect();
+    let num = |w: &str| w.trim_end_matches([',', ')']).parse::<f64>().ok().filter(|v| *v > 0.0 && v.is_finite());
+    let band = match words.as_slice() {
+        [a, "…", b, unit, ..] if unit.starts_with('s') => (num(a)?, num(b)?),
+        [ab, unit, ..] if unit.starts_with("Hz") => {
+            let (a, b) = ab.split_once('-')?;
+            (1.0 / num(b)?, 1.0 / num(a)?)
+        }
+        _ => return None,
+    };
+    (band.0 < band.1).then_some(band)
 }
 
 /// One record of a Parquet accelerograms table (a seed's part, or any table with its columns).
@@ -233,4 +268,21 @@ fn parquet_record(path: &std::path::Path, name: Option<&str>, scale: &str) -> Re
         accel: rows.iter().map(|&i| acc.acceleration_m_s2[i]).collect(),
         description: format!("seed {} {name} ({scale} scale)", seeds[0]),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::stated_usable_s;
+
+    #[test]
+    fn the_usable_band_is_read_from_either_header() {
+        let set = "stickslip scenario-m6 set record 1 of 11: seed 6 station x (HN2), Mw 6.45, R_rup 19.8 km, usable \
+                   0.4310 … 12.0 s (band-pass 0.0666 … 2.0000 Hz), matched to ASCE 7-16";
+        assert_eq!(stated_usable_s(set), Some((0.431, 12.0)));
+        let record = "stickslip paper seed 1 record S2-n36-z (model scale, lambda = 1): node 36 at (1, 2, 3) m, \
+                      component z, band-pass 0.5000-400.0000 Hz, usable 0.6250-50.0000 Hz";
+        assert_eq!(stated_usable_s(record), Some((0.02, 1.6)));
+        assert_eq!(stated_usable_s("a record from elsewhere"), None);
+        assert_eq!(stated_usable_s("usable 5 … 1 s"), None);
+    }
 }

@@ -84,12 +84,11 @@ pub(super) fn broadband_record(d: &ReportInput, path: &Path) -> Result<Outcome, 
         fas.lines.push(l);
     }
     let lo = lo.max(hi * 1e-6);
-    for (f, text) in [(bb.crossover.hz, "crossover f_m")] {
-        let mut l = Line::new(text, vec![(f, lo), (f, hi)], 5);
-        l.colour = RGBColor(90, 90, 90);
-        l.width = 1;
-        fas.lines.push(l);
-    }
+    let f = bb.crossover.hz;
+    let mut l = Line::new("crossover f_m", vec![(f, lo), (f, hi)], 5);
+    l.colour = RGBColor(90, 90, 90);
+    l.width = 1;
+    fas.lines.push(l);
     fas.y_range = Some((lo, hi * 1.5));
     fas.x_range = Some((0.05, 0.5 / dt));
     let mut sheet = Sheet::new(format!("Broadband record: seed {seed}, station {name}, fault-normal"), 2, panels);
