@@ -252,6 +252,11 @@ fn a_scenario_s_set_is_chosen_by_magnitude_and_distance(
     let fn_ = read_sac(&dir.join(format!("out/set/{stem}_FN.SAC"))).unwrap();
     assert!((fp.meta.magnitude.unwrap() as f64 - set_mw[0]).abs() < 1e-5);
     assert!((fp.dt - 0.05).abs() < 1e-9 && (fn_.dt - 0.05).abs() < 1e-9, "record.interval_s = 0.05: {}", fp.dt);
+    // The vertical component beside the pair, up (−y of the scene), SEED channel BNZ (20 Hz).
+    let up = read_sac(&dir.join(format!("out/set/{stem}_UP.SAC"))).unwrap_or_else(|e| panic!("{e}: {listing:?}"));
+    assert_eq!((up.meta.component.as_str(), up.meta.component_incidence), ("BNZ", Some(0.0)));
+    assert_eq!((fp.meta.component.as_str(), fn_.meta.component.as_str()), ("BN1", "BN2"));
+    assert!((up.dt - 0.05).abs() < 1e-9 && up.data.iter().any(|v| *v != 0.0));
     // The rupture's start is the origin, at the nominal reference time; the station's position in
     // USER7–9 (m).
     use stickslip_seismo::accelerogram::sac::NOMINAL_ORIGIN;

@@ -18,7 +18,7 @@ use stickslip_analysis::motions::processed_pair;
 use stickslip_config::check::Named;
 use stickslip_config::set::SetComponent;
 use stickslip_config::{Pipeline, SetSettings};
-use stickslip_seismo::accelerogram::processing::{Processed, ProcessingOptions, process, resample_together};
+use stickslip_seismo::accelerogram::processing::{Processed, ProcessingOptions, process, resample, resample_together};
 use stickslip_seismo::accelerogram::{At2, Orientation, RecordFile, RecordFormat, Sac};
 use stickslip_solver::scene::{Component, Kinematic};
 use stickslip_store::Folder;
@@ -233,7 +233,7 @@ fn channel(code: &str, dt_s: f64) -> (String, Orientation) {
 }
 
 /// The lattice record of `st` from the seed's control table: the last 2/f_low of the run at the
-/// run's own interval, the horizontal pair.
+/// interval asked, the horizontal pair and the vertical component when it was recorded.
 fn lattice_components(
     control: &DataFrame,
     seed: u64,
@@ -246,6 +246,10 @@ fn lattice_components(
         })
     };
     let ((t, x), (_, z)) = (read(Component::X)?, read(Component::Z)?);
+    // The vertical, when the control table holds it; the scene's y points down: up is −y.
+    let up: Option<Vec<f64>> = read_control(control, st.node as u64, Component::Y, Kinematic::Acceleration)?
+        .filter(|(_, y)| y.len() == t.len())
+        .map(|(_, y)| y.iter().map(|v| -v).collect());
     if t.len() < 8 || z.len() != t.len() {
         return Err(EnsembleError::Setup(format!(
             "seed {seed}, station {}: its control record has {} samples, too few to write",
@@ -261,16 +265,24 @@ fn lattice_components(
     let dt = (t[last] - t[k0]) / (last - k0) as f64;
     // ... written at exactly the interval asked (record.interval_s), resampled band-limited: the
     // record's usable band (≤ f_max, a few Hz) lies far below either interval's Nyquist.
-    let (x, z, dt) = match interval_s {
+    let up = up.as_deref().unwrap_or(&[]);
+    let (x, z, up, dt) = match interval_s {
         Some(iv) if (iv - dt).abs() > 1e-9 * dt => {
             let [x, z] = resample_together([&x[k0..], &z[k0..]], dt, iv);
-            (x, z, iv)
+            let up = if up.is_empty() { Vec::new() } else { resample(&up[k0..], dt, iv) };
+            (x, z, up, iv)
         }
-        _ => (x[k0..].to_vec(), z[k0..].to_vec(), dt),
+        _ => (x[k0..].to_vec(), z[k0..].to_vec(), up.get(k0..).unwrap_or(&[]).to_vec(), dt),
     };
-    let (px, pz) = processed_pair(&x, &z, dt, st.band_hz.0, st.band_hz.1)
-        .map_err(|e| EnsembleError::Setup(format!("seed {seed}, station {}: {e}", st.name)))?;
-    Ok(Components { parts: vec![("FP", "fault-parallel (x)", px), ("FN", "fault-normal (z)", pz)], begin_s: t[k0] })
+    let fail = |e: String| EnsembleError::Setup(format!("seed {seed}, station {}: {e}", st.name));
+    let (px, pz) = processed_pair(&x, &z, dt, st.band_hz.0, st.band_hz.1).map_err(fail)?;
+    let mut parts = vec![("FP", "fault-parallel (x)", px), ("FN", "fault-normal (z)", pz)];
+    if !up.is_empty() {
+        let py = process(&up, dt, &ProcessingOptions::new(st.band_hz.0, Some(st.band_hz.1)))
+            .map_err(|e| fail(format!("y: {e}")))?;
+        parts.push(("UP", "vertical (up, −y)", py));
+    }
+    Ok(Components { parts, begin_s: t[k0] })
 }
 
 /// The broadband record of `st` from the seed's station_records table: the whole record at its
@@ -297,17 +309,19 @@ fn broadband_components(records: &DataFrame, seed: u64, st: &Station) -> Result<
     let fail = |e: String| EnsembleError::Setup(format!("seed {seed}, station {}: {e}", st.name));
     let (px, pz) =
         processed_pair(&x.broadband_m_s2, &z.broadband_m_s2, dt, st.band_hz.0, st.band_hz.1).map_err(fail)?;
-    let py = process(&y.broadband_m_s2, dt, &ProcessingOptions::new(st.band_hz.0, Some(st.band_hz.1)))
+    // The scene's y points down from the free surface: up is −y.
+    let up: Vec<f64> = y.broadband_m_s2.iter().map(|v| -v).collect();
+    let py = process(&up, dt, &ProcessingOptions::new(st.band_hz.0, Some(st.band_hz.1)))
         .map_err(|e| fail(format!("y: {e}")))?;
     Ok(Components {
-        parts: vec![("FP", "fault-parallel (x)", px), ("FN", "fault-normal (z)", pz), ("UP", "vertical (y)", py)],
+        parts: vec![("FP", "fault-parallel (x)", px), ("FN", "fault-normal (z)", pz), ("UP", "vertical (up, −y)", py)],
         begin_s: x.time_s[0],
     })
 }
 
 /// Writes each chosen station's components scaled by its factor, as AT2 and SAC: `FP` the
-/// fault-parallel component (x, along strike), `FN` the fault-normal one (z) and, for a broadband
-/// record, `UP` the vertical one (y); the magnitude in the header, the factor, the usable band and
+/// fault-parallel component (x, along strike), `FN` the fault-normal one (z) and `UP` the
+/// vertical one (up, −y) when recorded; the magnitude in the header, the factor, the usable band and
 /// the distances in the SAC `USER` numbers.
 fn write_station_files(
     out: &Folder,
