@@ -15,12 +15,12 @@
 
 use stickslip_seismo::broadband::fault::{FaultNode, FiniteFault};
 use stickslip_seismo::broadband::stochastic::{Medium, Synthesis, station_key};
-use stickslip_seismo::broadband::{Crossover, HybridRecord, HybridSite, Stochastic, hybrid};
+use stickslip_seismo::broadband::{Crossover, HybridSite, Stochastic, hybrid};
 use stickslip_solver::scene::{Component, ControlChannel, Kinematic};
 use stickslip_solver::{Model, Recording};
 
-use crate::motions::{Motion, motion_of_pair};
-use crate::source::{Source, StationRow};
+use crate::motions::motion_of_pair;
+use crate::source::{Source, StationBroadband, StationRow, StochasticSource};
 
 /// The shortest period of a broadband record's PSA (s).
 pub const SHORTEST_PERIOD_S: f64 = 0.01;
@@ -100,36 +100,6 @@ impl BroadbandSettings {
             ),
         ]
     }
-}
-
-/// The stochastic part of a seed's rupture, as a summary.
-#[derive(Clone, Debug, PartialEq)]
-pub struct StochasticSource {
-    /// Stress parameter after its area scaling (Pa).
-    pub stress_parameter_pa: f64,
-    /// Subfaults with a moment, and N, the cells of the rupture's rectangle.
-    pub subfaults: usize,
-    /// N.
-    pub cells: usize,
-    /// Subfault size (m).
-    pub subfault_m: f64,
-    /// Frankel's C.
-    pub frankel: f64,
-    /// CPU seconds of the stochastic synthesis and the joins (the subfaults included).
-    pub synthesis_cpu_s: f64,
-    /// CPU seconds of the broadband records' processing and measures (RotD, intensity).
-    pub motions_cpu_s: f64,
-}
-
-/// A station's broadband record and its motion.
-#[derive(Clone, Debug, PartialEq)]
-pub struct StationBroadband {
-    /// The site's V_S30 (m/s).
-    pub vs30_m_s: f64,
-    /// The record (x, y, z; each part and their sum).
-    pub record: HybridRecord,
-    /// The motion of the joined horizontal pair, or why it has none.
-    pub motion: Result<Motion, String>,
 }
 
 /// The lattice's three components of the station at `node` over the shear stage, the time of

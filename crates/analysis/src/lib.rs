@@ -78,7 +78,7 @@ pub struct SeedAnalysis {
     pub fronts: Option<SeedFronts>,
     /// CPU seconds spent finding the events, scaling them and their fronts, and a fault's
     /// source and stations (a profile; the records' stages are in [`SeedRecords::timings`], the
-    /// broadband records' in [`broadband::StochasticSource`]).
+    /// broadband records' in [`source::StochasticSource`]).
     pub events_s: f64,
     /// On a fault (docs/model.md §15): the source from the fault's own slip, and the stations'
     /// distances to the rupture and peak motions.

@@ -16,6 +16,7 @@
 //! `z = 0` between the ruptured x's), R_x = z (perpendicular to the trace), epicentral and
 //! hypocentral to the hypocentre (the centroid of the first nodes to rupture).
 
+use stickslip_seismo::broadband::HybridRecord;
 use stickslip_solver::material::lattice_elastic_constants;
 use stickslip_solver::scene::{Component, ControlChannel, Kinematic, Station};
 use stickslip_solver::{Model, Recording};
@@ -60,7 +61,7 @@ pub struct Source {
     /// ([`crate::motions::fitted_corner`]), when there are enough of them.
     pub fitted_corner_hz: Option<f64>,
     /// The stochastic part of the broadband records, when the pipeline asks for them.
-    pub stochastic: Option<crate::broadband::StochasticSource>,
+    pub stochastic: Option<StochasticSource>,
 }
 
 /// Brune's (1970) corner frequency `0.4906·β·(Δσ/M0)^(1/3)` (Hz; β in m/s, Δσ in Pa, M0 in N·m).
@@ -141,6 +142,36 @@ pub fn source(rec: &Recording, model: &Model) -> Option<Source> {
     })
 }
 
+/// The stochastic part of a seed's rupture, as a summary.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StochasticSource {
+    /// Stress parameter after its area scaling (Pa).
+    pub stress_parameter_pa: f64,
+    /// Subfaults with a moment, and N, the cells of the rupture's rectangle.
+    pub subfaults: usize,
+    /// N.
+    pub cells: usize,
+    /// Subfault size (m).
+    pub subfault_m: f64,
+    /// Frankel's C.
+    pub frankel: f64,
+    /// CPU seconds of the stochastic synthesis and the joins (the subfaults included).
+    pub synthesis_cpu_s: f64,
+    /// CPU seconds of the broadband records' processing and measures (RotD, intensity).
+    pub motions_cpu_s: f64,
+}
+
+/// A station's broadband record and its motion.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StationBroadband {
+    /// The site's V_S30 (m/s).
+    pub vs30_m_s: f64,
+    /// The record (x, y, z; each part and their sum).
+    pub record: HybridRecord,
+    /// The motion of the joined horizontal pair, or why it has none.
+    pub motion: Result<Motion, String>,
+}
+
 /// One station of a fault scene: where it is against the rupture and its peak motions.
 #[derive(Clone, Debug, PartialEq)]
 pub struct StationRow {
@@ -175,7 +206,7 @@ pub struct StationRow {
     /// the lattice's record.
     pub motion: Result<Motion, String>,
     /// Its broadband record at its site ([`crate::broadband`]), when the pipeline asks for them.
-    pub broadband: Option<crate::broadband::StationBroadband>,
+    pub broadband: Option<StationBroadband>,
 }
 
 impl StationRow {

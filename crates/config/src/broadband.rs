@@ -10,35 +10,10 @@ use stickslip_seismo::broadband::{CornerSpeed, Crossover, Crust, Stochastic};
 use stickslip_solver::Scene;
 
 use crate::check::{Checker, approx};
-use crate::scene::StationSection;
+use crate::scene::{StationSection, Vs30};
 
 /// The V_S30 range of the site terms (BSSA14's, m/s).
 pub const VS30_RANGE_M_S: [f64; 2] = [150.0, 1500.0];
-
-/// One V_S30 or several.
-#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
-#[serde(untagged)]
-pub enum Vs30 {
-    /// One site.
-    One(f64),
-    /// Several sites: one record per station and site.
-    Many(Vec<f64>),
-}
-
-impl Vs30 {
-    fn values(&self) -> Vec<f64> {
-        match self {
-            Vs30::One(v) => vec![*v],
-            Vs30::Many(v) => v.clone(),
-        }
-    }
-}
-
-impl Default for Vs30 {
-    fn default() -> Self {
-        Vs30::One(760.0)
-    }
-}
 
 /// `[broadband]` as written; absent keys take the Platform's Western-US defaults.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]

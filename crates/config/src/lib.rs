@@ -24,6 +24,7 @@ pub mod scene;
 pub mod sections;
 pub mod seeds;
 pub mod set;
+mod station_band;
 
 pub use check::Checker;
 pub use error::{ConfigError, FieldError, Warning};

@@ -11,7 +11,7 @@ use std::fmt::Write as _;
 use stickslip_seismo::catalogue::compact;
 use stickslip_store::tables::source::Sources;
 
-use crate::html::{esc, figure_html};
+use crate::markup::{esc, figure_html};
 use crate::{Figure, ReportInput};
 
 /// Rows of a per-seed table shown on the page; the rest are in the table's file.

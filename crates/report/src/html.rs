@@ -10,12 +10,8 @@ use stickslip_solver::laws::describe;
 use stickslip_store::schema::{col, seed_tables};
 use stickslip_store::tables::runs::RunStatus;
 
+use crate::markup::{esc, figure_html};
 use crate::{Figure, ReportError, ReportInput, fault_page};
-
-/// Escapes text for HTML.
-pub(crate) fn esc(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
-}
 
 /// `mean ± std` of `quantity` in `group` of the summary, scaled, or "–".
 fn stat(d: &ReportInput, group: &str, quantity: &str, scale: f64, digits: usize) -> String {
@@ -64,17 +60,6 @@ fn files(d: &ReportInput, dir: &str, ext: &str) -> Vec<String> {
         .unwrap_or_default();
     v.sort();
     v
-}
-
-/// A figure as the page shows it: heading, image and caption.
-pub(crate) fn figure_html(f: &Figure) -> String {
-    format!(
-        "<figure id=\"{id}\">\n<h3>{title}</h3>\n<img src=\"figures/{file}\" alt=\"{title}\">\n<figcaption>{caption}</figcaption>\n</figure>\n",
-        id = esc(f.file.trim_end_matches(".png")),
-        title = esc(&f.title),
-        file = esc(&f.file),
-        caption = esc(&f.caption)
-    )
 }
 
 /// The page. A fault scene's leads with its source and stations and leaves out what measures a

@@ -25,6 +25,7 @@ mod fault_page;
 pub mod figures;
 mod html;
 mod input;
+mod markup;
 pub mod place;
 pub mod plot;
 mod summary;

@@ -197,7 +197,32 @@ pub struct StationSection {
     /// The station's V_S30 for its broadband records (m/s), one or several; absent: `[broadband]
     /// vs30_m_s`.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub vs30_m_s: Option<crate::broadband::Vs30>,
+    pub vs30_m_s: Option<Vs30>,
+}
+
+/// One V_S30 or several.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(untagged)]
+pub enum Vs30 {
+    /// One site.
+    One(f64),
+    /// Several sites: one record per station and site.
+    Many(Vec<f64>),
+}
+
+impl Vs30 {
+    pub(crate) fn values(&self) -> Vec<f64> {
+        match self {
+            Vs30::One(v) => vec![*v],
+            Vs30::Many(v) => v.clone(),
+        }
+    }
+}
+
+impl Default for Vs30 {
+    fn default() -> Self {
+        Vs30::One(760.0)
+    }
 }
 
 /// The fault of `[fault]` on `lattice`'s base; `None` without one.

@@ -28,7 +28,7 @@ pub use crate::friction_map::{GridSection, PatchSection};
 pub use block::MAX_NODES;
 pub use fault::{
     AbsorbingSection, FaultSection, StationSection, StochasticSection, TRACTION_GRID_HEADER, TractionGridSection,
-    TractionPatchSection,
+    TractionPatchSection, Vs30,
 };
 pub use sections::*;
 pub use stage_sections::*;
