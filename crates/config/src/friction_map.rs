@@ -12,7 +12,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 use stickslip_solver::geometry::Lattice;
-use stickslip_solver::laws::{FrictionLaw, FrictionMap, NodeFriction, Region, RegionKind, WeakeningNode};
+use stickslip_solver::laws::{FrictionLaw, FrictionMap, NodeFriction, Region, RegionKind};
 
 use crate::check::{Checker, approx, num};
 use crate::input::InputFile;
@@ -92,24 +92,17 @@ fn describe_base(lattice: &Lattice) -> String {
     format!("inside the base, 0 ≤ x ≤ {} m and 0 ≤ y ≤ {} m", approx(e[0]), approx(e[1]))
 }
 
-/// Coefficients of one region, checked; `field` is its section's name.
+/// Coefficients of one region under the background `law`'s law, checked; `field` is its
+/// section's name.
 fn coefficients(
     ck: &mut Checker,
     field: &str,
     mu_static: f64,
     mu_dynamic: Option<f64>,
-    dc: Option<f64>,
+    slip_weakening_m: Option<f64>,
     law: &FrictionLaw,
 ) -> NodeFriction {
-    ck.non_negative(&format!("{field}.mu_static"), mu_static);
-    let mu_dynamic = mu_dynamic.unwrap_or(mu_static);
-    if mu_static.is_finite() {
-        ck.range(&format!("{field}.mu_dynamic"), mu_dynamic, 0.0, false, mu_static.max(0.0), false);
-    }
-    let NodeFriction::Weakening(background) = law.node(1.0);
-    let dc = dc.unwrap_or(background.weakening_distance_m());
-    ck.non_negative(&format!("{field}.slip_weakening_m"), dc);
-    NodeFriction::Weakening(WeakeningNode::new(mu_static, mu_dynamic, dc))
+    (crate::laws::of(law).region)(ck, field, &crate::laws::RegionKeys { mu_static, mu_dynamic, slip_weakening_m }, law)
 }
 
 /// The shape of a patch of the base (friction patches, fault traction patches).

@@ -17,6 +17,7 @@ pub mod error;
 pub mod friction_map;
 pub mod input;
 pub mod keys;
+mod laws;
 pub mod numbers;
 pub mod pipeline;
 pub mod precision;

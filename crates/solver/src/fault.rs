@@ -325,10 +325,7 @@ impl FaultReading {
                 if tau <= ts {
                     s_values.push((ts - tau) / (tau - td));
                 }
-                let crate::laws::NodeFriction::Weakening(w) = friction;
-                let dc = w.weakening_distance_m();
-                if dc > 0.0 && ts > td {
-                    let l = 9.0 * std::f64::consts::PI / 32.0 * c44 * dc / (ts - td);
+                if let Some(l) = friction.cohesive_zone_m(c44, sn) {
                     zone = Some(zone.map_or(l, |z: f64| z.min(l)));
                 }
             }

@@ -437,7 +437,7 @@ impl Scene {
             density_kg_m3: 2400.0,
             poisson: 0.2,
             young_cv: 0.05,
-            friction: Friction { law: FrictionLaw::Coulomb(Coulomb { mu: 5.0 }), mu_cv: 0.0, map: None, heals: true },
+            friction: Friction { law: Coulomb { mu: 5.0 }.into(), mu_cv: 0.0, map: None, heals: true },
             time_step: TimeStep::Fraction(0.5),
             self_weight: SelfWeight {
                 gravity_m_s2: 9.81,

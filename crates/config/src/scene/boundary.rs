@@ -26,7 +26,7 @@ pub(super) fn rollers(ck: &mut Checker, file: SceneSections<'_>, lattice: &Latti
         let on_base = nodes.iter().any(|&id| lattice.half_units(id)[2] == 0);
         // Without gravity and friction the base carries nothing, and rollers on it are a plain
         // support (e.g. a wave guide).
-        let base_carries = file.self_weight.gravity_m_s2 != 0.0 || file.friction.mu_static != 0.0;
+        let base_carries = file.base_carries();
         if on_base && base_carries && (mask[0] || mask[2]) {
             let held: Vec<&str> = comps.iter().filter(|c| c.axis() != 1).map(|c| c.name()).collect();
             ck.push(

@@ -67,7 +67,7 @@ pub(super) fn drivers(ck: &mut Checker, file: SceneSections<'_>, lattice: &Latti
     drivers.sort();
     drivers.dedup();
     // Without gravity and friction the base carries nothing, and a base node may be driven.
-    let base_carries = file.self_weight.gravity_m_s2 != 0.0 || file.friction.mu_static != 0.0;
+    let base_carries = file.base_carries();
     for d in drivers.iter().filter(|_| base_carries) {
         if lattice.half_units(*d)[2] == 0 {
             ck.push(

@@ -74,6 +74,15 @@ pub struct SceneSections<'a> {
     pub stations: &'a Vec<StationSection>,
 }
 
+impl SceneSections<'_> {
+    /// Whether the base carries the block (gravity or friction): then rollers and drivers must
+    /// leave its contact nodes free to press and slide; without either the base is a plain
+    /// support.
+    pub(crate) fn base_carries(&self) -> bool {
+        self.self_weight.gravity_m_s2 != 0.0 || self.friction.mu_static != 0.0
+    }
+}
+
 fn is_empty<T>(x: &&Vec<T>) -> bool {
     x.is_empty()
 }

@@ -50,6 +50,10 @@ impl Default for MaterialSection {
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields, default)]
 pub struct FrictionSection {
+    /// The law: `"slip_weakening"` (the default: Coulomb, static/dynamic or linear slip
+    /// weakening by the keys given) or `"exponential_weakening"`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub law: Option<String>,
     /// Static coefficient μs. Default 5.0.
     pub mu_static: f64,
     /// Dynamic coefficient μd ≤ μs; omitted = μs (the plain Coulomb law).
@@ -79,6 +83,7 @@ fn is_true(v: &bool) -> bool {
 impl Default for FrictionSection {
     fn default() -> Self {
         FrictionSection {
+            law: None,
             mu_static: 5.0,
             mu_dynamic: None,
             slip_weakening_m: 0.0,

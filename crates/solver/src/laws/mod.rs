@@ -19,23 +19,29 @@
 //! one vector loop (`cargo bench -p stickslip-lab --bench step`).
 //!
 //! The laws: the slip-weakening family [`Weakening`] ([`slip_weakening`]), of which the plain
-//! Coulomb law, static/dynamic friction and linear slip weakening are the cases
-//! ([`FrictionLaw`], the scene's choice); a friction map ([`map`]) gives regions of the base their
-//! own coefficients. A new law is a file beside [`slip_weakening`] implementing [`Law`], its
-//! variant in [`FrictionLaws`] and its arm in [`FrictionLaws::dispatch`] (ARCHITECTURE.md lists the
-//! files).
+//! Coulomb law, static/dynamic friction and linear slip weakening are the cases, and exponential
+//! slip weakening [`Exponential`] ([`exponential`]). Each law's builders convert into a
+//! [`FrictionLaw`], the scene's choice; a friction map ([`map`]) gives regions of the base their
+//! own coefficients under the same law. A new law is a file beside [`slip_weakening`]
+//! implementing [`Law`] and its line in the `laws!` list below, which derives [`NodeFriction`],
+//! [`FrictionLaws`] and their forwarding; its keys and refusals are a file of the configuration
+//! crate (ARCHITECTURE.md lists the files).
 
+pub mod exponential;
 pub mod map;
 pub mod slip_weakening;
 
 use std::fmt::Debug;
 
+pub use exponential::{Exponential, ExponentialNode, ExponentialWeakening};
 pub use map::{FrictionMap, Region, RegionKind};
 pub use slip_weakening::{Coulomb, SlipWeakening, StaticDynamic, Weakening, WeakeningLanes, WeakeningNode};
 
 /// A friction law of the base: its coefficients at one contact node, its one state variable
 /// there, and the answers the contact rule, the static solves and `check` ask of it.
 pub trait Law: Copy + Debug + Default + Send + Sync + 'static {
+    /// The law's name, as `check` and messages print it.
+    const NAME: &'static str;
     /// Its coefficients at one contact node of one seed.
     type Node: Copy + Debug + PartialEq + Send + Sync;
     /// Its coefficients at one contact node for `L` seeds: one array per coefficient.
@@ -64,11 +70,18 @@ pub trait Law: Copy + Debug + Default + Send + Sync + 'static {
     fn advance(node: &Self::Node, state: f64, slid_m: f64, dt_s: f64) -> f64;
     /// The coefficients times a random-field factor (the Weibull field on μ).
     fn scaled(node: &Self::Node, factor: f64) -> Self::Node;
+    /// The same coefficients, a node that sticks healing (`true`) or keeping its state.
+    fn with_healing(node: &Self::Node, heals: bool) -> Self::Node;
     /// The coefficient once fully weakened (steady sliding).
     fn residual_coefficient(node: &Self::Node) -> f64;
     /// Critical stiffness of a spring-slider of normal force `normal_n` on this node: loading
     /// stiffer than this slides stably (N/m; infinite when μ drops at once, 0 when it never drops).
     fn critical_stiffness(node: &Self::Node, normal_n: f64) -> f64;
+    /// The size of the cohesive zone of a rupture front at rest on this node under normal stress
+    /// `normal_pa` in a medium of shear modulus `shear_modulus_pa` (m; Day et al. 2005's
+    /// estimate from the law's fracture energy), `None` when the law does not weaken over a
+    /// slip. `check` compares it with the lattice's spacing.
+    fn cohesive_zone_m(node: &Self::Node, shear_modulus_pa: f64, normal_pa: f64) -> Option<f64>;
     /// Its coefficients with their symbols and units, as `check` and the report print them.
     fn coefficients(node: &Self::Node) -> Vec<Coefficient>;
 }
@@ -111,68 +124,109 @@ pub fn describe(coefficients: &[Coefficient], value: impl Fn(usize, &Coefficient
         .join(", ")
 }
 
-/// A contact node's coefficients under the scene's law, whatever the law: what the scene, its
-/// friction map, `check` and the figures hold and ask.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum NodeFriction {
-    /// The slip-weakening family.
-    Weakening(WeakeningNode),
-}
+/// The laws of the workspace, one line each: `Variant(LawType)`. From the list come
+/// [`NodeFriction`] (a node's coefficients under any law), [`FrictionLaws`] (every contact node's
+/// coefficients for `L` seeds, the one branch on the law outside the kernel's loops) and the
+/// forwarding of every question to the law's own [`Law`] implementation: adding a law is its
+/// file and its line here.
+macro_rules! laws {
+    ($($(#[$doc:meta])* $variant:ident($law:ty)),+ $(,)?) => {
+        /// A contact node's coefficients under the scene's law, whatever the law: what the scene,
+        /// its friction map, `check` and the figures hold and ask.
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub enum NodeFriction {
+            $($(#[$doc])* $variant(<$law as Law>::Node),)+
+        }
 
-/// Runs `$body` with `$n` bound to the law's node and `$W` to the law's type.
-macro_rules! with_node {
-    ($node:expr, |$n:ident: $W:ident| $body:expr) => {
-        match $node {
-            NodeFriction::Weakening($n) => {
-                type $W = Weakening;
-                $body
+        impl NodeFriction {
+            /// The static coefficient ([`Law::static_coefficient`]).
+            pub fn static_coefficient(&self) -> f64 {
+                match self { $(NodeFriction::$variant(n) => <$law>::static_coefficient(n),)+ }
+            }
+
+            /// The coefficient once fully weakened ([`Law::residual_coefficient`]).
+            pub fn residual_coefficient(&self) -> f64 {
+                match self { $(NodeFriction::$variant(n) => <$law>::residual_coefficient(n),)+ }
+            }
+
+            /// The spring-slider's critical stiffness at normal force `normal_n`
+            /// ([`Law::critical_stiffness`]).
+            pub fn critical_stiffness(&self, normal_n: f64) -> f64 {
+                match self { $(NodeFriction::$variant(n) => <$law>::critical_stiffness(n, normal_n),)+ }
+            }
+
+            /// The cohesive zone's size under normal stress `normal_pa` in a medium of shear
+            /// modulus `shear_modulus_pa` ([`Law::cohesive_zone_m`]).
+            pub fn cohesive_zone_m(&self, shear_modulus_pa: f64, normal_pa: f64) -> Option<f64> {
+                match self { $(NodeFriction::$variant(n) => <$law>::cohesive_zone_m(n, shear_modulus_pa, normal_pa),)+ }
+            }
+
+            /// The named coefficients ([`Law::coefficients`]).
+            pub fn coefficients(&self) -> Vec<Coefficient> {
+                match self { $(NodeFriction::$variant(n) => <$law>::coefficients(n),)+ }
+            }
+
+            /// The coefficients times a random-field factor ([`Law::scaled`]).
+            pub fn scaled(&self, factor: f64) -> NodeFriction {
+                match self { $(NodeFriction::$variant(n) => NodeFriction::$variant(<$law>::scaled(n, factor)),)+ }
+            }
+
+            /// The same coefficients, healing when a node sticks or not ([`Law::with_healing`]).
+            pub fn healing(&self, heals: bool) -> NodeFriction {
+                match self { $(NodeFriction::$variant(n) => NodeFriction::$variant(<$law>::with_healing(n, heals)),)+ }
+            }
+
+            /// The law's name ([`Law::NAME`]).
+            pub fn law_name(&self) -> &'static str {
+                match self { $(NodeFriction::$variant(_) => <$law>::NAME,)+ }
+            }
+        }
+
+        /// The per-node, per-lane coefficients of the scene's law for `L` seeds, chosen once
+        /// before the run: the contact kernel is monomorphised for the law in
+        /// [`FrictionLaws::dispatch`].
+        #[derive(Clone, Debug, PartialEq)]
+        pub enum FrictionLaws<const L: usize> {
+            $($(#[$doc])* $variant(Vec<<$law as Law>::Lanes<L>>),)+
+        }
+
+        impl<const L: usize> FrictionLaws<L> {
+            /// The coefficients of every contact node for `L` seeds under the law of `background`
+            /// (the scene's): `node(c, l)` gives contact node `c`'s coefficients in lane `l`.
+            ///
+            /// # Panics
+            /// When a node is under another law than `background`'s (the configuration builds
+            /// every node of a scene under its one law).
+            pub fn new(background: &NodeFriction, contacts: usize, node: impl Fn(usize, usize) -> NodeFriction) -> Self {
+                match background {
+                    $(NodeFriction::$variant(_) => FrictionLaws::$variant(
+                        (0..contacts)
+                            .map(|c| {
+                                <$law>::lanes::<L>(std::array::from_fn(|l| match node(c, l) {
+                                    NodeFriction::$variant(n) => n,
+                                    #[allow(unreachable_patterns)]
+                                    other => panic!("one law per scene: node {c} is under {}", other.law_name()),
+                                }))
+                            })
+                            .collect(),
+                    ),)+
+                }
+            }
+
+            /// Runs `f` with the law's coefficients (the one branch on the law, outside every loop).
+            #[inline]
+            pub fn dispatch<F: WithLaw<L>>(&self, f: F) -> F::Out {
+                match self { $(FrictionLaws::$variant(v) => f.run::<$law>(v),)+ }
             }
         }
     };
 }
 
-impl NodeFriction {
-    /// The static coefficient ([`Law::static_coefficient`]).
-    pub fn static_coefficient(&self) -> f64 {
-        with_node!(self, |n: W| W::static_coefficient(n))
-    }
-
-    /// The coefficient once fully weakened ([`Law::residual_coefficient`]).
-    pub fn residual_coefficient(&self) -> f64 {
-        with_node!(self, |n: W| W::residual_coefficient(n))
-    }
-
-    /// The spring-slider's critical stiffness at normal force `normal_n` ([`Law::critical_stiffness`]).
-    pub fn critical_stiffness(&self, normal_n: f64) -> f64 {
-        with_node!(self, |n: W| W::critical_stiffness(n, normal_n))
-    }
-
-    /// The named coefficients ([`Law::coefficients`]).
-    pub fn coefficients(&self) -> Vec<Coefficient> {
-        with_node!(self, |n: W| W::coefficients(n))
-    }
-
-    /// The coefficients times a random-field factor ([`Law::scaled`]).
-    pub fn scaled(&self, factor: f64) -> NodeFriction {
-        match self {
-            NodeFriction::Weakening(n) => NodeFriction::Weakening(Weakening::scaled(n, factor)),
-        }
-    }
-
-    /// The same coefficients, healing when a node sticks or not.
-    pub fn healing(&self, heals: bool) -> NodeFriction {
-        match self {
-            NodeFriction::Weakening(n) => NodeFriction::Weakening(n.with_healing(heals)),
-        }
-    }
-}
-
-/// The per-node, per-lane coefficients of the scene's law for `L` seeds, chosen once before the
-/// run: the contact kernel is monomorphised for the law in [`FrictionLaws::dispatch`].
-#[derive(Clone, Debug, PartialEq)]
-pub enum FrictionLaws<const L: usize> {
-    /// The slip-weakening family.
-    Weakening(Vec<<Weakening as Law>::Lanes<L>>),
+laws! {
+    /// The slip-weakening family (Coulomb, static/dynamic, linear slip weakening).
+    Weakening(Weakening),
+    /// Exponential slip weakening.
+    Exponential(Exponential),
 }
 
 /// What runs with one law's coefficients: the contact kernel, generic over the law.
@@ -183,81 +237,27 @@ pub trait WithLaw<const L: usize> {
     fn run<W: Law>(self, lanes: &[W::Lanes<L>]) -> Self::Out;
 }
 
-impl<const L: usize> FrictionLaws<L> {
-    /// The coefficients of every contact node for `L` seeds: `node(c, l)` gives contact node `c`'s
-    /// coefficients in lane `l` (every node under the one law of the scene).
-    pub fn new(contacts: usize, node: impl Fn(usize, usize) -> NodeFriction) -> Self {
-        let weakening = |c: usize, l: usize| match node(c, l) {
-            NodeFriction::Weakening(n) => n,
-        };
-        FrictionLaws::Weakening(
-            (0..contacts).map(|c| Weakening::lanes::<L>(std::array::from_fn(|l| weakening(c, l)))).collect(),
-        )
-    }
-
-    /// Runs `f` with the law's coefficients (the one branch on the law, outside every loop).
-    #[inline]
-    pub fn dispatch<F: WithLaw<L>>(&self, f: F) -> F::Out {
-        match self {
-            FrictionLaws::Weakening(v) => f.run::<Weakening>(v),
-        }
-    }
-}
-
-/// The friction law of a scene, chosen once before the run.
+/// The friction law of a scene, chosen once before the run: the coefficients of its background
+/// (before any random field) and the name the configuration gave it (a case of the law, e.g.
+/// `coulomb` of the slip-weakening family). Each law's builders convert into it
+/// (e.g. [`SlipWeakening`]`.into()`).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum FrictionLaw {
-    /// One coefficient μ: the paper's law.
-    Coulomb(Coulomb),
-    /// Static μs, dynamic μd from the first step of slip.
-    StaticDynamic(StaticDynamic),
-    /// μ falls linearly from μs to μd over a slip Dc.
-    SlipWeakening(SlipWeakening),
+pub struct FrictionLaw {
+    /// Name as written in tables and messages.
+    pub name: &'static str,
+    /// The background's coefficients before the field factor.
+    pub background: NodeFriction,
 }
 
 impl FrictionLaw {
-    /// Static coefficient μs (before any field factor).
-    fn mu_static(&self) -> f64 {
-        match self {
-            FrictionLaw::Coulomb(c) => c.mu,
-            FrictionLaw::StaticDynamic(s) => s.mu_static,
-            FrictionLaw::SlipWeakening(s) => s.mu_static,
-        }
-    }
-
-    /// Dynamic coefficient μd (before any field factor); μs for the plain law.
-    fn mu_dynamic(&self) -> f64 {
-        match self {
-            FrictionLaw::Coulomb(c) => c.mu,
-            FrictionLaw::StaticDynamic(s) => s.mu_dynamic,
-            FrictionLaw::SlipWeakening(s) => s.mu_dynamic,
-        }
-    }
-
-    /// Slip-weakening distance Dc (m); 0 for laws that drop at once or not at all.
-    fn weakening_distance_m(&self) -> f64 {
-        match self {
-            FrictionLaw::SlipWeakening(s) => s.dc_m,
-            _ => 0.0,
-        }
-    }
-
     /// The coefficients of a node whose random-field factor is `factor`.
     pub fn node(&self, factor: f64) -> NodeFriction {
-        NodeFriction::Weakening(WeakeningNode::new(
-            self.mu_static() * factor,
-            self.mu_dynamic() * factor,
-            self.weakening_distance_m(),
-        ))
+        self.background.scaled(factor)
     }
 
     /// Name as written in tables and messages.
     pub fn name(&self) -> &'static str {
-        match self {
-            FrictionLaw::Coulomb(_) => "coulomb",
-            FrictionLaw::StaticDynamic(_) => "static_dynamic",
-            FrictionLaw::SlipWeakening(_) => "slip_weakening",
-        }
+        self.name
     }
 }
 
@@ -267,41 +267,36 @@ mod tests {
 
     #[test]
     fn node_coefficients_scale_with_the_field_factor() {
-        let law = FrictionLaw::StaticDynamic(StaticDynamic { mu_static: 0.6, mu_dynamic: 0.45 });
+        let law: FrictionLaw = StaticDynamic { mu_static: 0.6, mu_dynamic: 0.45 }.into();
         let n = law.node(1.5);
         assert_eq!((n.static_coefficient(), n.residual_coefficient()), (0.6 * 1.5, 0.45 * 1.5));
-        assert_eq!(FrictionLaw::Coulomb(Coulomb { mu: 5.0 }).node(1.0).residual_coefficient(), 5.0);
+        let law: FrictionLaw = Coulomb { mu: 5.0 }.into();
+        assert_eq!(law.node(1.0).residual_coefficient(), 5.0);
+        assert_eq!(law.name(), "coulomb");
+        let law: FrictionLaw = ExponentialWeakening { mu_static: 0.6, mu_dynamic: 0.3, dc_m: 0.1 }.into();
+        assert_eq!(law.node(2.0).static_coefficient(), 1.2);
+        assert_eq!(law.node(2.0).law_name(), "exponential slip weakening");
     }
 
     #[test]
-    fn kinetic_coefficients_of_each_law() {
-        let weakening = |law: FrictionLaw| match law.node(1.0) {
-            NodeFriction::Weakening(n) => n,
-        };
-        let plain = weakening(FrictionLaw::Coulomb(Coulomb { mu: 0.6 }));
-        assert_eq!(plain.kinetic(1.0), 0.6);
-        let sd = weakening(FrictionLaw::StaticDynamic(StaticDynamic { mu_static: 0.6, mu_dynamic: 0.4 }));
-        assert_eq!(sd.kinetic(0.0), 0.4);
-        assert_eq!(sd.kinetic(1.0), 0.4);
-        let sw = weakening(FrictionLaw::SlipWeakening(SlipWeakening { mu_static: 0.6, mu_dynamic: 0.4, dc_m: 1e-3 }));
-        assert_eq!(sw.kinetic(0.0), 0.6);
-        assert!((sw.kinetic(0.5e-3) - 0.5).abs() < 1e-15);
-        assert_eq!(sw.kinetic(2e-3), 0.4);
-        // Sticking nodes hold at μs whatever the law.
-        assert_eq!(Weakening::holding(&sw, false, sw.kinetic(0.5e-3), 0.5e-3), 0.6);
-        assert_eq!(Weakening::stuck(&sw, 0.5e-3), 0.0);
-        // Without healing a stuck node keeps its slip and holds at its weakened coefficient; one
-        // that never slipped holds at μs.
-        let kept = sw.with_healing(false);
-        assert_eq!(Weakening::stuck(&kept, 0.5e-3), 0.5e-3);
-        assert!((Weakening::holding(&kept, false, kept.kinetic(0.5e-3), 0.5e-3) - 0.5).abs() < 1e-15);
-        assert_eq!(Weakening::holding(&kept, false, kept.kinetic(0.0), 0.0), 0.6);
-        let sd_kept = sd.with_healing(false);
-        assert_eq!(Weakening::holding(&sd_kept, false, sd_kept.kinetic(0.0), 0.0), 0.6);
-        assert_eq!(Weakening::holding(&sd_kept, false, sd_kept.kinetic(1e-9), 1e-9), 0.4);
-        // The spring-slider's critical stiffness (μs − μd)·N/Dc.
-        assert!((Weakening::critical_stiffness(&sw, 1000.0) - 0.2 * 1000.0 / 1e-3).abs() < 1e-6);
-        assert_eq!(Weakening::critical_stiffness(&sd, 1000.0), f64::INFINITY);
-        assert_eq!(Weakening::critical_stiffness(&plain, 1000.0), 0.0);
+    fn each_node_answers_with_its_own_law() {
+        let linear: FrictionLaw = SlipWeakening { mu_static: 0.6, mu_dynamic: 0.4, dc_m: 0.1 }.into();
+        let exponential: FrictionLaw = ExponentialWeakening { mu_static: 0.6, mu_dynamic: 0.4, dc_m: 0.1 }.into();
+        let (l, e) = (linear.node(1.0), exponential.node(1.0));
+        // The same initial weakening rate, a fracture energy twice the linear law's: the zone
+        // doubles.
+        assert_eq!(l.critical_stiffness(100.0), e.critical_stiffness(100.0));
+        let (zl, ze) = (l.cohesive_zone_m(30e9, 1e6).unwrap(), e.cohesive_zone_m(30e9, 1e6).unwrap());
+        assert!((ze / zl - 2.0).abs() < 1e-12, "{ze} {zl}");
+        let lanes = FrictionLaws::<2>::new(&e, 3, |_, _| e);
+        assert!(matches!(lanes, FrictionLaws::Exponential(ref v) if v.len() == 3));
+    }
+
+    #[test]
+    #[should_panic(expected = "one law per scene")]
+    fn a_scene_holds_one_law() {
+        let linear: FrictionLaw = SlipWeakening { mu_static: 0.6, mu_dynamic: 0.4, dc_m: 0.1 }.into();
+        let exponential: FrictionLaw = ExponentialWeakening { mu_static: 0.6, mu_dynamic: 0.4, dc_m: 0.1 }.into();
+        let _ = FrictionLaws::<1>::new(&linear.node(1.0), 2, |c, _| if c == 0 { linear.node(1.0) } else { exponential.node(1.0) });
     }
 }

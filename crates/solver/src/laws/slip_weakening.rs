@@ -14,7 +14,7 @@
 //! whatever the case (per-case kernels left the plain law's loop scalar at 4 seeds, 11% slower per
 //! step), and a friction map may give each region its own μs, μd and Dc.
 
-use super::{Coefficient, Law, Trial};
+use super::{Coefficient, FrictionLaw, Law, NodeFriction, Trial};
 
 /// The slip-weakening family as a [`Law`]: its state variable is the slip of the current slide.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -77,6 +77,7 @@ fn kinetic(node: &WeakeningNode, path: f64) -> f64 {
 }
 
 impl Law for Weakening {
+    const NAME: &'static str = "slip weakening";
     type Node = WeakeningNode;
     type Lanes<const L: usize> = WeakeningLanes<L>;
 
@@ -132,8 +133,19 @@ impl Law for Weakening {
         WeakeningNode { mu_static: node.mu_static * factor, mu_dynamic: node.mu_dynamic * factor, ..*node }
     }
 
+    fn with_healing(node: &WeakeningNode, heals: bool) -> WeakeningNode {
+        node.with_healing(heals)
+    }
+
     fn residual_coefficient(node: &WeakeningNode) -> f64 {
         node.mu_dynamic
+    }
+
+    /// `9π/32·μ·Dc/(τs − τd)` (Day et al. 2005, for linear weakening); `None` when μ drops at
+    /// once or not at all.
+    fn cohesive_zone_m(node: &WeakeningNode, shear_modulus_pa: f64, normal_pa: f64) -> Option<f64> {
+        let (ts, td) = (node.mu_static * normal_pa, node.mu_dynamic * normal_pa);
+        (node.dc_m > 0.0 && ts > td).then(|| 9.0 * std::f64::consts::PI / 32.0 * shear_modulus_pa * node.dc_m / (ts - td))
     }
 
     /// The weakening rate `(μs − μd)·N/Dc`.
@@ -154,6 +166,29 @@ impl Law for Weakening {
             Coefficient { symbol: "μd", value: node.mu_dynamic, unit: "" },
             Coefficient { symbol: "Dc", value: node.dc_m, unit: "m" },
         ]
+    }
+}
+
+/// The slip-weakening family's cases: each a builder of the scene's [`FrictionLaw`].
+fn case(name: &'static str, mu_static: f64, mu_dynamic: f64, dc_m: f64) -> FrictionLaw {
+    FrictionLaw { name, background: NodeFriction::Weakening(WeakeningNode::new(mu_static, mu_dynamic, dc_m)) }
+}
+
+impl From<Coulomb> for FrictionLaw {
+    fn from(c: Coulomb) -> FrictionLaw {
+        case("coulomb", c.mu, c.mu, 0.0)
+    }
+}
+
+impl From<StaticDynamic> for FrictionLaw {
+    fn from(s: StaticDynamic) -> FrictionLaw {
+        case("static_dynamic", s.mu_static, s.mu_dynamic, 0.0)
+    }
+}
+
+impl From<SlipWeakening> for FrictionLaw {
+    fn from(s: SlipWeakening) -> FrictionLaw {
+        case("slip_weakening", s.mu_static, s.mu_dynamic, s.dc_m)
     }
 }
 
@@ -183,4 +218,42 @@ pub struct SlipWeakening {
     pub mu_dynamic: f64,
     /// Dc (m), > 0.
     pub dc_m: f64,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn kinetic_coefficients_of_each_law() {
+        let weakening = |law: FrictionLaw| match law.node(1.0) {
+            NodeFriction::Weakening(n) => n,
+            other => panic!("{other:?}"),
+        };
+        let plain = weakening(Coulomb { mu: 0.6 }.into());
+        assert_eq!(plain.kinetic(1.0), 0.6);
+        let sd = weakening(StaticDynamic { mu_static: 0.6, mu_dynamic: 0.4 }.into());
+        assert_eq!(sd.kinetic(0.0), 0.4);
+        assert_eq!(sd.kinetic(1.0), 0.4);
+        let sw = weakening(SlipWeakening { mu_static: 0.6, mu_dynamic: 0.4, dc_m: 1e-3 }.into());
+        assert_eq!(sw.kinetic(0.0), 0.6);
+        assert!((sw.kinetic(0.5e-3) - 0.5).abs() < 1e-15);
+        assert_eq!(sw.kinetic(2e-3), 0.4);
+        // Sticking nodes hold at μs whatever the law.
+        assert_eq!(Weakening::holding(&sw, false, sw.kinetic(0.5e-3), 0.5e-3), 0.6);
+        assert_eq!(Weakening::stuck(&sw, 0.5e-3), 0.0);
+        // Without healing a stuck node keeps its slip and holds at its weakened coefficient; one
+        // that never slipped holds at μs.
+        let kept = sw.with_healing(false);
+        assert_eq!(Weakening::stuck(&kept, 0.5e-3), 0.5e-3);
+        assert!((Weakening::holding(&kept, false, kept.kinetic(0.5e-3), 0.5e-3) - 0.5).abs() < 1e-15);
+        assert_eq!(Weakening::holding(&kept, false, kept.kinetic(0.0), 0.0), 0.6);
+        let sd_kept = sd.with_healing(false);
+        assert_eq!(Weakening::holding(&sd_kept, false, sd_kept.kinetic(0.0), 0.0), 0.6);
+        assert_eq!(Weakening::holding(&sd_kept, false, sd_kept.kinetic(1e-9), 1e-9), 0.4);
+        // The spring-slider's critical stiffness (μs − μd)·N/Dc.
+        assert!((Weakening::critical_stiffness(&sw, 1000.0) - 0.2 * 1000.0 / 1e-3).abs() < 1e-6);
+        assert_eq!(Weakening::critical_stiffness(&sd, 1000.0), f64::INFINITY);
+        assert_eq!(Weakening::critical_stiffness(&plain, 1000.0), 0.0);
+    }
 }

@@ -338,22 +338,51 @@ mod tests {
     use rand::{RngExt, SeedableRng};
 
     use super::*;
-    use crate::laws::{Coulomb, FrictionLaw, NodeFriction, SlipWeakening, StaticDynamic, Weakening, WeakeningNode};
+    use crate::laws::{
+        Coulomb, Exponential, ExponentialNode, ExponentialWeakening, FrictionLaw, NodeFriction, SlipWeakening,
+        StaticDynamic, Weakening, WeakeningNode,
+    };
+
+    /// A law the kernels are tested under: its coefficients with a friction map's own Dc (the
+    /// law's times `dc_scale`) and healing or not, and its node out of a [`NodeFriction`].
+    trait Tested: Law {
+        fn node(n: NodeFriction, dc_scale: f64, heals: bool) -> Self::Node;
+    }
+
+    impl Tested for Weakening {
+        fn node(n: NodeFriction, dc_scale: f64, heals: bool) -> WeakeningNode {
+            let NodeFriction::Weakening(n) = n else { panic!("{n:?}") };
+            let dc = n.weakening_distance_m() * dc_scale;
+            WeakeningNode::new(Weakening::static_coefficient(&n), Weakening::residual_coefficient(&n), dc)
+                .with_healing(heals)
+        }
+    }
+
+    impl Tested for Exponential {
+        fn node(n: NodeFriction, dc_scale: f64, heals: bool) -> ExponentialNode {
+            let NodeFriction::Exponential(n) = n else { panic!("{n:?}") };
+            let dc = Exponential::coefficients(&n)[2].value * dc_scale;
+            Exponential::with_healing(
+                &ExponentialNode::new(Exponential::static_coefficient(&n), Exponential::residual_coefficient(&n), dc),
+                heals,
+            )
+        }
+    }
 
     /// Random contact states of `nodes` nodes and `L` lanes: trial positions below and above the
     /// base, nodes that were sliding with some slip path, coefficients varying per node and lane.
-    struct Case<const L: usize> {
+    struct Case<W: Law, const L: usize> {
         mass: Vec<f64>,
         cf: Lanes<L>,
         dt: Lanes<L>,
-        law: Vec<[WeakeningNode; L]>,
+        law: Vec<[W::Node; L]>,
         trial: [Vec<Lanes<L>>; 3],
         now: [Vec<Lanes<L>>; 2],
         sliding: Vec<[bool; L]>,
         path: Vec<Lanes<L>>,
     }
 
-    fn case<const L: usize>(law: &FrictionLaw, seed: u64, nodes: usize) -> Case<L> {
+    fn case<W: Tested, const L: usize>(law: &FrictionLaw, seed: u64, nodes: usize) -> Case<W, L> {
         let mut rng = rand::rngs::ChaCha8Rng::seed_from_u64(seed);
         let mut lanes = |lo: f64, hi: f64| -> Lanes<L> { std::array::from_fn(|_| rng.random_range(lo..hi)) };
         let mass: Vec<f64> = (0..nodes).map(|_| lanes(1.0, 3.0)[0]).collect();
@@ -364,12 +393,9 @@ mod tests {
         let law = (0..nodes)
             .map(|i| {
                 let (factor, dc) = (lanes(0.3, 5.0), lanes(0.5, 2.0));
+                // A third of the nodes keep their slip when they stick (no healing).
                 std::array::from_fn(|l| {
-                    let NodeFriction::Weakening(n) = law.node(factor[l]);
-                    let dc = n.weakening_distance_m() * if i % 2 == 0 { 1.0 } else { dc[l] };
-                    // A third of the nodes keep their slip when they stick (no healing).
-                    WeakeningNode::new(Weakening::static_coefficient(&n), Weakening::residual_coefficient(&n), dc)
-                        .with_healing(i % 3 != 0)
+                    W::node(law.node(factor[l]), if i % 2 == 0 { 1.0 } else { dc[l] }, i % 3 != 0)
                 })
             })
             .collect();
@@ -387,14 +413,14 @@ mod tests {
     }
 
     /// The lane kernel in build `isa` against [`resolve`] on every node and lane, bit for bit.
-    fn agree<const L: usize>(law: FrictionLaw, isa: Isa, seed: u64) {
-        let c = case::<L>(&law, seed, 40);
+    fn agree<W: Tested, const L: usize>(law: FrictionLaw, isa: Isa, seed: u64) {
+        let c = case::<W, L>(&law, seed, 40);
         let nodes: Vec<u32> = (0..c.mass.len() as u32).collect();
         let mut trial = c.trial.clone();
         let mut sliding = c.sliding.clone();
         let mut path = c.path.clone();
         let mut reaction = [vec![[0.0; L]; nodes.len()], vec![[0.0; L]; nodes.len()], vec![[0.0; L]; nodes.len()]];
-        let coefficients: Vec<_> = c.law.iter().map(|n| Weakening::lanes(*n)).collect();
+        let coefficients: Vec<_> = c.law.iter().map(|n| W::lanes(*n)).collect();
         {
             let [tx, ty, tz] = &mut trial;
             let mut arrays = ContactArrays {
@@ -409,7 +435,7 @@ mod tests {
                 reaction: &mut reaction,
                 fault_normal: None,
             };
-            contact_dispatch(isa, &mut arrays, &coefficients, Weakening);
+            contact_dispatch(isa, &mut arrays, &coefficients, W::default());
         }
         let mut outcomes = [0usize; 3];
         for i in 0..nodes.len() {
@@ -417,7 +443,7 @@ mod tests {
                 let g = c.mass[i] / c.cf[l];
                 let t = [c.trial[0][i][l], c.trial[1][i][l], c.trial[2][i][l]];
                 let now = [c.now[0][i][l], c.now[1][i][l]];
-                let want = resolve::<Weakening>(&c.law[i][l], (g, c.dt[l]), t, now, c.sliding[i][l], c.path[i][l]);
+                let want = resolve::<W>(&c.law[i][l], (g, c.dt[l]), t, now, c.sliding[i][l], c.path[i][l]);
                 let got = Resolved {
                     position: [trial[0][i][l], trial[1][i][l], trial[2][i][l]],
                     reaction: [reaction[0][i][l], reaction[1][i][l], reaction[2][i][l]],
@@ -442,8 +468,8 @@ mod tests {
 
     /// The fault kernel in build `isa` against [`resolve_fault`], bit for bit, with normal forces
     /// of each node and lane.
-    fn agree_fault<const L: usize>(law: FrictionLaw, isa: Isa, seed: u64) {
-        let c = case::<L>(&law, seed, 40);
+    fn agree_fault<W: Tested, const L: usize>(law: FrictionLaw, isa: Isa, seed: u64) {
+        let c = case::<W, L>(&law, seed, 40);
         let nodes: Vec<u32> = (0..c.mass.len() as u32).collect();
         let mut rng = rand::rngs::ChaCha8Rng::seed_from_u64(seed + 100);
         // Normal forces comparable to the tangential trials' reactions (g·µm), so that nodes both
@@ -455,7 +481,7 @@ mod tests {
         let mut sliding = c.sliding.clone();
         let mut path = c.path.clone();
         let mut reaction = [vec![[0.0; L]; nodes.len()], vec![[0.0; L]; nodes.len()], vec![[0.0; L]; nodes.len()]];
-        let coefficients: Vec<_> = c.law.iter().map(|n| Weakening::lanes(*n)).collect();
+        let coefficients: Vec<_> = c.law.iter().map(|n| W::lanes(*n)).collect();
         {
             let [tx, ty, tz] = &mut trial;
             let mut arrays = ContactArrays {
@@ -470,7 +496,7 @@ mod tests {
                 reaction: &mut reaction,
                 fault_normal: Some(&normal),
             };
-            fault_dispatch(isa, &mut arrays, &coefficients, Weakening);
+            fault_dispatch(isa, &mut arrays, &coefficients, W::default());
         }
         let mut outcomes = [0usize; 2];
         for i in 0..nodes.len() {
@@ -478,7 +504,7 @@ mod tests {
                 let g = c.mass[i] / c.cf[l];
                 let t = [c.trial[0][i][l], c.trial[1][i][l], c.trial[2][i][l]];
                 let now = [c.now[0][i][l], c.now[1][i][l]];
-                let want = resolve_fault::<Weakening>(
+                let want = resolve_fault::<W>(
                     &c.law[i][l],
                     (g, c.dt[l]),
                     t,
@@ -509,13 +535,17 @@ mod tests {
     fn fault_kernel_agrees_with_the_scalar_rule_bit_for_bit_in_every_build() {
         for isa in Isa::available() {
             for seed in 0..4 {
-                let sd = FrictionLaw::StaticDynamic(StaticDynamic { mu_static: 1.0, mu_dynamic: 0.8 });
-                let sw = FrictionLaw::SlipWeakening(SlipWeakening { mu_static: 1.0, mu_dynamic: 0.8, dc_m: 3e-6 });
+                let sd = StaticDynamic { mu_static: 1.0, mu_dynamic: 0.8 }.into();
+                let sw = SlipWeakening { mu_static: 1.0, mu_dynamic: 0.8, dc_m: 3e-6 }.into();
                 for law in [sd, sw] {
-                    agree_fault::<1>(law, isa, seed);
-                    agree_fault::<4>(law, isa, seed);
-                    agree_fault::<8>(law, isa, seed);
+                    agree_fault::<Weakening, 1>(law, isa, seed);
+                    agree_fault::<Weakening, 4>(law, isa, seed);
+                    agree_fault::<Weakening, 8>(law, isa, seed);
                 }
+                let exponential = ExponentialWeakening { mu_static: 1.0, mu_dynamic: 0.8, dc_m: 3e-6 }.into();
+                agree_fault::<Exponential, 1>(exponential, isa, seed);
+                agree_fault::<Exponential, 4>(exponential, isa, seed);
+                agree_fault::<Exponential, 8>(exponential, isa, seed);
             }
         }
     }
@@ -525,7 +555,7 @@ mod tests {
         // A node sliding 1 µm in a step has slipped 2 µm across the fault: with Dc = 4 µm the
         // slip-weakening state is 2 µm, halfway from μs to μd.
         let law = SlipWeakening { mu_static: 0.6, mu_dynamic: 0.4, dc_m: 4e-6 };
-        let NodeFriction::Weakening(node) = FrictionLaw::SlipWeakening(law).node(1.0);
+        let NodeFriction::Weakening(node) = FrictionLaw::from(law).node(1.0) else { unreachable!() };
         let g = 1.0e6;
         let normal = 1.0;
         // A trial 10 µm away: the friction (0.6 N at most) moves it back 0.6 µm, to 9.4 µm.
@@ -541,13 +571,17 @@ mod tests {
     fn lane_kernel_agrees_with_the_scalar_law_bit_for_bit_in_every_build() {
         for isa in Isa::available() {
             for seed in 0..4 {
-                let plain = FrictionLaw::Coulomb(Coulomb { mu: 1.0 });
-                let sd = FrictionLaw::StaticDynamic(StaticDynamic { mu_static: 1.0, mu_dynamic: 0.8 });
-                let sw = FrictionLaw::SlipWeakening(SlipWeakening { mu_static: 1.0, mu_dynamic: 0.8, dc_m: 3e-6 });
+                let plain = Coulomb { mu: 1.0 }.into();
+                let sd = StaticDynamic { mu_static: 1.0, mu_dynamic: 0.8 }.into();
+                let sw = SlipWeakening { mu_static: 1.0, mu_dynamic: 0.8, dc_m: 3e-6 }.into();
+                let exponential = ExponentialWeakening { mu_static: 1.0, mu_dynamic: 0.8, dc_m: 3e-6 }.into();
+                agree::<Exponential, 1>(exponential, isa, seed);
+                agree::<Exponential, 4>(exponential, isa, seed);
+                agree::<Exponential, 8>(exponential, isa, seed);
                 for law in [plain, sd, sw] {
-                    agree::<1>(law, isa, seed);
-                    agree::<4>(law, isa, seed);
-                    agree::<8>(law, isa, seed);
+                    agree::<Weakening, 1>(law, isa, seed);
+                    agree::<Weakening, 4>(law, isa, seed);
+                    agree::<Weakening, 8>(law, isa, seed);
                 }
             }
         }

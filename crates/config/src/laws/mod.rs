@@ -1,0 +1,80 @@
+//! Friction laws as the configuration knows them: each law's keys in `[friction]`, its patches
+//! and grid rows, and its refusals, one file per law ([`slip_weakening`], [`exponential`]); the
+//! table [`LAWS`] maps `[friction] law` to the file. `scene::friction` and the friction map ask
+//! the law chosen here for the background and for each region's coefficients, and never name a
+//! law. A new law is its file here and its line in [`LAWS`] (beside its file in the solver's
+//! `laws`; ARCHITECTURE.md lists the files).
+
+mod exponential;
+mod slip_weakening;
+
+use stickslip_solver::laws::{FrictionLaw, NodeFriction};
+
+use crate::check::Checker;
+
+/// The keys of `[friction]` a law reads for the background.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct FrictionKeys {
+    /// `mu_static`.
+    pub mu_static: f64,
+    /// `mu_dynamic`.
+    pub mu_dynamic: Option<f64>,
+    /// `slip_weakening_m`.
+    pub slip_weakening_m: f64,
+}
+
+/// The coefficients a region of the base gives (a patch, a grid row): the keys shared by every
+/// region, `None` where the region leaves one to the background's.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct RegionKeys {
+    /// `mu_static`.
+    pub mu_static: f64,
+    /// `mu_dynamic`; `None` = the region's μs.
+    pub mu_dynamic: Option<f64>,
+    /// `slip_weakening_m`; `None` = the background's.
+    pub slip_weakening_m: Option<f64>,
+}
+
+/// A friction law of `[friction]`: its name, what it is, and how its keys become coefficients.
+pub(crate) struct LawKeys {
+    /// Its value of `[friction] law`.
+    pub name: &'static str,
+    /// What it is, for the refusal of an unknown name.
+    pub about: &'static str,
+    /// The solver's law it builds (its `Law::NAME`).
+    pub solver_law: &'static str,
+    /// The background law of `[friction]`, its values checked into `ck`.
+    pub law: fn(&mut Checker, &FrictionKeys) -> FrictionLaw,
+    /// A region's coefficients under this law over the background `law`, checked into `ck`
+    /// under the region's `field`.
+    pub region: fn(&mut Checker, &str, &RegionKeys, &FrictionLaw) -> NodeFriction,
+}
+
+/// Every law, the first the default of `[friction] law`.
+pub(crate) const LAWS: [LawKeys; 2] = [slip_weakening::KEYS, exponential::KEYS];
+
+/// The law `[friction] law` names (refused with every allowed name when it names none).
+pub(crate) fn chosen(ck: &mut Checker, law: Option<&str>) -> &'static LawKeys {
+    let Some(name) = law else { return &LAWS[0] };
+    LAWS.iter().find(|l| l.name == name).unwrap_or_else(|| {
+        let allowed: Vec<String> = LAWS.iter().map(|l| format!("\"{}\" ({})", l.name, l.about)).collect();
+        ck.push("friction.law", format!("{name:?}"), format!("one of {}", allowed.join(", ")));
+        &LAWS[0]
+    })
+}
+
+/// The entry of [`LAWS`] whose law built the background `law`.
+pub(crate) fn of(law: &FrictionLaw) -> &'static LawKeys {
+    let name = law.background.law_name();
+    LAWS.iter().find(|l| l.solver_law == name).expect("every law's background comes from LAWS")
+}
+
+/// A region's μs (checked non-negative) and μd (its μs when omitted; checked within 0…μs).
+fn region_coefficients(ck: &mut Checker, field: &str, keys: &RegionKeys) -> (f64, f64) {
+    ck.non_negative(&format!("{field}.mu_static"), keys.mu_static);
+    let mu_dynamic = keys.mu_dynamic.unwrap_or(keys.mu_static);
+    if keys.mu_static.is_finite() {
+        ck.range(&format!("{field}.mu_dynamic"), mu_dynamic, 0.0, false, keys.mu_static.max(0.0), false);
+    }
+    (keys.mu_static, mu_dynamic)
+}
