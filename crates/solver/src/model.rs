@@ -263,13 +263,13 @@ impl Model {
 
     /// Driven nodes (internal indices).
     pub fn drivers(&self) -> &[u32] {
-        &self.boundaries.drivers.nodes
+        self.boundaries.drivers()
     }
 
     /// The nodes tied to the loading plate (internal indices) and their spring stiffness in x
     /// (N/m); empty without a plate.
     pub fn plate(&self) -> &[(u32, f64)] {
-        &self.boundaries.plate.springs
+        self.boundaries.plate()
     }
 
     /// The bar stiffness of `seed` as a run holds it: per bar for listed bars

@@ -17,7 +17,7 @@
 //! out of the block, `c·v·(uₙ₊₁ − uₙ₋₁)` per step, is the ledger's `absorbed` term. The
 //! skip-ahead's quasi-static motion has no velocity and does not include them.
 
-use super::{Boundary, Step, Work};
+use super::{Boundary, Phase, Step, Work};
 use crate::geometry::NodeId;
 use crate::material::lattice_elastic_constants;
 use crate::scene::Scene;
@@ -38,7 +38,7 @@ pub fn impedances(scene: &Scene) -> (f64, f64) {
 
 impl Absorbing {
     /// The dashpots of `scene`'s absorbing faces.
-    pub(crate) fn new(scene: &Scene, internal: impl Fn(NodeId) -> u32) -> Absorbing {
+    pub(crate) fn new(scene: &Scene, internal: &dyn Fn(NodeId) -> u32) -> Absorbing {
         if scene.absorbing.is_empty() {
             return Absorbing::default();
         }
@@ -73,6 +73,14 @@ impl Absorbing {
 }
 
 impl Boundary for Absorbing {
+    fn phase(&self) -> Phase {
+        Phase::Dashpot
+    }
+
+    fn describe(&self) -> Option<String> {
+        (!self.dashpots.is_empty()).then(|| format!("absorbing dashpots on {} nodes", self.dashpots.len()))
+    }
+
     /// Each dashpot component turns the trial into the update with damping `D + c/m` (see the
     /// module doc); forces of the other boundaries must already be in the trial.
     fn apply<const L: usize>(&self, s: &mut Step<'_, L>) {

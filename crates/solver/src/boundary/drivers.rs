@@ -3,7 +3,7 @@
 //! loading force; its work is the loading's. A driver adds no stiffness (a held component), and
 //! the skip-ahead's quasi-static motion follows it.
 
-use super::{Boundary, LoadingState, Step, Work};
+use super::{Boundary, LoadingState, Phase, Step, Work};
 use crate::field::Field;
 use crate::geometry::NodeId;
 use crate::scene::Scene;
@@ -17,19 +17,27 @@ pub struct Drivers {
 
 impl Drivers {
     /// The drivers of `scene`.
-    pub(crate) fn new(scene: &Scene, internal: impl Fn(NodeId) -> u32) -> Drivers {
+    pub(crate) fn new(scene: &Scene, internal: &dyn Fn(NodeId) -> u32) -> Drivers {
         Drivers { nodes: scene.shear.drivers.iter().map(|&id| internal(id)).collect() }
-    }
-
-    /// Turns the drivers of lane `l` on, based where they stand now (the newest time level).
-    pub(crate) fn start<const L: usize>(&self, loading: &mut LoadingState<L>, now: &Field<L>, l: usize) {
-        for (d, &node) in self.nodes.iter().enumerate() {
-            loading.base[d][l] = now.c[0][node as usize][l];
-        }
     }
 }
 
 impl Boundary for Drivers {
+    fn phase(&self) -> Phase {
+        Phase::Prescribed
+    }
+
+    /// Turns the drivers of lane `l` on, based where they stand now (the newest time level).
+    fn start<const L: usize>(&self, loading: &mut LoadingState<L>, now: &Field<L>, l: usize) {
+        for (d, &node) in self.nodes.iter().enumerate() {
+            loading.base[d][l] = now.c[0][node as usize][l];
+        }
+    }
+
+    fn describe(&self) -> Option<String> {
+        (!self.nodes.is_empty()).then(|| format!("drivers: {} nodes whose x follows Eq. 12", self.nodes.len()))
+    }
+
     /// x of each driven node set to its base plus the target; the reaction is the force that
     /// takes the trial there.
     fn apply<const L: usize>(&self, s: &mut Step<'_, L>) {

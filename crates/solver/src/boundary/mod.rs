@@ -4,16 +4,21 @@
 //! Each kind is a file implementing [`Boundary`]: what it does to the trial of a step (a force
 //! or a held component), the work it does (so the energy balance closes), how much it can raise
 //! the lattice's highest eigenvalue (the critical step), and whether the quasi-static skip-ahead
-//! can follow it. [`Boundaries`] holds a scene's, built once in the model, and applies them in a
-//! fixed order each step — springs, pressure and tractions (forces), then the dashpots (which
-//! need every force in the trial), then rollers, then drivers (held components) — before the contact with the base ([`crate::step::contact`]).
+//! can follow it, what it adds to a static solve (loads, held components), what it does when the
+//! loading starts, and how `check` describes it. [`Boundaries`] holds a scene's as one list, built
+//! once in the model, and applies them in the order of their [`Phase`] each step — springs,
+//! pressure and tractions (forces), then the dashpots (which need every force in the trial), then
+//! rollers (held components), then drivers (prescribed motion) — before the contact with the base
+//! ([`crate::step::contact`]); settle, the skip-ahead's motion, the critical step and the step
+//! loop over the list and name no kind.
 //!
 //! The kinds: [`rollers`] (held components of nodes or faces), [`drivers`] (a prescribed x motion,
 //! Eq. 12), [`plate`] (springs to a plate moving by Eq. 12), [`pressure`] (a constant normal
 //! pressure on the top face), [`traction`] (the initial shear tractions on a fault's face),
-//! [`absorbing`] (Lysmer–Kuhlemeyer dashpots on faces that let waves leave). A new kind is its file here, its field in [`Boundaries`] with its
-//! calls in the `Boundaries` methods, and its keys and refusals in the configuration crate
-//! (ARCHITECTURE.md lists the files).
+//! [`absorbing`] (Lysmer–Kuhlemeyer dashpots on faces that let waves leave). A new kind is its file
+//! here implementing [`Boundary`], its line in the `kinds!` list below (which derives [`Kind`] and
+//! its forwarding), and its keys and refusals in the configuration crate (ARCHITECTURE.md lists
+//! the files).
 
 pub mod absorbing;
 pub mod drivers;
@@ -97,8 +102,25 @@ pub struct Work<'a, const L: usize> {
     pub energy: &'a mut [Energy; L],
 }
 
+/// When a boundary acts within a step: forces first, then dashpots (which need every force in
+/// the trial), then held components, then prescribed motion (over anything held before).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Phase {
+    /// Adds forces to the trial.
+    Force,
+    /// Adds forces proportional to the trial's velocity.
+    Dashpot,
+    /// Holds components where they are.
+    Held,
+    /// Moves components as prescribed.
+    Prescribed,
+}
+
 /// What a boundary condition does, for `L` seeds side by side.
 pub trait Boundary {
+    /// When it acts within a step.
+    fn phase(&self) -> Phase;
+
     /// Acts on the trial of a step: adds its forces (`F·cf/m` per node) or replaces the trial
     /// of the components it holds (recording the reaction). Called after the bar forces and
     /// the integration, before the contact with the base.
@@ -118,78 +140,176 @@ pub trait Boundary {
     fn skip_ahead(&self) -> Result<(), &'static str> {
         Ok(())
     }
+
+    /// Adds its constant forces to the loads of a static solve (the self-weight's).
+    fn static_load(&self, loads: &mut Field<1>) {
+        let _ = loads;
+    }
+
+    /// The components it holds, as constraints of a static solve, each at `value(node, axis)`.
+    fn held(&self, value: &dyn Fn(usize, usize) -> f64) -> Vec<Prescribed> {
+        let _ = value;
+        Vec::new()
+    }
+
+    /// Starts its loading in lane `l` from the displacements `now` (when the shear stage starts).
+    fn start<const L: usize>(&self, loading: &mut LoadingState<L>, now: &Field<L>, l: usize) {
+        let _ = (loading, now, l);
+    }
+
+    /// What it is on the scene, for `check` and the report: `None` when the scene has none.
+    fn describe(&self) -> Option<String>;
 }
 
-/// The boundary conditions of a scene, in internal node order.
+/// The kinds of boundary, one line each in the order their work is added to the energy terms:
+/// from the list come [`Kind`] and its forwarding of every question to the kind's own
+/// [`Boundary`] implementation.
+macro_rules! kinds {
+    ($($(#[$doc:meta])* $variant:ident($kind:ty)),+ $(,)?) => {
+        /// One boundary condition of a scene.
+        #[derive(Clone, Debug)]
+        pub enum Kind {
+            $($(#[$doc])* $variant($kind),)+
+        }
+
+        impl Kind {
+            /// Every kind's boundary on `scene` (empty where the scene has none), in the list's
+            /// order.
+            fn every(scene: &Scene, internal: &dyn Fn(NodeId) -> u32) -> Vec<Kind> {
+                vec![$(Kind::$variant(<$kind>::new(scene, internal)),)+]
+            }
+        }
+
+        impl Boundary for Kind {
+            fn phase(&self) -> Phase {
+                match self { $(Kind::$variant(b) => b.phase(),)+ }
+            }
+            #[inline]
+            fn apply<const L: usize>(&self, s: &mut Step<'_, L>) {
+                match self { $(Kind::$variant(b) => b.apply(s),)+ }
+            }
+            #[inline]
+            fn work<const L: usize>(&self, w: &mut Work<'_, L>) {
+                match self { $(Kind::$variant(b) => b.work(w),)+ }
+            }
+            fn stiffening(&self, inv_mass: &[f64]) -> f64 {
+                match self { $(Kind::$variant(b) => b.stiffening(inv_mass),)+ }
+            }
+            fn skip_ahead(&self) -> Result<(), &'static str> {
+                match self { $(Kind::$variant(b) => b.skip_ahead(),)+ }
+            }
+            fn static_load(&self, loads: &mut Field<1>) {
+                match self { $(Kind::$variant(b) => b.static_load(loads),)+ }
+            }
+            fn held(&self, value: &dyn Fn(usize, usize) -> f64) -> Vec<Prescribed> {
+                match self { $(Kind::$variant(b) => b.held(value),)+ }
+            }
+            fn start<const L: usize>(&self, loading: &mut LoadingState<L>, now: &Field<L>, l: usize) {
+                match self { $(Kind::$variant(b) => b.start(loading, now, l),)+ }
+            }
+            fn describe(&self) -> Option<String> {
+                match self { $(Kind::$variant(b) => b.describe(),)+ }
+            }
+        }
+    };
+}
+
+kinds! {
+    /// Driven nodes.
+    Drivers(drivers::Drivers),
+    /// The loading plate's springs.
+    Plate(plate::Plate),
+    /// The normal pressure on the top face.
+    Pressure(pressure::Pressure),
+    /// The initial tractions on a fault's face.
+    Traction(traction::Traction),
+    /// The absorbing faces' dashpots.
+    Absorbing(absorbing::Absorbing),
+    /// Held components.
+    Rollers(rollers::Rollers),
+}
+
+/// The boundary conditions of a scene, in internal node order: one list, applied by phase.
 #[derive(Clone, Debug, Default)]
 pub struct Boundaries {
-    /// Held components.
-    pub rollers: rollers::Rollers,
-    /// Driven nodes.
-    pub drivers: drivers::Drivers,
-    /// The loading plate's springs.
-    pub plate: plate::Plate,
-    /// The normal pressure on the top face.
-    pub pressure: pressure::Pressure,
-    /// The initial tractions on a fault's face.
-    pub traction: traction::Traction,
-    /// The absorbing faces' dashpots.
-    pub absorbing: absorbing::Absorbing,
+    /// Every kind's, in the order their work is added up.
+    list: Vec<Kind>,
+    /// Indices into `list` in the order they act on a step (by phase, then list order).
+    applied: Vec<usize>,
 }
 
 impl Boundaries {
     /// The boundary conditions of `scene`, with `internal` mapping a canonical node to its
     /// internal index.
     pub fn new(scene: &Scene, internal: impl Fn(NodeId) -> u32) -> Boundaries {
-        Boundaries {
-            rollers: rollers::Rollers::new(scene, &internal),
-            drivers: drivers::Drivers::new(scene, &internal),
-            plate: plate::Plate::new(scene, &internal),
-            pressure: pressure::Pressure::new(scene, &internal),
-            traction: traction::Traction::new(scene, &internal),
-            absorbing: absorbing::Absorbing::new(scene, &internal),
-        }
+        let list = Kind::every(scene, &internal);
+        let mut applied: Vec<usize> = (0..list.len()).collect();
+        applied.sort_by_key(|&i| list[i].phase());
+        Boundaries { list, applied }
     }
 
-    /// Applies every boundary to the trial of a step, in order: forces (plate springs, pressure,
-    /// tractions), the dashpots, then held components (rollers, drivers).
+    /// Every boundary, in the order their work is added up.
+    pub fn iter(&self) -> impl Iterator<Item = &Kind> {
+        self.list.iter()
+    }
+
+    /// Applies every boundary to the trial of a step, by phase: forces (plate springs, pressure,
+    /// tractions), the dashpots, held components (rollers), prescribed motion (drivers).
     pub(crate) fn apply<const L: usize>(&self, s: &mut Step<'_, L>) {
-        self.plate.apply(s);
-        self.pressure.apply(s);
-        self.traction.apply(s);
-        self.absorbing.apply(s);
-        self.rollers.apply(s);
-        self.drivers.apply(s);
+        for &i in &self.applied {
+            self.list[i].apply(s);
+        }
     }
 
     /// Adds the work of every boundary over the step to the energy terms.
     pub(crate) fn work<const L: usize>(&self, w: &mut Work<'_, L>) {
-        self.drivers.work(w);
-        self.plate.work(w);
-        self.pressure.work(w);
-        self.traction.work(w);
-        self.absorbing.work(w);
-        self.rollers.work(w);
+        for b in &self.list {
+            b.work(w);
+        }
     }
 
     /// The bound on how much the boundaries raise `ω²_max` (1/s²): the sum of theirs (Weyl's
     /// inequality for a sum of positive semi-definite perturbations).
     pub fn stiffening(&self, inv_mass: &[f64]) -> f64 {
-        self.rollers.stiffening(inv_mass)
-            + self.drivers.stiffening(inv_mass)
-            + self.plate.stiffening(inv_mass)
-            + self.pressure.stiffening(inv_mass)
-            + self.traction.stiffening(inv_mass)
-            + self.absorbing.stiffening(inv_mass)
+        self.list.iter().map(|b| b.stiffening(inv_mass)).sum()
     }
 
     /// Why the skip-ahead cannot follow these boundaries, if it cannot.
     pub fn skip_ahead(&self) -> Result<(), &'static str> {
-        self.rollers.skip_ahead()?;
-        self.drivers.skip_ahead()?;
-        self.plate.skip_ahead()?;
-        self.pressure.skip_ahead()?;
-        self.traction.skip_ahead()?;
-        self.absorbing.skip_ahead()
+        self.list.iter().try_for_each(|b| b.skip_ahead())
+    }
+
+    /// Adds every boundary's constant forces to the loads of a static solve.
+    pub(crate) fn static_load(&self, loads: &mut Field<1>) {
+        for b in &self.list {
+            b.static_load(loads);
+        }
+    }
+
+    /// Every held component as a constraint of a static solve, each at `value(node, axis)`.
+    pub(crate) fn held(&self, value: impl Fn(usize, usize) -> f64) -> Vec<Prescribed> {
+        self.list.iter().flat_map(|b| b.held(&value)).collect()
+    }
+
+    /// Starts the loading of lane `l` from the displacements `now`.
+    pub(crate) fn start<const L: usize>(&self, loading: &mut LoadingState<L>, now: &Field<L>, l: usize) {
+        for b in &self.list {
+            b.start(loading, now, l);
+        }
+    }
+
+    /// The driven nodes (internal indices).
+    pub fn drivers(&self) -> &[u32] {
+        self.list.iter().find_map(|b| if let Kind::Drivers(d) = b { Some(&d.nodes[..]) } else { None }).unwrap_or(&[])
+    }
+
+    /// The nodes tied to the loading plate and their spring stiffness in x (N/m).
+    pub fn plate(&self) -> &[(u32, f64)] {
+        self.list.iter().find_map(|b| if let Kind::Plate(p) = b { Some(&p.springs[..]) } else { None }).unwrap_or(&[])
+    }
+
+    /// What the scene's boundaries are, one line per kind present, for `check` and the report.
+    pub fn describe(&self) -> Vec<String> {
+        self.list.iter().filter_map(|b| b.describe()).collect()
     }
 }

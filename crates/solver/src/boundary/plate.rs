@@ -4,7 +4,7 @@
 //! are external forces on the block, so their work is the loading's. A spring `k` on a node of
 //! mass `m` raises `ω²_max` by at most `k/m`. The skip-ahead's motion does not include them.
 
-use super::{Boundary, LoadingState, Step, Work};
+use super::{Boundary, LoadingState, Phase, Step, Work};
 use crate::field::Field;
 use crate::geometry::NodeId;
 use crate::scene::Scene;
@@ -18,22 +18,32 @@ pub struct Plate {
 
 impl Plate {
     /// The plate of `scene`.
-    pub(crate) fn new(scene: &Scene, internal: impl Fn(NodeId) -> u32) -> Plate {
+    pub(crate) fn new(scene: &Scene, internal: &dyn Fn(NodeId) -> u32) -> Plate {
         let springs = scene.plate.as_ref().map_or_else(Vec::new, |p| {
             p.nodes.iter().zip(&p.stiffness_n_m).map(|(id, &k)| (internal(*id), k)).collect()
         });
         Plate { springs }
     }
+}
+
+impl Boundary for Plate {
+    fn phase(&self) -> Phase {
+        Phase::Force
+    }
+
+    fn describe(&self) -> Option<String> {
+        let k: f64 = self.springs.iter().map(|&(_, k)| k).sum();
+        (!self.springs.is_empty())
+            .then(|| format!("loading plate: {} springs in x, {k:.4e} N/m in all", self.springs.len()))
+    }
 
     /// Starts the plate of lane `l`: each spring's rest position is where its node stands now.
-    pub(crate) fn start<const L: usize>(&self, loading: &mut LoadingState<L>, now: &Field<L>, l: usize) {
+    fn start<const L: usize>(&self, loading: &mut LoadingState<L>, now: &Field<L>, l: usize) {
         for (j, &(node, _)) in self.springs.iter().enumerate() {
             loading.plate_base[j][l] = now.c[0][node as usize][l];
         }
     }
-}
 
-impl Boundary for Plate {
     /// Each spring's force `F` moves the trial by `F·cf/m` (the update's `cf·f/m`).
     fn apply<const L: usize>(&self, s: &mut Step<'_, L>) {
         let (mass, cf, d_state, now, trial) = (s.mass, s.cf, &mut *s.loading, s.now, &mut *s.trial);

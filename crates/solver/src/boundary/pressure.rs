@@ -3,7 +3,7 @@
 //! work is counted with the body forces'; it adds no stiffness, and the static self-weight solve
 //! includes it. The skip-ahead's motion does not include it.
 
-use super::{Boundary, Step, Work};
+use super::{Boundary, Phase, Step, Work};
 use crate::field::Field;
 use crate::geometry::NodeId;
 use crate::scene::Scene;
@@ -17,23 +17,33 @@ pub struct Pressure {
 
 impl Pressure {
     /// The pressure of `scene`.
-    pub(crate) fn new(scene: &Scene, internal: impl Fn(NodeId) -> u32) -> Pressure {
+    pub(crate) fn new(scene: &Scene, internal: &dyn Fn(NodeId) -> u32) -> Pressure {
         let loads = scene
             .normal_load
             .as_ref()
             .map_or_else(Vec::new, |n| n.nodes.iter().zip(&n.force_n).map(|(id, &f)| (internal(*id), -f)).collect());
         Pressure { loads }
     }
+}
+
+impl Boundary for Pressure {
+    fn phase(&self) -> Phase {
+        Phase::Force
+    }
 
     /// Adds its forces to the loads of a static solve.
-    pub(crate) fn add_static(&self, loads: &mut Field<1>) {
+    fn static_load(&self, loads: &mut Field<1>) {
         for &(node, f) in &self.loads {
             loads.c[2][node as usize][0] += f;
         }
     }
-}
 
-impl Boundary for Pressure {
+    fn describe(&self) -> Option<String> {
+        let total: f64 = self.loads.iter().map(|&(_, f)| f).sum();
+        (!self.loads.is_empty())
+            .then(|| format!("normal pressure on the top face: {} nodes, {total:.4e} N in all", self.loads.len()))
+    }
+
     fn apply<const L: usize>(&self, s: &mut Step<'_, L>) {
         let (mass, cf, trial) = (s.mass, s.cf, &mut *s.trial);
         for &(node, f) in &self.loads {

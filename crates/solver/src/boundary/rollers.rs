@@ -2,7 +2,7 @@
 //! keeps the value it had, so it does no work and adds no stiffness; the skip-ahead's static
 //! solves hold it too.
 
-use super::{Boundary, Prescribed, Step, Work};
+use super::{Boundary, Phase, Prescribed, Step, Work};
 use crate::geometry::NodeId;
 use crate::scene::Scene;
 
@@ -15,12 +15,18 @@ pub struct Rollers {
 
 impl Rollers {
     /// The rollers of `scene`.
-    pub(crate) fn new(scene: &Scene, internal: impl Fn(NodeId) -> u32) -> Rollers {
+    pub(crate) fn new(scene: &Scene, internal: &dyn Fn(NodeId) -> u32) -> Rollers {
         Rollers { nodes: scene.fixed.iter().map(|(id, m)| (internal(*id), *m)).collect() }
+    }
+}
+
+impl Boundary for Rollers {
+    fn phase(&self) -> Phase {
+        Phase::Held
     }
 
     /// The held components as constraints of a static solve, each at `value(node, axis)`.
-    pub(crate) fn held(&self, value: impl Fn(usize, usize) -> f64) -> Vec<Prescribed> {
+    fn held(&self, value: &dyn Fn(usize, usize) -> f64) -> Vec<Prescribed> {
         let mut out = Vec::new();
         for &(node, mask) in &self.nodes {
             for axis in (0..3).filter(|&a| mask[a]) {
@@ -29,9 +35,12 @@ impl Rollers {
         }
         out
     }
-}
 
-impl Boundary for Rollers {
+    fn describe(&self) -> Option<String> {
+        let held: usize = self.nodes.iter().map(|(_, m)| m.iter().filter(|&&h| h).count()).sum();
+        (held > 0).then(|| format!("rollers: {held} held components on {} nodes", self.nodes.len()))
+    }
+
     /// Held components keep the value they had (the trial's `uₙ₊₁` ← `uₙ`).
     fn apply<const L: usize>(&self, s: &mut Step<'_, L>) {
         for &(node, mask) in &self.nodes {

@@ -5,7 +5,7 @@
 //! the other side balances it while the node sticks. Its work is the ledger's `traction_work`; it
 //! adds no stiffness. The skip-ahead's motion does not include it.
 
-use super::{Boundary, Step, Work};
+use super::{Boundary, Phase, Step, Work};
 use crate::geometry::NodeId;
 use crate::scene::Scene;
 
@@ -19,7 +19,7 @@ pub struct Traction {
 
 impl Traction {
     /// The loaded nodes of `scene`: the contact nodes when the base is a fault.
-    pub(crate) fn new(scene: &Scene, internal: impl Fn(NodeId) -> u32) -> Traction {
+    pub(crate) fn new(scene: &Scene, internal: &dyn Fn(NodeId) -> u32) -> Traction {
         if !scene.is_fault() {
             return Traction::default();
         }
@@ -28,6 +28,14 @@ impl Traction {
 }
 
 impl Boundary for Traction {
+    fn phase(&self) -> Phase {
+        Phase::Force
+    }
+
+    fn describe(&self) -> Option<String> {
+        (!self.nodes.is_empty()).then(|| format!("fault tractions on {} base nodes", self.nodes.len()))
+    }
+
     fn apply<const L: usize>(&self, s: &mut Step<'_, L>) {
         let Some(f) = s.fault else { return };
         for (ci, &node) in self.nodes.iter().enumerate() {

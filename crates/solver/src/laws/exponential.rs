@@ -130,7 +130,8 @@ impl Law for Exponential {
     /// `G = (τs − τd)·Dc`: `9π/16·μ·Dc/(τs − τd)`, twice the linear law's zone for the same Dc.
     fn cohesive_zone_m(node: &ExponentialNode, shear_modulus_pa: f64, normal_pa: f64) -> Option<f64> {
         let (ts, td) = (node.mu_static * normal_pa, node.mu_dynamic * normal_pa);
-        (node.dc_m > 0.0 && ts > td).then(|| 9.0 * std::f64::consts::PI / 16.0 * shear_modulus_pa * node.dc_m / (ts - td))
+        (node.dc_m > 0.0 && ts > td)
+            .then(|| 9.0 * std::f64::consts::PI / 16.0 * shear_modulus_pa * node.dc_m / (ts - td))
     }
 
     fn coefficients(node: &ExponentialNode) -> Vec<Coefficient> {

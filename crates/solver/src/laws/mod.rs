@@ -297,6 +297,11 @@ mod tests {
     fn a_scene_holds_one_law() {
         let linear: FrictionLaw = SlipWeakening { mu_static: 0.6, mu_dynamic: 0.4, dc_m: 0.1 }.into();
         let exponential: FrictionLaw = ExponentialWeakening { mu_static: 0.6, mu_dynamic: 0.4, dc_m: 0.1 }.into();
-        let _ = FrictionLaws::<1>::new(&linear.node(1.0), 2, |c, _| if c == 0 { linear.node(1.0) } else { exponential.node(1.0) });
+        let _ =
+            FrictionLaws::<1>::new(
+                &linear.node(1.0),
+                2,
+                |c, _| if c == 0 { linear.node(1.0) } else { exponential.node(1.0) },
+            );
     }
 }

@@ -145,7 +145,8 @@ impl Law for Weakening {
     /// once or not at all.
     fn cohesive_zone_m(node: &WeakeningNode, shear_modulus_pa: f64, normal_pa: f64) -> Option<f64> {
         let (ts, td) = (node.mu_static * normal_pa, node.mu_dynamic * normal_pa);
-        (node.dc_m > 0.0 && ts > td).then(|| 9.0 * std::f64::consts::PI / 32.0 * shear_modulus_pa * node.dc_m / (ts - td))
+        (node.dc_m > 0.0 && ts > td)
+            .then(|| 9.0 * std::f64::consts::PI / 32.0 * shear_modulus_pa * node.dc_m / (ts - td))
     }
 
     /// The weakening rate `(μs − μd)·N/Dc`.

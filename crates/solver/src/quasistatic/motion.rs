@@ -109,7 +109,7 @@ pub(crate) fn build_motion<const L: usize>(
     // Held components at their place (`now`) or at zero, the driver at its base (`now`) or at
     // `driver`.
     let constraints = |now: bool, driver: f64| {
-        let mut p = model.boundaries().rollers.held(|i, a| if now { state.displacement(i, l)[a] } else { 0.0 });
+        let mut p = model.boundaries().held(|i, a| if now { state.displacement(i, l)[a] } else { 0.0 });
         for (ci, &node) in model.contact().iter().enumerate() {
             let u = state.displacement(node as usize, l);
             let axes = match contacts[ci] {

@@ -29,8 +29,8 @@ pub fn settle_statically(
     for i in 0..n {
         loads.c[2][i][0] = -mass[i] * gravity;
     }
-    model.boundaries().pressure.add_static(&mut loads);
-    let mut prescribed = model.boundaries().rollers.held(|_, _| 0.0);
+    model.boundaries().static_load(&mut loads);
+    let mut prescribed = model.boundaries().held(|_, _| 0.0);
     for &node in model.contact() {
         prescribed.extend((0..3).map(|axis| Prescribed { node: node as usize, axis, value: 0.0 }));
     }

@@ -394,9 +394,7 @@ mod tests {
             .map(|i| {
                 let (factor, dc) = (lanes(0.3, 5.0), lanes(0.5, 2.0));
                 // A third of the nodes keep their slip when they stick (no healing).
-                std::array::from_fn(|l| {
-                    W::node(law.node(factor[l]), if i % 2 == 0 { 1.0 } else { dc[l] }, i % 3 != 0)
-                })
+                std::array::from_fn(|l| W::node(law.node(factor[l]), if i % 2 == 0 { 1.0 } else { dc[l] }, i % 3 != 0))
             })
             .collect();
         // Tangential trials a few µm from where the node is, vertical ones ±1 µm about the base:
@@ -504,15 +502,8 @@ mod tests {
                 let g = c.mass[i] / c.cf[l];
                 let t = [c.trial[0][i][l], c.trial[1][i][l], c.trial[2][i][l]];
                 let now = [c.now[0][i][l], c.now[1][i][l]];
-                let want = resolve_fault::<W>(
-                    &c.law[i][l],
-                    (g, c.dt[l]),
-                    t,
-                    now,
-                    c.sliding[i][l],
-                    c.path[i][l],
-                    normal[i][l],
-                );
+                let want =
+                    resolve_fault::<W>(&c.law[i][l], (g, c.dt[l]), t, now, c.sliding[i][l], c.path[i][l], normal[i][l]);
                 let got = Resolved {
                     position: [trial[0][i][l], trial[1][i][l], trial[2][i][l]],
                     reaction: [reaction[0][i][l], reaction[1][i][l], reaction[2][i][l]],

@@ -218,8 +218,7 @@ pub fn start_drivers<const L: usize>(model: &Model, state: &mut State<L>, l: usi
     let (loading, now) = (&mut state.loading, &state.u.np1);
     loading.on[l] = true;
     loading.target[l] = 0.0;
-    model.boundaries().drivers.start(loading, now, l);
-    model.boundaries().plate.start(loading, now, l);
+    model.boundaries().start(loading, now, l);
 }
 
 /// Stops lane `l` from doing anything (a failed lane): zero displacements, drivers off, no body

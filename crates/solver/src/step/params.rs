@@ -71,7 +71,9 @@ impl<'m, const L: usize> Params<'m, L> {
             ),
             "factored stiffness is for a stencil lattice"
         );
-        let friction = FrictionLaws::new(&model.scene().friction.law.background, nc, |c, l| model.node_friction(c, lanes[l].friction[c]));
+        let friction = FrictionLaws::new(&model.scene().friction.law.background, nc, |c, l| {
+            model.node_friction(c, lanes[l].friction[c])
+        });
         let rupture = match (lanes.iter().all(|l| l.strength.is_some()), lanes.iter().all(|l| l.strength.is_none())) {
             (true, _) => {
                 let kr = model.scene().rupture.as_ref().expect("lanes with a strength need a scene with [rupture]").kr;
