@@ -5,7 +5,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 use stickslip_solver::fault::{Fault, Nucleation, StochasticStress};
-use stickslip_solver::geometry::{Face, Lattice, NodeId, NodeKind};
+use stickslip_solver::geometry::{Lattice, NodeId, NodeKind};
 use stickslip_solver::scene::{Component, ControlChannel, Kinematic, Station};
 
 use super::SceneSections;
@@ -164,14 +164,6 @@ pub struct NucleationSection {
     pub x_m: [f64; 2],
     /// Range `[min, max]` of the centre along y, down dip (m).
     pub y_m: [f64; 2],
-}
-
-/// `[absorbing]`: faces whose nodes carry Lysmer–Kuhlemeyer dashpots, so that waves leave.
-#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Default)]
-#[serde(deny_unknown_fields)]
-pub struct AbsorbingSection {
-    /// Faces: `"x_min"`, `"x_max"`, `"y_min"`, `"y_max"`, `"z_max"` (never the base `"z_min"`).
-    pub faces: Vec<String>,
 }
 
 /// `[[stations]]`: named points whose displacement, velocity and acceleration (x, y, z) are
@@ -503,27 +495,6 @@ fn grid(ck: &mut Checker, g: &TractionGridSection, lattice: &Lattice, shear: &mu
         shear[c] = [row[2], row[3]];
         normal[c] = row[4];
     }
-}
-
-/// The absorbing faces of `[absorbing]`, each once; the base is refused.
-pub(super) fn absorbing(ck: &mut Checker, file: SceneSections<'_>) -> Vec<Face> {
-    let Some(a) = file.absorbing.as_ref() else { return Vec::new() };
-    let mut faces: Vec<Face> = Vec::new();
-    for (i, name) in a.faces.iter().enumerate() {
-        let field = format!("absorbing.faces[{i}]");
-        let Some(face) = ck.named::<Face>(&field, name) else { continue };
-        if face == Face::ZMin {
-            ck.push(field, format!("\"{name}\""), "a face other than the base \"z_min\" (the contact or fault face)");
-        } else if faces.contains(&face) {
-            ck.push(field, format!("\"{name}\""), "each face once");
-        } else {
-            faces.push(face);
-        }
-    }
-    if file.skip_ahead.enabled && !faces.is_empty() {
-        ck.push("skip_ahead.enabled", true, "false with [absorbing]: the skip-ahead's motion has no dashpots");
-    }
-    faces
 }
 
 /// The stations of `[[stations]]` (sorted by node) and the control channels that record them:

@@ -10,7 +10,7 @@
 //! refused file's errors are listed.
 
 mod block;
-mod boundary;
+mod boundaries;
 mod fault;
 mod friction;
 mod loading;
@@ -26,9 +26,10 @@ use stickslip_solver::Scene;
 use crate::check::Checker;
 pub use crate::friction_map::{GridSection, PatchSection};
 pub use block::MAX_NODES;
+pub use boundaries::AbsorbingSection;
 pub use fault::{
-    AbsorbingSection, FaultSection, StationSection, StochasticSection, TRACTION_GRID_HEADER, TractionGridSection,
-    TractionPatchSection, Vs30,
+    FaultSection, StationSection, StochasticSection, TRACTION_GRID_HEADER, TractionGridSection, TractionPatchSection,
+    Vs30,
 };
 pub use sections::*;
 pub use stage_sections::*;
@@ -110,19 +111,19 @@ pub(crate) fn build(file: SceneSections<'_>, ck: &mut Checker) -> Option<Scene> 
     let interface = record::interface(ck, file.record);
     // Everything below needs the lattice.
     let lattice = block::lattice(ck, file.block, counts)?;
-    let drivers = loading::drivers(ck, file, &lattice);
-    let fixed = boundary::rollers(ck, file, &lattice);
-    loading::refuse_held_drivers(ck, &drivers, &fixed);
+    let drivers = boundaries::drivers(ck, file, &lattice);
+    let fixed = boundaries::rollers(ck, file, &lattice);
+    boundaries::refuse_held_drivers(ck, &drivers, &fixed);
     let mut control = record::control_channels(ck, file.record, &lattice);
     let (stations, station_channels) = fault::stations(ck, file, &lattice);
     control.extend(station_channels);
     control.sort();
     control.dedup();
     let fault = fault::fault(ck, file, &lattice);
-    let absorbing = fault::absorbing(ck, file);
+    let absorbing = boundaries::absorbing(ck, file);
     let friction = friction::friction(ck, file.friction, law, &lattice);
     let (plate, normal_load) = match file.loading_plate {
-        Some(lp) => boundary::loading_plate(ck, lp, &lattice, &fixed),
+        Some(lp) => boundaries::loading_plate(ck, lp, &lattice, &fixed),
         None => (None, None),
     };
     time::refuse_skip_ahead_with(ck, file.skip_ahead, file.loading_plate.is_some(), time::WITH_PLATE);
