@@ -60,7 +60,7 @@ impl PeriodRange {
     }
 }
 
-/// Options of [`select`]; [`SelectionOptions::new`] gives the documented defaults.
+/// Options of [`select`](crate::selection::select); [`SelectionOptions::new`] gives the documented defaults.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SelectionOptions {
     /// Period range.
