@@ -239,7 +239,7 @@ impl BroadbandSection {
 
 #[cfg(test)]
 mod tests {
-    use crate::Pipeline;
+    use crate::pipeline::Pipeline;
 
     const SCENE: &str = r#"
 version = 1

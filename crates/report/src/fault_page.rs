@@ -11,8 +11,9 @@ use std::fmt::Write as _;
 use stickslip_seismo::catalogue::compact;
 use stickslip_store::tables::source::Sources;
 
+use crate::input::ReportInput;
 use crate::markup::{esc, figure_html};
-use crate::{Figure, ReportInput};
+use crate::summary::Figure;
 
 /// Rows of a per-seed table shown on the page; the rest are in the table's file.
 pub(crate) const MAX_ROWS: usize = 60;

@@ -10,8 +10,11 @@ use stickslip_solver::laws::describe;
 use stickslip_store::schema::{col, seed_tables};
 use stickslip_store::tables::runs::RunStatus;
 
+use crate::error::ReportError;
+use crate::fault_page;
+use crate::input::ReportInput;
 use crate::markup::{esc, figure_html};
-use crate::{Figure, ReportError, ReportInput, fault_page};
+use crate::summary::Figure;
 
 /// `mean ± std` of `quantity` in `group` of the summary, scaled, or "–".
 fn stat(d: &ReportInput, group: &str, quantity: &str, scale: f64, digits: usize) -> String {

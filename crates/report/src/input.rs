@@ -20,7 +20,7 @@ use stickslip_store::tables::runs::Runs;
 use stickslip_store::tables::source::{Sources, Stations};
 use stickslip_store::tables::stats::{AttenuationFit, PsaStats, SummaryTable};
 
-use crate::ReportError;
+use crate::error::ReportError;
 
 /// What the figures and the page read: the pipeline, the tables across seeds (typed), and the
 /// per-seed parts on demand.

@@ -1,7 +1,7 @@
 //! The pieces of HTML both the page ([`crate::html`]) and a fault scene's sections
 //! ([`crate::fault_page`]) are written with.
 
-use crate::Figure;
+use crate::summary::Figure;
 
 /// Escapes text for HTML.
 pub(crate) fn esc(s: &str) -> String {

@@ -5,7 +5,7 @@ use std::sync::Once;
 use plotters::style::FontStyle;
 pub use plotters::style::{BLACK, RGBColor};
 
-use crate::ReportError;
+use crate::error::ReportError;
 
 /// Figure width in pixels.
 pub const WIDTH: u32 = 1200;

@@ -1,5 +1,6 @@
-//! What a scene builds, without running it: sizes, loads, the critical step over seeds and the
-//! effective stiffness of the built block (for `stickslip check`).
+//! What a scene builds, without running it: sizes, loads, the critical step over seeds, the
+//! effective stiffness of the built block and a fault's tractions against its friction (for
+//! `stickslip check`).
 
 use crate::error::SolverError;
 use crate::field::Field;
@@ -435,4 +436,73 @@ fn slider(model: &Model, k: Option<&[f64]>, weight: f64) -> Result<Slider, Solve
         sliding_n: mu_d * normal,
         let_go: (!model.drivers().is_empty() && model.plate().is_empty()).then_some(DRIVER_LET_GO),
     })
+}
+
+/// What `check` says of a fault before running it (docs/model.md §15): its tractions against the
+/// strength of its nodes, where rupture can start, and whether the lattice resolves its cohesive
+/// zone.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FaultReading {
+    /// Range of the normal traction over the fault (Pa).
+    pub normal_pa: (f64, f64),
+    /// Range of the initial shear traction's magnitude (Pa).
+    pub shear_pa: (f64, f64),
+    /// Nodes whose initial shear traction exceeds their static strength `μs·σn` (they slide from
+    /// the first step: the nucleation), and their area (m²).
+    pub overstressed: (usize, f64),
+    /// Nodes that can slip: those whose traction exceeds their dynamic strength `μd·σn`.
+    pub can_slip: usize,
+    /// Median over the nodes that can slip and are not overstressed of the strength excess
+    /// `S = (τs − τ0)/(τ0 − τd)` (Das & Aki 1977).
+    pub median_s: Option<f64>,
+    /// Smallest static cohesive-zone width over the nodes that can slip,
+    /// `Λ0 = (9π/32)·μ·Dc/(τs − τd)` (Day et al. 2005), `μ` the lattice's shear modulus (m); `None`
+    /// when no such node weakens over a distance.
+    pub cohesive_zone_m: Option<f64>,
+}
+
+impl FaultReading {
+    /// Reads the fault of `model` (its tractions before any random field) against its friction.
+    pub fn of(model: &Model) -> Option<FaultReading> {
+        let scene = model.scene();
+        let fault = scene.fault.as_ref()?;
+        let (_, _, c44) = crate::material::lattice_elastic_constants(scene.young_pa, scene.poisson);
+        let lattice = model.lattice();
+        let area: Vec<f64> =
+            lattice.contact_nodes().iter().map(|&id| crate::geometry::Face::ZMin.tributary_area(lattice, id)).collect();
+        let range = |v: &mut dyn Iterator<Item = f64>| {
+            v.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(x), b.max(x)))
+        };
+        let mut overstressed = (0, 0.0);
+        let mut can_slip = 0;
+        let mut s_values = Vec::new();
+        let mut zone: Option<f64> = None;
+        for c in 0..fault.normal_pa.len() {
+            let friction = scene.friction.base(c);
+            let (sn, tau) = (fault.normal_pa[c], fault.shear_pa[c][0].hypot(fault.shear_pa[c][1]));
+            let (ts, td) = (friction.static_coefficient() * sn, friction.residual_coefficient() * sn);
+            if tau > ts {
+                overstressed.0 += 1;
+                overstressed.1 += area[c];
+            }
+            if tau > td {
+                can_slip += 1;
+                if tau <= ts {
+                    s_values.push((ts - tau) / (tau - td));
+                }
+                if let Some(l) = friction.cohesive_zone_m(c44, sn) {
+                    zone = Some(zone.map_or(l, |z: f64| z.min(l)));
+                }
+            }
+        }
+        s_values.sort_by(f64::total_cmp);
+        Some(FaultReading {
+            normal_pa: range(&mut fault.normal_pa.iter().copied()),
+            shear_pa: range(&mut fault.shear_pa.iter().map(|s| s[0].hypot(s[1]))),
+            overstressed,
+            can_slip,
+            median_s: s_values.get(s_values.len() / 2).copied(),
+            cohesive_zone_m: zone,
+        })
+    }
 }

@@ -327,7 +327,7 @@ pub fn draw_factors(layout: &StencilLayout, draw: &SeekableWeibull, parallel: bo
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::Model;
+    use crate::model::Model;
     use crate::scene::Scene;
 
     #[test]

@@ -1,9 +1,10 @@
-//! Every table of an output folder, in one list: each is declared once, with its columns and
-//! (for a per-seed table) its writer, in its module of [`crate::tables`]; writers and readers use
-//! those declarations and the column constants of [`col`], never literals.
+//! Every table of an output folder: each is declared once, with its columns and (for a per-seed
+//! table) its writer, in its module of [`crate::tables`], and listed once, in
+//! [`crate::tables::TABLES`]; writers and readers use those declarations and the column constants
+//! of [`col`], never literals.
 
 pub use crate::col;
-pub use crate::spec::{Scope, SeedTable, SeedView, SeedWriter, TableSpec};
+pub use crate::spec::{Scope, SeedTable, SeedView, SeedWriter, Table, TableSpec};
 pub use crate::tables::broadband::STATION_RECORDS;
 pub use crate::tables::catalogue::{
     AFTERSHOCKS_TABLE, B_VALUES, CATALOGUE, MAGNITUDE_FREQUENCY, OMORI, RECURRENCE_STATS, SCALING,
@@ -19,48 +20,10 @@ pub use crate::tables::set::SET;
 pub use crate::tables::source::{FAULT_NODES, SOURCE, STATION_SPECTRA, STATIONS};
 pub use crate::tables::spectra::{FOURIER, ROTD, SPECTRA};
 pub use crate::tables::stats::{ATTENUATION_FIT, PSA_STATS, SUMMARY};
+use crate::tables::{TABLES, specs};
 
-/// Every table, in the order the README documents them.
-pub const ALL: [TableSpec; 38] = [
-    RUNS,
-    SERIES,
-    CONTROL,
-    FAULT,
-    FAULT_STATION_SERIES,
-    SKIPS,
-    EVENTS_TABLE,
-    SUB_EVENTS_TABLE,
-    SIMILARITY,
-    RECORDS,
-    ACCELEROGRAMS,
-    SPECTRA,
-    ROTD,
-    FOURIER,
-    INTENSITY,
-    ATTENUATION,
-    RUPTURES,
-    RUPTURE_ONSETS,
-    SOURCE,
-    FAULT_NODES,
-    STATIONS,
-    STATION_SPECTRA,
-    STATION_RECORDS,
-    CRACKS,
-    ACOUSTIC_EMISSION,
-    SUMMARY,
-    PSA_STATS,
-    ATTENUATION_FIT,
-    SET,
-    MAGNITUDE_FREQUENCY,
-    B_VALUES,
-    RECURRENCE_STATS,
-    AFTERSHOCKS_TABLE,
-    OMORI,
-    SCALING,
-    GMM_RESIDUALS,
-    GMM_BIAS,
-    GMM_PART_B,
-];
+/// Every table, in the order the README documents them (that of [`crate::tables::TABLES`]).
+pub const ALL: [TableSpec; TABLES.len()] = specs(&TABLES);
 
 /// Per-seed tables in the order a seed's parts are written: `runs` last, so a seed counts as
 /// finished when its `runs` part exists.

@@ -1,5 +1,6 @@
-//! What a table is: its name, scope, sort key and columns ([`TableSpec`]); and, for a per-seed
-//! table, the function that makes a seed's part from the seed's analysis ([`SeedTable`]).
+//! What a table is: its name, scope, sort key and columns ([`TableSpec`]); for a per-seed table,
+//! the function that makes a seed's part from the seed's analysis ([`SeedTable`]); and a table as
+//! the one list of every table holds it ([`Table`]).
 
 use polars::prelude::DataFrame;
 use stickslip_analysis::{SeedAnalysis, Settings};
@@ -57,4 +58,24 @@ pub struct SeedTable {
     pub spec: TableSpec,
     /// The writer of a seed's part.
     pub write: SeedWriter,
+}
+
+/// A table as the one list of every table ([`crate::tables::TABLES`]) holds it.
+#[derive(Clone, Copy)]
+pub enum Table {
+    /// A per-seed table whose parts a seed's analysis writes.
+    Seed(SeedTable),
+    /// A table written elsewhere: `runs` (per seed, last, from the seed's outcome) and the tables
+    /// computed across seeds.
+    Elsewhere(TableSpec),
+}
+
+impl Table {
+    /// The declaration.
+    pub const fn spec(&self) -> TableSpec {
+        match self {
+            Table::Seed(t) => t.spec,
+            Table::Elsewhere(spec) => *spec,
+        }
+    }
 }

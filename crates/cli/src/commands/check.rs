@@ -12,7 +12,7 @@ use stickslip_seismo::spectra::fourier::Window;
 use stickslip_seismo::spectra::response::Reading;
 use stickslip_solver::Model;
 use stickslip_solver::boundary::absorbing::impedances;
-use stickslip_solver::fault::FaultReading;
+use stickslip_solver::inspect::FaultReading;
 use stickslip_solver::inspect::{PROBE_WARM_UP_STEPS, Statics, inspect, probe_step_time};
 use stickslip_solver::laws::describe;
 use stickslip_solver::memory::{

@@ -31,8 +31,8 @@ use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use crate::ReportError;
 use crate::clip::{ClipRect, clip_polygon, clip_polyline};
+use crate::error::ReportError;
 use crate::place::{Occupancy, PixelBox, along_hline, around_point, choose, in_area};
 use crate::plot::{FONT, LABEL, TICK, TITLE, fmt_tick, log_range, log_ticks, padded_range};
 

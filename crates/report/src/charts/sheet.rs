@@ -6,7 +6,7 @@ use std::path::Path;
 
 use plotters::style::RGBColor;
 
-use crate::ReportError;
+use crate::error::ReportError;
 use crate::place::{Occupancy, PixelBox};
 use crate::plot::{HEIGHT, WIDTH, colour};
 

@@ -15,7 +15,8 @@ use stickslip_store::tables::source::Stations;
 use super::Outcome;
 use super::common::drawn;
 use crate::charts::{Line, Panel, Sheet};
-use crate::{ReportError, ReportInput};
+use crate::error::ReportError;
+use crate::input::ReportInput;
 
 /// The station drawn: of the first seed drawn, the broadband record nearest 10 km from the
 /// rupture, on the lowest site.

@@ -17,8 +17,9 @@ use stickslip_store::tables::catalogue::{Aftershocks, BValues, MagnitudeFrequenc
 use super::Outcome;
 use super::common::drawn;
 use crate::charts::{Line, Panel, Points, Scale, Sheet};
+use crate::error::ReportError;
+use crate::input::ReportInput;
 use crate::plot::colour;
-use crate::{ReportError, ReportInput};
 
 fn gathered(d: &ReportInput, t: TableSpec) -> Result<Option<polars::prelude::DataFrame>, ReportError> {
     Ok(read_parquet_if_present(&d.folder.gathered(&t))?)

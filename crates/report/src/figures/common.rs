@@ -10,7 +10,8 @@ use stickslip_store::tables::series::{Trace, read_series_channel};
 
 use super::Outcome;
 use crate::charts::{self, Sheet};
-use crate::{ReportError, ReportInput};
+use crate::error::ReportError;
+use crate::input::ReportInput;
 
 /// At most this many nodes are drawn side by side in the accelerogram, spectrum and Fourier
 /// figures; beyond it, a subset spread over the recorded ones, said in the caption.

@@ -13,8 +13,9 @@ use stickslip_solver::geometry::Lattice;
 use super::Outcome;
 use super::common::{drawn, main_shocks_with_ends, seeds_text, series};
 use crate::charts::{Panel, Points, Sheet};
+use crate::error::ReportError;
+use crate::input::ReportInput;
 use crate::plot::{FONT, HEIGHT, TICK, WIDTH, colour, decimate, fmt_tick, padded_range, plot_err};
-use crate::{ReportError, ReportInput};
 
 /// A white canvas of the standard size. The crack map draws its projections directly with
 /// plotters (the chart layer has no projection panels); every element lies inside its panel's

@@ -13,8 +13,9 @@ use stickslip_store::schema::col;
 use super::Outcome;
 use super::common::{drawn, rank_of, slope_se};
 use crate::charts::{HLine, Line, Panel, Points, Sheet};
+use crate::error::ReportError;
+use crate::input::ReportInput;
 use crate::plot::colour;
-use crate::{ReportError, ReportInput};
 
 pub(super) fn drop_vs_duration(d: &ReportInput, path: &Path) -> Result<Outcome, ReportError> {
     let Some(ev) = &d.events else { return Ok(Outcome::Skipped("no events".into())) };

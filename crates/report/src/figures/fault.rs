@@ -11,8 +11,9 @@ use stickslip_store::tables::series::Fault;
 use super::Outcome;
 use super::common::{drawn, seeds_text};
 use crate::charts::{Panel, Points, Sheet};
+use crate::error::ReportError;
+use crate::input::ReportInput;
 use crate::plot::colour;
-use crate::{ReportError, ReportInput};
 
 /// Main shocks drawn in the space–time figure.
 const SHOCKS_DRAWN: usize = 4;

@@ -12,7 +12,8 @@ use stickslip_store::tables::gmm::BIAS_BAND_LN;
 use super::Outcome;
 use super::common::drawn;
 use crate::charts::{Band, HLine, Line, Panel, Points, Scale, Sheet};
-use crate::{ReportError, ReportInput};
+use crate::error::ReportError;
+use crate::input::ReportInput;
 
 /// The NGA-West2 models drawn beside their average.
 const MODELS: [&str; 4] = ["bssa14", "ask14", "cb14", "cy14"];

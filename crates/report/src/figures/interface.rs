@@ -13,8 +13,9 @@ use stickslip_store::tables::series::read_series_channel;
 use super::Outcome;
 use super::common::{drawn, main_shocks, paper_fig, seeds_text, series};
 use crate::charts::{Band, HLine, Line, Marker, Panel, Points, Sheet};
+use crate::error::ReportError;
+use crate::input::ReportInput;
 use crate::plot::{WIDTH, colour, decimate};
-use crate::{ReportError, ReportInput};
 
 fn value_at(t: &[f64], y: &[f64], at: f64) -> f64 {
     let i = t.partition_point(|&x| x < at).min(t.len().saturating_sub(1));

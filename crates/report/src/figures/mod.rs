@@ -23,7 +23,8 @@ mod spectra;
 
 use std::path::Path;
 
-use crate::{ReportError, ReportInput};
+use crate::error::ReportError;
+use crate::input::ReportInput;
 
 pub use common::{MAX_NODES, NodeChannel, spread};
 pub use interface::LONG_RUN_MAIN_SHOCKS;

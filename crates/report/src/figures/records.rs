@@ -12,8 +12,9 @@ use stickslip_store::tables::series::{Trace, read_control};
 use super::Outcome;
 use super::common::{NodeChannel, accelerogram_nodes, drawn, main_shocks, nodes_short, nodes_text, paper_fig, rank_of};
 use crate::charts::{Line, Panel, Sheet};
+use crate::error::ReportError;
+use crate::input::ReportInput;
 use crate::plot::{HEIGHT, WIDTH, decimate, padded_range};
-use crate::{ReportError, ReportInput};
 
 /// (time, acceleration) of a control channel for one seed.
 fn control(d: &ReportInput, seed: u64, node: &NodeChannel) -> Result<Option<Trace>, ReportError> {

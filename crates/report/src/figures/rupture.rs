@@ -13,7 +13,8 @@ use super::Outcome;
 use super::common::{drawn, seeds_text, slope_se};
 use crate::charts::{Line, Panel, Points, Sheet};
 use crate::contour::contour;
-use crate::{ReportError, ReportInput};
+use crate::error::ReportError;
+use crate::input::ReportInput;
 
 /// Slip bins of the map: lower edges as fractions of the largest slip.
 const SLIP_BINS: [f64; 5] = [0.01, 0.2, 0.4, 0.6, 0.8];

@@ -20,8 +20,9 @@ use stickslip_store::tables::spectra::{Spectra, read_fourier};
 use super::Outcome;
 use super::common::{NodeChannel, accelerogram_nodes, drawn, nodes_short, nodes_text, rank_of, seeds_text};
 use crate::charts::{Band, Line, Panel, Sheet};
+use crate::error::ReportError;
+use crate::input::ReportInput;
 use crate::plot::{HEIGHT, colour};
-use crate::{ReportError, ReportInput};
 
 /// The columns of a spectra-shaped part the figures read ([`Spectra`]).
 const SPECTRUM_READ: [&str; 9] = [

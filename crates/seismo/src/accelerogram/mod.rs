@@ -1,4 +1,5 @@
-//! Accelerograms: standard processing ([`processing`]) and the file formats of a record.
+//! Accelerograms: standard processing ([`processing`]), the band a record is filtered to and used
+//! in ([`band`]), and the file formats of a record.
 //!
 //! Every format a record can be written in is one file here implementing [`RecordFormat`] and
 //! listed in [`FORMATS`]: PEER `.AT2` ([`at2`]), SAC binary ([`sac`]) and CSV ([`csv`]); a
@@ -7,6 +8,7 @@
 //! back (AT2 and SAC by extension or content, anything else as CSV).
 
 pub mod at2;
+pub mod band;
 pub mod csv;
 pub mod filter;
 pub mod processing;

@@ -31,23 +31,8 @@ use stickslip_isa::{Isa, widest};
 use crate::field::{Field, Lanes};
 use crate::geometry::Direction;
 use crate::layout::{BarGroup, BarLayout, Bars, Segment};
+use crate::step::primitives::{ForcePtr, add_lanes, check, project, scatter_diagonal, signs, sub_lanes};
 use crate::stiffness::StiffnessRef;
-
-/// Checks that `k`, `u` and `f` fit `layout` (the kernels index them without bounds checks).
-pub(crate) fn check<const L: usize>(layout: &BarLayout, k: &[Lanes<L>], u: &Field<L>, f: &Field<L>) {
-    assert_eq!(k.len(), layout.ends().len(), "one stiffness per bar");
-    for c in 0..3 {
-        assert!(u.c[c].len() == layout.nodes() && f.c[c].len() == layout.nodes(), "fields over the layout's nodes");
-    }
-}
-
-/// Raw view of the force field shared by the threads of one phase.
-#[derive(Clone, Copy)]
-pub(crate) struct ForcePtr<const L: usize>(pub(crate) [*mut Lanes<L>; 3]);
-
-// SAFETY: the segments run together write disjoint nodes (checked by `BarLayout::new`).
-unsafe impl<const L: usize> Send for ForcePtr<L> {}
-unsafe impl<const L: usize> Sync for ForcePtr<L> {}
 
 /// Adds the internal bar forces `−K·u` to `f`, on the calling thread, whatever the layout.
 pub fn bar_forces<'k, const L: usize>(bars: &Bars, k: impl Into<StiffnessRef<'k, L>>, u: &Field<L>, f: &mut Field<L>) {
@@ -184,20 +169,6 @@ unsafe fn axial<const L: usize>(ends: &[[u32; 2]], k: &[Lanes<L>], u: *const Lan
 }
 
 #[inline(always)]
-pub(crate) fn add_lanes<const L: usize>(a: &mut Lanes<L>, b: &Lanes<L>) {
-    for l in 0..L {
-        a[l] += b[l];
-    }
-}
-
-#[inline(always)]
-pub(crate) fn sub_lanes<const L: usize>(a: &mut Lanes<L>, b: &Lanes<L>) {
-    for l in 0..L {
-        a[l] -= b[l];
-    }
-}
-
-#[inline(always)]
 unsafe fn diagonal<const L: usize, const NX: bool, const NY: bool>(
     ends: &[[u32; 2]],
     k: &[Lanes<L>],
@@ -217,67 +188,6 @@ unsafe fn diagonal<const L: usize, const NX: bool, const NY: bool>(
             }
             scatter_diagonal(f, i, j, sx, sy, &t);
         }
-    }
-}
-
-/// The x and y signs of a diagonal's direction `(sx, sy, 1)` (multiplying by ±1 is exact, so
-/// this is the same arithmetic as negating).
-#[inline(always)]
-pub(crate) fn signs(neg_x: bool, neg_y: bool) -> (f64, f64) {
-    (if neg_x { -1.0 } else { 1.0 }, if neg_y { -1.0 } else { 1.0 })
-}
-
-/// A diagonal's elongation in kernel units, `s·(u_j − u_i)` with `s = (sx, sy, 1)`, for `L`
-/// lanes from the displacements `[x, y, z]` of its two ends.
-#[inline(always)]
-pub(crate) fn project<const L: usize>(sx: f64, sy: f64, ui: [&Lanes<L>; 3], uj: [&Lanes<L>; 3]) -> Lanes<L> {
-    let mut p = [0.0; L];
-    for l in 0..L {
-        p[l] = sx * (uj[0][l] - ui[0][l]) + sy * (uj[1][l] - ui[1][l]) + (uj[2][l] - ui[2][l]);
-    }
-    p
-}
-
-/// The elongation in kernel units of bar `(i, j)` of direction `direction` in lane `l`: `e·Δu`
-/// (axial) or `s·Δu` (diagonal, √3 times the elongation).
-#[inline(always)]
-pub(crate) fn elongation<const L: usize>(direction: Direction, u: &Field<L>, i: usize, j: usize, l: usize) -> f64 {
-    let d = |c: usize| u.c[c][j][l] - u.c[c][i][l];
-    match direction {
-        Direction::Axis(a) => d(a as usize),
-        Direction::Diagonal { neg_x, neg_y } => {
-            let (sx, sy) = signs(neg_x, neg_y);
-            sx * d(0) + sy * d(1) + d(2)
-        }
-    }
-}
-
-/// Adds a diagonal's force `t·s` to end `i` and subtracts it from end `j`.
-///
-/// # Safety
-/// `i` and `j` are node indices below the force arrays' length, `i ≠ j`, and no other thread
-/// writes them.
-#[inline(always)]
-pub(crate) unsafe fn scatter_diagonal<const L: usize>(
-    f: ForcePtr<L>,
-    i: usize,
-    j: usize,
-    sx: f64,
-    sy: f64,
-    t: &Lanes<L>,
-) {
-    let [fx, fy, fz] = f.0;
-    // One array per loop: the compiler cannot tell the force arrays apart, so loops that write
-    // only one of them are the ones it can turn into vector operations.
-    let (tx, ty) = (t.map(|v| sx * v), t.map(|v| sy * v));
-    // SAFETY: forwarded contract.
-    unsafe {
-        add_lanes(&mut *fx.add(i), &tx);
-        add_lanes(&mut *fy.add(i), &ty);
-        add_lanes(&mut *fz.add(i), t);
-        sub_lanes(&mut *fx.add(j), &tx);
-        sub_lanes(&mut *fy.add(j), &ty);
-        sub_lanes(&mut *fz.add(j), t);
     }
 }
 
@@ -307,8 +217,9 @@ mod tests {
     #[test]
     fn finishing_hands_over_every_node_once_with_its_complete_force() {
         for (nx, ny, nz) in [(10, 1, 5), (40, 20, 4)] {
-            let scene = crate::Scene { dims: crate::geometry::Dims::new(nx, ny, nz), ..crate::Scene::paper() };
-            let m = crate::Model::new(scene);
+            let scene =
+                crate::scene::Scene { dims: crate::geometry::Dims::new(nx, ny, nz), ..crate::scene::Scene::paper() };
+            let m = crate::model::Model::new(scene);
             let n = m.node_count();
             let k: Vec<Lanes<2>> = m.bar_stiffness(3).unwrap().iter().map(|&v| [v, 0.5 * v]).collect();
             let mut u = Field::<2>::zeros(n);
@@ -371,7 +282,7 @@ mod tests {
     }
 
     /// A random displacement field and stiffness for `L` lanes.
-    fn random_state<const L: usize>(m: &crate::Model, seed: u64) -> (Vec<Lanes<L>>, Field<L>) {
+    fn random_state<const L: usize>(m: &crate::model::Model, seed: u64) -> (Vec<Lanes<L>>, Field<L>) {
         use rand::{RngExt, SeedableRng};
         let mut rng = rand::rngs::ChaCha8Rng::seed_from_u64(seed);
         let k0 = m.nominal_stiffness();
@@ -385,12 +296,13 @@ mod tests {
         (k, u)
     }
 
-    fn model(nx: usize, ny: usize, nz: usize) -> crate::Model {
-        let scene = crate::Scene { dims: crate::geometry::Dims::new(nx, ny, nz), ..crate::Scene::paper() };
-        crate::Model::with_listed_bars(scene)
+    fn model(nx: usize, ny: usize, nz: usize) -> crate::model::Model {
+        let scene =
+            crate::scene::Scene { dims: crate::geometry::Dims::new(nx, ny, nz), ..crate::scene::Scene::paper() };
+        crate::model::Model::with_listed_bars(scene)
     }
 
-    fn every_pass_agrees<const L: usize>(m: &crate::Model, seed: u64) {
+    fn every_pass_agrees<const L: usize>(m: &crate::model::Model, seed: u64) {
         let (k, u) = random_state::<L>(m, seed);
         let want = reference(m.layout().listed(), &k, &u);
         let n = m.node_count();
@@ -423,8 +335,8 @@ mod tests {
 
     #[test]
     fn fused_pass_gives_the_plain_pass_and_integration_in_every_build() {
+        use crate::step::integrate::Coefficients;
         use crate::step::integrate::{Levels, Update, integrate_all, integrate_range};
-        use crate::step::params::Coefficients;
         let m = model(40, 20, 4);
         assert!(m.cache_blocked());
         let (k, u) = random_state::<4>(&m, 5);

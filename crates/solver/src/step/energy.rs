@@ -13,11 +13,11 @@ use rayon::prelude::*;
 use crate::boundary;
 use crate::field::Field;
 use crate::geometry::Direction;
-use crate::layout::{BarLayout, Bars};
+use crate::layout::Bars;
 use crate::model::Model;
 use crate::stencil::{Run, StencilLayout};
-use crate::step::bars::signs;
 use crate::step::params::Params;
+use crate::step::primitives::{signs, strain_energy_with};
 use crate::step::state::State;
 use crate::stiffness::StiffnessRef;
 
@@ -105,71 +105,6 @@ fn sum8(n: usize, term: impl Fn(usize) -> f64) -> f64 {
 fn per_slab<T: Send>(layout: &StencilLayout, parallel: bool, sum: impl Fn(Range<usize>) -> T + Sync) -> Vec<T> {
     let slabs: Vec<Range<usize>> = layout.slabs().collect();
     if parallel { slabs.into_par_iter().map(&sum).collect() } else { slabs.into_iter().map(&sum).collect() }
-}
-
-/// `½ Σ_b k_b·e_b(a)·e_b(b)` for lane `l` with `k_b = stiffness(bar, e_b(a))`, summed group by
-/// group in kernel order (so every caller gets the same bits for the same stiffness).
-pub(crate) fn strain_energy_with<const L: usize>(
-    layout: &BarLayout,
-    a: &Field<L>,
-    b: &Field<L>,
-    l: usize,
-    stiffness: impl Fn(usize, f64) -> f64,
-) -> f64 {
-    let ends = layout.ends();
-    let mut total = 0.0;
-    for g in layout.groups() {
-        // The direction is matched once per group, so each group's loop is specialised.
-        let sum = match g.direction {
-            Direction::Axis(axis) => group_sum(
-                ends,
-                g.start..g.end,
-                &stiffness,
-                |u, i, j| {
-                    let c = &u.c[axis as usize];
-                    c[j][l] - c[i][l]
-                },
-                a,
-                b,
-            ),
-            Direction::Diagonal { neg_x, neg_y } => {
-                let (sx, sy) = signs(neg_x, neg_y);
-                group_sum(
-                    ends,
-                    g.start..g.end,
-                    &stiffness,
-                    |u, i, j| {
-                        sx * (u.c[0][j][l] - u.c[0][i][l])
-                            + sy * (u.c[1][j][l] - u.c[1][i][l])
-                            + (u.c[2][j][l] - u.c[2][i][l])
-                    },
-                    a,
-                    b,
-                )
-            }
-        };
-        total += sum;
-    }
-    0.5 * total
-}
-
-/// `Σ k·e(a)·e(b)` over the bars of one group, `e` the group's elongation.
-#[inline(always)]
-fn group_sum<const L: usize>(
-    ends: &[[u32; 2]],
-    bars: std::ops::Range<usize>,
-    stiffness: &impl Fn(usize, f64) -> f64,
-    elongation: impl Fn(&Field<L>, usize, usize) -> f64,
-    a: &Field<L>,
-    b: &Field<L>,
-) -> f64 {
-    let mut sum = 0.0;
-    for bar in bars {
-        let (i, j) = (ends[bar][0] as usize, ends[bar][1] as usize);
-        let pa = elongation(a, i, j);
-        sum += stiffness(bar, pa) * pa * elongation(b, i, j);
-    }
-    sum
 }
 
 /// `½ Σ m|a − b|²/Δt²` for lane `l` (J).

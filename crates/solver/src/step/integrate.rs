@@ -7,7 +7,6 @@ use rayon::prelude::*;
 use stickslip_isa::{Isa, widest};
 
 use crate::field::{Field, Lanes};
-use crate::step::params::Coefficients;
 
 /// What the update reads besides the time levels: inverse masses, the per-lane coefficients and
 /// the body acceleration.
@@ -29,6 +28,33 @@ pub struct Levels<'a, const L: usize> {
     pub up: &'a Field<L>,
     /// `uₙ₊₁` (the trial).
     pub out: &'a mut Field<L>,
+}
+
+/// The three time levels the fused integration reads and writes, shared by the slab tasks of one
+/// phase of the stencil kernel ([`crate::step::stencil`]), which write disjoint layers.
+#[derive(Clone, Copy)]
+pub(crate) struct LevelsPtr<const L: usize> {
+    /// `uₙ`.
+    pub u: [*const Lanes<L>; 3],
+    /// `uₙ₋₁`.
+    pub up: [*const Lanes<L>; 3],
+    /// The trial, written.
+    pub out: [*mut Lanes<L>; 3],
+}
+
+// SAFETY: the tasks of one phase write disjoint nodes (see the stencil kernel's module doc).
+unsafe impl<const L: usize> Send for LevelsPtr<L> {}
+unsafe impl<const L: usize> Sync for LevelsPtr<L> {}
+
+/// Per-lane coefficients of the trial update `u⁺ = cf·(f/m + b) + c2·u − cp·u⁻`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Coefficients<const L: usize> {
+    /// `Δt²/(1 + DΔt/2)`.
+    pub cf: Lanes<L>,
+    /// `2/(1 + DΔt/2)`.
+    pub c2: Lanes<L>,
+    /// `(1 − DΔt/2)/(1 + DΔt/2)`.
+    pub cp: Lanes<L>,
 }
 
 /// Trial update of every node, clearing the force field `f` as it is consumed; with `parallel`,
@@ -90,7 +116,7 @@ pub(crate) unsafe fn integrate_raw<const L: usize>(
     range: Range<usize>,
     up: &Update<'_, L>,
     f: [*mut Lanes<L>; 3],
-    levels: crate::step::stencil::LevelsPtr<L>,
+    levels: LevelsPtr<L>,
 ) {
     let (start, n) = (range.start, range.len());
     for c in 0..3 {

@@ -19,6 +19,7 @@ pub mod contact;
 pub mod energy;
 pub mod integrate;
 pub mod params;
+mod primitives;
 pub mod rupture;
 pub mod state;
 pub mod stencil;

@@ -5,6 +5,7 @@ use crate::fault::{FaultLanes, FaultLoads};
 use crate::field::Lanes;
 use crate::laws::FrictionLaws;
 use crate::model::Model;
+use crate::step::integrate::Coefficients;
 use crate::step::rupture::RuptureParams;
 use crate::stiffness::{LaneStiffness, Stiffness, StiffnessRef};
 
@@ -23,17 +24,6 @@ pub struct LaneSetup {
     /// The fault's loads on every contact node when the base is a fault (docs/model.md §15),
     /// e.g. [`Model::fault_loads`]; every lane of a batch has them or none does.
     pub fault: Option<FaultLoads>,
-}
-
-/// Per-lane coefficients of the trial update `u⁺ = cf·(f/m + b) + c2·u − cp·u⁻`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Coefficients<const L: usize> {
-    /// `Δt²/(1 + DΔt/2)`.
-    pub cf: Lanes<L>,
-    /// `2/(1 + DΔt/2)`.
-    pub c2: Lanes<L>,
-    /// `(1 − DΔt/2)/(1 + DΔt/2)`.
-    pub cp: Lanes<L>,
 }
 
 /// What the step reads and does not change.

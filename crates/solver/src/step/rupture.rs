@@ -38,15 +38,16 @@ use crate::field::{Field, Lanes};
 use crate::geometry::Direction;
 use crate::layout::{BarGroup, BarLayout, Segment};
 use crate::rupture::law_step;
-use crate::step::bars::{ForcePtr, add_lanes, check, elongation, project, scatter_diagonal, signs, sub_lanes};
-use crate::step::energy::strain_energy_with;
+use crate::step::primitives::{
+    ForcePtr, add_lanes, check, elongation, project, scatter_diagonal, signs, strain_energy_with, sub_lanes,
+};
 
 /// The gate of an intact bar sits this fraction below `k·p_peak²`, so round-off in `t·p` never
 /// hides a bar that passed its peak (the exact law decides).
 const GATE_MARGIN: f64 = 1e-12;
 
 /// What the rupture kernel reads and does not change: the peak elongation of each bar and lane
-/// (kernel units, see [`crate::Model::bar_strength`]) and `Kr`.
+/// (kernel units, see [`crate::model::Model::bar_strength`]) and `Kr`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RuptureParams<const L: usize> {
     /// Peak elongation per bar and lane (kernel units).
@@ -516,15 +517,16 @@ mod tests {
     use super::*;
     use crate::rupture::{BarHistory, BarLaw};
 
-    fn model(nx: usize, ny: usize, nz: usize) -> crate::Model {
-        let scene = crate::Scene { dims: crate::geometry::Dims::new(nx, ny, nz), ..crate::Scene::paper() };
-        crate::Model::with_listed_bars(scene)
+    fn model(nx: usize, ny: usize, nz: usize) -> crate::model::Model {
+        let scene =
+            crate::scene::Scene { dims: crate::geometry::Dims::new(nx, ny, nz), ..crate::scene::Scene::paper() };
+        crate::model::Model::with_listed_bars(scene)
     }
 
     /// A state with bars in every regime: displacements large enough that many bars pass their
     /// peak, some break, some are compressed; a history from an earlier, different state.
     fn random_case<const L: usize>(
-        m: &crate::Model,
+        m: &crate::model::Model,
         seed: u64,
     ) -> (Vec<Lanes<L>>, RuptureParams<L>, RuptureState<L>, Field<L>, Field<L>) {
         use rand::{RngExt, SeedableRng};
@@ -564,7 +566,7 @@ mod tests {
     /// The kernel written plainly: every bar in kernel order, one lane at a time, the law of
     /// [`BarLaw::force`] for every bar, the ledger increment wherever the stiffness changes.
     fn reference<const L: usize>(
-        m: &crate::Model,
+        m: &crate::model::Model,
         k0: &[Lanes<L>],
         params: &RuptureParams<L>,
         state: &mut RuptureState<L>,
@@ -620,7 +622,7 @@ mod tests {
 
     /// The kernel's ledger, summed per segment in segment order, against the plain per-lane sum:
     /// equal to round-off (the order of additions differs).
-    fn agrees<const L: usize>(m: &crate::Model, seed: u64) {
+    fn agrees<const L: usize>(m: &crate::model::Model, seed: u64) {
         let (k0, params, state0, u, older) = random_case::<L>(m, seed);
         let mut want_state = state0.clone();
         let (want, want_diss, want_cracks) = reference(m, &k0, &params, &mut want_state, &u, &older);

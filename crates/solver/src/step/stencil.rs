@@ -27,8 +27,8 @@ use stickslip_isa::{Isa, widest};
 use crate::field::{Field, Lanes};
 use crate::geometry::Direction;
 use crate::stencil::{Run, RunStiffness, StencilLayout};
-use crate::step::bars::signs;
-use crate::step::integrate::{Update, integrate_raw};
+use crate::step::integrate::{LevelsPtr, Update, integrate_raw};
+use crate::step::primitives::signs;
 use crate::stiffness::StiffnessRef;
 
 /// Raw views of the arrays one pass reads and writes, shared by the slab tasks of one phase
@@ -46,21 +46,6 @@ pub(crate) struct Pass<const L: usize> {
 // SAFETY: the tasks of one phase write disjoint nodes (see the module doc).
 unsafe impl<const L: usize> Send for Pass<L> {}
 unsafe impl<const L: usize> Sync for Pass<L> {}
-
-/// The three time levels the fused integration reads and writes, shared like [`Pass`].
-#[derive(Clone, Copy)]
-pub(crate) struct LevelsPtr<const L: usize> {
-    /// `uₙ`.
-    pub u: [*const Lanes<L>; 3],
-    /// `uₙ₋₁`.
-    pub up: [*const Lanes<L>; 3],
-    /// The trial, written.
-    pub out: [*mut Lanes<L>; 3],
-}
-
-// SAFETY: as `Pass`.
-unsafe impl<const L: usize> Send for LevelsPtr<L> {}
-unsafe impl<const L: usize> Sync for LevelsPtr<L> {}
 
 /// The stiffness one pass reads: `L` `f64` per bar, or the runs' nominal stiffness and `L` `f32`
 /// factors per bar (or none).
@@ -407,8 +392,8 @@ mod tests {
 
     use super::*;
     use crate::geometry::Dims;
+    use crate::step::integrate::Coefficients;
     use crate::step::integrate::{Levels, integrate_all};
-    use crate::step::params::Coefficients;
 
     fn random<const L: usize>(layout: &StencilLayout, seed: u64) -> (Vec<Lanes<L>>, Field<L>) {
         let mut rng = rand::rngs::ChaCha8Rng::seed_from_u64(seed);
@@ -530,7 +515,7 @@ mod tests {
     #[test]
     fn the_stencil_gives_the_listed_forces_to_round_off() {
         let dims = Dims::new(9, 6, 7);
-        let model = crate::Model::new(crate::Scene::paper().sample(dims));
+        let model = crate::model::Model::new(crate::scene::Scene::paper().sample(dims));
         let layout = StencilLayout::new(dims);
         let (k, u) = random::<1>(&layout, 9);
         let mut f = Field::<1>::zeros(layout.nodes());
