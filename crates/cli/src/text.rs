@@ -32,32 +32,7 @@ pub fn pad(s: &str, w: usize) -> String {
     format!("{s}{}", " ".repeat(w.saturating_sub(width(s))))
 }
 
-/// Seeds as a compact list: runs of consecutive seeds as ranges, "1–100, 123, 200".
-pub fn seed_list(seeds: &[u64]) -> String {
-    let mut v = seeds.to_vec();
-    v.sort_unstable();
-    v.dedup();
-    let mut parts: Vec<String> = Vec::new();
-    let mut i = 0;
-    while i < v.len() {
-        let mut j = i;
-        while j + 1 < v.len() && v[j + 1] == v[j] + 1 {
-            j += 1;
-        }
-        parts.push(match j - i {
-            0 => v[i].to_string(),
-            1 => format!("{}, {}", v[i], v[j]),
-            _ => format!("{}–{}", v[i], v[j]),
-        });
-        i = j + 1;
-    }
-    parts.join(", ")
-}
-
-/// `n` and the noun, singular or plural: "1 seed", "3 seeds".
-pub fn count(n: usize, singular: &str, plural: &str) -> String {
-    format!("{n} {}", if n == 1 { singular } else { plural })
-}
+pub use stickslip_ensemble::digest::{count, seed_list};
 
 /// A number as a reader wants it: `{}` writes it short (`1e300`, not 300 digits; see
 /// `stickslip_config::check::num`), and `{:.3}` keeps three decimals while it is below 10⁶ in
