@@ -34,23 +34,7 @@ pub fn pad(s: &str, w: usize) -> String {
 
 pub use stickslip_ensemble::digest::{count, seed_list};
 
-/// A number as a reader wants it: `{}` writes it short (`1e300`, not 300 digits; see
-/// `stickslip_config::check::num`), and `{:.3}` keeps three decimals while it is below 10⁶ in
-/// size, then switches to an exponent.
-#[derive(Clone, Copy, Debug)]
-pub struct N(pub f64);
-
-impl std::fmt::Display for N {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let v = self.0;
-        match f.precision() {
-            None => f.write_str(&stickslip_config::check::num(v)),
-            Some(p) if v.is_finite() && (v == 0.0 || (1e-3..1e6).contains(&v.abs())) => write!(f, "{v:.p$}"),
-            Some(p) if v.is_finite() => write!(f, "{v:.p$e}"),
-            Some(_) => write!(f, "{v}"),
-        }
-    }
-}
+pub use stickslip_config::describe::N;
 
 #[cfg(test)]
 mod tests {
@@ -64,16 +48,6 @@ mod tests {
         assert_eq!(seed_list(&[]), "");
         assert_eq!(count(1, "seed", "seeds"), "1 seed");
         assert_eq!(count(2, "figure", "figures"), "2 figures");
-    }
-
-    #[test]
-    fn numbers_stay_short() {
-        assert_eq!(format!("{}", N(1e300)), "1e300");
-        assert_eq!(format!("{}", N(0.1)), "0.1");
-        assert_eq!(format!("{:.3}", N(1.2494e305)), "1.249e305");
-        assert_eq!(format!("{:.3}", N(0.7)), "0.700");
-        assert_eq!(format!("{:.1}", N(1e-9)), "1.0e-9");
-        assert_eq!(format!("{:.3}", N(f64::INFINITY)), "inf");
     }
 
     #[test]
