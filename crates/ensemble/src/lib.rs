@@ -6,7 +6,7 @@
 //! a statistic is precise enough ([`precision`]); gathering the tables and the statistics across
 //! seeds ([`gather`], [`summary`], [`catalogue`]), a fault scenario's stations against the
 //! ground-motion models ([`gmm`]) and the record set ([`set`]); what a finished run says when it
-//! closes ([`digest`]), read from its tables for
+//! closes ([`digest`]) and one main shock seed by seed ([`seed_table`]), read from its tables for
 //! the command line to print. Must not know: how one seed is analysed or written, the pipeline
 //! file's syntax (it takes a validated [`stickslip_config::Pipeline`]), figures, the command line.
 #![deny(missing_docs)]
@@ -20,6 +20,7 @@ pub mod merge;
 pub mod precision;
 pub mod run;
 pub mod scenario_set;
+pub mod seed_table;
 pub mod set;
 mod set_pool;
 pub mod summary;
