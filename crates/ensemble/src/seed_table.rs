@@ -1,7 +1,7 @@
 //! One main shock seed by seed, as the Markdown table the README prints (`stickslip seeds`: the
 //! README's calibration numbers come from a command, not from memory).
 
-use polars::prelude::{DataFrame, DataType};
+use polars::prelude::{DataFrame, DataType, PolarsError};
 use stickslip_config::Pipeline;
 use stickslip_store::io::scan_glob;
 use stickslip_store::schema::{EVENTS_TABLE, RUNS, SERIES, SIMILARITY, col};
@@ -27,48 +27,10 @@ pub fn shock_table(folder: &Folder, pipeline: &Pipeline, shock: &str) -> Result<
     let events = read(&EVENTS_TABLE)?;
     let similarity = read(&SIMILARITY)?;
     let series = read(&SERIES)?;
-    let polars = |what: &str| {
-        let what = what.to_string();
-        move |e| EnsembleError::Store(StoreError::table(what.clone(), e))
-    };
-    let seed_of = |df: &DataFrame| -> Result<Vec<u64>, EnsembleError> {
-        Ok(df
-            .column(col::SEED)
-            .map_err(polars(col::SEED))?
-            .u64()
-            .map_err(polars(col::SEED))?
-            .iter()
-            .flatten()
-            .collect())
-    };
-    let strings = |df: &DataFrame, c: &str| -> Result<Vec<String>, EnsembleError> {
-        Ok(df
-            .column(c)
-            .map_err(polars(c))?
-            .str()
-            .map_err(polars(c))?
-            .iter()
-            .map(|v| v.unwrap_or_default().to_string())
-            .collect())
-    };
     let labels = strings(&events, col::LABEL)?;
     let kinds = strings(&events, col::KIND)?;
     if !(0..labels.len()).any(|i| kinds[i] == "main" && labels[i] == shock) {
-        let mut ranks: Vec<u32> = (0..labels.len())
-            .filter(|&i| kinds[i] == "main")
-            .filter_map(|i| labels[i].strip_prefix('S')?.parse().ok())
-            .collect();
-        ranks.sort_unstable();
-        ranks.dedup();
-        return Err(EnsembleError::Setup(format!(
-            "no seed of {} has a main shock {shock}: {}",
-            out.display(),
-            match ranks.last() {
-                Some(1) => "its seeds have S1 only".to_string(),
-                Some(last) => format!("its seeds have S1 … S{last}"),
-                None => "it has no main shock at all".to_string(),
-            }
-        )));
+        return Err(no_such_shock(out, &labels, &kinds, shock));
     }
     let prev =
         shock.strip_prefix('S').and_then(|n| n.parse::<u32>().ok()).filter(|&n| n > 1).map(|n| format!("S{}", n - 1));
@@ -80,27 +42,15 @@ pub fn shock_table(folder: &Folder, pipeline: &Pipeline, shock: &str) -> Result<
         ),
         "|---|---|---|---|---|---|---|---|---|".to_string(),
     ];
-    let floats = |df: &DataFrame, c: &str| -> Vec<f64> {
-        df.column(c)
-            .ok()
-            .and_then(|c| c.cast(&DataType::Float64).ok())
-            .and_then(|c| c.f64().ok().map(|c| c.iter().map(|v| v.unwrap_or(f64::NAN)).collect()))
-            .unwrap_or_default()
-    };
     let find = |df: &DataFrame, seed: u64| -> Result<Option<usize>, EnsembleError> {
-        let (s, k, l) = (seed_of(df)?, strings(df, col::KIND)?, strings(df, col::LABEL)?);
+        let (s, k, l) = (seeds_of(df)?, strings(df, col::KIND)?, strings(df, col::LABEL)?);
         Ok((0..s.len()).find(|&i| s[i] == seed && k[i] == "main" && l[i] == shock))
     };
-    let run_seeds = seed_of(&runs)?;
-    let mains: Vec<Option<u32>> = runs
-        .column(col::MAIN_SHOCKS)
-        .map_err(polars(col::MAIN_SHOCKS))?
-        .u32()
-        .map_err(polars(col::MAIN_SHOCKS))?
-        .iter()
-        .collect();
+    let run_seeds = seeds_of(&runs)?;
+    let mains: Vec<Option<u32>> =
+        runs.column(col::MAIN_SHOCKS).and_then(|c| Ok(c.u32()?.iter().collect())).map_err(polars(col::MAIN_SHOCKS))?;
     let (series_seed, series_t, series_sigma) =
-        (seed_of(&series)?, floats(&series, col::TIME_S), floats(&series, "normal_stress_pa"));
+        (seeds_of(&series)?, floats(&series, col::TIME_S), floats(&series, "normal_stress_pa"));
     for (r, &seed) in run_seeds.iter().enumerate() {
         let value = |df: &DataFrame, row: Option<usize>, c: &str, scale: f64, digits: usize, unit: &str| -> String {
             row.and_then(|i| floats(df, c).get(i).copied())
@@ -133,6 +83,52 @@ pub fn shock_table(folder: &Folder, pipeline: &Pipeline, shock: &str) -> Result<
         AVERAGE_S * 1e3
     ));
     Ok(lines.join("\n"))
+}
+
+/// A polars error reading column `what`, as the store says it.
+fn polars(what: &str) -> impl Fn(PolarsError) -> EnsembleError {
+    let what = what.to_string();
+    move |e| EnsembleError::Store(StoreError::table(what.clone(), e))
+}
+
+/// The seed column of a table.
+fn seeds_of(df: &DataFrame) -> Result<Vec<u64>, EnsembleError> {
+    df.column(col::SEED).and_then(|c| Ok(c.u64()?.iter().flatten().collect())).map_err(polars(col::SEED))
+}
+
+/// A text column of a table, nulls as empty.
+fn strings(df: &DataFrame, c: &str) -> Result<Vec<String>, EnsembleError> {
+    df.column(c)
+        .and_then(|column| Ok(column.str()?.iter().map(|v| v.unwrap_or_default().to_string()).collect()))
+        .map_err(polars(c))
+}
+
+/// A column of a table as f64, nulls as NaN; empty when absent.
+fn floats(df: &DataFrame, c: &str) -> Vec<f64> {
+    df.column(c)
+        .ok()
+        .and_then(|c| c.cast(&DataType::Float64).ok())
+        .and_then(|c| c.f64().ok().map(|c| c.iter().map(|v| v.unwrap_or(f64::NAN)).collect()))
+        .unwrap_or_default()
+}
+
+/// Why no seed of `out` has main shock `shock`: which main shocks its seeds have.
+fn no_such_shock(out: &std::path::Path, labels: &[String], kinds: &[String], shock: &str) -> EnsembleError {
+    let mut ranks: Vec<u32> = (0..labels.len())
+        .filter(|&i| kinds[i] == "main")
+        .filter_map(|i| labels[i].strip_prefix('S')?.parse().ok())
+        .collect();
+    ranks.sort_unstable();
+    ranks.dedup();
+    EnsembleError::Setup(format!(
+        "no seed of {} has a main shock {shock}: {}",
+        out.display(),
+        match ranks.last() {
+            Some(1) => "its seeds have S1 only".to_string(),
+            Some(last) => format!("its seeds have S1 … S{last}"),
+            None => "it has no main shock at all".to_string(),
+        }
+    ))
 }
 
 /// The range of σ/σ0 − 1 over t ≥ 0, raw and as a centred moving average, as "−60…+140%".
