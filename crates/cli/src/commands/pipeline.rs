@@ -163,8 +163,9 @@ pub fn parse_threads(s: &str) -> Result<usize, String> {
     }
 }
 
-/// `stickslip pipeline`.
-pub fn run(a: Args) -> Result<()> {
+/// The pipelines of `a`, every file validated before any runs, with the seeds of `--seeds`;
+/// refuses options that do not go together, and prints each pipeline's warnings.
+fn load(a: &Args) -> Result<(Vec<Pipeline>, Option<Vec<u64>>)> {
     anyhow::ensure!(a.out.is_none() || a.pipelines.len() == 1, "--out needs exactly one pipeline");
     anyhow::ensure!(
         !(a.fresh && a.shard.is_some()),
@@ -196,11 +197,16 @@ pub fn run(a: Args) -> Result<()> {
             }
         }
     }
-    // Memory and run length of every pipeline before any is built.
+    Ok((pipelines, given))
+}
+
+/// The seeds each of `pipelines` runs (the pipeline's, or `given`, sliced by `--shard`), once
+/// the memory and run length of every pipeline are checked before any is built.
+fn seeds_to_run(a: &Args, pipelines: &[Pipeline], given: Option<&[u64]>) -> Result<Vec<Vec<u64>>> {
     let threads = a.threads.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
     let mut runs = Vec::new();
-    for pipeline in &pipelines {
-        let mut seeds = given.clone().unwrap_or_else(|| pipeline.seeds.clone());
+    for pipeline in pipelines {
+        let mut seeds = given.map(<[u64]>::to_vec).unwrap_or_else(|| pipeline.seeds.clone());
         if let Some((k, n)) = a.shard {
             seeds = shard(&seeds, k, n);
         }
@@ -212,6 +218,13 @@ pub fn run(a: Args) -> Result<()> {
         crate::budget::check_before_build(&pipeline.scene, seeds.len(), threads, a.allow_long, &what)?;
         runs.push(seeds);
     }
+    Ok(runs)
+}
+
+/// `stickslip pipeline`.
+pub fn run(a: Args) -> Result<()> {
+    let (pipelines, given) = load(&a)?;
+    let runs = seeds_to_run(&a, &pipelines, given.as_deref())?;
     let cancel = cancel_on_ctrl_c()?;
     let mut unfinished = Vec::new();
     for (pipeline, seeds) in pipelines.iter().zip(runs) {
