@@ -31,7 +31,7 @@ pub struct RunDigest {
 #[derive(Clone, Debug)]
 pub enum Outcome {
     /// A fault's ruptures, one per seed that ruptured (the `source` table).
-    Ruptures(Sources),
+    Ruptures(Box<Sources>),
     /// A block's statistics ([`crate::summary::digest`]) and, when seeds slid stably, the
     /// spring-slider verdict of `stickslip check`.
     Events {
@@ -79,7 +79,7 @@ impl RunDigest {
         let regimes = Regimes::of(folder)?;
         let outcome = if pipeline.scene.is_fault() {
             match read_parquet_if_present(&folder.gathered(&SOURCE))?.map(|df| Sources::read(&df)).transpose()? {
-                Some(s) if !s.seed.is_empty() => Outcome::Ruptures(s),
+                Some(s) if !s.seed.is_empty() => Outcome::Ruptures(Box::new(s)),
                 _ => Outcome::NoEvents(Box::new(NoEvents::of(pipeline, folder))),
             }
         } else if events.is_some_and(|e| !e.is_empty()) || !ran {
