@@ -5,6 +5,10 @@ use std::path::{Path, PathBuf};
 use stickslip_config::PipelineFile;
 use stickslip_solver::Scene;
 
+/// polars, for the tests that read the product's Parquet tables back (the command line's crate
+/// has no polars of its own: it prints what the store and the ensemble read).
+pub use polars;
+
 /// The repository root.
 pub fn repo_root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))

@@ -2,6 +2,7 @@
 //! available, and the length of its runs against [`LONG_RUN_BAR_UPDATES`].
 
 use anyhow::{Result, bail};
+use stickslip_config::describe::duration;
 use stickslip_solver::Scene;
 use stickslip_solver::error::MAX_STEPS;
 use stickslip_solver::memory::{
@@ -219,19 +220,6 @@ pub fn check_before_build(scene: &Scene, seeds: usize, threads: usize, allow_lon
     let est = check_memory(scene, seeds, threads, what)?;
     check_length(scene, est.bars, dt_estimate(scene), None, allow_long, what)?;
     Ok(())
-}
-
-/// Seconds as `1.2 s`, `3.4 min`, `5.6 h` or `7.8 days`.
-pub fn duration(s: f64) -> String {
-    if s < 120.0 {
-        format!("{s:.1} s")
-    } else if s < 7200.0 {
-        format!("{:.1} min", s / 60.0)
-    } else if s < 172_800.0 {
-        format!("{:.1} h", s / 3600.0)
-    } else {
-        format!("{:.1} days", s / 86_400.0)
-    }
 }
 
 #[cfg(test)]

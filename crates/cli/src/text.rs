@@ -32,50 +32,9 @@ pub fn pad(s: &str, w: usize) -> String {
     format!("{s}{}", " ".repeat(w.saturating_sub(width(s))))
 }
 
-/// Seeds as a compact list: runs of consecutive seeds as ranges, "1–100, 123, 200".
-pub fn seed_list(seeds: &[u64]) -> String {
-    let mut v = seeds.to_vec();
-    v.sort_unstable();
-    v.dedup();
-    let mut parts: Vec<String> = Vec::new();
-    let mut i = 0;
-    while i < v.len() {
-        let mut j = i;
-        while j + 1 < v.len() && v[j + 1] == v[j] + 1 {
-            j += 1;
-        }
-        parts.push(match j - i {
-            0 => v[i].to_string(),
-            1 => format!("{}, {}", v[i], v[j]),
-            _ => format!("{}–{}", v[i], v[j]),
-        });
-        i = j + 1;
-    }
-    parts.join(", ")
-}
+pub use stickslip_ensemble::digest::{count, seed_list};
 
-/// `n` and the noun, singular or plural: "1 seed", "3 seeds".
-pub fn count(n: usize, singular: &str, plural: &str) -> String {
-    format!("{n} {}", if n == 1 { singular } else { plural })
-}
-
-/// A number as a reader wants it: `{}` writes it short (`1e300`, not 300 digits; see
-/// `stickslip_config::check::num`), and `{:.3}` keeps three decimals while it is below 10⁶ in
-/// size, then switches to an exponent.
-#[derive(Clone, Copy, Debug)]
-pub struct N(pub f64);
-
-impl std::fmt::Display for N {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let v = self.0;
-        match f.precision() {
-            None => f.write_str(&stickslip_config::check::num(v)),
-            Some(p) if v.is_finite() && (v == 0.0 || (1e-3..1e6).contains(&v.abs())) => write!(f, "{v:.p$}"),
-            Some(p) if v.is_finite() => write!(f, "{v:.p$e}"),
-            Some(_) => write!(f, "{v}"),
-        }
-    }
-}
+pub use stickslip_config::describe::N;
 
 #[cfg(test)]
 mod tests {
@@ -89,16 +48,6 @@ mod tests {
         assert_eq!(seed_list(&[]), "");
         assert_eq!(count(1, "seed", "seeds"), "1 seed");
         assert_eq!(count(2, "figure", "figures"), "2 figures");
-    }
-
-    #[test]
-    fn numbers_stay_short() {
-        assert_eq!(format!("{}", N(1e300)), "1e300");
-        assert_eq!(format!("{}", N(0.1)), "0.1");
-        assert_eq!(format!("{:.3}", N(1.2494e305)), "1.249e305");
-        assert_eq!(format!("{:.3}", N(0.7)), "0.700");
-        assert_eq!(format!("{:.1}", N(1e-9)), "1.0e-9");
-        assert_eq!(format!("{:.3}", N(f64::INFINITY)), "inf");
     }
 
     #[test]

@@ -394,8 +394,8 @@ fn non_finite(dir: &Path) -> Vec<(PathBuf, String, usize)> {
         let df = read_table(&dir.join(&f));
         for c in df.columns() {
             // Single-precision columns (series channels, Fourier amplitudes) are checked as f64.
-            let c = if c.dtype() == &polars::prelude::DataType::Float32 {
-                c.cast(&polars::prelude::DataType::Float64).unwrap()
+            let c = if c.dtype() == &stickslip_support::polars::prelude::DataType::Float32 {
+                c.cast(&stickslip_support::polars::prelude::DataType::Float64).unwrap()
             } else {
                 c.clone()
             };

@@ -6,8 +6,8 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use polars::prelude::*;
 use stickslip_seismo::gmm::{Imt, Mechanism, Model, Rupture, Site};
+use stickslip_support::polars::prelude::*;
 
 fn stickslip(args: &[&str], cwd: &Path) -> Output {
     Command::new(env!("CARGO_BIN_EXE_stickslip")).args(args).current_dir(cwd).output().expect("run stickslip")

@@ -358,8 +358,8 @@ fn python_example_reads_the_tables() {
 }
 
 /// A Parquet file read with polars.
-fn parquet(path: &Path) -> polars::prelude::DataFrame {
-    use polars::prelude::{ParquetReader, SerReader};
+fn parquet(path: &Path) -> stickslip_support::polars::prelude::DataFrame {
+    use stickslip_support::polars::prelude::{ParquetReader, SerReader};
     ParquetReader::new(std::fs::File::open(path).unwrap()).finish().unwrap()
 }
 
@@ -518,7 +518,7 @@ fn spectra_pga(args: &[&str], dir: &Path, out: &str) -> f64 {
 
 #[test]
 fn spectra_reads_sac_text_csv_and_parquet_records_and_draws_them() {
-    use polars::prelude::*;
+    use stickslip_support::polars::prelude::*;
     let dir = scratch("spectra");
     // The product's own SAC record of seed 123's S2 at node 36 (z), and the same record in the
     // accelerograms table: the same peak, to the SAC's single precision.

@@ -157,6 +157,60 @@ impl AccelerogramsSection {
             );
         }
         let formats = ck.named_list("accelerograms.formats", &self.formats);
+        let nodes = self.nodes(scene, ck);
+        let (resolved_hz, top) = self.band(scene, ck);
+        let shortest = self.pre_event_s + self.post_event_s;
+        let run = scene.shear.duration_s;
+        if span == RecordSpan::Events && window_ok && shortest >= run {
+            ck.push(
+                "accelerograms.post_event_s",
+                self.post_event_s,
+                format!(
+                    "a window shorter than the shear stage: pre_event_s + post_event_s = {} s ≥ shear.duration_s = \
+                     {} s makes every event's record the whole run (for that, records = \"whole_run\")",
+                    approx(shortest),
+                    approx(run)
+                ),
+            );
+        }
+        let low = if self.low_corner_hz > 0.0 { self.low_corner_hz } else { 1.0 / shortest };
+        if span == RecordSpan::Events && window_ok && corners_ok && tolerance_ok && !(USABLE_LOW_FACTOR * low < top) {
+            ck.push(
+                "accelerograms.post_event_s",
+                self.post_event_s,
+                format!(
+                    "a window (pre_event_s + post_event_s = {} s) long enough for a usable band: the low corner \
+                     {} Hz × {USABLE_LOW_FACTOR} must stay below the band's top {top:.1} Hz (the lattice's f_max, \
+                     high_corner_hz or 0.8 of the sampling's Nyquist)",
+                    approx(shortest),
+                    approx(low)
+                ),
+            );
+        }
+        AccelerogramSettings {
+            span,
+            events,
+            min_drop_pa: self.min_drop_pa,
+            nodes,
+            pre_event_s: self.pre_event_s,
+            post_event_s: self.post_event_s,
+            mean,
+            taper: self.taper,
+            pad: self.pad,
+            order,
+            low_corner_hz: (self.low_corner_hz > 0.0).then_some(self.low_corner_hz),
+            high_corner_hz: (self.high_corner_hz > 0.0).then_some(self.high_corner_hz),
+            band_tolerance: self.band_tolerance,
+            resolved_hz,
+            baseline_degree,
+            formats,
+        }
+    }
+
+    /// The control nodes recorded (`nodes`, every one recording acceleration when empty), refused
+    /// when a node records no acceleration or is driven, or when the skip-ahead would sample
+    /// them unevenly.
+    fn nodes(&self, scene: &Scene, ck: &mut Checker) -> Vec<NodeId> {
         let control = &scene.record.control;
         let mut nodes = Vec::new();
         for (i, &n) in self.nodes.iter().enumerate() {
@@ -217,6 +271,13 @@ impl AccelerogramsSection {
                  phases more sparsely, and records need one sampling interval)",
             );
         }
+        nodes
+    }
+
+    /// The lattice's f_max at `band_tolerance` and the top of the records' band: the lattice's
+    /// f_max, `high_corner_hz`, or 0.8 of the sampling's Nyquist, the lowest (warned when the
+    /// sampling cuts the lattice's band).
+    fn band(&self, scene: &Scene, ck: &mut Checker) -> (f64, f64) {
         let resolved_hz = match scene.usable_band(self.band_tolerance.clamp(1e-6, 0.49)) {
             Ok(b) => b.f_max_hz,
             Err(e) => {
@@ -248,51 +309,6 @@ impl AccelerogramsSection {
             );
         }
         let top = top.min(sampled_top);
-        let shortest = self.pre_event_s + self.post_event_s;
-        let run = scene.shear.duration_s;
-        if span == RecordSpan::Events && window_ok && shortest >= run {
-            ck.push(
-                "accelerograms.post_event_s",
-                self.post_event_s,
-                format!(
-                    "a window shorter than the shear stage: pre_event_s + post_event_s = {} s ≥ shear.duration_s = \
-                     {} s makes every event's record the whole run (for that, records = \"whole_run\")",
-                    approx(shortest),
-                    approx(run)
-                ),
-            );
-        }
-        let low = if self.low_corner_hz > 0.0 { self.low_corner_hz } else { 1.0 / shortest };
-        if span == RecordSpan::Events && window_ok && corners_ok && tolerance_ok && !(USABLE_LOW_FACTOR * low < top) {
-            ck.push(
-                "accelerograms.post_event_s",
-                self.post_event_s,
-                format!(
-                    "a window (pre_event_s + post_event_s = {} s) long enough for a usable band: the low corner \
-                     {} Hz × {USABLE_LOW_FACTOR} must stay below the band's top {top:.1} Hz (the lattice's f_max, \
-                     high_corner_hz or 0.8 of the sampling's Nyquist)",
-                    approx(shortest),
-                    approx(low)
-                ),
-            );
-        }
-        AccelerogramSettings {
-            span,
-            events,
-            min_drop_pa: self.min_drop_pa,
-            nodes,
-            pre_event_s: self.pre_event_s,
-            post_event_s: self.post_event_s,
-            mean,
-            taper: self.taper,
-            pad: self.pad,
-            order,
-            low_corner_hz: (self.low_corner_hz > 0.0).then_some(self.low_corner_hz),
-            high_corner_hz: (self.high_corner_hz > 0.0).then_some(self.high_corner_hz),
-            band_tolerance: self.band_tolerance,
-            resolved_hz,
-            baseline_degree,
-            formats,
-        }
+        (resolved_hz, top)
     }
 }

@@ -7,12 +7,14 @@
 //! analysis's [`stickslip_analysis::Settings`], the record set and the report settings — with the
 //! hash that stamps its results. Every refused value names its field, the value and the allowed
 //! range, and nothing runs; the solver's messages name physical quantities and [`keys`] names the
-//! keys behind them. Must not know: how a scene is run, tables, figures.
+//! keys behind them; [`describe`] says what a pipeline builds, section by section, for `stickslip
+//! check` to print. Must not know: how a scene is run, tables, figures.
 #![deny(missing_docs)]
 
 pub mod accelerograms;
 pub mod broadband;
 pub mod check;
+pub mod describe;
 pub mod error;
 pub mod friction_map;
 pub mod input;

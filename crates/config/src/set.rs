@@ -350,9 +350,81 @@ impl SetSection {
             SetPool::Stations { shortest, longest } => (Some(&STATION_DAMPINGS[..]), Some((shortest, longest))),
         };
         let stations = matches!(pool, SetPool::Stations { .. });
-        let mut input = None;
         let kind = ck.named::<TargetKind>("set.target", &self.target)?;
-        let (target, target_name) = match kind {
+        let (target, target_name, input) = self.target(kind, base, ck);
+        let range = self.period_range(spectra, stations, ck);
+        let count = ck.count("set.count", self.count, 1, 1000, "").unwrap_or(11);
+        if kind == TargetKind::Asce7 && count < ASCE7_MIN_RECORDS {
+            ck.warn(
+                "set.count",
+                count,
+                format!(
+                    "ASCE 7-16 §16.2.2 asks for at least {ASCE7_MIN_RECORDS} ground motions (each a pair of horizontal \
+                     components) for a nonlinear response history analysis: a set of {count} is chosen and scaled to \
+                     this target, but it is not a suite ASCE 7-16 accepts (set.count = {ASCE7_MIN_RECORDS} or more)"
+                ),
+            );
+        }
+        let max_per = ck.count("set.max_per", self.max_per, 1, 1000, "").unwrap_or(2);
+        let per = ck.named("set.per", &self.per).unwrap_or(SetGroup::Event);
+        if ck.positive("set.scale_min", self.scale_min)
+            && !(self.scale_max >= self.scale_min && self.scale_max.is_finite())
+        {
+            ck.push("set.scale_max", self.scale_max, format!("at least scale_min ({}), finite", num(self.scale_min)));
+        }
+        let component = self.component(stations, ck);
+        let magnitude = checked_bin(
+            ck,
+            ("set.magnitude_min", self.magnitude_min),
+            ("set.magnitude_max", self.magnitude_max),
+            (-2.0, 10.0),
+            stations,
+        );
+        let distance_km = checked_bin(
+            ck,
+            ("set.distance_min_km", self.distance_min_km),
+            ("set.distance_max_km", self.distance_max_km),
+            (0.0, 1e4),
+            stations,
+        );
+        match dampings {
+            Some(d) if !d.iter().any(|&x| (x - self.damping).abs() <= 1e-12) => {
+                ck.push("set.damping", self.damping, format!("one of the spectra's dampings {d:?}"));
+            }
+            None => ck.push("set", "(present)", "a [spectra] section (the set is matched on the records' spectra)"),
+            _ => {}
+        }
+        let options = SelectionOptions {
+            count,
+            per_group: max_per,
+            scale_min: self.scale_min,
+            scale_max: self.scale_max,
+            ..SelectionOptions::new(range)
+        };
+        Some(SetSettings {
+            target: target?,
+            target_name,
+            options,
+            per,
+            component,
+            damping: self.damping,
+            input,
+            magnitude,
+            distance_km,
+            vs30_m_s: self.vs30_m_s,
+        })
+    }
+
+    /// The target spectrum of `kind` with its name, and the CSV file it was read from (for the
+    /// pipeline's hash); `None` for a target refused.
+    fn target(
+        &self,
+        kind: TargetKind,
+        base: &Path,
+        ck: &mut Checker,
+    ) -> (Option<DesignSpectrum>, String, Option<InputFile>) {
+        let mut input = None;
+        let (target, name) = match kind {
             TargetKind::Asce7 => {
                 let ok = ck.positive("set.s_ds_g", self.s_ds_g) & ck.positive("set.s_d1_g", self.s_d1_g);
                 let t_s = self.s_d1_g / self.s_ds_g;
@@ -402,6 +474,13 @@ impl SetSection {
                 }
             }
         };
+        (target, name, input)
+    }
+
+    /// The period range the set is matched over (`t1_s`, or `period_min_s` … `period_max_s`),
+    /// refused outside the periods of the `spectra` ((shortest, longest) at prototype scale, or of
+    /// the stations' usable band).
+    fn period_range(&self, spectra: Option<(f64, f64)>, stations: bool, ck: &mut Checker) -> PeriodRange {
         let range = if self.t1_s > 0.0 {
             ck.positive("set.t1_s", self.t1_s);
             PeriodRange::Fundamental { t1: self.t1_s }
@@ -457,25 +536,12 @@ impl SetSection {
                 );
             }
         }
-        let count = ck.count("set.count", self.count, 1, 1000, "").unwrap_or(11);
-        if kind == TargetKind::Asce7 && count < ASCE7_MIN_RECORDS {
-            ck.warn(
-                "set.count",
-                count,
-                format!(
-                    "ASCE 7-16 §16.2.2 asks for at least {ASCE7_MIN_RECORDS} ground motions (each a pair of horizontal \
-                     components) for a nonlinear response history analysis: a set of {count} is chosen and scaled to \
-                     this target, but it is not a suite ASCE 7-16 accepts (set.count = {ASCE7_MIN_RECORDS} or more)"
-                ),
-            );
-        }
-        let max_per = ck.count("set.max_per", self.max_per, 1, 1000, "").unwrap_or(2);
-        let per = ck.named("set.per", &self.per).unwrap_or(SetGroup::Event);
-        if ck.positive("set.scale_min", self.scale_min)
-            && !(self.scale_max >= self.scale_min && self.scale_max.is_finite())
-        {
-            ck.push("set.scale_max", self.scale_max, format!("at least scale_min ({}), finite", num(self.scale_min)));
-        }
+        range
+    }
+
+    /// The component the set is chosen by: a pair (RotD50, RotD100) for a scenario's stations,
+    /// not RotD100 for the records of events.
+    fn component(&self, stations: bool, ck: &mut Checker) -> SetComponent {
         let component = ck.named("set.component", &self.component).unwrap_or(SetComponent::Horizontal);
         let pair = matches!(component, SetComponent::Rotd50 | SetComponent::Rotd100);
         if stations && !pair {
@@ -493,46 +559,7 @@ impl SetSection {
                  scenario's stations: a fault scene with [[stations]] on the surface)",
             );
         }
-        let magnitude = checked_bin(
-            ck,
-            ("set.magnitude_min", self.magnitude_min),
-            ("set.magnitude_max", self.magnitude_max),
-            (-2.0, 10.0),
-            stations,
-        );
-        let distance_km = checked_bin(
-            ck,
-            ("set.distance_min_km", self.distance_min_km),
-            ("set.distance_max_km", self.distance_max_km),
-            (0.0, 1e4),
-            stations,
-        );
-        match dampings {
-            Some(d) if !d.iter().any(|&x| (x - self.damping).abs() <= 1e-12) => {
-                ck.push("set.damping", self.damping, format!("one of the spectra's dampings {d:?}"));
-            }
-            None => ck.push("set", "(present)", "a [spectra] section (the set is matched on the records' spectra)"),
-            _ => {}
-        }
-        let options = SelectionOptions {
-            count,
-            per_group: max_per,
-            scale_min: self.scale_min,
-            scale_max: self.scale_max,
-            ..SelectionOptions::new(range)
-        };
-        Some(SetSettings {
-            target: target?,
-            target_name,
-            options,
-            per,
-            component,
-            damping: self.damping,
-            input,
-            magnitude,
-            distance_km,
-            vs30_m_s: self.vs30_m_s,
-        })
+        component
     }
 }
 

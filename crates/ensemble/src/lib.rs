@@ -5,12 +5,14 @@
 //! ([`run`]); resuming an interrupted ensemble, shards and their merge ([`merge`]); stopping once
 //! a statistic is precise enough ([`precision`]); gathering the tables and the statistics across
 //! seeds ([`gather`], [`summary`], [`catalogue`]), a fault scenario's stations against the
-//! ground-motion models ([`gmm`]) and the record set ([`set`]). Must not know: how
-//! one seed is analysed or written, the pipeline file's syntax (it takes a validated
-//! [`stickslip_config::Pipeline`]), figures, the command line.
+//! ground-motion models ([`gmm`]) and the record set ([`set`]); what a finished run says when it
+//! closes ([`digest`]) and one main shock seed by seed ([`seed_table`]), read from its tables for
+//! the command line to print. Must not know: how one seed is analysed or written, the pipeline
+//! file's syntax (it takes a validated [`stickslip_config::Pipeline`]), figures, the command line.
 #![deny(missing_docs)]
 
 pub mod catalogue;
+pub mod digest;
 pub mod error;
 pub mod gather;
 pub mod gmm;
@@ -18,6 +20,7 @@ pub mod merge;
 pub mod precision;
 pub mod run;
 pub mod scenario_set;
+pub mod seed_table;
 pub mod set;
 mod set_pool;
 pub mod summary;

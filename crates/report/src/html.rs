@@ -73,11 +73,28 @@ pub(crate) fn page(
     skipped: &[(String, String)],
     left_out: &[(String, String)],
 ) -> Result<String, ReportError> {
-    let p = d.pipeline;
-    let s = &p.scene;
-    let fault = s.is_fault();
+    let fault = d.pipeline.scene.is_fault();
     let mut h = String::new();
     let w = &mut h;
+    head(w, d);
+    runs_section(w, d, fault);
+    warnings_section(w, d);
+    if fault {
+        fault_page::source_section(w, d, figures);
+        fault_page::stations_section(w, d);
+    }
+    parameters_section(w, d, fault);
+    if !fault {
+        main_shocks(w, d);
+    }
+    figures_section(w, figures, skipped, left_out, fault);
+    tables_and_files(w, d, fault);
+    Ok(h)
+}
+
+/// The document's head and style, the title and the pipeline's description.
+fn head(w: &mut String, d: &ReportInput) {
+    let p = d.pipeline;
     let _ = write!(
         w,
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>stickslip: {name}</title>\n<style>\n\
@@ -92,6 +109,11 @@ pub(crate) fn page(
         name = esc(&p.name)
     );
     let _ = write!(w, "<h1>stickslip report: {}</h1>\n<p>{}</p>\n", esc(&p.name), esc(&p.description));
+}
+
+/// The seeds run (ok and failed), where the tables are, and for a block what its base did.
+fn runs_section(w: &mut String, d: &ReportInput, fault: bool) {
+    let p = d.pipeline;
     let ok_failed = match &d.runs {
         Some(r) => {
             let ok = r.status.iter().filter(|x| **x == RunStatus::Ok).count();
@@ -131,6 +153,11 @@ pub(crate) fn page(
             );
         }
     }
+}
+
+/// The pipeline's warnings and the report's seeds that did not run, if any.
+fn warnings_section(w: &mut String, d: &ReportInput) {
+    let p = d.pipeline;
     let mut warnings: Vec<String> = p.warnings.iter().map(|w| w.to_string()).collect();
     if !d.not_drawn.is_empty() {
         warnings.push(format!(
@@ -147,10 +174,12 @@ pub(crate) fn page(
         }
         let _ = write!(w, "</ul>\n");
     }
-    if fault {
-        fault_page::source_section(w, d, figures);
-        fault_page::stations_section(w, d);
-    }
+}
+
+/// The table of parameters: the block, material, friction and time step, then a fault's or a
+/// block's own rows.
+fn parameters_section(w: &mut String, d: &ReportInput, fault: bool) {
+    let s = &d.pipeline.scene;
     let lattice = s.lattice();
     let e = lattice.extent();
     let _ = write!(w, "<h2>Parameters</h2>\n<table>\n");
@@ -205,11 +234,16 @@ pub(crate) fn page(
         let _ = writeln!(w, "<tr><th class=\"l\">{}</th><td class=\"l\">{}</td></tr>", esc(k), esc(&v));
     }
     let _ = write!(w, "</table>\n");
+}
 
-    if !fault {
-        main_shocks(w, d);
-    }
-
+/// The figures, those not drawn for lack of data and those left out on a fault scene.
+fn figures_section(
+    w: &mut String,
+    figures: &[Figure],
+    skipped: &[(String, String)],
+    left_out: &[(String, String)],
+    fault: bool,
+) {
     let _ = write!(w, "<h2>Figures</h2>\n");
     for f in figures.iter().filter(|f| !(fault && f.file == fault_page::RUPTURE_FIGURE)) {
         let _ = write!(w, "{}", figure_html(f));
@@ -233,8 +267,6 @@ pub(crate) fn page(
         }
         let _ = write!(w, "</ul>\n");
     }
-    tables_and_files(w, d, fault);
-    Ok(h)
 }
 
 /// The rows of a block's loading stages: self-weight (when there is gravity), the shear stage

@@ -3,12 +3,10 @@
 
 use std::path::PathBuf;
 
-use anyhow::{Context, Result};
-use polars::prelude::{DataFrame, DataType};
+use anyhow::Result;
 use stickslip_config::Pipeline;
+use stickslip_ensemble::seed_table::shock_table;
 use stickslip_store::Folder;
-use stickslip_store::io::scan_glob;
-use stickslip_store::schema::{EVENTS_TABLE, RUNS, SERIES, SIMILARITY, col};
 
 /// Arguments of `stickslip seeds`.
 #[derive(clap::Args, Debug)]
@@ -19,9 +17,6 @@ pub struct Args {
     #[arg(long, default_value = "S2")]
     pub shock: String,
 }
-
-/// Window of the averaged normal stress (s).
-const AVERAGE_S: f64 = 1e-3;
 
 /// `stickslip seeds`.
 pub fn run(a: Args) -> Result<()> {
@@ -34,135 +29,6 @@ pub fn run(a: Args) -> Result<()> {
     let folder = Folder::new(&a.out);
     folder.require_output()?;
     let pipeline = Pipeline::load(&a.out.join("pipeline.toml"))?;
-    let model = stickslip_solver::Model::new(pipeline.scene.clone());
-    let sigma0 = model.total_mass() * pipeline.scene.self_weight.gravity_m_s2 / model.lattice().contact_area();
-    let read = |t| -> Result<DataFrame> {
-        scan_glob(&folder.part_glob(t))?.with_context(|| format!("no {} tables in {}", t.name, a.out.display()))
-    };
-    let runs = read(&RUNS)?;
-    let events = read(&EVENTS_TABLE)?;
-    let similarity = read(&SIMILARITY)?;
-    let series = read(&SERIES)?;
-    let seed_of = |df: &DataFrame| -> Result<Vec<u64>> { Ok(df.column(col::SEED)?.u64()?.iter().flatten().collect()) };
-    let strings = |df: &DataFrame, c: &str| -> Result<Vec<String>> {
-        Ok(df.column(c)?.str()?.iter().map(|v| v.unwrap_or_default().to_string()).collect())
-    };
-    let labels = strings(&events, col::LABEL)?;
-    let kinds = strings(&events, col::KIND)?;
-    if !(0..labels.len()).any(|i| kinds[i] == "main" && labels[i] == shock) {
-        let mut ranks: Vec<u32> = (0..labels.len())
-            .filter(|&i| kinds[i] == "main")
-            .filter_map(|i| labels[i].strip_prefix('S')?.parse().ok())
-            .collect();
-        ranks.sort_unstable();
-        ranks.dedup();
-        anyhow::bail!(
-            "no seed of {} has a main shock {shock}: {}",
-            a.out.display(),
-            match ranks.last() {
-                Some(1) => "its seeds have S1 only".to_string(),
-                Some(last) => format!("its seeds have S1 … S{last}"),
-                None => "it has no main shock at all".to_string(),
-            }
-        );
-    }
-    let prev =
-        shock.strip_prefix('S').and_then(|n| n.parse::<u32>().ok()).filter(|&n| n > 1).map(|n| format!("S{}", n - 1));
-    outln!(
-        "| seed | main shocks | {shock} stress drop | {shock} duration | {shock} stress falls in | {} | {shock} M (paper) | σ range, raw | σ range, {} ms mean |",
-        prev.as_ref().map_or("recurrence".into(), |p| format!("{p} → {shock} recurrence")),
-        AVERAGE_S * 1e3
-    );
-    outln!("|---|---|---|---|---|---|---|---|---|");
-    let floats = |df: &DataFrame, c: &str| -> Vec<f64> {
-        df.column(c)
-            .ok()
-            .and_then(|c| c.cast(&DataType::Float64).ok())
-            .and_then(|c| c.f64().ok().map(|c| c.iter().map(|v| v.unwrap_or(f64::NAN)).collect()))
-            .unwrap_or_default()
-    };
-    let find = |df: &DataFrame, seed: u64| -> Result<Option<usize>> {
-        let (s, k, l) = (seed_of(df)?, strings(df, col::KIND)?, strings(df, col::LABEL)?);
-        Ok((0..s.len()).find(|&i| s[i] == seed && k[i] == "main" && l[i] == shock))
-    };
-    let run_seeds = seed_of(&runs)?;
-    let mains: Vec<Option<u32>> = runs.column(col::MAIN_SHOCKS)?.u32()?.iter().collect();
-    let (series_seed, series_t, series_sigma) =
-        (seed_of(&series)?, floats(&series, col::TIME_S), floats(&series, "normal_stress_pa"));
-    for (r, &seed) in run_seeds.iter().enumerate() {
-        let value = |df: &DataFrame, row: Option<usize>, c: &str, scale: f64, digits: usize, unit: &str| -> String {
-            row.and_then(|i| floats(df, c).get(i).copied())
-                .filter(|v| v.is_finite())
-                .map_or("–".into(), |v| format!("{:.*}{unit}", digits, v * scale))
-        };
-        let (ev, si) = (find(&events, seed)?, find(&similarity, seed)?);
-        let rows: Vec<usize> = (0..series_seed.len()).filter(|&i| series_seed[i] == seed).collect();
-        let (raw, averaged) = if series_sigma.is_empty() {
-            ("–".into(), "–".into())
-        } else {
-            let t: Vec<f64> = rows.iter().map(|&i| series_t[i]).collect();
-            let sigma: Vec<f64> = rows.iter().map(|&i| series_sigma[i]).collect();
-            swing(&t, &sigma, sigma0)
-        };
-        outln!(
-            "| {seed} | {} | {} | {} | {} | {} | {} | {raw} | {averaged} |",
-            mains[r].map_or("–".into(), |n| n.to_string()),
-            value(&events, ev, col::STRESS_DROP_PA, 1e-3, 2, " kPa"),
-            value(&events, ev, col::DURATION_S, 1e3, 1, " ms"),
-            value(&events, ev, col::DROP_TIME_S, 1e3, 1, " ms"),
-            value(&events, ev, col::RECURRENCE_S, 1e3, 1, " ms"),
-            value(&similarity, si, col::M_RIERA_PAPER_INTERPLATE, 1.0, 2, ""),
-        );
-    }
-    outln!(
-        "\nσ range: lowest and highest normal stress of the shear stage (t ≥ 0) as a change from the self-weight \
-         σ0 = ρgh = {:.2} kPa; raw samples, and averaged over a centred {} ms window",
-        sigma0 * 1e-3,
-        AVERAGE_S * 1e3
-    );
+    outln!("{}", shock_table(&folder, &pipeline, shock)?);
     Ok(())
-}
-
-/// The range of σ/σ0 − 1 over t ≥ 0, raw and as a centred moving average, as "−60…+140%".
-fn swing(t: &[f64], sigma: &[f64], sigma0: f64) -> (String, String) {
-    let start = t.iter().position(|&v| v >= 0.0).unwrap_or(t.len());
-    let (t, sigma) = (&t[start..], &sigma[start..]);
-    if sigma.len() < 2 {
-        return ("–".into(), "–".into());
-    }
-    let dt = (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64;
-    let half = ((AVERAGE_S / dt / 2.0).round() as usize).max(1);
-    let mut cum = vec![0.0; sigma.len() + 1];
-    for (i, v) in sigma.iter().enumerate() {
-        cum[i + 1] = cum[i] + v;
-    }
-    let averaged: Vec<f64> = (half..sigma.len().saturating_sub(half))
-        .map(|i| (cum[i + half + 1] - cum[i - half]) / (2 * half + 1) as f64)
-        .collect();
-    let range = |v: &[f64]| -> String {
-        let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
-        let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        if !lo.is_finite() || !hi.is_finite() {
-            return "–".into();
-        }
-        let pct = |x: f64| 100.0 * (x / sigma0 - 1.0);
-        format!("{:+.0}…{:+.0}%", pct(lo), pct(hi)).replace('-', "−")
-    };
-    (range(sigma), range(&averaged))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::swing;
-
-    #[test]
-    fn swing_of_a_square_wave() {
-        // σ0 = 10; samples every 0.1 ms alternate 5 and 15 in 2-ms halves: raw −50…+50%, the 1-ms
-        // average reaches the plateaus too.
-        let t: Vec<f64> = (0..400).map(|i| i as f64 * 1e-4).collect();
-        let s: Vec<f64> = (0..400).map(|i| if (i / 20) % 2 == 0 { 5.0 } else { 15.0 }).collect();
-        let (raw, avg) = swing(&t, &s, 10.0);
-        assert_eq!(raw, "−50…+50%");
-        assert_eq!(avg, "−50…+50%");
-    }
 }

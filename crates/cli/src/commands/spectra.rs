@@ -102,38 +102,9 @@ pub fn run(a: Args) -> Result<()> {
         read_accelerogram(&a.record, unit)?
     };
     let duration = record.dt * (record.accel.len().saturating_sub(1)) as f64;
-    // A record of this product says in its header the periods it describes the ground over (a
-    // lattice record holds nothing real above the lattice's f_max): the default range keeps to
-    // them, and periods asked outside are computed with a warning.
     let usable = stated_usable_s(&record.description);
-    let tmin = a.period_min_s.unwrap_or(usable.map_or(2.0 * record.dt, |u| u.0.max(2.0 * record.dt)));
-    let tmax = a.period_max_s.unwrap_or(usable.map_or(0.5 * duration, |u| u.1.min(0.5 * duration)));
+    let (tmin, tmax, periods) = periods_asked(&a, &record, usable)?;
     let approx = stickslip_config::check::approx;
-    anyhow::ensure!(
-        tmin > 0.0 && tmax >= tmin && tmax.is_finite(),
-        "--period-min-s = {}, --period-max-s = {} are not allowed: 0 < period-min-s ≤ period-max-s (finite)",
-        approx(tmin),
-        approx(tmax)
-    );
-    // Far below the sampling interval an oscillator reads only the peak acceleration, and costs
-    // steps in proportion to the interval over the period.
-    anyhow::ensure!(
-        tmin >= 0.01 * record.dt,
-        "--period-min-s = {} is not allowed: at least a hundredth of the record's sampling interval ({} s)",
-        approx(tmin),
-        approx(0.01 * record.dt)
-    );
-    anyhow::ensure!(a.period_count >= 1, "--period-count = 0 is not allowed: at least 1");
-    anyhow::ensure!(
-        a.period_count <= 10_000,
-        "--period-count = {} is not allowed: at most 10000 periods",
-        a.period_count
-    );
-    anyhow::ensure!(a.period_count == 1 || tmax > tmin, "--period-count > 1 needs period-min-s < period-max-s");
-    for d in &a.dampings {
-        anyhow::ensure!((0.0..1.0).contains(d), "--dampings: {d} is not allowed: 0 ≤ damping < 1");
-    }
-    let periods = log_periods(tmin, tmax, a.period_count);
     let reading = if a.band_limited { Reading::BandLimited } else { Reading::Linear };
     let baseline = if a.baseline { Baseline::Linear } else { Baseline::None };
     let r = RecordSpectra::compute(
@@ -206,6 +177,45 @@ pub fn run(a: Args) -> Result<()> {
         out.display()
     );
     Ok(())
+}
+
+/// The periods asked (`--period-min-s`, `--period-max-s`, `--period-count`) or, by default, the
+/// record's `usable` range stated in its header within 2·Δt … half its duration; refused when
+/// they are not a range of positive periods an oscillator can read, or the dampings not in
+/// [0, 1). Returns the shortest and longest periods and the log-spaced periods.
+fn periods_asked(a: &Args, record: &Accelerogram, usable: Option<(f64, f64)>) -> Result<(f64, f64, Vec<f64>)> {
+    let duration = record.dt * (record.accel.len().saturating_sub(1)) as f64;
+    // A record of this product says in its header the periods it describes the ground over (a
+    // lattice record holds nothing real above the lattice's f_max): the default range keeps to
+    // them, and periods asked outside are computed with a warning.
+    let tmin = a.period_min_s.unwrap_or(usable.map_or(2.0 * record.dt, |u| u.0.max(2.0 * record.dt)));
+    let tmax = a.period_max_s.unwrap_or(usable.map_or(0.5 * duration, |u| u.1.min(0.5 * duration)));
+    let approx = stickslip_config::check::approx;
+    anyhow::ensure!(
+        tmin > 0.0 && tmax >= tmin && tmax.is_finite(),
+        "--period-min-s = {}, --period-max-s = {} are not allowed: 0 < period-min-s ≤ period-max-s (finite)",
+        approx(tmin),
+        approx(tmax)
+    );
+    // Far below the sampling interval an oscillator reads only the peak acceleration, and costs
+    // steps in proportion to the interval over the period.
+    anyhow::ensure!(
+        tmin >= 0.01 * record.dt,
+        "--period-min-s = {} is not allowed: at least a hundredth of the record's sampling interval ({} s)",
+        approx(tmin),
+        approx(0.01 * record.dt)
+    );
+    anyhow::ensure!(a.period_count >= 1, "--period-count = 0 is not allowed: at least 1");
+    anyhow::ensure!(
+        a.period_count <= 10_000,
+        "--period-count = {} is not allowed: at most 10000 periods",
+        a.period_count
+    );
+    anyhow::ensure!(a.period_count == 1 || tmax > tmin, "--period-count > 1 needs period-min-s < period-max-s");
+    for d in &a.dampings {
+        anyhow::ensure!((0.0..1.0).contains(d), "--dampings: {d} is not allowed: 0 ≤ damping < 1");
+    }
+    Ok((tmin, tmax, log_periods(tmin, tmax, a.period_count)))
 }
 
 /// The usable periods (s) a record's header states: `usable A … B s` (a set's files) or

@@ -55,6 +55,7 @@ fn kinetic(node: &ExponentialNode, path: f64) -> f64 {
 
 impl Law for Exponential {
     const NAME: &'static str = "exponential slip weakening";
+    const COHESIVE_ZONE: &'static str = "(9π/16)·μ·Dc/(τs − τd)";
     type Node = ExponentialNode;
     type Lanes<const L: usize> = ExponentialLanes<L>;
 

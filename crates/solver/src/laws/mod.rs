@@ -42,6 +42,8 @@ pub use slip_weakening::{Coulomb, SlipWeakening, StaticDynamic, Weakening, Weake
 pub trait Law: Copy + Debug + Default + Send + Sync + 'static {
     /// The law's name, as `check` and messages print it.
     const NAME: &'static str;
+    /// How [`Law::cohesive_zone_m`] is computed, as `check` prints it.
+    const COHESIVE_ZONE: &'static str;
     /// Its coefficients at one contact node of one seed.
     type Node: Copy + Debug + PartialEq + Send + Sync;
     /// Its coefficients at one contact node for `L` seeds: one array per coefficient.
@@ -174,6 +176,11 @@ macro_rules! laws {
             /// The same coefficients, healing when a node sticks or not ([`Law::with_healing`]).
             pub fn healing(&self, heals: bool) -> NodeFriction {
                 match self { $(NodeFriction::$variant(n) => NodeFriction::$variant(<$law>::with_healing(n, heals)),)+ }
+            }
+
+            /// How the law's cohesive zone is computed ([`Law::COHESIVE_ZONE`]).
+            pub fn cohesive_zone_formula(&self) -> &'static str {
+                match self { $(NodeFriction::$variant(_) => <$law>::COHESIVE_ZONE,)+ }
             }
 
             /// The law's name ([`Law::NAME`]).

@@ -78,6 +78,7 @@ fn kinetic(node: &WeakeningNode, path: f64) -> f64 {
 
 impl Law for Weakening {
     const NAME: &'static str = "slip weakening";
+    const COHESIVE_ZONE: &'static str = "(9π/32)·μ·Dc/(τs − τd)";
     type Node = WeakeningNode;
     type Lanes<const L: usize> = WeakeningLanes<L>;
 

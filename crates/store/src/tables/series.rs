@@ -258,6 +258,19 @@ pub fn read_series_channel(df: &DataFrame, channel: &str) -> Result<Option<Trace
     Ok(Some((c.f64s(col::TIME_S)?, c.f64s(channel)?)))
 }
 
+/// The largest value of each of `channels` over every series part matching `glob`: `None` for a
+/// channel not recorded (or without a value), and for all of them when no part can be read.
+/// Channels are stored in single precision: read as f64 by a cast.
+pub fn largest_in_series(glob: &std::path::Path, channels: &[&str]) -> Vec<Option<f64>> {
+    let series = crate::io::scan_glob(glob).ok().flatten();
+    let largest = |name: &str| -> Option<f64> {
+        let column = series.as_ref()?.column(name).ok()?.cast(&DataType::Float64).ok()?;
+        let values = column.f64().ok()?.iter().flatten().collect::<Vec<_>>();
+        values.into_iter().reduce(f64::max)
+    };
+    channels.iter().map(|c| largest(c)).collect()
+}
+
 /// One quantity of one control node and component from a control part, if recorded.
 pub fn read_control(
     df: &DataFrame,

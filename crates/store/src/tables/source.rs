@@ -421,6 +421,11 @@ pub struct Sources {
     pub hypocentre_m: Vec<[f64; 2]>,
     /// When the last node ruptured (s).
     pub rupture_duration_s: Vec<f64>,
+    /// Brune corner frequency (Hz).
+    pub brune_corner_hz: Vec<f64>,
+    /// Corner frequency fitted to the moment-rate spectrum (Hz), when fitted (and when the column
+    /// exists: folders written before it have none).
+    pub fitted_corner_hz: Vec<Option<f64>>,
 }
 
 impl Sources {
@@ -441,6 +446,12 @@ impl Sources {
             median_peak_slip_rate_m_s: c.f64s(col::MEDIAN_PEAK_SLIP_RATE_M_S)?,
             hypocentre_m: hx.into_iter().zip(hy).map(|(x, y)| [x, y]).collect(),
             rupture_duration_s: c.f64s(col::RUPTURE_DURATION_S)?,
+            brune_corner_hz: c.f64s(col::BRUNE_CORNER_HZ)?,
+            fitted_corner_hz: if c.has(col::FITTED_CORNER_HZ) {
+                c.opt_f64s(col::FITTED_CORNER_HZ)?
+            } else {
+                vec![None; c.height()]
+            },
         })
     }
 }
