@@ -304,6 +304,9 @@ fn disk_use(r: &Runner) -> Result<String, LabError> {
 }
 
 fn paper_precise(r: &Runner) -> Result<String, LabError> {
+    // A folder of an earlier run would be resumed ("0 run now, 16 already done"), not run: moved
+    // aside, and deleted with the main command's (see `remove_main_set_aside`).
+    crate::ensemble_cost::set_aside(&r.root.join("reports/paper-precise"))?;
     let (out, _) = r.run(&["pipeline", "pipelines/paper-precise.toml", "--fresh", "--quiet"])?;
     Ok(fenced(&lines_between(&out, "paper-precise:", "precision target")?))
 }
@@ -504,13 +507,32 @@ pub fn locate(docs: &[Doc]) -> Result<BTreeMap<String, usize>, LabError> {
     Ok(found)
 }
 
+/// `text` with the wall times of a printout masked ("in 4.9 s" → "in … s"): a printout's time
+/// differs from run to run, its numbers do not, so a block is stale only when those differ.
+fn untimed(text: &str) -> String {
+    let mut out = String::new();
+    for line in text.lines() {
+        let words: Vec<&str> = line.split(' ').collect();
+        let masked: Vec<&str> = (0..words.len())
+            .map(|k| {
+                let timed =
+                    k > 0 && words[k - 1] == "in" && words.get(k + 1) == Some(&"s") && words[k].parse::<f64>().is_ok();
+                if timed { "…" } else { words[k] }
+            })
+            .collect();
+        out.push_str(&masked.join(" "));
+        out.push('\n');
+    }
+    out
+}
+
 /// What [`rewrite`] found for one block.
 pub struct BlockOutcome {
     /// The key.
     pub key: &'static str,
     /// The file holding it, relative to the repository's root.
     pub file: PathBuf,
-    /// Whether the new text differs from the file's.
+    /// Whether the new text differs from the file's (wall times of printouts aside).
     pub changed: bool,
     /// Whether its text depends on the machine.
     pub measured: bool,
@@ -553,7 +575,7 @@ pub fn rewrite(docs: &[Doc], runner: &Runner, only: &[String]) -> Result<(Vec<Do
         outcomes.push(BlockOutcome {
             key: g.key,
             file: doc.path.clone(),
-            changed: old.as_deref() != Some(&content),
+            changed: old.as_deref().map(untimed) != Some(untimed(&content)),
             measured: g.measured,
         });
         doc.text = replace(&doc.text, g.key, &content)?;
@@ -619,6 +641,16 @@ mod tests {
         let runner = Runner::new(PathBuf::from("/nonexistent/stickslip"), PathBuf::from("/nonexistent"));
         let err = rewrite(&[doc("README.md", "main-command")], &runner, &[]).err().unwrap().to_string();
         assert!(err.contains("no file holds the block"), "{err}");
+    }
+
+    #[test]
+    fn only_the_wall_times_of_a_printout_are_masked() {
+        assert_eq!(
+            untimed("a: 3 seeds in 9.2 s → x\nreport: 17 figures in 0.8 s → y"),
+            untimed("a: 3 seeds in 4.1 s → x\nreport: 17 figures in 0.2 s → y")
+        );
+        assert_ne!(untimed("a: 3 seeds in 9.2 s"), untimed("a: 4 seeds in 9.2 s"));
+        assert_eq!(untimed("in the 2 s window"), "in the 2 s window\n");
     }
 
     #[test]
