@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The long fuzz run of the README: MUTANTS mutants of the shipped pipelines through
+# The long fuzz run of docs/guide/refusals.md: MUTANTS mutants of the shipped pipelines through
 # `stickslip check` and RUNS of the accepted ones through a `stickslip run` bounded to 30 s, on
 # up to 4 workers; it prints the figures (mutants, refused, accepted, runs, panics, hangs,
 # refusals without a field, 25-digit numbers, non-finite values in tables) and fails on any

@@ -2,7 +2,7 @@
 # A real check against Slurm, self-contained: it starts a private single-node cluster (its own
 # munged, slurmctld and slurmd, with their own configuration, key, socket, spool, state, logs and
 # free high ports, all under one work folder), submits a pipeline as a job array of shards plus
-# the dependent merge job (pipelines/slurm/submit.sh, exactly as the README says), waits, and
+# the dependent merge job (pipelines/slurm/submit.sh, exactly as docs/guide/ensembles.md says), waits, and
 # compares the merged tables with a plain ensemble run of the same pipeline.
 #
 # It touches nothing outside its work folder except, if they are missing and only after saying

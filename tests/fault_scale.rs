@@ -10,7 +10,7 @@
 //! that healed, halved the slip, lost the tractions or the absorbing faces fails these by far
 //! (healing alone left slips 30–50% low at 200 m). The benchmark at 200 m, with the tolerances of a
 //! resolved run, is `tpv5_at_200_m_follows_the_reference` (80 s on two threads, `--ignored`); the
-//! 100 m comparison (20 min) is in docs/model.md §15.6 and the README.
+//! 100 m comparison (20 min) is in docs/model.md §15.6 and docs/guide/faults.md.
 
 use std::sync::atomic::AtomicBool;
 

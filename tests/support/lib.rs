@@ -112,3 +112,41 @@ pub fn assert_same_tables(a: &std::path::Path, b: &std::path::Path, ignore: &[&s
         assert!(x.equals_missing(&y), "{} differs:\n{x}\n{y}", f.display());
     }
 }
+
+/// The user documentation, relative to the repository's root: `README.md`, then the guide's
+/// chapters `docs/guide/*.md` in name order. These are the files that may hold the blocks
+/// `stickslip-bench readme` generates (`crates/lab/src/readme.rs`, `block_files`).
+pub fn user_docs() -> Vec<PathBuf> {
+    let mut chapters: Vec<PathBuf> = std::fs::read_dir(repo_path("docs/guide"))
+        .expect("docs/guide")
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|x| x == "md"))
+        .map(|p| p.strip_prefix(repo_root()).expect("under the root").to_path_buf())
+        .collect();
+    chapters.sort();
+    std::iter::once(PathBuf::from("README.md")).chain(chapters).collect()
+}
+
+/// The content of the generated block `key` (between `<!-- generated: KEY (stickslip-bench
+/// readme) -->` and `<!-- end: KEY -->`), from whichever of [`user_docs`] holds it, and that
+/// file; panics when none or more than one does.
+pub fn generated_block(key: &str) -> (String, PathBuf) {
+    let open = format!("<!-- generated: {key} (stickslip-bench readme) -->\n");
+    let close = format!("<!-- end: {key} -->");
+    let mut found = Vec::new();
+    for file in user_docs() {
+        let text = std::fs::read_to_string(repo_root().join(&file)).expect("read a documentation file");
+        let mut rest = text.as_str();
+        while let Some(i) = rest.find(&open) {
+            let from = &rest[i + open.len()..];
+            let to = from.find(&close).unwrap_or_else(|| panic!("{}: block {key} is not closed", file.display()));
+            found.push((from[..to].to_string(), file.clone()));
+            rest = &from[to..];
+        }
+    }
+    assert!(!found.is_empty(), "no file of README.md and docs/guide/*.md holds the block {key}");
+    let files: Vec<String> = found.iter().map(|(_, f)| f.display().to_string()).collect();
+    assert_eq!(found.len(), 1, "the block {key} is held {} times: {files:?}", found.len());
+    found.pop().unwrap()
+}

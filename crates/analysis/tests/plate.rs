@@ -49,7 +49,7 @@ fn the_paper_damping_makes_the_plate_scene_slide_stably_and_check_says_so() {
 }
 
 /// The paper's block kept seated (`pipelines/paper-seated.toml`): rock-like slip-weakening
-/// friction, loaded by a plate on its trailing face. The README compares its 8 seeds with the
+/// friction, loaded by a plate on its trailing face. The guide (docs/guide/paper.md) compares its 8 seeds with the
 /// paper's 7.6 kPa, 2.1 ms and 25.8 ms (measured: 7.82 kPa, 2.13 ms, 24.6 ms); here 2 seeds must
 /// stay within the spread those 8 seeds showed, and no base node may lift during a main shock.
 #[test]

@@ -8,7 +8,7 @@
 //!
 //! `fuzz_every_shipped_pipeline` is the suite's seeded run (a few hundred mutants, about a
 //! half a minute on 2 cores); `fuzz_long` (ignored; `scripts/fuzz.sh`) is the long one whose figures are
-//! in the README: `STICKSLIP_FUZZ_MUTANTS`, `STICKSLIP_FUZZ_RUNS`, `STICKSLIP_FUZZ_SEED`.
+//! in docs/guide/refusals.md: `STICKSLIP_FUZZ_MUTANTS`, `STICKSLIP_FUZZ_RUNS`, `STICKSLIP_FUZZ_SEED`.
 
 use std::io::Read;
 use std::path::{Path, PathBuf};
@@ -651,7 +651,7 @@ fn fuzz_every_shipped_pipeline() {
     assert!(t.refused > 50 && t.accepted > 30 && t.runs >= 20, "a fuzz run that tests little: {}", t.summary());
 }
 
-/// The long run of the README: `scripts/fuzz.sh` (or `STICKSLIP_FUZZ_MUTANTS=10000
+/// The long run of docs/guide/refusals.md: `scripts/fuzz.sh` (or `STICKSLIP_FUZZ_MUTANTS=10000
 /// STICKSLIP_FUZZ_RUNS=500 cargo test --release -p stickslip --test fuzz -- --ignored
 /// --nocapture`).
 #[test]

@@ -1,7 +1,7 @@
 //! A fault scenario end to end at 1 km (a smoke version of `pipelines/scenario-m6.toml`, seconds):
 //! per-seed nucleation, the stations' RotD motions, `stickslip gmm` and its refusals. The
 //! residuals are checked against the models evaluated here from the tables' own distances and
-//! magnitudes; the scenario's statistics at 500 m are a benchmark (README, docs/model.md §16).
+//! magnitudes; the scenario's statistics at 500 m are a benchmark (docs/guide/ground-motion.md, docs/model.md §16).
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

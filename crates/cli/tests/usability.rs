@@ -1,4 +1,5 @@
-//! What a new user meets: the README's numbers and paths against the binary and the clone, the
+//! What a new user meets: the numbers and paths of the README and the user guide (docs/guide/)
+//! against the binary and the clone, the
 //! CLI's refusals and views, the scripts' refusals, and the Python example.
 
 use std::path::{Path, PathBuf};
@@ -59,8 +60,12 @@ fn paper() -> &'static Path {
     })
 }
 
-fn readme() -> String {
-    std::fs::read_to_string(repo().join("README.md")).unwrap()
+/// The README and every chapter of the guide, each with its path.
+fn user_docs() -> Vec<(PathBuf, String)> {
+    stickslip_support::user_docs()
+        .into_iter()
+        .map(|f| (f.clone(), std::fs::read_to_string(repo().join(f)).unwrap()))
+        .collect()
 }
 
 #[test]
@@ -68,48 +73,57 @@ fn readme_calibration_table_is_what_stickslip_seeds_prints() {
     let o = stickslip(&["seeds", paper().to_str().unwrap()], &repo());
     let (out, err) = text(&o);
     assert!(o.status.success(), "{err}");
-    let readme = readme();
+    let (block, file) = stickslip_support::generated_block("calibration");
     let lines: Vec<&str> = out.lines().filter(|l| !l.is_empty()).collect();
     assert_eq!(lines.len(), 6, "header, rule, 3 seeds, definition:\n{out}");
     for line in lines {
-        assert!(readme.contains(line), "README lacks this line of `stickslip seeds reports/paper`:\n{line}");
+        assert!(block.contains(line), "{} lacks this line of `stickslip seeds reports/paper`:\n{line}", file.display());
     }
 }
 
 #[test]
 fn readme_points_only_to_files_a_clone_has() {
-    let readme = readme();
+    // Paths written out in the text (`crates/…`, pipelines/…) are from the repository's root, in
+    // the guide's chapters too; Markdown links are checked by tests/docs.rs.
     let roots = ["crates/", "docs/", "scripts/", "pipelines/", "tests/", ".ci/", "reports/reference/"];
     let mut checked = 0;
-    for piece in readme.split(['`', '(', ')', ' ', '\n', '[', ']']) {
-        let p = piece.trim_end_matches([',', '.', ':', ';']).trim_end_matches("'s");
-        if !roots.iter().any(|r| p.starts_with(r)) || p.contains(['<', '*', '…', '{', '$']) {
-            continue;
+    for (doc, text) in user_docs() {
+        for piece in text.split(['`', '(', ')', ' ', '\n', '[', ']']) {
+            let p = piece.trim_end_matches([',', '.', ':', ';']).trim_end_matches("'s");
+            let p = p.split('#').next().unwrap_or(p);
+            if !roots.iter().any(|r| p.starts_with(r)) || p.contains(['<', '*', '…', '{', '$']) {
+                continue;
+            }
+            assert!(repo().join(p).exists(), "{} points to {p}, which a clone lacks", doc.display());
+            checked += 1;
         }
-        assert!(repo().join(p).exists(), "README points to {p}, which a clone lacks");
-        checked += 1;
-    }
-    for file in ["ARCHITECTURE.md", "BENCHMARKS.md", "LICENSE-MIT", "LICENSE-APACHE", "CITATION.cff"] {
-        if readme.contains(file) {
-            assert!(repo().join(file).exists(), "{file}");
+        for file in ["ARCHITECTURE.md", "BENCHMARKS.md", "LICENSE-MIT", "LICENSE-APACHE", "CITATION.cff"] {
+            if text.contains(file) {
+                assert!(repo().join(file).exists(), "{file}");
+            }
+        }
+        for gone in ["../shared", "SPEC §"] {
+            assert!(!text.contains(gone), "{} mentions {gone}", doc.display());
         }
     }
-    assert!(checked > 10, "only {checked} paths found in the README");
-    for gone in ["../shared", "SPEC §"] {
-        assert!(!readme.contains(gone), "README mentions {gone}");
-    }
+    assert!(checked > 100, "only {checked} paths found in the README and the guide");
 }
 
 #[test]
 fn readme_paper_100_output_has_every_row_and_the_part_names_are_right() {
-    let readme = readme();
-    let block = readme.split("prints the main shocks across seeds").nth(1).unwrap();
+    let (block, file) = stickslip_support::generated_block("paper-100");
     let block = &block[block.find("```\n").unwrap() + 4..];
     let block = &block[..block.find("```").unwrap()];
     for row in ["S1 ", "S2 ", "S3 ", "S4 ", "S5 ", "main "] {
-        assert!(block.lines().any(|l| l.starts_with(row)), "no {row:?} row in the README's paper-100 output");
+        assert!(
+            block.lines().any(|l| l.starts_with(row)),
+            "no {row:?} row in the paper-100 output of {}",
+            file.display()
+        );
     }
-    assert!(!readme.contains("seed-<seed>.parquet"), "parts are seed-0000000123.parquet");
+    for (doc, text) in user_docs() {
+        assert!(!text.contains("seed-<seed>.parquet"), "{}: parts are seed-0000000123.parquet", doc.display());
+    }
     assert!(paper().join("tables/series/seed-0000000123.parquet").exists());
 }
 
@@ -616,13 +630,10 @@ fn select_rewrites_the_report_for_the_new_set() {
     assert!(misfit.windows(2).all(|w| w[0] <= w[1]), "{misfit:?}");
 }
 
-/// The content of the README's generated block `key` (see `stickslip-bench readme`).
+/// The content of the generated block `key` (see `stickslip-bench readme`), wherever it lives
+/// (the README or a chapter of the guide).
 fn readme_block(key: &str) -> String {
-    let readme = readme();
-    let open = format!("<!-- generated: {key} (stickslip-bench readme) -->\n");
-    let from = readme.find(&open).unwrap_or_else(|| panic!("README lacks the block {key}")) + open.len();
-    let to = from + readme[from..].find(&format!("<!-- end: {key} -->")).unwrap();
-    readme[from..to].to_string()
+    stickslip_support::generated_block(key).0
 }
 
 /// A printout with its wall times masked ("in 9.2 s" → "in … s").

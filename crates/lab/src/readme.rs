@@ -1,7 +1,7 @@
-//! The README's generated blocks: every printed output, table and measured number of the README
-//! that a command gives is written by the command `stickslip-bench readme`, which runs the
-//! product's `stickslip` binary as a user would (from the repository's root, into `reports/`)
-//! and rewrites the blocks between markers:
+//! The generated blocks of the README and the user guide: every printed output, table and
+//! measured number of `README.md` and `docs/guide/*.md` that a command gives is written by the
+//! command `stickslip-bench readme`, which runs the product's `stickslip` binary as a user would
+//! (from the repository's root, into `reports/`) and rewrites the blocks between markers:
 //!
 //! ```text
 //! <!-- generated: KEY (stickslip-bench readme) -->
@@ -9,11 +9,13 @@
 //! <!-- end: KEY -->
 //! ```
 //!
-//! [`GENERATORS`] lists the keys, what each runs and what it writes. Anything outside the markers
-//! is left alone; a block's text is entirely the generator's. `--check` compares instead of
-//! writing (exit 1 and the differing blocks when the README is stale), `--only KEY` regenerates
-//! some blocks. The tests of the deterministic numbers (`crates/cli/tests/usability.rs`) read the
-//! same markers.
+//! A block lives in whichever of those files its text belongs to ([`block_files`]); each key is in
+//! exactly one of them, and a key in none or in two is an error ([`locate`]). [`GENERATORS`] lists
+//! the keys, what each runs and what it writes. Anything outside the markers is left alone; a
+//! block's text is entirely the generator's. `--check` compares instead of writing (exit 1 and the
+//! differing blocks when a file is stale), `--only KEY` regenerates some blocks. The tests of the
+//! deterministic numbers (`crates/cli/tests/usability.rs`, through `stickslip_support`) read the
+//! same markers in the same files.
 
 use std::collections::BTreeMap;
 use std::ops::Range;
@@ -47,7 +49,7 @@ pub fn blocks(text: &str) -> Result<Vec<(String, Range<usize>)>, LabError> {
     let head = "<!-- generated: ";
     while let Some(i) = text[rest..].find(head) {
         let at = rest + i;
-        let line_end = text[at..].find('\n').map(|j| at + j + 1).ok_or_else(|| setup("a marker ends the README"))?;
+        let line_end = text[at..].find('\n').map(|j| at + j + 1).ok_or_else(|| setup("a marker ends the file"))?;
         let key = text[at + head.len()..line_end]
             .split_whitespace()
             .next()
@@ -72,10 +74,8 @@ pub fn blocks(text: &str) -> Result<Vec<(String, Range<usize>)>, LabError> {
 
 /// `text` with the content of block `key` replaced by `content` (which must end with a newline).
 pub fn replace(text: &str, key: &str, content: &str) -> Result<String, LabError> {
-    let (_, range) = blocks(text)?
-        .into_iter()
-        .find(|(k, _)| k == key)
-        .ok_or_else(|| setup(&format!("the README has no block {key}")))?;
+    let (_, range) =
+        blocks(text)?.into_iter().find(|(k, _)| k == key).ok_or_else(|| setup(&format!("no block {key}")))?;
     Ok(format!("{}{content}{}", &text[..range.start], &text[range.end..]))
 }
 
@@ -96,7 +96,7 @@ pub struct Generator {
     pub make: fn(&Runner) -> Result<String, LabError>,
 }
 
-/// Every generated block of the README.
+/// Every generated block of the README and the guide.
 pub const GENERATORS: &[Generator] = &[
     Generator {
         key: "main-command",
@@ -141,7 +141,7 @@ pub const GENERATORS: &[Generator] = &[
 pub struct Runner {
     /// The `stickslip` binary.
     pub binary: PathBuf,
-    /// The repository's root (where `README.md` and `pipelines/` are).
+    /// The repository's root (where `README.md`, `docs/guide/` and `pipelines/` are).
     pub root: PathBuf,
     /// Outputs of commands already run (a command is run once per invocation).
     done: std::cell::RefCell<BTreeMap<String, (String, f64)>>,
@@ -304,6 +304,9 @@ fn disk_use(r: &Runner) -> Result<String, LabError> {
 }
 
 fn paper_precise(r: &Runner) -> Result<String, LabError> {
+    // A folder of an earlier run would be resumed ("0 run now, 16 already done"), not run: moved
+    // aside, and deleted with the main command's (see `remove_main_set_aside`).
+    crate::ensemble_cost::set_aside(&r.root.join("reports/paper-precise"))?;
     let (out, _) = r.run(&["pipeline", "pipelines/paper-precise.toml", "--fresh", "--quiet"])?;
     Ok(fenced(&lines_between(&out, "paper-precise:", "precision target")?))
 }
@@ -449,23 +452,100 @@ fn slow_loading(r: &Runner) -> Result<String, LabError> {
     ))
 }
 
+/// The files that may hold generated blocks, relative to the repository's root `root`:
+/// `README.md`, then every `docs/guide/*.md` in name order.
+pub fn block_files(root: &Path) -> Result<Vec<PathBuf>, LabError> {
+    let guide = root.join("docs/guide");
+    let entries = std::fs::read_dir(&guide).map_err(|e| setup(&format!("{}: {e}", guide.display())))?;
+    let mut chapters: Vec<PathBuf> = entries
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|x| x == "md") && p.is_file())
+        .filter_map(|p| p.strip_prefix(root).ok().map(Path::to_path_buf))
+        .collect();
+    chapters.sort();
+    Ok(std::iter::once(PathBuf::from("README.md")).chain(chapters).collect())
+}
+
+/// One file of [`block_files`]: its path relative to the repository's root and its text.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Doc {
+    /// Relative to the repository's root.
+    pub path: PathBuf,
+    /// Its text.
+    pub text: String,
+}
+
+/// Reads every file of [`block_files`] under `root`.
+pub fn read_docs(root: &Path) -> Result<Vec<Doc>, LabError> {
+    block_files(root)?
+        .into_iter()
+        .map(|path| {
+            let text = std::fs::read_to_string(root.join(&path))
+                .map_err(|e| setup(&format!("{}: {e}", root.join(&path).display())))?;
+            Ok(Doc { path, text })
+        })
+        .collect()
+}
+
+/// Which of `docs` holds each block: key → index into `docs`. A key found in two files is an
+/// error (and, by [`blocks`], one found twice in a file).
+pub fn locate(docs: &[Doc]) -> Result<BTreeMap<String, usize>, LabError> {
+    let mut found: BTreeMap<String, usize> = BTreeMap::new();
+    for (i, doc) in docs.iter().enumerate() {
+        for (key, _) in blocks(&doc.text).map_err(|e| setup(&format!("{}: {e}", doc.path.display())))? {
+            if let Some(&j) = found.get(&key) {
+                return Err(setup(&format!(
+                    "block {key} is in both {} and {}: a key belongs to one file",
+                    docs[j].path.display(),
+                    doc.path.display()
+                )));
+            }
+            found.insert(key, i);
+        }
+    }
+    Ok(found)
+}
+
+/// `text` with the wall times of a printout masked ("in 4.9 s" → "in … s"): a printout's time
+/// differs from run to run, its numbers do not, so a block is stale only when those differ.
+fn untimed(text: &str) -> String {
+    let mut out = String::new();
+    for line in text.lines() {
+        let words: Vec<&str> = line.split(' ').collect();
+        let masked: Vec<&str> = (0..words.len())
+            .map(|k| {
+                let timed =
+                    k > 0 && words[k - 1] == "in" && words.get(k + 1) == Some(&"s") && words[k].parse::<f64>().is_ok();
+                if timed { "…" } else { words[k] }
+            })
+            .collect();
+        out.push_str(&masked.join(" "));
+        out.push('\n');
+    }
+    out
+}
+
 /// What [`rewrite`] found for one block.
 pub struct BlockOutcome {
     /// The key.
     pub key: &'static str,
-    /// Whether the new text differs from the README's.
+    /// The file holding it, relative to the repository's root.
+    pub file: PathBuf,
+    /// Whether the new text differs from the file's (wall times of printouts aside).
     pub changed: bool,
     /// Whether its text depends on the machine.
     pub measured: bool,
 }
 
-/// Regenerates the blocks of `readme` (those of `only`, or all) with `runner`; returns the new
-/// text and what changed.
-pub fn rewrite(readme: &str, runner: &Runner, only: &[String]) -> Result<(String, Vec<BlockOutcome>), LabError> {
-    let present: Vec<String> = blocks(readme)?.into_iter().map(|(k, _)| k).collect();
-    for k in &present {
+/// Regenerates the blocks of `docs` (those of `only`, or all) with `runner`; returns the new
+/// texts (in the order of `docs`) and what changed. Every generator's key must be in exactly one
+/// file, and every block in the files must have a generator.
+pub fn rewrite(docs: &[Doc], runner: &Runner, only: &[String]) -> Result<(Vec<Doc>, Vec<BlockOutcome>), LabError> {
+    let place = locate(docs)?;
+    for k in place.keys() {
         if !GENERATORS.iter().any(|g| g.key == k) {
-            return Err(setup(&format!("the README has a block {k} that no generator writes")));
+            return Err(setup(&format!("{} has a block {k} that no generator writes", docs[place[k]].path.display())));
         }
     }
     for k in only {
@@ -474,19 +554,33 @@ pub fn rewrite(readme: &str, runner: &Runner, only: &[String]) -> Result<(String
             return Err(setup(&format!("--only {k}: no such block (blocks: {})", keys.join(", "))));
         }
     }
-    let mut text = readme.to_string();
+    for g in GENERATORS {
+        if !place.contains_key(g.key) {
+            let files: Vec<String> = docs.iter().map(|d| d.path.display().to_string()).collect();
+            return Err(setup(&format!(
+                "no file holds the block {} ({}); looked in {}",
+                g.key,
+                opening(g.key),
+                files.join(", ")
+            )));
+        }
+    }
+    let mut out = docs.to_vec();
     let mut outcomes = Vec::new();
     for g in GENERATORS.iter().filter(|g| only.is_empty() || only.iter().any(|k| k == g.key)) {
-        if !present.iter().any(|k| k == g.key) {
-            return Err(setup(&format!("the README lacks the block {} ({})", g.key, opening(g.key))));
-        }
-        eprintln!("{}: {}", g.key, g.runs);
+        let doc = &mut out[place[g.key]];
+        eprintln!("{} ({}): {}", g.key, doc.path.display(), g.runs);
         let content = (g.make)(runner)?;
-        let old = blocks(&text)?.into_iter().find(|(k, _)| k == g.key).map(|(_, r)| text[r].to_string());
-        outcomes.push(BlockOutcome { key: g.key, changed: old.as_deref() != Some(&content), measured: g.measured });
-        text = replace(&text, g.key, &content)?;
+        let old = blocks(&doc.text)?.into_iter().find(|(k, _)| k == g.key).map(|(_, r)| doc.text[r].to_string());
+        outcomes.push(BlockOutcome {
+            key: g.key,
+            file: doc.path.clone(),
+            changed: old.as_deref().map(untimed) != Some(untimed(&content)),
+            measured: g.measured,
+        });
+        doc.text = replace(&doc.text, g.key, &content)?;
     }
-    Ok((text, outcomes))
+    Ok((out, outcomes))
 }
 
 #[cfg(test)]
@@ -518,13 +612,45 @@ mod tests {
     }
 
     #[test]
-    fn the_readme_has_every_generated_block_once() {
-        let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../README.md")).unwrap();
-        let keys: Vec<String> = blocks(&readme).unwrap().into_iter().map(|(k, _)| k).collect();
+    fn the_readme_and_the_guide_hold_every_generated_block_once() {
+        let root = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."));
+        let docs = read_docs(root).unwrap();
+        assert_eq!(docs[0].path, Path::new("README.md"));
+        assert!(docs.iter().any(|d| d.path == Path::new("docs/guide/README.md")), "the guide's index");
+        let place = locate(&docs).unwrap();
         for g in GENERATORS {
-            assert!(keys.iter().any(|k| k == g.key), "README lacks {}", opening(g.key));
+            assert!(place.contains_key(g.key), "no file holds {}", opening(g.key));
         }
-        assert_eq!(keys.len(), GENERATORS.len(), "{keys:?}");
+        assert_eq!(place.len(), GENERATORS.len(), "{place:?}");
+        // The main command's time belongs beside the main command.
+        assert_eq!(docs[place["main-command"]].path, Path::new("README.md"));
+    }
+
+    #[test]
+    fn a_key_in_two_files_is_refused() {
+        let doc = |path: &str, key: &str| Doc {
+            path: PathBuf::from(path),
+            text: format!("x\n{}\nold\n{}\n", opening(key), closing(key)),
+        };
+        let place = locate(&[doc("README.md", "a"), doc("docs/guide/b.md", "b")]).unwrap();
+        assert_eq!((place["a"], place["b"]), (0, 1));
+        let twice = locate(&[doc("README.md", "a"), doc("docs/guide/b.md", "a")]);
+        let err = twice.err().unwrap().to_string();
+        assert!(err.contains("README.md") && err.contains("docs/guide/b.md"), "{err}");
+        // A key no file holds is refused by rewrite before anything runs.
+        let runner = Runner::new(PathBuf::from("/nonexistent/stickslip"), PathBuf::from("/nonexistent"));
+        let err = rewrite(&[doc("README.md", "main-command")], &runner, &[]).err().unwrap().to_string();
+        assert!(err.contains("no file holds the block"), "{err}");
+    }
+
+    #[test]
+    fn only_the_wall_times_of_a_printout_are_masked() {
+        assert_eq!(
+            untimed("a: 3 seeds in 9.2 s → x\nreport: 17 figures in 0.8 s → y"),
+            untimed("a: 3 seeds in 4.1 s → x\nreport: 17 figures in 0.2 s → y")
+        );
+        assert_ne!(untimed("a: 3 seeds in 9.2 s"), untimed("a: 4 seeds in 9.2 s"));
+        assert_eq!(untimed("in the 2 s window"), "in the 2 s window\n");
     }
 
     #[test]

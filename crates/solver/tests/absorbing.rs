@@ -413,7 +413,7 @@ fn beams_at_30_and_45_degrees_reflect_what_the_dashpots_closed_form_says() {
 }
 
 #[test]
-#[ignore = "49 s: the same beams longer and wider (4 × 32 Lc), figures in the README"]
+#[ignore = "49 s: the same beams longer and wider (4 × 32 Lc), figures in docs/guide/faults.md"]
 fn wider_beams_at_30_and_45_degrees() {
     oblique(4.0, 32.0, 0.012);
 }

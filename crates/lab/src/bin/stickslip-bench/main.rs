@@ -167,10 +167,10 @@ enum Command {
         #[arg(long, default_value = "123,200,7,1,2,3")]
         seeds: String,
     },
-    /// Rewrites the README's generated blocks (its printed outputs, tables, wall times and disk
-    /// use) from real runs of the product's `stickslip` binary, from the repository's root into
-    /// reports/ (minutes: it runs the main command, paper-precise, slow-loading and paper-100
-    /// twice more, timed).
+    /// Rewrites the generated blocks of README.md and docs/guide/*.md (their printed outputs,
+    /// tables, wall times and disk use) from real runs of the product's `stickslip` binary, from
+    /// the repository's root into reports/ (minutes: it runs the main command, paper-precise,
+    /// slow-loading and paper-100 twice more, timed).
     Readme {
         /// Compare instead of writing: exit 1 when a block that does not depend on the machine
         /// differs.
@@ -835,7 +835,7 @@ type S2 = (f64, f64, f64);
 
 /// `stickslip-bench readme`.
 fn readme(check: bool, only: &[String], binary: Option<PathBuf>) -> Result<()> {
-    use stickslip_lab::readme::{Runner, remove_main_set_aside, rewrite};
+    use stickslip_lab::readme::{Runner, read_docs, remove_main_set_aside, rewrite};
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..").canonicalize()?;
     let binary = binary
         .or_else(|| std::env::var_os("STICKSLIP").map(PathBuf::from))
@@ -844,26 +844,34 @@ fn readme(check: bool, only: &[String], binary: Option<PathBuf>) -> Result<()> {
         .ok_or_else(|| {
             anyhow::anyhow!("no stickslip binary: build it (cargo build --release -p stickslip) or give --binary")
         })?;
-    let path = root.join("README.md");
-    let old = std::fs::read_to_string(&path)?;
+    let old = read_docs(&root)?;
     let rewritten = rewrite(&old, &Runner::new(binary, root.clone()), only);
     remove_main_set_aside(&root);
     let (new, outcomes) = rewritten?;
     for o in &outcomes {
         println!(
-            "{:<14} {}{}",
+            "{:<14} {:<28} {}{}",
             o.key,
+            o.file.display(),
             if o.changed { "changed" } else { "as before" },
             if o.measured { " (measured on this machine)" } else { "" }
         );
     }
     if check {
-        let stale: Vec<&str> = outcomes.iter().filter(|o| o.changed && !o.measured).map(|o| o.key).collect();
-        anyhow::ensure!(stale.is_empty(), "the README is stale in: {} (run stickslip-bench readme)", stale.join(", "));
-        println!("README blocks current (measured ones may differ from machine to machine)");
+        let stale: Vec<String> = outcomes
+            .iter()
+            .filter(|o| o.changed && !o.measured)
+            .map(|o| format!("{} ({})", o.key, o.file.display()))
+            .collect();
+        anyhow::ensure!(stale.is_empty(), "stale blocks: {} (run stickslip-bench readme)", stale.join(", "));
+        println!("generated blocks current (measured ones may differ from machine to machine)");
     } else {
-        std::fs::write(&path, new)?;
-        println!("README.md rewritten");
+        for (before, after) in old.iter().zip(&new) {
+            if before.text != after.text {
+                std::fs::write(root.join(&after.path), &after.text)?;
+                println!("{} rewritten", after.path.display());
+            }
+        }
     }
     Ok(())
 }
