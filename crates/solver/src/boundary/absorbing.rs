@@ -77,10 +77,6 @@ impl Boundary for Absorbing {
         Phase::Dashpot
     }
 
-    fn describe(&self) -> Option<String> {
-        (!self.dashpots.is_empty()).then(|| format!("absorbing dashpots on {} nodes", self.dashpots.len()))
-    }
-
     /// Each dashpot component turns the trial into the update with damping `D + c/m` (see the
     /// module doc); forces of the other boundaries must already be in the trial.
     fn apply<const L: usize>(&self, s: &mut Step<'_, L>) {

@@ -34,10 +34,6 @@ impl Boundary for Drivers {
         }
     }
 
-    fn describe(&self) -> Option<String> {
-        (!self.nodes.is_empty()).then(|| format!("drivers: {} nodes whose x follows Eq. 12", self.nodes.len()))
-    }
-
     /// x of each driven node set to its base plus the target; the reaction is the force that
     /// takes the trial there.
     fn apply<const L: usize>(&self, s: &mut Step<'_, L>) {

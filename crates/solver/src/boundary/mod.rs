@@ -4,8 +4,8 @@
 //! Each kind is a file implementing [`Boundary`]: what it does to the trial of a step (a force
 //! or a held component), the work it does (so the energy balance closes), how much it can raise
 //! the lattice's highest eigenvalue (the critical step), and whether the quasi-static skip-ahead
-//! can follow it, what it adds to a static solve (loads, held components), what it does when the
-//! loading starts, and how `check` describes it. [`Boundaries`] holds a scene's as one list, built
+//! can follow it, what it adds to a static solve (loads, held components), and what it does when the
+//! loading starts. [`Boundaries`] holds a scene's as one list, built
 //! once in the model, and applies them in the order of their [`Phase`] each step — springs,
 //! pressure and tractions (forces), then the dashpots (which need every force in the trial), then
 //! rollers (held components), then drivers (prescribed motion) — before the contact with the base
@@ -156,9 +156,6 @@ pub trait Boundary {
     fn start<const L: usize>(&self, loading: &mut LoadingState<L>, now: &Field<L>, l: usize) {
         let _ = (loading, now, l);
     }
-
-    /// What it is on the scene, for `check` and the report: `None` when the scene has none.
-    fn describe(&self) -> Option<String>;
 }
 
 /// The kinds of boundary, one line each in the order their work is added to the energy terms:
@@ -206,9 +203,6 @@ macro_rules! kinds {
             }
             fn start<const L: usize>(&self, loading: &mut LoadingState<L>, now: &Field<L>, l: usize) {
                 match self { $(Kind::$variant(b) => b.start(loading, now, l),)+ }
-            }
-            fn describe(&self) -> Option<String> {
-                match self { $(Kind::$variant(b) => b.describe(),)+ }
             }
         }
     };
@@ -306,10 +300,5 @@ impl Boundaries {
     /// The nodes tied to the loading plate and their spring stiffness in x (N/m).
     pub fn plate(&self) -> &[(u32, f64)] {
         self.list.iter().find_map(|b| if let Kind::Plate(p) = b { Some(&p.springs[..]) } else { None }).unwrap_or(&[])
-    }
-
-    /// What the scene's boundaries are, one line per kind present, for `check` and the report.
-    pub fn describe(&self) -> Vec<String> {
-        self.list.iter().filter_map(|b| b.describe()).collect()
     }
 }

@@ -31,12 +31,6 @@ impl Boundary for Plate {
         Phase::Force
     }
 
-    fn describe(&self) -> Option<String> {
-        let k: f64 = self.springs.iter().map(|&(_, k)| k).sum();
-        (!self.springs.is_empty())
-            .then(|| format!("loading plate: {} springs in x, {k:.4e} N/m in all", self.springs.len()))
-    }
-
     /// Starts the plate of lane `l`: each spring's rest position is where its node stands now.
     fn start<const L: usize>(&self, loading: &mut LoadingState<L>, now: &Field<L>, l: usize) {
         for (j, &(node, _)) in self.springs.iter().enumerate() {

@@ -38,12 +38,6 @@ impl Boundary for Pressure {
         }
     }
 
-    fn describe(&self) -> Option<String> {
-        let total: f64 = self.loads.iter().map(|&(_, f)| f).sum();
-        (!self.loads.is_empty())
-            .then(|| format!("normal pressure on the top face: {} nodes, {total:.4e} N in all", self.loads.len()))
-    }
-
     fn apply<const L: usize>(&self, s: &mut Step<'_, L>) {
         let (mass, cf, trial) = (s.mass, s.cf, &mut *s.trial);
         for &(node, f) in &self.loads {

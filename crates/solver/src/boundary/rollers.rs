@@ -36,11 +36,6 @@ impl Boundary for Rollers {
         out
     }
 
-    fn describe(&self) -> Option<String> {
-        let held: usize = self.nodes.iter().map(|(_, m)| m.iter().filter(|&&h| h).count()).sum();
-        (held > 0).then(|| format!("rollers: {held} held components on {} nodes", self.nodes.len()))
-    }
-
     /// Held components keep the value they had (the trial's `uₙ₊₁` ← `uₙ`).
     fn apply<const L: usize>(&self, s: &mut Step<'_, L>) {
         for &(node, mask) in &self.nodes {

@@ -32,10 +32,6 @@ impl Boundary for Traction {
         Phase::Force
     }
 
-    fn describe(&self) -> Option<String> {
-        (!self.nodes.is_empty()).then(|| format!("fault tractions on {} base nodes", self.nodes.len()))
-    }
-
     fn apply<const L: usize>(&self, s: &mut Step<'_, L>) {
         let Some(f) = s.fault else { return };
         for (ci, &node) in self.nodes.iter().enumerate() {
