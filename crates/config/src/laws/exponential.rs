@@ -51,7 +51,7 @@ fn region(ck: &mut Checker, field: &str, keys: &RegionKeys, law: &FrictionLaw) -
     let background = law.node(1.0).coefficients().iter().find(|c| c.symbol == "Dc").map_or(0.0, |c| c.value);
     let dc = keys.slip_weakening_m.unwrap_or(background);
     if !(dc > 0.0 && dc.is_finite()) {
-        ck.push(&format!("{field}.slip_weakening_m"), dc, "a finite distance > 0 m under exponential weakening");
+        ck.push(format!("{field}.slip_weakening_m"), dc, "a finite distance > 0 m under exponential weakening");
     }
     NodeFriction::Exponential(ExponentialNode::new(mu_static, mu_dynamic, dc))
 }
