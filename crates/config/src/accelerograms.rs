@@ -224,7 +224,7 @@ impl AccelerogramsSection {
             }
         }
         // A driven node's acceleration is prescribed (Eq. 12), not a response of the block.
-        let drivers = &scene.shear.drivers;
+        let drivers = scene.drivers();
         let describe = |id: NodeId| {
             let p = scene.lattice().position(id);
             format!("LDEM {} at ({}, {}, {}) m", id.ldem(), approx(p[0]), approx(p[1]), approx(p[2]))

@@ -116,7 +116,7 @@ impl NoEvents {
             shear: (sh.duration_s, sh.driver_displacement(sh.duration_s), sh.velocity_m_s),
             slider: slider_verdict(pipeline, &model),
             figure: pipeline.report.enabled.then(|| folder.figures().join("shear_stress.png")),
-            plate: scene.plate.is_some(),
+            plate: scene.plate().is_some(),
         }
     }
 }

@@ -250,17 +250,17 @@ pub(crate) fn parameters(d: &ReportInput, common: Vec<(&'static str, String)>) -
             "{} s from the prestressed state at rest, damping D = {} 1/s, no self-weight stage{}{}",
             compact(sh.duration_s),
             compact(sh.damping_per_s),
-            if s.absorbing.is_empty() {
+            if s.absorbing().is_empty() {
                 String::new()
             } else {
-                format!(", absorbing faces {}", s.absorbing.iter().map(|f| f.name()).collect::<Vec<_>>().join(", "))
+                format!(", absorbing faces {}", s.absorbing().iter().map(|f| f.name()).collect::<Vec<_>>().join(", "))
             },
-            if sh.drivers.is_empty() {
+            if s.drivers().is_empty() {
                 String::new()
             } else {
                 format!(
                     ", drivers LDEM {}",
-                    sh.drivers.iter().map(|n| n.ldem().to_string()).collect::<Vec<_>>().join(", ")
+                    s.drivers().iter().map(|n| n.ldem().to_string()).collect::<Vec<_>>().join(", ")
                 )
             }
         ),

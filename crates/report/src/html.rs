@@ -276,9 +276,9 @@ fn block_stages(d: &ReportInput) -> Vec<(&'static str, String)> {
     let s = &p.scene;
     let e = s.lattice().extent();
     let sw = &s.self_weight;
-    let loading = if !s.shear.drivers.is_empty() {
-        format!(", driver LDEM {}", s.shear.drivers.iter().map(|n| n.ldem().to_string()).collect::<Vec<_>>().join(", "))
-    } else if let Some(plate) = &s.plate {
+    let loading = if !s.drivers().is_empty() {
+        format!(", driver LDEM {}", s.drivers().iter().map(|n| n.ldem().to_string()).collect::<Vec<_>>().join(", "))
+    } else if let Some(plate) = s.plate() {
         format!(", a loading plate on face {} through springs", plate.face.name())
     } else {
         String::new()

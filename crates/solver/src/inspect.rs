@@ -377,7 +377,7 @@ pub fn spring_slider(model: &Model, seed: u64, statics: Statics) -> Result<Slide
 fn slider(model: &Model, k: Option<&[f64]>, weight: f64) -> Result<Slider, SolverError> {
     let scene = model.scene();
     let lattice = model.lattice();
-    let normal = weight + scene.normal_load.as_ref().map_or(0.0, |n| n.total());
+    let normal = weight + scene.normal_load().map_or(0.0, |n| n.total());
     // The loaded nodes: the drivers and the plate's nodes.
     let loaded: Vec<usize> =
         model.drivers().iter().map(|&d| d as usize).chain(model.plate().iter().map(|&(i, _)| i as usize)).collect();
@@ -415,7 +415,7 @@ fn slider(model: &Model, k: Option<&[f64]>, weight: f64) -> Result<Slider, Solve
     } else {
         f64::NAN
     };
-    let plate = scene.plate.as_ref().map_or(f64::INFINITY, |p| p.stiffness());
+    let plate = scene.plate().map_or(f64::INFINITY, |p| p.stiffness());
     let k_load = 1.0 / (1.0 / block + 1.0 / plate);
     // Each node's critical stiffness at its share of the normal force, summed (infinite when
     // any node drops at once).

@@ -126,7 +126,7 @@ impl Channel {
         let plan = &scene.record;
         let has = |c: Channel| match c {
             Channel::FractureDissipated => scene.rupture.is_some(),
-            Channel::Absorbed => !scene.absorbing.is_empty(),
+            Channel::Absorbed => !scene.absorbing().is_empty(),
             Channel::TractionWork => scene.is_fault(),
             _ => true,
         };

@@ -87,6 +87,24 @@ pub struct SelfWeight {
     pub max_duration_s: f64,
 }
 
+/// One boundary condition of a scene as validated (docs/model.md §5, §12): what a kind of the
+/// solver's [`crate::boundary`] is built from.
+#[derive(Clone, Debug, PartialEq)]
+pub enum BoundarySpec {
+    /// Rollers: for every node, which components are held (`[x, y, z]`); only nodes with at
+    /// least one, sorted.
+    Rollers(Vec<(NodeId, [bool; 3])>),
+    /// Driven nodes (canonical ids, sorted, unique) whose x follows the shear stage's Eq. 12.
+    Drivers(Vec<NodeId>),
+    /// A loading plate on springs, moving by Eq. 12.
+    Plate(LoadingPlate),
+    /// A normal pressure on the top face.
+    Pressure(NormalLoad),
+    /// Faces whose nodes carry Lysmer–Kuhlemeyer dashpots, so that waves leave the block; never
+    /// the base.
+    Absorbing(Vec<Face>),
+}
+
 /// Loading stage 2: the driver of Eq. 12 with light damping (docs/model.md §5).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Shear {
@@ -98,8 +116,6 @@ pub struct Shear {
     pub rise_time_s: f64,
     /// Duration of the stage (s).
     pub duration_s: f64,
-    /// Driven nodes (canonical ids, sorted, unique).
-    pub drivers: Vec<NodeId>,
 }
 
 impl Shear {
@@ -388,15 +404,12 @@ pub struct Scene {
     pub self_weight: SelfWeight,
     /// Stage 2.
     pub shear: Shear,
-    /// Rollers: for every node, which components are held (`[x, y, z]`); only nodes with at
-    /// least one, sorted.
-    pub fixed: Vec<(NodeId, [bool; 3])>,
+    /// Boundary conditions: at most one of each kind (a fault's initial tractions are the
+    /// fault's); read them with [`Scene::fixed`], [`Scene::drivers`], [`Scene::plate`],
+    /// [`Scene::normal_load`] and [`Scene::absorbing`], set one with [`Scene::set_boundary`].
+    pub boundaries: Vec<BoundarySpec>,
     /// Recording.
     pub record: RecordPlan,
-    /// Compliant loading by a plate on springs, besides (or instead of) the drivers.
-    pub plate: Option<LoadingPlate>,
-    /// Normal pressure on the top face.
-    pub normal_load: Option<NormalLoad>,
     /// Quasi-static skip-ahead.
     pub skip_ahead: SkipAhead,
     /// Bars that crack (the bilinear law of docs/model.md §11); `None`: every bar elastic.
@@ -404,9 +417,6 @@ pub struct Scene {
     /// The base face as one side of a planar fault between identical media, with its tractions
     /// (docs/model.md §15); `None`: the paper's rigid base.
     pub fault: Option<Fault>,
-    /// Faces whose nodes carry Lysmer–Kuhlemeyer dashpots, so that waves leave the block
-    /// ([`crate::boundary::absorbing`]); never the base.
-    pub absorbing: Vec<Face>,
     /// Named stations: nodes whose displacement, velocity and acceleration (three components)
     /// are recorded (as control channels of `record.control`), sorted by node.
     pub stations: Vec<Station>,
@@ -446,14 +456,10 @@ impl Scene {
                 settle_tolerance: 1e-6,
                 max_duration_s: 0.1,
             },
-            shear: Shear {
-                damping_per_s: 400.0,
-                velocity_m_s: 1.1e-4,
-                rise_time_s: 0.002,
-                duration_s: 0.32,
-                drivers: vec![lattice.node_at([0.0, 0.0, 0.2]).expect("the paper's driver node")],
-            },
-            fixed: Vec::new(),
+            shear: Shear { damping_per_s: 400.0, velocity_m_s: 1.1e-4, rise_time_s: 0.002, duration_s: 0.32 },
+            boundaries: vec![BoundarySpec::Drivers(vec![
+                lattice.node_at([0.0, 0.0, 0.2]).expect("the paper's driver node"),
+            ])],
             record: RecordPlan {
                 interval_s: None,
                 resampled: false,
@@ -467,12 +473,9 @@ impl Scene {
                 control: Vec::new(),
                 trace: TracePlan::default(),
             },
-            plate: None,
-            normal_load: None,
             skip_ahead: SkipAhead { enabled: false, tolerance: 1e-4, margin_steps: 20, record_interval_s: None },
             rupture: None,
             fault: None,
-            absorbing: Vec::new(),
             stations: Vec::new(),
         }
     }
@@ -488,9 +491,53 @@ impl Scene {
         s.density_kg_m3 = self.density_kg_m3;
         s.poisson = self.poisson;
         s.young_cv = self.young_cv;
-        s.shear.drivers.clear();
+        s.boundaries.clear();
         s.record.interface.clear();
         s
+    }
+
+    /// The rollers: for every node, which components are held (`[x, y, z]`); only nodes with
+    /// at least one, sorted.
+    pub fn fixed(&self) -> &[(NodeId, [bool; 3])] {
+        self.boundaries
+            .iter()
+            .find_map(|b| if let BoundarySpec::Rollers(r) = b { Some(&r[..]) } else { None })
+            .unwrap_or(&[])
+    }
+
+    /// The driven nodes of the shear stage (canonical ids, sorted, unique).
+    pub fn drivers(&self) -> &[NodeId] {
+        self.boundaries
+            .iter()
+            .find_map(|b| if let BoundarySpec::Drivers(d) = b { Some(&d[..]) } else { None })
+            .unwrap_or(&[])
+    }
+
+    /// The loading plate on springs, besides (or instead of) the drivers.
+    pub fn plate(&self) -> Option<&LoadingPlate> {
+        self.boundaries.iter().find_map(|b| if let BoundarySpec::Plate(p) = b { Some(p) } else { None })
+    }
+
+    /// The normal pressure on the top face.
+    pub fn normal_load(&self) -> Option<&NormalLoad> {
+        self.boundaries.iter().find_map(|b| if let BoundarySpec::Pressure(n) = b { Some(n) } else { None })
+    }
+
+    /// The faces whose nodes carry Lysmer–Kuhlemeyer dashpots ([`crate::boundary::absorbing`]).
+    pub fn absorbing(&self) -> &[Face] {
+        self.boundaries
+            .iter()
+            .find_map(|b| if let BoundarySpec::Absorbing(a) = b { Some(&a[..]) } else { None })
+            .unwrap_or(&[])
+    }
+
+    /// Sets the scene's boundary of `spec`'s kind to `spec` (in place of one it had).
+    pub fn set_boundary(&mut self, spec: BoundarySpec) {
+        let kind = std::mem::discriminant(&spec);
+        match self.boundaries.iter_mut().find(|b| std::mem::discriminant(*b) == kind) {
+            Some(b) => *b = spec,
+            None => self.boundaries.push(spec),
+        }
     }
 
     /// Whether the base face is one side of a fault between identical media (docs/model.md §15)
@@ -503,7 +550,7 @@ impl Scene {
     /// plate, moving at a positive speed. A fault scene without either (TPV5) is loaded only by
     /// its fixed initial tractions.
     pub fn is_driven(&self) -> bool {
-        (!self.shear.drivers.is_empty() || self.plate.is_some()) && self.shear.velocity_m_s > 0.0
+        (!self.drivers().is_empty() || self.plate().is_some()) && self.shear.velocity_m_s > 0.0
     }
 
     /// Slip across the base face per unit of its tangential displacement: 2 on a symmetric
@@ -551,7 +598,7 @@ mod tests {
     fn paper_scene_is_the_paper_block() {
         let s = Scene::paper();
         assert_eq!(s.dims, Dims::new(10, 1, 5));
-        assert_eq!(s.shear.drivers[0].ldem(), 45);
+        assert_eq!(s.drivers()[0].ldem(), 45);
     }
 
     #[test]

@@ -8,6 +8,7 @@ mod common;
 use common::scene_with;
 use stickslip_solver::geometry::{Face, NodeKind};
 use stickslip_solver::material::lattice_elastic_constants;
+use stickslip_solver::scene::BoundarySpec;
 use stickslip_solver::statics::critical_time_step;
 use stickslip_solver::step::{Batch, LaneSetup, Tracking};
 use stickslip_solver::{Dims, Model, NodeId, Scene};
@@ -29,7 +30,7 @@ fn column(nz: usize, axis: usize, absorbing: bool) -> Scene {
         f.self_weight.gravity_m_s2 = 0.0;
     });
     s.dims = Dims::new(2, 2, nz);
-    s.shear.drivers.clear();
+    s.boundaries.retain(|b| !matches!(b, BoundarySpec::Drivers(_)));
     s.record.interface.clear();
     let lattice = s.lattice();
     let mut fixed = std::collections::BTreeMap::<NodeId, [bool; 3]>::new();
@@ -45,9 +46,9 @@ fn column(nz: usize, axis: usize, absorbing: bool) -> Scene {
             }
         }
     }
-    s.fixed = fixed.into_iter().collect();
+    s.set_boundary(BoundarySpec::Rollers(fixed.into_iter().collect()));
     if absorbing {
-        s.absorbing = vec![Face::ZMax];
+        s.set_boundary(BoundarySpec::Absorbing(vec![Face::ZMax]));
     }
     s
 }
@@ -166,8 +167,8 @@ fn dashpots_leave_the_critical_step_as_it_is() {
     let run = |fraction: f64| -> f64 {
         let mut scene = column(3, 2, false);
         scene.dims = Dims::new(3, 3, 3);
-        scene.fixed.clear();
-        scene.absorbing = vec![Face::XMin, Face::XMax, Face::YMin, Face::YMax, Face::ZMax];
+        scene.boundaries.retain(|b| !matches!(b, BoundarySpec::Rollers(_)));
+        scene.set_boundary(BoundarySpec::Absorbing(vec![Face::XMin, Face::XMax, Face::YMin, Face::YMax, Face::ZMax]));
         let model = Model::new(scene);
         let lane = setup(&model, fraction);
         let mut b = Batch::<1>::new(&model, &[lane]);
@@ -289,7 +290,7 @@ fn slab(nx: usize, nz: usize, wave: Wave, absorbing: bool) -> Scene {
             }
         }
     }
-    s.fixed = fixed.into_iter().collect();
+    s.set_boundary(BoundarySpec::Rollers(fixed.into_iter().collect()));
     s
 }
 

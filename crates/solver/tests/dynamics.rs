@@ -6,6 +6,7 @@ use std::ops::ControlFlow;
 
 use common::{repo_path, roller, scene_with};
 use stickslip_solver::material::lattice_elastic_constants;
+use stickslip_solver::scene::BoundarySpec;
 use stickslip_solver::statics::critical_time_step;
 use stickslip_solver::step::{Batch, Interface, LaneSetup, LaneStiffness};
 use stickslip_solver::{Channel, Model, RunOptions, Scene, run_seed};
@@ -186,7 +187,7 @@ fn energy_balance_closes_over_a_stencil_lattice() {
     // 40×20×10 modules (110 000 bars): the stencil kernel, on two threads.
     let mut scene = paper_scene();
     scene.dims = stickslip_solver::Dims::new(40, 20, 10);
-    scene.shear.drivers = vec![scene.lattice().node_at([0.0, 0.0, 0.2]).unwrap()];
+    scene.set_boundary(BoundarySpec::Drivers(vec![scene.lattice().node_at([0.0, 0.0, 0.2]).unwrap()]));
     scene.record.energy = true;
     scene.self_weight.max_duration_s = 0.002;
     scene.self_weight.settle_tolerance = 1.0;

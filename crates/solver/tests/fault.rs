@@ -10,6 +10,7 @@ use stickslip_solver::fault::Fault;
 use stickslip_solver::geometry::Face;
 use stickslip_solver::laws::StaticDynamic;
 use stickslip_solver::material::lattice_elastic_constants;
+use stickslip_solver::scene::BoundarySpec;
 use stickslip_solver::statics::critical_time_step;
 use stickslip_solver::step::{Batch, LaneSetup};
 use stickslip_solver::{Dims, Model, NodeId, Scene};
@@ -36,7 +37,7 @@ fn column(nz: usize, tau0: f64) -> Scene {
         f.self_weight.gravity_m_s2 = 0.0;
     });
     s.dims = Dims::new(2, 2, nz);
-    s.shear.drivers.clear();
+    s.boundaries.retain(|b| !matches!(b, BoundarySpec::Drivers(_)));
     s.record.interface.clear();
     s.friction.law = StaticDynamic { mu_static: MU_S, mu_dynamic: MU_D }.into();
     let lattice = s.lattice();
@@ -54,8 +55,8 @@ fn column(nz: usize, tau0: f64) -> Scene {
             fixed.insert(id, [false, true, true]);
         }
     }
-    s.fixed = fixed.into_iter().collect();
-    s.absorbing = vec![Face::ZMax];
+    s.set_boundary(BoundarySpec::Rollers(fixed.into_iter().collect()));
+    s.set_boundary(BoundarySpec::Absorbing(vec![Face::ZMax]));
     s
 }
 
@@ -158,7 +159,7 @@ fn a_nucleation_square_lands_where_its_seed_draws_it_and_nowhere_else() {
         nucleation: Some(n),
         origin_m: [0.0; 2],
     });
-    s.fixed.clear();
+    s.boundaries.retain(|b| !matches!(b, BoundarySpec::Rollers(_)));
     let model = Model::new(s);
     let nodes = model.lattice().contact_nodes();
     let mut centres = Vec::new();

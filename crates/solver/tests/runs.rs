@@ -6,6 +6,7 @@ use std::ops::ControlFlow;
 
 use common::{repo_path, scene_with};
 use stickslip_config::{Pipeline, PipelineFile};
+use stickslip_solver::scene::BoundarySpec;
 use stickslip_solver::statics::critical_time_step;
 use stickslip_solver::{Model, RunOptions, Scene, SolverError, run_lanes, run_seed};
 
@@ -156,7 +157,11 @@ fn the_skip_ahead_is_refused_with_a_boundary_its_motion_leaves_out() {
     let mut scene = short_paper(0.01);
     let lattice = scene.lattice();
     let nodes = Face::XMin.nodes(&lattice);
-    scene.plate = Some(LoadingPlate { face: Face::XMin, stiffness_n_m: vec![1e6; nodes.len()], nodes });
+    scene.set_boundary(BoundarySpec::Plate(LoadingPlate {
+        face: Face::XMin,
+        stiffness_n_m: vec![1e6; nodes.len()],
+        nodes,
+    }));
     scene.skip_ahead.enabled = true;
     let err = run_seed(&Model::new(scene), 1, RunOptions::default(), &mut go).unwrap_err();
     assert!(

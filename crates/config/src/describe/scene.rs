@@ -95,7 +95,7 @@ pub fn describe_friction(model: &Model) -> Section {
 pub fn describe_boundaries(model: &Model) -> Section {
     let scene = model.scene();
     let mut s = Section::default();
-    let d = &scene.shear.drivers;
+    let d = scene.drivers();
     if d.is_empty() {
         s.push("drivers", "drivers: none");
     } else {
@@ -108,7 +108,7 @@ pub fn describe_boundaries(model: &Model) -> Section {
             ),
         );
     }
-    if let Some(p) = &scene.plate {
+    if let Some(p) = scene.plate() {
         s.push(
             "plate",
             format!(
@@ -119,16 +119,16 @@ pub fn describe_boundaries(model: &Model) -> Section {
             ),
         );
     }
-    if let Some(n) = &scene.normal_load {
+    if let Some(n) = scene.normal_load() {
         s.push("normal_load", format!("normal load: {} Pa on the top face ({:.4e} N)", N(n.pressure_pa), n.total()));
     }
-    if !scene.absorbing.is_empty() {
+    if !scene.absorbing().is_empty() {
         let (zp, zs) = impedances(scene);
         s.push(
             "absorbing",
             format!(
                 "absorbing faces {} (dashpots ρCp = {:.4e} and ρCs = {:.4e} Pa·s/m per m² of face)",
-                scene.absorbing.iter().map(|f| f.name()).collect::<Vec<_>>().join(", "),
+                scene.absorbing().iter().map(|f| f.name()).collect::<Vec<_>>().join(", "),
                 zp,
                 zs
             ),
@@ -431,7 +431,7 @@ pub fn stages(scene: &Scene) -> Section {
                 "run: {} s from the prestressed state at rest, D = {} 1/s, no self-weight stage{}",
                 N(sh.duration_s),
                 N(sh.damping_per_s),
-                if sh.drivers.is_empty() { ", no driver" } else { "" }
+                if scene.drivers().is_empty() { ", no driver" } else { "" }
             ),
         );
         return s;

@@ -1,7 +1,6 @@
 //! `[self_weight]` and `[shear]` checked: the two loading stages (the shear's drivers are a
 //! boundary: `boundaries::drivers`).
 
-use stickslip_solver::geometry::NodeId;
 use stickslip_solver::scene::{SelfWeight, SettleMethod, Shear};
 
 use super::{MaterialSection, SelfWeightSection, ShearSection};
@@ -40,12 +39,11 @@ pub(super) fn check_shear(ck: &mut Checker, sh: &ShearSection, m: &MaterialSecti
 }
 
 /// The shear stage of `[shear]` with its checked `drivers`.
-pub(super) fn shear(sh: &ShearSection, drivers: Vec<NodeId>) -> Shear {
+pub(super) fn shear(sh: &ShearSection) -> Shear {
     Shear {
         damping_per_s: sh.damping_per_s,
         velocity_m_s: sh.velocity_m_s,
         rise_time_s: sh.rise_time_s,
         duration_s: sh.duration_s,
-        drivers,
     }
 }

@@ -146,15 +146,12 @@ pub(crate) fn build(file: SceneSections<'_>, ck: &mut Checker) -> Option<Scene> 
         friction,
         time_step,
         self_weight,
-        shear: loading::shear(file.shear, drivers),
-        fixed,
+        shear: loading::shear(file.shear),
+        boundaries: boundaries::specs(fixed, drivers, plate, normal_load, absorbing),
         record,
-        plate,
-        normal_load,
         skip_ahead,
         rupture,
         fault,
-        absorbing,
         stations,
     })
 }

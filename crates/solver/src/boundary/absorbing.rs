@@ -39,13 +39,13 @@ pub fn impedances(scene: &Scene) -> (f64, f64) {
 impl Absorbing {
     /// The dashpots of `scene`'s absorbing faces.
     pub(crate) fn new(scene: &Scene, internal: &dyn Fn(NodeId) -> u32) -> Absorbing {
-        if scene.absorbing.is_empty() {
+        if scene.absorbing().is_empty() {
             return Absorbing::default();
         }
         let lattice = scene.lattice();
         let (zp, zs) = impedances(scene);
         let mut dashpots: Vec<(u32, [f64; 3])> = Vec::new();
-        for &face in &scene.absorbing {
+        for &face in scene.absorbing() {
             let (axis, _) = face.axis();
             for id in face.nodes(&lattice) {
                 let area = face.tributary_area(&lattice, id);

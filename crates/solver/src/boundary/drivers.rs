@@ -18,7 +18,7 @@ pub struct Drivers {
 impl Drivers {
     /// The drivers of `scene`.
     pub(crate) fn new(scene: &Scene, internal: &dyn Fn(NodeId) -> u32) -> Drivers {
-        Drivers { nodes: scene.shear.drivers.iter().map(|&id| internal(id)).collect() }
+        Drivers { nodes: scene.drivers().iter().map(|&id| internal(id)).collect() }
     }
 }
 

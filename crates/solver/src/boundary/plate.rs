@@ -19,7 +19,7 @@ pub struct Plate {
 impl Plate {
     /// The plate of `scene`.
     pub(crate) fn new(scene: &Scene, internal: &dyn Fn(NodeId) -> u32) -> Plate {
-        let springs = scene.plate.as_ref().map_or_else(Vec::new, |p| {
+        let springs = scene.plate().map_or_else(Vec::new, |p| {
             p.nodes.iter().zip(&p.stiffness_n_m).map(|(id, &k)| (internal(*id), k)).collect()
         });
         Plate { springs }

@@ -19,8 +19,7 @@ impl Pressure {
     /// The pressure of `scene`.
     pub(crate) fn new(scene: &Scene, internal: &dyn Fn(NodeId) -> u32) -> Pressure {
         let loads = scene
-            .normal_load
-            .as_ref()
+            .normal_load()
             .map_or_else(Vec::new, |n| n.nodes.iter().zip(&n.force_n).map(|(id, &f)| (internal(*id), -f)).collect());
         Pressure { loads }
     }

@@ -16,7 +16,7 @@ pub struct Rollers {
 impl Rollers {
     /// The rollers of `scene`.
     pub(crate) fn new(scene: &Scene, internal: &dyn Fn(NodeId) -> u32) -> Rollers {
-        Rollers { nodes: scene.fixed.iter().map(|(id, m)| (internal(*id), *m)).collect() }
+        Rollers { nodes: scene.fixed().iter().map(|(id, m)| (internal(*id), *m)).collect() }
     }
 }
 
