@@ -24,9 +24,9 @@ pub struct Weakening;
 /// friction map's region's), times the node's random-field factor on μ.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct WeakeningNode {
-    mu_static: f64,
-    mu_dynamic: f64,
-    dc_m: f64,
+    pub(super) mu_static: f64,
+    pub(super) mu_dynamic: f64,
+    pub(super) dc_m: f64,
     /// 1 when a node that sticks keeps its slip (no healing), 0 when it heals.
     keeps: f64,
 }
