@@ -114,39 +114,31 @@ pub fn assert_same_tables(a: &std::path::Path, b: &std::path::Path, ignore: &[&s
 }
 
 /// The user documentation, relative to the repository's root: `README.md`, then the guide's
-/// chapters `docs/guide/*.md` in name order. These are the files that may hold the blocks
-/// `stickslip-bench readme` generates (`crates/lab/src/readme.rs`, `block_files`).
+/// chapters `docs/guide/*.md` in name order — the files that may hold the blocks
+/// `stickslip-bench readme` generates ([`stickslip_lab::readme::block_files`]).
 pub fn user_docs() -> Vec<PathBuf> {
-    let mut chapters: Vec<PathBuf> = std::fs::read_dir(repo_path("docs/guide"))
-        .expect("docs/guide")
-        .flatten()
-        .map(|e| e.path())
-        .filter(|p| p.extension().is_some_and(|x| x == "md"))
-        .map(|p| p.strip_prefix(repo_root()).expect("under the root").to_path_buf())
-        .collect();
-    chapters.sort();
-    std::iter::once(PathBuf::from("README.md")).chain(chapters).collect()
+    stickslip_lab::readme::block_files(&repo_root()).expect("docs/guide")
 }
 
 /// The content of the generated block `key` (between `<!-- generated: KEY (stickslip-bench
 /// readme) -->` and `<!-- end: KEY -->`), from whichever of [`user_docs`] holds it, and that
-/// file; panics when none or more than one does.
+/// file, found as `stickslip-bench readme` finds it; panics when none or more than one does.
 pub fn generated_block(key: &str) -> (String, PathBuf) {
-    let open = format!("<!-- generated: {key} (stickslip-bench readme) -->\n");
-    let close = format!("<!-- end: {key} -->");
-    let mut found = Vec::new();
-    for file in user_docs() {
-        let text = std::fs::read_to_string(repo_root().join(&file)).expect("read a documentation file");
-        let mut rest = text.as_str();
-        while let Some(i) = rest.find(&open) {
-            let from = &rest[i + open.len()..];
-            let to = from.find(&close).unwrap_or_else(|| panic!("{}: block {key} is not closed", file.display()));
-            found.push((from[..to].to_string(), file.clone()));
-            rest = &from[to..];
-        }
-    }
-    assert!(!found.is_empty(), "no file of README.md and docs/guide/*.md holds the block {key}");
-    let files: Vec<String> = found.iter().map(|(_, f)| f.display().to_string()).collect();
-    assert_eq!(found.len(), 1, "the block {key} is held {} times: {files:?}", found.len());
-    found.pop().unwrap()
+    use stickslip_lab::readme::{blocks, locate, read_docs};
+    let docs = read_docs(&repo_root()).expect("read the documentation files");
+    let at = locate(&docs).unwrap_or_else(|e| panic!("the generated blocks: {e}"));
+    let doc = at
+        .get(key)
+        .map(|&i| &docs[i])
+        .unwrap_or_else(|| panic!("no file of README.md and docs/guide/*.md holds the block {key}"));
+    let range = blocks(&doc.text)
+        .expect("read once by locate")
+        .into_iter()
+        .find_map(|(k, r)| (k == key).then_some(r))
+        .expect("located there");
+    (doc.text[range].to_string(), doc.path.clone())
 }
+
+/// A printout with its wall times masked ("in 9.2 s" → "in … s"), as `stickslip-bench readme
+/// --check` compares them.
+pub use stickslip_lab::readme::untimed;

@@ -6,6 +6,8 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::sync::OnceLock;
 
+use stickslip_support::untimed;
+
 fn repo() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..").canonicalize().unwrap()
 }
@@ -634,24 +636,6 @@ fn select_rewrites_the_report_for_the_new_set() {
 /// (the README or a chapter of the guide).
 fn readme_block(key: &str) -> String {
     stickslip_support::generated_block(key).0
-}
-
-/// A printout with its wall times masked ("in 9.2 s" → "in … s").
-fn untimed(text: &str) -> String {
-    let mut out = String::new();
-    for line in text.lines() {
-        let words: Vec<&str> = line.split(' ').collect();
-        let masked: Vec<&str> = (0..words.len())
-            .map(|k| {
-                let timed =
-                    k > 0 && words[k - 1] == "in" && words.get(k + 1) == Some(&"s") && words[k].parse::<f64>().is_ok();
-                if timed { "…" } else { words[k] }
-            })
-            .collect();
-        out.push_str(&masked.join(" "));
-        out.push('\n');
-    }
-    out
 }
 
 #[test]

@@ -509,7 +509,7 @@ pub fn locate(docs: &[Doc]) -> Result<BTreeMap<String, usize>, LabError> {
 
 /// `text` with the wall times of a printout masked ("in 4.9 s" → "in … s"): a printout's time
 /// differs from run to run, its numbers do not, so a block is stale only when those differ.
-fn untimed(text: &str) -> String {
+pub fn untimed(text: &str) -> String {
     let mut out = String::new();
     for line in text.lines() {
         let words: Vec<&str> = line.split(' ').collect();
