@@ -24,6 +24,9 @@ pub struct Energy {
     pub traction_work: f64,
     /// Carried out of the block by the absorbing faces' dashpots (0 without them).
     pub absorbed: f64,
+    /// Taken by the medium's memory variables and dashpots (docs/model.md §18; 0 in an elastic
+    /// medium): the work of their forces, dissipated or held in the relaxing springs.
+    pub anelastic: f64,
 }
 
 impl Energy {
@@ -35,6 +38,13 @@ impl Energy {
     /// External work minus everything stored and dissipated (zero up to round-off).
     pub fn residual(&self) -> f64 {
         self.external_work()
-            - (self.kinetic + self.elastic + self.damping + self.friction + self.impact + self.fracture + self.absorbed)
+            - (self.kinetic
+                + self.elastic
+                + self.damping
+                + self.friction
+                + self.impact
+                + self.fracture
+                + self.absorbed
+                + self.anelastic)
     }
 }

@@ -33,6 +33,7 @@ pub mod laws;
 pub mod layout;
 pub mod ledger;
 pub mod material;
+pub mod medium;
 pub mod memory;
 pub mod model;
 mod observe;

@@ -11,6 +11,7 @@ use crate::geometry::{Bar, BarFamily, Direction, Face, Lattice, NodeId};
 use crate::laws::NodeFriction;
 use crate::layout::{BarGroup, BarLayout, Bars, Segment};
 use crate::material::{STREAM_FRICTION, STREAM_YOUNG, axial_stiffness, weibull_factors};
+use crate::medium::Zone;
 use crate::rupture::{crack_area, fracture_energy_factors};
 use crate::scene::Scene;
 use crate::stencil::{RunStiffness, StencilLayout};
@@ -88,6 +89,13 @@ pub struct Model {
     run_stiffness: Vec<RunStiffness>,
     contact: Vec<u32>,
     boundaries: Boundaries,
+    /// The medium's zones (one per layer, or one), docs/model.md §18.
+    zones: Vec<Zone>,
+    /// The zone of each bar (listed bars, kernel order), when the medium dissipates; empty
+    /// otherwise.
+    bar_code: Vec<u8>,
+    /// The zone of each stencil run (runs go along x, depth along y or z).
+    run_code: Vec<u8>,
 }
 
 impl Model {
@@ -119,7 +127,15 @@ impl Model {
             to_internal[id.index()] = i as u32;
         }
         let rho_lc3 = scene.density_kg_m3 * scene.lc_m.powi(3);
-        let mass: Vec<f64> = to_canonical.iter().map(|&id| lattice.mass_fraction(id) * rho_lc3).collect();
+        let zones = scene.medium.zones(scene.young_pa, scene.density_kg_m3, scene.poisson);
+        let (extent, half) = (lattice.extent(), 0.5 * scene.lc_m);
+        let mass: Vec<f64> = to_canonical
+            .iter()
+            .map(|&id| {
+                let d = scene.medium.depth(lattice.position(id), extent);
+                lattice.mass_fraction(id) * rho_lc3 * scene.medium.density_over(&zones, d - half, d + half)
+            })
+            .collect();
         let inv_mass = mass.iter().map(|m| 1.0 / m).collect();
 
         // Bars: a stencil for a large elastic lattice, else listed in kernel order.
@@ -143,7 +159,20 @@ impl Model {
             run_stiffness: Vec::new(),
             contact,
             boundaries,
+            zones,
+            bar_code: Vec::new(),
+            run_code: Vec::new(),
         };
+        if model.scene.medium.is_dissipative() {
+            match &model.layout {
+                Bars::Listed(_) => {
+                    model.bar_code = model.bar_canonical.iter().map(|&c| model.zone_of_canonical(c as usize)).collect();
+                }
+                Bars::Stencil(s) => {
+                    model.run_code = s.runs().iter().map(|r| model.zone_of_canonical(r.canonical(0))).collect();
+                }
+            }
+        }
         if let Bars::Stencil(s) = &model.layout {
             let nominal = |r: &crate::stencil::Run, m: usize| model.nominal_of_canonical(r.canonical(m));
             model.run_stiffness = s
@@ -236,14 +265,58 @@ impl Model {
         }
     }
 
-    /// Homogeneous kernel stiffness of the bar of canonical index `c` (N/m): `EA/L` with the
-    /// surface reduction, divided by 3 for diagonals (see [`crate::step::bars`]).
+    /// Nominal kernel stiffness of the bar of canonical index `c` (N/m): `EA/L` with the
+    /// surface reduction, divided by 3 for diagonals (see [`crate::step::bars`]), times the
+    /// medium's factor at its depth ([`Model::medium_factor`]).
     fn nominal_of_canonical(&self, c: usize) -> f64 {
         let s = &self.scene;
         let bar = self.lattice.bar(c);
         let ea = axial_stiffness(bar.family, s.young_pa, s.poisson, s.lc_m);
         let k = bar.surface_factor * ea / (bar.length_factor() * s.lc_m);
-        if bar.family == BarFamily::Diagonal { k / 3.0 } else { k }
+        let k = if bar.family == BarFamily::Diagonal { k / 3.0 } else { k };
+        if s.medium.is_default() { k } else { k * self.medium_factor(&bar) }
+    }
+
+    /// A bar's depth window (m): its vertical extent, or the half-module above and below a
+    /// horizontal bar, and the depth of its midpoint.
+    fn depth_window(&self, bar: &Bar) -> (f64, f64, f64) {
+        let extent = self.lattice.extent();
+        let medium = &self.scene.medium;
+        let (a, b) = (self.lattice.position(bar.ends[0]), self.lattice.position(bar.ends[1]));
+        let (da, db) = (medium.depth(a, extent), medium.depth(b, extent));
+        let mid = 0.5 * (da + db);
+        let half = if (da - db).abs() > 0.0 { 0.5 * (da - db).abs() } else { 0.5 * self.scene.lc_m };
+        (mid - half, mid + half, mid)
+    }
+
+    /// The medium's factor of a bar's stiffness: the mean E over its depth window over the
+    /// scene's, times the unrelaxed modulus of the zone of its midpoint (docs/model.md §18).
+    fn medium_factor(&self, bar: &Bar) -> f64 {
+        let medium = &self.scene.medium;
+        let (a, b, mid) = self.depth_window(bar);
+        medium.young_over(&self.zones, a, b) * self.zones[medium.zone_at(mid)].unrelaxed()
+    }
+
+    /// The zone of the bar of canonical index `c`: the layer of its midpoint.
+    fn zone_of_canonical(&self, c: usize) -> u8 {
+        let (_, _, mid) = self.depth_window(&self.lattice.bar(c));
+        self.scene.medium.zone_at(mid) as u8
+    }
+
+    /// The medium's zones (one per layer of the profile, or one).
+    pub fn zones(&self) -> &[Zone] {
+        &self.zones
+    }
+
+    /// The zone of each listed bar (kernel order) when the medium dissipates.
+    pub fn bar_zones(&self) -> &[u8] {
+        &self.bar_code
+    }
+
+    /// The zone of each stencil run (every bar of a run lies at one depth) when the medium
+    /// dissipates.
+    pub fn run_zones(&self) -> &[u8] {
+        &self.run_code
     }
 
     /// Homogeneous kernel stiffness of every bar, internal order (N/m; diagonals divided by 3).

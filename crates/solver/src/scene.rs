@@ -420,6 +420,9 @@ pub struct Scene {
     /// Named stations: nodes whose displacement, velocity and acceleration (three components)
     /// are recorded (as control channels of `record.control`), sorted by node.
     pub stations: Vec<Station>,
+    /// The medium: layers, Q and Kelvin–Voigt damping (docs/model.md §18); the default is the
+    /// homogeneous elastic material above.
+    pub medium: crate::medium::Medium,
 }
 
 /// A named station: a corner node whose motion is recorded in full.
@@ -477,6 +480,7 @@ impl Scene {
             rupture: None,
             fault: None,
             stations: Vec::new(),
+            medium: crate::medium::Medium::default(),
         }
     }
 

@@ -153,5 +153,6 @@ pub(crate) fn build(file: SceneSections<'_>, ck: &mut Checker) -> Option<Scene> 
         rupture,
         fault,
         stations,
+        medium: stickslip_solver::medium::Medium::default(),
     })
 }

@@ -44,11 +44,18 @@ impl Absorbing {
         }
         let lattice = scene.lattice();
         let (zp, zs) = impedances(scene);
+        // In a layered medium each dashpot takes the impedance of the layer at its node's depth
+        // (both impedances scale as √(E·ρ) at one Poisson ratio).
+        let medium = &scene.medium;
+        let zones = medium.zones(scene.young_pa, scene.density_kg_m3, scene.poisson);
+        let extent = lattice.extent();
         let mut dashpots: Vec<(u32, [f64; 3])> = Vec::new();
         for &face in scene.absorbing() {
             let (axis, _) = face.axis();
             for id in face.nodes(&lattice) {
-                let area = face.tributary_area(&lattice, id);
+                let zone = &zones[medium.zone_at(medium.depth(lattice.position(id), extent))];
+                let local = (zone.young * zone.density).sqrt();
+                let area = face.tributary_area(&lattice, id) * local;
                 let mut c = [zs * area; 3];
                 c[axis] = zp * area;
                 dashpots.push((internal(id), c));

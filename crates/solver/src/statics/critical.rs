@@ -47,6 +47,20 @@ pub fn critical_step(model: &Model, k: &LaneStiffness) -> Result<CriticalStep, S
 /// [`critical_step`], a stencil's bar passes split over the current rayon pool with `parallel`
 /// (the same numbers either way; not from inside a pool whose other tasks are other seeds).
 pub fn critical_step_on(model: &Model, k: &LaneStiffness, parallel: bool) -> Result<CriticalStep, SolverError> {
+    undamped_step_on(model, k, parallel).map(|c| with_dashpots(model, c))
+}
+
+/// The step `c` of the bars alone lowered by the medium's Kelvin–Voigt dashpots
+/// ([`crate::medium::kelvin_voigt_step_factor`]; unchanged without them).
+fn with_dashpots(model: &Model, c: CriticalStep) -> CriticalStep {
+    let beta = model.scene().medium.kelvin_voigt_s;
+    if beta == 0.0 {
+        return c;
+    }
+    CriticalStep { dt_s: c.dt_s * crate::medium::kelvin_voigt_step_factor(beta, 2.0 / c.omega_max), ..c }
+}
+
+fn undamped_step_on(model: &Model, k: &LaneStiffness, parallel: bool) -> Result<CriticalStep, SolverError> {
     match k {
         LaneStiffness::PerBar(k) if !matches!(model.layout(), Bars::Stencil(_)) => critical_time_step(model, k),
         LaneStiffness::PerBar(k) => bounded_step(model, StiffnessRef::<1>::PerBar(k.as_chunks::<1>().0), parallel),

@@ -140,7 +140,7 @@ pub fn kinetic_energy<const L: usize>(model: &Model, a: &Field<L>, b: &Field<L>,
 /// accumulators. Called before the commit, when `state.u.nm1` holds the new uₙ₊₁ and `state.u.n`
 /// holds uₙ₋₁.
 pub(crate) fn accumulate<const L: usize>(p: &Params<'_, L>, state: &mut State<L>, parallel: bool) {
-    let State { u, contact, loading, energy, .. } = state;
+    let State { u, contact, loading, energy, anelastic: state_anelastic, .. } = state;
     let (new, old) = (&u.nm1, &u.n);
     let model = p.model;
     let mass = model.mass();
@@ -200,6 +200,12 @@ pub(crate) fn accumulate<const L: usize>(p: &Params<'_, L>, state: &mut State<L>
             if normal_work {
                 e.impact -= 0.5 * reaction[2][ci][l] * d2(2);
             }
+        }
+    }
+    if let Some(a) = &p.anelastic {
+        let w = crate::step::anelastic::work(model, a, p.stiffness(), [new, &u.np1, old], &state_anelastic);
+        for l in 0..L {
+            energy[l].anelastic += w[l];
         }
     }
     model.boundaries().work(&mut boundary::Work { new, old, loading, dt: p.dts(), fault: p.fault.as_ref(), energy });

@@ -14,6 +14,7 @@
 //! [`contact`]; what a committed step shows (displacement, velocity, acceleration, reactions,
 //! energy at the viewed time) is read through a [`LaneView`].
 
+pub mod anelastic;
 pub mod bars;
 pub mod contact;
 pub mod energy;
@@ -120,6 +121,23 @@ impl<const L: usize> Stepper<L> {
         let update = Update { inv_mass: m.inv_mass(), coef: p.coefficients(), body: p.body() };
         if self.kernel == Kernel::Rupture {
             self.rupture_forces_and_trial(p, state, &update);
+        } else if let Some(a) = &p.anelastic {
+            // The medium's memory variables and dashpots read two levels of every bar: the elastic
+            // forces, then theirs, then one integration sweep.
+            let u = &mut state.u;
+            match m.layout() {
+                Bars::Stencil(layout) if self.parallel => {
+                    stencil::forces_parallel(layout, p.stiffness(), &u.np1, &mut self.force)
+                }
+                Bars::Stencil(layout) => stencil::forces(layout, p.stiffness(), &u.np1, &mut self.force),
+                Bars::Listed(layout) if self.parallel => {
+                    bar_forces_parallel(layout, p.k.per_bar(), &u.np1, &mut self.force)
+                }
+                Bars::Listed(layout) => listed_forces(layout, p.k.per_bar(), &u.np1, &mut self.force),
+            }
+            let zeta = &mut state.anelastic;
+            anelastic::forces(m, a, p.stiffness(), &u.np1, &u.n, zeta, &mut self.force, self.parallel);
+            integrate_all(&update, &mut self.force, Levels { u: &u.np1, up: &u.n, out: &mut u.nm1 }, self.parallel);
         } else if let Bars::Stencil(layout) = m.layout() {
             let u = &mut state.u;
             let levels = Levels { u: &u.np1, up: &u.n, out: &mut u.nm1 };

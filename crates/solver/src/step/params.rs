@@ -5,6 +5,7 @@ use crate::fault::{FaultLanes, FaultLoads};
 use crate::field::Lanes;
 use crate::laws::FrictionLaws;
 use crate::model::Model;
+use crate::step::anelastic::AnelasticParams;
 use crate::step::integrate::Coefficients;
 use crate::step::rupture::RuptureParams;
 use crate::stiffness::{LaneStiffness, Stiffness, StiffnessRef};
@@ -39,6 +40,8 @@ pub struct Params<'m, const L: usize> {
     pub rupture: Option<RuptureParams<L>>,
     /// Each lane's fault loads when the base is a fault (docs/model.md §15).
     pub fault: Option<FaultLanes<L>>,
+    /// The medium's memory variables and dashpots (docs/model.md §18); `None`: elastic bars.
+    pub anelastic: Option<AnelasticParams<L>>,
     dt: Lanes<L>,
     damping: Lanes<L>,
     body: [Lanes<L>; 3],
@@ -92,13 +95,17 @@ impl<'m, const L: usize> Params<'m, L> {
                 None
             }
         };
+        let dt = lanes.each_ref().map(|lane| lane.dt_s);
+        let anelastic = AnelasticParams::new(model, &dt);
+        assert!(anelastic.is_none() || rupture.is_none(), "bars that crack carry no memory variables or dashpots");
         let mut p = Params {
             model,
             k,
             friction,
             rupture,
             fault,
-            dt: lanes.each_ref().map(|lane| lane.dt_s),
+            anelastic,
+            dt,
             damping: [0.0; L],
             body: [[0.0; L]; 3],
             coef: Coefficients { cf: [0.0; L], c2: [0.0; L], cp: [0.0; L] },

@@ -90,6 +90,9 @@ pub struct State<const L: usize> {
     pub log: SlipLog<L>,
     /// Damage of the bars, when they crack (docs/model.md §11).
     pub rupture: Option<RuptureState<L>>,
+    /// Each bar's memory variable when the medium has a Q (docs/model.md §18), kernel order;
+    /// empty otherwise.
+    pub anelastic: Vec<crate::step::anelastic::Memory<L>>,
     /// Committed steps (the viewed step is `steps − 1`).
     pub steps: u64,
 }
@@ -125,6 +128,7 @@ impl<const L: usize> State<L> {
                 slid: vec![[false; L]; contacts],
             },
             rupture: None,
+            anelastic: Vec::new(),
             steps: 0,
         }
     }
@@ -134,6 +138,9 @@ impl<const L: usize> State<L> {
         let m = p.model;
         let mut s = State::at_rest_with_plate(m.node_count(), m.contact().len(), m.drivers().len(), m.plate().len());
         s.rupture = p.rupture.as_ref().map(|r| RuptureState::intact(p.k.per_bar(), r));
+        if p.anelastic.as_ref().is_some_and(|a| a.memory()) {
+            s.anelastic = vec![[[0.0; crate::medium::MECHANISMS]; L]; m.bar_count()];
+        }
         s
     }
 
