@@ -88,6 +88,20 @@ pub fn source(rec: &Recording, model: &Model) -> Option<Source> {
     let slip = |i: usize| f.final_slip_m[i][0].hypot(f.final_slip_m[i][1]);
     let area: f64 = ruptured.iter().map(|&i| f.area_m2[i]).sum();
     let potency: f64 = ruptured.iter().map(|&i| f.area_m2[i] * slip(i)).sum();
+    // The moment with each node's own rigidity (a layered medium's varies with depth; the
+    // homogeneous one keeps c44 · potency), and the potency-weighted S speed.
+    let layered = scene.medium.profile.is_some();
+    let (m0, vs_sum) = if layered {
+        let zones = scene.zones();
+        ruptured.iter().fold((0.0, 0.0), |(m, v), &i| {
+            let w = f.area_m2[i] * slip(i);
+            let zone = &zones[scene.medium.zone_at(scene.depth_of(lattice.position(f.nodes[i])))];
+            (m + c44 * zone.young * w, v + zone.vs_m_s * w)
+        })
+    } else {
+        (c44 * potency, s_speed * potency)
+    };
+    let (c44, s_speed) = if layered && potency > 0.0 { (m0 / potency, vs_sum / potency) } else { (c44, s_speed) };
     // The mean slip direction, along which the drop is measured.
     let (sx, sy) = ruptured.iter().fold((0.0, 0.0), |(a, b), &i| {
         (a + f.area_m2[i] * f.final_slip_m[i][0], b + f.area_m2[i] * f.final_slip_m[i][1])
@@ -102,7 +116,6 @@ pub fn source(rec: &Recording, model: &Model) -> Option<Source> {
         })
         .sum::<f64>()
         / area;
-    let m0 = c44 * potency;
     let mut peaks: Vec<f64> = ruptured.iter().map(|&i| f.peak_slip_rate_m_s[i]).collect();
     peaks.sort_by(f64::total_cmp);
     // The hypocentre: where the first nodes to rupture are. A nucleation patch starts all its
@@ -207,6 +220,8 @@ pub struct StationRow {
     pub motion: Result<Motion, String>,
     /// Its broadband record at its site ([`crate::broadband`]), when the pipeline asks for them.
     pub broadband: Option<StationBroadband>,
+    /// The V_S30 of the layered medium's profile when the station stands on its surface (m/s).
+    pub site_vs30_m_s: Option<f64>,
 }
 
 impl StationRow {
@@ -272,6 +287,7 @@ pub fn stations(rec: &Recording, model: &Model, src: &Source) -> Vec<StationRow>
                     .fold(0.0, |m, v| m.max(v.abs())),
                 motion: crate::motions::motion(rec, st.node, resolved_hz),
                 broadband: None,
+                site_vs30_m_s: model.scene().site_vs30_m_s().filter(|_| model.scene().depth_of(p) == 0.0),
             }
         })
         .collect()

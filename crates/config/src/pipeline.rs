@@ -26,8 +26,8 @@ use crate::input::InputFile;
 use crate::precision::{PrecisionTarget, TargetSection};
 use crate::scene::{
     AbsorbingSection, BlockSection, BoundarySection, FaultSection, FrictionSection, LoadingPlateSection,
-    MaterialSection, RecordSection, RuptureSection, SceneSections, SelfWeightSection, ShearSection, SkipAheadSection,
-    StationSection, TimeSection,
+    MaterialSection, MediumSection, RecordSection, RuptureSection, SceneSections, SelfWeightSection, ShearSection,
+    SkipAheadSection, StationSection, TimeSection,
 };
 use crate::sections::{
     EventsSection, ReportSection, ReportSettings, SimilaritySection, SpectraSection, shortest_period,
@@ -123,6 +123,10 @@ pub struct PipelineFile {
     /// `[[stations]]`: named points whose motion is recorded.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub stations: Vec<StationSection>,
+    /// `[medium]`: layers, Q and Kelvin–Voigt damping; absent = the homogeneous elastic
+    /// `[material]`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub medium: Option<MediumSection>,
     /// `[events]`: event detection thresholds.
     #[serde(default)]
     pub events: EventsSection,
@@ -168,6 +172,7 @@ impl Default for PipelineFile {
             fault: None,
             absorbing: None,
             stations: Vec::new(),
+            medium: None,
             events: EventsSection::default(),
             similarity: SimilaritySection::default(),
             accelerograms: None,
@@ -243,6 +248,7 @@ impl PipelineFile {
             rupture: &self.rupture,
             fault: &self.fault,
             absorbing: &self.absorbing,
+            medium: &self.medium,
             stations: &self.stations,
         }
     }
@@ -352,6 +358,11 @@ impl Pipeline {
             && grid.rows.is_empty()
         {
             inputs.extend(grid.read(base, &mut ck));
+        }
+        if let Some(medium) = file.medium.as_mut()
+            && !medium.read_from_file
+        {
+            inputs.extend(medium.read(base, &mut ck));
         }
         if file.version != PIPELINE_VERSION {
             ck.push("version", file.version, "1 (the pipeline format this stickslip reads)");
@@ -608,6 +619,13 @@ struct PathKeys {
     friction: FrictionPathKeys,
     fault: Option<FrictionPathKeys>,
     set: Option<SetPathKeys>,
+    medium: Option<MediumPathKeys>,
+}
+
+#[derive(Deserialize, Default)]
+#[serde(default)]
+struct MediumPathKeys {
+    profile_file: Option<toml::Spanned<String>>,
 }
 
 #[derive(Deserialize, Default)]
@@ -644,6 +662,9 @@ impl Pipeline {
         }
         if let Some(t) = keys.set.as_ref().and_then(|s| s.target_csv.as_ref()) {
             spans.push(("set.target_csv", t.span()));
+        }
+        if let Some(t) = keys.medium.as_ref().and_then(|m| m.profile_file.as_ref()) {
+            spans.push(("medium.profile_file", t.span()));
         }
         spans.sort_by_key(|(_, r)| std::cmp::Reverse(r.start));
         let mut out = text.clone();

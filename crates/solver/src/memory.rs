@@ -140,12 +140,16 @@ pub fn estimate(scene: &Scene, batches: Batches, samples: u64) -> Result<MemoryE
     // the conjugate-gradient vectors).
     let per_bar_k = if stencil { if scene.young_cv > 0.0 { 4 * l } else { 0 } } else { 8 * l };
     let rupture = if scene.rupture.is_some() { 8 * 3 * l + 2 * l } else { 0 };
+    // The medium's memory variables (f32 per mechanism and lane), and a listed lattice's zone per
+    // bar (docs/model.md §18).
+    let anelastic = if scene.medium.attenuation.is_some() { 4 * crate::medium::MECHANISMS as u64 * l } else { 0 }
+        + if scene.medium.is_dissipative() && !stencil { 1 } else { 0 };
     let channels = 24 + scene.record.control.len() as u64 * 3;
     let statics = scene.self_weight.method == SettleMethod::Static || scene.skip_ahead.enabled;
     let (statics_per_bar, statics_per_node) = if statics { (8, 6 * 24) } else { (0, 0) };
     let batch = sum(&[
         (n, 4 * 24 * l + statics_per_node),
-        (b, per_bar_k + rupture + statics_per_bar),
+        (b, per_bar_k + rupture + statics_per_bar + anelastic),
         (contact, 8 * 8 * l),
         (samples.saturating_mul(l), 8 * channels),
     ])?;

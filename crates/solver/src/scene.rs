@@ -10,6 +10,7 @@ use crate::dispersion::{DispersionError, LatticeMaterial, UsableBand, usable_ban
 use crate::fault::Fault;
 use crate::geometry::{Dims, Face, Lattice, NodeId};
 use crate::laws::{Coulomb, FrictionLaw, FrictionMap, NodeFriction};
+use crate::medium::{Profile, Zone};
 use crate::rupture::Rupture;
 
 /// How Δt is chosen.
@@ -588,9 +589,71 @@ impl Scene {
     /// The usable band of the homogeneous lattice of this scene (mean Young's modulus): the
     /// highest frequency whose plane waves travel within `tolerance` of the long-wave speeds
     /// ([`crate::dispersion::usable_band`], docs/model.md §8).
+    ///
+    /// In a layered medium, the band where the lattice is slowest ([`Scene::slowest_carried`]).
     pub fn usable_band(&self, tolerance: f64) -> Result<UsableBand, DispersionError> {
-        let m = LatticeMaterial::new(self.young_pa, self.poisson, self.density_kg_m3, self.lc_m)?;
+        self.zone_band(&self.slowest_carried(), tolerance)
+    }
+
+    /// The slowest medium the lattice carries, as a zone: without a profile the block's; with one,
+    /// the slowest `√(mean E/mean ρ)` over a module's depth (windows one module deep, every half
+    /// module down the block), what a bar and its nodes hold where layers are thinner than a module.
+    pub fn slowest_carried(&self) -> Zone {
+        let zones = self.zones();
+        let Some(p) = &self.medium.profile else { return zones[0].clone() };
+        let depth = self.lattice().extent()[p.depth_axis()];
+        let index = |l: &crate::medium::Layer| p.layers.iter().position(|m| std::ptr::eq(m, l)).expect("its layer");
+        let mut slowest: Option<Zone> = None;
+        let mut top = 0.0;
+        while top < depth {
+            let young = p.mean_over(top, top + self.lc_m, |l| zones[index(l)].young);
+            let density = p.mean_over(top, top + self.lc_m, |l| zones[index(l)].density);
+            let ratio = (young / density).sqrt();
+            if slowest.as_ref().is_none_or(|z| ratio < (z.young / z.density).sqrt()) {
+                let vs = zones[0].vs_m_s / (zones[0].young / zones[0].density).sqrt() * ratio;
+                let vp = zones[0].vp_m_s / zones[0].vs_m_s * vs;
+                slowest = Some(Zone { young, density, vs_m_s: vs, vp_m_s: vp, relaxation: None });
+            }
+            top += 0.5 * self.lc_m;
+        }
+        slowest.unwrap_or_else(|| zones[0].clone())
+    }
+
+    /// The usable band of one zone of the medium ([`Scene::zones`]).
+    pub fn zone_band(&self, zone: &Zone, tolerance: f64) -> Result<UsableBand, DispersionError> {
+        let m = LatticeMaterial::new(
+            self.young_pa * zone.young,
+            self.poisson,
+            self.density_kg_m3 * zone.density,
+            self.lc_m,
+        )?;
         usable_band(&m, tolerance)
+    }
+
+    /// The zones of the medium: one per layer of its profile, or the homogeneous block
+    /// (docs/model.md §18).
+    pub fn zones(&self) -> Vec<Zone> {
+        self.medium.zones(self.young_pa, self.density_kg_m3, self.poisson)
+    }
+
+    /// Depth below the medium's surface of a point (m; 0 without a profile).
+    pub fn depth_of(&self, p: [f64; 3]) -> f64 {
+        self.medium.depth(p, self.lattice().extent())
+    }
+
+    /// V_S30 of the profile (m/s) when the scene has one: every surface station's site.
+    pub fn site_vs30_m_s(&self) -> Option<f64> {
+        self.medium.profile.as_ref().map(Profile::vs30)
+    }
+
+    /// The S-wave speed the lattice carries at its surface (m/s): the scene's without a profile,
+    /// else the travel-time mean over the top module (`Lc / ∫ dz/Vs`), what a station on the
+    /// lattice stands on.
+    pub fn lattice_surface_vs_m_s(&self) -> f64 {
+        match &self.medium.profile {
+            None => self.s_wave_speed(),
+            Some(p) => 1.0 / p.mean_over(0.0, self.lc_m, |l| 1.0 / l.vs_m_s),
+        }
     }
 }
 

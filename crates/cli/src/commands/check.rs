@@ -76,6 +76,7 @@ pub fn run(a: Args) -> Result<()> {
     let (slider, steps) =
         (describe::spring_slider(scene, &facts), describe::critical_step(scene, &facts, pipeline.seeds.len()));
     print(&describe::block(&model, &facts));
+    print(&describe::medium(scene));
     print_part(&friction, "law");
     if scene.is_fault() {
         let fault = describe::fault(&model, seeds[0]);

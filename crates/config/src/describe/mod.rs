@@ -11,8 +11,8 @@ pub use analysis::{
     accelerograms, broadband, cost_before_building, events, report, scale, seeds, set, skip_ahead, spectra,
 };
 pub use scene::{
-    Probe, block, critical_step, describe_boundaries, describe_friction, fault, record, run_cost, spring_slider,
-    stages, stiffness,
+    Probe, block, critical_step, describe_boundaries, describe_friction, fault, medium, record, run_cost,
+    spring_slider, stages, stiffness,
 };
 
 use stickslip_solver::{Model, NodeId};

@@ -507,3 +507,101 @@ pub fn record(model: &Model) -> Section {
     }
     s
 }
+
+/// The medium (docs/model.md §18): the layers with what the lattice carries in each, the Q band
+/// and its fit, the dashpots; empty for the homogeneous elastic `[material]`.
+pub fn medium(scene: &Scene) -> Section {
+    let mut s = Section::default();
+    let medium = &scene.medium;
+    if medium.is_default() {
+        return s;
+    }
+    let zones = scene.zones();
+    let band = |z: &stickslip_solver::medium::Zone| scene.zone_band(z, 0.05).map_or(f64::NAN, |b| b.f_max_hz);
+    match &medium.profile {
+        Some(p) => {
+            s.push(
+                "medium",
+                format!(
+                    "medium: {} layers below {} (the Earth's surface), V_S30 {:.0} m/s; the lattice takes each layer's Vs and ρ, \
+                     its Vp follows at ν = {} (√3·Vs at 0.25); a surface station stands in the lattice on Vs {:.0} m/s (the \
+                     top module's travel-time mean)",
+                    p.layers.len(),
+                    p.surface.name(),
+                    p.vs30(),
+                    N(scene.poisson),
+                    scene.lattice_surface_vs_m_s()
+                ),
+            );
+            for ((i, (l, top)), z) in p.layers.iter().zip(p.tops()).enumerate().zip(&zones) {
+                let bottom =
+                    if l.thickness_m.is_finite() { format!("{} m", N(top + l.thickness_m)) } else { "∞".into() };
+                s.push(
+                    "medium",
+                    format!(
+                        "  layer {i}: {}–{bottom}, Vs {:.0} m/s, Vp {:.0} m/s (profile {:.0}), ρ {:.0} kg/m³, Q {} (profile Qp \
+                         {:.0}, Qs {:.0}); a lattice of it would carry waves to {:.3} Hz{}",
+                        N(top),
+                        l.vs_m_s,
+                        z.vp_m_s,
+                        l.vp_m_s,
+                        l.density_kg_m3,
+                        if z.q().is_finite() { format!("{:.0}", z.q()) } else { "∞".into() },
+                        l.qp,
+                        l.qs,
+                        band(z),
+                        if l.thickness_m < scene.lc_m { " (thinner than a module: averaged into its bars)" } else { "" }
+                    ),
+                );
+            }
+        }
+        None => s.push(
+            "medium",
+            format!(
+                "medium: the homogeneous [material] (Vs {:.0} m/s), Q {}; the lattice carries waves to {:.3} Hz",
+                zones[0].vs_m_s,
+                if zones[0].q().is_finite() { format!("{:.0}", zones[0].q()) } else { "∞".into() },
+                band(&zones[0])
+            ),
+        ),
+    }
+    if medium.profile.is_some() {
+        let slowest = scene.slowest_carried();
+        s.push(
+            "medium",
+            format!(
+                "  the lattice's slowest module carries Vs {:.0} m/s: waves within 5% of their speeds to {:.3} Hz there",
+                slowest.vs_m_s,
+                band(&slowest)
+            ),
+        );
+    }
+    if let Some(a) = &medium.attenuation {
+        let misfit = zones.iter().filter_map(|z| z.relaxation.as_ref()).map(|r| r.misfit()).fold(0.0, f64::max);
+        s.push(
+            "medium",
+            format!(
+                "attenuation: constant Q over {}–{} Hz (phase speeds the profile's at {} Hz) by {} relaxation mechanisms on \
+                 every bar, Q flat within {:.1}%; one Q for P and S (Qp = Qs: a central-force lattice carries one); \
+                 +{} bytes per bar and seed",
+                N(a.band_hz[0]),
+                N(a.band_hz[1]),
+                N(a.reference_hz),
+                stickslip_solver::medium::MECHANISMS,
+                100.0 * misfit,
+                4 * stickslip_solver::medium::MECHANISMS
+            ),
+        );
+    }
+    if medium.kelvin_voigt_s > 0.0 {
+        s.push(
+            "medium",
+            format!(
+                "Kelvin–Voigt damping: β = {} s on every bar (damping ratio β·ω/2 of a mode ω); the stable step is \
+                 (√(1 + ξ²) − ξ) of the undamped one, ξ = β/Δt_c (in the step below)",
+                N(medium.kelvin_voigt_s)
+            ),
+        );
+    }
+    s
+}

@@ -14,6 +14,7 @@ mod boundaries;
 mod fault;
 mod friction;
 mod loading;
+mod medium;
 mod record;
 mod rupture;
 mod sections;
@@ -31,6 +32,7 @@ pub use fault::{
     FaultSection, StationSection, StochasticSection, TRACTION_GRID_HEADER, TractionGridSection, TractionPatchSection,
     Vs30,
 };
+pub use medium::{AttenuationSection, LayerSection, MAX_LAYERS, MediumSection, lowest_q, parse_velocity_file};
 pub use sections::*;
 pub use stage_sections::*;
 
@@ -73,6 +75,9 @@ pub struct SceneSections<'a> {
     /// `[[stations]]` (left out of the canonical form when empty).
     #[serde(skip_serializing_if = "is_empty")]
     pub stations: &'a Vec<StationSection>,
+    /// `[medium]` (left out of the canonical form when absent).
+    #[serde(skip_serializing_if = "is_absent")]
+    pub medium: &'a Option<MediumSection>,
 }
 
 impl SceneSections<'_> {
@@ -121,6 +126,7 @@ pub(crate) fn build(file: SceneSections<'_>, ck: &mut Checker) -> Option<Scene> 
     control.dedup();
     let fault = fault::fault(ck, file, &lattice);
     let absorbing = boundaries::absorbing(ck, file);
+    let medium = medium::medium(ck, file);
     let friction = friction::friction(ck, file.friction, law, &lattice);
     let (plate, normal_load) = match file.loading_plate {
         Some(lp) => boundaries::loading_plate(ck, lp, &lattice, &fixed),
@@ -153,6 +159,6 @@ pub(crate) fn build(file: SceneSections<'_>, ck: &mut Checker) -> Option<Scene> 
         rupture,
         fault,
         stations,
-        medium: stickslip_solver::medium::Medium::default(),
+        medium,
     })
 }

@@ -21,8 +21,8 @@
 //! `r_rup_m`, `r_jb_m`, `r_x_m`, `r_y0_m`, `azimuth_deg`, `pga_m_s2`, `pgv_m_s`, `pgd_m`
 //! (horizontal: largest |(x, z)| of the raw record), `pga_vertical_m_s2` f64; of the processed
 //! record (docs/model.md §16.2; with `[broadband]` the broadband record of §17 at the station's
-//! site): `record_kind` str (`lattice` or `broadband`), `vs30_m_s` (the site; null for a lattice
-//! record), `pga_rotd50_m_s2`, `pgv_rotd50_m_s`, `arias_m_s`, `d5_95_s`, `cav_m_s` (each the mean
+//! site): `record_kind` str (`lattice` or `broadband`), `vs30_m_s` (the site; for a lattice
+//! record the V_S30 of the layered medium's profile at a surface station, null without one), `pga_rotd50_m_s2`, `pgv_rotd50_m_s`, `arias_m_s`, `d5_95_s`, `cav_m_s` (each the mean
 //! of the two horizontal components'), `f_low_hz`, `f_high_hz` (its band-pass),
 //! `usable_min_period_s`, `usable_max_period_s` f64 (null without a processed record),
 //! `motion_note` str (why there is none; null otherwise). A station simulated on several sites
@@ -288,7 +288,10 @@ pub fn stations_frame(seed: u64, rows: &[StationRow]) -> Result<DataFrame, Store
             col::RECORD_KIND,
             rows.iter().map(|r| if r.broadband.is_some() { "broadband" } else { "lattice" }).collect(),
         )
-        .opt_f64(col::VS30_M_S, rows.iter().map(|r| r.broadband.as_ref().map(|b| b.vs30_m_s)).collect())
+        .opt_f64(
+            col::VS30_M_S,
+            rows.iter().map(|r| r.broadband.as_ref().map(|b| b.vs30_m_s).or(r.site_vs30_m_s)).collect(),
+        )
         .opt_f64(col::PGA_ROTD50_M_S2, motion(&|m| m.pga_rotd50_m_s2))
         .opt_f64(col::PGV_ROTD50_M_S, motion(&|m| m.pgv_rotd50_m_s))
         .opt_f64(col::ARIAS_M_S, motion(&|m| m.arias_m_s))
