@@ -177,7 +177,7 @@ pub fn records(
         for spec in specs {
             let site = HybridSite {
                 vs30_m_s: spec.vs30_m_s,
-                deterministic_vref_m_s: model.scene().lattice_surface_vs_m_s(),
+                deterministic_vref_m_s: model.scene().site_vs30_m_s().unwrap_or(src.s_speed_m_s),
                 stochastic_vref_m_s: p.crust.vs30_m_s(),
             };
             let started = crate::thread_cpu_s();

@@ -20,6 +20,7 @@ pub mod calibrate;
 pub mod convergence;
 pub mod ensemble_cost;
 pub mod kernel_scene;
+pub mod medium_cost;
 pub mod part_a;
 pub mod peer;
 pub mod readme;

@@ -641,7 +641,10 @@ impl Scene {
         self.medium.depth(p, self.lattice().extent())
     }
 
-    /// V_S30 of the profile (m/s) when the scene has one: every surface station's site.
+    /// V_S30 of the profile (m/s) when the scene has one: every surface station's site, and the
+    /// reference site of the lattice's part of a broadband record (as the Broadband Platform takes
+    /// its 1D model's V_S30 for its low-frequency part: below 1 Hz the top tens of metres the
+    /// lattice averages away change the motion little, the deeper crust it carries does).
     pub fn site_vs30_m_s(&self) -> Option<f64> {
         self.medium.profile.as_ref().map(Profile::vs30)
     }

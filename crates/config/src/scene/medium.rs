@@ -173,7 +173,7 @@ pub(in crate::scene) fn medium(ck: &mut Checker, file: SceneSections<'_>) -> Med
     let lc = file.block.lc_m;
     let (young, rho, nu) = (file.material.young_pa, file.material.density_kg_m3, file.material.poisson);
     let profile = if m.layers.is_empty() {
-        if let Some(s) = &m.surface {
+        if let Some(s) = m.surface.as_ref().filter(|_| m.profile_file.is_none()) {
             ck.push(
                 "medium.surface",
                 format!("\"{s}\""),
@@ -397,7 +397,7 @@ fn attenuation(
             let lowest = lowest_q(a.band_hz);
             ck.push(
                 "medium.attenuation",
-                format!("Q = {} in layer {i}", approx(r.q)),
+                if profile.is_some() { format!("Q = {} in layer {i}", approx(r.q)) } else { format!("Q = {}", approx(r.q)) },
                 format!(
                     "Q ≥ {} over [{}, {}] Hz: below it the relaxed moduli fall under 10% of the unrelaxed ones",
                     approx(lowest),

@@ -22,7 +22,7 @@ use nalgebra::{Complex, DMatrix, DVector};
 pub const MECHANISMS: usize = 4;
 
 /// The largest total weight `Σλ_j`: the relaxed stiffness stays at least 10% of the unrelaxed
-/// one (the lowest Q over a band follows from it: about 5 over 0.05–5 Hz).
+/// one (the lowest Q over a band follows from it: 2 over 0.05–5 Hz).
 pub const MAX_WEIGHT: f64 = 0.9;
 
 /// The widest band (upper over lower edge) four mechanisms hold Q flat over to 2.5%.

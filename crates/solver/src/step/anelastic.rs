@@ -154,10 +154,55 @@ impl<const L: usize> Pass<'_, L> {
     /// As [`Pass::bar`] for every bar of the run.
     unsafe fn run(&self, index: usize, r: &Run, zone: usize) {
         let (lo, hi) = (r.start as usize, (r.start + r.offset) as usize);
-        for m in 0..r.len as usize {
-            let k: Lanes<L> = std::array::from_fn(|l| self.k.of_run_bar(index, r, m, l));
+        let StiffnessRef::Factored { runs, factors } = self.k else {
+            // Per-bar stiffness on a stencil (a test's): the general path.
+            for m in 0..r.len as usize {
+                let k: Lanes<L> = std::array::from_fn(|l| self.k.of_run_bar(index, r, m, l));
+                // SAFETY: forwarded contract.
+                unsafe { self.bar(r.first_bar as usize + m, zone, &k, r.direction, lo + m, hi + m) };
+            }
+            return;
+        };
+        // The direction, the run's stiffness and the zone's coefficients hoisted out of the loop.
+        let (n, nominal) = (r.len as usize, &runs[index]);
+        let at = zone * MECHANISMS;
+        let (decay, gain) = (&self.a.decay[at..at + MECHANISMS], &self.a.gain[at..at + MECHANISMS]);
+        let (sx, sy, axis) = match r.direction {
+            Direction::Axis(a) => (0.0, 0.0, Some(a as usize)),
+            Direction::Diagonal { neg_x, neg_y } => {
+                let (sx, sy) = signs(neg_x, neg_y);
+                (sx, sy, None)
+            }
+        };
+        let (u, v) = (&self.now.c, &self.before.c);
+        for m in 0..n {
+            let (i, j, bar) = (lo + m, hi + m, r.first_bar as usize + m);
+            let base = nominal.at(m, n);
+            let mut t = [0.0; L];
+            for l in 0..L {
+                let k = factors.map_or(base, |f| base * f64::from(f[bar][l]));
+                let (en, ep) = match axis {
+                    Some(a) => (u[a][j][l] - u[a][i][l], v[a][j][l] - v[a][i][l]),
+                    None => (
+                        sx * (u[0][j][l] - u[0][i][l]) + sy * (u[1][j][l] - u[1][i][l]) + (u[2][j][l] - u[2][i][l]),
+                        sx * (v[0][j][l] - v[0][i][l]) + sy * (v[1][j][l] - v[1][i][l]) + (v[2][j][l] - v[2][i][l]),
+                    ),
+                };
+                let mut tension = k * self.a.viscous[l] * (en - ep);
+                if self.a.memory {
+                    // SAFETY: forwarded contract (the run's bars are below the memory's length).
+                    let z = unsafe { &mut (*self.zeta.0.add(bar))[l] };
+                    let mut sum = 0.0;
+                    for q in 0..MECHANISMS {
+                        z[q] = (decay[q][l] * f64::from(z[q]) + gain[q][l] * (en + ep)) as f32;
+                        sum += f64::from(z[q]);
+                    }
+                    tension -= k * sum;
+                }
+                t[l] = tension;
+            }
             // SAFETY: forwarded contract.
-            unsafe { self.bar(r.first_bar as usize + m, zone, &k, r.direction, lo + m, hi + m) };
+            unsafe { scatter(self.f, r.direction, i, j, &t) };
         }
     }
 }
