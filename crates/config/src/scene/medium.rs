@@ -397,7 +397,11 @@ fn attenuation(
             let lowest = lowest_q(a.band_hz);
             ck.push(
                 "medium.attenuation",
-                if profile.is_some() { format!("Q = {} in layer {i}", approx(r.q)) } else { format!("Q = {}", approx(r.q)) },
+                if profile.is_some() {
+                    format!("Q = {} in layer {i}", approx(r.q))
+                } else {
+                    format!("Q = {}", approx(r.q))
+                },
                 format!(
                     "Q ≥ {} over [{}, {}] Hz: below it the relaxed moduli fall under 10% of the unrelaxed ones",
                     approx(lowest),

@@ -203,7 +203,7 @@ pub(crate) fn accumulate<const L: usize>(p: &Params<'_, L>, state: &mut State<L>
         }
     }
     if let Some(a) = &p.anelastic {
-        let w = crate::step::anelastic::work(model, a, p.stiffness(), [new, &u.np1, old], &state_anelastic);
+        let w = crate::step::anelastic::work(model, a, p.stiffness(), [new, &u.np1, old], state_anelastic);
         for l in 0..L {
             energy[l].anelastic += w[l];
         }

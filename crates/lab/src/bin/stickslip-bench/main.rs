@@ -2,6 +2,7 @@
 //! `reports/bench/`). A developers' tool beside the product's `stickslip` binary, which does not
 //! link the lab: `cargo run --release -p stickslip-lab --bin stickslip-bench -- <command>`.
 
+mod medium;
 mod part_a;
 
 use std::path::{Path, PathBuf};
@@ -155,28 +156,8 @@ enum Command {
         #[arg(long, default_value_t = 20)]
         steps: usize,
     },
-    /// What the medium costs a step (docs/model.md §18): the pipeline's scene at the given size
-    /// (e.g. `large-block.toml 250 75 24` for 2.8 M bars, `500 150 48` for 50 M) elastic, with
-    /// Q = 50 over 0.05–5 Hz, and with Q and Kelvin–Voigt dashpots, taken in turn, best of the rounds.
-    Medium {
-        /// Pipeline file (TOML).
-        pipeline: PathBuf,
-        /// Modules along x [default: the pipeline's].
-        nx: Option<usize>,
-        /// Modules along y.
-        ny: Option<usize>,
-        /// Modules along z.
-        nz: Option<usize>,
-        /// Steps timed per variant and round.
-        #[arg(long, default_value_t = 20)]
-        steps: usize,
-        /// Rounds of the three variants.
-        #[arg(long, default_value_t = 2)]
-        rounds: usize,
-        /// Threads (the step split over them).
-        #[arg(long, default_value_t = 1)]
-        threads: usize,
-    },
+    /// What the medium costs a step (docs/model.md §18, BENCHMARKS.md §11).
+    Medium(medium::MediumArgs),
     /// Sweeps assumed values of a pipeline's scene over seeds and prints the main shocks of each
     /// combination, e.g. `d2=100,400,900 t0=0.002,0.02` (keys: z, y, d2, d1, t0, frac, dur, vel,
     /// mud, dc).
@@ -316,28 +297,7 @@ fn run(c: Command) -> Result<()> {
             let _ = std::fs::remove_dir_all(&out);
             Ok(())
         }
-        Command::Medium { pipeline, nx, ny, nz, steps, rounds, threads } => {
-            let p = Pipeline::load(&pipeline)?;
-            let mut scene = p.scene.clone();
-            let d = scene.dims;
-            scene.dims = stickslip_solver::Dims::new(nx.unwrap_or(d.nx), ny.unwrap_or(d.ny), nz.unwrap_or(d.nz));
-            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build()?;
-            let timings =
-                pool.install(|| stickslip_lab::medium_cost::medium_cost(&scene, steps, rounds, threads > 1))?;
-            let elastic = timings[0].step_s;
-            println!("{:<32} {:>11} {:>10} {:>9} {:>14}", "medium", "bars", "step_ms", "ratio", "bytes/bar +");
-            for t in &timings {
-                println!(
-                    "{:<32} {:>11} {:>10.2} {:>9.2} {:>14.1}",
-                    t.name,
-                    t.bars,
-                    1e3 * t.step_s,
-                    t.step_s / elastic,
-                    t.extra_bytes_per_bar
-                );
-            }
-            Ok(())
-        }
+        Command::Medium(a) => medium::run(a),
         Command::Setup { pipeline, nx, ny, nz, steps } => {
             let p = Pipeline::load(&pipeline)?;
             let mut scene = p.scene.clone();
