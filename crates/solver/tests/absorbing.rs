@@ -5,7 +5,6 @@
 
 mod common;
 
-use common::scene_with;
 use stickslip_solver::geometry::{Face, NodeKind};
 use stickslip_solver::material::lattice_elastic_constants;
 use stickslip_solver::scene::BoundarySpec;
@@ -13,40 +12,9 @@ use stickslip_solver::statics::critical_time_step;
 use stickslip_solver::step::{Batch, LaneSetup, Tracking};
 use stickslip_solver::{Dims, Model, NodeId, Scene};
 
-/// A column of `nz` modules of 100 m in rock (ρ 2670, Cp 6000, Cs 3464 m/s, ν 0.25), 2 × 2
-/// across, its lateral faces symmetry planes for a plane wave along z of polarisation `axis`
-/// (the P wave: each lateral face holds its normal component; the S wave along x: the lateral
-/// faces hold y and z), the top face absorbing if `absorbing`.
+/// The common column (`common::column`), its top face absorbing if `absorbing`.
 fn column(nz: usize, axis: usize, absorbing: bool) -> Scene {
-    let mut s = scene_with(|f| {
-        f.block.nx = 2;
-        f.block.ny = 2;
-        f.block.nz = nz as i64;
-        f.block.lc_m = 100.0;
-        f.material.young_pa = 8.01e10;
-        f.material.density_kg_m3 = 2670.0;
-        f.material.poisson = 0.25;
-        f.material.young_cv = 0.0;
-        f.self_weight.gravity_m_s2 = 0.0;
-    });
-    s.dims = Dims::new(2, 2, nz);
-    s.boundaries.retain(|b| !matches!(b, BoundarySpec::Drivers(_)));
-    s.record.interface.clear();
-    let lattice = s.lattice();
-    let mut fixed = std::collections::BTreeMap::<NodeId, [bool; 3]>::new();
-    for face in [Face::XMin, Face::XMax, Face::YMin, Face::YMax] {
-        let (normal, _) = face.axis();
-        for id in face.nodes(&lattice) {
-            let m = fixed.entry(id).or_default();
-            if axis == 2 {
-                m[normal] = true;
-            } else {
-                m[1] = true;
-                m[2] = true;
-            }
-        }
-    }
-    s.set_boundary(BoundarySpec::Rollers(fixed.into_iter().collect()));
+    let mut s = common::column(nz, axis);
     if absorbing {
         s.set_boundary(BoundarySpec::Absorbing(vec![Face::ZMax]));
     }

@@ -11,51 +11,21 @@ mod common;
 
 use std::f64::consts::PI;
 
-use common::scene_with;
 use stickslip_solver::geometry::Face;
 use stickslip_solver::material::lattice_elastic_constants;
 use stickslip_solver::medium::{Attenuation, Layer, Medium, Profile, QRule};
 use stickslip_solver::scene::BoundarySpec;
 use stickslip_solver::statics::critical_step_on;
 use stickslip_solver::step::{Batch, LaneSetup, Tracking};
-use stickslip_solver::{Dims, Model, NodeId, Scene};
+use stickslip_solver::{Dims, Model, Scene};
 
 const LC: f64 = 100.0;
 const RHO: f64 = 2670.0;
 const YOUNG: f64 = 8.01e10;
 
-/// A column of `nz` modules of 100 m, 2 × 2 across, its lateral faces symmetry planes for a plane
-/// wave along z of polarisation `axis` (2: P; 0: S), in `medium`, absorbing at `absorbing`.
+/// The common column of 100 m modules (`common::column`) in `medium`, absorbing at `absorbing`.
 fn column(nz: usize, axis: usize, medium: Medium, absorbing: &[Face]) -> Scene {
-    let mut s = scene_with(|f| {
-        f.block.nx = 2;
-        f.block.ny = 2;
-        f.block.nz = nz as i64;
-        f.block.lc_m = LC;
-        f.material.young_pa = YOUNG;
-        f.material.density_kg_m3 = RHO;
-        f.material.poisson = 0.25;
-        f.material.young_cv = 0.0;
-        f.self_weight.gravity_m_s2 = 0.0;
-    });
-    s.dims = Dims::new(2, 2, nz);
-    s.boundaries.retain(|b| !matches!(b, BoundarySpec::Drivers(_)));
-    s.record.interface.clear();
-    let lattice = s.lattice();
-    let mut fixed = std::collections::BTreeMap::<NodeId, [bool; 3]>::new();
-    for face in [Face::XMin, Face::XMax, Face::YMin, Face::YMax] {
-        let (normal, _) = face.axis();
-        for id in face.nodes(&lattice) {
-            let m = fixed.entry(id).or_default();
-            if axis == 2 {
-                m[normal] = true;
-            } else {
-                m[1] = true;
-                m[2] = true;
-            }
-        }
-    }
-    s.set_boundary(BoundarySpec::Rollers(fixed.into_iter().collect()));
+    let mut s = common::column(nz, axis);
     if !absorbing.is_empty() {
         s.set_boundary(BoundarySpec::Absorbing(absorbing.to_vec()));
     }
