@@ -3,10 +3,11 @@
 //! motions.
 //!
 //! On a fault the slip of each node is known (twice the face's displacement), so the moment is
-//! the physical one, `M0 = μ·Σ A_i·|D_i|` over the ruptured nodes (those whose slip rate reached
-//! `[events] rupture_rate_m_s`), `μ` the lattice's shear modulus `C44`, and `Mw = (2/3)·(log10 M0 −
-//! 9.1)` (Hanks & Kanamori 1979, M0 in N·m). The stress drop is the area-weighted mean over the
-//! ruptured nodes of the initial minus the final shear traction along the mean slip direction;
+//! the physical one, `M0 = Σ μ_i·A_i·|D_i|` over the ruptured nodes (those whose slip rate reached
+//! `[events] rupture_rate_m_s`), `μ_i` the lattice's shear modulus `C44` at node i's depth (one
+//! value in a homogeneous medium, its layer's in a layered one, docs/model.md §18), and
+//! `Mw = (2/3)·(log10 M0 − 9.1)` (Hanks & Kanamori 1979, M0 in N·m). The stress drop is the
+//! area-weighted mean over the ruptured nodes of the initial minus the final shear traction along the mean slip direction;
 //! the Brune (1970) corner frequency of that moment and drop is `f0 = 0.4906·β·(Δσ/M0)^(1/3)`.
 //!
 //! The block lies on its side (docs/model.md §15): x along strike, y down dip (y = 0 the Earth's

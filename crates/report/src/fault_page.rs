@@ -70,7 +70,7 @@ pub(crate) fn source_section(w: &mut String, d: &ReportInput, figures: &[Figure]
     let _ = write!(
         w,
         "<h2>Source</h2>\n<p>The rupture of each seed, from its fault's own slip (table <a \
-         href=\"tables/source.parquet\">source</a>; docs/model.md §15): the seismic moment M0 = μ·Σ A·|D| over the \
+         href=\"tables/source.parquet\">source</a>; docs/model.md §15): the seismic moment M0 = Σ μ·A·|D| (μ the rigidity at each node's depth) over the \
          nodes whose slip rate reached [events] rupture_rate_m_s, Mw = (2/3)·(log10 M0 − 9.1) (Hanks &amp; Kanamori), \
          the stress drop averaged over them by area, the rupture duration when the last of them ruptured, the \
          hypocentre where the first did.</p>\n"

@@ -420,7 +420,7 @@ fn tables_and_files(w: &mut String, d: &ReportInput, fault: bool) {
     }
     let conventions = if fault {
         "τ is the fault's shear traction; times are counted from the start of the run; a node's slip is twice \
-         its face's displacement; Mw = (2/3)·(log10 M0 − 9.1) with M0 = μ·Σ A·|D| over the ruptured nodes"
+         its face's displacement; Mw = (2/3)·(log10 M0 − 9.1) with M0 = Σ μ·A·|D| over the ruptured nodes (μ at each node's depth)"
     } else {
         "τ is positive when the base resists the push; times are counted from the start of the shear stage; \
          \"M (paper's M0)\" uses Eq. 15 as printed (Δσ·L_p·A_p·λ), Mw the consistent moment Δσ·L_p·A_p"
