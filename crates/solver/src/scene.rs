@@ -602,12 +602,11 @@ impl Scene {
         let zones = self.zones();
         let Some(p) = &self.medium.profile else { return zones[0].clone() };
         let depth = self.lattice().extent()[p.depth_axis()];
-        let index = |l: &crate::medium::Layer| p.layers.iter().position(|m| std::ptr::eq(m, l)).expect("its layer");
         let mut slowest: Option<Zone> = None;
         let mut top = 0.0;
         while top < depth {
-            let young = p.mean_over(top, top + self.lc_m, |l| zones[index(l)].young);
-            let density = p.mean_over(top, top + self.lc_m, |l| zones[index(l)].density);
+            let young = p.mean_over(top, top + self.lc_m, |i| zones[i].young);
+            let density = p.mean_over(top, top + self.lc_m, |i| zones[i].density);
             let ratio = (young / density).sqrt();
             if slowest.as_ref().is_none_or(|z| ratio < (z.young / z.density).sqrt()) {
                 let vs = zones[0].vs_m_s / (zones[0].young / zones[0].density).sqrt() * ratio;
@@ -655,7 +654,7 @@ impl Scene {
     pub fn lattice_surface_vs_m_s(&self) -> f64 {
         match &self.medium.profile {
             None => self.s_wave_speed(),
-            Some(p) => 1.0 / p.mean_over(0.0, self.lc_m, |l| 1.0 / l.vs_m_s),
+            Some(p) => 1.0 / p.mean_over(0.0, self.lc_m, |i| 1.0 / p.layers[i].vs_m_s),
         }
     }
 }

@@ -94,25 +94,27 @@ impl Profile {
             .collect()
     }
 
-    /// The mean of `value` over depths `[a, b]` (clipped at the surface), weighted by thickness.
-    pub fn mean_over(&self, a: f64, b: f64, value: impl Fn(&Layer) -> f64) -> f64 {
+    /// The mean of `value(layer index)` over depths `[a, b]` (clipped at the surface), weighted by
+    /// thickness.
+    pub fn mean_over(&self, a: f64, b: f64, value: impl Fn(usize) -> f64) -> f64 {
         let (a, b) = (a.max(0.0), b.max(0.0));
         if b <= a {
-            return value(&self.layers[self.layer_at(a)]);
+            return value(self.layer_at(a));
         }
-        let mut sum = 0.0;
-        for (top, l) in self.tops().into_iter().zip(&self.layers) {
+        let (mut sum, mut top): (f64, f64) = (0.0, 0.0);
+        for (i, l) in self.layers.iter().enumerate() {
             let (lo, hi) = (top.max(a), (top + l.thickness_m).min(b));
             if hi > lo {
-                sum += (hi - lo) * value(l);
+                sum += (hi - lo) * value(i);
             }
+            top += l.thickness_m;
         }
         sum / (b - a)
     }
 
     /// The time-averaged S-wave speed of the top 30 m, `30 / Σ hᵢ/Vsᵢ` (m/s): V_S30.
     pub fn vs30(&self) -> f64 {
-        1.0 / self.mean_over(0.0, 30.0, |l| 1.0 / l.vs_m_s)
+        1.0 / self.mean_over(0.0, 30.0, |i| 1.0 / self.layers[i].vs_m_s)
     }
 }
 
@@ -230,7 +232,7 @@ impl Medium {
     pub fn young_over(&self, zones: &[Zone], a: f64, b: f64) -> f64 {
         match &self.profile {
             None => zones[0].young,
-            Some(p) => p.mean_over(a, b, |l| zones[layer_index(p, l)].young),
+            Some(p) => p.mean_over(a, b, |i| zones[i].young),
         }
     }
 
@@ -238,7 +240,7 @@ impl Medium {
     pub fn density_over(&self, zones: &[Zone], a: f64, b: f64) -> f64 {
         match &self.profile {
             None => zones[0].density,
-            Some(p) => p.mean_over(a, b, |l| zones[layer_index(p, l)].density),
+            Some(p) => p.mean_over(a, b, |i| zones[i].density),
         }
     }
 
@@ -256,11 +258,6 @@ impl Medium {
     pub fn depth_axis(&self) -> usize {
         self.profile.as_ref().map_or(2, Profile::depth_axis)
     }
-}
-
-/// The index of `layer` in `profile` (by address).
-fn layer_index(profile: &Profile, layer: &Layer) -> usize {
-    profile.layers.iter().position(|l| std::ptr::eq(l, layer)).expect("a layer of this profile")
 }
 
 /// The stable step with Kelvin–Voigt damping `β` over the undamped one `Δt_c = 2/ω_max`:
@@ -300,7 +297,7 @@ mod tests {
         let p = two_layers();
         assert_eq!(p.layer_at(9.99), 0);
         assert_eq!(p.layer_at(10.0), 1);
-        let rho = p.mean_over(5.0, 15.0, |l| l.density_kg_m3);
+        let rho = p.mean_over(5.0, 15.0, |i| p.layers[i].density_kg_m3);
         assert!((rho - 2200.0).abs() < 1e-9);
         assert_eq!(p.depth([0.0, 0.0, 80.0], [100.0, 100.0, 100.0]), 20.0);
     }

@@ -67,6 +67,39 @@ impl<const L: usize> AnelasticParams<L> {
     pub fn memory(&self) -> bool {
         self.memory
     }
+
+    /// The extra tension of a bar of stiffness `k` in lane `l` and zone offset `at`
+    /// (`zone·MECHANISMS`) from its elongations `en` (now) and `ep` (a step before), advancing its
+    /// memory variables `z` (none when the bars carry no Q).
+    #[inline(always)]
+    fn advance(&self, at: usize, l: usize, k: f64, en: f64, ep: f64, z: Option<&mut [f32; MECHANISMS]>) -> f64 {
+        let mut tension = k * self.viscous[l] * (en - ep);
+        if let Some(z) = z {
+            let (decay, gain) = (&self.decay[at..at + MECHANISMS], &self.gain[at..at + MECHANISMS]);
+            let mut sum = 0.0;
+            for m in 0..MECHANISMS {
+                z[m] = (decay[m][l] * f64::from(z[m]) + gain[m][l] * (en + ep)) as f32;
+                sum += f64::from(z[m]);
+            }
+            tension -= k * sum;
+        }
+        tension
+    }
+
+    /// The same tension from memory variables already advanced (what the ledger pairs with the
+    /// displacements of the step).
+    #[inline(always)]
+    fn held(&self, l: usize, k: f64, en: f64, ep: f64, z: Option<&[f32; MECHANISMS]>) -> f64 {
+        let mut tension = k * self.viscous[l] * (en - ep);
+        if let Some(z) = z {
+            let mut sum = 0.0;
+            for zm in z {
+                sum += f64::from(*zm);
+            }
+            tension -= k * sum;
+        }
+        tension
+    }
 }
 
 /// Memory variables and their pointer, shared by the threads of one phase (each bar is in
@@ -100,22 +133,11 @@ impl<const L: usize> Pass<'_, L> {
     #[inline(always)]
     unsafe fn bar(&self, bar: usize, zone: usize, k: &Lanes<L>, direction: Direction, i: usize, j: usize) {
         let mut t = [0.0; L];
-        let at = zone * MECHANISMS;
-        let (decay, gain) = (&self.a.decay[at..at + MECHANISMS], &self.a.gain[at..at + MECHANISMS]);
         for l in 0..L {
             let (en, ep) = (elongation(direction, self.now, i, j, l), elongation(direction, self.before, i, j, l));
-            let mut tension = k[l] * self.a.viscous[l] * (en - ep);
-            if self.a.memory {
-                // SAFETY: forwarded contract.
-                let z = unsafe { &mut (*self.zeta.0.add(bar))[l] };
-                let mut sum = 0.0;
-                for m in 0..MECHANISMS {
-                    z[m] = (decay[m][l] * f64::from(z[m]) + gain[m][l] * (en + ep)) as f32;
-                    sum += f64::from(z[m]);
-                }
-                tension -= k[l] * sum;
-            }
-            t[l] = tension;
+            // SAFETY: forwarded contract.
+            let z = self.a.memory.then(|| unsafe { &mut (*self.zeta.0.add(bar))[l] });
+            t[l] = self.a.advance(zone * MECHANISMS, l, k[l], en, ep, z);
         }
         // SAFETY: forwarded contract.
         unsafe { scatter(self.f, direction, i, j, &t) };
@@ -166,7 +188,6 @@ impl<const L: usize> Pass<'_, L> {
         // The direction, the run's stiffness and the zone's coefficients hoisted out of the loop.
         let (n, nominal) = (r.len as usize, &runs[index]);
         let at = zone * MECHANISMS;
-        let (decay, gain) = (&self.a.decay[at..at + MECHANISMS], &self.a.gain[at..at + MECHANISMS]);
         let (sx, sy, axis) = match r.direction {
             Direction::Axis(a) => (0.0, 0.0, Some(a as usize)),
             Direction::Diagonal { neg_x, neg_y } => {
@@ -188,18 +209,9 @@ impl<const L: usize> Pass<'_, L> {
                         sx * (v[0][j][l] - v[0][i][l]) + sy * (v[1][j][l] - v[1][i][l]) + (v[2][j][l] - v[2][i][l]),
                     ),
                 };
-                let mut tension = k * self.a.viscous[l] * (en - ep);
-                if self.a.memory {
-                    // SAFETY: forwarded contract (the run's bars are below the memory's length).
-                    let z = unsafe { &mut (*self.zeta.0.add(bar))[l] };
-                    let mut sum = 0.0;
-                    for q in 0..MECHANISMS {
-                        z[q] = (decay[q][l] * f64::from(z[q]) + gain[q][l] * (en + ep)) as f32;
-                        sum += f64::from(z[q]);
-                    }
-                    tension -= k * sum;
-                }
-                t[l] = tension;
+                // SAFETY: forwarded contract (the run's bars are below the memory's length).
+                let z = self.a.memory.then(|| unsafe { &mut (*self.zeta.0.add(bar))[l] });
+                t[l] = self.a.advance(at, l, k, en, ep, z);
             }
             // SAFETY: forwarded contract.
             unsafe { scatter(self.f, r.direction, i, j, &t) };
@@ -295,10 +307,7 @@ pub fn work<const L: usize>(
         for l in 0..L {
             let e = |u: &Field<L>| elongation(direction, u, i, j, l);
             let (en1, en, ep) = (e(new), e(now), e(old));
-            let mut t = kb[l] * a.viscous[l] * (en - ep);
-            if a.memory {
-                t -= kb[l] * zeta[bar][l].iter().map(|&z| f64::from(z)).sum::<f64>();
-            }
+            let t = a.held(l, kb[l], en, ep, a.memory.then(|| &zeta[bar][l]));
             sum[l] += 0.5 * t * (en1 - ep);
         }
     };
