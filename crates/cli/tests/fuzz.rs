@@ -38,7 +38,7 @@ impl Rng {
 }
 
 /// The top-level keys of a pipeline file: a refusal must name a field under one of them.
-const TOP_KEYS: [&str; 24] = [
+const TOP_KEYS: [&str; 26] = [
     "version",
     "name",
     "description",
@@ -57,11 +57,13 @@ const TOP_KEYS: [&str; 24] = [
     "fault",
     "absorbing",
     "stations",
+    "medium",
     "events",
     "similarity",
     "accelerograms",
     "spectra",
     "set",
+    "broadband",
     "report",
 ];
 

@@ -20,7 +20,7 @@
 use serde::{Deserialize, Serialize};
 use stickslip_analysis::settings::{AccelerogramSettings, EventChoice, MeanChoice, RecordSpan};
 use stickslip_seismo::accelerogram::processing::{MAX_CORNER_OF_NYQUIST, USABLE_LOW_FACTOR};
-use stickslip_seismo::accelerogram::{At2, FORMATS, RecordFormat, Sac};
+use stickslip_seismo::accelerogram::{At2, FORMATS, Mseed, RecordFormat, Sac};
 use stickslip_solver::NodeId;
 use stickslip_solver::scene::{Kinematic, Scene};
 
@@ -97,8 +97,8 @@ pub struct AccelerogramsSection {
     pub band_tolerance: f64,
     /// Degree of the polynomial baseline fitted to the displacement; 0 = none. Default 0.
     pub baseline_degree: i64,
-    /// Files written per record, at model and prototype scale: any of `"at2"`, `"sac"`, `"csv"`.
-    /// Default `["at2", "sac"]`. Every record is also in the `accelerograms` table.
+    /// Files written per record, at model and prototype scale: any of `"at2"`, `"sac"`, `"mseed"`,
+    /// `"csv"`. Default `["at2", "sac", "mseed"]`. Every record is also in the `accelerograms` table.
     pub formats: Vec<String>,
 }
 
@@ -119,7 +119,7 @@ impl Default for AccelerogramsSection {
             high_corner_hz: 0.0,
             band_tolerance: 0.05,
             baseline_degree: 0,
-            formats: vec![At2.name().into(), Sac.name().into()],
+            formats: vec![At2.name().into(), Sac.name().into(), Mseed.name().into()],
         }
     }
 }

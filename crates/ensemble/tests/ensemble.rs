@@ -91,7 +91,11 @@ fn tables_do_not_depend_on_the_thread_count_and_read_back_lazily() {
     let padded: u64 = model.column("samples").unwrap().cast(&DataType::UInt64).unwrap().u64().unwrap().sum().unwrap();
     assert!(window > 0 && 5 * window < padded, "windows {window} of {padded} padded samples");
     assert_eq!(scan(&tables.join("accelerograms/*.parquet")).height() as u64, window);
-    assert_eq!(std::fs::read_dir(dir.join("one/records")).unwrap().count() as u64, mains * 3 * 2 * 2, "AT2 and SAC");
+    assert_eq!(
+        std::fs::read_dir(dir.join("one/records")).unwrap().count() as u64,
+        mains * 3 * 2 * 3,
+        "AT2, SAC and MiniSEED"
+    );
     let events = scan(&tables.join("events/*.parquet"));
     let n_events: u32 = runs.column("events").unwrap().u32().unwrap().sum().unwrap();
     assert_eq!(events.height(), n_events as usize);

@@ -2,15 +2,17 @@
 //! in ([`band`]), and the file formats of a record.
 //!
 //! Every format a record can be written in is one file here implementing [`RecordFormat`] and
-//! listed in [`FORMATS`]: PEER `.AT2` ([`at2`]), SAC binary ([`sac`]) and CSV ([`csv`]); a
-//! pipeline names them in `accelerograms.formats` by [`RecordFormat::name`]. The Parquet form of
-//! a record is the output folder's `accelerograms` table. [`read_accelerogram`] reads the three
-//! back (AT2 and SAC by extension or content, anything else as CSV).
+//! listed in [`FORMATS`]: PEER `.AT2` ([`at2`]), SAC binary ([`sac`]), MiniSEED 2 ([`mseed`]) and
+//! CSV ([`csv`]); a pipeline names them in `accelerograms.formats` by [`RecordFormat::name`]. The
+//! Parquet form of a record is the output folder's `accelerograms` table. [`read_accelerogram`]
+//! reads them back (AT2, SAC and the product's own MiniSEED by extension or content, anything
+//! else as CSV).
 
 pub mod at2;
 pub mod band;
 pub mod csv;
 pub mod filter;
+pub mod mseed;
 pub mod processing;
 pub mod resample;
 pub mod sac;
@@ -21,6 +23,7 @@ use crate::error::SeismoError;
 
 pub use at2::{At2, at2_text, parse_at2, parse_npts_dt};
 pub use csv::{Csv, parse_csv};
+pub use mseed::Mseed;
 pub use sac::Sac;
 
 pub use crate::spectra::intensity::G;
@@ -133,7 +136,7 @@ impl PartialEq for dyn RecordFormat {
 }
 
 /// Every record format, in the order the documentation lists them.
-pub const FORMATS: &[&dyn RecordFormat] = &[&At2, &Sac, &Csv];
+pub const FORMATS: &[&dyn RecordFormat] = &[&At2, &Sac, &Mseed, &Csv];
 
 /// The format named `name` (as in [`RecordFormat::name`]).
 pub fn format_named(name: &str) -> Option<&'static dyn RecordFormat> {
@@ -150,13 +153,20 @@ pub fn is_sac(bytes: &[u8]) -> bool {
     }
 }
 
-/// Reads an accelerogram file, its format told by its content: SAC (either byte order, as this
+/// Reads an accelerogram file, its format told by its content: MiniSEED as this product writes it
+/// (by the extension `.mseed`; values in m/s²), SAC (either byte order, as this
 /// product and ObsPy write it; `IACC` values in nm/s², values of unknown unit in `unit`), PEER
 /// `.AT2` (by extension or its `PEER` first line), otherwise text: a time column and an
 /// acceleration column in `unit`, separated by commas, semicolons, tabs or whitespace (the
 /// product's CSV records included).
 pub fn read_accelerogram(path: &Path, unit: AccelUnit) -> Result<Accelerogram, SeismoError> {
     let bytes = std::fs::read(path).map_err(|source| SeismoError::Io { path: path.to_path_buf(), source })?;
+    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("mseed")) {
+        let trace = mseed::parse_mseed(&bytes)
+            .map_err(|e| SeismoError::Format { path: path.to_path_buf(), what: e.to_string() })?;
+        let description = trace.codes.iter().filter(|s| !s.is_empty()).cloned().collect::<Vec<_>>().join(".");
+        return Ok(Accelerogram { dt: 1.0 / trace.sample_rate_hz, accel: trace.samples, description });
+    }
     if is_sac(&bytes) {
         let trace = sac::parse_sac(&bytes, path)?;
         let m = &trace.meta;
