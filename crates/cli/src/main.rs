@@ -3,7 +3,6 @@
 
 #[macro_use]
 mod text;
-mod budget;
 mod commands;
 mod progress;
 

@@ -1,7 +1,7 @@
 //! What a scene will cost, checked before it is built: its memory against what the machine has
 //! available, and the length of its runs against [`LONG_RUN_BAR_UPDATES`].
 
-use anyhow::{Result, bail};
+use crate::error::EnsembleError;
 use stickslip_config::describe::duration;
 use stickslip_solver::Scene;
 use stickslip_solver::error::MAX_STEPS;
@@ -17,10 +17,10 @@ pub const MEMORY_LIMIT_VAR: &str = "STICKSLIP_MEMORY_LIMIT";
 /// set, else the smallest of the kernel's `MemAvailable`, the room left under the cgroup's
 /// `memory.max` (a Slurm job's limit) and the room left under the process's address-space limit
 /// (`ulimit -v`); `None` where none can be read.
-pub fn available_memory() -> Result<Option<(u64, String)>> {
+pub fn available_memory() -> Result<Option<(u64, String)>, EnsembleError> {
     if let Ok(v) = std::env::var(MEMORY_LIMIT_VAR) {
         let bytes = parse_bytes(&v).ok_or_else(|| {
-            anyhow::anyhow!("{MEMORY_LIMIT_VAR} = {v:?}: give a number of bytes, e.g. 16G or 17179869184")
+            refused(format!("{MEMORY_LIMIT_VAR} = {v:?}: give a number of bytes, e.g. 16G or 17179869184"))
         })?;
         return Ok(Some((bytes, format!("{MEMORY_LIMIT_VAR}={v}"))));
     }
@@ -60,6 +60,11 @@ fn address_space_room() -> Option<u64> {
     Some(lim.rlim_cur.saturating_sub(size.unwrap_or(0)))
 }
 
+/// A refusal of the budget: its message says what to change.
+fn refused(message: String) -> EnsembleError {
+    EnsembleError::Refused(message)
+}
+
 fn parse_bytes(v: &str) -> Option<u64> {
     let v = v.trim();
     let (digits, shift) = match v.chars().last()? {
@@ -74,7 +79,7 @@ fn parse_bytes(v: &str) -> Option<u64> {
 
 /// The memory of `seeds` seeds of `scene` on `threads` threads, refused (with what to change)
 /// when it does not fit what the machine has available. `what` names the run in the message.
-pub fn check_memory(scene: &Scene, seeds: usize, threads: usize, what: &str) -> Result<MemoryEstimate> {
+pub fn check_memory(scene: &Scene, seeds: usize, threads: usize, what: &str) -> Result<MemoryEstimate, EnsembleError> {
     let batches = Batches::of_ensemble(seeds, threads, scene.skip_ahead.enabled);
     let dt = dt_estimate(scene);
     let n_samples = samples(scene, dt);
@@ -82,16 +87,20 @@ pub fn check_memory(scene: &Scene, seeds: usize, threads: usize, what: &str) -> 
     // are what to cut (a long stage sampled finely), not the modules.
     let bare = estimate(scene, batches, 2).ok();
     let records = |total: &str, limit: &str| {
-        anyhow::anyhow!(
+        refused(format!(
             "{what}: the records of a seed, {n_samples} samples of every recorded channel (shear.duration_s / \
              record.interval_s, every step without it), need {total}, and {limit}: record less — a longer \
              record.interval_s or a shorter shear.duration_s (pipeline keys: record.interval_s, shear.duration_s)"
-        )
+        ))
     };
     let est = match (estimate(scene, batches, n_samples), &bare) {
         (Ok(e), _) => e,
         (Err(_), Some(_)) => return Err(records("more bytes than 64 bits count", "the lattice alone fits")),
-        (Err(e), None) => bail!("{what}: {e}: use fewer modules (pipeline keys: block.nx, block.ny, block.nz)"),
+        (Err(e), None) => {
+            return Err(refused(format!(
+                "{what}: {e}: use fewer modules (pipeline keys: block.nx, block.ny, block.nz)"
+            )));
+        }
     };
     let Some((limit, source)) = available_memory()? else { return Ok(est) };
     if est.total <= limit {
@@ -104,7 +113,7 @@ pub fn check_memory(scene: &Scene, seeds: usize, threads: usize, what: &str) -> 
         ));
     }
     let one = estimate(scene, Batches::ONE, n_samples)
-        .map_err(|e| anyhow::anyhow!("{what}: {e} (pipeline keys: block.nx, block.ny, block.nz)"))?;
+        .map_err(|e| refused(format!("{what}: {e} (pipeline keys: block.nx, block.ny, block.nz)")))?;
     let d = scene.dims;
     let per_module = (est.total.saturating_sub(est.model) as f64) / (d.nx as f64 * d.ny as f64 * d.nz as f64);
     let modules = (limit as f64 * 0.9 / per_module.max(1.0)).max(1.0);
@@ -137,7 +146,7 @@ pub fn check_memory(scene: &Scene, seeds: usize, threads: usize, what: &str) -> 
         "or run on a machine with more memory (or set STICKSLIP_MEMORY_LIMIT if the machine has more than it reports)"
             .into(),
     );
-    bail!(
+    Err(refused(format!(
         "{what} does not fit in memory: it needs about {} ({} nodes, {} bars: {} for the lattice, {} per batch of {} seed{} \
          × {} at once, {} while a batch is set up), and {} is available ({source}); {} (pipeline keys: block.nx, \
          block.ny, block.nz, block.lc_m)",
@@ -152,7 +161,7 @@ pub fn check_memory(scene: &Scene, seeds: usize, threads: usize, what: &str) -> 
         human(est.setup),
         human(limit),
         change.join("; ")
-    )
+    )))
 }
 
 /// Bar-updates per second of one thread of the development machine on a large lattice (whole
@@ -167,18 +176,18 @@ const LENGTH_KEYS: &str =
 /// Refuses, whatever `--allow-long` says, a run of `scene` at Δt = `dt` with a stage of more steps
 /// than it can count ([`MAX_STEPS`], or 2^64 bar-updates of `bars` bars): the limit the run of
 /// each seed enforces (`run::check_step_count`), checked before anything is built or estimated.
-pub fn check_count(scene: &Scene, bars: u64, dt: f64, what: &str) -> Result<()> {
+pub fn check_count(scene: &Scene, bars: u64, dt: f64, what: &str) -> Result<(), EnsembleError> {
     let (settle, shear) = run_steps(scene, dt);
     let updates = (settle as f64 + shear as f64) * bars as f64;
     if settle as f64 > MAX_STEPS || shear as f64 > MAX_STEPS || updates >= u64::MAX as f64 {
-        bail!(
+        return Err(refused(format!(
             "{what}: one seed is {:.3e} steps at Δt = {dt:.3e} s ({}shear {:.3e}) of {bars} bars, more than a run \
              can count (2^53 steps, 2^64 bar-updates; --allow-long does not lift this): lengthen the step \
              (time.dt_s or time.dt_fraction) or shorten shear.duration_s (pipeline keys: {LENGTH_KEYS})",
             settle as f64 + shear as f64,
             if settle > 0 { format!("self-weight up to {:.3e} + ", settle as f64) } else { String::new() },
             shear as f64
-        );
+        )));
     }
     Ok(())
 }
@@ -188,7 +197,14 @@ pub fn check_count(scene: &Scene, bars: u64, dt: f64, what: &str) -> Result<()> 
 /// `allow_long` says when a stage has more steps than a run can count ([`MAX_STEPS`], or 2^64
 /// bar-updates: the limit the run of each seed enforces, `run::check_step_count`).
 /// `rate` is the bar-updates per second of a timed probe ([`NOMINAL_RATE`] when none was made).
-pub fn check_length(scene: &Scene, bars: u64, dt: f64, rate: Option<f64>, allow_long: bool, what: &str) -> Result<f64> {
+pub fn check_length(
+    scene: &Scene,
+    bars: u64,
+    dt: f64,
+    rate: Option<f64>,
+    allow_long: bool,
+    what: &str,
+) -> Result<f64, EnsembleError> {
     check_count(scene, bars, dt, what)?;
     let (settle, shear) = run_steps(scene, dt);
     let updates = (settle as f64 + shear as f64) * bars as f64;
@@ -197,7 +213,7 @@ pub fn check_length(scene: &Scene, bars: u64, dt: f64, rate: Option<f64>, allow_
     // the count above is a bound that says nothing of the run's length (slow-loading.toml bounds
     // 3.7e9 steps and steps about 1e7).
     if updates > LONG_RUN_BAR_UPDATES && !allow_long && !scene.skip_ahead.enabled {
-        bail!(
+        return Err(refused(format!(
             "{what}: one seed is {} steps ({}shear {shear}) of {bars} bars, {updates:.3e} bar-updates, above the limit of \
              {LONG_RUN_BAR_UPDATES:.0e} for a run nobody asked to be long (about {} at {:.1e} bar-updates/s{}): pass \
              --allow-long to run it, or shorten shear.duration_s, or use fewer modules (pipeline keys: {LENGTH_KEYS})",
@@ -206,14 +222,20 @@ pub fn check_length(scene: &Scene, bars: u64, dt: f64, rate: Option<f64>, allow_
             duration(updates / rate.unwrap_or(NOMINAL_RATE)),
             rate.unwrap_or(NOMINAL_RATE),
             if rate.is_some() { ", a timed probe" } else { "" }
-        );
+        )));
     }
     Ok(updates)
 }
 
 /// Whether a scene is refused before it is built: its memory, and its length at the Δt estimated
 /// from the paper's bound (`pipeline` does not build the lattice twice).
-pub fn check_before_build(scene: &Scene, seeds: usize, threads: usize, allow_long: bool, what: &str) -> Result<()> {
+pub fn check_before_build(
+    scene: &Scene,
+    seeds: usize,
+    threads: usize,
+    allow_long: bool,
+    what: &str,
+) -> Result<(), EnsembleError> {
     if let Ok(e) = estimate(scene, Batches::ONE, 2) {
         check_count(scene, e.bars, dt_estimate(scene), what)?;
     }

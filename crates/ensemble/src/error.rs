@@ -63,6 +63,13 @@ pub enum EnsembleError {
     /// Something could not be set up.
     #[error("{0}")]
     Setup(String),
+    /// A run refused before it is built: it would not fit in memory, or is longer than asked for
+    /// (the message says what to change).
+    #[error("{0}")]
+    Refused(String),
+    /// A file of the exchange formats (StationXML, QuakeML, MiniSEED) could not be made.
+    #[error("exchange formats: {0}")]
+    Exchange(stickslip_seismo::SeismoError),
 }
 
 impl From<SolverError> for EnsembleError {

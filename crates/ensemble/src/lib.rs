@@ -5,15 +5,19 @@
 //! ([`run`]); resuming an interrupted ensemble, shards and their merge ([`merge`]); stopping once
 //! a statistic is precise enough ([`precision`]); gathering the tables and the statistics across
 //! seeds ([`gather`], [`summary`], [`catalogue`]), a fault scenario's stations against the
-//! ground-motion models ([`gmm`]) and the record set ([`set`]); what a finished run says when it
-//! closes ([`digest`]) and one main shock seed by seed ([`seed_table`]), read from its tables for
+//! ground-motion models ([`gmm`]) and the record set ([`set`]); the folder in seismology's exchange
+//! formats, StationXML, QuakeML and MiniSEED ([`exchange`]); what a finished run says when it
+//! closes ([`digest`]), what a pipeline will build and cost before it runs ([`check`], [`budget`]) and one main shock seed by seed ([`seed_table`]), read from its tables for
 //! the command line to print. Must not know: how one seed is analysed or written, the pipeline
 //! file's syntax (it takes a validated [`stickslip_config::Pipeline`]), figures, the command line.
 #![deny(missing_docs)]
 
+pub mod budget;
 pub mod catalogue;
+pub mod check;
 pub mod digest;
 pub mod error;
+pub mod exchange;
 pub mod gather;
 pub mod gmm;
 pub mod merge;

@@ -112,6 +112,7 @@ pub fn merge(out: &Path, pipeline: Option<&Path>, shards: Option<usize>) -> Resu
     }
     gather(&folder, &p.seeds, Gathering::default())?;
     let set = p.set.as_ref().map(|s| select_set(&folder, &p, s).map_err(|e| e.to_string()));
+    crate::exchange::write_exchange(&folder, &p)?;
     let failed = p.seeds.iter().filter(|s| found.get(s).is_some_and(|r| r.2 != "ok")).count();
     Ok(MergeReport { seeds: p.seeds.len(), failed, wall_time_s: start.elapsed().as_secs_f64(), pipeline: p, set })
 }

@@ -307,6 +307,7 @@ pub fn run_ensemble(
     {
         failed = runs.failed();
         set = pipeline.set.as_ref().map(|s| select_set(&out, pipeline, s).map_err(|e| e.to_string()));
+        crate::exchange::write_exchange(&out, pipeline)?;
     }
     profile.gather_s = thread_cpu_s() - gathering_started;
     let wall_time_s = start.elapsed().as_secs_f64();

@@ -4,7 +4,7 @@
 //! horizontal pair (5% damping, `station_spectra`, on the grid of
 //! [`stickslip_analysis::motions::spectrum_periods`] where every candidate is usable); a seed is
 //! one rupture, so `max_per` caps the records of one seed. The chosen stations are written scaled
-//! (both components by the same factor) as AT2 and SAC files under `<out>/set/`, each component
+//! (both components by the same factor) as AT2, SAC and MiniSEED files under `<out>/set/`, each component
 //! processed again by the function the analysis used, from the seed's `control` table (lattice
 //! records) or its `station_records` table (broadband records, docs/model.md §17, with their
 //! vertical component), so the files are the records the spectra were computed on, bit for bit;
@@ -19,7 +19,7 @@ use stickslip_config::check::Named;
 use stickslip_config::set::SetComponent;
 use stickslip_config::{Pipeline, SetSettings};
 use stickslip_seismo::accelerogram::processing::{Processed, ProcessingOptions, process, resample, resample_together};
-use stickslip_seismo::accelerogram::{At2, Orientation, RecordFile, RecordFormat, Sac};
+use stickslip_seismo::accelerogram::{At2, Mseed, Orientation, RecordFile, RecordFormat, Sac};
 use stickslip_solver::scene::{Component, Kinematic};
 use stickslip_store::Folder;
 use stickslip_store::frame::Columns;
@@ -34,19 +34,28 @@ use crate::set_pool::{Chosen, Member, Pool, SetOutcome, choose, clear_set_dir};
 
 /// A candidate station of one seed.
 #[derive(Clone)]
-struct Station {
-    seed: u64,
-    name: String,
-    node: u32,
+pub(crate) struct Station {
+    pub(crate) seed: u64,
+    pub(crate) name: String,
+    pub(crate) node: u32,
     /// Its position x, y, z (m).
-    position_m: [f64; 3],
+    pub(crate) position_m: [f64; 3],
     /// Band-pass corners its record was processed with (Hz).
-    band_hz: (f64, f64),
+    pub(crate) band_hz: (f64, f64),
     /// Its usable band (Hz).
-    usable_hz: (f64, f64),
+    pub(crate) usable_hz: (f64, f64),
     /// Its site, when it is a broadband record.
-    vs30_m_s: Option<f64>,
-    scenario: ScenarioMeta,
+    pub(crate) vs30_m_s: Option<f64>,
+    pub(crate) scenario: ScenarioMeta,
+}
+
+/// The station code of each of a fault scenario's stations: `S` and its rank (from 1, three
+/// digits) among the sorted names; MiniSEED 2 allows five characters.
+pub fn station_codes(names: &[String]) -> BTreeMap<String, String> {
+    let mut sorted: Vec<&String> = names.iter().collect();
+    sorted.sort();
+    sorted.dedup();
+    sorted.into_iter().enumerate().map(|(k, n)| (n.clone(), format!("S{:03}", k + 1))).collect()
 }
 
 /// Whether `v` lies in the bin `[lo, hi]` (no bin: every value).
@@ -202,15 +211,16 @@ pub fn select_station_set(
         .collect();
     write_parquet_atomic(&mut set_frame(&rows)?, &out.gathered(&SET))?;
     clear_set_dir(out)?;
-    write_station_files(out, pipeline, settings, &rows, &chosen)?;
+    let codes = station_codes(&name);
+    write_station_files(out, pipeline, settings, &rows, &chosen, &codes)?;
     Ok(SetOutcome { selection, rows, periods, target, spectra, candidates: pool.members.len(), pool: Some(note) })
 }
 
 /// A chosen station's record, processed as the analysis processed it: each component with its
 /// code and name, and the time of the record's first input sample (s of the run).
-struct Components {
-    parts: Vec<(&'static str, &'static str, Processed)>,
-    begin_s: f64,
+pub(crate) struct Components {
+    pub(crate) parts: Vec<(&'static str, &'static str, Processed)>,
+    pub(crate) begin_s: f64,
 }
 
 /// `v` to three significant digits.
@@ -222,7 +232,7 @@ fn approx3(v: f64) -> String {
 /// A component's SEED channel code (band `H` at 80 Hz or more, else `B`; instrument `N`, an
 /// accelerometer; orientation `1` along strike, `2` fault-normal, `Z` up) and its orientation in
 /// the files: the strike taken as north, the fault-normal side as east.
-fn channel(code: &str, dt_s: f64) -> (String, Orientation) {
+pub(crate) fn channel(code: &str, dt_s: f64) -> (String, Orientation) {
     let band = if 1.0 / dt_s >= 80.0 { 'H' } else { 'B' };
     let (axis, orientation) = match code {
         "FP" => ('1', Orientation { incidence_deg: 90.0, azimuth_deg: 0.0 }),
@@ -234,7 +244,7 @@ fn channel(code: &str, dt_s: f64) -> (String, Orientation) {
 
 /// The lattice record of `st` from the seed's control table: the last 2/f_low of the run at the
 /// interval asked, the horizontal pair and the vertical component when it was recorded.
-fn lattice_components(
+pub(crate) fn lattice_components(
     control: &DataFrame,
     seed: u64,
     st: &Station,
@@ -288,7 +298,7 @@ fn lattice_components(
 /// The broadband record of `st` from the seed's station_records table: the whole record at its
 /// interval, the horizontal pair as the analysis processed it and the vertical component with the
 /// same processing.
-fn broadband_components(records: &DataFrame, seed: u64, st: &Station) -> Result<Components, EnsembleError> {
+pub(crate) fn broadband_components(records: &DataFrame, seed: u64, st: &Station) -> Result<Components, EnsembleError> {
     let read = |component: &str| -> Result<ComponentRecord, EnsembleError> {
         read_station_record(records, &st.name, component)?.ok_or_else(|| {
             EnsembleError::Setup(format!(
@@ -319,7 +329,7 @@ fn broadband_components(records: &DataFrame, seed: u64, st: &Station) -> Result<
     })
 }
 
-/// Writes each chosen station's components scaled by its factor, as AT2 and SAC: `FP` the
+/// Writes each chosen station's components scaled by its factor, as AT2, SAC and MiniSEED: `FP` the
 /// fault-parallel component (x, along strike), `FN` the fault-normal one (z) and `UP` the
 /// vertical one (up, −y) when recorded; the magnitude in the header, the factor, the usable band and
 /// the distances in the SAC `USER` numbers.
@@ -329,6 +339,7 @@ fn write_station_files(
     settings: &SetSettings,
     rows: &[SetRow],
     chosen: &[&Station],
+    codes: &BTreeMap<String, String>,
 ) -> Result<(), EnsembleError> {
     let dir = out.set_dir();
     let mut by_seed: BTreeMap<u64, Vec<usize>> = BTreeMap::new();
@@ -402,6 +413,12 @@ fn write_station_files(
                     let bytes = format.encode(&record).map_err(EnsembleError::Set)?;
                     write_bytes_atomic(&dir.join(format!("{stem}.{}", format.extension())), &bytes)?;
                 }
+                // MiniSEED under the station's own code, whose channel the inventory describes
+                // (`exchange`): the set rank and scale factor are in the file's name and the set table.
+                let code = codes.get(&st.name).map_or(station.as_str(), String::as_str);
+                let mseed = RecordFile { station: code, location: "", ..record };
+                let bytes = Mseed.encode(&mseed).map_err(EnsembleError::Set)?;
+                write_bytes_atomic(&dir.join(format!("{stem}.{}", Mseed.extension())), &bytes)?;
             }
         }
     }

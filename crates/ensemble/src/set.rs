@@ -236,7 +236,10 @@ fn write_set_files(
                     origin_s: None,
                     numbers: &numbers,
                 };
-                for format in [&At2 as &dyn RecordFormat, &Sac] {
+                // AT2 and SAC always, and the pipeline's other record formats (MiniSEED: the
+                // channel of the prototype-scale event record, in the folder's inventory).
+                let extra = acc_settings.formats.iter().copied().filter(|f| !matches!(f.name(), "at2" | "sac" | "csv"));
+                for format in [&At2 as &dyn RecordFormat, &Sac].into_iter().chain(extra) {
                     let bytes = format.encode(&record).map_err(EnsembleError::Set)?;
                     write_bytes_atomic(&dir.join(format!("{stem}.{}", format.extension())), &bytes)?;
                 }

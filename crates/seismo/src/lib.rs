@@ -9,7 +9,8 @@
 //! station files ([`seas`]), SCEC dynamic-rupture benchmark files ([`scec`]), acoustic-emission
 //! clusters of bar breaks ([`emission`]), and the NGA-West2 ground-motion models with fault-to-site
 //! distances and the Broadband Platform's validation statistics ([`gmm`]), and broadband records by the
-//! Platform's hybrid method ([`broadband`]).
+//! Platform's hybrid method ([`broadband`]), and the exchange formats of stations and events:
+//! StationXML inventories ([`stationxml`]) and QuakeML catalogues ([`quakeml`]).
 //!
 //! Must not know: the solver, the pipeline file, tables or figures. Every function takes slices
 //! and plain parameter structs, so it can be used on any record, simulated or recorded; the
@@ -26,11 +27,13 @@ pub mod events;
 pub mod fit;
 pub mod front;
 pub mod gmm;
+pub mod quakeml;
 pub mod scec;
 pub mod seas;
 pub mod selection;
 pub mod similarity;
 pub mod spectra;
+pub mod stationxml;
 pub mod stats;
 
 pub use error::SeismoError;

@@ -96,7 +96,8 @@ impl Folder {
     }
 
     /// Removes every result of an earlier run — tables, record files, fault stations, the set,
-    /// figures, the page, shard marks and input copies — so nothing of it survives or is linked.
+    /// figures, the page, shard marks, input copies, the MiniSEED station records, the inventory
+    /// and the QuakeML catalogue — so nothing of it survives or is linked.
     /// The manifest and the pipeline copy are left for the caller to overwrite.
     pub fn discard_results(&self) -> Result<(), StoreError> {
         for dir in [
@@ -107,6 +108,7 @@ impl Folder {
             self.figures(),
             self.shards_dir(),
             self.inputs_dir(),
+            self.root.join("mseed"),
         ] {
             match std::fs::remove_dir_all(&dir) {
                 Ok(()) => {}
@@ -114,12 +116,14 @@ impl Folder {
                 Err(e) => return Err(StoreError::io(&dir, e)),
             }
         }
-        let index = self.index();
-        match std::fs::remove_file(&index) {
-            Ok(()) => Ok(()),
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
-            Err(e) => Err(StoreError::io(&index, e)),
+        for file in [self.index(), self.root.join("stations.xml"), self.root.join("catalogue.xml")] {
+            match std::fs::remove_file(&file) {
+                Ok(()) => {}
+                Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+                Err(e) => return Err(StoreError::io(&file, e)),
+            }
         }
+        Ok(())
     }
 
     /// The figures.

@@ -215,7 +215,7 @@ fn seeds_to_run(a: &Args, pipelines: &[Pipeline], given: Option<&[u64]>) -> Resu
             check_set_capacity(pipeline, seeds.len())?;
         }
         let what = format!("{}: {} seed{}", pipeline.name, seeds.len(), if seeds.len() == 1 { "" } else { "s" });
-        crate::budget::check_before_build(&pipeline.scene, seeds.len(), threads, a.allow_long, &what)?;
+        stickslip_ensemble::budget::check_before_build(&pipeline.scene, seeds.len(), threads, a.allow_long, &what)?;
         runs.push(seeds);
     }
     Ok(runs)

@@ -54,7 +54,7 @@ pub fn run(a: Args) -> Result<()> {
     anyhow::ensure!(a.threads != Some(0), "--threads 0: give at least 1 (or leave it out for one per core)");
     let pipeline = Pipeline::load(&a.pipeline)?;
     crate::commands::pipeline::print_warnings(&pipeline);
-    crate::budget::check_before_build(
+    stickslip_ensemble::budget::check_before_build(
         &pipeline.scene,
         1,
         1,
