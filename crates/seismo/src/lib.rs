@@ -10,7 +10,8 @@
 //! clusters of bar breaks ([`emission`]), and the NGA-West2 ground-motion models with fault-to-site
 //! distances and the Broadband Platform's validation statistics ([`gmm`]), and broadband records by the
 //! Platform's hybrid method ([`broadband`]), and the exchange formats of stations and events:
-//! StationXML inventories ([`stationxml`]) and QuakeML catalogues ([`quakeml`]).
+//! StationXML inventories ([`stationxml`]) and QuakeML catalogues ([`quakeml`]), on the product's
+//! nominal clock ([`clock`]).
 //!
 //! Must not know: the solver, the pipeline file, tables or figures. Every function takes slices
 //! and plain parameter structs, so it can be used on any record, simulated or recorded; the
@@ -20,6 +21,7 @@
 pub mod accelerogram;
 pub mod broadband;
 pub mod catalogue;
+pub mod clock;
 pub mod design;
 pub mod emission;
 pub mod error;

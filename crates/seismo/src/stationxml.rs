@@ -181,12 +181,10 @@ pub fn escape(s: &str) -> String {
     out
 }
 
-/// Refuses a code that is empty (unless `may_be_empty`), longer than 8 characters, or holds a
-/// character other than printable ASCII, or a space or a `.`.
+/// Refuses a code that is empty (unless `may_be_empty`) or longer than 8 characters, or that
+/// holds a space, a `.` or anything but printable ASCII.
 fn check_code(field: &str, v: &str, may_be_empty: bool) -> Result<(), SeismoError> {
-    let ok = (may_be_empty || !v.is_empty())
-        && v.len() <= 8
-        && v.chars().all(|c| c.is_ascii_graphic() && c != '.');
+    let ok = (may_be_empty || !v.is_empty()) && v.len() <= 8 && v.chars().all(|c| c.is_ascii_graphic() && c != '.');
     if ok {
         Ok(())
     } else {
