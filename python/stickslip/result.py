@@ -1,0 +1,232 @@
+"""Running pipelines and reading their output folders."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, Callable, Dict, Iterable, List, Optional, Union
+
+from . import _native
+from .pipeline import PathLike, Pipeline
+
+if TYPE_CHECKING:  # polars is imported when a table is first read, not with the package
+    import polars as pl
+
+Progress = Union[bool, None, Callable[[int, int], Any]]
+
+
+def _parse_seeds(seeds: Union[str, Iterable[int], None]) -> Optional[List[int]]:
+    if seeds is None:
+        return None
+    if isinstance(seeds, str):
+        out: List[int] = []
+        for part in seeds.split(","):
+            part = part.strip()
+            if "-" in part:
+                lo, hi = part.split("-", 1)
+                out.extend(range(int(lo), int(hi) + 1))
+            elif part:
+                out.append(int(part))
+        return out
+    out = [int(s) for s in seeds]
+    bad = [s for s in out if s < 0]
+    if bad:
+        from .errors import PipelineError
+
+        raise PipelineError(f"seeds = {bad[0]} is not allowed: a seed ≥ 0", [("seeds", str(bad[0]), "a seed ≥ 0")])
+    return out
+
+
+def _progress_callback(progress: Progress, name: str) -> Optional[Callable[[int, int], Any]]:
+    if progress is None or progress is False:
+        return None
+    if callable(progress):
+        return progress
+    try:  # a bar that works in terminals and Jupyter alike
+        from tqdm.auto import tqdm  # type: ignore[import-not-found]
+    except ImportError:
+        tqdm = None
+    if tqdm is not None:
+        bar: Dict[str, Any] = {}
+
+        def update(done: int, total: int) -> None:
+            if "bar" not in bar:
+                bar["bar"] = tqdm(total=total, desc=name, unit="seed")
+            b = bar["bar"]
+            b.total = total
+            b.n = done
+            b.refresh()
+            if done >= total:
+                b.close()
+
+        return update
+
+    def line(done: int, total: int) -> None:
+        sys.stderr.write(f"\r{name}: {done}/{total} seeds")
+        if done >= total:
+            sys.stderr.write("\n")
+        sys.stderr.flush()
+
+    return line
+
+
+def run(
+    pipeline: Union[Pipeline, PathLike],
+    *,
+    seeds: Union[str, Iterable[int], None] = None,
+    out: Optional[PathLike] = None,
+    threads: Optional[int] = None,
+    fresh: bool = False,
+    allow_long: bool = False,
+    progress: Progress = True,
+) -> "Result":
+    """Runs a pipeline's seeds as ``stickslip pipeline`` does and returns the output folder.
+
+    ``seeds`` replaces the pipeline's (a list or ``"1,5,10-20"``); ``out`` defaults to
+    ``reports/<name>``; ``threads`` to one per core; ``fresh`` discards another pipeline's results
+    found in ``out``. Finished seeds found in ``out`` are kept (an interrupted run resumes). The
+    solver runs with the GIL released; Ctrl-C stops the running seeds (finished ones are kept) and
+    raises ``KeyboardInterrupt``. ``progress``: ``True`` for a bar (tqdm when installed, a line on
+    stderr otherwise), ``False`` for none, or a callable ``(done, total)``.
+    """
+    if not isinstance(pipeline, Pipeline):
+        pipeline = Pipeline.from_toml(pipeline)
+    if threads is not None and threads < 1:
+        from .errors import PipelineError
+
+        raise PipelineError(
+            f"threads = {threads} is not allowed: a whole number ≥ 1 (or None for one per core)",
+            [("threads", str(threads), "a whole number ≥ 1 (or None for one per core)")],
+        )
+    text, name, base, source = pipeline._args()
+    info = _native.validate(text, name, base, source)
+    out_path = Path(out) if out is not None else Path("reports") / info["name"]
+    callback = _progress_callback(progress, info["name"])
+    report = _native.run(
+        text,
+        name,
+        base,
+        str(out_path),
+        source,
+        _parse_seeds(seeds),
+        threads or 0,
+        fresh,
+        allow_long,
+        callback,
+    )
+    return Result(out_path, run=dict(report))
+
+
+def open(folder: PathLike) -> "Result":  # noqa: A001 - the package's verb, as in stickslip.open(...)
+    """The output folder of a run (``stickslip pipeline`` or :func:`run`)."""
+    return Result(folder)
+
+
+class Result:
+    """An output folder: its tables as polars DataFrames, its records, stations and catalogue.
+
+    ``result.events``, ``result.similarity``, ``result.summary``, ``result.stations``,
+    ``result.station_spectra``, … are the tables of the same names (every table the folder
+    holds: ``result.tables``), read on first use and kept. ``result.scan(name)`` is the lazy
+    form over the per-seed parts (``tables/<name>/seed-*.parquet``) or the gathered file.
+    """
+
+    def __init__(self, folder: PathLike, run: Optional[Dict[str, Any]] = None) -> None:
+        self.folder = Path(folder)
+        if not (self.folder / "manifest.toml").is_file():
+            raise FileNotFoundError(f"{self.folder}: not a stickslip output folder (no manifest.toml)")
+        self.run: Dict[str, Any] = run or {}
+        self._cache: Dict[str, pl.DataFrame] = {}
+
+    # -- tables ------------------------------------------------------------------------------
+    @property
+    def tables(self) -> List[str]:
+        """The tables the folder holds."""
+        root = self.folder / "tables"
+        names = {p.stem for p in root.glob("*.parquet")} | {p.name for p in root.iterdir() if p.is_dir()}
+        return sorted(names)
+
+    def scan(self, name: str) -> pl.LazyFrame:
+        """Table ``name`` as a LazyFrame: the gathered file when there is one, else its per-seed
+        parts (columns a seed lacks are null)."""
+        import polars as pl
+
+        root = self.folder / "tables"
+        gathered = root / f"{name}.parquet"
+        if gathered.is_file():
+            return pl.scan_parquet(gathered)
+        parts = sorted((root / name).glob("seed-*.parquet"))
+        if not parts:
+            raise KeyError(f"{self.folder}: no table {name!r} (tables: {', '.join(self.tables)})")
+        return pl.concat([pl.scan_parquet(p) for p in parts], how="diagonal_relaxed")
+
+    def table(self, name: str) -> pl.DataFrame:
+        """Table ``name`` as a DataFrame."""
+        if name not in self._cache:
+            self._cache[name] = self.scan(name).collect()
+        return self._cache[name]
+
+    def __getattr__(self, name: str) -> pl.DataFrame:
+        if name.startswith("_"):
+            raise AttributeError(name)
+        try:
+            return self.table(name)
+        except KeyError as e:
+            raise AttributeError(str(e)) from None
+
+    def __dir__(self) -> List[str]:
+        return sorted(set(super().__dir__()) | set(self.tables))
+
+    @property
+    def pipeline(self) -> Pipeline:
+        """The pipeline that made the folder (its copy in the folder)."""
+        return Pipeline.from_toml(self.folder / "pipeline.toml")
+
+    # -- files -------------------------------------------------------------------------------
+    def mseed_files(self, kind: str = "all") -> List[Path]:
+        """The MiniSEED records: ``"records"`` (a block's event records), ``"stations"`` (a
+        fault scenario's station records, one file per seed), ``"set"`` (a matched set), or
+        ``"all"``."""
+        folders = {"records": ["records"], "stations": ["mseed"], "set": ["set"]}
+        chosen = [d for k in folders for d in folders[k]] if kind == "all" else folders.get(kind)
+        if chosen is None:
+            raise ValueError(f"kind = {kind!r} is not allowed: one of 'records', 'stations', 'set', 'all'")
+        return sorted(p for d in chosen for p in (self.folder / d).glob("*.mseed"))
+
+    @property
+    def inventory_path(self) -> Path:
+        """The StationXML inventory of the folder's MiniSEED records."""
+        return self.folder / "stations.xml"
+
+    @property
+    def catalogue_path(self) -> Path:
+        """The QuakeML catalogue of the folder's events."""
+        return self.folder / "catalogue.xml"
+
+    def stream(self, kind: str = "all", pattern: str = "*"):
+        """The MiniSEED records as an ObsPy ``Stream`` (needs ObsPy); ``pattern`` filters the
+        file names (e.g. ``"*seed7*"``)."""
+        import fnmatch
+
+        from obspy import Stream, read  # type: ignore[import-not-found]
+
+        st = Stream()
+        for p in self.mseed_files(kind):
+            if fnmatch.fnmatch(p.name, pattern):
+                st += read(str(p), format="MSEED")
+        return st
+
+    def inventory(self):
+        """The stations as an ObsPy ``Inventory`` (needs ObsPy)."""
+        from obspy import read_inventory  # type: ignore[import-not-found]
+
+        return read_inventory(str(self.inventory_path), format="STATIONXML")
+
+    def catalog(self):
+        """The events as an ObsPy ``Catalog`` (needs ObsPy)."""
+        from obspy import read_events  # type: ignore[import-not-found]
+
+        return read_events(str(self.catalogue_path), format="QUAKEML")
+
+    def __repr__(self) -> str:
+        return f"<stickslip.Result {self.folder}>"

@@ -1,0 +1,83 @@
+"""Bad input from Python: an exception naming the field, the value and the allowed range."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+import stickslip
+from conftest import REPO
+
+
+def paper() -> stickslip.Pipeline:
+    return stickslip.Pipeline.from_toml(REPO / "pipelines/paper.toml")
+
+
+def test_misspelled_field():
+    p = paper()
+    p["block.lc_mm"] = 0.1
+    with pytest.raises(stickslip.PipelineError) as e:
+        p.validate()
+    assert e.value.field == "block.lc_mm"
+    assert e.value.value == "0.1"
+    assert "lc_m" in e.value.allowed and "nx" in e.value.allowed, e.value.allowed
+    assert isinstance(e.value, ValueError)
+
+
+def test_negative_value():
+    p = paper()
+    p.material.poisson = -0.3
+    with pytest.raises(stickslip.PipelineError) as e:
+        p.check()
+    assert (e.value.field, e.value.value) == ("material.poisson", "-0.3")
+    assert "0" in e.value.allowed and "0.5" in e.value.allowed, e.value.allowed
+    # Every refused value is listed, not only the first.
+    p.block.nx = -4
+    with pytest.raises(stickslip.PipelineError) as e:
+        stickslip.run(p, out="/nonexistent/never-written", progress=False)
+    fields = [f for f, _, _ in e.value.errors]
+    assert "material.poisson" in fields and "block.nx" in fields
+    assert not Path("/nonexistent/never-written").exists()
+
+
+def test_wrong_type():
+    p = paper()
+    p.block.nx = "ten"
+    with pytest.raises(stickslip.PipelineError) as e:
+        p.validate()
+    assert e.value.field == "block.nx" and e.value.value == '"ten"'
+    assert "integer" in e.value.allowed
+
+
+def test_missing_files(tmp_path: Path):
+    with pytest.raises(FileNotFoundError):
+        stickslip.Pipeline.from_toml(tmp_path / "no-such-pipeline.toml")
+    p = stickslip.Pipeline.from_toml(REPO / "pipelines/scenario-m6-crust.toml")
+    p["medium.profile_file"] = "profiles/no-such-profile.vel"
+    with pytest.raises(stickslip.PipelineError) as e:
+        p.validate()
+    assert e.value.field == "medium.profile_file"
+    assert "no-such-profile.vel" in e.value.value
+    with pytest.raises(FileNotFoundError):
+        stickslip.open(tmp_path)
+    with pytest.raises(FileNotFoundError):
+        stickslip.read_record(tmp_path / "missing.SAC")
+
+
+def test_bad_arguments():
+    with pytest.raises(stickslip.PipelineError) as e:
+        stickslip.run(paper(), seeds=[-1], progress=False)
+    assert e.value.field == "seeds"
+    with pytest.raises(stickslip.PipelineError) as e:
+        stickslip.run(paper(), threads=0, progress=False)
+    assert e.value.field == "threads"
+    with pytest.raises(stickslip.PipelineError) as e:
+        stickslip.spectra([0.0, 1.0, float("nan")], 0.01, [0.1])
+    assert e.value.field == "acceleration[2]"
+    with pytest.raises(stickslip.PipelineError) as e:
+        stickslip.spectra([0.0, 1.0], -0.01, [0.1])
+    assert (e.value.field, e.value.value) == ("dt", "-0.01")
+    with pytest.raises(stickslip.PipelineError) as e:
+        stickslip.similarity(-1e6, 1.0, 0.1, 1e-4)
+    assert e.value.field == "stress_drop_pa"
