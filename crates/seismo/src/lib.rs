@@ -37,5 +37,6 @@ pub mod similarity;
 pub mod spectra;
 pub mod stationxml;
 pub mod stats;
+pub mod xml;
 
 pub use error::SeismoError;

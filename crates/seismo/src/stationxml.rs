@@ -33,7 +33,8 @@
 use std::fmt::Write as _;
 
 use crate::error::SeismoError;
-use crate::quakeml::is_xml_datetime;
+pub use crate::xml::escape;
+use crate::xml::is_xml_datetime;
 
 /// Mean radius of the Earth (m), the sphere on which [`local_to_geographic`] puts a scene.
 pub const EARTH_RADIUS_M: f64 = 6_371_000.0;
@@ -159,26 +160,6 @@ pub fn local_to_geographic(x_east_m: f64, y_north_m: f64, origin_lat_deg: f64, o
     let lat = origin_lat_deg + (y_north_m / EARTH_RADIUS_M).to_degrees();
     let lon = origin_lon_deg + (x_east_m / (EARTH_RADIUS_M * origin_lat_deg.to_radians().cos())).to_degrees();
     (lat, lon)
-}
-
-/// `s` as XML character data or an attribute value: `&`, `<`, `>`, `"` and `'` escaped as
-/// entities, and the control characters XML 1.0 does not allow (all below U+0020 but tab, line
-/// feed and carriage return, and U+FFFE, U+FFFF) replaced by U+FFFD.
-pub fn escape(s: &str) -> String {
-    let mut out = String::with_capacity(s.len());
-    for c in s.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            '\'' => out.push_str("&apos;"),
-            '\t' | '\n' | '\r' => out.push(c),
-            c if (c as u32) < 0x20 || c == '\u{FFFE}' || c == '\u{FFFF}' => out.push('\u{FFFD}'),
-            c => out.push(c),
-        }
-    }
-    out
 }
 
 /// Refuses a code that is empty (unless `may_be_empty`) or longer than 8 characters, or that
