@@ -24,17 +24,26 @@ use crate::pipeline::load;
 /// How often the calling thread wakes to check signals and report progress.
 const POLL: Duration = Duration::from_millis(100);
 
+/// Why the calling thread stopped a run.
+enum Stop {
+    /// A signal: Python's `KeyboardInterrupt` (or what the signal handler raised).
+    Signal(PyErr),
+    /// The progress callback raised this.
+    Callback(PyErr),
+}
+
 /// Runs `work` on a worker thread with the GIL released; every [`POLL`] the calling thread checks
-/// Python's signals (a `KeyboardInterrupt` sets `cancel`, and is raised when `work` returns) and
-/// calls `progress(done, total)` when `counts` changed.
+/// Python's signals (a `KeyboardInterrupt` sets `cancel`) and calls `progress(done, total)` when
+/// `counts` changed (an error it raises sets `cancel` too). Returns what `work` returned, once it
+/// has, and why it was stopped, if it was.
 fn detached<T: Send>(
     py: Python<'_>,
     cancel: &AtomicBool,
     counts: &(AtomicUsize, AtomicUsize),
     progress: Option<&Bound<'_, PyAny>>,
     work: impl FnOnce() -> T + Send,
-) -> PyResult<T> {
-    let mut interrupt: Option<PyErr> = None;
+) -> PyResult<(T, Option<Stop>)> {
+    let mut interrupt: Option<Stop> = None;
     let mut shown = (usize::MAX, usize::MAX);
     let out = std::thread::scope(|s| -> PyResult<T> {
         let (tx, rx) = mpsc::channel();
@@ -49,7 +58,7 @@ fn detached<T: Send>(
                 && let Err(e) = py.check_signals()
             {
                 cancel.store(true, Ordering::SeqCst);
-                interrupt = Some(e);
+                interrupt = Some(Stop::Signal(e));
             }
             let now = (counts.0.load(Ordering::Relaxed), counts.1.load(Ordering::Relaxed));
             if let Some(cb) = progress
@@ -60,7 +69,7 @@ fn detached<T: Send>(
                 if let Err(e) = cb.call1(now) {
                     // A failing callback stops the run like an interrupt, and its error is raised.
                     cancel.store(true, Ordering::SeqCst);
-                    interrupt.get_or_insert(e);
+                    interrupt.get_or_insert(Stop::Callback(e));
                 }
             }
             match got {
@@ -74,9 +83,18 @@ fn detached<T: Send>(
             }
         }
     })?;
-    match interrupt {
-        Some(e) => Err(e),
-        None => Ok(out),
+    Ok((out, interrupt))
+}
+
+/// The outcome of an ensemble stopped or not by the calling thread: the callback's error when it
+/// raised one; the ensemble's own `Interrupted` (finished seeds and how to resume) as
+/// `KeyboardInterrupt`; a signal's error if the work ended some other way.
+fn settle<T>(py: Python<'_>, result: Result<T, EnsembleError>, stop: Option<Stop>) -> PyResult<T> {
+    match (result, stop) {
+        (_, Some(Stop::Callback(e))) => Err(e),
+        (Err(e), _) => Err(ensemble_error(py, e)),
+        (Ok(_), Some(Stop::Signal(e))) => Err(e),
+        (Ok(v), None) => Ok(v),
     }
 }
 
@@ -98,12 +116,12 @@ pub fn check<'py>(
     let pipeline = load(py, text, name, &base, source)?;
     let options = CheckOptions { seeds, full_statics, allow_long, threads };
     let (cancel, counts) = (AtomicBool::new(false), (AtomicUsize::new(0), AtomicUsize::new(0)));
-    let (lines, result) = detached(py, &cancel, &counts, None, || {
+    let ((lines, result), stop) = detached(py, &cancel, &counts, None, || {
         let mut lines: Vec<CheckLine> = Vec::new();
         let r = stickslip_ensemble::check::check(&pipeline, &options, &mut |l| lines.push(l));
         (lines, r)
     })?;
-    let facts = result.map_err(|e| ensemble_error(py, e))?;
+    let facts = settle(py, result, stop)?;
     let d = PyDict::new(py);
     d.set_item("name", &pipeline.name)?;
     d.set_item("hash", &pipeline.hash)?;
@@ -199,9 +217,9 @@ pub fn run<'py>(
         .map_err(|e| ensemble_error(py, e))?;
     let options = EnsembleOptions { out: out.clone(), threads, seeds, fresh, finish: true };
     let (cancel, counts) = (AtomicBool::new(false), (AtomicUsize::new(0), AtomicUsize::new(0)));
-    let finished =
-        detached(py, &cancel, &counts, progress.as_ref(), || run_and_finish(&pipeline, &options, &counts, &cancel))?
-            .map_err(|e| ensemble_error(py, e))?;
+    let (result, stop) =
+        detached(py, &cancel, &counts, progress.as_ref(), || run_and_finish(&pipeline, &options, &counts, &cancel))?;
+    let finished = settle(py, result, stop)?;
     let r = &finished.report;
     let d = PyDict::new(py);
     d.set_item("pipeline", &pipeline.name)?;
