@@ -143,3 +143,11 @@ def test_ctrl_c_keeps_finished_seeds_and_the_same_call_resumes(tmp_path):
     p["report.enabled"] = False
     again = stickslip.run(p, seeds=range(1, 13), out=out, threads=1, progress=False)
     assert again.run["skipped"] == done and again.run["ran"] == 12 - done
+
+
+def test_a_failing_progress_callback_stops_the_run_with_its_error(tmp_path):
+    def fail(done, total):
+        raise ZeroDivisionError("from the callback")
+
+    with pytest.raises(ZeroDivisionError, match="from the callback"):
+        stickslip.run(quick_paper(), seeds=[1, 2, 3], out=tmp_path / "out", threads=1, progress=fail)

@@ -67,9 +67,11 @@ fn detached<T: Send>(
             {
                 shown = now;
                 if let Err(e) = cb.call1(now) {
-                    // A failing callback stops the run like an interrupt, and its error is raised.
+                    // A failing callback stops the run like an interrupt, and its error is raised;
+                    // a Ctrl-C that lands while the callback runs is raised inside it, and is a signal.
                     cancel.store(true, Ordering::SeqCst);
-                    interrupt.get_or_insert(Stop::Callback(e));
+                    let signal = e.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py);
+                    interrupt.get_or_insert(if signal { Stop::Signal(e) } else { Stop::Callback(e) });
                 }
             }
             match got {
