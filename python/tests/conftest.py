@@ -59,6 +59,8 @@ def fault_run(tmp_path_factory):
     p = stickslip.Pipeline.from_toml(REPO / "pipelines/tpv5-500m.toml")
     p["shear.duration_s"] = 3.0
     p["report.enabled"] = False
+    # Placed near Landers, California.
+    p["exchange"] = {"origin_lat_deg": 34.2, "origin_lon_deg": -116.4}
     return stickslip.run(p, out=root / "out", progress=False)
 
 

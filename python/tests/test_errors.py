@@ -41,6 +41,15 @@ def test_negative_value():
     assert not Path("/nonexistent/never-written").exists()
 
 
+def test_place_on_the_earth():
+    p = paper()
+    p["exchange.origin_lat_deg"] = 95.0
+    with pytest.raises(stickslip.PipelineError) as e:
+        p.validate()
+    assert (e.value.field, e.value.value) == ("exchange.origin_lat_deg", "95")
+    assert "90" in e.value.allowed
+
+
 def test_wrong_type():
     p = paper()
     p.block.nx = "ten"

@@ -106,6 +106,13 @@ def test_fault_station_records(fault_run):
     inv = result.inventory()
     for tr in st:
         assert inv.select(station=tr.stats.station, channel=tr.stats.channel), tr.id
+    # Placed about [exchange]'s origin: strike (x) north, fault-normal (z) east, y the depth.
+    r = 6_371_000.0
+    sta = inv[0][0]
+    row = stations.filter(pl.col("station") == sta.site.name.split(" (V_S30")[0]).row(0, named=True)
+    assert sta.latitude == pytest.approx(34.2 + np.degrees(row["x_m"] / r), abs=1e-9)
+    assert sta.longitude == pytest.approx(-116.4 + np.degrees(row["z_m"] / (r * np.cos(np.radians(34.2)))), abs=1e-9)
+    assert sta.elevation == pytest.approx(-row["y_m"], abs=1e-6)
     # The site's full name and its scene coordinates are in the inventory.
     names = {s.site.name for s in inv[0]}
     assert names == set(stations["station"].to_list()) or names <= set(stations["station"].to_list())

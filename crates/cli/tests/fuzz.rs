@@ -38,7 +38,7 @@ impl Rng {
 }
 
 /// The top-level keys of a pipeline file: a refusal must name a field under one of them.
-const TOP_KEYS: [&str; 26] = [
+const TOP_KEYS: [&str; 27] = [
     "version",
     "name",
     "description",
@@ -65,6 +65,7 @@ const TOP_KEYS: [&str; 26] = [
     "set",
     "broadband",
     "report",
+    "exchange",
 ];
 
 /// Sections a mutant may gain, whole.

@@ -30,7 +30,7 @@ use crate::scene::{
     SkipAheadSection, StationSection, TimeSection,
 };
 use crate::sections::{
-    EventsSection, ReportSection, ReportSettings, SimilaritySection, SpectraSection, shortest_period,
+    EventsSection, ExchangeSection, ReportSection, ReportSettings, SimilaritySection, SpectraSection, shortest_period,
 };
 use crate::seeds::MAX_SEEDS;
 use crate::set::{SetPool, SetSection, SetSettings};
@@ -148,6 +148,10 @@ pub struct PipelineFile {
     /// `[report]`: figures and page (not part of the hash: it does not change any table).
     #[serde(default)]
     pub report: ReportSection,
+    /// `[exchange]`: the scene's place on the Earth in the StationXML and QuakeML files (not part
+    /// of the hash: they are written from the tables at each gathering); absent = 0° N 0° E.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub exchange: Option<ExchangeSection>,
 }
 
 impl Default for PipelineFile {
@@ -180,6 +184,7 @@ impl Default for PipelineFile {
             broadband: None,
             set: None,
             report: ReportSection::default(),
+            exchange: None,
         }
     }
 }
@@ -404,6 +409,9 @@ impl Pipeline {
         let scene = crate::scene::build(file.scene_sections(), &mut ck);
         let similarity = file.similarity.build(scene.as_ref(), &mut ck);
         let report = file.report.build(&mut ck);
+        if let Some(x) = &file.exchange {
+            x.build(&mut ck);
+        }
         for (i, s) in report.seeds.iter().enumerate() {
             if !seen.contains(s) {
                 ck.push(

@@ -343,6 +343,32 @@ pub fn shortest_period(f_max_hz: f64, interval_s: Option<f64>) -> Option<(f64, S
     })
 }
 
+/// `[exchange]`: where the scene lies on the Earth in the files written for seismology's tools
+/// (the StationXML inventory, the QuakeML catalogue). Not part of the hash: those files are
+/// written again from the tables each time the seeds are gathered.
+#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields, default)]
+pub struct ExchangeSection {
+    /// Latitude of the scene's origin (degrees, −90 < φ < 90). Default 0.
+    pub origin_lat_deg: f64,
+    /// Longitude of the scene's origin (degrees, −180 ≤ λ ≤ 180). Default 0.
+    pub origin_lon_deg: f64,
+}
+
+impl ExchangeSection {
+    /// Checks the origin; returns (latitude, longitude) in degrees.
+    pub fn build(&self, ck: &mut Checker) -> (f64, f64) {
+        let (lat, lon) = (self.origin_lat_deg, self.origin_lon_deg);
+        if !(lat.is_finite() && lat.abs() < 90.0) {
+            ck.push("exchange.origin_lat_deg", lat, "−90 < latitude < 90 degrees (the poles have no east)");
+        }
+        if !(lon.is_finite() && lon.abs() <= 180.0) {
+            ck.push("exchange.origin_lon_deg", lon, "−180 ≤ longitude ≤ 180 degrees");
+        }
+        (lat, lon)
+    }
+}
+
 /// `[report]`: the report.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields, default)]

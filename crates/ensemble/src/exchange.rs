@@ -10,9 +10,9 @@
 //! - `mseed/<pipeline>_seed<k>.mseed` for a fault scenario: every station's record of the seed
 //!   (the three components as the analysis processed them, m/s²), one MiniSEED file per seed.
 //!
-//! **Coordinates.** A scene has no geographic place: its metres are mapped to degrees about
-//! 0° N 0° E on a sphere ([`local_to_geographic`]), and every station's description gives the
-//! scene's own coordinates. A block's x is east, y north, z up (the base, the fault, at z = 0,
+//! **Coordinates.** A scene's metres are mapped to degrees about its origin on a sphere
+//! ([`local_to_geographic`]): `[exchange] origin_lat_deg, origin_lon_deg`, else 0° N 0° E; every
+//! station's description gives the scene's own coordinates. A block's x is east, y north, z up (the base, the fault, at z = 0,
 //! depth 0 for its events); a fault scenario's x (along strike) is north, z (fault-normal) east and
 //! y depth below the free surface.
 //!
@@ -43,8 +43,15 @@ use crate::scenario_set::{self, Components};
 
 /// Network code of every record.
 pub const NETWORK: &str = "SS";
-/// Where the scene's origin is put on the globe (degrees).
-pub const ORIGIN_LAT_LON: (f64, f64) = (0.0, 0.0);
+/// Where the scene's origin is on the globe (degrees): `[exchange]`, else 0° N 0° E.
+pub fn origin_lat_lon(pipeline: &Pipeline) -> (f64, f64) {
+    pipeline.file.exchange.as_ref().map_or((0.0, 0.0), |x| (x.origin_lat_deg, x.origin_lon_deg))
+}
+
+/// The origin as the descriptions say it, e.g. `34.05N 116.5W`.
+fn origin_text((lat, lon): (f64, f64)) -> String {
+    format!("{}{} {}{}", lat.abs(), if lat < 0.0 { "S" } else { "N" }, lon.abs(), if lon < 0.0 { "W" } else { "E" })
+}
 /// The start of every station's epoch: a day before the nominal time 0 of a run.
 const EPOCH_START_S: f64 = -86_400.0;
 
@@ -128,7 +135,7 @@ fn inventory_text(pipeline: &Pipeline, channels: &[Chan]) -> Result<String, Ense
     for c in channels {
         by_station.entry(&c.station).or_default().push(c);
     }
-    let (lat0, lon0) = ORIGIN_LAT_LON;
+    let (lat0, lon0) = origin_lat_lon(pipeline);
     let stations = by_station
         .into_iter()
         .map(|(code, chans)| {
@@ -154,9 +161,10 @@ fn inventory_text(pipeline: &Pipeline, channels: &[Chan]) -> Result<String, Ense
                 elevation_m: u,
                 site_name: c0.site.clone(),
                 description: format!(
-                    "{} in the scene's coordinates ({}; degrees about 0N 0E on a sphere of 6371 km)",
+                    "{} in the scene's coordinates ({}; degrees about {} on a sphere of 6371 km)",
                     c0.site,
-                    places.join("; ")
+                    places.join("; "),
+                    origin_text((lat0, lon0))
                 ),
                 start_utc: start.clone(),
                 channels: chans
@@ -256,7 +264,7 @@ fn block_events(out: &Folder, pipeline: &Pipeline) -> Result<Vec<QuakeEvent>, En
     let (mw, riera) = (c.f64s(col::MW_CONSISTENT)?, c.f64s(col::M_RIERA_PAPER_INTERPLATE)?);
     let dims = pipeline.scene.dims;
     let centre = [dims.nx as f64 * pipeline.scene.lc_m / 2.0, dims.ny as f64 * pipeline.scene.lc_m / 2.0];
-    let (lat0, lon0) = ORIGIN_LAT_LON;
+    let (lat0, lon0) = origin_lat_lon(pipeline);
     let mut events = Vec::new();
     for i in 0..sim.height() {
         let key = (seed[i], event[i]);
@@ -321,7 +329,7 @@ fn fault_events(out: &Folder, pipeline: &Pipeline) -> Result<Vec<QuakeEvent>, En
     let c = Columns::of(&src, SOURCE.name);
     let (seed, m0, mw) = (c.u64s(col::SEED)?, c.f64s(col::M0_N_M)?, c.f64s(col::MW)?);
     let (hx, hy) = (c.opt_f64s(col::HYPOCENTRE_X_M)?, c.opt_f64s(col::HYPOCENTRE_Y_M)?);
-    let (lat0, lon0) = ORIGIN_LAT_LON;
+    let (lat0, lon0) = origin_lat_lon(pipeline);
     let mut events = Vec::new();
     for i in 0..src.height() {
         let (Some(x), Some(y)) = (hx[i], hy[i]) else { continue };
