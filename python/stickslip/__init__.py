@@ -57,6 +57,20 @@ def _floats(name: str, values) -> np.ndarray:
     return a
 
 
+def _periods_dampings(periods, damping):
+    import numpy as np
+
+    t = _floats("periods", periods)
+    xi = _floats("damping", np.atleast_1d(damping))
+    for k, v in enumerate(t):
+        if not v > 0:
+            raise PipelineError(f"periods[{k}] = {v} is not allowed: a period > 0 s", [(f"periods[{k}]", str(v), "a period > 0 s")])
+    for k, v in enumerate(xi):
+        if not 0 <= v < 1:
+            raise PipelineError(f"damping[{k}] = {v} is not allowed: 0 ≤ ξ < 1", [(f"damping[{k}]", str(v), "0 ≤ ξ < 1")])
+    return t, xi
+
+
 def _positive(name: str, value: float) -> float:
     import numpy as np
 
@@ -123,8 +137,9 @@ def spectra(
     import numpy as np
 
     a = _floats("acceleration", acceleration)
-    t = _floats("periods", periods)
-    xi = _floats("damping", np.atleast_1d(damping))
+    t, xi = _periods_dampings(periods, damping)
+    if len(a) == 0:
+        raise PipelineError("acceleration = [] is not allowed: at least one sample", [("acceleration", "[]", "at least one sample")])
     sd = _native.response_spectrum(a, _positive("dt", dt), t, xi, band_limited)
     return Spectra(periods=t, dampings=xi, sd=np.asarray(sd).reshape(len(xi), len(t)))
 
@@ -157,8 +172,12 @@ def rotd(
     import numpy as np
 
     ax, ay = _floats("x", x), _floats("y", y)
-    t = _floats("periods", periods)
-    xi = _floats("damping", np.atleast_1d(damping))
+    t, xi = _periods_dampings(periods, damping)
+    if len(ax) != len(ay) or len(ax) == 0:
+        raise PipelineError(
+            f"y = {len(ay)} samples is not allowed: as many samples as x ({len(ax)}), at least one",
+            [("y", f"{len(ay)} samples", f"as many samples as x ({len(ax)}), at least one")],
+        )
     r50, r100, angle, sx, sy = _native.rotd(ax, ay, _positive("dt", dt), t, xi, band_limited)
     w2 = (2 * np.pi / t) ** 2
     shape = (len(xi), len(t))

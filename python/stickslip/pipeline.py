@@ -4,11 +4,14 @@ from __future__ import annotations
 
 import copy
 import json
+import math
 import os
+import re
 from pathlib import Path
 from typing import Any, Dict, Iterator, List, Mapping, Optional, Tuple, Union
 
 from . import _native
+from .errors import PipelineError
 
 PathLike = Union[str, "os.PathLike[str]"]
 
@@ -70,6 +73,19 @@ class Section:
 
     def __repr__(self) -> str:
         return f"Section({self._path!r}, {self._data!r})"
+
+
+def _refuse_non_finite(node: Any, path: str) -> None:
+    """Refuses NaN and infinities with their field before the pipeline is written."""
+    if isinstance(node, dict):
+        for k, v in node.items():
+            _refuse_non_finite(v, f"{path}.{k}" if path else k)
+    elif isinstance(node, list):
+        for i, v in enumerate(node):
+            _refuse_non_finite(v, f"{path}[{i}]")
+    elif isinstance(node, float) and not math.isfinite(node):
+        allowed = "a finite number"
+        raise PipelineError(f"{path} = {node} is not allowed: {allowed}", [(path, str(node), allowed)])
 
 
 def _wrap(value: Any, path: str) -> Any:
@@ -218,10 +234,26 @@ class Pipeline:
 
     # -- text --------------------------------------------------------------------------------
     def toml(self) -> str:
-        """The pipeline as TOML: the file's own text while nothing was changed."""
+        """The pipeline as TOML: the file's own text while nothing was changed; otherwise written
+        from its fields (keys in order, without the file's comments)."""
         if self._text is not None and self._data == self._as_read:
             return self._text
+        _refuse_non_finite(self._data, "")
         return _native.json_to_toml(json.dumps(self._data))
+
+    def _generated(self) -> bool:
+        return not (self._text is not None and self._data == self._as_read)
+
+    def _call(self, fn, *args):
+        """Calls the native `fn`; a refusal of TOML written from the fields does not cite the
+        line of a text the user never saw."""
+        try:
+            return fn(*args)
+        except PipelineError as e:
+            if not self._generated():
+                raise
+            message = re.sub(r"^line \d+: ", "", str(e))
+            raise PipelineError(message, e.errors) from None
 
     def to_toml(self, path: Optional[PathLike] = None) -> str:
         """Writes the pipeline to ``path`` (after validating it) and returns its text."""
@@ -243,7 +275,7 @@ class Pipeline:
         """Validates the pipeline; returns its ``name``, ``hash``, ``seeds``, whether it is a
         ``fault`` scene, and its ``warnings`` as ``(field, value, why)``."""
         text, name, base, source = self._args()
-        return dict(_native.validate(text, name, base, source))
+        return dict(self._call(_native.validate, text, name, base, source))
 
     @property
     def name(self) -> str:
@@ -271,7 +303,7 @@ class Pipeline:
         """What ``stickslip check`` prints, as a :class:`Check` (it builds the lattice and times
         a probe of the steps; a scene that does not fit in memory is refused before)."""
         text, name, base, source = self._args()
-        d = _native.check(text, name, base, source, seeds, full_statics, allow_long, threads)
+        d = self._call(_native.check, text, name, base, source, seeds, full_statics, allow_long, threads)
         return Check(name=d["name"], hash=d["hash"], lines=[tuple(l) for l in d["lines"]], facts=dict(d["facts"]))
 
     def __repr__(self) -> str:

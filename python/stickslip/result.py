@@ -15,25 +15,49 @@ if TYPE_CHECKING:  # polars is imported when a table is first read, not with the
 Progress = Union[bool, None, Callable[[int, int], Any]]
 
 
+SEEDS_ALLOWED = "whole numbers 0 … 2^64−1, each once: a list such as [1, 5, 7], range(1, 11), or a string \"1,5,10-20\""
+
+
+def _refuse(field: str, value: Any, allowed: str):
+    from .errors import PipelineError
+
+    return PipelineError(f"{field} = {value!r} is not allowed: {allowed}", [(field, repr(value), allowed)])
+
+
 def _parse_seeds(seeds: Union[str, Iterable[int], None]) -> Optional[List[int]]:
+    """The seeds asked for, refused before anything runs unless each is a whole number in range,
+    given once, and there is at least one."""
     if seeds is None:
         return None
+    out: List[int] = []
     if isinstance(seeds, str):
-        out: List[int] = []
         for part in seeds.split(","):
             part = part.strip()
-            if "-" in part:
-                lo, hi = part.split("-", 1)
-                out.extend(range(int(lo), int(hi) + 1))
-            elif part:
-                out.append(int(part))
-        return out
-    out = [int(s) for s in seeds]
-    bad = [s for s in out if s < 0]
-    if bad:
-        from .errors import PipelineError
-
-        raise PipelineError(f"seeds = {bad[0]} is not allowed: a seed ≥ 0", [("seeds", str(bad[0]), "a seed ≥ 0")])
+            lo, _, hi = part.partition("-")
+            if not lo.strip().isdigit() or (hi and not hi.strip().isdigit()):
+                raise _refuse("seeds", seeds, SEEDS_ALLOWED)
+            lo_i, hi_i = int(lo), int(hi) if hi else int(lo)
+            if hi_i < lo_i:
+                raise _refuse("seeds", seeds, f"ranges from low to high ({part} is empty); " + SEEDS_ALLOWED)
+            out.extend(range(lo_i, hi_i + 1))
+    else:
+        try:
+            items = list(seeds)
+        except TypeError:
+            raise _refuse("seeds", seeds, SEEDS_ALLOWED) from None
+        for s in items:
+            whole = isinstance(s, int) or (hasattr(s, "is_integer") and not isinstance(s, float) and s.is_integer())
+            if isinstance(s, bool) or not (whole or type(s).__name__.startswith(("int", "uint"))):
+                raise _refuse("seeds", s, SEEDS_ALLOWED)
+            out.append(int(s))
+    if not out:
+        raise _refuse("seeds", seeds, "at least one seed; " + SEEDS_ALLOWED)
+    for s in out:
+        if not 0 <= s < 2**64:
+            raise _refuse("seeds", s, SEEDS_ALLOWED)
+    if len(set(out)) != len(out):
+        twice = next(s for s in out if out.count(s) > 1)
+        raise _refuse("seeds", twice, "each seed once (it is given twice); " + SEEDS_ALLOWED)
     return out
 
 
@@ -91,29 +115,25 @@ def run(
     """
     if not isinstance(pipeline, Pipeline):
         pipeline = Pipeline.from_toml(pipeline)
-    if threads is not None and threads < 1:
-        from .errors import PipelineError
-
-        raise PipelineError(
-            f"threads = {threads} is not allowed: a whole number ≥ 1 (or None for one per core)",
-            [("threads", str(threads), "a whole number ≥ 1 (or None for one per core)")],
-        )
+    if threads is not None and (isinstance(threads, bool) or not isinstance(threads, int) or threads < 1):
+        raise _refuse("threads", threads, "a whole number ≥ 1 (or None for one per core)")
+    if not (progress is None or isinstance(progress, bool) or callable(progress)):
+        raise _refuse("progress", progress, "True (a bar), False or None (none), or a callable (done, total)")
+    chosen = _parse_seeds(seeds)
+    info = pipeline.validate()
     text, name, base, source = pipeline._args()
-    info = _native.validate(text, name, base, source)
     out_path = Path(out) if out is not None else Path("reports") / info["name"]
     callback = _progress_callback(progress, info["name"])
-    report = _native.run(
-        text,
-        name,
-        base,
-        str(out_path),
-        source,
-        _parse_seeds(seeds),
-        threads or 0,
-        fresh,
-        allow_long,
-        callback,
-    )
+    from .errors import RunError
+
+    try:
+        report = pipeline._call(
+            _native.run, text, name, base, str(out_path), source, chosen, threads or 0, fresh, allow_long, callback
+        )
+    except RunError as e:
+        # The library's advice names the CLI's flags; here they are arguments.
+        message = str(e).replace("Use --fresh", "Use fresh=True").replace("--out", "out=").replace("--allow-long", "allow_long=True")
+        raise RunError(message) from None
     return Result(out_path, run=dict(report))
 
 
@@ -133,8 +153,11 @@ class Result:
 
     def __init__(self, folder: PathLike, run: Optional[Dict[str, Any]] = None) -> None:
         self.folder = Path(folder)
+        if not self.folder.is_dir():
+            raise FileNotFoundError(f"{self.folder}: no such folder")
         if not (self.folder / "manifest.toml").is_file():
             raise FileNotFoundError(f"{self.folder}: not a stickslip output folder (no manifest.toml)")
+        # What the run that returned this did (empty when the folder was opened).
         self.run: Dict[str, Any] = run or {}
         self._cache: Dict[str, pl.DataFrame] = {}
 
@@ -204,16 +227,23 @@ class Result:
         return self.folder / "catalogue.xml"
 
     def stream(self, kind: str = "all", pattern: str = "*"):
-        """The MiniSEED records as an ObsPy ``Stream`` (needs ObsPy); ``pattern`` filters the
-        file names (e.g. ``"*seed7*"``)."""
+        """The MiniSEED records as an ObsPy ``Stream`` (needs ObsPy): ``kind`` as in
+        :meth:`mseed_files` (``"records"``, ``"stations"``, ``"set"``, ``"all"``); ``pattern``
+        filters the file names (e.g. ``"*seed7*"``). Refused when no file matches."""
         import fnmatch
 
         from obspy import Stream, read  # type: ignore[import-not-found]
 
         st = Stream()
-        for p in self.mseed_files(kind):
-            if fnmatch.fnmatch(p.name, pattern):
-                st += read(str(p), format="MSEED")
+        files = [p for p in self.mseed_files(kind) if fnmatch.fnmatch(p.name, pattern)]
+        if not files:
+            have = [k for k in ("records", "stations", "set") if self.mseed_files(k)]
+            raise FileNotFoundError(
+                f"{self.folder}: no MiniSEED files of kind {kind!r} matching {pattern!r}; this folder has "
+                + (", ".join(repr(k) for k in have) if have else "none (add \"mseed\" to accelerograms.formats)")
+            )
+        for p in files:
+            st += read(str(p), format="MSEED")
         return st
 
     def inventory(self):

@@ -74,6 +74,30 @@ def test_missing_files(tmp_path: Path):
         stickslip.read_record(tmp_path / "missing.SAC")
 
 
+def test_misspelled_section_and_non_finite_values():
+    p = paper()
+    p["blok.nx"] = 3
+    with pytest.raises(stickslip.PipelineError) as e:
+        p.validate()
+    assert e.value.field == "blok" and "block" in e.value.allowed
+    assert not str(e.value).startswith("line "), "no line of a text the user never wrote"
+    p = paper()
+    p["material.young_pa"] = float("nan")
+    with pytest.raises(stickslip.PipelineError) as e:
+        p.validate()
+    assert (e.value.field, e.value.value, e.value.allowed) == ("material.young_pa", "nan", "a finite number")
+
+
+@pytest.mark.parametrize(
+    "seeds", [[], "10-5", [7, 7], "7,x", 7, [2**64], [7.5], [True], "-3"]
+)
+def test_bad_seeds_are_refused_before_anything_runs(seeds, tmp_path):
+    with pytest.raises(stickslip.PipelineError) as e:
+        stickslip.run(paper(), seeds=seeds, out=tmp_path / "out", progress=False)
+    assert e.value.field == "seeds", e.value
+    assert not (tmp_path / "out").exists()
+
+
 def test_bad_arguments():
     with pytest.raises(stickslip.PipelineError) as e:
         stickslip.run(paper(), seeds=[-1], progress=False)
@@ -87,6 +111,21 @@ def test_bad_arguments():
     with pytest.raises(stickslip.PipelineError) as e:
         stickslip.spectra([0.0, 1.0], -0.01, [0.1])
     assert (e.value.field, e.value.value) == ("dt", "-0.01")
+    with pytest.raises(stickslip.PipelineError) as e:
+        stickslip.spectra([0.0, 1.0], 0.01, [0.1, 0.0])
+    assert (e.value.field, e.value.value) == ("periods[1]", "0.0")
+    with pytest.raises(stickslip.PipelineError) as e:
+        stickslip.spectra([0.0, 1.0], 0.01, [0.1], 1.5)
+    assert e.value.field == "damping[0]"
+    with pytest.raises(stickslip.PipelineError) as e:
+        stickslip.spectra([], 0.01, [0.1])
+    assert e.value.field == "acceleration"
+    with pytest.raises(stickslip.PipelineError) as e:
+        stickslip.run(paper(), threads="2", progress=False)
+    assert e.value.field == "threads"
+    with pytest.raises(stickslip.PipelineError) as e:
+        stickslip.run(paper(), progress=42)
+    assert e.value.field == "progress"
     with pytest.raises(stickslip.PipelineError) as e:
         stickslip.similarity(-1e6, 1.0, 0.1, 1e-4)
     assert e.value.field == "stress_drop_pa"

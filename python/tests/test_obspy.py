@@ -112,7 +112,11 @@ def test_fault_station_records(fault_run):
     row = stations.filter(pl.col("station") == sta.site.name.split(" (V_S30")[0]).row(0, named=True)
     assert sta.latitude == pytest.approx(34.2 + np.degrees(row["x_m"] / r), abs=1e-9)
     assert sta.longitude == pytest.approx(-116.4 + np.degrees(row["z_m"] / (r * np.cos(np.radians(34.2)))), abs=1e-9)
-    assert sta.elevation == pytest.approx(-row["y_m"], abs=1e-6)
+    # The station stands on the ground surface; a buried sensor is its channel's depth.
+    assert sta.elevation == 0.0
+    for cha in sta:
+        assert cha.depth == pytest.approx(row["y_m"], abs=1e-6)
+        assert cha.elevation == pytest.approx(-row["y_m"], abs=1e-6)
     # The site's full name and its scene coordinates are in the inventory.
     names = {s.site.name for s in inv[0]}
     assert names == set(stations["station"].to_list()) or names <= set(stations["station"].to_list())
@@ -120,6 +124,8 @@ def test_fault_station_records(fault_run):
     cat = result.catalog()
     source = result.source
     assert len(cat) == source.height == 1
+    with pytest.raises(FileNotFoundError, match="'stations'"):
+        result.stream("records")
     e = cat[0]
     assert e.preferred_magnitude().mag == pytest.approx(source["mw"][0], abs=1e-9)
     assert e.preferred_origin().depth == pytest.approx(abs(source["hypocentre_y_m"][0]), abs=1e-3)

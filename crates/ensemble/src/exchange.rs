@@ -27,7 +27,7 @@ use std::path::PathBuf;
 use polars::prelude::DataFrame;
 use stickslip_config::Pipeline;
 use stickslip_seismo::accelerogram::Orientation;
-use stickslip_seismo::accelerogram::mseed::{MseedTrace, UtcTime, channel_code, mseed_bytes};
+use stickslip_seismo::accelerogram::mseed::{MseedTrace, UtcTime, channel_code, mseed_bytes, sample_rate};
 use stickslip_seismo::quakeml::{Catalogue, QuakeEvent, QuakeMagnitude, quakeml};
 use stickslip_seismo::stationxml::{Channel, Inventory, Network, Station, Units, local_to_geographic, stationxml};
 use stickslip_store::Folder;
@@ -82,6 +82,9 @@ struct Chan {
     channel: String,
     /// East, north (m) and elevation (m, up) in the scene's frame.
     east_north_up: [f64; 3],
+    /// Depth below the ground surface (m; a fault scenario's buried station), 0 on it or in a
+    /// block.
+    depth_m: f64,
     orientation: Orientation,
     rate_hz: f64,
 }
@@ -141,12 +144,12 @@ fn inventory_text(pipeline: &Pipeline, channels: &[Chan]) -> Result<String, Ense
         .map(|(code, chans)| {
             // The station stands where its prototype-scale (or only) channels are.
             let c0 = chans.iter().find(|c| c.location == "P").unwrap_or(&chans[0]);
-            let [e, n, u] = c0.east_north_up;
+            let [e, n, u] = c0.east_north_up.map(|v| v + 0.0);
             let (lat, lon) = local_to_geographic(e, n, lat0, lon0);
             let mut places: Vec<String> = chans
                 .iter()
                 .map(|c| {
-                    let [e, n, u] = c.east_north_up;
+                    let [e, n, u] = c.east_north_up.map(|v| v + 0.0);
                     format!(
                         "{}east {e} m, north {n} m, up {u} m",
                         if c.note.is_empty() { String::new() } else { format!("{}: ", c.note) }
@@ -158,7 +161,8 @@ fn inventory_text(pipeline: &Pipeline, channels: &[Chan]) -> Result<String, Ense
                 code: code.to_string(),
                 latitude_deg: lat,
                 longitude_deg: lon,
-                elevation_m: u,
+                // The station's ground surface; a buried sensor's depth is its channel's.
+                elevation_m: u + c0.depth_m,
                 site_name: c0.site.clone(),
                 description: format!(
                     "{} in the scene's coordinates ({}; degrees about {} on a sphere of 6371 km)",
@@ -177,8 +181,8 @@ fn inventory_text(pipeline: &Pipeline, channels: &[Chan]) -> Result<String, Ense
                             location_code: c.location.clone(),
                             latitude_deg: lat,
                             longitude_deg: lon,
-                            elevation_m: u,
-                            depth_m: 0.0,
+                            elevation_m: u + 0.0,
+                            depth_m: c.depth_m,
                             azimuth_deg: c.orientation.azimuth_deg,
                             dip_deg: c.orientation.incidence_deg - 90.0,
                             sample_rate_hz: c.rate_hz,
@@ -221,7 +225,7 @@ fn block_channels(out: &Folder) -> Result<Vec<Chan>, EnsembleError> {
     for i in 0..df.height() {
         let station = format!("N{}", node[i]);
         let location = if scale[i] == "model" { "M" } else { "P" }.to_string();
-        let rate = 1.0 / dt[i];
+        let rate = sample_rate(dt[i]);
         let channel = channel_code(&component[i], rate).map_err(EnsembleError::Exchange)?;
         let Some(orientation) = Orientation::of_axis(&component[i]) else { continue };
         found.entry((station.clone(), location.clone(), channel.clone())).or_insert(Chan {
@@ -231,6 +235,7 @@ fn block_channels(out: &Folder) -> Result<Vec<Chan>, EnsembleError> {
             location,
             channel,
             east_north_up: [x[i], y[i], z[i]],
+            depth_m: 0.0,
             orientation,
             rate_hz: rate,
         });
@@ -411,7 +416,7 @@ fn fault_station_records(
                     location: "",
                     channel: &channel,
                     start_s: components.begin_s + p.t_first,
-                    sample_rate_hz: 1.0 / p.dt,
+                    sample_rate_hz: sample_rate(p.dt),
                     samples: &p.accel,
                 };
                 bytes.extend(mseed_bytes(&trace).map_err(EnsembleError::Exchange)?);
@@ -426,8 +431,9 @@ fn fault_station_records(
                     location: String::new(),
                     channel,
                     east_north_up: [z[i], x[i], -y[i]],
+                    depth_m: y[i].max(0.0),
                     orientation,
-                    rate_hz: 1.0 / p.dt,
+                    rate_hz: sample_rate(p.dt),
                 });
             }
         }

@@ -99,7 +99,11 @@ fn syntax_error(py: Python<'_>, text: &str, e: &toml::de::Error) -> PyErr {
 fn field_at(text: &str, at: usize) -> Option<String> {
     let at = at.min(text.len());
     let line_start = text[..at].rfind('\n').map_or(0, |i| i + 1);
-    let line = text[line_start..].lines().next().unwrap_or("");
+    let line = text[line_start..].lines().next().unwrap_or("").trim();
+    // A table header of its own (an unknown `[table]`): the table is the field.
+    if line.starts_with('[') && !line.contains('=') {
+        return Some(line.trim_matches(|c| c == '[' || c == ']').trim().to_string());
+    }
     let key = line.split_once('=').map(|(k, _)| k.trim().trim_matches('"').to_string());
     let table = text[..line_start].lines().rev().find_map(|l| {
         let l = l.trim();

@@ -4,6 +4,7 @@
 
 use stickslip_seismo::accelerogram::mseed::{
     MseedTrace, RECORD_BYTES, SAMPLES_PER_RECORD, UtcTime, band_code, channel_code, mseed_bytes, parse_mseed,
+    sample_rate,
 };
 use stickslip_seismo::accelerogram::{Mseed, RecordFile, RecordFormat};
 
@@ -82,6 +83,15 @@ fn rates_exact_as_ratios_or_in_blockette_100() {
     assert_eq!(b100, rate as f32);
     assert!(((b100 as f64) / rate - 1.0).abs() < 6e-8);
     assert_eq!(parse_mseed(&b).unwrap().sample_rate_hz, b100 as f64);
+}
+
+#[test]
+fn the_rate_an_interval_means() {
+    // 1/2e-5 is 49 999.999 999 999 99 in f64: the pipeline meant 50 kHz.
+    assert_eq!(sample_rate(2e-5), 50_000.0);
+    assert_eq!(sample_rate(0.005), 200.0);
+    assert_eq!(sample_rate(0.0123), 1.0 / 0.0123, "no whole number or thousandth within 1e-12");
+    assert_eq!(sample_rate(1.234_567_89e-4), 1.0 / 1.234_567_89e-4);
 }
 
 #[test]

@@ -56,6 +56,21 @@ pub struct MseedTrace<'a> {
     pub samples: &'a [f64],
 }
 
+/// The sampling rate of an interval `dt_s` (Hz): `1/dt`, taken to the whole number or the
+/// thousandth it lies within 1e-12 of (an interval of 2e-5 s is 50 000 Hz, not
+/// 49 999.999 999 999 99), so that the MiniSEED header and the StationXML inventory write the
+/// rate the pipeline meant, the same in both.
+pub fn sample_rate(dt_s: f64) -> f64 {
+    let rate = 1.0 / dt_s;
+    for q in [1.0, 1000.0] {
+        let snapped = (rate * q).round() / q;
+        if snapped > 0.0 && ((snapped - rate) / rate).abs() < 1e-12 {
+            return snapped;
+        }
+    }
+    rate
+}
+
 /// The SEED band code of an accelerometer sampled at `rate_hz` (SEED 2.4 Appendix A, the
 /// broadband family an accelerometer belongs to, its response reaching 0 Hz): `F` from 1000 Hz
 /// (model-scale records above SEED's 5000 Hz keep `F`), `C` from 250, `H` from 80, `B` from 10,
@@ -302,7 +317,7 @@ impl super::RecordFormat for Mseed {
     }
 
     fn encode(&self, r: &super::RecordFile<'_>) -> Result<Vec<u8>, SeismoError> {
-        let rate = 1.0 / r.dt_s;
+        let rate = sample_rate(r.dt_s);
         let channel = channel_code(r.component, rate)?;
         mseed_bytes(&MseedTrace {
             network: r.network,
