@@ -97,9 +97,6 @@ class _Record:
         fields = ", ".join(f"{n}={getattr(self, n)!r}" for n in self.__slots__)
         return f"{type(self).__name__}({fields})"
 
-    def __eq__(self, other: object) -> bool:
-        return type(other) is type(self) and all(getattr(self, n) is getattr(other, n) for n in self.__slots__)
-
 
 class Spectra(_Record):
     """Response spectra: ``sd`` (m), ``psv`` (m/s) and ``psa`` (m/s²) with shape

@@ -110,7 +110,6 @@ def test_ctrl_c_keeps_finished_seeds_and_the_same_call_resumes(tmp_path):
     import signal
     import subprocess
     import sys
-    import time
 
     out = tmp_path / "out"
     script = (

@@ -5,7 +5,6 @@
 
 mod common;
 
-use common::scene_with;
 use stickslip_solver::fault::Fault;
 use stickslip_solver::geometry::Face;
 use stickslip_solver::laws::StaticDynamic;
@@ -13,7 +12,7 @@ use stickslip_solver::material::lattice_elastic_constants;
 use stickslip_solver::scene::BoundarySpec;
 use stickslip_solver::statics::critical_time_step;
 use stickslip_solver::step::{Batch, LaneSetup};
-use stickslip_solver::{Dims, Model, NodeId, Scene};
+use stickslip_solver::{Dims, Model, Scene};
 
 const TAU0: f64 = 81.6e6;
 const SIGMA_N: f64 = 120e6;
@@ -25,23 +24,9 @@ const MU_D: f64 = 0.525;
 /// symmetry planes for a plane S wave along z polarised in x (they hold y and z), its top face
 /// absorbing.
 fn column(nz: usize, tau0: f64) -> Scene {
-    let mut s = scene_with(|f| {
-        f.block.nx = 2;
-        f.block.ny = 2;
-        f.block.nz = nz as i64;
-        f.block.lc_m = 100.0;
-        f.material.young_pa = 8.01e10;
-        f.material.density_kg_m3 = 2670.0;
-        f.material.poisson = 0.25;
-        f.material.young_cv = 0.0;
-        f.self_weight.gravity_m_s2 = 0.0;
-    });
-    s.dims = Dims::new(2, 2, nz);
-    s.boundaries.retain(|b| !matches!(b, BoundarySpec::Drivers(_)));
-    s.record.interface.clear();
+    let mut s = common::column(nz, 0);
     s.friction.law = StaticDynamic { mu_static: MU_S, mu_dynamic: MU_D }.into();
-    let lattice = s.lattice();
-    let contacts = lattice.contact_nodes().len();
+    let contacts = s.lattice().contact_nodes().len();
     s.fault = Some(Fault {
         shear_pa: vec![[tau0, 0.0]; contacts],
         normal_pa: vec![SIGMA_N; contacts],
@@ -49,13 +34,6 @@ fn column(nz: usize, tau0: f64) -> Scene {
         nucleation: None,
         origin_m: [0.0; 2],
     });
-    let mut fixed = std::collections::BTreeMap::<NodeId, [bool; 3]>::new();
-    for face in [Face::XMin, Face::XMax, Face::YMin, Face::YMax] {
-        for id in face.nodes(&lattice) {
-            fixed.insert(id, [false, true, true]);
-        }
-    }
-    s.set_boundary(BoundarySpec::Rollers(fixed.into_iter().collect()));
     s.set_boundary(BoundarySpec::Absorbing(vec![Face::ZMax]));
     s
 }
