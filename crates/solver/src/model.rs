@@ -14,6 +14,7 @@ use crate::material::{STREAM_FRICTION, STREAM_YOUNG, axial_stiffness, weibull_fa
 use crate::medium::Zone;
 use crate::rupture::{crack_area, fracture_energy_factors};
 use crate::scene::Scene;
+use crate::split::Window;
 use crate::stencil::{RunStiffness, StencilLayout};
 use crate::stiffness::LaneStiffness;
 
@@ -96,6 +97,8 @@ pub struct Model {
     bar_code: Vec<u8>,
     /// The zone of each stencil run (runs go along x, depth along y or z).
     run_code: Vec<u8>,
+    /// The part of the block this model holds, when the scene is split over ranks.
+    window: Option<Window>,
 }
 
 impl Model {
@@ -126,16 +129,8 @@ impl Model {
         for (i, id) in to_canonical.iter().enumerate() {
             to_internal[id.index()] = i as u32;
         }
-        let rho_lc3 = scene.density_kg_m3 * scene.lc_m.powi(3);
         let zones = scene.medium.zones(scene.young_pa, scene.density_kg_m3, scene.poisson);
-        let (extent, half) = (lattice.extent(), 0.5 * scene.lc_m);
-        let mass: Vec<f64> = to_canonical
-            .iter()
-            .map(|&id| {
-                let d = scene.medium.depth(lattice.position(id), extent);
-                lattice.mass_fraction(id) * rho_lc3 * scene.medium.density_over(&zones, d - half, d + half)
-            })
-            .collect();
+        let mass = masses(&scene, &lattice, &to_canonical);
         let inv_mass = mass.iter().map(|m| 1.0 / m).collect();
 
         // Bars: a stencil for a large elastic lattice, else listed in kernel order.
@@ -146,7 +141,7 @@ impl Model {
             (Bars::Listed(listed), canonical)
         };
         let contact = lattice.contact_nodes().iter().map(|id| to_internal[id.index()]).collect();
-        let boundaries = Boundaries::new(&scene, |id| to_internal[id.index()]);
+        let boundaries = Boundaries::new(&scene, |id| Some(to_internal[id.index()]));
         let mut model = Model {
             scene,
             lattice,
@@ -162,7 +157,65 @@ impl Model {
             zones,
             bar_code: Vec::new(),
             run_code: Vec::new(),
+            window: None,
         };
+        model.finish();
+        model
+    }
+
+    /// The part `window` of the scene's block, for one rank of a split scene ([`crate::split`]):
+    /// its nodes numbered from the window's first, its bars the stencil's window, the same masses,
+    /// nominal stiffness and canonical indices as the whole block's; boundary conditions on the
+    /// nodes it owns only, the base's contact on rank 0 only. A scene whose bars crack is listed
+    /// and is not split.
+    pub fn window(scene: Scene, window: Window) -> Model {
+        assert!(scene.rupture.is_none(), "bars that crack are listed and are not split over ranks");
+        let lattice = scene.lattice();
+        let dims = lattice.dims();
+        let to_canonical: Vec<NodeId> =
+            (0..window.nodes).map(|i| canonical_of_internal(dims, window.global(i))).collect();
+        let mass = masses(&scene, &lattice, &to_canonical);
+        let inv_mass = mass.iter().map(|m| 1.0 / m).collect();
+        let layout = Bars::Stencil(StencilLayout::window(dims, window.lo, window.hi));
+        let contact = if window.lo == 0 {
+            lattice.contact_nodes().iter().map(|&id| internal_of_canonical(dims, id) as u32).collect()
+        } else {
+            Vec::new()
+        };
+        let boundaries = Boundaries::new(&scene, |id| {
+            let g = internal_of_canonical(dims, id);
+            window.owns(g).then(|| (g - window.first_node) as u32)
+        });
+        let mut model = Model {
+            scene,
+            lattice,
+            to_canonical,
+            to_internal: Vec::new(),
+            mass,
+            inv_mass,
+            layout,
+            bar_canonical: Vec::new(),
+            run_stiffness: Vec::new(),
+            contact,
+            boundaries,
+            zones: Vec::new(),
+            bar_code: Vec::new(),
+            run_code: Vec::new(),
+            window: Some(window),
+        };
+        model.zones = model.scene.medium.zones(model.scene.young_pa, model.scene.density_kg_m3, model.scene.poisson);
+        model.finish();
+        model
+    }
+
+    /// The part of the block this model holds, when split over ranks.
+    pub fn split_window(&self) -> Option<&Window> {
+        self.window.as_ref()
+    }
+
+    /// The medium's zone codes and the runs' nominal stiffness, from the layout.
+    fn finish(&mut self) {
+        let model = self;
         if model.scene.medium.is_dissipative() {
             match &model.layout {
                 Bars::Listed(_) => {
@@ -184,7 +237,6 @@ impl Model {
                 })
                 .collect();
         }
-        model
     }
 
     /// The nominal stiffness of each run of a stencil lattice (order of its runs; empty for
@@ -213,9 +265,13 @@ impl Model {
         self.layout.bar_count()
     }
 
-    /// Internal index of a canonical node.
+    /// Internal index of a canonical node (in a window: its window index; the window must hold
+    /// it).
     pub fn internal(&self, id: NodeId) -> usize {
-        self.to_internal[id.index()] as usize
+        match &self.window {
+            None => self.to_internal[id.index()] as usize,
+            Some(w) => w.local(internal_of_canonical(self.lattice.dims(), id)).expect("a node the window holds"),
+        }
     }
 
     /// Canonical id of an internal node index.
@@ -471,6 +527,10 @@ impl Model {
     /// `σn·A_i`, `A_i` the node's share of the base. `None` on the rigid base.
     pub fn fault_loads(&self, seed: u64) -> Result<Option<FaultLoads>, SolverError> {
         let Some(fault) = &self.scene.fault else { return Ok(None) };
+        if self.contact.is_empty() {
+            // A rank above the base of a split scene.
+            return Ok(None);
+        }
         let lattice = &self.lattice;
         let nodes = lattice.contact_nodes();
         let area: Vec<f64> = nodes.iter().map(|&id| Face::ZMin.tributary_area(lattice, id)).collect();
@@ -518,6 +578,39 @@ impl Model {
 /// The canonical id of every internal node: nodes sorted by `z`, then `y`, then `x` of their
 /// position, written in closed form (layer `k`: corner rows `j = 0..=ny` of `nx + 1` corners, then
 /// centre rows `j = 0..ny` of `nx` centres; see [`crate::stencil`]).
+/// The lumped mass of each node of `nodes` (kg): its share of the modules around it, with the
+/// medium's density over the module's depth.
+fn masses(scene: &Scene, lattice: &Lattice, nodes: &[NodeId]) -> Vec<f64> {
+    let rho_lc3 = scene.density_kg_m3 * scene.lc_m.powi(3);
+    let zones = scene.medium.zones(scene.young_pa, scene.density_kg_m3, scene.poisson);
+    let (extent, half) = (lattice.extent(), 0.5 * scene.lc_m);
+    nodes
+        .iter()
+        .map(|&id| {
+            let d = scene.medium.depth(lattice.position(id), extent);
+            lattice.mass_fraction(id) * rho_lc3 * scene.medium.density_over(&zones, d - half, d + half)
+        })
+        .collect()
+}
+
+/// The internal index of canonical node `id` (the order of [`internal_order`]).
+pub(crate) fn internal_of_canonical(dims: crate::geometry::Dims, id: NodeId) -> usize {
+    let crate::geometry::Dims { nx, ny, nz } = dims;
+    let (cc, cm) = ((nx + 1) * (ny + 1), nx * ny);
+    let c = id.index();
+    let corners = cc * (nz + 1);
+    if c < corners { (c / cc) * (cc + cm) + c % cc } else { ((c - corners) / cm) * (cc + cm) + cc + (c - corners) % cm }
+}
+
+/// The canonical node of internal index `g` (the order of [`internal_order`]).
+pub(crate) fn canonical_of_internal(dims: crate::geometry::Dims, g: usize) -> NodeId {
+    let crate::geometry::Dims { nx, ny, nz } = dims;
+    let (cc, cm) = ((nx + 1) * (ny + 1), nx * ny);
+    let (k, r) = (g / (cc + cm), g % (cc + cm));
+    let i = if r < cc { k * cc + r } else { cc * (nz + 1) + k * cm + (r - cc) };
+    NodeId(i as u32)
+}
+
 fn internal_order(dims: crate::geometry::Dims) -> Vec<NodeId> {
     let crate::geometry::Dims { nx, ny, nz } = dims;
     let corners = (nx + 1) * (ny + 1) * (nz + 1);

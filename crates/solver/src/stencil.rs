@@ -112,9 +112,45 @@ pub struct StencilLayout {
 impl StencilLayout {
     /// The stencil of a block of `dims` modules.
     pub fn new(dims: Dims) -> StencilLayout {
+        Self::build(dims, 0, dims.nz)
+    }
+
+    /// The stencil of the layers `lo..=hi` of a block of `dims` modules, for one rank of a
+    /// decomposed scene ([`crate::split`]): nodes numbered from layer `lo`'s first, runs those of
+    /// layers `lo..hi` (and of `hi` too when it is the block's top layer), each with its canonical
+    /// index in the whole block, so that a seed's factors are those of the whole block. Below
+    /// the top, layer `hi` holds its corners and centres (the halo above) and runs no bars. The
+    /// slabs are the whole block's, cut at `lo` and `hi`, so each owned node receives its bars in
+    /// the whole block's order; this needs `lo + 1` not to start a slab of the block
+    /// ([`StencilLayout::slab_bounds`]), which [`crate::split::Partition`] ensures.
+    pub fn window(dims: Dims, lo: usize, hi: usize) -> StencilLayout {
+        assert!(lo < hi && hi <= dims.nz, "layers {lo}..={hi} of a block of {} layers", dims.nz + 1);
+        assert!(
+            lo == 0 || !Self::slab_bounds(dims.nz + 1).contains(&(lo + 1)),
+            "a window's first owned layer {} starts a slab of the block",
+            lo + 1
+        );
+        Self::build(dims, lo, hi)
+    }
+
+    /// The layers where the slabs of a lattice of `layers` layers start, and its layer count at
+    /// the end: at most [`MAX_SLABS`] slabs of at least two layers, and the top layer alone when
+    /// the count is odd (see the module doc).
+    pub fn slab_bounds(layers: usize) -> Vec<usize> {
+        let top_alone = layers % 2 == 1 && layers >= 5;
+        let below = if top_alone { layers - 1 } else { layers };
+        let count = (below / 2).clamp(1, MAX_SLABS);
+        let mut slabs: Vec<usize> = (0..=count).map(|s| s * below / count).collect();
+        if top_alone {
+            slabs.push(layers);
+        }
+        slabs
+    }
+
+    fn build(dims: Dims, lo: usize, hi: usize) -> StencilLayout {
         let Dims { nx, ny, nz } = dims;
         let (cc, cm) = ((nx + 1) * (ny + 1), nx * ny);
-        let layer = |k: usize| k * (cc + cm);
+        let layer = |k: usize| (k - lo) * (cc + cm);
         let corner = |i: usize, j: usize, k: usize| layer(k) + j * (nx + 1) + i;
         let centre = |i: usize, j: usize, k: usize| layer(k) + cc + j * nx + i;
         // Canonical blocks: edges along x, y, z; diagonals; centre bars along x, y, z.
@@ -145,8 +181,13 @@ impl StencilLayout {
                 bars += len;
             };
         let (x, y, z) = (Direction::Axis(0), Direction::Axis(1), Direction::Axis(2));
-        for k in 0..=nz {
+        // Layer `hi` runs its bars only when it is the block's top layer.
+        let ran = if hi == nz { hi + 1 } else { hi };
+        for k in lo..=hi {
             for j in 0..=ny {
+                if k >= ran {
+                    break;
+                }
                 let c = corner(0, j, k);
                 push(&mut runs, x, c, nx, 1, nx * (j + (ny + 1) * k), 1);
                 if j < ny {
@@ -186,15 +227,13 @@ impl StencilLayout {
             }
             layer_runs.push(runs.len());
         }
-        let layer_nodes = (0..=nz).map(layer).chain([dims.node_count()]).collect();
-        let layers = nz + 1;
-        let top_alone = layers % 2 == 1 && layers >= 5;
-        let below = if top_alone { layers - 1 } else { layers };
-        let count = (below / 2).clamp(1, MAX_SLABS);
-        let mut slabs: Vec<usize> = (0..=count).map(|s| s * below / count).collect();
-        if top_alone {
-            slabs.push(layers);
-        }
+        let top = if hi == nz { cc } else { cc + cm };
+        let layer_nodes = (lo..=hi).map(layer).chain([layer(hi) + top]).collect();
+        // The block's slabs, cut to the window.
+        let layers = hi - lo + 1;
+        let mut slabs = vec![0];
+        slabs.extend(Self::slab_bounds(nz + 1).into_iter().filter(|&b| lo < b && b <= hi).map(|b| b - lo));
+        slabs.push(layers);
         StencilLayout { runs, layer_runs, layer_nodes, slabs, bars }
     }
 

@@ -38,7 +38,7 @@ pub fn impedances(scene: &Scene) -> (f64, f64) {
 
 impl Absorbing {
     /// The dashpots of `scene`'s absorbing faces.
-    pub(crate) fn new(scene: &Scene, internal: &dyn Fn(NodeId) -> u32) -> Absorbing {
+    pub(crate) fn new(scene: &Scene, internal: &dyn Fn(NodeId) -> Option<u32>) -> Absorbing {
         if scene.absorbing().is_empty() {
             return Absorbing::default();
         }
@@ -58,7 +58,9 @@ impl Absorbing {
                 let area = face.tributary_area(&lattice, id) * local;
                 let mut c = [zs * area; 3];
                 c[axis] = zp * area;
-                dashpots.push((internal(id), c));
+                if let Some(i) = internal(id) {
+                    dashpots.push((i, c));
+                }
             }
         }
         // One entry per node: a node on an edge of two absorbing faces carries both dashpots.

@@ -17,8 +17,8 @@ pub struct Drivers {
 
 impl Drivers {
     /// The drivers of `scene`.
-    pub(crate) fn new(scene: &Scene, internal: &dyn Fn(NodeId) -> u32) -> Drivers {
-        Drivers { nodes: scene.drivers().iter().map(|&id| internal(id)).collect() }
+    pub(crate) fn new(scene: &Scene, internal: &dyn Fn(NodeId) -> Option<u32>) -> Drivers {
+        Drivers { nodes: scene.drivers().iter().filter_map(|&id| internal(id)).collect() }
     }
 }
 

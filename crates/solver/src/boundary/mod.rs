@@ -172,7 +172,7 @@ macro_rules! kinds {
         impl Kind {
             /// Every kind's boundary on `scene` (empty where the scene has none), in the list's
             /// order.
-            fn every(scene: &Scene, internal: &dyn Fn(NodeId) -> u32) -> Vec<Kind> {
+            fn every(scene: &Scene, internal: &dyn Fn(NodeId) -> Option<u32>) -> Vec<Kind> {
                 vec![$(Kind::$variant(<$kind>::new(scene, internal)),)+]
             }
         }
@@ -233,9 +233,9 @@ pub struct Boundaries {
 }
 
 impl Boundaries {
-    /// The boundary conditions of `scene`, with `internal` mapping a canonical node to its
-    /// internal index.
-    pub fn new(scene: &Scene, internal: impl Fn(NodeId) -> u32) -> Boundaries {
+    /// The boundary conditions of `scene` on the nodes `internal` maps to an internal index (every
+    /// node, or those a rank owns: [`crate::split`]).
+    pub fn new(scene: &Scene, internal: impl Fn(NodeId) -> Option<u32>) -> Boundaries {
         let list = Kind::every(scene, &internal);
         let mut applied: Vec<usize> = (0..list.len()).collect();
         applied.sort_by_key(|&i| list[i].phase());

@@ -18,9 +18,9 @@ pub struct Plate {
 
 impl Plate {
     /// The plate of `scene`.
-    pub(crate) fn new(scene: &Scene, internal: &dyn Fn(NodeId) -> u32) -> Plate {
+    pub(crate) fn new(scene: &Scene, internal: &dyn Fn(NodeId) -> Option<u32>) -> Plate {
         let springs = scene.plate().map_or_else(Vec::new, |p| {
-            p.nodes.iter().zip(&p.stiffness_n_m).map(|(id, &k)| (internal(*id), k)).collect()
+            p.nodes.iter().zip(&p.stiffness_n_m).filter_map(|(id, &k)| Some((internal(*id)?, k))).collect()
         });
         Plate { springs }
     }

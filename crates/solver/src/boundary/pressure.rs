@@ -17,10 +17,10 @@ pub struct Pressure {
 
 impl Pressure {
     /// The pressure of `scene`.
-    pub(crate) fn new(scene: &Scene, internal: &dyn Fn(NodeId) -> u32) -> Pressure {
-        let loads = scene
-            .normal_load()
-            .map_or_else(Vec::new, |n| n.nodes.iter().zip(&n.force_n).map(|(id, &f)| (internal(*id), -f)).collect());
+    pub(crate) fn new(scene: &Scene, internal: &dyn Fn(NodeId) -> Option<u32>) -> Pressure {
+        let loads = scene.normal_load().map_or_else(Vec::new, |n| {
+            n.nodes.iter().zip(&n.force_n).filter_map(|(id, &f)| Some((internal(*id)?, -f))).collect()
+        });
         Pressure { loads }
     }
 }

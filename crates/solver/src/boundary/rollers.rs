@@ -15,8 +15,8 @@ pub struct Rollers {
 
 impl Rollers {
     /// The rollers of `scene`.
-    pub(crate) fn new(scene: &Scene, internal: &dyn Fn(NodeId) -> u32) -> Rollers {
-        Rollers { nodes: scene.fixed().iter().map(|(id, m)| (internal(*id), *m)).collect() }
+    pub(crate) fn new(scene: &Scene, internal: &dyn Fn(NodeId) -> Option<u32>) -> Rollers {
+        Rollers { nodes: scene.fixed().iter().filter_map(|(id, m)| Some((internal(*id)?, *m))).collect() }
     }
 }
 

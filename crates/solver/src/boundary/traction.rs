@@ -19,11 +19,11 @@ pub struct Traction {
 
 impl Traction {
     /// The loaded nodes of `scene`: the contact nodes when the base is a fault.
-    pub(crate) fn new(scene: &Scene, internal: &dyn Fn(NodeId) -> u32) -> Traction {
+    pub(crate) fn new(scene: &Scene, internal: &dyn Fn(NodeId) -> Option<u32>) -> Traction {
         if !scene.is_fault() {
             return Traction::default();
         }
-        Traction { nodes: scene.lattice().contact_nodes().into_iter().map(internal).collect() }
+        Traction { nodes: scene.lattice().contact_nodes().into_iter().filter_map(internal).collect() }
     }
 }
 

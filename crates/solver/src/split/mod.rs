@@ -1,0 +1,238 @@
+//! One scene split over ranks (domain decomposition, docs/model.md §19): each rank owns a slab
+//! of module layers along z and steps it with the same kernels as a single process, holding one
+//! layer of its neighbours' nodes (the halo) that is exchanged after every step.
+//!
+//! **Why z.** The internal node order is by z, then y, then x ([`crate::Model`]), so a slab of
+//! layers is one range of every node array and of the stencil's runs: a rank's model is the
+//! whole block's cut to a window ([`crate::Model::window`]), and a halo is one contiguous copy.
+//! The slab's face is `nx·ny` modules, larger than a cut along the longest axis would give on a
+//! long block; the exchange's share of a step is measured in docs/guide/benchmarks.md.
+//!
+//! **The same bits.** A rank owning layers `k0..k1` holds layers `k0 − 1 ..= k1`: layer `k0 − 1`
+//! (below, with its bars, which write layer `k0`) and layer `k1` (above, read by the bars of
+//! `k1 − 1`, running none). Its stencil runs the whole block's runs of those layers in the whole
+//! block's slab and phase order ([`crate::stencil::StencilLayout::window`]), so each owned node
+//! receives the same contributions in the same order as on one process, and is integrated by
+//! the same arithmetic. Halo nodes are integrated too, from incomplete forces, and overwritten by
+//! the exchange before anything reads them. Boundary conditions act on owned nodes only; the base
+//! (contact, a fault) is rank 0's.
+//!
+//! **The exchange.** After each step a rank sends its top owned layer up and its bottom owned
+//! layer down (the newest displacement level, three components, every lane), and receives its two
+//! halo layers ([`Neighbours`]). The older levels of a halo node are the newest of earlier
+//! exchanges, so one level per step is enough.
+
+#[cfg(feature = "mpi")]
+pub mod mpi;
+mod threads;
+
+use std::ops::Range;
+
+use crate::field::Field;
+use crate::geometry::Dims;
+use crate::stencil::StencilLayout;
+
+pub use threads::{ThreadRanks, thread_ranks};
+
+/// The module layers each rank owns, bottom up.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Partition {
+    dims: Dims,
+    /// Rank `r` owns module layers `starts[r]..starts[r + 1]` (the last also the block's top
+    /// corner layer).
+    starts: Vec<usize>,
+}
+
+/// Why a block cannot be split over a number of ranks.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct PartitionError {
+    /// The ranks asked for.
+    pub ranks: usize,
+    /// The most the block takes.
+    pub most: usize,
+}
+
+impl std::fmt::Display for PartitionError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} ranks: a block is split into slabs of at least two module layers along z, none starting where a slab of its stencil starts, so this one takes 1 to {} ranks",
+            self.ranks, self.most
+        )
+    }
+}
+
+impl std::error::Error for PartitionError {}
+
+impl Partition {
+    /// Splits the block's `nz` module layers as evenly as the rule allows: every rank at least
+    /// two layers, and no rank's first layer the first of a slab of the block's stencil (whose
+    /// order a rank must reproduce), by moving such a cut down a layer, or up where down would
+    /// leave the rank below short.
+    pub fn new(dims: Dims, ranks: usize) -> Result<Partition, PartitionError> {
+        match Self::cuts(dims.nz, ranks) {
+            Some(starts) => Ok(Partition { dims, starts }),
+            None => {
+                let most =
+                    (1..ranks.min(dims.nz / 2 + 1)).rev().find(|&r| Self::cuts(dims.nz, r).is_some()).unwrap_or(1);
+                Err(PartitionError { ranks, most })
+            }
+        }
+    }
+
+    fn cuts(nz: usize, ranks: usize) -> Option<Vec<usize>> {
+        if ranks == 0 || (ranks > 1 && 2 * ranks > nz) {
+            return None;
+        }
+        let slab_starts = StencilLayout::slab_bounds(nz + 1);
+        let mut starts = vec![0];
+        for r in 1..ranks {
+            let previous = *starts.last().expect("rank 0 starts at 0");
+            let mut k = ((r * nz + ranks / 2) / ranks).max(previous + 2);
+            if slab_starts.contains(&k) {
+                k = if k > previous + 2 { k - 1 } else { k + 1 };
+            }
+            // Room for this rank's two layers and two for each rank above.
+            if k + 2 * (ranks - r) > nz {
+                return None;
+            }
+            starts.push(k);
+        }
+        starts.push(nz);
+        Some(starts)
+    }
+
+    /// Number of ranks.
+    pub fn ranks(&self) -> usize {
+        self.starts.len() - 1
+    }
+
+    /// The block.
+    pub fn dims(&self) -> Dims {
+        self.dims
+    }
+
+    /// The module layers rank `r` owns.
+    pub fn owned_layers(&self, r: usize) -> Range<usize> {
+        self.starts[r]..self.starts[r + 1]
+    }
+
+    /// Rank `r`'s window.
+    pub fn window(&self, r: usize) -> Window {
+        let Dims { nx, ny, nz } = self.dims;
+        let owned = self.owned_layers(r);
+        let lo = owned.start.saturating_sub(1);
+        let hi = owned.end;
+        let layer = (nx + 1) * (ny + 1) + nx * ny;
+        let top = if hi == nz { (nx + 1) * (ny + 1) } else { layer };
+        let nodes = (hi - lo) * layer + top;
+        let own_start = (owned.start - lo) * layer;
+        let own_end = if hi == nz { nodes } else { (hi - lo) * layer };
+        Window { rank: r, ranks: self.ranks(), lo, hi, first_node: lo * layer, nodes, owned: own_start..own_end, layer }
+    }
+}
+
+/// The part of the block one rank holds: module layers `lo..=hi` (its own and one halo layer on
+/// each side that has a neighbour).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Window {
+    /// This rank.
+    pub rank: usize,
+    /// Every rank.
+    pub ranks: usize,
+    /// First layer held (the halo below, or 0).
+    pub lo: usize,
+    /// Last layer held (the halo above, or the block's top corner layer).
+    pub hi: usize,
+    /// The block's internal index of the window's first node.
+    pub first_node: usize,
+    /// Nodes held.
+    pub nodes: usize,
+    /// The nodes this rank owns (window indices).
+    pub owned: Range<usize>,
+    /// Nodes of one module layer (corners and centres).
+    layer: usize,
+}
+
+impl Window {
+    /// The halo below (window indices), which the rank below sends; empty on rank 0.
+    pub fn halo_below(&self) -> Range<usize> {
+        0..self.owned.start
+    }
+
+    /// The halo above, which the rank above sends; empty on the top rank.
+    pub fn halo_above(&self) -> Range<usize> {
+        self.owned.end..self.nodes
+    }
+
+    /// What this rank sends down: its first owned layer (the halo above of the rank below).
+    pub fn send_below(&self) -> Range<usize> {
+        if self.rank == 0 { 0..0 } else { self.owned.start..self.owned.start + self.layer }
+    }
+
+    /// What this rank sends up: its last owned layer (the halo below of the rank above).
+    pub fn send_above(&self) -> Range<usize> {
+        if self.rank + 1 == self.ranks { 0..0 } else { self.owned.end - self.layer..self.owned.end }
+    }
+
+    /// The block's internal index of window node `i`.
+    pub fn global(&self, i: usize) -> usize {
+        self.first_node + i
+    }
+
+    /// The window index of the block's internal node `g`, if the window holds it.
+    pub fn local(&self, g: usize) -> Option<usize> {
+        g.checked_sub(self.first_node).filter(|&i| i < self.nodes)
+    }
+
+    /// Whether this rank owns the block's internal node `g`.
+    pub fn owns(&self, g: usize) -> bool {
+        self.local(g).is_some_and(|i| self.owned.contains(&i))
+    }
+}
+
+/// How a rank trades halo layers with its neighbours: `send_down`/`send_up` are this rank's
+/// layers (empty where there is no neighbour), `from_below`/`from_above` are filled with the
+/// neighbours' (same lengths as the layers they send). Every rank calls it once per step.
+pub trait Neighbours {
+    /// Sends and receives one step's halo layers.
+    fn swap(&mut self, send_down: &[f64], send_up: &[f64], from_below: &mut [f64], from_above: &mut [f64]);
+}
+
+/// Buffers of one rank's exchange, reused from step to step.
+#[derive(Debug, Default)]
+pub struct Halo {
+    send_down: Vec<f64>,
+    send_up: Vec<f64>,
+    from_below: Vec<f64>,
+    from_above: Vec<f64>,
+}
+
+impl Halo {
+    /// Trades the halo layers of `u` (a rank's newest displacement level) with the neighbours.
+    pub fn exchange<const L: usize>(&mut self, window: &Window, u: &mut Field<L>, with: &mut dyn Neighbours) {
+        pack(u, window.send_below(), &mut self.send_down);
+        pack(u, window.send_above(), &mut self.send_up);
+        self.from_below.resize(3 * L * window.halo_below().len(), 0.0);
+        self.from_above.resize(3 * L * window.halo_above().len(), 0.0);
+        with.swap(&self.send_down, &self.send_up, &mut self.from_below, &mut self.from_above);
+        unpack(&self.from_below, window.halo_below(), u);
+        unpack(&self.from_above, window.halo_above(), u);
+    }
+}
+
+/// Copies nodes `r` of `u` into `out`, component by component.
+fn pack<const L: usize>(u: &Field<L>, r: Range<usize>, out: &mut Vec<f64>) {
+    out.clear();
+    for c in 0..3 {
+        out.extend_from_slice(u.c[c][r.clone()].as_flattened());
+    }
+}
+
+/// The inverse of [`pack`].
+fn unpack<const L: usize>(data: &[f64], r: Range<usize>, u: &mut Field<L>) {
+    let n = r.len() * L;
+    for c in 0..3 {
+        u.c[c][r.clone()].as_flattened_mut().copy_from_slice(&data[c * n..(c + 1) * n]);
+    }
+}

@@ -1,0 +1,156 @@
+//! A scene split over ranks steps to the same bits as on one process (docs/model.md §19): every
+//! owned node's three time levels, compared bit for bit after a few hundred steps, for 2, 3 and 4
+//! ranks (threads trading halos over channels), on the paper's block grown to a stencil lattice
+//! (gravity, friction on the base, a driver, a Weibull field on E, rollers) and on TPV5 at 500 m
+//! (a slip-weakening fault as the base, absorbing faces, a rupture under way).
+
+mod common;
+
+use stickslip_solver::Model;
+use stickslip_solver::Scene;
+use stickslip_solver::field::Field;
+use stickslip_solver::split::{Halo, Partition, thread_ranks};
+use stickslip_solver::statics::critical_step;
+use stickslip_solver::step::{Batch, LaneSetup, start_drivers};
+
+/// The set-up of seed `seed` on `model`, with the time step `dt_s` of the whole block.
+fn setup(model: &Model, seed: u64, dt_s: f64) -> LaneSetup {
+    LaneSetup {
+        dt_s,
+        stiffness: model.lane_stiffness(seed).unwrap(),
+        friction: model.friction_factors(seed).unwrap(),
+        strength: None,
+        fault: model.fault_loads(seed).unwrap(),
+    }
+}
+
+/// A smooth start that moves every node differently (so every bar works from the first step).
+fn start(p: [f64; 3]) -> ([f64; 3], [f64; 3]) {
+    let w = |p: [f64; 3], s: f64| 1e-6 * ((0.37 * p[0] + 0.11 * s).sin() + (0.23 * p[1] - 0.7 * p[2]).cos());
+    let u0 = [w(p, 0.0), w(p, 1.0), w(p, 2.0)];
+    let u1 = [w(p, 0.1), w(p, 1.1), w(p, 2.1)];
+    (u0, u1)
+}
+
+/// What a batch does on every rank before stepping: damping, gravity, drivers on.
+fn prepare(batch: &mut Batch<'_, 1>, gravity: f64) {
+    batch.params.set_damping(0, 50.0);
+    batch.params.set_body_acceleration(0, [0.0, 0.0, -gravity]);
+    batch.initialize(0, start);
+    start_drivers(batch.params.model, &mut batch.state, 0);
+}
+
+/// The three levels of every node after `steps` steps on one process (internal order).
+fn single(scene: &Scene, seed: u64, steps: usize, gravity: f64) -> (f64, [Field<1>; 3]) {
+    let model = Model::with_stencil(scene.clone());
+    let lane = setup(&model, seed, 1.0);
+    let dt = 0.5 * critical_step(&model, &lane.stiffness).unwrap().dt_s;
+    let mut batch = Batch::new(&model, &[LaneSetup { dt_s: dt, ..lane }]);
+    prepare(&mut batch, gravity);
+    for _ in 0..steps {
+        batch.step();
+    }
+    let u = batch.state.u;
+    (dt, [u.nm1, u.n, u.np1])
+}
+
+/// The same split over `ranks` ranks, each a thread; checks every owned node against `whole`.
+fn split_agrees(scene: &Scene, seed: u64, steps: usize, gravity: f64, dt: f64, whole: &[Field<1>; 3], ranks: usize) {
+    let partition = Partition::new(scene.dims, ranks).unwrap();
+    let links = thread_ranks(ranks);
+    std::thread::scope(|s| {
+        for (r, mut link) in links.into_iter().enumerate() {
+            let window = partition.window(r);
+            let scene = scene.clone();
+            s.spawn(move || {
+                let model = Model::window(scene, window.clone());
+                let mut batch = Batch::new(&model, &[setup(&model, seed, dt)]);
+                prepare(&mut batch, gravity);
+                let mut halo = Halo::default();
+                for _ in 0..steps {
+                    batch.step();
+                    halo.exchange(&window, &mut batch.state.u.np1, &mut link);
+                }
+                let u = &batch.state.u;
+                for (level, (mine, theirs)) in [&u.nm1, &u.n, &u.np1].into_iter().zip(whole).enumerate() {
+                    for i in window.owned.clone() {
+                        let g = window.global(i);
+                        for c in 0..3 {
+                            let (a, b) = (mine.c[c][i][0], theirs.c[c][g][0]);
+                            assert!(
+                                a.to_bits() == b.to_bits(),
+                                "{ranks} ranks, rank {r}: level {level}, node {g}, component {c}: {a:e} against {b:e} on one process"
+                            );
+                        }
+                    }
+                }
+            });
+        }
+    });
+}
+
+/// The paper's block grown to 14 × 3 × 13 modules: gravity, the Coulomb base, the driver at
+/// (0, 0, 0.2) m, E with its 5% Weibull field.
+#[test]
+fn the_paper_block_split_over_ranks_gives_the_same_bits() {
+    let scene = common::scene_with(|f| {
+        f.block.nx = 14;
+        f.block.ny = 3;
+        f.block.nz = 13;
+    });
+    assert!(scene.young_cv > 0.0 && !scene.drivers().is_empty());
+    let steps = 400;
+    let (dt, whole) = single(&scene, 7, steps, 9.81);
+    // Something happened: the base slid or the block moved by more than the start.
+    let moved = whole[2].c[2].iter().map(|v| v[0].abs()).fold(0.0, f64::max);
+    assert!(moved > 1e-6, "the block moves ({moved:e} m)");
+    for ranks in [2, 3, 4] {
+        split_agrees(&scene, 7, steps, 9.81, dt, &whole, ranks);
+    }
+}
+
+/// TPV5 at 500 m (100 × 50 × 40 modules): the rupture starts at the nucleation patch of rank 0's
+/// base and its waves cross the cuts.
+#[test]
+fn tpv5_split_over_ranks_gives_the_same_bits() {
+    let scene = common::pipeline("pipelines/tpv5-500m.toml").scene;
+    let steps = 120;
+    let (dt, whole) = single(&scene, 1, steps, 0.0);
+    // The waves have crossed the first cut (layer 10 of 40 for four ranks): the nodes there move.
+    let model = Model::with_stencil(scene.clone());
+    let cut = Partition::new(scene.dims, 4).unwrap().owned_layers(1).start;
+    let lattice = model.lattice();
+    let moving = (0..model.node_count())
+        .filter(|&i| (lattice.position(model.canonical(i))[2] / scene.lc_m).round() as usize == cut)
+        .any(|i| (whole[2].c[0][i][0] - whole[1].c[0][i][0]).abs() > 0.0);
+    assert!(moving, "the rupture's waves reach layer {cut} in {steps} steps");
+    for ranks in [2, 3, 4] {
+        split_agrees(&scene, 1, steps, 0.0, dt, &whole, ranks);
+    }
+}
+
+#[test]
+fn partitions_cover_the_block_and_refuse_thin_slabs() {
+    for nz in [4, 5, 13, 40, 41, 97] {
+        let dims = stickslip_solver::Dims::new(4, 4, nz);
+        let most = (1..=nz).take_while(|&r| Partition::new(dims, r).is_ok()).last().unwrap();
+        assert!(most >= nz / 3, "{nz} layers split over {most} ranks at most");
+        for ranks in 1..=most {
+            let p = Partition::new(dims, ranks).unwrap();
+            let mut next = 0;
+            for r in 0..ranks {
+                let owned = p.owned_layers(r);
+                assert_eq!(owned.start, next);
+                assert!(owned.len() >= 2 || ranks == 1, "{ranks} ranks: rank {r} owns {owned:?}");
+                next = owned.end;
+                let w = p.window(r);
+                assert_eq!(w.nodes, w.halo_below().len() + w.owned.len() + w.halo_above().len());
+            }
+            assert_eq!(next, nz);
+        }
+        let e = Partition::new(dims, most + 1).unwrap_err();
+        assert!(e.to_string().contains(&format!("1 to {most} ranks")), "{e}");
+    }
+    let dims = stickslip_solver::Dims::new(4, 4, 40);
+    assert!(Partition::new(dims, 0).is_err());
+}
