@@ -42,6 +42,7 @@ pub mod recording;
 pub mod run;
 pub mod rupture;
 pub mod scene;
+mod slabs;
 pub mod split;
 pub mod statics;
 pub mod stencil;

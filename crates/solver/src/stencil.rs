@@ -34,8 +34,7 @@ use rayon::prelude::*;
 use crate::geometry::{Dims, Direction};
 use crate::material::SeekableWeibull;
 
-/// Most slabs of a lattice (the parallelism of one step), not counting a top layer alone.
-pub const MAX_SLABS: usize = 16;
+pub use crate::slabs::MAX_SLABS;
 
 /// Bars of one direction class whose lower ends are `start..start + len`, upper ends `offset`
 /// nodes further.
@@ -134,17 +133,9 @@ impl StencilLayout {
     }
 
     /// The layers where the slabs of a lattice of `layers` layers start, and its layer count at
-    /// the end: at most [`MAX_SLABS`] slabs of at least two layers, and the top layer alone when
-    /// the count is odd (see the module doc).
+    /// the end ([`crate::slabs::bounds`]).
     pub fn slab_bounds(layers: usize) -> Vec<usize> {
-        let top_alone = layers % 2 == 1 && layers >= 5;
-        let below = if top_alone { layers - 1 } else { layers };
-        let count = (below / 2).clamp(1, MAX_SLABS);
-        let mut slabs: Vec<usize> = (0..=count).map(|s| s * below / count).collect();
-        if top_alone {
-            slabs.push(layers);
-        }
-        slabs
+        crate::slabs::bounds(layers)
     }
 
     fn build(dims: Dims, lo: usize, hi: usize) -> StencilLayout {

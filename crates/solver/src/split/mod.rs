@@ -30,7 +30,6 @@ use std::ops::Range;
 
 use crate::field::Field;
 use crate::geometry::Dims;
-use crate::stencil::StencilLayout;
 
 pub use threads::{ThreadRanks, thread_ranks};
 
@@ -84,7 +83,7 @@ impl Partition {
         if ranks == 0 || (ranks > 1 && 2 * ranks > nz) {
             return None;
         }
-        let slab_starts = StencilLayout::slab_bounds(nz + 1);
+        let slab_starts = crate::slabs::bounds(nz + 1);
         let mut starts = vec![0];
         for r in 1..ranks {
             let previous = *starts.last().expect("rank 0 starts at 0");
