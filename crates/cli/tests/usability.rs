@@ -294,6 +294,55 @@ fn check_prints_the_cost_of_a_huge_scene_first_and_refuses_it_before_building() 
     }
 }
 
+/// `check --ranks`: a scene too large for this machine split over ranks, each rank's part said
+/// from the block alone before the whole is refused; a rank that cannot hold its part refused
+/// with the rank and what it needs; more ranks than the block takes refused with the range.
+#[test]
+fn check_ranks_says_each_ranks_part_and_refuses_a_rank_that_cannot_hold_it() {
+    let dir = scratch("check-ranks");
+    let scene = std::fs::read_to_string(repo().join("pipelines/scenario-m6.toml"))
+        .unwrap()
+        .replace("nx = 160\n", "nx = 800\n")
+        .replace("ny = 40\n", "ny = 200\n")
+        .replace("nz = 104\n", "nz = 520\n")
+        .replace("lc_m = 500.0", "lc_m = 100.0");
+    std::fs::write(dir.join("m6-100.toml"), scene).unwrap();
+    let check = |args: &[&str]| {
+        let out = Command::new("sh")
+            .args(["-c", "ulimit -v 4000000 && exec \"$0\" \"$@\"", env!("CARGO_BIN_EXE_stickslip")])
+            .arg("check")
+            .args(args)
+            .env_remove("STICKSLIP_MEMORY_LIMIT")
+            .current_dir(&dir)
+            .output()
+            .unwrap();
+        let (stdout, err) = text(&out);
+        (out.status.code(), stdout, err)
+    };
+    // 32 ranks of 2 GB: each rank's part, then the whole scene refused here (check builds it).
+    let (code, stdout, err) = check(&["m6-100.toml", "--ranks", "32", "--memory-per-rank", "2"]);
+    assert_eq!(code, Some(1), "{stdout}{err}");
+    let ranks = stdout.find("ranks: 32 slabs").expect("the ranks section");
+    assert!(ranks < stdout.find("before building").unwrap(), "ranks first: {stdout}");
+    assert!(stdout.contains("rank 0: module layers 0..16 (16, the base)"), "{stdout}");
+    assert!(stdout.contains("rank 31: module layers"), "{stdout}");
+    assert!(stdout.contains("halo: one module layer of 321001 nodes"), "{stdout}");
+    assert!(stdout.contains("against 2.0 GB per rank (--memory-per-rank)"), "{stdout}");
+    assert!(err.contains("does not fit in memory"), "{err}");
+    // Half a GB per rank is too little for 32 ranks of this block.
+    let (code, stdout, err) = check(&["m6-100.toml", "--ranks", "32", "--memory-per-rank", "0.5"]);
+    assert_eq!(code, Some(1), "{stdout}{err}");
+    assert!(err.contains("--ranks = 32: rank ") && err.contains("but a rank has 500.0 MB"), "{err}");
+    assert!(!stdout.contains("before building"), "refused before the cost: {stdout}");
+    // More ranks than the block takes, and no --ranks with --memory-per-rank.
+    let (code, _, err) = check(&["m6-100.toml", "--ranks", "1000"]);
+    assert_eq!(code, Some(1));
+    assert!(err.contains("--ranks = 1000 is not allowed") && err.contains("takes 1 to "), "{err}");
+    let (code, _, err) = check(&["m6-100.toml", "--memory-per-rank", "2"]);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(err.contains("--ranks <RANKS>"), "{err}");
+}
+
 #[test]
 fn slurm_check_refuses_a_machine_with_a_slurm_it_did_not_create_and_changes_nothing() {
     let dir = scratch("slurm");

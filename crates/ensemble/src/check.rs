@@ -27,6 +27,12 @@ pub struct CheckOptions {
     pub allow_long: bool,
     /// Threads a run would use (0: one per core).
     pub threads: usize,
+    /// Say how the scene splits over this many ranks ([`stickslip_solver::split`]): each rank's
+    /// layers, nodes, bars and memory, and the halo it trades per step; refuse a split that a rank
+    /// cannot hold.
+    pub ranks: Option<usize>,
+    /// Memory of one rank (bytes); `None`: this machine's available memory over the ranks.
+    pub memory_per_rank: Option<u64>,
 }
 
 /// One line of the check: its section, the part of the section, the text.
@@ -79,6 +85,9 @@ pub fn check(
     out.all("seeds", &describe::seeds(pipeline));
     // What the scene costs, from the block's counts alone, before anything is built: handed out
     // first, and a scene that does not fit is refused here (building it would fill memory).
+    if let Some(ranks) = options.ranks {
+        split_over(pipeline, ranks, options.memory_per_rank, &mut out)?;
+    }
     let bars = cost_before_building(pipeline, threads, options.allow_long, &mut out)?;
     let model = Model::new(scene.clone());
     let build_s = started.elapsed().as_secs_f64();
@@ -240,4 +249,99 @@ fn cost_before_building(
     budget::check_length(scene, bars, dt, None, allow_long, "this scene")?;
     out.part("cost", &cost, "building");
     Ok(bars)
+}
+
+/// Hands out how `pipeline`'s scene splits over `ranks` ranks, from the block alone (nothing is
+/// built): each rank's module layers, the nodes and bars it holds and its memory for one seed,
+/// and the halo it trades per step; refuses a number of ranks the block cannot be split into, a
+/// scene whose bars crack, and a split whose largest rank needs more than `per_rank` bytes (or
+/// this machine's available memory over the ranks).
+fn split_over(
+    pipeline: &Pipeline,
+    ranks: usize,
+    per_rank: Option<u64>,
+    out: &mut Out<'_>,
+) -> Result<(), EnsembleError> {
+    use stickslip_solver::memory::{estimate_rank, human, samples};
+    use stickslip_solver::split::Partition;
+    use stickslip_solver::stencil::StencilLayout;
+    let scene = &pipeline.scene;
+    let line = |text: String| CheckLine { section: "ranks", label: "ranks", text };
+    if scene.rupture.is_some() {
+        return Err(EnsembleError::Refused(
+            "--ranks: a scene whose bars crack ([rupture]) lists its bars and is not split over ranks; leave out --ranks".into(),
+        ));
+    }
+    let dims = scene.dims;
+    let partition = Partition::new(dims, ranks).map_err(|e| {
+        EnsembleError::Refused(format!(
+            "--ranks = {ranks} is not allowed: a block splits into slabs of at least two module layers along z (none \
+             starting where a slab of its stencil starts), so this one (block.nz = {}) takes 1 to {} ranks",
+            dims.nz, e.most
+        ))
+    })?;
+    let samples = samples(scene, dt_estimate(scene));
+    let mut largest = (0usize, 0u64);
+    let mut per: Vec<String> = Vec::new();
+    for r in 0..ranks {
+        let w = partition.window(r);
+        let bars = StencilLayout::window(dims, w.lo, w.hi).bars() as u64;
+        let contact = if r == 0 { ((dims.nx + 1) * (dims.ny + 1)) as u64 } else { 0 };
+        let m = estimate_rank(scene, w.nodes as u64, bars, contact, samples)
+            .map_err(|e| EnsembleError::Refused(format!("--ranks = {ranks}: {e}")))?;
+        if m.total > largest.1 {
+            largest = (r, m.total);
+        }
+        let layers = partition.owned_layers(r);
+        per.push(format!(
+            "rank {r}: module layers {}..{} ({}{}), {} nodes held ({} owned), {} bars, about {}",
+            layers.start,
+            layers.end,
+            layers.len(),
+            if r == 0 { ", the base" } else { "" },
+            w.nodes,
+            w.owned.len(),
+            bars,
+            human(m.total)
+        ));
+    }
+    let layer_nodes = (dims.nx + 1) * (dims.ny + 1) + dims.nx * dims.ny;
+    (out.emit)(line(format!(
+        "ranks: {ranks} slabs of module layers along z, each rank holding one more layer on each side that has a neighbour (docs/model.md §19)"
+    )));
+    for p in per {
+        (out.emit)(line(format!("  {p}")));
+    }
+    (out.emit)(line(format!(
+        "  halo: one module layer of {layer_nodes} nodes each way per neighbour per step, {} per seed (an inner rank trades two)",
+        human(24 * layer_nodes as u64)
+    )));
+    let (limit, whose) = match per_rank {
+        Some(b) => (b, "--memory-per-rank".to_string()),
+        None => match budget::available_memory()? {
+            Some((b, source)) => {
+                (b / ranks as u64, format!("this machine's available memory over {ranks} ranks ({source})"))
+            }
+            None => (u64::MAX, "no memory limit known".to_string()),
+        },
+    };
+    (out.emit)(line(format!(
+        "  largest: rank {} at about {} against {} per rank ({whose})",
+        largest.0,
+        human(largest.1),
+        if limit == u64::MAX { "no limit".to_string() } else { human(limit) }
+    )));
+    (out.emit)(line(
+        "  not yet: `stickslip pipeline` does not run a split scene; the solver's split_step example steps one under mpirun (docs/guide/ensembles.md, One scene over MPI ranks)".into(),
+    ));
+    if largest.1 > limit {
+        return Err(EnsembleError::Refused(format!(
+            "--ranks = {ranks}: rank {} needs about {} but a rank has {} ({whose}); use more ranks (up to {}) or more memory per rank",
+            largest.0,
+            human(largest.1),
+            human(limit),
+            Partition::most(dims)
+        )));
+    }
+    Ok(())
 }

@@ -116,7 +116,7 @@ pub fn check<'py>(
     threads: usize,
 ) -> PyResult<Bound<'py, PyDict>> {
     let pipeline = load(py, text, name, &base, source)?;
-    let options = CheckOptions { seeds, full_statics, allow_long, threads };
+    let options = CheckOptions { seeds, full_statics, allow_long, threads, ..CheckOptions::default() };
     let (cancel, counts) = (AtomicBool::new(false), (AtomicUsize::new(0), AtomicUsize::new(0)));
     let ((lines, result), stop) = detached(py, &cancel, &counts, None, || {
         let mut lines: Vec<CheckLine> = Vec::new();

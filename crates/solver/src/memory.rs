@@ -115,10 +115,32 @@ pub fn counts(dims: Dims) -> Result<(u64, u64), Overflow> {
 /// Bytes of a run of `scene` in `batches`, each recording about `samples` samples.
 pub fn estimate(scene: &Scene, batches: Batches, samples: u64) -> Result<MemoryEstimate, Overflow> {
     let (n, b) = counts(scene.dims)?;
-    let over = || Overflow(format!("the memory of a {n}-node, {b}-bar scene"));
-    let l = batches.lanes as u64;
     let contact = (scene.dims.nx as u64 + 1) * (scene.dims.ny as u64 + 1);
     let stencil = scene.rupture.is_none() && b >= STENCIL_MIN_BARS as u64;
+    estimate_counts(scene, (n, b, contact), stencil, batches, samples)
+}
+
+/// Bytes of one rank of `scene` split over ranks ([`crate::split`]): the window's `nodes` and
+/// `bars` (a stencil), the base's `contact` nodes on rank 0 and none above, one seed.
+pub fn estimate_rank(
+    scene: &Scene,
+    nodes: u64,
+    bars: u64,
+    contact: u64,
+    samples: u64,
+) -> Result<MemoryEstimate, Overflow> {
+    estimate_counts(scene, (nodes, bars, contact), true, Batches::ONE, samples)
+}
+
+fn estimate_counts(
+    scene: &Scene,
+    (n, b, contact): (u64, u64, u64),
+    stencil: bool,
+    batches: Batches,
+    samples: u64,
+) -> Result<MemoryEstimate, Overflow> {
+    let over = || Overflow(format!("the memory of a {n}-node, {b}-bar scene"));
+    let l = batches.lanes as u64;
     // Sums and products of terms `(count, bytes)`, checked.
     let sum = |terms: &[(u64, u64)]| -> Result<u64, Overflow> {
         terms.iter().try_fold(0u64, |acc, &(c, s)| c.checked_mul(s).and_then(|v| acc.checked_add(v))).ok_or_else(over)

@@ -71,16 +71,17 @@ impl Partition {
     pub fn new(dims: Dims, ranks: usize) -> Result<Partition, PartitionError> {
         match Self::cuts(dims.nz, ranks) {
             Some(starts) => Ok(Partition { dims, starts }),
-            None => {
-                let most =
-                    (1..ranks.min(dims.nz / 2 + 1)).rev().find(|&r| Self::cuts(dims.nz, r).is_some()).unwrap_or(1);
-                Err(PartitionError { ranks, most })
-            }
+            None => Err(PartitionError { ranks, most: Self::most(dims) }),
         }
     }
 
+    /// The most ranks `dims` can be split over.
+    pub fn most(dims: Dims) -> usize {
+        (1..=(dims.nz / 2).max(1)).rev().find(|&r| Self::cuts(dims.nz, r).is_some()).unwrap_or(1)
+    }
+
     fn cuts(nz: usize, ranks: usize) -> Option<Vec<usize>> {
-        if ranks == 0 || (ranks > 1 && 2 * ranks > nz) {
+        if ranks == 0 || (ranks > 1 && ranks > nz / 2) {
             return None;
         }
         let slab_starts = crate::slabs::bounds(nz + 1);
