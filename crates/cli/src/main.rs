@@ -5,6 +5,8 @@
 mod text;
 mod commands;
 mod progress;
+#[cfg(feature = "mpi")]
+mod split;
 
 use clap::{Parser, Subcommand};
 
@@ -72,6 +74,20 @@ fn main() {
             libc::signal(libc::SIGPIPE, libc::SIG_DFL);
         }
     }
+    // Under mpirun/srun (the `mpi` feature), `pipeline` splits every seed over the ranks: rank 0
+    // runs the command, the others follow its seeds and are done when it is.
+    #[cfg(feature = "mpi")]
+    let role = match &command {
+        Command::Pipeline(a) => match split::start(&a.pipelines) {
+            Ok(split::Role::Follower) => return,
+            Ok(role) => Some(role),
+            Err(e) => {
+                errln!("error: {e:#}");
+                std::process::exit(1);
+            }
+        },
+        _ => None,
+    };
     let result = match command {
         Command::Pipeline(a) => pipeline::run(a),
         Command::Run(a) => run::run(a),
@@ -86,6 +102,9 @@ fn main() {
         Command::Catalogue(a) => catalogue::run(a),
         Command::Gmm(a) => gmm::run(a),
     };
+    // Rank 0 tells the other ranks the command is over before it exits.
+    #[cfg(feature = "mpi")]
+    drop(role);
     if let Err(e) = result {
         errln!("error: {e:#}");
         std::process::exit(1);

@@ -27,6 +27,7 @@ pub mod scenario_set;
 pub mod seed_table;
 pub mod set;
 mod set_pool;
+pub mod split;
 pub mod summary;
 
 pub use error::EnsembleError;

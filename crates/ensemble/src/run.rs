@@ -159,7 +159,11 @@ fn simulate(
             std::ops::ControlFlow::Continue(())
         }
     };
-    let runs = run_batched(model, seeds, options, &mut check);
+    let runs = match crate::split::installed() {
+        // Split over MPI ranks: one seed at a time, every rank on it.
+        Some(split) => seeds.iter().map(|&seed| split.run(pipeline, model, seed, options, &mut check)).collect(),
+        None => run_batched(model, seeds, options, &mut check),
+    };
     let share = start.elapsed().as_secs_f64() / seeds.len() as f64;
     let stepping = (thread_cpu_s() - cpu) / seeds.len() as f64;
     seeds.par_iter().zip(runs).for_each_with(tx.clone(), |tx, (&seed, run)| {
@@ -220,10 +224,24 @@ pub fn run_ensemble(
         let threads = pool.current_num_threads();
         let per_thread = pending.len().div_ceil(threads.max(1));
         let batch = if per_thread >= 4 { 4 } else { 1 };
-        let options =
-            RunOptions { parallel_step: pending.len() < threads && model.layout().splits(), ..RunOptions::default() };
+        let split = crate::split::installed().is_some();
+        let options = RunOptions {
+            parallel_step: (split || pending.len() < threads) && model.layout().splits(),
+            ..RunOptions::default()
+        };
         scope.spawn(move || {
             pool.install(|| {
+                if split {
+                    // Split over MPI ranks: the seeds in order, one at a time, each step on the
+                    // pool.
+                    for &seed in pending {
+                        if cancel.load(Ordering::Relaxed) {
+                            return;
+                        }
+                        simulate(model, pipeline, &[seed], options, cancel, plans, &tx);
+                    }
+                    return;
+                }
                 pending.par_chunks(batch).for_each_with(tx, |tx, chunk| {
                     if cancel.load(Ordering::Relaxed) {
                         return;

@@ -274,6 +274,14 @@ impl Model {
         }
     }
 
+    /// Internal index of a canonical node, if this model holds it (always, unless a window).
+    pub fn held(&self, id: NodeId) -> Option<usize> {
+        match &self.window {
+            None => Some(self.to_internal[id.index()] as usize),
+            Some(w) => w.local(internal_of_canonical(self.lattice.dims(), id)),
+        }
+    }
+
     /// Canonical id of an internal node index.
     pub fn canonical(&self, internal: usize) -> NodeId {
         self.to_canonical[internal]

@@ -1,6 +1,6 @@
 //! What recorders read at one viewed time: a lane of a stepper, or a quasi-static motion.
 
-use crate::scene::Kinematic;
+use crate::scene::{ControlChannel, Kinematic};
 use crate::step::{Energy, Interface, LaneView, NodeContact};
 
 /// What a recorder reads at one viewed time: a lane of a stepper, or a quasi-static motion
@@ -22,7 +22,15 @@ pub(crate) trait Observed {
     fn energy(&self) -> Energy;
     /// Displacement, velocity or acceleration of internal node `node`.
     fn kinematic(&self, node: usize, q: Kinematic) -> [f64; 3];
+    /// Control channel `ch` of internal node `node` (on a rank of a split scene, `node` is
+    /// [`REMOTE`] when another rank owns it and sends the value).
+    fn control(&self, ch: ControlChannel, node: usize) -> f64 {
+        self.kinematic(node, ch.quantity)[ch.component.axis()]
+    }
 }
+
+/// The internal index a rank gives a control node another rank owns ([`Observed::control`]).
+pub(crate) const REMOTE: usize = usize::MAX;
 
 impl<const L: usize> Observed for LaneView<'_, '_, L> {
     #[inline(always)]

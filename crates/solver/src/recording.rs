@@ -326,7 +326,7 @@ impl Recorder {
             skip_steps: Vec::new(),
             crack_steps: Vec::new(),
             steps: Vec::with_capacity(capacity),
-            control_nodes: plan.control.iter().map(|c| model.internal(c.node)).collect(),
+            control_nodes: plan.control.iter().map(|c| model.held(c.node).unwrap_or(crate::observe::REMOTE)).collect(),
             area: model.lattice().contact_area(),
         }
     }
@@ -368,7 +368,7 @@ impl Recorder {
             });
         }
         for ((ch, values), &node) in self.records.control.iter_mut().zip(&self.control_nodes) {
-            values.push(s.kinematic(node, ch.quantity)[ch.component.axis()]);
+            values.push(s.control(*ch, node));
         }
     }
 

@@ -254,7 +254,7 @@ impl Tracer {
         let nodes: Vec<(ControlChannel, usize)> = accelerations
             .iter()
             .filter(|c| c.quantity == Kinematic::Acceleration)
-            .map(|&c| (c, model.internal(c.node)))
+            .map(|&c| (c, model.held(c.node).unwrap_or(crate::observe::REMOTE)))
             .collect();
         let fault = model.scene().record.fault.then(|| (model.contact().len(), Vec::new()));
         let lattice = model.lattice();
@@ -322,7 +322,7 @@ impl Tracer {
             face.mean_slip_rate,
             face.slipping as f64,
         ]);
-        sample.extend(self.nodes.iter().map(|&(c, node)| s.kinematic(node, c.quantity)[c.component.axis()]));
+        sample.extend(self.nodes.iter().map(|&(c, node)| s.control(c, node)));
         if let Some((_, origin)) = self.fault.as_mut() {
             if origin.is_empty() {
                 origin.extend(contacts.iter().map(|c| c.slip));

@@ -6,12 +6,14 @@
 
 mod common;
 
-use stickslip_solver::Model;
-use stickslip_solver::Scene;
+use std::ops::ControlFlow;
+
 use stickslip_solver::field::Field;
+use stickslip_solver::run::run_split;
 use stickslip_solver::split::{Halo, Partition, thread_ranks};
 use stickslip_solver::statics::critical_step;
 use stickslip_solver::step::{Batch, LaneSetup, start_drivers};
+use stickslip_solver::{Model, RunOptions, RunOutput, Scene, SolverError, run_seed};
 
 /// The set-up of seed `seed` on `model`, with the time step `dt_s` of the whole block.
 fn setup(model: &Model, seed: u64, dt_s: f64) -> LaneSetup {
@@ -153,4 +155,78 @@ fn partitions_cover_the_block_and_refuse_thin_slabs() {
     }
     let dims = stickslip_solver::Dims::new(4, 4, 40);
     assert!(Partition::new(dims, 0).is_err());
+}
+
+/// A seed run on `ranks` threads as ranks of a split scene: rank 0's output.
+fn run_split_threads(scene: &Scene, seed: u64, ranks: usize) -> Result<RunOutput, SolverError> {
+    let partition = Partition::new(scene.dims, ranks).unwrap();
+    let links = thread_ranks(ranks);
+    std::thread::scope(|s| {
+        let handles: Vec<_> = links
+            .into_iter()
+            .enumerate()
+            .map(|(r, mut link)| {
+                let (scene, partition) = (scene.clone(), partition.clone());
+                s.spawn(move || {
+                    let model = Model::window(scene.clone(), partition.window(r));
+                    let whole = (r == 0).then(|| Model::new(scene));
+                    let options = RunOptions::default();
+                    run_split(
+                        &model,
+                        &partition,
+                        whole.as_ref(),
+                        seed,
+                        options,
+                        &mut |_| ControlFlow::Continue(()),
+                        &mut link,
+                    )
+                })
+            })
+            .collect();
+        let mut outs: Vec<_> = handles.into_iter().map(|h| h.join().unwrap()).collect();
+        assert!(outs[1..].iter().all(Option::is_none), "only rank 0 has the output");
+        outs.swap_remove(0).expect("rank 0's output")
+    })
+}
+
+/// TPV5 at 500 m for 3 s of its rupture: rank 0's output (the recording of the fault, the interface
+/// series, the stations spread over every rank, the critical step, the steps) is the one
+/// process's, printed with every digit, on 2, 3 and 4 ranks.
+#[test]
+fn a_split_run_of_tpv5_gives_the_one_process_output() {
+    let mut scene = common::pipeline("pipelines/tpv5-500m.toml").scene;
+    scene.shear.duration_s = 3.0;
+    assert!(!scene.record.control.is_empty() && !scene.record.energy);
+    let one =
+        run_seed(&Model::new(scene.clone()), 1, RunOptions::default(), &mut |_| ControlFlow::Continue(())).unwrap();
+    assert!(one.recording.len() > 100 && one.recording.control.iter().any(|(_, v)| v.iter().any(|&x| x != 0.0)));
+    let want = format!("{one:?}");
+    for ranks in [2, 3, 4] {
+        let split = run_split_threads(&scene, 1, ranks).unwrap();
+        assert!(format!("{split:?}") == want, "{ranks} ranks: the output differs from one process's");
+    }
+}
+
+/// The 2.8 M-bar block (its loading plate on the top rank, stations added on three ranks), energy
+/// off: the same output on 2 ranks; with the energy on, refused on every rank before it runs.
+#[test]
+fn a_split_run_of_the_large_block_gives_the_one_process_output() {
+    use stickslip_solver::scene::{Component, ControlChannel, Kinematic};
+    let mut scene = common::pipeline("pipelines/large-block.toml").scene;
+    scene.shear.duration_s = 0.002;
+    scene.record.energy = false;
+    let lattice = scene.lattice();
+    for z in [0.4, 1.0, 1.8] {
+        let node = lattice.node_at([10.0, 2.5, z]).unwrap();
+        for quantity in [Kinematic::Displacement, Kinematic::Acceleration] {
+            scene.record.control.push(ControlChannel { node, quantity, component: Component::X });
+        }
+    }
+    let one =
+        run_seed(&Model::new(scene.clone()), 1, RunOptions::default(), &mut |_| ControlFlow::Continue(())).unwrap();
+    let split = run_split_threads(&scene, 1, 2).unwrap();
+    assert!(format!("{split:?}") == format!("{one:?}"), "the output differs from one process's");
+    scene.record.energy = true;
+    let e = run_split_threads(&scene, 1, 2).unwrap_err();
+    assert!(e.to_string().contains("record.energy = false"), "{e}");
 }

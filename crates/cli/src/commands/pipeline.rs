@@ -224,6 +224,17 @@ fn seeds_to_run(a: &Args, pipelines: &[Pipeline], given: Option<&[u64]>) -> Resu
 /// `stickslip pipeline`.
 pub fn run(a: Args) -> Result<()> {
     let (pipelines, given) = load(&a)?;
+    if let Some(split) = stickslip_ensemble::split::installed() {
+        let ranks = split.ranks();
+        for p in &pipelines {
+            if let Some(why) = stickslip_solver::run::split_refusal(&p.scene, ranks) {
+                bail!("{}: its seeds cannot be split over {ranks} MPI ranks: {why}", p.name);
+            }
+        }
+        outln!(
+            "each seed split over {ranks} MPI ranks (slabs of module layers along z; docs/guide/ensembles.md, One scene over MPI ranks)"
+        );
+    }
     let runs = seeds_to_run(&a, &pipelines, given.as_deref())?;
     let cancel = cancel_on_ctrl_c()?;
     let mut unfinished = Vec::new();

@@ -5,10 +5,12 @@ use std::ops::ControlFlow;
 use crate::error::SolverError;
 use crate::field::Field;
 use crate::model::Model;
+use crate::observe::{Observed, REMOTE};
 use crate::quasistatic::{SKIP_CHECK_EVERY, ShearClock, SkipStats, Skipper, settle_statically};
 use crate::recording::{Crack, Recorder};
 use crate::run::{BarDamage, RunOptions, RunOutput, prepare};
 use crate::rupture::BarLaw;
+use crate::scene::ControlChannel;
 use crate::scene::SettleMethod;
 use crate::statics::CriticalStep;
 use crate::step::rupture::{CrackKind, CrackLog, elongations};
@@ -73,13 +75,106 @@ pub fn run_lanes<const L: usize>(
     options: RunOptions,
     progress: &mut dyn FnMut(f64) -> ControlFlow<()>,
 ) -> [Result<RunOutput, SolverError>; L] {
+    run_lanes_with(model, seeds, options, progress, &mut Solo)
+}
+
+/// What the run loop asks of the processes that run it: nothing on one process ([`Solo`]); on
+/// the ranks of a split scene, the halo exchange, Δt from rank 0, the checks every rank must
+/// agree on and the values rank 0 records of nodes it does not hold ([`crate::run::split`]).
+pub(crate) trait Hooks<const L: usize> {
+    /// The set-up and critical step of `seed`.
+    fn prepare(
+        &mut self,
+        model: &Model,
+        seed: u64,
+        options: RunOptions,
+    ) -> Result<(LaneSetup, CriticalStep), SolverError> {
+        prepare(model, seed, options)
+    }
+    /// After every step, before anything looks at it.
+    fn after_step(&mut self, _params: &Params<'_, L>, _state: &mut State<L>) {}
+    /// The first node of the scene that blew up in lane `l`, if any: its canonical id and what.
+    fn blowup(&mut self, view: &LaneView<'_, '_, L>, parallel: bool) -> Option<(crate::NodeId, String)> {
+        view.check_blowup_on(parallel).map(|b| (view.params.model.canonical(b.node), b.what))
+    }
+    /// Whether the run stops, given whether this process was asked to.
+    fn stop(&mut self, asked: bool) -> bool {
+        asked
+    }
+    /// Whether this process records (rank 0 of a split scene, or the only one).
+    fn records(&self) -> bool {
+        true
+    }
+    /// What this process records of nodes it does not hold.
+    fn remote(&self) -> Option<&Remote> {
+        None
+    }
+}
+
+/// One process.
+pub(crate) struct Solo;
+
+impl<const L: usize> Hooks<L> for Solo {}
+
+/// Values rank 0 of a split scene records of what other ranks hold, this step.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Remote {
+    /// Control channels of nodes rank 0 does not hold.
+    pub control: Vec<(ControlChannel, f64)>,
+    /// The driver reaction, when another rank holds the drivers.
+    pub driver_force: Option<f64>,
+}
+
+/// A lane as rank 0 shows it to the recorder: its own nodes, and the values other ranks sent.
+struct Shown<'v, 'a, 'm, const L: usize> {
+    view: LaneView<'a, 'm, L>,
+    remote: Option<&'v Remote>,
+}
+
+impl<const L: usize> Observed for Shown<'_, '_, '_, L> {
+    fn node_contact(&self, ci: usize) -> crate::step::NodeContact {
+        Observed::node_contact(&self.view, ci)
+    }
+    fn contacts(&self) -> usize {
+        Observed::contacts(&self.view)
+    }
+    fn driver_force(&self) -> f64 {
+        self.remote.and_then(|r| r.driver_force).unwrap_or_else(|| Observed::driver_force(&self.view))
+    }
+    fn driver_target(&self) -> f64 {
+        Observed::driver_target(&self.view)
+    }
+    fn energy(&self) -> crate::step::Energy {
+        Observed::energy(&self.view)
+    }
+    fn kinematic(&self, node: usize, q: crate::scene::Kinematic) -> [f64; 3] {
+        Observed::kinematic(&self.view, node, q)
+    }
+    fn control(&self, ch: ControlChannel, node: usize) -> f64 {
+        if node == REMOTE {
+            let remote = self.remote.expect("a node held by another rank has its value sent");
+            remote.control.iter().find(|(c, _)| *c == ch).expect("every remote channel is sent").1
+        } else {
+            Observed::control(&self.view, ch, node)
+        }
+    }
+}
+
+/// [`run_lanes`] with `hooks` between the run loop and the processes that run it.
+pub(crate) fn run_lanes_with<const L: usize, H: Hooks<L>>(
+    model: &Model,
+    seeds: [u64; L],
+    options: RunOptions,
+    progress: &mut dyn FnMut(f64) -> ControlFlow<()>,
+    hooks: &mut H,
+) -> [Result<RunOutput, SolverError>; L] {
     let scene = model.scene();
     if scene.skip_ahead.enabled
         && let Err(why) = model.boundaries().skip_ahead()
     {
         return seeds.map(|_| Err(SolverError::Unsupported(format!("the quasi-static skip-ahead: {why}"))));
     }
-    let prepared = seeds.map(|seed| prepare(model, seed, options));
+    let prepared: [_; L] = std::array::from_fn(|l| hooks.prepare(model, seeds[l], options));
     // Failed lanes still occupy a lane: give them a harmless set-up and park them.
     let Some(fallback) = prepared.iter().find_map(|p| p.as_ref().ok().map(|(s, _)| s)) else {
         return prepared.map(|p| p.map(|_| unreachable!("every lane failed")));
@@ -105,7 +200,10 @@ pub fn run_lanes<const L: usize>(
     stepper.set_parallel(options.parallel_step);
     stepper.set_tracking(Tracking { energy: scene.record.energy, onsets: scene.record.slip_onsets, slid: skipping });
     let sw = scene.self_weight;
-    let progress_every = (PROGRESS_BAR_UPDATES / (model.bar_count() as u64 * L as u64).max(1)).clamp(1, PROGRESS_EVERY);
+    // The whole block's bars (a rank of a split scene holds a part): every rank reports, and
+    // agrees whether to stop, at the same steps.
+    let bars = crate::memory::counts(scene.dims).map_or(model.bar_count() as u64, |(_, b)| b);
+    let progress_every = (PROGRESS_BAR_UPDATES / (bars * L as u64).max(1)).clamp(1, PROGRESS_EVERY);
     let weight_norm: f64 = model.mass().iter().map(|m| m * m).sum::<f64>().sqrt() * sw.gravity_m_s2;
     let mut lanes: [Lane; L] = std::array::from_fn(|l| Lane {
         seed: seeds[l],
@@ -170,20 +268,20 @@ pub fn run_lanes<const L: usize>(
             }
         }
         stepper.step(&params, &mut state);
+        hooks.after_step(&params, &mut state);
         let view = state.steps - 1;
         for (l, lane) in lanes.iter_mut().enumerate() {
             if !lane.stage.running() {
                 continue;
             }
             if view.is_multiple_of(BLOWUP_CHECK_EVERY)
-                && let Some(b) =
-                    (LaneView { params: &params, state: &state, lane: l }).check_blowup_on(options.parallel_step)
+                && let Some((id, what)) =
+                    hooks.blowup(&LaneView { params: &params, state: &state, lane: l }, options.parallel_step)
             {
                 let (origin, stage_name) = match lane.stage {
                     Stage::Shearing { origin, .. } => (origin, "shear stage"),
                     _ => (0, "self-weight stage"),
                 };
-                let id = model.canonical(b.node);
                 let p = model.lattice().position(id);
                 let dt = params.dt(l);
                 let crit = lane.critical.map_or(f64::NAN, |c| c.dt_s);
@@ -191,7 +289,7 @@ pub fn run_lanes<const L: usize>(
                     step: view,
                     time_s: (view as f64 - origin as f64) * dt,
                     stage: stage_name,
-                    what: b.what,
+                    what,
                     node: format!("({:.4}, {:.4}, {:.4}) m", p[0], p[1], p[2]),
                     ldem: id.ldem(),
                     dt_s: dt,
@@ -252,17 +350,22 @@ pub fn run_lanes<const L: usize>(
                         state.scale_lane(l, 1.0 + p.relative);
                     }
                     let recorder = lane.recorder.as_mut().expect("recorder of a running lane");
-                    let shown = LaneView { params: &params, state: &state, lane: l };
-                    recorder
-                        .tracer
-                        .get_or_insert_with(|| {
-                            Tracer::new(&scene.record.trace, model, origin, params.dt(l), &scene.record.control)
-                        })
-                        .observe(&shown, view);
-                    // Samples on the grid of `stride` steps only (the stage's last step too
-                    // when it falls on it), so that a recording is uniform.
-                    if j.is_multiple_of(stride) {
-                        recorder.sample_view(&LaneView { params: &params, state: &state, lane: l }, view);
+                    if hooks.records() {
+                        let shown = Shown {
+                            view: LaneView { params: &params, state: &state, lane: l },
+                            remote: hooks.remote(),
+                        };
+                        recorder
+                            .tracer
+                            .get_or_insert_with(|| {
+                                Tracer::new(&scene.record.trace, model, origin, params.dt(l), &scene.record.control)
+                            })
+                            .observe(&shown, view);
+                        // Samples on the grid of `stride` steps only (the stage's last step too
+                        // when it falls on it), so that a recording is uniform.
+                        if j.is_multiple_of(stride) {
+                            recorder.sample_view(&shown, view);
+                        }
                     }
                     if j >= steps {
                         lane.stage = Stage::Done { origin, stride, steps };
@@ -299,7 +402,7 @@ pub fn run_lanes<const L: usize>(
                 })
                 .sum::<f64>()
                 / L as f64;
-            if progress(fraction).is_break() {
+            if hooks.stop(progress(fraction).is_break()) {
                 for (l, lane) in lanes.iter_mut().enumerate() {
                     if lane.stage.running() {
                         lane.fail(SolverError::Cancelled, &mut params, &mut state, l);

@@ -2,6 +2,7 @@
 //! equilibrium, the shear stage with its driver, recording, stability checks.
 
 mod lanes;
+mod split;
 
 use std::ops::ControlFlow;
 
@@ -14,6 +15,7 @@ use crate::statics::{CriticalStep, critical_step_on};
 use crate::step::LaneSetup;
 
 pub use lanes::run_lanes;
+pub use split::{run_split, split_refusal};
 
 /// Options that are not part of the physics.
 #[derive(Clone, Copy, Debug, Default)]

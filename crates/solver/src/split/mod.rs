@@ -191,12 +191,22 @@ impl Window {
     }
 }
 
-/// How a rank trades halo layers with its neighbours: `send_down`/`send_up` are this rank's
-/// layers (empty where there is no neighbour), `from_below`/`from_above` are filled with the
-/// neighbours' (same lengths as the layers they send). Every rank calls it once per step.
+/// How the ranks of a split scene talk: each step's halo layers with the neighbours, and the few
+/// numbers the run loop gathers to rank 0 or hands out from it ([`crate::run::run_split`]). Every
+/// rank makes the same calls in the same order.
 pub trait Neighbours {
-    /// Sends and receives one step's halo layers.
+    /// This rank.
+    fn rank(&self) -> usize;
+    /// Every rank.
+    fn size(&self) -> usize;
+    /// Trades one step's halo layers: `send_down`/`send_up` are this rank's layers (empty where
+    /// there is no neighbour), `from_below`/`from_above` are filled with the neighbours' (same
+    /// lengths as the layers they send).
     fn swap(&mut self, send_down: &[f64], send_up: &[f64], from_below: &mut [f64], from_above: &mut [f64]);
+    /// Rank 0 gets every rank's `mine` in rank order (its own first); the others get nothing.
+    fn gather(&mut self, mine: &[f64]) -> Vec<Vec<f64>>;
+    /// Every rank gets rank 0's `data` (same length on every rank).
+    fn broadcast(&mut self, data: &mut [f64]);
 }
 
 /// Buffers of one rank's exchange, reused from step to step.

@@ -3,13 +3,15 @@
 //! MPI is called from the thread that steps only.
 
 use mpi::topology::SimpleCommunicator;
-use mpi::traits::{Communicator, Destination, Source};
+use mpi::traits::{Communicator, Destination, Root, Source};
 
 use super::Neighbours;
 
 /// Message tags: a layer sent up, a layer sent down.
 const UP: i32 = 1;
 const DOWN: i32 = 2;
+/// A rank's numbers gathered to rank 0.
+const GATHER: i32 = 3;
 
 /// One rank's neighbours in a communicator whose ranks are the partition's, bottom up.
 pub struct MpiRanks<'c> {
@@ -24,6 +26,31 @@ impl<'c> MpiRanks<'c> {
 }
 
 impl Neighbours for MpiRanks<'_> {
+    fn rank(&self) -> usize {
+        self.world.rank() as usize
+    }
+
+    fn size(&self) -> usize {
+        self.world.size() as usize
+    }
+
+    fn gather(&mut self, mine: &[f64]) -> Vec<Vec<f64>> {
+        if self.world.rank() == 0 {
+            let mut all = vec![mine.to_vec()];
+            for r in 1..self.world.size() {
+                all.push(self.world.process_at_rank(r).receive_vec_with_tag::<f64>(GATHER).0);
+            }
+            all
+        } else {
+            self.world.process_at_rank(0).send_with_tag(mine, GATHER);
+            Vec::new()
+        }
+    }
+
+    fn broadcast(&mut self, data: &mut [f64]) {
+        self.world.process_at_rank(0).broadcast_into(data);
+    }
+
     fn swap(&mut self, send_down: &[f64], send_up: &[f64], from_below: &mut [f64], from_above: &mut [f64]) {
         let (rank, size) = (self.world.rank(), self.world.size());
         mpi::request::scope(|scope| {

@@ -201,36 +201,48 @@ impl<const L: usize> LaneView<'_, '_, L> {
     /// [`LaneView::check_blowup`], the nodes scanned on the current rayon pool with `parallel`
     /// (the same first node found either way).
     pub fn check_blowup_on(&self, parallel: bool) -> Option<Blowup> {
+        let u = &self.state.u;
+        for c in 0..3 {
+            let Some(i) = self.first_blowup(c, 0..u.np1.len(), parallel) else { continue };
+            let (x, y) = (u.np1.c[c][i][self.lane], u.n.c[c][i][self.lane]);
+            return Some(Blowup { node: i, what: self.blowup_what(c, x, y) });
+        }
+        None
+    }
+
+    /// The first of `nodes` whose component `c` is not finite or moved more than `0.01·Lc` in
+    /// the last step.
+    pub(crate) fn first_blowup(&self, c: usize, nodes: std::ops::Range<usize>, parallel: bool) -> Option<usize> {
         use rayon::prelude::*;
         let (l, u) = (self.lane, &self.state.u);
         let bound = 0.01 * self.params.model.scene().lc_m;
-        for c in 0..3 {
-            let (a, b) = (&u.np1.c[c], &u.n.c[c]);
-            let bad = |i: usize| !a[i][l].is_finite() || (a[i][l] - b[i][l]).abs() > bound;
-            let first = if parallel {
-                // Chunks on the pool, each scanned as the serial loop scans it: rayon's
-                // `find_first` over single nodes consults a shared atomic at every node (13× the
-                // serial loop's time on 2 threads).
-                const CHUNK: usize = 1 << 14;
-                (0..a.len().div_ceil(CHUNK))
-                    .into_par_iter()
-                    .find_map_first(|k| (k * CHUNK..((k + 1) * CHUNK).min(a.len())).find(|&i| bad(i)))
-            } else {
-                (0..a.len()).find(|&i| bad(i))
-            };
-            let Some(i) = first else { continue };
-            let (x, y) = (a[i][l], b[i][l]);
-            let what = if !x.is_finite() {
-                format!("non-finite {} displacement", ["x", "y", "z"][c])
-            } else {
-                format!(
-                    "{} displacement changed by {:.3e} m in one step (bound 0.01·Lc = {bound:.3e} m)",
-                    ["x", "y", "z"][c],
-                    (x - y).abs()
-                )
-            };
-            return Some(Blowup { node: i, what });
+        let (a, b) = (&u.np1.c[c], &u.n.c[c]);
+        let bad = |i: usize| !a[i][l].is_finite() || (a[i][l] - b[i][l]).abs() > bound;
+        if parallel {
+            // Chunks on the pool, each scanned as the serial loop scans it: rayon's
+            // `find_first` over single nodes consults a shared atomic at every node (13× the
+            // serial loop's time on 2 threads).
+            const CHUNK: usize = 1 << 14;
+            let (start, n) = (nodes.start, nodes.len());
+            (0..n.div_ceil(CHUNK))
+                .into_par_iter()
+                .find_map_first(|k| (start + k * CHUNK..start + ((k + 1) * CHUNK).min(n)).find(|&i| bad(i)))
+        } else {
+            nodes.into_iter().find(|&i| bad(i))
         }
-        None
+    }
+
+    /// What a blow-up of component `c` from `y` to `x` in one step is.
+    pub(crate) fn blowup_what(&self, c: usize, x: f64, y: f64) -> String {
+        let bound = 0.01 * self.params.model.scene().lc_m;
+        if !x.is_finite() {
+            format!("non-finite {} displacement", ["x", "y", "z"][c])
+        } else {
+            format!(
+                "{} displacement changed by {:.3e} m in one step (bound 0.01·Lc = {bound:.3e} m)",
+                ["x", "y", "z"][c],
+                (x - y).abs()
+            )
+        }
     }
 }

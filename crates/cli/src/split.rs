@@ -1,0 +1,186 @@
+//! `stickslip pipeline` under `mpirun` or `srun` (the `mpi` feature): every seed of the pipelines
+//! split over the ranks (docs/model.md §19, docs/guide/ensembles.md "One scene over MPI ranks").
+//! Rank 0 runs the command as one process would (the analysis, the tables, the report, the
+//! folder) and hands each seed to the other ranks, which follow it: they load the same pipeline
+//! files, then step their part of each seed it names until it says the command is over.
+
+use std::collections::HashMap;
+use std::ops::ControlFlow;
+use std::path::PathBuf;
+use std::sync::{Arc, Mutex};
+
+use anyhow::{Context, Result, bail};
+use mpi::Threading;
+use mpi::environment::Universe;
+use mpi::topology::SimpleCommunicator;
+use mpi::traits::{Communicator, Root};
+use stickslip_config::Pipeline;
+use stickslip_ensemble::split::{SplitSeeds, install};
+use stickslip_solver::split::Partition;
+use stickslip_solver::split::mpi::MpiRanks;
+use stickslip_solver::{Model, RunOptions, RunOutput, SolverError};
+
+/// The world communicator, used by one thread at a time (MPI is initialised for serialized
+/// threads: rank 0 calls it from the ensemble's stepping thread).
+pub struct Comm(SimpleCommunicator);
+
+// SAFETY: every use goes through the mutex, so one thread at a time calls MPI, as
+// `MPI_THREAD_SERIALIZED` allows.
+unsafe impl Send for Comm {}
+
+/// What this process is.
+pub enum Role {
+    /// Not launched by an MPI launcher, or alone: the command runs as always.
+    Alone,
+    /// Rank 0 of several: runs the command; tells the others when it is over (on drop).
+    Root { _universe: Universe, comm: Arc<Mutex<Comm>> },
+    /// Another rank: has followed rank 0's seeds; nothing more to do.
+    Follower,
+}
+
+impl Drop for Role {
+    fn drop(&mut self) {
+        if let Role::Root { comm, .. } = self {
+            let comm = comm.lock().unwrap_or_else(|e| e.into_inner());
+            let mut done = [0.0; 3];
+            comm.0.process_at_rank(0).broadcast_into(&mut done[..]);
+        }
+    }
+}
+
+/// Whether an MPI launcher started this process (Open MPI, MPICH/Hydra, Slurm's PMI or PMIx).
+fn launched() -> bool {
+    ["OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"].iter().any(|v| std::env::var_os(v).is_some())
+}
+
+/// Starts MPI when launched by `mpirun`/`srun`: rank 0 installs the split runner and returns to
+/// run the command; the others follow its seeds of `pipelines` here and return [`Role::Follower`].
+pub fn start(pipelines: &[PathBuf]) -> Result<Role> {
+    if !launched() {
+        return Ok(Role::Alone);
+    }
+    let (universe, threading) =
+        mpi::initialize_with_threading(Threading::Serialized).context("MPI initialises once per process")?;
+    if threading < Threading::Serialized {
+        bail!("the MPI library gives threading level {threading:?}; stickslip needs MPI_THREAD_SERIALIZED");
+    }
+    let world = universe.world();
+    if world.size() == 1 {
+        return Ok(Role::Alone);
+    }
+    let scenes: Vec<Pipeline> = pipelines.iter().map(|p| Pipeline::load(p)).collect::<Result<_, _>>()?;
+    if world.rank() > 0 {
+        follow(&world, &scenes);
+        return Ok(Role::Follower);
+    }
+    let comm = Arc::new(Mutex::new(Comm(world)));
+    install(Box::new(RootRunner { comm: comm.clone(), pipelines: scenes, windows: Mutex::new(HashMap::new()) }));
+    Ok(Role::Root { _universe: universe, comm })
+}
+
+/// Rank 0's side of each seed.
+struct RootRunner {
+    comm: Arc<Mutex<Comm>>,
+    pipelines: Vec<Pipeline>,
+    /// Each pipeline's partition and rank 0's window, built at its first seed.
+    windows: Mutex<HashMap<usize, Arc<(Partition, Model)>>>,
+}
+
+impl SplitSeeds for RootRunner {
+    fn ranks(&self) -> usize {
+        self.comm.lock().map_or(1, |c| c.0.size() as usize)
+    }
+
+    fn run(
+        &self,
+        pipeline: &Pipeline,
+        model: &Model,
+        seed: u64,
+        options: RunOptions,
+        progress: &mut dyn FnMut(f64) -> ControlFlow<()>,
+    ) -> Result<RunOutput, SolverError> {
+        let comm = self.comm.lock().unwrap_or_else(|e| e.into_inner());
+        let index = self
+            .pipelines
+            .iter()
+            .position(|p| p.hash == pipeline.hash)
+            .ok_or_else(|| SolverError::Unsupported("a pipeline not named on the command line".into()))?;
+        let ranks = comm.0.size() as usize;
+        let part = {
+            let mut windows = self.windows.lock().unwrap_or_else(|e| e.into_inner());
+            match windows.get(&index) {
+                Some(w) => w.clone(),
+                None => {
+                    let partition = Partition::new(pipeline.scene.dims, ranks).map_err(|e| {
+                        SolverError::Unsupported(format!(
+                            "this scene split over {ranks} MPI ranks: {e} (block.nz = {})",
+                            pipeline.scene.dims.nz
+                        ))
+                    })?;
+                    if pipeline.scene.rupture.is_some() {
+                        return Err(SolverError::Unsupported(
+                            "a scene whose bars crack ([rupture]) is not split over MPI ranks: run it on one process"
+                                .into(),
+                        ));
+                    }
+                    let window = Model::window(pipeline.scene.clone(), partition.window(0));
+                    let w = Arc::new((partition, window));
+                    windows.insert(index, w.clone());
+                    w
+                }
+            }
+        };
+        let mut order = [1.0, index as f64, f64::from_bits(seed)];
+        comm.0.process_at_rank(0).broadcast_into(&mut order[..]);
+        let mut link = MpiRanks::new(&comm.0);
+        let (partition, window) = (&part.0, &part.1);
+        run_split(window, partition, Some(model), seed, options, progress, &mut link)
+    }
+}
+
+fn run_split(
+    window: &Model,
+    partition: &Partition,
+    whole: Option<&Model>,
+    seed: u64,
+    options: RunOptions,
+    progress: &mut dyn FnMut(f64) -> ControlFlow<()>,
+    link: &mut MpiRanks<'_>,
+) -> Result<RunOutput, SolverError> {
+    stickslip_solver::run::run_split(window, partition, whole, seed, options, progress, link)
+        .expect("rank 0 has the run's output")
+}
+
+/// A rank other than 0: steps its part of each seed rank 0 names, until rank 0 says it is over.
+fn follow(world: &SimpleCommunicator, pipelines: &[Pipeline]) {
+    // mpirun hands a Ctrl-C to every rank: rank 0's decides, and stops every rank at one step.
+    let _ = ctrlc::set_handler(|| {});
+    let rank = world.rank() as usize;
+    let mut windows: HashMap<usize, (Partition, Model)> = HashMap::new();
+    let options = RunOptions { parallel_step: rayon::current_num_threads() > 1, ..RunOptions::default() };
+    loop {
+        let mut order = [0.0f64; 3];
+        world.process_at_rank(0).broadcast_into(&mut order[..]);
+        if order[0] == 0.0 {
+            return;
+        }
+        let (index, seed) = (order[1] as usize, order[2].to_bits());
+        let (partition, model) = windows.entry(index).or_insert_with(|| {
+            let scene = &pipelines[index].scene;
+            let partition = Partition::new(scene.dims, world.size() as usize).expect("rank 0 split it");
+            let model = Model::window(scene.clone(), partition.window(rank));
+            (partition, model)
+        });
+        let options = RunOptions { parallel_step: options.parallel_step && model.layout().splits(), ..options };
+        let mut link = MpiRanks::new(world);
+        let _ = stickslip_solver::run::run_split(
+            model,
+            partition,
+            None,
+            seed,
+            options,
+            &mut |_| ControlFlow::Continue(()),
+            &mut link,
+        );
+    }
+}

@@ -1,0 +1,254 @@
+//! One seed of a scene split over ranks (docs/model.md §19): the run loop of one process
+//! ([`run_lanes`](crate::run::run_lanes)), with the halo exchanged after every step, Δt and the
+//! critical step from rank 0, the blow-up check and the decision to stop agreed by every rank, and
+//! rank 0 recording, each step, the stations and drivers other ranks hold. Rank 0's
+//! [`RunOutput`] is then the one process's, bit for bit.
+//!
+//! Not yet: the energy ledger (sums over every node and bar, whose order would depend on the
+//! split), the self-weight stage (its equilibrium check is such a sum), the skip-ahead, and
+//! drivers or a loading plate held by more than one rank; each is refused before the run starts.
+
+use std::ops::ControlFlow;
+
+use super::lanes::{Hooks, Remote, run_lanes_with};
+use super::{RunOptions, RunOutput, prepare};
+use crate::NodeId;
+use crate::error::SolverError;
+use crate::model::{Model, canonical_of_internal};
+use crate::observe::Observed;
+use crate::scene::ControlChannel;
+use crate::split::{Halo, Neighbours, Partition, Window};
+use crate::statics::CriticalStep;
+use crate::step::{LaneSetup, LaneView, Params, State};
+
+/// Runs `seed` on this rank's part of the scene: `model` is [`Model::window`] of
+/// `partition.window(ranks.rank())`; rank 0 also passes the whole scene's model, `whole`, for
+/// the seed's critical step (the one process's Lanczos, so the same Δt). Every rank calls it with
+/// the same seed and options; rank 0 gets the run's output, the others `None`. `progress` is
+/// rank 0's: when it asks to stop, every rank stops.
+pub fn run_split(
+    model: &Model,
+    partition: &Partition,
+    whole: Option<&Model>,
+    seed: u64,
+    options: RunOptions,
+    progress: &mut dyn FnMut(f64) -> ControlFlow<()>,
+    ranks: &mut dyn Neighbours,
+) -> Option<Result<RunOutput, SolverError>> {
+    let rank = ranks.rank();
+    let window = partition.window(rank);
+    assert_eq!(model.split_window(), Some(&window), "rank {rank}'s model is its window of the partition");
+    assert!(rank > 0 || whole.is_some(), "rank 0 has the whole model for the critical step");
+    if let Err(why) = splittable(model.scene()) {
+        return (rank == 0).then_some(Err(SolverError::Unsupported(why)));
+    }
+    // Which rank holds the drivers (or the plate): at most one.
+    let mine = [f64::from(u8::from(!model.drivers().is_empty() || !model.plate().is_empty()))];
+    let mut holders = [0.0];
+    let all = ranks.gather(&mine);
+    if rank == 0 {
+        let with: Vec<usize> = all.iter().enumerate().filter(|(_, v)| v[0] > 0.0).map(|(r, _)| r).collect();
+        holders[0] = match with.as_slice() {
+            [] => -1.0,
+            [r] => *r as f64,
+            _ => -2.0,
+        };
+    }
+    ranks.broadcast(&mut holders);
+    if holders[0] == -2.0 {
+        let why =
+            "drivers or a loading plate held by more than one rank of a split scene are not supported yet".to_string();
+        return (rank == 0).then_some(Err(SolverError::Unsupported(why)));
+    }
+    let driver_rank = (holders[0] >= 0.0).then_some(holders[0] as usize);
+    // The control channels rank 0 does not hold, and who sends each.
+    let dims = model.scene().dims;
+    let root = partition.window(0);
+    let owner =
+        |id: NodeId| (0..partition.ranks()).find(|&r| partition.window(r).owns(internal(dims, id))).expect("an owner");
+    let remote: Vec<(ControlChannel, usize)> = model
+        .scene()
+        .record
+        .control
+        .iter()
+        .filter(|c| root.local(internal(dims, c.node)).is_none())
+        .map(|&c| (c, owner(c.node)))
+        .collect();
+    let sent: Vec<(ControlChannel, usize)> = remote
+        .iter()
+        .filter(|(_, r)| *r == rank)
+        .map(|&(c, _)| (c, model.held(c.node).expect("an owned node is held")))
+        .collect();
+    let mut hooks = Split {
+        window,
+        whole,
+        ranks,
+        halo: Halo::default(),
+        remote,
+        sent,
+        driver_rank: driver_rank.filter(|&r| r != 0),
+        values: Remote::default(),
+    };
+    let [out] = run_lanes_with::<1, _>(model, [seed], options, progress, &mut hooks);
+    (rank == 0).then_some(out)
+}
+
+/// Why `scene`'s runs cannot be split over `ranks` ranks, if they cannot: a block too thin for
+/// them, bars that crack, or what the split run does not do yet (module doc).
+pub fn split_refusal(scene: &crate::Scene, ranks: usize) -> Option<String> {
+    if let Err(e) = Partition::new(scene.dims, ranks) {
+        return Some(format!("{e} (block.nz = {})", scene.dims.nz));
+    }
+    if scene.rupture.is_some() {
+        return Some("a scene whose bars crack ([rupture]) lists its bars and is not split".into());
+    }
+    splittable(scene).err()
+}
+
+/// Why a scene's run cannot be split yet, if it cannot.
+fn splittable(scene: &crate::Scene) -> Result<(), String> {
+    if scene.record.energy {
+        return Err("the energy ledger of a split scene is not built yet: set record.energy = false".into());
+    }
+    if scene.self_weight.gravity_m_s2 != 0.0 {
+        return Err(
+            "the self-weight stage of a split scene is not built yet (its equilibrium check sums every node): set self_weight.gravity_m_s2 = 0"
+                .into(),
+        );
+    }
+    if scene.skip_ahead.enabled {
+        return Err(
+            "the quasi-static skip-ahead of a split scene is not built yet: set skip_ahead.enabled = false".into()
+        );
+    }
+    Ok(())
+}
+
+fn internal(dims: crate::Dims, id: NodeId) -> usize {
+    crate::model::internal_of_canonical(dims, id)
+}
+
+/// The hooks of one rank.
+struct Split<'a> {
+    window: Window,
+    whole: Option<&'a Model>,
+    ranks: &'a mut dyn Neighbours,
+    halo: Halo,
+    /// Every control channel rank 0 does not hold, with the rank that sends it.
+    remote: Vec<(ControlChannel, usize)>,
+    /// The channels this rank sends, with their window index.
+    sent: Vec<(ControlChannel, usize)>,
+    /// The rank other than 0 that holds the drivers, if one does.
+    driver_rank: Option<usize>,
+    /// On rank 0, what the others sent this step.
+    values: Remote,
+}
+
+impl Hooks<1> for Split<'_> {
+    fn prepare(
+        &mut self,
+        model: &Model,
+        seed: u64,
+        options: RunOptions,
+    ) -> Result<(LaneSetup, CriticalStep), SolverError> {
+        let mut data = [0.0; 6];
+        let mut failed = None;
+        if let Some(whole) = self.whole {
+            match prepare(whole, seed, options) {
+                Ok((setup, c)) => {
+                    data = [1.0, setup.dt_s, c.omega_max, c.dt_s, c.iterations as f64, c.relative_residual]
+                }
+                Err(e) => failed = Some(e),
+            }
+        }
+        self.ranks.broadcast(&mut data);
+        if let Some(e) = failed {
+            return Err(e);
+        }
+        if data[0] != 1.0 {
+            return Err(SolverError::Unsupported("rank 0 could not set the seed up".into()));
+        }
+        let critical = CriticalStep {
+            omega_max: data[2],
+            dt_s: data[3],
+            iterations: data[4] as usize,
+            relative_residual: data[5],
+        };
+        let setup = LaneSetup {
+            dt_s: data[1],
+            stiffness: model.lane_stiffness_on(seed, options.parallel_step)?,
+            friction: model.friction_factors(seed)?,
+            strength: None,
+            fault: model.fault_loads(seed)?,
+        };
+        Ok((setup, critical))
+    }
+
+    fn after_step(&mut self, params: &Params<'_, 1>, state: &mut State<1>) {
+        self.halo.exchange(&self.window, &mut state.u.np1, self.ranks);
+        if self.remote.is_empty() && self.driver_rank.is_none() {
+            return;
+        }
+        let view = LaneView { params, state, lane: 0 };
+        let mut mine: Vec<f64> =
+            self.sent.iter().map(|&(c, node)| view.kinematic(node, c.quantity)[c.component.axis()]).collect();
+        if self.driver_rank == Some(self.ranks.rank()) {
+            mine.push(view.driver_force());
+        }
+        let all = self.ranks.gather(&mine);
+        if self.ranks.rank() == 0 {
+            let mut next = vec![0usize; all.len()];
+            self.values.control.clear();
+            for &(c, r) in &self.remote {
+                self.values.control.push((c, all[r][next[r]]));
+                next[r] += 1;
+            }
+            self.values.driver_force = self.driver_rank.map(|r| all[r][next[r]]);
+        }
+    }
+
+    fn blowup(&mut self, view: &LaneView<'_, '_, 1>, parallel: bool) -> Option<(NodeId, String)> {
+        // Each rank's first bad owned node per component, as (global internal index, new, old).
+        let u = &view.state.u;
+        let mut mine = Vec::with_capacity(9);
+        for c in 0..3 {
+            match view.first_blowup(c, self.window.owned.clone(), parallel) {
+                Some(i) => mine.extend([self.window.global(i) as f64, u.np1.c[c][i][0], u.n.c[c][i][0]]),
+                None => mine.extend([-1.0, 0.0, 0.0]),
+            }
+        }
+        let all = self.ranks.gather(&mine);
+        // The one process's: the first component with a bad node, its first node.
+        let mut found = [-1.0, 0.0, 0.0, 0.0];
+        if self.ranks.rank() == 0 {
+            'components: for c in 0..3 {
+                for v in &all {
+                    if v[3 * c] >= 0.0 {
+                        found = [v[3 * c], c as f64, v[3 * c + 1], v[3 * c + 2]];
+                        break 'components;
+                    }
+                }
+            }
+        }
+        self.ranks.broadcast(&mut found);
+        if found[0] < 0.0 {
+            return None;
+        }
+        let id = canonical_of_internal(view.params.model.scene().dims, found[0] as usize);
+        Some((id, view.blowup_what(found[1] as usize, found[2], found[3])))
+    }
+
+    fn stop(&mut self, asked: bool) -> bool {
+        let mut flag = [f64::from(u8::from(asked))];
+        self.ranks.broadcast(&mut flag);
+        flag[0] != 0.0
+    }
+
+    fn records(&self) -> bool {
+        self.ranks.rank() == 0
+    }
+
+    fn remote(&self) -> Option<&Remote> {
+        (self.ranks.rank() == 0).then_some(&self.values)
+    }
+}
