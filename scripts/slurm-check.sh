@@ -319,4 +319,37 @@ say "compare"
 "$bin" compare "$work/out" "$work/plain"
 printf 'Slurm array of %s shards + merge: %.1f s wall; plain ensemble: %.1f s (same machine, %s CPUs)\n' \
     "$shards" "$slurm_s" "$plain_s" "$cpus"
+
+# With SPLIT=N: one pipeline (SPLIT_PIPELINE, default TPV5 at 500 m) with every seed split over N
+# MPI ranks as one job of pipelines/slurm/split.sbatch, launched by SPLIT_LAUNCH (default srun with
+# the PMIx plugin), against a plain run. Needs a stickslip built with `--features mpi`.
+if [ -n "${SPLIT:-}" ]; then
+    split_pipeline=${SPLIT_PIPELINE:-pipelines/tpv5-500m.toml}
+    launch=${SPLIT_LAUNCH:-srun --mpi=pmix}
+    say "submit $split_pipeline as one job of $SPLIT MPI ranks ($launch, pipelines/slurm/split.sbatch)"
+    srun --mpi=list 2>&1 | tr '\n' ' ' | sed 's/^/srun --mpi=list: /'
+    echo
+    split_job=$(PIPELINE=$repo/$split_pipeline OUT=$work/split STICKSLIP=$bin LAUNCH=$launch \
+        sbatch --parsable --ntasks="$SPLIT" --cpus-per-task=1 --export=ALL "$repo/pipelines/slurm/split.sbatch")
+    job_ids+=("$split_job")
+    start_t=$(date +%s.%N)
+    waited=0
+    while squeue -h -j "$split_job" 2>/dev/null | grep -q .; do
+        [ "$waited" -lt "$timeout_s" ] || die "the split job did not finish in $timeout_s s"
+        sleep 1
+        waited=$((waited + 1))
+    done
+    end_t=$(date +%s.%N)
+    split_out=slurm-stickslip-split-$split_job.out
+    [ -f "$split_out" ] || die "the split job wrote no $split_out"
+    cat "$split_out"
+    grep -q "each seed split over $SPLIT MPI ranks" "$split_out" || die "the job did not split its seeds over $SPLIT ranks"
+    split_s=$(awk -v a="$start_t" -v b="$end_t" 'BEGIN { print b - a }')
+    start_t=$(date +%s.%N)
+    "$bin" pipeline "$repo/$split_pipeline" --out "$work/split-plain" --quiet >/dev/null
+    end_t=$(date +%s.%N)
+    "$bin" compare "$work/split" "$work/split-plain"
+    printf 'Slurm job of %s MPI ranks: %.1f s wall; one process: %.1f s\n' "$SPLIT" "$split_s" \
+        "$(awk -v a="$start_t" -v b="$end_t" 'BEGIN { print b - a }')"
+fi
 echo "slurm check passed"

@@ -48,9 +48,16 @@ impl Drop for Role {
     }
 }
 
-/// Whether an MPI launcher started this process (Open MPI, MPICH/Hydra, Slurm's PMI or PMIx).
+/// Whether an MPI launcher started this process (Open MPI, MPICH/Hydra, Slurm's PMI or PMIx), or
+/// `srun` started it as one of several tasks.
 fn launched() -> bool {
     ["OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"].iter().any(|v| std::env::var_os(v).is_some())
+        || srun_tasks() > 1
+}
+
+/// The tasks of the `srun` step that started this process (1 outside one).
+fn srun_tasks() -> usize {
+    std::env::var("SLURM_STEP_NUM_TASKS").ok().and_then(|v| v.parse().ok()).unwrap_or(1)
 }
 
 /// Starts MPI when launched by `mpirun`/`srun`: rank 0 installs the split runner and returns to
@@ -65,6 +72,14 @@ pub fn start(pipelines: &[PathBuf]) -> Result<Role> {
         bail!("the MPI library gives threading level {threading:?}; stickslip needs MPI_THREAD_SERIALIZED");
     }
     let world = universe.world();
+    if world.size() == 1 && srun_tasks() > 1 {
+        // Each task alone would run the whole pipeline into the same folder.
+        bail!(
+            "srun started {} tasks but MPI sees each alone: srun needs the MPI plugin its MPI library was built for \
+             (e.g. `srun --mpi=pmix`; `srun --mpi=list` lists them), or start the ranks with mpirun inside the job",
+            srun_tasks()
+        );
+    }
     if world.size() == 1 {
         return Ok(Role::Alone);
     }
