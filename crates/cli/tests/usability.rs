@@ -328,6 +328,7 @@ fn check_ranks_says_each_ranks_part_and_refuses_a_rank_that_cannot_hold_it() {
     assert!(stdout.contains("rank 31: module layers"), "{stdout}");
     assert!(stdout.contains("halo: one module layer of 321001 nodes"), "{stdout}");
     assert!(stdout.contains("against 2.0 GB per rank (--memory-per-rank)"), "{stdout}");
+    assert!(stdout.contains("run: `mpirun -n 32 stickslip pipeline …`"), "{stdout}");
     assert!(err.contains("does not fit in memory"), "{err}");
     // Half a GB per rank is too little for 32 ranks of this block.
     let (code, stdout, err) = check(&["m6-100.toml", "--ranks", "32", "--memory-per-rank", "0.5"]);
@@ -341,6 +342,11 @@ fn check_ranks_says_each_ranks_part_and_refuses_a_rank_that_cannot_hold_it() {
     let (code, _, err) = check(&["m6-100.toml", "--memory-per-rank", "2"]);
     assert_eq!(code, Some(2), "{err}");
     assert!(err.contains("--ranks <RANKS>"), "{err}");
+    // A scene the split run does not take yet (the paper's: its energy ledger), refused saying so.
+    let paper = repo().join("pipelines/paper.toml");
+    let (code, stdout, err) = check(&[paper.to_str().unwrap(), "--ranks", "2"]);
+    assert_eq!(code, Some(1), "{stdout}{err}");
+    assert!(err.contains("would refuse to split") && err.contains("record.energy = false"), "{err}");
 }
 
 #[test]

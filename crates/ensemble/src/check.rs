@@ -331,9 +331,14 @@ fn split_over(
         human(largest.1),
         if limit == u64::MAX { "no limit".to_string() } else { human(limit) }
     )));
-    (out.emit)(line(
-        "  not yet: `stickslip pipeline` does not run a split scene; the solver's split_step example steps one under mpirun (docs/guide/ensembles.md, One scene over MPI ranks)".into(),
-    ));
+    if let Some(why) = stickslip_solver::run::split_refusal(scene, ranks) {
+        return Err(EnsembleError::Refused(format!(
+            "--ranks = {ranks}: `stickslip pipeline` under mpirun would refuse to split this scene's seeds: {why}"
+        )));
+    }
+    (out.emit)(line(format!(
+        "  run: `mpirun -n {ranks} stickslip pipeline …` (built with --features mpi) splits each seed so; rank 0 also holds the whole model (docs/guide/ensembles.md, One scene over MPI ranks)"
+    )));
     if largest.1 > limit {
         return Err(EnsembleError::Refused(format!(
             "--ranks = {ranks}: rank {} needs about {} but a rank has {} ({whose}); use more ranks (up to {}) or more memory per rank",
