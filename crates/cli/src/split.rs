@@ -51,8 +51,7 @@ impl Drop for Role {
 /// Whether an MPI launcher started this process (Open MPI, MPICH/Hydra, Slurm's PMI or PMIx), or
 /// `srun` started it as one of several tasks.
 fn launched() -> bool {
-    ["OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"].iter().any(|v| std::env::var_os(v).is_some())
-        || srun_tasks() > 1
+    ["OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"].iter().any(|v| std::env::var_os(v).is_some()) || srun_tasks() > 1
 }
 
 /// The tasks of the `srun` step that started this process (1 outside one).
@@ -149,21 +148,9 @@ impl SplitSeeds for RootRunner {
         comm.0.process_at_rank(0).broadcast_into(&mut order[..]);
         let mut link = MpiRanks::new(&comm.0);
         let (partition, window) = (&part.0, &part.1);
-        run_split(window, partition, Some(model), seed, options, progress, &mut link)
+        stickslip_solver::run::run_split(window, partition, Some(model), seed, options, progress, &mut link)
+            .expect("rank 0 has the run's output")
     }
-}
-
-fn run_split(
-    window: &Model,
-    partition: &Partition,
-    whole: Option<&Model>,
-    seed: u64,
-    options: RunOptions,
-    progress: &mut dyn FnMut(f64) -> ControlFlow<()>,
-    link: &mut MpiRanks<'_>,
-) -> Result<RunOutput, SolverError> {
-    stickslip_solver::run::run_split(window, partition, whole, seed, options, progress, link)
-        .expect("rank 0 has the run's output")
 }
 
 /// A rank other than 0: steps its part of each seed rank 0 names, until rank 0 says it is over.

@@ -259,13 +259,8 @@ fn check_shows_nodes_by_position_every_stage_and_the_critical_range_over_the_see
     assert!(text(&o).0.contains("over its first 2 of 8 seeds"), "{}", text(&o).0);
 }
 
-/// `check` on a scene far too large for the machine prints its size, memory and time from the
-/// block's counts first and refuses it, naming what does not fit and what is available, instead
-/// of building it: scenario-m6 at 100 m modules (1.17·10⁹ bars, 21 GB for one seed) under a
-/// 4 GB address-space limit aborted on an 8 GB allocation before printing anything.
-#[test]
-fn check_prints_the_cost_of_a_huge_scene_first_and_refuses_it_before_building() {
-    let dir = scratch("check-huge");
+/// scenario-m6 at 100 m modules (800 × 200 × 520, 1.17·10⁹ bars) as `dir/m6-100.toml`.
+fn write_m6_100(dir: &Path) {
     let scene = std::fs::read_to_string(repo().join("pipelines/scenario-m6.toml"))
         .unwrap()
         .replace("nx = 160\n", "nx = 800\n")
@@ -274,6 +269,16 @@ fn check_prints_the_cost_of_a_huge_scene_first_and_refuses_it_before_building() 
         .replace("lc_m = 500.0", "lc_m = 100.0");
     assert!(scene.contains("nx = 800\nny = 200\nnz = 520\nlc_m = 100.0"), "scenario-m6's block changed");
     std::fs::write(dir.join("m6-100.toml"), scene).unwrap();
+}
+
+/// `check` on a scene far too large for the machine prints its size, memory and time from the
+/// block's counts first and refuses it, naming what does not fit and what is available, instead
+/// of building it: scenario-m6 at 100 m modules (1.17·10⁹ bars, 21 GB for one seed) under a
+/// 4 GB address-space limit aborted on an 8 GB allocation before printing anything.
+#[test]
+fn check_prints_the_cost_of_a_huge_scene_first_and_refuses_it_before_building() {
+    let dir = scratch("check-huge");
+    write_m6_100(&dir);
     let started = std::time::Instant::now();
     let out = Command::new("sh")
         .args(["-c", "ulimit -v 4000000 && exec \"$0\" \"$@\"", env!("CARGO_BIN_EXE_stickslip")])
@@ -300,13 +305,7 @@ fn check_prints_the_cost_of_a_huge_scene_first_and_refuses_it_before_building() 
 #[test]
 fn check_ranks_says_each_ranks_part_and_refuses_a_rank_that_cannot_hold_it() {
     let dir = scratch("check-ranks");
-    let scene = std::fs::read_to_string(repo().join("pipelines/scenario-m6.toml"))
-        .unwrap()
-        .replace("nx = 160\n", "nx = 800\n")
-        .replace("ny = 40\n", "ny = 200\n")
-        .replace("nz = 104\n", "nz = 520\n")
-        .replace("lc_m = 500.0", "lc_m = 100.0");
-    std::fs::write(dir.join("m6-100.toml"), scene).unwrap();
+    write_m6_100(&dir);
     let check = |args: &[&str]| {
         let out = Command::new("sh")
             .args(["-c", "ulimit -v 4000000 && exec \"$0\" \"$@\"", env!("CARGO_BIN_EXE_stickslip")])
