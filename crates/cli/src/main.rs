@@ -77,8 +77,10 @@ fn main() {
     // Under mpirun/srun (the `mpi` feature), `pipeline` splits every seed over the ranks: rank 0
     // runs the command, the others follow its seeds and are done when it is.
     #[cfg(feature = "mpi")]
-    let role = match &command {
-        Command::Pipeline(a) => match split::start(&a.pipelines) {
+    let mut command = command;
+    #[cfg(feature = "mpi")]
+    let role = match &mut command {
+        Command::Pipeline(a) => match split::start(&a.pipelines, &mut a.threads) {
             Ok(split::Role::Follower) => return,
             Ok(role) => Some(role),
             Err(e) => {

@@ -59,9 +59,23 @@ fn srun_tasks() -> usize {
     std::env::var("SLURM_STEP_NUM_TASKS").ok().and_then(|v| v.parse().ok()).unwrap_or(1)
 }
 
+/// Threads of each rank unless `--threads` says: Slurm's `SLURM_CPUS_PER_TASK`, else the cores
+/// over the ranks on this node (Open MPI's `OMPI_COMM_WORLD_LOCAL_SIZE` or Slurm's
+/// `SLURM_NTASKS_PER_NODE`), at least one.
+fn default_threads() -> usize {
+    let var = |v: &str| std::env::var(v).ok().and_then(|s| s.parse::<usize>().ok()).filter(|&n| n > 0);
+    if let Some(n) = var("SLURM_CPUS_PER_TASK") {
+        return n;
+    }
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let local = var("OMPI_COMM_WORLD_LOCAL_SIZE").or_else(|| var("SLURM_NTASKS_PER_NODE")).unwrap_or(1);
+    (cores / local).max(1)
+}
+
 /// Starts MPI when launched by `mpirun`/`srun`: rank 0 installs the split runner and returns to
-/// run the command; the others follow its seeds of `pipelines` here and return [`Role::Follower`].
-pub fn start(pipelines: &[PathBuf]) -> Result<Role> {
+/// run the command with `threads` threads (this node's cores over its ranks unless given); the
+/// others follow its seeds of `pipelines` here, with as many, and return [`Role::Follower`].
+pub fn start(pipelines: &[PathBuf], threads: &mut Option<usize>) -> Result<Role> {
     if !launched() {
         return Ok(Role::Alone);
     }
@@ -83,7 +97,10 @@ pub fn start(pipelines: &[PathBuf]) -> Result<Role> {
         return Ok(Role::Alone);
     }
     let scenes: Vec<Pipeline> = pipelines.iter().map(|p| Pipeline::load(p)).collect::<Result<_, _>>()?;
+    let threads = *threads.get_or_insert_with(default_threads);
     if world.rank() > 0 {
+        // The steps on the global pool, MPI from this thread.
+        rayon::ThreadPoolBuilder::new().num_threads(threads).build_global().context("the thread pool")?;
         follow(&world, &scenes);
         return Ok(Role::Follower);
     }
@@ -175,14 +192,7 @@ fn follow(world: &SimpleCommunicator, pipelines: &[Pipeline]) {
         });
         let options = RunOptions { parallel_step: options.parallel_step && model.layout().splits(), ..options };
         let mut link = MpiRanks::new(world);
-        let _ = stickslip_solver::run::run_split(
-            model,
-            partition,
-            None,
-            seed,
-            options,
-            &mut |_| ControlFlow::Continue(()),
-            &mut link,
-        );
+        let mut go_on = |_| ControlFlow::Continue(());
+        let _ = stickslip_solver::run::run_split(model, partition, None, seed, options, &mut go_on, &mut link);
     }
 }

@@ -121,7 +121,8 @@ impl StencilLayout {
     /// the top, layer `hi` holds its corners and centres (the halo above) and runs no bars. The
     /// slabs are the whole block's, cut at `lo` and `hi`, so each owned node receives its bars in
     /// the whole block's order; this needs `lo + 1` not to start a slab of the block
-    /// ([`StencilLayout::slab_bounds`]), which [`crate::split::Partition`] ensures.
+    /// ([`StencilLayout::slab_bounds`]), which [`crate::split::Partition`] ensures by holding one
+    /// more layer below where it would.
     pub fn window(dims: Dims, lo: usize, hi: usize) -> StencilLayout {
         assert!(lo < hi && hi <= dims.nz, "layers {lo}..={hi} of a block of {} layers", dims.nz + 1);
         assert!(

@@ -13,12 +13,14 @@
 //! `k1 − 1`, running none). Its stencil runs the whole block's runs of those layers in the whole
 //! block's slab and phase order ([`crate::stencil::StencilLayout::window`]), so each owned node
 //! receives the same contributions in the same order as on one process, and is integrated by
-//! the same arithmetic. Halo nodes are integrated too, from incomplete forces, and overwritten by
-//! the exchange before anything reads them. Boundary conditions act on owned nodes only; the base
-//! (contact, a fault) is rank 0's.
+//! the same arithmetic. Where `k0` starts a slab of the block, layer `k0 − 1` is a slab's top,
+//! whose bars run after the rest of its slab (the second phase): the rank then holds layer
+//! `k0 − 2` too, so that `k0 − 1` is the top of a slab of its window as well. Halo nodes are
+//! integrated too, from incomplete forces, and overwritten by the exchange before anything reads
+//! them. Boundary conditions act on owned nodes only; the base (contact, a fault) is rank 0's.
 //!
-//! **The exchange.** After each step a rank sends its top owned layer up and its bottom owned
-//! layer down (the newest displacement level, three components, every lane), and receives its two
+//! **The exchange.** After each step a rank sends its top owned layer (or two) up and its bottom
+//! owned layer down (the newest displacement level, three components, every lane), and receives its two
 //! halo layers ([`Neighbours`]). The older levels of a halo node are the newest of earlier
 //! exchanges, so one level per step is enough.
 
@@ -55,7 +57,7 @@ impl std::fmt::Display for PartitionError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "{} ranks: a block is split into slabs of at least two module layers along z, none starting where a slab of its stencil starts, so this one takes 1 to {} ranks",
+            "{} ranks: a block is split into slabs of at least two module layers along z, so this one takes 1 to {} ranks",
             self.ranks, self.most
         )
     }
@@ -64,10 +66,7 @@ impl std::fmt::Display for PartitionError {
 impl std::error::Error for PartitionError {}
 
 impl Partition {
-    /// Splits the block's `nz` module layers as evenly as the rule allows: every rank at least
-    /// two layers, and no rank's first layer the first of a slab of the block's stencil (whose
-    /// order a rank must reproduce), by moving such a cut down a layer, or up where down would
-    /// leave the rank below short.
+    /// Splits the block's `nz` module layers evenly, every rank at least two layers.
     pub fn new(dims: Dims, ranks: usize) -> Result<Partition, PartitionError> {
         match Self::cuts(dims.nz, ranks) {
             Some(starts) => Ok(Partition { dims, starts }),
@@ -84,22 +83,20 @@ impl Partition {
         if ranks == 0 || (ranks > 1 && ranks > nz / 2) {
             return None;
         }
-        let slab_starts = crate::slabs::bounds(nz + 1);
-        let mut starts = vec![0];
-        for r in 1..ranks {
-            let previous = *starts.last().expect("rank 0 starts at 0");
-            let mut k = ((r * nz + ranks / 2) / ranks).max(previous + 2);
-            if slab_starts.contains(&k) {
-                k = if k > previous + 2 { k - 1 } else { k + 1 };
-            }
-            // Room for this rank's two layers and two for each rank above.
-            if k + 2 * (ranks - r) > nz {
-                return None;
-            }
-            starts.push(k);
-        }
+        let mut starts: Vec<usize> = (0..ranks).map(|r| (r * nz + ranks / 2) / ranks).collect();
         starts.push(nz);
-        Some(starts)
+        starts.windows(2).all(|w| w[1] >= w[0] + 2 || ranks == 1).then_some(starts)
+    }
+
+    /// Module layers of the halo below rank `r`: one, or two where its first layer starts a slab
+    /// of the block's stencil (the layer below is then a slab's top, which runs after the slab's
+    /// other layers: with the layer under it the window runs it in the same phase as the block).
+    fn halo_layers(&self, r: usize) -> usize {
+        match r {
+            0 => 0,
+            _ if crate::slabs::bounds(self.dims.nz + 1).contains(&self.starts[r]) => 2,
+            _ => 1,
+        }
     }
 
     /// Number of ranks.
@@ -121,19 +118,30 @@ impl Partition {
     pub fn window(&self, r: usize) -> Window {
         let Dims { nx, ny, nz } = self.dims;
         let owned = self.owned_layers(r);
-        let lo = owned.start.saturating_sub(1);
+        let lo = owned.start - self.halo_layers(r);
         let hi = owned.end;
         let layer = (nx + 1) * (ny + 1) + nx * ny;
         let top = if hi == nz { (nx + 1) * (ny + 1) } else { layer };
         let nodes = (hi - lo) * layer + top;
         let own_start = (owned.start - lo) * layer;
         let own_end = if hi == nz { nodes } else { (hi - lo) * layer };
-        Window { rank: r, ranks: self.ranks(), lo, hi, first_node: lo * layer, nodes, owned: own_start..own_end, layer }
+        let sent_up = if r + 1 < self.ranks() { self.halo_layers(r + 1) * layer } else { 0 };
+        Window {
+            rank: r,
+            ranks: self.ranks(),
+            lo,
+            hi,
+            first_node: lo * layer,
+            nodes,
+            owned: own_start..own_end,
+            layer,
+            sent_up,
+        }
     }
 }
 
-/// The part of the block one rank holds: module layers `lo..=hi` (its own and one halo layer on
-/// each side that has a neighbour).
+/// The part of the block one rank holds: module layers `lo..=hi` (its own and the halo layers on
+/// each side that has a neighbour: one above, one or two below).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Window {
     /// This rank.
@@ -152,6 +160,8 @@ pub struct Window {
     pub owned: Range<usize>,
     /// Nodes of one module layer (corners and centres).
     layer: usize,
+    /// Nodes of the halo below the rank above (one or two module layers), which this rank sends.
+    sent_up: usize,
 }
 
 impl Window {
@@ -170,9 +180,9 @@ impl Window {
         if self.rank == 0 { 0..0 } else { self.owned.start..self.owned.start + self.layer }
     }
 
-    /// What this rank sends up: its last owned layer (the halo below of the rank above).
+    /// What this rank sends up: its last owned layer, or two (the halo below of the rank above).
     pub fn send_above(&self) -> Range<usize> {
-        if self.rank + 1 == self.ranks { 0..0 } else { self.owned.end - self.layer..self.owned.end }
+        if self.rank + 1 == self.ranks { 0..0 } else { self.owned.end - self.sent_up..self.owned.end }
     }
 
     /// The block's internal index of window node `i`.
