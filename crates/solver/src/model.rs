@@ -130,7 +130,7 @@ impl Model {
             to_internal[id.index()] = i as u32;
         }
         let zones = scene.medium.zones(scene.young_pa, scene.density_kg_m3, scene.poisson);
-        let mass = masses(&scene, &lattice, &to_canonical);
+        let mass = masses(&scene, &lattice, &zones, &to_canonical);
         let inv_mass = mass.iter().map(|m| 1.0 / m).collect();
 
         // Bars: a stencil for a large elastic lattice, else listed in kernel order.
@@ -174,7 +174,8 @@ impl Model {
         let dims = lattice.dims();
         let to_canonical: Vec<NodeId> =
             (0..window.nodes).map(|i| canonical_of_internal(dims, window.global(i))).collect();
-        let mass = masses(&scene, &lattice, &to_canonical);
+        let zones = scene.medium.zones(scene.young_pa, scene.density_kg_m3, scene.poisson);
+        let mass = masses(&scene, &lattice, &zones, &to_canonical);
         let inv_mass = mass.iter().map(|m| 1.0 / m).collect();
         let layout = Bars::Stencil(StencilLayout::window(dims, window.lo, window.hi));
         let contact = if window.lo == 0 {
@@ -198,12 +199,11 @@ impl Model {
             run_stiffness: Vec::new(),
             contact,
             boundaries,
-            zones: Vec::new(),
+            zones,
             bar_code: Vec::new(),
             run_code: Vec::new(),
             window: Some(window),
         };
-        model.zones = model.scene.medium.zones(model.scene.young_pa, model.scene.density_kg_m3, model.scene.poisson);
         model.finish();
         model
     }
@@ -588,15 +588,14 @@ impl Model {
 /// centre rows `j = 0..ny` of `nx` centres; see [`crate::stencil`]).
 /// The lumped mass of each node of `nodes` (kg): its share of the modules around it, with the
 /// medium's density over the module's depth.
-fn masses(scene: &Scene, lattice: &Lattice, nodes: &[NodeId]) -> Vec<f64> {
+fn masses(scene: &Scene, lattice: &Lattice, zones: &[Zone], nodes: &[NodeId]) -> Vec<f64> {
     let rho_lc3 = scene.density_kg_m3 * scene.lc_m.powi(3);
-    let zones = scene.medium.zones(scene.young_pa, scene.density_kg_m3, scene.poisson);
     let (extent, half) = (lattice.extent(), 0.5 * scene.lc_m);
     nodes
         .iter()
         .map(|&id| {
             let d = scene.medium.depth(lattice.position(id), extent);
-            lattice.mass_fraction(id) * rho_lc3 * scene.medium.density_over(&zones, d - half, d + half)
+            lattice.mass_fraction(id) * rho_lc3 * scene.medium.density_over(zones, d - half, d + half)
         })
         .collect()
 }

@@ -121,22 +121,16 @@ impl StencilLayout {
     /// the top, layer `hi` holds its corners and centres (the halo above) and runs no bars. The
     /// slabs are the whole block's, cut at `lo` and `hi`, so each owned node receives its bars in
     /// the whole block's order; this needs `lo + 1` not to start a slab of the block
-    /// ([`StencilLayout::slab_bounds`]), which [`crate::split::Partition`] ensures by holding one
+    /// ([`crate::slabs::bounds`]), which [`crate::split::Partition`] ensures by holding one
     /// more layer below where it would.
     pub fn window(dims: Dims, lo: usize, hi: usize) -> StencilLayout {
         assert!(lo < hi && hi <= dims.nz, "layers {lo}..={hi} of a block of {} layers", dims.nz + 1);
         assert!(
-            lo == 0 || !Self::slab_bounds(dims.nz + 1).contains(&(lo + 1)),
+            lo == 0 || !crate::slabs::bounds(dims.nz + 1).contains(&(lo + 1)),
             "a window's first owned layer {} starts a slab of the block",
             lo + 1
         );
         Self::build(dims, lo, hi)
-    }
-
-    /// The layers where the slabs of a lattice of `layers` layers start, and its layer count at
-    /// the end ([`crate::slabs::bounds`]).
-    pub fn slab_bounds(layers: usize) -> Vec<usize> {
-        crate::slabs::bounds(layers)
     }
 
     fn build(dims: Dims, lo: usize, hi: usize) -> StencilLayout {
@@ -224,7 +218,7 @@ impl StencilLayout {
         // The block's slabs, cut to the window.
         let layers = hi - lo + 1;
         let mut slabs = vec![0];
-        slabs.extend(Self::slab_bounds(nz + 1).into_iter().filter(|&b| lo < b && b <= hi).map(|b| b - lo));
+        slabs.extend(crate::slabs::bounds(nz + 1).into_iter().filter(|&b| lo < b && b <= hi).map(|b| b - lo));
         slabs.push(layers);
         StencilLayout { runs, layer_runs, layer_nodes, slabs, bars }
     }
