@@ -2,8 +2,9 @@
 # The MPI part of the README's test command: builds the solver's `split_step` example and the
 # command line with the `mpi` feature, then under mpirun on 2 and 3 ranks of this machine
 # (oversubscribed): every node's three time levels against one process, bit for bit
-# (docs/model.md §19), and `stickslip pipeline`'s folder against one process's, table by table. Needs an MPI implementation and libclang (Debian: openmpi-bin
-# libopenmpi-dev libclang-dev; .ci/run installs them).
+# (docs/model.md §19), and `stickslip pipeline`'s folder against one process's, table by table,
+# also for a split run stopped and resumed from its checkpoints. Needs an MPI implementation and
+# libclang (Debian: openmpi-bin libopenmpi-dev libclang-dev; .ci/run installs them).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -46,4 +47,26 @@ pipeline() {
 }
 pipeline tpv5-500m 2 3
 pipeline large-block 2
-echo "MPI tests: every split run gave one process's bits and tables"
+
+# Stopped and resumed: mpirun interrupted (it passes the signal on) once every rank has written a
+# checkpoint, then the same command again: the seed resumes, and the folder is one process's.
+echo "== stickslip pipeline pipelines/tpv5-500m.toml --checkpoint-every, mpirun -n 2 stopped and resumed"
+dir="$out/tpv5-500m-stopped"
+mpirun "${flags[@]}" -n 2 "$cli" pipeline pipelines/tpv5-500m.toml --out "$dir" --quiet --checkpoint-every 0.001 \
+    >/dev/null 2>&1 &
+launcher=$!
+for _ in $(seq 600); do
+    compgen -G "$dir/checkpoints/*.rank-1-of-2.ckpt" >/dev/null && break
+    sleep 0.05
+done
+kill -INT "$launcher"
+wait "$launcher" && { echo "the run was not stopped" >&2; exit 1; }
+compgen -G "$dir/checkpoints/*.rank-0-of-2.ckpt" >/dev/null || { echo "no checkpoint of rank 0" >&2; exit 1; }
+mpirun "${flags[@]}" -n 2 "$cli" pipeline pipelines/tpv5-500m.toml --out "$dir" --quiet --checkpoint-every 0.001 \
+    | grep "resumes from its checkpoint"
+"$cli" compare "$out/tpv5-500m-1" "$dir"
+if compgen -G "$dir/checkpoints/*.ckpt" >/dev/null; then
+    echo "checkpoints left after the seed was written" >&2
+    exit 1
+fi
+echo "MPI tests: every split run gave one process's bits and tables, stopped and resumed too"

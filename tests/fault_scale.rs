@@ -34,7 +34,14 @@ fn follows_the_reference(
     let dir = stickslip_support::scratch_dir(name);
     let p = Pipeline::load(&stickslip_support::repo_path(pipeline)).unwrap();
     let out = dir.join("tpv5");
-    let options = EnsembleOptions { out: out.clone(), threads: 2, seeds: p.seeds.clone(), fresh: false, finish: true };
+    let options = EnsembleOptions {
+        checkpoint_every_s: None,
+        out: out.clone(),
+        threads: 2,
+        seeds: p.seeds.clone(),
+        fresh: false,
+        finish: true,
+    };
     let report = run_ensemble(&p, &options, &|_, _| {}, &AtomicBool::new(false)).unwrap();
     assert!(report.failed.is_empty(), "{:?}", report.failed);
 
@@ -125,7 +132,14 @@ fn broadband_records_are_the_same_on_any_thread_count() {
     assert_eq!(p.seeds, [1, 2], "the pipeline's seeds");
     for threads in [1, 2] {
         let out = dir.join(format!("threads-{threads}"));
-        let options = EnsembleOptions { out, threads, seeds: p.seeds.clone(), fresh: false, finish: true };
+        let options = EnsembleOptions {
+            checkpoint_every_s: None,
+            out,
+            threads,
+            seeds: p.seeds.clone(),
+            fresh: false,
+            finish: true,
+        };
         let report = run_ensemble(&p, &options, &|_, _| {}, &AtomicBool::new(false)).unwrap();
         assert!(report.failed.is_empty(), "{:?}", report.failed);
     }

@@ -39,8 +39,14 @@ fn failed_and_finished_seeds_leave_no_nan_in_any_table() {
     for (path, fails) in [(ok_path, false), (bad_path, true)] {
         let p = Pipeline::load(&path).unwrap();
         let out = dir.join(if fails { "bad" } else { "ok" });
-        let options =
-            EnsembleOptions { out: out.clone(), threads: 2, seeds: p.seeds.clone(), fresh: false, finish: true };
+        let options = EnsembleOptions {
+            checkpoint_every_s: None,
+            out: out.clone(),
+            threads: 2,
+            seeds: p.seeds.clone(),
+            fresh: false,
+            finish: true,
+        };
         let report = run_ensemble(&p, &options, &|_, _| {}, &AtomicBool::new(false)).unwrap();
         assert_eq!(report.failed.len(), if fails { 2 } else { 0 }, "{:?}", report.failed);
         assert_no_nan_in_tables(&out.join("tables"));
@@ -108,8 +114,14 @@ fn every_table_matches_its_declaration_and_reads_back_typed() {
         std::fs::write(dir.join(format!("{name}.toml")), text).unwrap();
         let p = Pipeline::load(&dir.join(format!("{name}.toml"))).unwrap();
         let out = dir.join(name);
-        let options =
-            EnsembleOptions { out: out.clone(), threads: 2, seeds: p.seeds.clone(), fresh: false, finish: true };
+        let options = EnsembleOptions {
+            checkpoint_every_s: None,
+            out: out.clone(),
+            threads: 2,
+            seeds: p.seeds.clone(),
+            fresh: false,
+            finish: true,
+        };
         run_ensemble(&p, &options, &|_, _| {}, &AtomicBool::new(false)).unwrap();
         let folder = Folder::new(&out);
         for spec in schema::ALL {

@@ -15,10 +15,12 @@ use mpi::environment::Universe;
 use mpi::topology::SimpleCommunicator;
 use mpi::traits::{Communicator, Root};
 use stickslip_config::Pipeline;
+use stickslip_ensemble::checkpoints::Checkpoints;
 use stickslip_ensemble::split::{SplitSeeds, install};
+use stickslip_solver::run::RankPart;
 use stickslip_solver::split::Partition;
 use stickslip_solver::split::mpi::MpiRanks;
-use stickslip_solver::{Model, RunOptions, RunOutput, SolverError};
+use stickslip_solver::{Checkpoint, Model, Perturbation, RunOptions, RunOutput, SolverError};
 
 /// The world communicator, used by one thread at a time (MPI is initialised for serialized
 /// threads: rank 0 calls it from the ensemble's stepping thread).
@@ -40,9 +42,13 @@ pub enum Role {
 
 impl Drop for Role {
     fn drop(&mut self) {
+        // A panic has already aborted every rank (`abort_on_panic`).
+        if std::thread::panicking() {
+            return;
+        }
         if let Role::Root { comm, .. } = self {
             let comm = comm.lock().unwrap_or_else(|e| e.into_inner());
-            let mut done = [0.0; 3];
+            let mut done = [0.0; ORDER];
             comm.0.process_at_rank(0).broadcast_into(&mut done[..]);
         }
     }
@@ -96,17 +102,87 @@ pub fn start(pipelines: &[PathBuf], threads: &mut Option<usize>) -> Result<Role>
     if world.size() == 1 {
         return Ok(Role::Alone);
     }
-    let scenes: Vec<Pipeline> = pipelines.iter().map(|p| Pipeline::load(p)).collect::<Result<_, _>>()?;
+    abort_on_panic(world.rank());
     let threads = *threads.get_or_insert_with(default_threads);
     if world.rank() > 0 {
-        // The steps on the global pool, MPI from this thread.
-        rayon::ThreadPoolBuilder::new().num_threads(threads).build_global().context("the thread pool")?;
-        follow(&world, &scenes);
+        // A follower that cannot start would leave rank 0 waiting for it: every rank stops.
+        let started = pipelines
+            .iter()
+            .map(|p| Pipeline::load(p))
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(anyhow::Error::from)
+            .and_then(|scenes| {
+                // The steps on the global pool, MPI from this thread.
+                rayon::ThreadPoolBuilder::new().num_threads(threads).build_global().context("the thread pool")?;
+                Ok(scenes)
+            });
+        match started {
+            Ok(scenes) => follow(&world, &scenes),
+            Err(e) => abort(world.rank(), &format!("{e:#}")),
+        }
         return Ok(Role::Follower);
     }
+    let scenes: Vec<Pipeline> = pipelines.iter().map(|p| Pipeline::load(p)).collect::<Result<_, _>>()?;
     let comm = Arc::new(Mutex::new(Comm(world)));
     install(Box::new(RootRunner { comm: comm.clone(), pipelines: scenes, windows: Mutex::new(HashMap::new()) }));
     Ok(Role::Root { _universe: universe, comm })
+}
+
+/// Makes a panic on any thread of this rank abort every rank: the others would otherwise wait in
+/// their next exchange for ever.
+fn abort_on_panic(rank: i32) {
+    let report = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        report(info);
+        abort(rank, "it panicked");
+    }));
+}
+
+/// Stops every rank of the job, saying why on this rank's standard error.
+fn abort(rank: i32, why: &str) -> ! {
+    eprintln!("error: MPI rank {rank} stops every rank: {why}");
+    // SAFETY: MPI is initialised (the world has several ranks) and MPI_Abort may be called from
+    // any thread at any time; it does not return.
+    unsafe {
+        mpi::ffi::MPI_Abort(mpi::ffi::RSMPI_COMM_WORLD, 70);
+    }
+    std::process::exit(70)
+}
+
+/// Numbers in rank 0's order for a seed.
+const ORDER: usize = 10;
+
+/// What rank 0 sends each follower for a seed: the pipeline, the seed, the run options that are
+/// not the rank's own (`parallel_step` is: it follows its own threads), and how often the seed's
+/// checkpoints are written with the length of the output folder's path (sent next), or −1.
+fn order(index: usize, seed: u64, options: &RunOptions, checkpoint: Option<(f64, usize)>) -> [f64; ORDER] {
+    let perturb = options.perturb.map_or([0.0; 3], |p| [1.0, p.at_s, p.relative]);
+    let (every_s, path) = checkpoint.map_or((-1.0, 0.0), |(s, n)| (s, n as f64));
+    [
+        1.0,
+        index as f64,
+        f64::from_bits(seed),
+        f64::from(u8::from(options.allow_unstable_time_step)),
+        options.max_jumps.map_or(-1.0, |m| m as f64),
+        perturb[0],
+        perturb[1],
+        perturb[2],
+        every_s,
+        path,
+    ]
+}
+
+/// The inverse of [`order`]: the pipeline, the seed, the options, and the checkpoints' period
+/// with the length of the folder's path.
+fn ordered(order: &[f64; ORDER], parallel_step: bool) -> (usize, u64, RunOptions, Option<(f64, usize)>) {
+    let options = RunOptions {
+        allow_unstable_time_step: order[3] != 0.0,
+        parallel_step,
+        max_jumps: (order[4] >= 0.0).then_some(order[4] as u64),
+        perturb: (order[5] != 0.0).then_some(Perturbation { at_s: order[6], relative: order[7] }),
+    };
+    let checkpoint = (order[8] > 0.0).then_some((order[8], order[9] as usize));
+    (order[1] as usize, order[2].to_bits(), options, checkpoint)
 }
 
 /// Rank 0's side of each seed.
@@ -128,6 +204,7 @@ impl SplitSeeds for RootRunner {
         model: &Model,
         seed: u64,
         options: RunOptions,
+        checkpoint: Option<&Checkpoint>,
         progress: &mut dyn FnMut(f64) -> ControlFlow<()>,
     ) -> Result<RunOutput, SolverError> {
         let comm = self.comm.lock().unwrap_or_else(|e| e.into_inner());
@@ -161,11 +238,18 @@ impl SplitSeeds for RootRunner {
                 }
             }
         };
-        let mut order = [1.0, index as f64, f64::from_bits(seed)];
+        // The output folder: `<out>/checkpoints/<file>`.
+        let out = checkpoint.and_then(|c| c.path.parent()?.parent().map(|p| p.as_os_str().as_encoded_bytes().to_vec()));
+        let every = checkpoint.and_then(|c| c.every_s).zip(out.as_ref().map(Vec::len));
+        let mut order = order(index, seed, &options, every);
         comm.0.process_at_rank(0).broadcast_into(&mut order[..]);
+        if let Some(mut out) = out {
+            comm.0.process_at_rank(0).broadcast_into(&mut out[..]);
+        }
         let mut link = MpiRanks::new(&comm.0);
         let (partition, window) = (&part.0, &part.1);
-        stickslip_solver::run::run_split(window, partition, Some(model), seed, options, progress, &mut link)
+        let part = RankPart { model: window, partition, whole: Some(model) };
+        stickslip_solver::run::run_split(part, seed, options, progress, &mut link, checkpoint)
             .expect("rank 0 has the run's output")
     }
 }
@@ -176,14 +260,22 @@ fn follow(world: &SimpleCommunicator, pipelines: &[Pipeline]) {
     let _ = ctrlc::set_handler(|| {});
     let rank = world.rank() as usize;
     let mut windows: HashMap<usize, (Partition, Model)> = HashMap::new();
-    let options = RunOptions { parallel_step: rayon::current_num_threads() > 1, ..RunOptions::default() };
+    let threads = rayon::current_num_threads() > 1;
     loop {
-        let mut order = [0.0f64; 3];
+        let mut order = [0.0f64; ORDER];
         world.process_at_rank(0).broadcast_into(&mut order[..]);
         if order[0] == 0.0 {
             return;
         }
-        let (index, seed) = (order[1] as usize, order[2].to_bits());
+        let (index, seed, options, every) = ordered(&order, threads);
+        let checkpoint = every.map(|(every_s, length)| {
+            let mut out = vec![0u8; length];
+            world.process_at_rank(0).broadcast_into(&mut out[..]);
+            // SAFETY: rank 0's `as_encoded_bytes` of a path, on the same platform.
+            let out = PathBuf::from(unsafe { std::ffi::OsString::from_encoded_bytes_unchecked(out) });
+            let c = Checkpoints { out, every_s, key: pipelines[index].hash.clone() };
+            c.of(seed, rank, world.size() as usize)
+        });
         let (partition, model) = windows.entry(index).or_insert_with(|| {
             let scene = &pipelines[index].scene;
             let partition = Partition::new(scene.dims, world.size() as usize).expect("rank 0 split it");
@@ -193,6 +285,23 @@ fn follow(world: &SimpleCommunicator, pipelines: &[Pipeline]) {
         let options = RunOptions { parallel_step: options.parallel_step && model.layout().splits(), ..options };
         let mut link = MpiRanks::new(world);
         let mut go_on = |_| ControlFlow::Continue(());
-        let _ = stickslip_solver::run::run_split(model, partition, None, seed, options, &mut go_on, &mut link);
+        let part = RankPart { model, partition, whole: None };
+        match stickslip_solver::run::run_split(part, seed, options, &mut go_on, &mut link, checkpoint.as_ref()) {
+            // Rank 0 says it was stopped.
+            Some(Err(SolverError::Cancelled)) => {}
+            Some(Err(e)) => eprintln!("MPI rank {rank}, seed {seed}: {e}"),
+            // Run through: rank 0 keeps its checkpoint until the seed is written, the others
+            // have no more use for theirs.
+            _ => {
+                if let Some(c) = &checkpoint
+                    && let Err(e) = c.remove()
+                {
+                    eprintln!("MPI rank {rank}, seed {seed}: removing {}: {e}", c.path.display());
+                }
+            }
+        }
+        if let Some(why) = checkpoint.as_ref().and_then(Checkpoint::failure) {
+            eprintln!("warning: MPI rank {rank}, seed {seed}'s checkpoint: {why}");
+        }
     }
 }

@@ -318,21 +318,23 @@ fn check_ranks_says_each_ranks_part_and_refuses_a_rank_that_cannot_hold_it() {
         let (stdout, err) = text(&out);
         (out.status.code(), stdout, err)
     };
-    // 32 ranks of 2 GB: each rank's part, then the whole scene refused here (check builds it).
-    let (code, stdout, err) = check(&["m6-100.toml", "--ranks", "32", "--memory-per-rank", "2"]);
+    // 32 ranks of 24 GB (rank 0 holds the whole model for the critical step): each rank's part,
+    // then the whole scene refused here (check builds it).
+    let (code, stdout, err) = check(&["m6-100.toml", "--ranks", "32", "--memory-per-rank", "24"]);
     assert_eq!(code, Some(1), "{stdout}{err}");
     let ranks = stdout.find("ranks: 32 slabs").expect("the ranks section");
     assert!(ranks < stdout.find("before building").unwrap(), "ranks first: {stdout}");
     assert!(stdout.contains("rank 0: module layers 0..16 (16, the base)"), "{stdout}");
     assert!(stdout.contains("rank 31: module layers"), "{stdout}");
     assert!(stdout.contains("halo: one module layer of 321001 nodes"), "{stdout}");
-    assert!(stdout.contains("against 2.0 GB per rank (--memory-per-rank)"), "{stdout}");
+    assert!(stdout.contains("against 24.0 GB per rank (--memory-per-rank)"), "{stdout}");
+    assert!(stdout.contains("rank 0 at about 21.6 GB"), "the whole model and its Lanczos vectors: {stdout}");
     assert!(stdout.contains("run: `mpirun -n 32 stickslip pipeline …`"), "{stdout}");
     assert!(err.contains("does not fit in memory"), "{err}");
-    // Half a GB per rank is too little for 32 ranks of this block.
-    let (code, stdout, err) = check(&["m6-100.toml", "--ranks", "32", "--memory-per-rank", "0.5"]);
+    // 2 GB per rank is too little for rank 0 of this block.
+    let (code, stdout, err) = check(&["m6-100.toml", "--ranks", "32", "--memory-per-rank", "2"]);
     assert_eq!(code, Some(1), "{stdout}{err}");
-    assert!(err.contains("--ranks = 32: rank ") && err.contains("but a rank has 500.0 MB"), "{err}");
+    assert!(err.contains("--ranks = 32: rank 0 needs about 21.6 GB but a rank has 2.0 GB"), "{err}");
     assert!(!stdout.contains("before building"), "refused before the cost: {stdout}");
     // More ranks than the block takes, and no --ranks with --memory-per-rank.
     let (code, _, err) = check(&["m6-100.toml", "--ranks", "1000"]);
@@ -341,11 +343,12 @@ fn check_ranks_says_each_ranks_part_and_refuses_a_rank_that_cannot_hold_it() {
     let (code, _, err) = check(&["m6-100.toml", "--memory-per-rank", "2"]);
     assert_eq!(code, Some(2), "{err}");
     assert!(err.contains("--ranks <RANKS>"), "{err}");
-    // A scene the split run does not take yet (the paper's: its energy ledger), refused saying so.
+    // A scene the split run does not take (the paper's: a block too small for the stencil),
+    // refused saying so.
     let paper = repo().join("pipelines/paper.toml");
     let (code, stdout, err) = check(&[paper.to_str().unwrap(), "--ranks", "2"]);
     assert_eq!(code, Some(1), "{stdout}{err}");
-    assert!(err.contains("would refuse to split") && err.contains("record.energy = false"), "{err}");
+    assert!(err.contains("would refuse to split") && err.contains("this block has 781 bars: below 100000"), "{err}");
 }
 
 #[test]

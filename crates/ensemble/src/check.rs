@@ -275,8 +275,8 @@ fn split_over(
     let dims = scene.dims;
     let partition = Partition::new(dims, ranks).map_err(|e| {
         EnsembleError::Refused(format!(
-            "--ranks = {ranks} is not allowed: a block splits into slabs of at least two module layers along z (none \
-             starting where a slab of its stencil starts), so this one (block.nz = {}) takes 1 to {} ranks",
+            "--ranks = {ranks} is not allowed: a block splits into slabs of at least two module layers along z, so \
+             this one (block.nz = {}) takes 1 to {} ranks",
             dims.nz, e.most
         ))
     })?;
@@ -286,15 +286,14 @@ fn split_over(
     for r in 0..ranks {
         let w = partition.window(r);
         let bars = StencilLayout::window(dims, w.lo, w.hi).bars() as u64;
-        let contact = if r == 0 { ((dims.nx + 1) * (dims.ny + 1)) as u64 } else { 0 };
-        let m = estimate_rank(scene, w.nodes as u64, bars, contact, samples)
+        let m = estimate_rank(scene, r, w.nodes as u64, bars, samples)
             .map_err(|e| EnsembleError::Refused(format!("--ranks = {ranks}: {e}")))?;
         if m.total > largest.1 {
             largest = (r, m.total);
         }
         let layers = partition.owned_layers(r);
         per.push(format!(
-            "rank {r}: module layers {}..{} ({}{}), {} nodes held ({} owned), {} bars, about {}",
+            "rank {r}: module layers {}..{} ({}{}), {} nodes held ({} owned), {} bars, about {}{}",
             layers.start,
             layers.end,
             layers.len(),
@@ -302,7 +301,8 @@ fn split_over(
             w.nodes,
             w.owned.len(),
             bars,
-            human(m.total)
+            human(m.total),
+            if r == 0 { " (with the whole block's model, for the critical step, and the recording)" } else { "" }
         ));
     }
     let layer_nodes = (dims.nx + 1) * (dims.ny + 1) + dims.nx * dims.ny;

@@ -91,6 +91,7 @@ pub fn run_to_precision(
     loop {
         used = (used + target.batch).min(budget);
         let batch = EnsembleOptions {
+            checkpoint_every_s: None,
             seeds: options.seeds[..used].to_vec(),
             fresh: options.fresh && ran + skipped == 0,
             finish: true,

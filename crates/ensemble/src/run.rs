@@ -17,12 +17,13 @@ use rayon::prelude::*;
 use stickslip_analysis::records::RecordFailure;
 use stickslip_analysis::{AnalysisError, PlanCache, SeedAnalysis, analyse, thread_cpu_s};
 use stickslip_config::Pipeline;
-use stickslip_solver::{Model, RunOptions, SolverError, run_batched};
+use stickslip_solver::{Model, RunOptions, SolverError, run_batched, run_seed_checkpointed};
 use stickslip_store::files::Stamp;
 use stickslip_store::io::write_text_atomic;
 use stickslip_store::seed::{write_failed, write_seed};
 use stickslip_store::{Folder, Manifest, SeedView};
 
+use crate::checkpoints::Checkpoints;
 use crate::error::EnsembleError;
 use crate::gather::{Gathering, gather};
 use crate::set::{SetOutcome, select_set};
@@ -41,6 +42,11 @@ pub struct EnsembleOptions {
     /// Gather the tables and the statistics at the end (false for one shard of a larger
     /// ensemble: `merge` does it once every shard is in).
     pub finish: bool,
+    /// Write each seed's checkpoint every so many seconds of wall clock, and when stopped, in
+    /// `out/checkpoints/`, and resume a seed from its checkpoint (docs/model.md §19); seeds then
+    /// run one at a time, each step over the threads. `None`: no checkpoints (a stopped seed
+    /// starts over).
+    pub checkpoint_every_s: Option<f64>,
 }
 
 /// What an ensemble did.
@@ -62,6 +68,8 @@ pub struct EnsembleReport {
     pub set: Option<Result<SetOutcome, String>>,
     /// Where the time of the seeds run now went, summed over the threads.
     pub profile: Profile,
+    /// Checkpoints that could not be written or read (the seed ran on), with why.
+    pub checkpoint_notes: Vec<(u64, String)>,
 }
 
 /// CPU seconds spent by stage, summed over the seeds run now and the threads that ran them.
@@ -136,20 +144,26 @@ struct SeedResult {
     wall_time_s: f64,
     /// Its share of its batch's stepping (CPU seconds).
     stepping_s: f64,
+    /// Why its checkpoint could not be written or resumed, if so.
+    checkpoint_note: Option<String>,
+}
+
+/// What every batch of an ensemble shares.
+#[derive(Clone, Copy)]
+struct Job<'a> {
+    model: &'a Model,
+    pipeline: &'a Pipeline,
+    options: RunOptions,
+    cancel: &'a AtomicBool,
+    plans: &'a PlanCache,
+    checkpoints: Option<&'a Checkpoints>,
 }
 
 /// Simulates a batch of seeds side by side (see [`run_batched`]) and analyses each, the analyses
 /// as tasks of the pool (a thread with no batch left to step takes them), each sent to `tx` as
 /// soon as it is done; a seed's wall time is its share of the batch's and its analysis.
-fn simulate(
-    model: &Model,
-    pipeline: &Pipeline,
-    seeds: &[u64],
-    options: RunOptions,
-    cancel: &AtomicBool,
-    plans: &PlanCache,
-    tx: &mpsc::SyncSender<SeedResult>,
-) {
+fn simulate(job: &Job<'_>, seeds: &[u64], tx: &mpsc::SyncSender<SeedResult>) {
+    let Job { model, pipeline, options, cancel, plans, checkpoints } = *job;
     let start = Instant::now();
     let cpu = thread_cpu_s();
     let mut check = |_: f64| {
@@ -159,14 +173,34 @@ fn simulate(
             std::ops::ControlFlow::Continue(())
         }
     };
-    let runs = match crate::split::installed() {
+    let mut notes = vec![None; seeds.len()];
+    let runs: Vec<_> = match (crate::split::installed(), checkpoints) {
         // Split over MPI ranks: one seed at a time, every rank on it.
-        Some(split) => seeds.iter().map(|&seed| split.run(pipeline, model, seed, options, &mut check)).collect(),
-        None => run_batched(model, seeds, options, &mut check),
+        (Some(split), _) => seeds
+            .iter()
+            .zip(&mut notes)
+            .map(|(&seed, note)| {
+                let c = checkpoints.map(|c| c.of(seed, 0, split.ranks()));
+                let out = split.run(pipeline, model, seed, options, c.as_ref(), &mut check);
+                *note = c.and_then(|c| c.failure());
+                out
+            })
+            .collect(),
+        (None, Some(c)) => seeds
+            .iter()
+            .zip(&mut notes)
+            .map(|(&seed, note)| {
+                let c = c.of(seed, 0, 1);
+                let out = run_seed_checkpointed(model, seed, options, &c, &mut check);
+                *note = c.failure();
+                out
+            })
+            .collect(),
+        (None, None) => run_batched(model, seeds, options, &mut check),
     };
     let share = start.elapsed().as_secs_f64() / seeds.len() as f64;
     let stepping = (thread_cpu_s() - cpu) / seeds.len() as f64;
-    seeds.par_iter().zip(runs).for_each_with(tx.clone(), |tx, (&seed, run)| {
+    seeds.par_iter().zip(runs).zip(notes).for_each_with(tx.clone(), |tx, ((&seed, run), checkpoint_note)| {
         let start = Instant::now();
         let outcome = run
             .map_err(SeedFailure::from)
@@ -176,6 +210,7 @@ fn simulate(
             outcome,
             wall_time_s: share + start.elapsed().as_secs_f64(),
             stepping_s: stepping,
+            checkpoint_note,
         });
     });
 }
@@ -200,6 +235,12 @@ pub fn run_ensemble(
     on_seed(skipped, total);
     let model = Model::new(pipeline.scene.clone());
     let plans = PlanCache::default();
+    let checkpoints = options.checkpoint_every_s.map(|every_s| Checkpoints {
+        out: options.out.clone(),
+        every_s,
+        key: pipeline.hash.clone(),
+    });
+    let mut checkpoint_notes = Vec::new();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(options.threads)
         .build()
@@ -221,14 +262,16 @@ pub fn run_ensemble(
         // lanes: as fast per bar-update as eight on every lattice of the step benchmark
         // (BENCHMARKS.md §1; the same CPU time for paper-100 measured), and twice as many
         // batches to share among the threads, so the last ones end closer together.
+        // A seed that keeps checkpoints runs alone (its lane's state is the file's).
         let threads = pool.current_num_threads();
         let per_thread = pending.len().div_ceil(threads.max(1));
-        let batch = if per_thread >= 4 { 4 } else { 1 };
+        let batch = if per_thread >= 4 && checkpoints.is_none() { 4 } else { 1 };
         let split = crate::split::installed().is_some();
         let options = RunOptions {
             parallel_step: (split || pending.len() < threads) && model.layout().splits(),
             ..RunOptions::default()
         };
+        let job = Job { model, pipeline, options, cancel, plans, checkpoints: checkpoints.as_ref() };
         scope.spawn(move || {
             pool.install(|| {
                 if split {
@@ -238,7 +281,7 @@ pub fn run_ensemble(
                         if cancel.load(Ordering::Relaxed) {
                             return;
                         }
-                        simulate(model, pipeline, &[seed], options, cancel, plans, &tx);
+                        simulate(&job, &[seed], &tx);
                     }
                     return;
                 }
@@ -246,7 +289,7 @@ pub fn run_ensemble(
                     if cancel.load(Ordering::Relaxed) {
                         return;
                     }
-                    simulate(model, pipeline, chunk, options, cancel, plans, tx);
+                    simulate(&job, chunk, tx);
                 });
             });
         });
@@ -257,6 +300,9 @@ pub fn run_ensemble(
                 Err(SeedFailure::Run(SolverError::Cancelled))
                     | Err(SeedFailure::Analysis(AnalysisError::Records(RecordFailure::Cancelled)))
             );
+            if let Some(note) = &r.checkpoint_note {
+                checkpoint_notes.push((r.seed, note.clone()));
+            }
             if write_error.is_some() || cancelled {
                 continue;
             }
@@ -299,6 +345,17 @@ pub fn run_ensemble(
             };
             let written = written.and(kept);
             profile.writing_s += thread_cpu_s() - writing;
+            // Written: its checkpoint has served (rank 0's; the other ranks removed theirs).
+            let ranks = crate::split::installed().map_or(1, |s| s.ranks());
+            let written = written.and_then(|()| {
+                let file = out.checkpoint(r.seed, 0, ranks);
+                match std::fs::remove_file(&file) {
+                    Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+                        Err(stickslip_store::StoreError::io(&file, e))
+                    }
+                    _ => Ok(()),
+                }
+            });
             match written {
                 Ok(()) => {
                     done += 1;
@@ -338,6 +395,7 @@ pub fn run_ensemble(
         steps_per_s: if ran > 0 { integrated_steps as f64 / wall_time_s } else { 0.0 },
         set,
         profile,
+        checkpoint_notes,
     })
 }
 

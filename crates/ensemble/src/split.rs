@@ -10,20 +10,22 @@ use std::ops::ControlFlow;
 use std::sync::OnceLock;
 
 use stickslip_config::Pipeline;
-use stickslip_solver::{Model, RunOptions, RunOutput, SolverError};
+use stickslip_solver::{Checkpoint, Model, RunOptions, RunOutput, SolverError};
 
 /// Rank 0's side of a split run: runs `seed` of `pipeline` over every rank (the others follow),
 /// `model` being the whole scene's (for the seed's critical step).
 pub trait SplitSeeds: Send + Sync {
     /// Ranks the seeds are split over.
     fn ranks(&self) -> usize;
-    /// Runs one seed; `progress` may stop it (every rank stops).
+    /// Runs one seed; `progress` may stop it (every rank stops). With rank 0's `checkpoint`
+    /// ([`crate::checkpoints::Checkpoints::of`] rank 0), every rank keeps its own beside it.
     fn run(
         &self,
         pipeline: &Pipeline,
         model: &Model,
         seed: u64,
         options: RunOptions,
+        checkpoint: Option<&Checkpoint>,
         progress: &mut dyn FnMut(f64) -> ControlFlow<()>,
     ) -> Result<RunOutput, SolverError>;
 }

@@ -30,8 +30,14 @@ fn pipeline(dir: &Path, text: &str) -> Pipeline {
 }
 
 fn run(p: &Pipeline, out: &Path, threads: usize) {
-    let options =
-        EnsembleOptions { out: out.to_path_buf(), threads, seeds: p.seeds.clone(), fresh: false, finish: true };
+    let options = EnsembleOptions {
+        checkpoint_every_s: None,
+        out: out.to_path_buf(),
+        threads,
+        seeds: p.seeds.clone(),
+        fresh: false,
+        finish: true,
+    };
     let report = run_ensemble(p, &options, &|_, _| {}, &AtomicBool::new(false)).unwrap();
     assert_eq!(report.ran, p.seeds.len());
     assert!(report.failed.is_empty(), "{:?}", report.failed);
@@ -139,8 +145,14 @@ fn a_changed_pipeline_is_refused_and_fresh_starts_over() {
     run(&p, &dir.join("out"), 2);
     let changed = pipeline(&dir, &short_paper(2, 0.03).replace("young_cv = 0.05", "young_cv = 0.06"));
     assert_ne!(p.hash, changed.hash);
-    let mut options =
-        EnsembleOptions { out: dir.join("out"), threads: 2, seeds: changed.seeds.clone(), fresh: false, finish: true };
+    let mut options = EnsembleOptions {
+        checkpoint_every_s: None,
+        out: dir.join("out"),
+        threads: 2,
+        seeds: changed.seeds.clone(),
+        fresh: false,
+        finish: true,
+    };
     let err = run_ensemble(&changed, &options, &|_, _| {}, &AtomicBool::new(false)).unwrap_err().to_string();
     assert!(err.contains("holds results of another pipeline") && err.contains("--fresh"), "{err}");
     options.fresh = true;
@@ -164,6 +176,7 @@ fn shards_in_any_order_merge_to_the_plain_ensemble() {
     for (out, order) in [("forward", (1..=n).collect::<Vec<_>>()), ("reverse", (1..=n).rev().collect())] {
         for k in order {
             let options = EnsembleOptions {
+                checkpoint_every_s: None,
                 out: dir.join(out),
                 threads: 1,
                 seeds: shard(&p.seeds, k, n),
@@ -174,6 +187,7 @@ fn shards_in_any_order_merge_to_the_plain_ensemble() {
         }
         // A shard run twice (e.g. a requeued array task) changes nothing.
         let again = EnsembleOptions {
+            checkpoint_every_s: None,
             out: dir.join(out),
             threads: 2,
             seeds: shard(&p.seeds, 2, n),
@@ -187,6 +201,7 @@ fn shards_in_any_order_merge_to_the_plain_ensemble() {
     }
     // An incomplete set of shards is refused, naming the missing shard.
     let options = EnsembleOptions {
+        checkpoint_every_s: None,
         out: dir.join("partial"),
         threads: 2,
         seeds: shard(&p.seeds, 1, n),
@@ -212,8 +227,14 @@ fn with_target(text: &str, relative: f64, batch: i64) -> String {
 }
 
 fn run_precise(p: &Pipeline, out: &Path, threads: usize) -> stickslip_ensemble::precision::PrecisionOutcome {
-    let options =
-        EnsembleOptions { out: out.to_path_buf(), threads, seeds: p.seeds.clone(), fresh: false, finish: true };
+    let options = EnsembleOptions {
+        checkpoint_every_s: None,
+        out: out.to_path_buf(),
+        threads,
+        seeds: p.seeds.clone(),
+        fresh: false,
+        finish: true,
+    };
     let target = p.target.as_ref().expect("a target");
     let (report, outcome) =
         stickslip_ensemble::precision::run_to_precision(p, target, &options, &|_, _| {}, &AtomicBool::new(false))
@@ -257,4 +278,46 @@ fn every_target_quantity_is_summarised() {
         assert!(EVENT_QUANTITIES.contains(&q) || SIMILARITY_QUANTITIES.contains(&q), "{q} is not summarised");
     }
     assert_eq!(TARGET_QUANTITIES.len(), EVENT_QUANTITIES.len() + SIMILARITY_QUANTITIES.len());
+}
+
+/// Seeds keeping checkpoints, stopped as they run (as Ctrl-C or a cluster's SIGTERM stops them)
+/// and run again into the same folder: they resume from their checkpoints, and the tables are
+/// those of an ensemble never stopped; the checkpoints go once the seeds are written.
+#[test]
+fn seeds_stopped_and_resumed_from_their_checkpoints_give_the_same_tables() {
+    use stickslip_ensemble::checkpoints::Checkpoints;
+    use stickslip_ensemble::error::EnsembleError;
+    let dir = scratch_dir("ensemble-checkpoints");
+    let p = pipeline(&dir, &short_paper(2, 0.1));
+    run(&p, &dir.join("plain"), 2);
+    let out = dir.join("stopped");
+    let options = EnsembleOptions {
+        // At every progress report (512 steps here).
+        checkpoint_every_s: Some(1e-9),
+        out: out.clone(),
+        threads: 2,
+        seeds: p.seeds.clone(),
+        fresh: false,
+        finish: true,
+    };
+    let cancel = AtomicBool::new(false);
+    let checkpoints = Checkpoints { out: out.clone(), every_s: 1e-9, key: p.hash.clone() };
+    std::thread::scope(|s| {
+        // Stops the seeds once the first checkpoint is written.
+        s.spawn(|| {
+            while checkpoints.found(&p.seeds, 1).is_empty() {
+                std::thread::sleep(std::time::Duration::from_millis(1));
+            }
+            cancel.store(true, std::sync::atomic::Ordering::SeqCst);
+        });
+        let e = run_ensemble(&p, &options, &|_, _| {}, &cancel).unwrap_err();
+        assert!(matches!(e, EnsembleError::Interrupted { .. }), "{e}");
+    });
+    let found = checkpoints.found(&p.seeds, 1);
+    assert!(!found.is_empty() && found.iter().all(|&(_, step)| step > 0), "{found:?}");
+    let report = run_ensemble(&p, &options, &|_, _| {}, &AtomicBool::new(false)).unwrap();
+    assert_eq!(report.ran + report.skipped, 2);
+    assert!(report.checkpoint_notes.is_empty(), "{:?}", report.checkpoint_notes);
+    assert!(checkpoints.found(&p.seeds, 1).is_empty(), "the checkpoints are removed once the seeds are written");
+    assert_same_tables(&dir.join("plain"), &out, &["wall_time_s"]);
 }

@@ -36,7 +36,14 @@ fn at2_files_read_back_and_prototype_spectra_are_the_scaled_model_spectra() {
     std::fs::write(dir.join("p.toml"), &text).unwrap();
     let p = Pipeline::load(&dir.join("p.toml")).unwrap();
     let out = dir.join("out");
-    let options = EnsembleOptions { out: out.clone(), threads: 1, seeds: vec![123], fresh: false, finish: true };
+    let options = EnsembleOptions {
+        checkpoint_every_s: None,
+        out: out.clone(),
+        threads: 1,
+        seeds: vec![123],
+        fresh: false,
+        finish: true,
+    };
     run_ensemble(&p, &options, &|_, _| {}, &AtomicBool::new(false)).unwrap();
     let acc = read_table(&out.join("tables/accelerograms/seed-0000000123.parquet"));
     let spectra = read_table(&out.join("tables/spectra/seed-0000000123.parquet"));

@@ -28,8 +28,14 @@ fn set(doc: &mut toml::Table, section: &str, key: &str, value: toml::Value) {
 }
 
 fn run(p: &Pipeline, out: &Path) {
-    let options =
-        EnsembleOptions { out: out.to_path_buf(), threads: 2, seeds: p.seeds.clone(), fresh: true, finish: true };
+    let options = EnsembleOptions {
+        checkpoint_every_s: None,
+        out: out.to_path_buf(),
+        threads: 2,
+        seeds: p.seeds.clone(),
+        fresh: true,
+        finish: true,
+    };
     let report = run_ensemble(p, &options, &|_, _| {}, &AtomicBool::new(false)).unwrap();
     assert!(report.failed.is_empty(), "{:?}", report.failed);
 }

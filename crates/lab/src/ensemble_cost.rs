@@ -235,8 +235,14 @@ pub fn floors(pipeline: &Pipeline, dir: &Path) -> Result<Vec<Floor>> {
 /// The profile of one ensemble run in this process on `threads` threads (fresh, into `out`),
 /// with the report's time; returns (profile, wall time of the ensemble, report time).
 pub fn profile(pipeline: &Pipeline, threads: usize, out: &Path) -> Result<(Profile, f64, f64)> {
-    let options =
-        EnsembleOptions { out: out.to_path_buf(), threads, seeds: pipeline.seeds.clone(), fresh: true, finish: true };
+    let options = EnsembleOptions {
+        checkpoint_every_s: None,
+        out: out.to_path_buf(),
+        threads,
+        seeds: pipeline.seeds.clone(),
+        fresh: true,
+        finish: true,
+    };
     set_aside(out)?;
     let r = run_ensemble(pipeline, &options, &|_, _| {}, &AtomicBool::new(false)).map_err(setup)?;
     let start = Instant::now();

@@ -217,7 +217,7 @@ pub fn run<'py>(
     let what = format!("{}: {} seed{}", pipeline.name, seeds.len(), if seeds.len() == 1 { "" } else { "s" });
     budget::check_before_build(&pipeline.scene, seeds.len(), workers, allow_long, &what)
         .map_err(|e| ensemble_error(py, e))?;
-    let options = EnsembleOptions { out: out.clone(), threads, seeds, fresh, finish: true };
+    let options = EnsembleOptions { checkpoint_every_s: None, out: out.clone(), threads, seeds, fresh, finish: true };
     let (cancel, counts) = (AtomicBool::new(false), (AtomicUsize::new(0), AtomicUsize::new(0)));
     let (result, stop) =
         detached(py, &cancel, &counts, progress.as_ref(), || run_and_finish(&pipeline, &options, &counts, &cancel))?;

@@ -14,8 +14,14 @@ use stickslip_support::{repo_path, scratch_dir};
 fn run(dir: &Path, text: &str) -> ReportSummary {
     std::fs::write(dir.join("p.toml"), text).unwrap();
     let p = Pipeline::load(&dir.join("p.toml")).unwrap();
-    let options =
-        EnsembleOptions { out: dir.join("out"), threads: 2, seeds: p.seeds.clone(), fresh: false, finish: true };
+    let options = EnsembleOptions {
+        checkpoint_every_s: None,
+        out: dir.join("out"),
+        threads: 2,
+        seeds: p.seeds.clone(),
+        fresh: false,
+        finish: true,
+    };
     run_ensemble(&p, &options, &|_, _| {}, &AtomicBool::new(false)).unwrap();
     write_report(&dir.join("out"), &p).unwrap()
 }

@@ -4,7 +4,7 @@
 pub type Lanes<const L: usize> = [f64; L];
 
 /// A vector field over the nodes, structure of arrays: `c[axis][node][lane]`.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, bincode::Encode, bincode::Decode)]
 pub struct Field<const L: usize> {
     /// Components x, y, z.
     pub c: [Vec<Lanes<L>>; 3],

@@ -2,7 +2,7 @@
 //! lane, which the step, the boundary conditions and the rupture kernel add to.
 
 /// Cumulative energy terms of one lane (J), all measured from the start of the run.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bincode::Encode, bincode::Decode)]
 pub struct Energy {
     /// `½ Σ m|uₙ₊₁ − uₙ|²/Δt²`.
     pub kinetic: f64,

@@ -54,7 +54,10 @@ pub use error::SolverError;
 pub use geometry::{Dims, Lattice, NodeId};
 pub use model::Model;
 pub use recording::{Channel, Crack, Recording, Sampling};
-pub use run::{BATCH, BarDamage, Perturbation, RunOptions, RunOutput, run_batched, run_lanes, run_seed};
+pub use run::{
+    BATCH, BarDamage, Checkpoint, Perturbation, RunOptions, RunOutput, run_batched, run_lanes, run_seed,
+    run_seed_checkpointed,
+};
 pub use scene::Scene;
 pub use scene::TracePlan;
 pub use trace::Trace;

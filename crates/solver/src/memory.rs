@@ -120,16 +120,29 @@ pub fn estimate(scene: &Scene, batches: Batches, samples: u64) -> Result<MemoryE
     estimate_counts(scene, (n, b, contact), stencil, batches, samples)
 }
 
-/// Bytes of one rank of `scene` split over ranks ([`crate::split`]): the window's `nodes` and
-/// `bars` (a stencil), the base's `contact` nodes on rank 0 and none above, one seed.
+/// Bytes of rank `rank` of `scene` split over ranks ([`crate::split`]): the window's `nodes` and
+/// `bars` (a stencil), one seed. Rank 0 also holds the base's contact nodes, the recording
+/// (about `samples` samples) and the whole block's model, on which it finds each seed's critical
+/// step (its stiffness and Lanczos vectors while the seed is set up); the others none of these.
 pub fn estimate_rank(
     scene: &Scene,
+    rank: usize,
     nodes: u64,
     bars: u64,
-    contact: u64,
     samples: u64,
 ) -> Result<MemoryEstimate, Overflow> {
-    estimate_counts(scene, (nodes, bars, contact), true, Batches::ONE, samples)
+    if rank > 0 {
+        return estimate_counts(scene, (nodes, bars, 0), true, Batches::ONE, 0);
+    }
+    let contact = (scene.dims.nx as u64 + 1) * (scene.dims.ny as u64 + 1);
+    let part = estimate_counts(scene, (nodes, bars, contact), true, Batches::ONE, samples)?;
+    let whole = estimate(scene, Batches::ONE, 0)?;
+    let over = || Overflow(format!("the memory of rank 0 of a {nodes}-node, {bars}-bar window"));
+    // Its own state steps while the whole model waits; the whole set-up runs before its own.
+    let setup = part.setup.max(whole.setup);
+    let model = part.model.checked_add(whole.model).ok_or_else(over)?;
+    let total = part.batch.max(setup).checked_add(model).and_then(|v| v.checked_add(PROCESS_BYTES)).ok_or_else(over)?;
+    Ok(MemoryEstimate { nodes, bars, model, batch: part.batch, setup, total })
 }
 
 fn estimate_counts(

@@ -178,7 +178,8 @@ impl Model {
         let mass = masses(&scene, &lattice, &zones, &to_canonical);
         let inv_mass = mass.iter().map(|m| 1.0 / m).collect();
         let layout = Bars::Stencil(StencilLayout::window(dims, window.lo, window.hi));
-        let contact = if window.lo == 0 {
+        // The base is rank 0's (a rank above can hold layer 0 as its halo, never the contact).
+        let contact = if window.rank == 0 {
             lattice.contact_nodes().iter().map(|&id| internal_of_canonical(dims, id) as u32).collect()
         } else {
             Vec::new()

@@ -10,7 +10,7 @@ use crate::step::rupture::CrackKind;
 use crate::trace::{Trace, Tracer};
 
 /// A recorded scalar channel (the name carries the unit).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, bincode::Encode, bincode::Decode)]
 pub enum Channel {
     /// τ = −ΣF_x/A (Pa), positive when the base resists the push.
     ShearStress,
@@ -153,7 +153,7 @@ impl Channel {
 }
 
 /// How a recording was sampled.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bincode::Encode, bincode::Decode)]
 pub struct Sampling {
     /// Time step of the run (s).
     pub step_s: f64,
@@ -176,7 +176,7 @@ impl Sampling {
 }
 
 /// The recorded series of one run.
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq, bincode::Encode, bincode::Decode)]
 pub struct Recording {
     /// Time since the start of the shear stage (s); negative in the self-weight stage.
     pub time_s: Vec<f64>,
@@ -199,7 +199,7 @@ pub struct Recording {
 }
 
 /// One bar passing its peak or breaking (docs/model.md §11).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, bincode::Encode, bincode::Decode)]
 pub struct Crack {
     /// Time since the start of the shear stage (s).
     pub time_s: f64,
@@ -215,7 +215,7 @@ pub struct Crack {
 }
 
 /// What ends a quasi-static skip: the transition predicted next.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, bincode::Encode, bincode::Decode)]
 pub enum Transition {
     /// A sticking base node reaches its static friction strength.
     Slide(NodeId),
@@ -249,7 +249,7 @@ impl Transition {
 
 /// One jump of the quasi-static skip-ahead: the run went from `from_s` to `to_s` (times of the
 /// shear stage) without integrating, along the exact quasi-static motion.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, bincode::Encode, bincode::Decode)]
 pub struct Skip {
     /// Start (s).
     pub from_s: f64,
@@ -289,6 +289,7 @@ impl Recording {
 }
 
 /// Collects the channels of one lane.
+#[derive(bincode::Encode, bincode::Decode)]
 pub(crate) struct Recorder {
     pub(crate) records: Recording,
     /// Step index of each sample (converted to time at the end).

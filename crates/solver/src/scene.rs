@@ -23,7 +23,7 @@ pub enum TimeStep {
 }
 
 /// How the self-weight stage reaches equilibrium.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, bincode::Encode, bincode::Decode)]
 pub enum SettleMethod {
     /// Heavy damping until the out-of-balance force is small (the paper's way).
     #[default]
@@ -203,7 +203,7 @@ pub struct SkipAhead {
 }
 
 /// A displacement component.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, bincode::Encode, bincode::Decode)]
 pub enum Component {
     /// x (slip direction).
     X,
@@ -278,7 +278,7 @@ impl InterfaceQuantity {
 }
 
 /// Kinematic quantities recorded at control nodes.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, bincode::Encode, bincode::Decode)]
 pub enum Kinematic {
     /// Displacement (m).
     Displacement,
@@ -312,7 +312,7 @@ impl Kinematic {
 }
 
 /// One recorded channel at a control node.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, bincode::Encode, bincode::Decode)]
 pub struct ControlChannel {
     /// The node.
     pub node: NodeId,

@@ -24,7 +24,7 @@ use crate::step::{Interface, NodeContact};
 
 /// The event trace of one run: the shear stage's interface signals at full rate around every
 /// burst of slip and sparsely between them, in time order.
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq, bincode::Encode, bincode::Decode)]
 pub struct Trace {
     /// Time since the start of the shear stage (s).
     pub time_s: Vec<f64>,
@@ -51,7 +51,7 @@ pub struct Trace {
 /// One fault station (a contact node) at the trace's instants: slip, slip rate and shear stress
 /// along x and y, and the normal stress. On a fault the slip is across it, twice the face's
 /// displacement (docs/model.md §15).
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, bincode::Encode, bincode::Decode)]
 pub struct StationTrace {
     /// The contact node.
     pub node: NodeId,
@@ -69,7 +69,7 @@ pub struct StationTrace {
 
 /// Every contact node of a fault over the whole shear stage (docs/model.md §15), canonical
 /// contact order, taken at every step.
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq, bincode::Encode, bincode::Decode)]
 pub struct FaultSummary {
     /// The contact nodes.
     pub nodes: Vec<NodeId>,
@@ -108,7 +108,7 @@ impl FaultSummary {
 }
 
 /// Every contact node of the base through the shear stage, at the trace's instants.
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq, bincode::Encode, bincode::Decode)]
 pub struct FaultTrace {
     /// The contact nodes, canonical contact order.
     pub nodes: Vec<NodeId>,
@@ -156,6 +156,7 @@ const FIXED: usize = 6;
 
 /// Samples of `width` values in a ring, oldest first: the steps that may still become a burst's
 /// leading margin. Rows are copied in and out whole.
+#[derive(bincode::Encode, bincode::Decode)]
 struct Rows {
     width: usize,
     buf: Vec<f64>,
@@ -217,6 +218,7 @@ impl Rows {
 }
 
 /// Builds a [`Trace`] step by step.
+#[derive(bincode::Encode, bincode::Decode)]
 pub(crate) struct Tracer {
     hot_rate: f64,
     margin: u64,
@@ -443,6 +445,7 @@ impl Tracer {
 const STATION_WIDTH: usize = 7;
 
 /// Builds a [`FaultSummary`] from every step of the shear stage.
+#[derive(bincode::Encode, bincode::Decode)]
 struct SummaryBuilder {
     threshold: f64,
     rupture_step: Vec<Option<u64>>,

@@ -9,11 +9,11 @@ mod common;
 use std::ops::ControlFlow;
 
 use stickslip_solver::field::Field;
-use stickslip_solver::run::run_split;
+use stickslip_solver::run::{RankPart, run_split};
 use stickslip_solver::split::{Halo, Partition, thread_ranks};
 use stickslip_solver::statics::critical_step;
 use stickslip_solver::step::{Batch, LaneSetup, start_drivers};
-use stickslip_solver::{Model, RunOptions, RunOutput, Scene, SolverError, run_seed};
+use stickslip_solver::{Checkpoint, Model, RunOptions, RunOutput, Scene, SolverError, run_seed};
 
 /// The set-up of seed `seed` on `model`, with the time step `dt_s` of the whole block.
 fn setup(model: &Model, seed: u64, dt_s: f64) -> LaneSetup {
@@ -159,6 +159,18 @@ fn partitions_cover_the_block_and_refuse_thin_slabs() {
 
 /// A seed run on `ranks` threads as ranks of a split scene: rank 0's output.
 fn run_split_threads(scene: &Scene, seed: u64, ranks: usize) -> Result<RunOutput, SolverError> {
+    run_split_checkpointed(scene, seed, ranks, None, None)
+}
+
+/// [`run_split_threads`], each rank keeping its checkpoint in `folder` (when given), rank 0
+/// asking to stop at its `stop_at`-th progress report (when given).
+fn run_split_checkpointed(
+    scene: &Scene,
+    seed: u64,
+    ranks: usize,
+    folder: Option<&std::path::Path>,
+    stop_at: Option<usize>,
+) -> Result<RunOutput, SolverError> {
     let partition = Partition::new(scene.dims, ranks).unwrap();
     let links = thread_ranks(ranks);
     std::thread::scope(|s| {
@@ -171,20 +183,24 @@ fn run_split_threads(scene: &Scene, seed: u64, ranks: usize) -> Result<RunOutput
                     let model = Model::window(scene.clone(), partition.window(r));
                     let whole = (r == 0).then(|| Model::new(scene));
                     let options = RunOptions::default();
-                    run_split(
-                        &model,
-                        &partition,
-                        whole.as_ref(),
-                        seed,
-                        options,
-                        &mut |_| ControlFlow::Continue(()),
-                        &mut link,
-                    )
+                    let checkpoint = folder.map(|f| {
+                        Checkpoint::new(f.join(format!("rank-{r}-of-{ranks}.ckpt")), None, Some(1 << 30), "test".into())
+                    });
+                    let mut reports = 0;
+                    let mut progress = |_| {
+                        reports += 1;
+                        if Some(reports) == stop_at { ControlFlow::Break(()) } else { ControlFlow::Continue(()) }
+                    };
+                    let part = RankPart { model: &model, partition: &partition, whole: whole.as_ref() };
+                    run_split(part, seed, options, &mut progress, &mut link, checkpoint.as_ref())
                 })
             })
             .collect();
         let mut outs: Vec<_> = handles.into_iter().map(|h| h.join().unwrap()).collect();
-        assert!(outs[1..].iter().all(Option::is_none), "only rank 0 has the output");
+        assert!(
+            outs[1..].iter().all(|o| o.as_ref().is_none_or(Result::is_err)),
+            "only rank 0 has the output; the others have nothing, or their error"
+        );
         outs.swap_remove(0).expect("rank 0's output")
     })
 }
@@ -229,4 +245,28 @@ fn a_split_run_of_the_large_block_gives_the_one_process_output() {
     scene.record.energy = true;
     let e = run_split_threads(&scene, 1, 2).unwrap_err();
     assert!(e.to_string().contains("record.energy = false"), "{e}");
+}
+
+/// TPV5 at 500 m split over 2 ranks, stopped part way (each rank writes its checkpoint as it
+/// stops) and resumed: the one process's output, bit for bit. A checkpoint of another rank count
+/// is not resumed: 3 ranks start over (and give the same output).
+#[test]
+fn a_split_run_stopped_and_resumed_from_its_checkpoints_gives_the_one_process_output() {
+    let mut scene = common::pipeline("pipelines/tpv5-500m.toml").scene;
+    scene.shear.duration_s = 3.0;
+    let one =
+        run_seed(&Model::new(scene.clone()), 1, RunOptions::default(), &mut |_| ControlFlow::Continue(())).unwrap();
+    let folder = std::env::temp_dir().join(format!("stickslip-split-checkpoint-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&folder);
+    let stopped = run_split_checkpointed(&scene, 1, 2, Some(&folder), Some(3));
+    assert!(matches!(stopped, Err(SolverError::Cancelled)), "{stopped:?}");
+    let at: Vec<Option<u64>> = (0..2)
+        .map(|r| Checkpoint::new(folder.join(format!("rank-{r}-of-2.ckpt")), None, None, "test".into()).resumes_at())
+        .collect();
+    assert!(at[0].is_some_and(|s| s > 0 && s < one.steps()) && at[0] == at[1], "{at:?} of {} steps", one.steps());
+    let resumed = run_split_checkpointed(&scene, 1, 2, Some(&folder), None).unwrap();
+    assert!(format!("{resumed:?}") == format!("{one:?}"), "the resumed output differs from one process's");
+    let fresh = run_split_checkpointed(&scene, 1, 3, Some(&folder), None).unwrap();
+    assert!(format!("{fresh:?}") == format!("{one:?}"));
+    std::fs::remove_dir_all(&folder).unwrap();
 }

@@ -11,6 +11,7 @@
 //! <out>/fault_stations/seed<seed>/…        fault station files (SEAS layout)
 //! <out>/inputs/<field>/<file>              copies of the files the pipeline read (a friction grid…)
 //! <out>/shards/shard-<k>-of-<n>.toml       which shards of a sharded run started here
+//! <out>/checkpoints/seed-<seed>[.rank-<r>-of-<n>].ckpt  a seed's checkpoint while it runs
 //! ```
 //! `<seed>` is written with ten digits (`seed-0000000123.parquet`) so the parts sort by seed.
 
@@ -75,6 +76,17 @@ impl Folder {
         self.root.join("records")
     }
 
+    /// A running seed's checkpoint (docs/model.md §19): one per seed on one process, one per
+    /// rank when the seed is split over `ranks` MPI ranks. Removed once the seed is written.
+    pub fn checkpoint(&self, seed: u64, rank: usize, ranks: usize) -> PathBuf {
+        let name = if ranks > 1 {
+            format!("seed-{seed:010}.rank-{rank}-of-{ranks}.ckpt")
+        } else {
+            format!("seed-{seed:010}.ckpt")
+        };
+        self.root.join("checkpoints").join(name)
+    }
+
     /// The fault station files (SEAS layout), one folder per seed.
     pub fn fault_stations_dir(&self, seed: u64) -> PathBuf {
         self.root.join("fault_stations").join(format!("seed{seed}"))
@@ -109,6 +121,7 @@ impl Folder {
             self.shards_dir(),
             self.inputs_dir(),
             self.root.join("mseed"),
+            self.root.join("checkpoints"),
         ] {
             match std::fs::remove_dir_all(&dir) {
                 Ok(()) => {}

@@ -8,6 +8,7 @@ use std::time::Instant;
 use anyhow::{Context, Result, bail};
 use stickslip_config::Pipeline;
 use stickslip_config::set::SetCapacity;
+use stickslip_ensemble::checkpoints::Checkpoints;
 use stickslip_ensemble::digest::RunDigest;
 use stickslip_ensemble::precision::run_to_precision;
 use stickslip_ensemble::set::SetOutcome;
@@ -47,6 +48,20 @@ pub struct Args {
     /// prints a run's length and time).
     #[arg(long)]
     pub allow_long: bool,
+    /// Keep each running seed's checkpoint in <out>/checkpoints/, written every MINUTES of wall
+    /// clock and when the run is stopped (Ctrl-C, SIGTERM): the same command run again resumes
+    /// each seed where it stopped, with the numbers of a run never stopped. Seeds then run one at
+    /// a time, each step over the threads.
+    #[arg(long, value_name = "MINUTES", allow_negative_numbers = true, value_parser = parse_minutes)]
+    pub checkpoint_every: Option<f64>,
+}
+
+/// A positive number of minutes.
+fn parse_minutes(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(m) if m.is_finite() && m > 0.0 => Ok(m),
+        _ => Err(format!("`{s}` is not a number of minutes above 0 (e.g. 30)")),
+    }
 }
 
 /// Stops the running seeds at the first Ctrl-C (finished ones are kept), at once at the second.
@@ -57,7 +72,10 @@ pub fn cancel_on_ctrl_c() -> Result<Arc<AtomicBool>> {
         if flag.swap(true, Ordering::SeqCst) {
             std::process::exit(130);
         }
-        errln!("\ninterrupt: finishing the seeds being written (Ctrl-C again to stop at once)");
+        errln!(
+            "\ninterrupt: finishing the seeds being written, and writing the running seeds' checkpoints if they keep \
+             them (Ctrl-C again to stop at once)"
+        );
     })
     .context("installing the Ctrl-C handler")?;
     Ok(cancel)
@@ -235,6 +253,15 @@ pub fn run(a: Args) -> Result<()> {
             "each seed split over {ranks} MPI ranks (slabs of module layers along z; docs/guide/ensembles.md, One scene over MPI ranks)"
         );
     }
+    if a.checkpoint_every.is_some()
+        && let Some(p) = pipelines.iter().find(|p| p.scene.skip_ahead.enabled)
+    {
+        bail!(
+            "--checkpoint-every: {} has skip_ahead.enabled = true, whose state a checkpoint does not hold; set it to \
+             false or leave out --checkpoint-every",
+            p.name
+        );
+    }
     let runs = seeds_to_run(&a, &pipelines, given.as_deref())?;
     let cancel = cancel_on_ctrl_c()?;
     let mut unfinished = Vec::new();
@@ -243,7 +270,17 @@ pub fn run(a: Args) -> Result<()> {
         if let Some((k, n)) = a.shard {
             stickslip_ensemble::merge::mark_shard(&out, pipeline, k, n, &seeds)?;
         }
+        if let Some(minutes) = a.checkpoint_every {
+            let ranks = stickslip_ensemble::split::installed().map_or(1, |s| s.ranks());
+            let c = Checkpoints { out: out.clone(), every_s: 60.0 * minutes, key: pipeline.hash.clone() };
+            let folder = Folder::new(&out);
+            let pending: Vec<u64> = seeds.iter().copied().filter(|&s| !folder.is_finished(s)).collect();
+            for (seed, step) in c.found(&pending, ranks) {
+                outln!("seed {seed} resumes from its checkpoint at step {step}");
+            }
+        }
         let options = EnsembleOptions {
+            checkpoint_every_s: a.checkpoint_every.map(|m| 60.0 * m),
             out: out.clone(),
             threads: a.threads.unwrap_or(0),
             seeds,
@@ -278,6 +315,9 @@ pub fn run(a: Args) -> Result<()> {
         );
         for (seed, msg) in report.failed.iter().take(5) {
             outln!("  seed {seed} failed: {msg}");
+        }
+        for (seed, msg) in &report.checkpoint_notes {
+            errln!("warning: seed {seed}'s checkpoint: {msg}");
         }
         if let Some(p) = &precision {
             outln!("{}", p.describe());

@@ -64,6 +64,7 @@ pub fn run(a: Args) -> Result<()> {
     let out = a.out.unwrap_or_else(|| PathBuf::from("reports").join(&pipeline.name).join(format!("seed-{}", a.seed)));
     let cancel = cancel_on_ctrl_c()?;
     let options = EnsembleOptions {
+        checkpoint_every_s: None,
         out: out.clone(),
         threads: a.threads.unwrap_or(0),
         seeds: vec![a.seed],

@@ -47,7 +47,7 @@ pub struct Prescribed {
 
 /// The state of the loading boundaries (drivers and the plate) of `L` seeds: whether each lane
 /// is loading, the driver target, and each driven node's and spring's base and force.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, bincode::Encode, bincode::Decode)]
 pub struct LoadingState<const L: usize> {
     /// Whether the drivers of each lane are on.
     pub on: [bool; L],

@@ -16,7 +16,7 @@
 use std::fmt;
 
 /// Index of a node in the canonical order (0-based; LDEM number minus one).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, bincode::Encode, bincode::Decode)]
 pub struct NodeId(pub u32);
 
 impl NodeId {

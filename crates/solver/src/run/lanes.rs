@@ -8,6 +8,7 @@ use crate::model::Model;
 use crate::observe::{Observed, REMOTE};
 use crate::quasistatic::{SKIP_CHECK_EVERY, ShearClock, SkipStats, Skipper, settle_statically};
 use crate::recording::{Crack, Recorder};
+use crate::run::checkpoint::{self, BodyRef, Checkpoint, Due, Header, LaneRef, StageAt};
 use crate::run::{BarDamage, RunOptions, RunOutput, prepare};
 use crate::rupture::BarLaw;
 use crate::scene::ControlChannel;
@@ -75,7 +76,7 @@ pub fn run_lanes<const L: usize>(
     options: RunOptions,
     progress: &mut dyn FnMut(f64) -> ControlFlow<()>,
 ) -> [Result<RunOutput, SolverError>; L] {
-    run_lanes_with(model, seeds, options, progress, &mut Solo)
+    run_lanes_with(model, seeds, options, progress, &mut Solo, None)
 }
 
 /// What the run loop asks of the processes that run it: nothing on one process ([`Solo`]); on
@@ -97,9 +98,19 @@ pub(crate) trait Hooks<const L: usize> {
     fn blowup(&mut self, view: &LaneView<'_, '_, L>, parallel: bool) -> Option<(crate::NodeId, String)> {
         view.check_blowup_on(parallel).map(|b| (view.params.model.canonical(b.node), b.what))
     }
-    /// Whether the run stops, given whether this process was asked to.
-    fn stop(&mut self, asked: bool) -> bool {
-        asked
+    /// This process's rank and how many run the seed (0 of 1 alone).
+    fn place(&self) -> (usize, usize) {
+        (0, 1)
+    }
+    /// Whether the run stops and whether it writes its checkpoint now, given whether this process
+    /// was asked to stop and whether its checkpoint is due: every rank gets rank 0's answer.
+    fn agree(&mut self, stop: bool, save: bool) -> (bool, bool) {
+        (stop, save)
+    }
+    /// Whether the run resumes from its checkpoint, given the step this process's file holds:
+    /// only if every rank's file holds the same.
+    fn resume(&mut self, at: Option<u64>) -> bool {
+        at.is_some()
     }
     /// Whether this process records (rank 0 of a split scene, or the only one).
     fn records(&self) -> bool {
@@ -160,15 +171,18 @@ impl<const L: usize> Observed for Shown<'_, '_, '_, L> {
     }
 }
 
-/// [`run_lanes`] with `hooks` between the run loop and the processes that run it.
+/// [`run_lanes`] with `hooks` between the run loop and the processes that run it, resuming from
+/// and writing `checkpoint` when given (not with the skip-ahead, whose state it does not hold).
 pub(crate) fn run_lanes_with<const L: usize, H: Hooks<L>>(
     model: &Model,
     seeds: [u64; L],
     options: RunOptions,
     progress: &mut dyn FnMut(f64) -> ControlFlow<()>,
     hooks: &mut H,
+    checkpoint: Option<&Checkpoint>,
 ) -> [Result<RunOutput, SolverError>; L] {
     let scene = model.scene();
+    let checkpoint = checkpoint.filter(|_| !scene.skip_ahead.enabled);
     if scene.skip_ahead.enabled
         && let Err(why) = model.boundaries().skip_ahead()
     {
@@ -195,6 +209,30 @@ pub(crate) fn run_lanes_with<const L: usize, H: Hooks<L>>(
         s.stiffness = LaneStiffness::Factored(None);
     }
     let mut state = State::<L>::for_params(&params);
+    // The checkpoint this run resumes from, if every rank has one of the same step.
+    let resumed = checkpoint.and_then(|c| {
+        let (rank, ranks) = hooks.place();
+        let expected = Header {
+            key: c.key.clone(),
+            seeds: seeds.to_vec(),
+            nodes: model.node_count() as u64,
+            bars: model.bar_count() as u64,
+            dt: dts.iter().map(|d| d.to_bits()).collect(),
+            rank: rank as u64,
+            ranks: ranks as u64,
+            steps: 0,
+            body: 0,
+        };
+        let found = if prepared.iter().all(Result::is_ok) {
+            checkpoint::read::<L>(&c.path, &expected)
+                .map_err(|why| c.note_failure(format!("{} was not resumed: {why}", c.path.display())))
+                .ok()
+                .flatten()
+        } else {
+            None
+        };
+        if hooks.resume(found.as_ref().map(|(steps, _)| *steps)) { found.map(|(_, body)| body) } else { None }
+    });
     let mut stepper = Stepper::<L>::new(model);
     let skipping = scene.skip_ahead.enabled && L == 1;
     stepper.set_parallel(options.parallel_step);
@@ -231,7 +269,7 @@ pub(crate) fn run_lanes_with<const L: usize, H: Hooks<L>>(
                 if skipping {
                     lane.skipper = Some(Skipper::new(model, params.lane_stiffness(l), &setup.friction));
                 }
-                if sw.method == SettleMethod::Static && sw.gravity_m_s2 > 0.0 {
+                if sw.method == SettleMethod::Static && sw.gravity_m_s2 > 0.0 && resumed.is_none() {
                     match settle_statically(model, &params.lane_stiffness(l), &setup.friction, sw.gravity_m_s2) {
                         Ok(Ok(st)) if let Some(why) = beyond_peak(model, setup.strength.as_deref(), &st.u) => {
                             lane.settle_note = Some(why)
@@ -249,8 +287,25 @@ pub(crate) fn run_lanes_with<const L: usize, H: Hooks<L>>(
             Err(e) => lane.fail(e, &mut params, &mut state, l),
         }
     }
-    // No gravity: nothing to settle.
-    if sw.gravity_m_s2 == 0.0 {
+    if let Some(body) = resumed {
+        state = body.state;
+        for (l, (lane, at)) in lanes.iter_mut().zip(body.lanes).enumerate() {
+            lane.stage = match at.stage {
+                StageAt::Settling { max_steps } => Stage::Settling { max_steps },
+                StageAt::Shearing { origin, steps, stride } => Stage::Shearing { origin, steps, stride },
+                StageAt::Done { origin, stride, steps } => Stage::Done { origin, stride, steps },
+            };
+            if !matches!(lane.stage, Stage::Settling { .. }) {
+                params.set_damping(l, scene.shear.damping_per_s);
+            }
+            lane.critical = at.critical;
+            lane.recorder = at.recorder;
+            lane.settle_steps = at.settle_steps;
+            lane.settled_by = at.settled_by;
+            lane.settle_note = at.settle_note;
+        }
+    } else if sw.gravity_m_s2 == 0.0 {
+        // No gravity: nothing to settle.
         for (l, lane) in lanes.iter_mut().enumerate() {
             if matches!(lane.stage, Stage::Settling { .. }) {
                 lane.stage = start_shear(&mut params, &mut state, l);
@@ -258,6 +313,7 @@ pub(crate) fn run_lanes_with<const L: usize, H: Hooks<L>>(
         }
     }
 
+    let mut taken = Due::new(state.steps);
     while lanes.iter().any(|lane| lane.stage.running()) {
         // Driver targets for the step about to compute u_{S+1}.
         let next = state.steps + 1;
@@ -402,7 +458,19 @@ pub(crate) fn run_lanes_with<const L: usize, H: Hooks<L>>(
                 })
                 .sum::<f64>()
                 / L as f64;
-            if hooks.stop(progress(fraction).is_break()) {
+            let due = checkpoint.is_some_and(|c| taken.due(c, state.steps));
+            let (stop, save) = hooks.agree(progress(fraction).is_break(), due);
+            // Asked to stop, a run that keeps checkpoints writes one: it resumes from here.
+            if let Some(c) = checkpoint
+                && (save || stop)
+                && lanes.iter().all(|lane| !matches!(lane.stage, Stage::Failed(_)))
+            {
+                match save_checkpoint(c, hooks.place(), model, &seeds, &dts, &state, &lanes) {
+                    Ok(()) => taken.taken(state.steps),
+                    Err(why) => c.note_failure(why),
+                }
+            }
+            if stop {
                 for (l, lane) in lanes.iter_mut().enumerate() {
                     if lane.stage.running() {
                         lane.fail(SolverError::Cancelled, &mut params, &mut state, l);
@@ -434,6 +502,46 @@ pub(crate) fn run_lanes_with<const L: usize, H: Hooks<L>>(
         Stage::Failed(e) => Err(e),
         Stage::Settling { .. } | Stage::Shearing { .. } => unreachable!("the loop ends when no lane is running"),
     })
+}
+
+/// Writes the checkpoint of the lanes at the state's step.
+fn save_checkpoint<const L: usize>(
+    c: &Checkpoint,
+    (rank, ranks): (usize, usize),
+    model: &Model,
+    seeds: &[u64; L],
+    dts: &[f64],
+    state: &State<L>,
+    lanes: &[Lane; L],
+) -> Result<(), String> {
+    let header = Header {
+        key: c.key.clone(),
+        seeds: seeds.to_vec(),
+        nodes: model.node_count() as u64,
+        bars: model.bar_count() as u64,
+        dt: dts.iter().map(|d| d.to_bits()).collect(),
+        rank: rank as u64,
+        ranks: ranks as u64,
+        steps: state.steps,
+        body: 0,
+    };
+    let lanes: Vec<LaneRef<'_>> = lanes
+        .iter()
+        .map(|lane| LaneRef {
+            stage: match lane.stage {
+                Stage::Settling { max_steps } => StageAt::Settling { max_steps },
+                Stage::Shearing { origin, steps, stride } => StageAt::Shearing { origin, steps, stride },
+                Stage::Done { origin, stride, steps } => StageAt::Done { origin, stride, steps },
+                Stage::Failed(_) => unreachable!("no checkpoint with a failed lane"),
+            },
+            critical: lane.critical,
+            recorder: lane.recorder.as_ref(),
+            settle_steps: lane.settle_steps,
+            settled_by: lane.settled_by,
+            settle_note: &lane.settle_note,
+        })
+        .collect();
+    checkpoint::write(&c.path, header, &BodyRef { state, lanes: &lanes })
 }
 
 /// The bars of lane `l` past their peak, by canonical index, with what the law says they

@@ -1,6 +1,7 @@
 //! Running a scene: per-seed random fields and critical steps, the self-weight stage until
 //! equilibrium, the shear stage with its driver, recording, stability checks.
 
+mod checkpoint;
 mod lanes;
 mod split;
 
@@ -14,8 +15,9 @@ use crate::scene::{SettleMethod, TimeStep};
 use crate::statics::{CriticalStep, critical_step_on};
 use crate::step::LaneSetup;
 
+pub use checkpoint::Checkpoint;
 pub use lanes::run_lanes;
-pub use split::{run_split, split_refusal};
+pub use split::{RankPart, run_split, split_refusal};
 
 /// Options that are not part of the physics.
 #[derive(Clone, Copy, Debug, Default)]
@@ -142,6 +144,21 @@ pub fn run_seed(
     progress: &mut dyn FnMut(f64) -> ControlFlow<()>,
 ) -> Result<RunOutput, SolverError> {
     let [out] = run_lanes::<1>(model, [seed], options, progress);
+    out
+}
+
+/// [`run_seed`], resuming from `checkpoint`'s file when it holds this seed's run and writing it
+/// as the checkpoint says and when the run is asked to stop ([`Checkpoint`]): a run stopped and
+/// resumed gives the numbers of one never stopped. The caller removes the file once the output
+/// is kept ([`Checkpoint::remove`]).
+pub fn run_seed_checkpointed(
+    model: &Model,
+    seed: u64,
+    options: RunOptions,
+    checkpoint: &Checkpoint,
+    progress: &mut dyn FnMut(f64) -> ControlFlow<()>,
+) -> Result<RunOutput, SolverError> {
+    let [out] = lanes::run_lanes_with::<1, _>(model, [seed], options, progress, &mut lanes::Solo, Some(checkpoint));
     out
 }
 

@@ -11,7 +11,7 @@
 use std::ops::ControlFlow;
 
 use super::lanes::{Hooks, Remote, run_lanes_with};
-use super::{RunOptions, RunOutput, prepare};
+use super::{Checkpoint, RunOptions, RunOutput, prepare};
 use crate::NodeId;
 use crate::error::SolverError;
 use crate::model::{Model, canonical_of_internal};
@@ -21,20 +21,33 @@ use crate::split::{Halo, Neighbours, Partition, Window};
 use crate::statics::CriticalStep;
 use crate::step::{LaneSetup, LaneView, Params, State};
 
-/// Runs `seed` on this rank's part of the scene: `model` is [`Model::window`] of
-/// `partition.window(ranks.rank())`; rank 0 also passes the whole scene's model, `whole`, for
-/// the seed's critical step (the one process's Lanczos, so the same Δt). Every rank calls it with
-/// the same seed and options; rank 0 gets the run's output, the others `None`. `progress` is
-/// rank 0's: when it asks to stop, every rank stops.
+/// What one rank of a split scene holds: its part of the model and where the cuts are; rank 0
+/// also the whole scene's model, for each seed's critical step (the one process's Lanczos, so
+/// the same Δt).
+#[derive(Clone, Copy)]
+pub struct RankPart<'a> {
+    /// [`Model::window`] of `partition.window(rank)`.
+    pub model: &'a Model,
+    /// The cuts.
+    pub partition: &'a Partition,
+    /// The whole scene's model: rank 0's, `None` on the others.
+    pub whole: Option<&'a Model>,
+}
+
+/// Runs `seed` on this rank's `part` of the scene. Every rank calls it with the same seed and
+/// options; rank 0 gets the run's output, the others `None` (or their own error, when the run
+/// stopped with one: every rank stops with rank 0). `progress` is rank 0's: when it asks to
+/// stop, every rank stops. With a `checkpoint` (this rank's file), the run resumes from it when
+/// every rank's holds the same step, and every rank writes its own together.
 pub fn run_split(
-    model: &Model,
-    partition: &Partition,
-    whole: Option<&Model>,
+    part: RankPart<'_>,
     seed: u64,
     options: RunOptions,
     progress: &mut dyn FnMut(f64) -> ControlFlow<()>,
     ranks: &mut dyn Neighbours,
+    checkpoint: Option<&Checkpoint>,
 ) -> Option<Result<RunOutput, SolverError>> {
+    let RankPart { model, partition, whole } = part;
     let rank = ranks.rank();
     let window = partition.window(rank);
     assert_eq!(model.split_window(), Some(&window), "rank {rank}'s model is its window of the partition");
@@ -89,8 +102,8 @@ pub fn run_split(
         driver_rank: driver_rank.filter(|&r| r != 0),
         values: Remote::default(),
     };
-    let [out] = run_lanes_with::<1, _>(model, [seed], options, progress, &mut hooks);
-    (rank == 0).then_some(out)
+    let [out] = run_lanes_with::<1, _>(model, [seed], options, progress, &mut hooks, checkpoint);
+    (rank == 0 || out.is_err()).then_some(out)
 }
 
 /// Why `scene`'s runs cannot be split over `ranks` ranks, if they cannot: a block too thin for
@@ -107,6 +120,14 @@ pub fn split_refusal(scene: &crate::Scene, ranks: usize) -> Option<String> {
 
 /// Why a scene's run cannot be split yet, if it cannot.
 fn splittable(scene: &crate::Scene) -> Result<(), String> {
+    let bars = scene.dims.bar_count();
+    if bars < crate::model::STENCIL_MIN_BARS {
+        return Err(format!(
+            "this block has {bars} bars: below {} one process steps its bars from a list, whose force sums run in \
+             another order than the stencil's a split run uses, so the numbers would differ: run it on one process",
+            crate::model::STENCIL_MIN_BARS
+        ));
+    }
     if scene.record.energy {
         return Err("the energy ledger of a split scene is not built yet: set record.energy = false".into());
     }
@@ -174,14 +195,30 @@ impl Hooks<1> for Split<'_> {
             iterations: data[4] as usize,
             relative_residual: data[5],
         };
-        let setup = LaneSetup {
-            dt_s: data[1],
-            stiffness: model.lane_stiffness_on(seed, options.parallel_step)?,
-            friction: model.friction_factors(seed)?,
-            strength: None,
-            fault: model.fault_loads(seed)?,
-        };
-        Ok((setup, critical))
+        let setup = (|| {
+            Ok::<_, SolverError>(LaneSetup {
+                dt_s: data[1],
+                stiffness: model.lane_stiffness_on(seed, options.parallel_step)?,
+                friction: model.friction_factors(seed)?,
+                strength: None,
+                fault: model.fault_loads(seed)?,
+            })
+        })();
+        // Every rank steps, or none: a rank that could not set its part up says so.
+        let failed = self.ranks.gather(&[f64::from(u8::from(setup.is_err()))]);
+        let mut first = [-1.0];
+        if let Some(r) = failed.iter().position(|v| v[0] != 0.0) {
+            first[0] = r as f64;
+        }
+        self.ranks.broadcast(&mut first);
+        match setup {
+            Err(e) => Err(e),
+            Ok(_) if first[0] >= 0.0 => Err(SolverError::Unsupported(format!(
+                "rank {} of the split run could not set its part of seed {seed} up",
+                first[0] as usize
+            ))),
+            Ok(setup) => Ok((setup, critical)),
+        }
     }
 
     fn after_step(&mut self, params: &Params<'_, 1>, state: &mut State<1>) {
@@ -238,10 +275,24 @@ impl Hooks<1> for Split<'_> {
         Some((id, view.blowup_what(found[1] as usize, found[2], found[3])))
     }
 
-    fn stop(&mut self, asked: bool) -> bool {
-        let mut flag = [f64::from(u8::from(asked))];
-        self.ranks.broadcast(&mut flag);
-        flag[0] != 0.0
+    fn place(&self) -> (usize, usize) {
+        (self.ranks.rank(), self.ranks.size())
+    }
+
+    fn agree(&mut self, stop: bool, save: bool) -> (bool, bool) {
+        let mut flags = [f64::from(u8::from(stop)), f64::from(u8::from(save))];
+        self.ranks.broadcast(&mut flags);
+        (flags[0] != 0.0, flags[1] != 0.0)
+    }
+
+    fn resume(&mut self, at: Option<u64>) -> bool {
+        let all = self.ranks.gather(&[at.map_or(-1.0, |s| s as f64)]);
+        let mut same = [0.0];
+        if self.ranks.rank() == 0 {
+            same[0] = f64::from(u8::from(all[0][0] >= 0.0 && all.iter().all(|v| v[0] == all[0][0])));
+        }
+        self.ranks.broadcast(&mut same);
+        same[0] != 0.0
     }
 
     fn records(&self) -> bool {

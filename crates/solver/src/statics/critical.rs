@@ -23,7 +23,7 @@ use crate::step::bars::bar_forces;
 use crate::step::{LaneStiffness, StiffnessRef};
 
 /// The critical step of one lattice.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, bincode::Encode, bincode::Decode)]
 pub struct CriticalStep {
     /// Upper bound of the highest angular frequency (rad/s).
     pub omega_max: f64,

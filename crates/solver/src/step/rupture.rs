@@ -57,7 +57,7 @@ pub struct RuptureParams<const L: usize> {
 }
 
 /// What a bar did.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, bincode::Encode, bincode::Decode)]
 pub enum CrackKind {
     /// Passed its peak: it starts softening.
     Soften,
@@ -76,7 +76,7 @@ impl CrackKind {
 }
 
 /// One transition of one bar in one lane.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, bincode::Encode, bincode::Decode)]
 pub struct CrackLog {
     /// The step (its viewed index once committed).
     pub step: u64,
@@ -89,7 +89,7 @@ pub struct CrackLog {
 }
 
 /// The damage of every bar and lane, and the transitions not yet taken by a recorder.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, bincode::Encode, bincode::Decode)]
 pub struct RuptureState<const L: usize> {
     /// Tension stiffness now (kernel units): the undamaged one until the peak, then the secant,
     /// 0 once broken.

@@ -17,7 +17,7 @@ use crate::step::params::Params;
 use crate::step::rupture::RuptureState;
 
 /// Displacements around the viewed step `n`.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, bincode::Encode, bincode::Decode)]
 pub struct TimeLevels<const L: usize> {
     /// `uₙ₋₁` (m).
     pub nm1: Field<L>,
@@ -45,7 +45,7 @@ impl<const L: usize> TimeLevels<L> {
 }
 
 /// What the base does to each contact node (index into [`crate::Model::contact`]).
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, bincode::Encode, bincode::Decode)]
 pub struct ContactState<const L: usize> {
     /// Whether the node slid in the last step.
     pub sliding: Vec<[bool; L]>,
@@ -57,7 +57,7 @@ pub struct ContactState<const L: usize> {
 }
 
 /// Slip history of the contact nodes, for recorders and the skip-ahead.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, bincode::Encode, bincode::Decode)]
 pub struct SlipLog<const L: usize> {
     /// Consecutive steps each contact node has been sliding.
     pub run: Vec<[u32; L]>,
@@ -75,7 +75,7 @@ impl<const L: usize> SlipLog<L> {
 }
 
 /// The state of `L` seeds.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, bincode::Encode, bincode::Decode)]
 pub struct State<const L: usize> {
     /// Displacements around the viewed step.
     pub u: TimeLevels<L>,

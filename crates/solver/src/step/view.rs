@@ -27,7 +27,7 @@ pub struct Interface {
 /// One contact node as the interface sums see it. On a fault (docs/model.md §15) its slip and
 /// slip rate are across the fault, twice the face's displacement and velocity, and its normal
 /// reaction is the prescribed normal force.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, bincode::Encode, bincode::Decode)]
 pub struct NodeContact {
     /// Friction reaction in x (N).
     pub friction_x: f64,
