@@ -201,7 +201,6 @@ impl SplitSeeds for RootRunner {
     fn run(
         &self,
         pipeline: &Pipeline,
-        model: &Model,
         seed: u64,
         options: RunOptions,
         checkpoint: Option<&Checkpoint>,
@@ -248,7 +247,7 @@ impl SplitSeeds for RootRunner {
         }
         let mut link = MpiRanks::new(&comm.0);
         let (partition, window) = (&part.0, &part.1);
-        let part = RankPart { model: window, partition, whole: Some(model) };
+        let part = RankPart { model: window, partition };
         stickslip_solver::run::run_split(part, seed, options, progress, &mut link, checkpoint)
             .expect("rank 0 has the run's output")
     }
@@ -285,7 +284,7 @@ fn follow(world: &SimpleCommunicator, pipelines: &[Pipeline]) {
         let options = RunOptions { parallel_step: options.parallel_step && model.layout().splits(), ..options };
         let mut link = MpiRanks::new(world);
         let mut go_on = |_| ControlFlow::Continue(());
-        let part = RankPart { model, partition, whole: None };
+        let part = RankPart { model, partition };
         match stickslip_solver::run::run_split(part, seed, options, &mut go_on, &mut link, checkpoint.as_ref()) {
             // Rank 0 says it was stopped.
             Some(Err(SolverError::Cancelled)) => {}

@@ -318,23 +318,23 @@ fn check_ranks_says_each_ranks_part_and_refuses_a_rank_that_cannot_hold_it() {
         let (stdout, err) = text(&out);
         (out.status.code(), stdout, err)
     };
-    // 32 ranks of 24 GB (rank 0 holds the whole model for the critical step): each rank's part,
-    // then the whole scene refused here (check builds it).
-    let (code, stdout, err) = check(&["m6-100.toml", "--ranks", "32", "--memory-per-rank", "24"]);
+    // 32 ranks of 8 GB (rank 0 also holds the whole block's model, which the analyses read):
+    // each rank's part, then the whole scene refused here (check builds it).
+    let (code, stdout, err) = check(&["m6-100.toml", "--ranks", "32", "--memory-per-rank", "8"]);
     assert_eq!(code, Some(1), "{stdout}{err}");
     let ranks = stdout.find("ranks: 32 slabs").expect("the ranks section");
     assert!(ranks < stdout.find("before building").unwrap(), "ranks first: {stdout}");
     assert!(stdout.contains("rank 0: module layers 0..16 (16, the base)"), "{stdout}");
     assert!(stdout.contains("rank 31: module layers"), "{stdout}");
     assert!(stdout.contains("halo: one module layer of 321001 nodes"), "{stdout}");
-    assert!(stdout.contains("against 24.0 GB per rank (--memory-per-rank)"), "{stdout}");
-    assert!(stdout.contains("rank 0 at about 21.6 GB"), "the whole model and its Lanczos vectors: {stdout}");
+    assert!(stdout.contains("against 8.0 GB per rank (--memory-per-rank)"), "{stdout}");
+    assert!(stdout.contains("rank 0 at about 4.9 GB"), "its part and the whole block's model: {stdout}");
     assert!(stdout.contains("run: `mpirun -n 32 stickslip pipeline …`"), "{stdout}");
     assert!(err.contains("does not fit in memory"), "{err}");
     // 2 GB per rank is too little for rank 0 of this block.
     let (code, stdout, err) = check(&["m6-100.toml", "--ranks", "32", "--memory-per-rank", "2"]);
     assert_eq!(code, Some(1), "{stdout}{err}");
-    assert!(err.contains("--ranks = 32: rank 0 needs about 21.6 GB but a rank has 2.0 GB"), "{err}");
+    assert!(err.contains("--ranks = 32: rank 0 needs about 4.9 GB but a rank has 2.0 GB"), "{err}");
     assert!(!stdout.contains("before building"), "refused before the cost: {stdout}");
     // More ranks than the block takes, and no --ranks with --memory-per-rank.
     let (code, _, err) = check(&["m6-100.toml", "--ranks", "1000"]);

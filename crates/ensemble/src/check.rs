@@ -302,7 +302,7 @@ fn split_over(
             w.owned.len(),
             bars,
             human(m.total),
-            if r == 0 { " (with the whole block's model, for the critical step, and the recording)" } else { "" }
+            if r == 0 { " (with the whole block's model, which the analyses read, and the recording)" } else { "" }
         ));
     }
     let layer_nodes = (dims.nx + 1) * (dims.ny + 1) + dims.nx * dims.ny;
@@ -337,7 +337,7 @@ fn split_over(
         )));
     }
     (out.emit)(line(format!(
-        "  run: `mpirun -n {ranks} stickslip pipeline …` (built with --features mpi) splits each seed so; rank 0 also holds the whole model (docs/guide/ensembles.md, One scene over MPI ranks)"
+        "  run: `mpirun -n {ranks} stickslip pipeline …` (built with --features mpi) splits each seed so (docs/guide/ensembles.md, One scene over MPI ranks)"
     )));
     if largest.1 > limit {
         return Err(EnsembleError::Refused(format!(

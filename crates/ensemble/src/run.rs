@@ -181,7 +181,7 @@ fn simulate(job: &Job<'_>, seeds: &[u64], tx: &mpsc::SyncSender<SeedResult>) {
             .zip(&mut notes)
             .map(|(&seed, note)| {
                 let c = checkpoints.map(|c| c.of(seed, 0, split.ranks()));
-                let out = split.run(pipeline, model, seed, options, c.as_ref(), &mut check);
+                let out = split.run(pipeline, seed, options, c.as_ref(), &mut check);
                 *note = c.and_then(|c| c.failure());
                 out
             })

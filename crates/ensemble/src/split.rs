@@ -10,10 +10,9 @@ use std::ops::ControlFlow;
 use std::sync::OnceLock;
 
 use stickslip_config::Pipeline;
-use stickslip_solver::{Checkpoint, Model, RunOptions, RunOutput, SolverError};
+use stickslip_solver::{Checkpoint, RunOptions, RunOutput, SolverError};
 
-/// Rank 0's side of a split run: runs `seed` of `pipeline` over every rank (the others follow),
-/// `model` being the whole scene's (for the seed's critical step).
+/// Rank 0's side of a split run: runs `seed` of `pipeline` over every rank (the others follow).
 pub trait SplitSeeds: Send + Sync {
     /// Ranks the seeds are split over.
     fn ranks(&self) -> usize;
@@ -22,7 +21,6 @@ pub trait SplitSeeds: Send + Sync {
     fn run(
         &self,
         pipeline: &Pipeline,
-        model: &Model,
         seed: u64,
         options: RunOptions,
         checkpoint: Option<&Checkpoint>,

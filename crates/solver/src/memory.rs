@@ -121,9 +121,10 @@ pub fn estimate(scene: &Scene, batches: Batches, samples: u64) -> Result<MemoryE
 }
 
 /// Bytes of rank `rank` of `scene` split over ranks ([`crate::split`]): the window's `nodes` and
-/// `bars` (a stencil), one seed. Rank 0 also holds the base's contact nodes, the recording
-/// (about `samples` samples) and the whole block's model, on which it finds each seed's critical
-/// step (its stiffness and Lanczos vectors while the seed is set up); the others none of these.
+/// `bars` (a stencil), one seed, with the seed's critical step found by the ranks together (its
+/// Lanczos vectors over the window, and one more for the terms of the sums). Rank 0 also holds
+/// the base's contact nodes, the recording (about `samples` samples) and the whole block's model,
+/// which the analyses of each seed read.
 pub fn estimate_rank(
     scene: &Scene,
     rank: usize,
@@ -131,16 +132,13 @@ pub fn estimate_rank(
     bars: u64,
     samples: u64,
 ) -> Result<MemoryEstimate, Overflow> {
-    if rank > 0 {
-        return estimate_counts(scene, (nodes, bars, 0), true, Batches::ONE, 0);
-    }
-    let contact = (scene.dims.nx as u64 + 1) * (scene.dims.ny as u64 + 1);
-    let part = estimate_counts(scene, (nodes, bars, contact), true, Batches::ONE, samples)?;
-    let whole = estimate(scene, Batches::ONE, 0)?;
-    let over = || Overflow(format!("the memory of rank 0 of a {nodes}-node, {bars}-bar window"));
-    // Its own state steps while the whole model waits; the whole set-up runs before its own.
-    let setup = part.setup.max(whole.setup);
-    let model = part.model.checked_add(whole.model).ok_or_else(over)?;
+    let over = || Overflow(format!("the memory of rank {rank} of a {nodes}-node, {bars}-bar window"));
+    let root = rank == 0;
+    let contact = if root { (scene.dims.nx as u64 + 1) * (scene.dims.ny as u64 + 1) } else { 0 };
+    let part = estimate_counts(scene, (nodes, bars, contact), true, Batches::ONE, if root { samples } else { 0 })?;
+    let setup = nodes.checked_mul(24).and_then(|t| part.setup.checked_add(t)).ok_or_else(over)?;
+    let whole = if root { estimate(scene, Batches::ONE, 0)?.model } else { 0 };
+    let model = part.model.checked_add(whole).ok_or_else(over)?;
     let total = part.batch.max(setup).checked_add(model).and_then(|v| v.checked_add(PROCESS_BYTES)).ok_or_else(over)?;
     Ok(MemoryEstimate { nodes, bars, model, batch: part.batch, setup, total })
 }

@@ -180,8 +180,7 @@ fn run_split_checkpointed(
             .map(|(r, mut link)| {
                 let (scene, partition) = (scene.clone(), partition.clone());
                 s.spawn(move || {
-                    let model = Model::window(scene.clone(), partition.window(r));
-                    let whole = (r == 0).then(|| Model::new(scene));
+                    let model = Model::window(scene, partition.window(r));
                     let options = RunOptions::default();
                     let checkpoint = folder.map(|f| {
                         Checkpoint::new(f.join(format!("rank-{r}-of-{ranks}.ckpt")), None, Some(1 << 30), "test".into())
@@ -191,7 +190,7 @@ fn run_split_checkpointed(
                         reports += 1;
                         if Some(reports) == stop_at { ControlFlow::Break(()) } else { ControlFlow::Continue(()) }
                     };
-                    let part = RankPart { model: &model, partition: &partition, whole: whole.as_ref() };
+                    let part = RankPart { model: &model, partition: &partition };
                     run_split(part, seed, options, &mut progress, &mut link, checkpoint.as_ref())
                 })
             })
@@ -269,4 +268,43 @@ fn a_split_run_stopped_and_resumed_from_its_checkpoints_gives_the_one_process_ou
     let fresh = run_split_checkpointed(&scene, 1, 3, Some(&folder), None).unwrap();
     assert!(format!("{fresh:?}") == format!("{one:?}"));
     std::fs::remove_dir_all(&folder).unwrap();
+}
+
+/// The critical step found by the ranks together is the one process's, bit for bit: the paper's
+/// block grown to 20 × 10 × 60 modules (a Weibull field on E), over 2, 7 and 20 ranks, down to
+/// parts of 3 module layers, fewer degrees of freedom than a block of Lanczos's sums (so a block
+/// runs over several ranks).
+#[test]
+fn the_critical_step_found_by_the_ranks_together_is_the_one_process_s() {
+    use stickslip_solver::statics::critical::critical_step_split;
+    use stickslip_solver::statics::critical_step_on;
+    let mut scene = Scene::paper();
+    scene.dims = stickslip_solver::Dims::new(20, 10, 60);
+    assert!(scene.young_cv > 0.0);
+    let one = Model::new(scene.clone());
+    let k = one.lane_stiffness(7).unwrap();
+    let want = critical_step_on(&one, &k, false).unwrap();
+    assert!(want.iterations > 0, "converged Lanczos, not the node bound: {want:?}");
+    for ranks in [2, 7, 20] {
+        let partition = Partition::new(scene.dims, ranks).unwrap();
+        let links = thread_ranks(ranks);
+        let got: Vec<_> = std::thread::scope(|s| {
+            let handles: Vec<_> = links
+                .into_iter()
+                .enumerate()
+                .map(|(r, mut link)| {
+                    let (scene, partition) = (scene.clone(), partition.clone());
+                    s.spawn(move || {
+                        let model = Model::window(scene, partition.window(r));
+                        let k = model.lane_stiffness(7).unwrap();
+                        critical_step_split(&model, &k, r % 2 == 1, &mut link).unwrap()
+                    })
+                })
+                .collect();
+            handles.into_iter().map(|h| h.join().unwrap()).collect()
+        });
+        for (r, c) in got.iter().enumerate() {
+            assert!(format!("{c:?}") == format!("{want:?}"), "{ranks} ranks, rank {r}: {c:?} against {want:?}");
+        }
+    }
 }

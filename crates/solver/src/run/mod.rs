@@ -169,6 +169,18 @@ pub(crate) fn prepare(model: &Model, seed: u64, options: RunOptions) -> Result<(
     let strength = model.bar_strength(seed)?;
     let fault = model.fault_loads(seed)?;
     let critical = critical_step_on(model, &stiffness, options.parallel_step)?;
+    let dt_s = time_step(model, seed, &critical, options)?;
+    Ok((LaneSetup { dt_s, stiffness, friction, strength, fault }, critical))
+}
+
+/// The seed's Δt from its `critical` step (the scene's fraction of it, or its fixed step, refused
+/// above it), with the step count and the recording interval checked.
+pub(crate) fn time_step(
+    model: &Model,
+    seed: u64,
+    critical: &CriticalStep,
+    options: RunOptions,
+) -> Result<f64, SolverError> {
     // Δt never depends on the recording interval (which samples every `round(interval/Δt)`
     // steps): the same seed gives the same run whatever it records.
     let dt_s = match model.scene().time_step {
@@ -182,14 +194,15 @@ pub(crate) fn prepare(model: &Model, seed: u64, options: RunOptions) -> Result<(
     };
     check_step_count(model, dt_s)?;
     check_record_interval(model, dt_s)?;
-    Ok((LaneSetup { dt_s, stiffness, friction, strength, fault }, critical))
+    Ok(dt_s)
 }
 
 /// Refuses a time step `dt_s` with which a stage of `model`'s scene would take more steps than
 /// the run can count ([`SolverError::TooManySteps`]).
 pub fn check_step_count(model: &Model, dt_s: f64) -> Result<(), SolverError> {
     let scene = model.scene();
-    let bars = model.bar_count() as f64;
+    // The whole block's bars, when `model` is a rank's part of it.
+    let bars = if model.split_window().is_some() { scene.dims.bar_count() } else { model.bar_count() } as f64;
     let stages = [
         ("self-weight stage (its time limit)", scene.self_weight.max_duration_s),
         ("shear stage", scene.shear.duration_s),

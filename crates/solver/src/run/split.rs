@@ -11,7 +11,7 @@
 use std::ops::ControlFlow;
 
 use super::lanes::{Hooks, Remote, run_lanes_with};
-use super::{Checkpoint, RunOptions, RunOutput, prepare};
+use super::{Checkpoint, RunOptions, RunOutput, time_step};
 use crate::NodeId;
 use crate::error::SolverError;
 use crate::model::{Model, canonical_of_internal};
@@ -19,26 +19,24 @@ use crate::observe::Observed;
 use crate::scene::ControlChannel;
 use crate::split::{Halo, Neighbours, Partition, Window};
 use crate::statics::CriticalStep;
+use crate::statics::critical::critical_step_split;
 use crate::step::{LaneSetup, LaneView, Params, State};
 
-/// What one rank of a split scene holds: its part of the model and where the cuts are; rank 0
-/// also the whole scene's model, for each seed's critical step (the one process's Lanczos, so
-/// the same Δt).
+/// What one rank of a split scene holds: its part of the model and where the cuts are.
 #[derive(Clone, Copy)]
 pub struct RankPart<'a> {
     /// [`Model::window`] of `partition.window(rank)`.
     pub model: &'a Model,
     /// The cuts.
     pub partition: &'a Partition,
-    /// The whole scene's model: rank 0's, `None` on the others.
-    pub whole: Option<&'a Model>,
 }
 
 /// Runs `seed` on this rank's `part` of the scene. Every rank calls it with the same seed and
 /// options; rank 0 gets the run's output, the others `None` (or their own error, when the run
-/// stopped with one: every rank stops with rank 0). `progress` is rank 0's: when it asks to
-/// stop, every rank stops. With a `checkpoint` (this rank's file), the run resumes from it when
-/// every rank's holds the same step, and every rank writes its own together.
+/// stopped with one: every rank stops with rank 0). The seed's critical step is found by every
+/// rank together ([`critical_step_split`]). `progress` is rank 0's: when it asks to stop, every
+/// rank stops. With a `checkpoint` (this rank's file), the run resumes from it when every rank's
+/// holds the same step, and every rank writes its own together.
 pub fn run_split(
     part: RankPart<'_>,
     seed: u64,
@@ -47,11 +45,10 @@ pub fn run_split(
     ranks: &mut dyn Neighbours,
     checkpoint: Option<&Checkpoint>,
 ) -> Option<Result<RunOutput, SolverError>> {
-    let RankPart { model, partition, whole } = part;
+    let RankPart { model, partition } = part;
     let rank = ranks.rank();
     let window = partition.window(rank);
     assert_eq!(model.split_window(), Some(&window), "rank {rank}'s model is its window of the partition");
-    assert!(rank > 0 || whole.is_some(), "rank 0 has the whole model for the critical step");
     if let Err(why) = splittable(model.scene()) {
         return (rank == 0).then_some(Err(SolverError::Unsupported(why)));
     }
@@ -94,7 +91,6 @@ pub fn run_split(
         .collect();
     let mut hooks = Split {
         window,
-        whole,
         ranks,
         halo: Halo::default(),
         remote,
@@ -152,7 +148,6 @@ fn internal(dims: crate::Dims, id: NodeId) -> usize {
 /// The hooks of one rank.
 struct Split<'a> {
     window: Window,
-    whole: Option<&'a Model>,
     ranks: &'a mut dyn Neighbours,
     halo: Halo,
     /// Every control channel rank 0 does not hold, with the rank that sends it.
@@ -172,53 +167,36 @@ impl Hooks<1> for Split<'_> {
         seed: u64,
         options: RunOptions,
     ) -> Result<(LaneSetup, CriticalStep), SolverError> {
-        let mut data = [0.0; 6];
-        let mut failed = None;
-        if let Some(whole) = self.whole {
-            match prepare(whole, seed, options) {
-                Ok((setup, c)) => {
-                    data = [1.0, setup.dt_s, c.omega_max, c.dt_s, c.iterations as f64, c.relative_residual]
-                }
-                Err(e) => failed = Some(e),
-            }
-        }
-        self.ranks.broadcast(&mut data);
-        if let Some(e) = failed {
-            return Err(e);
-        }
-        if data[0] != 1.0 {
-            return Err(SolverError::Unsupported("rank 0 could not set the seed up".into()));
-        }
-        let critical = CriticalStep {
-            omega_max: data[2],
-            dt_s: data[3],
-            iterations: data[4] as usize,
-            relative_residual: data[5],
-        };
         let setup = (|| {
             Ok::<_, SolverError>(LaneSetup {
-                dt_s: data[1],
+                dt_s: 0.0,
                 stiffness: model.lane_stiffness_on(seed, options.parallel_step)?,
                 friction: model.friction_factors(seed)?,
                 strength: None,
                 fault: model.fault_loads(seed)?,
             })
         })();
-        // Every rank steps, or none: a rank that could not set its part up says so.
+        // Every rank goes on, or none: a rank that could not set its part up says so.
         let failed = self.ranks.gather(&[f64::from(u8::from(setup.is_err()))]);
         let mut first = [-1.0];
         if let Some(r) = failed.iter().position(|v| v[0] != 0.0) {
             first[0] = r as f64;
         }
         self.ranks.broadcast(&mut first);
-        match setup {
-            Err(e) => Err(e),
-            Ok(_) if first[0] >= 0.0 => Err(SolverError::Unsupported(format!(
-                "rank {} of the split run could not set its part of seed {seed} up",
-                first[0] as usize
-            ))),
-            Ok(setup) => Ok((setup, critical)),
-        }
+        let setup = match setup {
+            Err(e) => return Err(e),
+            Ok(_) if first[0] >= 0.0 => {
+                return Err(SolverError::Unsupported(format!(
+                    "rank {} of the split run could not set its part of seed {seed} up",
+                    first[0] as usize
+                )));
+            }
+            Ok(setup) => setup,
+        };
+        // The same numbers on every rank: any error is every rank's.
+        let critical = critical_step_split(model, &setup.stiffness, options.parallel_step, self.ranks)?;
+        let dt_s = time_step(model, seed, &critical, options)?;
+        Ok((LaneSetup { dt_s, ..setup }, critical))
     }
 
     fn after_step(&mut self, params: &Params<'_, 1>, state: &mut State<1>) {

@@ -19,6 +19,7 @@ use crate::field::Field;
 use crate::geometry::Direction;
 use crate::layout::Bars;
 use crate::model::Model;
+use crate::split::{Halo, Neighbours, Window};
 use crate::step::bars::bar_forces;
 use crate::step::{LaneStiffness, StiffnessRef};
 
@@ -146,7 +147,7 @@ fn lanczos_with(model: &Model, k: StiffnessRef<'_, 1>, how: Lanczos, cap: f64) -
     // node i's row: by Weyl's inequality they raise ω²_max by at most what they say.
     let plate = model.boundaries().stiffening(model.inv_mass());
 
-    let mut rng = ChaCha8Rng::seed_from_u64(0x5eed_c417);
+    let mut rng = ChaCha8Rng::seed_from_u64(START_SEED);
     let mut q: Vec<f64> = (0..dof).map(|_| StandardUniform.sample(&mut rng)).map(|u: f64| u - 0.5).collect();
     normalize(&mut q);
     for c in 0..3 {
@@ -247,6 +248,243 @@ fn lanczos_with(model: &Model, k: StiffnessRef<'_, 1>, how: Lanczos, cap: f64) -
     Err(SolverError::Numerical(format!(
         "critical step: Lanczos did not converge (θ = {theta:e}, residual {residual:e})"
     )))
+}
+
+/// The seed of Lanczos's starting vector.
+const START_SEED: u64 = 0x5eed_c417;
+
+/// [`critical_step_on`] of the whole block, found by the ranks of a split scene together
+/// (docs/model.md §19), each on its window `model` with its bars' stiffness `k`: the same bits as
+/// one process. Every rank holds its owned part of Lanczos's vectors; the starting vector's
+/// draws are found by seeking the generator; each bar pass reads the halo exchanged as in a step;
+/// each sum is the one process's, in its order: a sum of blocks of [`STENCIL_BLOCK`] degrees of
+/// freedom (each rank sums the blocks that start on it and sends the few terms of a block begun
+/// on the rank before, rank 0 finishing them in order), and the starting vector's norm, one sum
+/// in order, handed from rank to rank. The node bound and the plate's stiffening are maxima.
+pub fn critical_step_split(
+    model: &Model,
+    k: &LaneStiffness,
+    parallel: bool,
+    ranks: &mut dyn Neighbours,
+) -> Result<CriticalStep, SolverError> {
+    let window = model.split_window().expect("a rank's model is a window of the block").clone();
+    let k = match k {
+        LaneStiffness::PerBar(k) => StiffnessRef::<1>::PerBar(k.as_chunks::<1>().0),
+        LaneStiffness::Factored(f) => {
+            StiffnessRef::Factored { runs: model.run_stiffness(), factors: f.as_deref().map(|f| f.as_chunks::<1>().0) }
+        }
+    };
+    let inv_mass = model.inv_mass();
+    let local = node_bound_over(inv_mass, |f| k.visit(model.layout(), 0, f), window.owned.clone());
+    let nodes = max_over(ranks, local);
+    let plate = max_over(ranks, model.boundaries().stiffening(inv_mass));
+    let how = Lanczos { max_iter: STENCIL_LANCZOS_ITERATIONS, check_every: 5, parallel };
+    let l = lanczos_split(model, &window, k, how, (nodes, plate), ranks)?;
+    let c = if l.relative_residual <= LANCZOS_TOLERANCE {
+        l
+    } else {
+        let bound = nodes + plate;
+        if !(bound > 0.0 && bound.is_finite()) {
+            return Err(SolverError::Numerical(format!(
+                "largest stiffness eigenvalue bound is {bound:e}: the lattice has no positive stiffness"
+            )));
+        }
+        let omega = bound.sqrt();
+        CriticalStep { omega_max: omega, dt_s: 2.0 / omega, iterations: 0, relative_residual: f64::NAN }
+    };
+    Ok(with_dashpots(model, c))
+}
+
+/// The largest of every rank's `v`, on every rank.
+fn max_over(ranks: &mut dyn Neighbours, v: f64) -> f64 {
+    let all = ranks.gather(&[v]);
+    let mut out = [all.iter().map(|x| x[0]).fold(v, f64::max)];
+    ranks.broadcast(&mut out);
+    out[0]
+}
+
+/// [`lanczos_with`] over the ranks: `cap` is the node bound and the plate's stiffening.
+fn lanczos_split(
+    model: &Model,
+    w: &Window,
+    k: StiffnessRef<'_, 1>,
+    how: Lanczos,
+    (gershgorin, plate): (f64, f64),
+    ranks: &mut dyn Neighbours,
+) -> Result<CriticalStep, SolverError> {
+    let Lanczos { max_iter, check_every, parallel } = how;
+    let whole = model.scene().dims.node_count();
+    let dof = 3 * whole;
+    let owned = w.owned.clone();
+    let m = owned.len();
+    // This rank's degrees of freedom in the flat (component-major) order: `c·N + g`.
+    let starts: [usize; 3] = std::array::from_fn(|c| c * whole + w.global(owned.start));
+    let ism: Vec<f64> = model.inv_mass().iter().map(|v| v.sqrt()).collect();
+    let mut x = Field::<1>::zeros(model.node_count());
+    let mut f = Field::<1>::zeros(model.node_count());
+    let mut halo = Halo::default();
+    // The starting vector's draws of this rank's degrees of freedom (one 64-bit word pair each).
+    let mut rng = ChaCha8Rng::seed_from_u64(START_SEED);
+    let mut q = vec![0.0; 3 * m];
+    for c in 0..3 {
+        rng.set_word_pos(2 * starts[c] as u128);
+        for v in &mut q[c * m..(c + 1) * m] {
+            let u: f64 = StandardUniform.sample(&mut rng);
+            *v = u - 0.5;
+        }
+    }
+    let norm = handed_sum(ranks, &q, m).sqrt();
+    q.iter_mut().for_each(|v| *v /= norm);
+    for c in 0..3 {
+        for j in 0..m {
+            x.c[c][owned.start + j][0] = q[c * m + j] * ism[owned.start + j];
+        }
+    }
+    halo.exchange(w, &mut x, ranks);
+    let mut q_prev = vec![0.0; 3 * m];
+    let mut terms = vec![0.0; 3 * m];
+    let (mut alphas, mut betas) = (Vec::new(), Vec::new());
+    let max_iter = dof.min(max_iter);
+    let mut best: Option<(f64, f64)> = None;
+    let Bars::Stencil(layout) = model.layout() else { unreachable!("a window is a stencil") };
+    for it in 1..=max_iter {
+        if parallel {
+            crate::step::stencil::forces_parallel(layout, k, &x, &mut f);
+        } else {
+            crate::step::stencil::forces(layout, k, &x, &mut f);
+        }
+        // w = −M^{-1/2}f − β_prev·q_prev, α = w·q.
+        let beta_prev = betas.last().copied().unwrap_or(0.0);
+        for c in 0..3 {
+            for j in 0..m {
+                let i = owned.start + j;
+                let v = -f.c[c][i][0] * ism[i] - beta_prev * q_prev[c * m + j];
+                x.c[c][i][0] = v;
+                terms[c * m + j] = v * q[c * m + j];
+            }
+            f.c[c].iter_mut().for_each(|v| v[0] = 0.0);
+        }
+        let alpha = block_sum(ranks, &terms, m, starts);
+        // w −= α·q, β² = w·w.
+        for c in 0..3 {
+            for j in 0..m {
+                let i = owned.start + j;
+                let v = x.c[c][i][0] - alpha * q[c * m + j];
+                x.c[c][i][0] = v;
+                terms[c * m + j] = v * v;
+            }
+        }
+        let beta2 = block_sum(ranks, &terms, m, starts);
+        let beta: f64 = beta2.sqrt();
+        alphas.push(alpha);
+        betas.push(beta);
+        let invariant = beta <= 1e-12 * alpha.abs().max(1e-300);
+        if it % check_every == 0 || it == max_iter || invariant {
+            let (theta, residual) = top_ritz(&alphas, &betas);
+            best = Some((theta, residual));
+            if residual <= LANCZOS_TOLERANCE * theta || invariant || it == max_iter {
+                let bound = (theta + residual).min(gershgorin) + plate;
+                if !(bound > 0.0 && bound.is_finite()) {
+                    return Err(SolverError::Numerical(format!(
+                        "largest stiffness eigenvalue is {bound:e}: the lattice has no positive stiffness"
+                    )));
+                }
+                let omega = bound.sqrt();
+                return Ok(CriticalStep {
+                    omega_max: omega,
+                    dt_s: 2.0 / omega,
+                    iterations: it,
+                    relative_residual: residual / theta,
+                });
+            }
+        }
+        // q_prev ← q, q ← w/β, x ← M^{-1/2}q, the halo's x from the neighbours.
+        std::mem::swap(&mut q_prev, &mut q);
+        for c in 0..3 {
+            for j in 0..m {
+                let i = owned.start + j;
+                let v = x.c[c][i][0] / beta;
+                q[c * m + j] = v;
+                x.c[c][i][0] = v * ism[i];
+            }
+        }
+        halo.exchange(w, &mut x, ranks);
+    }
+    let (theta, residual) = best.unwrap_or((gershgorin, 0.0));
+    Err(SolverError::Numerical(format!(
+        "critical step: Lanczos did not converge (θ = {theta:e}, residual {residual:e})"
+    )))
+}
+
+/// `Σ_d t_d` in the flat order as one sum (`Iterator::sum`'s), each rank's `terms` (`m` per
+/// component, starting at the flat index of its first owned node) added on to the sum so far,
+/// handed from rank to rank: component by component, rank by rank.
+fn handed_sum(ranks: &mut dyn Neighbours, terms: &[f64], m: usize) -> f64 {
+    let mut sum = [std::iter::empty::<f64>().sum::<f64>()];
+    for c in 0..3 {
+        for r in 0..ranks.size() {
+            ranks.broadcast(&mut sum);
+            let mine: Vec<f64> = if ranks.rank() == r {
+                vec![terms[c * m..(c + 1) * m].iter().map(|t| t * t).fold(sum[0], |s, t| s + t)]
+            } else {
+                Vec::new()
+            };
+            let all = ranks.gather(&mine);
+            if ranks.rank() == 0 {
+                sum[0] = all[r][0];
+            }
+        }
+    }
+    ranks.broadcast(&mut sum);
+    sum[0]
+}
+
+/// The one process's blocked sum ([`sum_blocks`] of blocks of [`STENCIL_BLOCK`] degrees of
+/// freedom) of `terms` (`m` per component, this rank's part of the flat order from `starts`),
+/// on every rank. Each rank sends rank 0, per component, the terms of the block begun before its
+/// part (a head, fewer than a block) and the sums of the blocks begun on it (as far as its part
+/// goes); rank 0 adds each head's terms on to the block they continue, in order, then the blocks.
+fn block_sum(ranks: &mut dyn Neighbours, terms: &[f64], m: usize, starts: [usize; 3]) -> f64 {
+    let b = STENCIL_BLOCK;
+    let mut mine = Vec::new();
+    for c in 0..3 {
+        let t = &terms[c * m..(c + 1) * m];
+        let head = ((b - starts[c] % b) % b).min(m);
+        mine.push(head as f64);
+        mine.extend_from_slice(&t[..head]);
+        let begun: Vec<&[f64]> = t[head..].chunks(b).collect();
+        mine.push(begun.len() as f64);
+        for piece in begun {
+            mine.push(piece.iter().fold(-0.0, |s, v| s + v));
+        }
+    }
+    let all = ranks.gather(&mine);
+    let mut total = [0.0];
+    if ranks.rank() == 0 {
+        let mut at = vec![0usize; all.len()];
+        let mut sums = Vec::new();
+        let mut open: Option<f64> = None;
+        for _ in 0..3 {
+            for (r, v) in all.iter().enumerate() {
+                let i = &mut at[r];
+                let head = v[*i] as usize;
+                for t in &v[*i + 1..*i + 1 + head] {
+                    let s = open.as_mut().expect("a head continues a block begun before");
+                    *s += t;
+                }
+                *i += 1 + head;
+                let begun = v[*i] as usize;
+                for s in &v[*i + 1..*i + 1 + begun] {
+                    sums.extend(open.replace(*s));
+                }
+                *i += 1 + begun;
+            }
+        }
+        sums.extend(open);
+        total[0] = sums.into_iter().fold(-0.0, |total, s| total + s);
+    }
+    ranks.broadcast(&mut total);
+    total[0]
 }
 
 /// Degrees of freedom per block of Lanczos's vector passes on a stencil lattice: each block's
@@ -369,6 +607,15 @@ pub fn gershgorin_bound(model: &Model, k: &[f64]) -> f64 {
 /// `ω²_max ≤ max_i λ_max(A_i)` (exact for a chain of two masses). `bars` calls its argument with
 /// `(i, j, direction, k)` for every bar.
 pub fn node_bound(inv_mass: &[f64], bars: impl FnOnce(&mut dyn FnMut(usize, usize, Direction, f64))) -> f64 {
+    node_bound_over(inv_mass, bars, 0..inv_mass.len())
+}
+
+/// [`node_bound`] over `nodes` only (a rank's owned nodes, whose bars it holds every one of).
+fn node_bound_over(
+    inv_mass: &[f64],
+    bars: impl FnOnce(&mut dyn FnMut(usize, usize, Direction, f64)),
+    nodes: std::ops::Range<usize>,
+) -> f64 {
     // Upper triangle of A_i: xx, yy, zz, xy, xz, yz.
     let mut a = vec![[0.0f64; 6]; inv_mass.len()];
     bars(&mut |i, j, direction, k| {
@@ -389,7 +636,7 @@ pub fn node_bound(inv_mass: &[f64], bars: impl FnOnce(&mut dyn FnMut(usize, usiz
             }
         }
     });
-    let top = a.iter().map(sym3_max_eigenvalue).fold(0.0, f64::max);
+    let top = a[nodes].iter().map(sym3_max_eigenvalue).fold(0.0, f64::max);
     // The closed form's round-off, a few ulps of the largest entry: covered many times over.
     top * (1.0 + 1e-12)
 }
