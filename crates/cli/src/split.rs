@@ -66,16 +66,23 @@ fn srun_tasks() -> usize {
 }
 
 /// Threads of each rank unless `--threads` says: Slurm's `SLURM_CPUS_PER_TASK`, else the cores
-/// over the ranks on this node (Open MPI's `OMPI_COMM_WORLD_LOCAL_SIZE` or Slurm's
-/// `SLURM_NTASKS_PER_NODE`), at least one.
+/// over the ranks on this node ([`local_ranks`]), at least one.
 fn default_threads() -> usize {
     let var = |v: &str| std::env::var(v).ok().and_then(|s| s.parse::<usize>().ok()).filter(|&n| n > 0);
     if let Some(n) = var("SLURM_CPUS_PER_TASK") {
         return n;
     }
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let local = var("OMPI_COMM_WORLD_LOCAL_SIZE").or_else(|| var("SLURM_NTASKS_PER_NODE")).unwrap_or(1);
-    (cores / local).max(1)
+    (cores / local_ranks()).max(1)
+}
+
+/// The ranks on this node: Open MPI's `OMPI_COMM_WORLD_LOCAL_SIZE`, MPICH's `MPI_LOCALNRANKS` or
+/// Slurm's `SLURM_NTASKS_PER_NODE`, else 1.
+fn local_ranks() -> usize {
+    ["OMPI_COMM_WORLD_LOCAL_SIZE", "MPI_LOCALNRANKS", "SLURM_NTASKS_PER_NODE"]
+        .iter()
+        .find_map(|v| std::env::var(v).ok().and_then(|s| s.parse::<usize>().ok()).filter(|&n| n > 0))
+        .unwrap_or(1)
 }
 
 /// Starts MPI when launched by `mpirun`/`srun`: rank 0 installs the split runner and returns to
@@ -196,6 +203,10 @@ struct RootRunner {
 impl SplitSeeds for RootRunner {
     fn ranks(&self) -> usize {
         self.comm.lock().map_or(1, |c| c.0.size() as usize)
+    }
+
+    fn local_ranks(&self) -> usize {
+        local_ranks()
     }
 
     fn run(

@@ -6,7 +6,7 @@ use stickslip_config::describe::duration;
 use stickslip_solver::Scene;
 use stickslip_solver::error::MAX_STEPS;
 use stickslip_solver::memory::{
-    Batches, LONG_RUN_BAR_UPDATES, MemoryEstimate, dt_estimate, estimate, human, run_steps, samples,
+    Batches, LONG_RUN_BAR_UPDATES, MemoryEstimate, dt_estimate, estimate, estimate_rank, human, run_steps, samples,
 };
 
 /// Environment variable that sets the memory limit in bytes (a suffix k, M, G or T multiplies by
@@ -241,6 +241,42 @@ pub fn check_before_build(
     }
     let est = check_memory(scene, seeds, threads, what)?;
     check_length(scene, est.bars, dt_estimate(scene), None, allow_long, what)?;
+    Ok(())
+}
+
+/// [`check_before_build`] for a seed split over `ranks` MPI ranks, `local` of them on this node:
+/// rank 0's part (the largest: its slab, the recording and the whole block's model, as
+/// `stickslip check --ranks` counts it) against this node's available memory over its ranks, and
+/// the run's length as one process's.
+pub fn check_before_build_split(
+    scene: &Scene,
+    ranks: usize,
+    local: usize,
+    allow_long: bool,
+    what: &str,
+) -> Result<(), EnsembleError> {
+    use stickslip_solver::split::Partition;
+    use stickslip_solver::stencil::StencilLayout;
+    let e = estimate(scene, Batches::ONE, 2).map_err(|e| refused(format!("{what}: {e}")))?;
+    check_count(scene, e.bars, dt_estimate(scene), what)?;
+    let partition = Partition::new(scene.dims, ranks).map_err(|e| refused(format!("{what}: {e}")))?;
+    let w = partition.window(0);
+    let bars = StencilLayout::window(scene.dims, w.lo, w.hi).bars() as u64;
+    let root = estimate_rank(scene, 0, w.nodes as u64, bars, samples(scene, dt_estimate(scene)))
+        .map_err(|e| refused(format!("{what}: {e}")))?;
+    if let Some((limit, source)) = available_memory()? {
+        let share = limit / local.max(1) as u64;
+        if root.total > share {
+            return Err(refused(format!(
+                "{what}: rank 0 of {ranks} MPI ranks needs about {} but this node has {} for each of its {local} ranks \
+                 ({source}): use more ranks, fewer ranks per node or more memory (`stickslip check PIPELINE --ranks \
+                 {ranks}` sizes every rank)",
+                human(root.total),
+                human(share)
+            )));
+        }
+    }
+    check_length(scene, e.bars, dt_estimate(scene), None, allow_long, what)?;
     Ok(())
 }
 

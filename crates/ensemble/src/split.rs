@@ -16,6 +16,8 @@ use stickslip_solver::{Checkpoint, RunOptions, RunOutput, SolverError};
 pub trait SplitSeeds: Send + Sync {
     /// Ranks the seeds are split over.
     fn ranks(&self) -> usize;
+    /// Ranks on this node (rank 0's), which share its memory.
+    fn local_ranks(&self) -> usize;
     /// Runs one seed; `progress` may stop it (every rank stops). With rank 0's `checkpoint`
     /// ([`crate::checkpoints::Checkpoints::of`] rank 0), every rank keeps its own beside it.
     fn run(

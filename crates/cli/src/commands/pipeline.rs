@@ -64,17 +64,24 @@ fn parse_minutes(s: &str) -> Result<f64, String> {
     }
 }
 
-/// Stops the running seeds at the first Ctrl-C (finished ones are kept), at once at the second.
+/// Stops the running seeds at the first Ctrl-C or SIGTERM (finished ones are kept, running ones
+/// that keep checkpoints write one), at once at a second that comes a second or more later (a
+/// cluster may send its SIGTERM twice at once: both stop the seeds as they should).
 pub fn cancel_on_ctrl_c() -> Result<Arc<AtomicBool>> {
     let cancel = Arc::new(AtomicBool::new(false));
     let flag = cancel.clone();
+    let first = std::sync::OnceLock::new();
     ctrlc::set_handler(move || {
+        let at = *first.get_or_init(Instant::now);
         if flag.swap(true, Ordering::SeqCst) {
-            std::process::exit(130);
+            if at.elapsed().as_secs_f64() >= 1.0 {
+                std::process::exit(130);
+            }
+            return;
         }
         errln!(
             "\ninterrupt: finishing the seeds being written, and writing the running seeds' checkpoints if they keep \
-             them (Ctrl-C again to stop at once)"
+             them (Ctrl-C again, a second later, to stop at once)"
         );
     })
     .context("installing the Ctrl-C handler")?;
@@ -233,7 +240,23 @@ fn seeds_to_run(a: &Args, pipelines: &[Pipeline], given: Option<&[u64]>) -> Resu
             check_set_capacity(pipeline, seeds.len())?;
         }
         let what = format!("{}: {} seed{}", pipeline.name, seeds.len(), if seeds.len() == 1 { "" } else { "s" });
-        stickslip_ensemble::budget::check_before_build(&pipeline.scene, seeds.len(), threads, a.allow_long, &what)?;
+        match stickslip_ensemble::split::installed() {
+            // Each seed split over the ranks: rank 0's part, not the whole scene, on this node.
+            Some(split) => stickslip_ensemble::budget::check_before_build_split(
+                &pipeline.scene,
+                split.ranks(),
+                split.local_ranks(),
+                a.allow_long,
+                &what,
+            )?,
+            None => stickslip_ensemble::budget::check_before_build(
+                &pipeline.scene,
+                seeds.len(),
+                threads,
+                a.allow_long,
+                &what,
+            )?,
+        }
         runs.push(seeds);
     }
     Ok(runs)

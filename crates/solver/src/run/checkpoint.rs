@@ -58,9 +58,10 @@ impl Checkpoint {
     /// The step a run would resume from, if the file holds a checkpoint for `key` (read from the
     /// file's header only).
     pub fn resumes_at(&self) -> Option<u64> {
-        let mut file = BufReader::new(std::fs::File::open(&self.path).ok()?);
-        let header = read_header(&mut file).ok()?;
-        (header.key == self.key).then_some(header.steps)
+        let file = std::fs::File::open(&self.path).ok()?;
+        let length = file.metadata().ok()?.len();
+        let header = read_header(&mut BufReader::new(file)).ok()?;
+        (header.key == self.key && whole_length(&header).ok()? == length).then_some(header.steps)
     }
 
     /// Removes the file (the run it was for has finished and been written).
@@ -224,16 +225,21 @@ pub(super) fn read<const L: usize>(path: &Path, expected: &Header) -> Result<Opt
             header.seeds, header.rank, header.ranks, header.nodes
         ));
     }
-    let head =
-        MAGIC.len() as u64 + 4 + bincode::encode_to_vec(&header, config()).map_err(|e| e.to_string())?.len() as u64;
-    if head + header.body != length {
-        return Err(format!("it is {length} bytes long, not the {} its header says", head + header.body));
+    let whole = whole_length(&header)?;
+    if whole != length {
+        return Err(format!("it is {length} bytes long, not the {whole} its header says"));
     }
     let body: Body<L> = bincode::decode_from_std_read(&mut file, config()).map_err(|e| e.to_string())?;
     if body.lanes.len() != L || body.state.u.np1.len() as u64 != header.nodes {
         return Err("its state is not this run's size".into());
     }
     Ok(Some((header.steps, body)))
+}
+
+/// The length of the file `header` heads.
+fn whole_length(header: &Header) -> Result<u64, String> {
+    let head = bincode::encode_to_vec(header, config()).map_err(|e| e.to_string())?.len() as u64;
+    Ok(MAGIC.len() as u64 + 4 + head + header.body)
 }
 
 /// A writer that counts what passes through it.

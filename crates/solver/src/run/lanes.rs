@@ -231,7 +231,18 @@ pub(crate) fn run_lanes_with<const L: usize, H: Hooks<L>>(
         } else {
             None
         };
-        if hooks.resume(found.as_ref().map(|(steps, _)| *steps)) { found.map(|(_, body)| body) } else { None }
+        let at = found.as_ref().map(|(steps, _)| *steps);
+        if hooks.resume(at) {
+            found.map(|(_, body)| body)
+        } else {
+            if let Some(step) = at {
+                c.note_failure(format!(
+                    "{} (step {step}) was not resumed: the other ranks' checkpoints are missing or hold other steps",
+                    c.path.display()
+                ));
+            }
+            None
+        }
     });
     let mut stepper = Stepper::<L>::new(model);
     let skipping = scene.skip_ahead.enabled && L == 1;
