@@ -313,7 +313,7 @@ fn split_over(
         (out.emit)(line(format!("  {p}")));
     }
     (out.emit)(line(format!(
-        "  halo: one module layer of {layer_nodes} nodes each way per neighbour per step, {} per seed (two layers up to a rank whose first layer starts a slab of the stencil)",
+        "  halo: one module layer of {layer_nodes} nodes each way per neighbour per step, {} (two layers up to a rank whose first layer starts a slab of the stencil)",
         human(24 * layer_nodes as u64)
     )));
     let (limit, whose) = match per_rank {

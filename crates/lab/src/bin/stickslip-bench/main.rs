@@ -156,6 +156,22 @@ enum Command {
         #[arg(long, default_value_t = 20)]
         steps: usize,
     },
+    /// A step against what memory allows, measured in one run: the step of the pipeline's scene
+    /// at the given size (e.g. `large-block.toml 500 150 48`, 50.5 M bars) on every thread, a
+    /// triad over the same bytes on the same threads, and their ratio.
+    Bandwidth {
+        /// Pipeline file (TOML).
+        pipeline: PathBuf,
+        /// Modules along x [default: the pipeline's].
+        nx: Option<usize>,
+        /// Modules along y.
+        ny: Option<usize>,
+        /// Modules along z.
+        nz: Option<usize>,
+        /// Steps timed in each of three rounds.
+        #[arg(long, default_value_t = 20)]
+        steps: usize,
+    },
     /// What the medium costs a step (docs/model.md §18, BENCHMARKS.md §11).
     Medium(medium::MediumArgs),
     /// Sweeps assumed values of a pipeline's scene over seeds and prints the main shocks of each
@@ -298,6 +314,27 @@ fn run(c: Command) -> Result<()> {
             Ok(())
         }
         Command::Medium(a) => medium::run(a),
+        Command::Bandwidth { pipeline, nx, ny, nz, steps } => {
+            let p = Pipeline::load(&pipeline)?;
+            let mut scene = p.scene.clone();
+            let d = scene.dims;
+            scene.dims = stickslip_solver::Dims::new(nx.unwrap_or(d.nx), ny.unwrap_or(d.ny), nz.unwrap_or(d.nz));
+            let b = stickslip_lab::setup_cost::bandwidth(scene, p.seeds[0], steps)?;
+            println!(
+                "{} bars, {} nodes, {} threads: a step touches {:.1} MB and takes {:.2} ms; a triad over the same bytes \
+                 streams {:.1} GB/s (STREAM's count), so a step takes at least {:.2} ms: the step runs at {:.0}% of what \
+                 memory allows",
+                b.bars,
+                b.nodes,
+                rayon::current_num_threads(),
+                b.bytes as f64 / 1e6,
+                1e3 * b.step_s,
+                b.triad_b_s / 1e9,
+                1e3 * b.bound_s(),
+                100.0 * b.ratio()
+            );
+            Ok(())
+        }
         Command::Setup { pipeline, nx, ny, nz, steps } => {
             let p = Pipeline::load(&pipeline)?;
             let mut scene = p.scene.clone();
