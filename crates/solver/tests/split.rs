@@ -308,3 +308,25 @@ fn the_critical_step_found_by_the_ranks_together_is_the_one_process_s() {
         }
     }
 }
+
+/// The paper's block grown to 60 × 6 × 20 modules (gravity, a Coulomb base, a driver, a Weibull
+/// field on E): its self-weight stage settles dynamically on every rank together (the equilibrium
+/// check's sum handed from rank to rank), then it is sheared: the one process's output on 2 and
+/// 3 ranks; a static self-weight is refused, saying why.
+#[test]
+fn a_split_run_with_a_self_weight_stage_gives_the_one_process_output() {
+    let mut scene = Scene::paper();
+    scene.dims = stickslip_solver::Dims::new(60, 6, 20);
+    scene.shear.duration_s = 0.01;
+    assert!(scene.self_weight.gravity_m_s2 > 0.0 && scene.dims.bar_count() >= 100_000);
+    let one =
+        run_seed(&Model::new(scene.clone()), 2, RunOptions::default(), &mut |_| ControlFlow::Continue(())).unwrap();
+    assert!(one.settle_steps > 0, "a self-weight stage");
+    for ranks in [2, 3] {
+        let split = run_split_threads(&scene, 2, ranks).unwrap();
+        assert!(format!("{split:?}") == format!("{one:?}"), "{ranks} ranks: the output differs from one process's");
+    }
+    scene.self_weight.method = stickslip_solver::scene::SettleMethod::Static;
+    let e = run_split_threads(&scene, 2, 2).unwrap_err();
+    assert!(e.to_string().contains("self_weight.method = \"dynamic\""), "{e}");
+}

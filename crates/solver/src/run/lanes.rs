@@ -112,6 +112,15 @@ pub(crate) trait Hooks<const L: usize> {
     fn resume(&mut self, at: Option<u64>) -> bool {
         at.is_some()
     }
+    /// The self-weight stage's residual force of a lane ([`LaneView::out_of_balance`]), of the
+    /// whole block.
+    fn out_of_balance(&mut self, view: &LaneView<'_, '_, L>) -> f64 {
+        view.out_of_balance()
+    }
+    /// `‖m‖·g`, the weight's norm, of the whole block.
+    fn weight_norm(&mut self, model: &Model, gravity: f64) -> f64 {
+        model.mass().iter().map(|m| m * m).sum::<f64>().sqrt() * gravity
+    }
     /// Whether this process records (rank 0 of a split scene, or the only one).
     fn records(&self) -> bool {
         true
@@ -253,7 +262,7 @@ pub(crate) fn run_lanes_with<const L: usize, H: Hooks<L>>(
     // agrees whether to stop, at the same steps.
     let bars = crate::memory::counts(scene.dims).map_or(model.bar_count() as u64, |(_, b)| b);
     let progress_every = (PROGRESS_BAR_UPDATES / (bars * L as u64).max(1)).clamp(1, PROGRESS_EVERY);
-    let weight_norm: f64 = model.mass().iter().map(|m| m * m).sum::<f64>().sqrt() * sw.gravity_m_s2;
+    let weight_norm = hooks.weight_norm(model, sw.gravity_m_s2);
     let mut lanes: [Lane; L] = std::array::from_fn(|l| Lane {
         seed: seeds[l],
         stage: Stage::Settling { max_steps: (sw.max_duration_s / dts[l]).ceil() as u64 },
@@ -395,7 +404,8 @@ pub(crate) fn run_lanes_with<const L: usize, H: Hooks<L>>(
                         r.sample_view(&LaneView { params: &params, state: &state, lane: l }, view);
                     }
                     if view.is_multiple_of(SETTLE_CHECK_EVERY) && view > 0 {
-                        let ratio = LaneView { params: &params, state: &state, lane: l }.out_of_balance() / weight_norm;
+                        let ratio =
+                            hooks.out_of_balance(&LaneView { params: &params, state: &state, lane: l }) / weight_norm;
                         if ratio < sw.settle_tolerance {
                             lane.settle_steps = state.steps;
                             lane.stage = start_shear(&mut params, &mut state, l);

@@ -1,12 +1,13 @@
 //! One seed of a scene split over ranks (docs/model.md §19): the run loop of one process
-//! ([`run_lanes`](crate::run::run_lanes)), with the halo exchanged after every step, Δt and the
-//! critical step from rank 0, the blow-up check and the decision to stop agreed by every rank, and
-//! rank 0 recording, each step, the stations and drivers other ranks hold. Rank 0's
-//! [`RunOutput`] is then the one process's, bit for bit.
+//! ([`run_lanes`](crate::run::run_lanes)), with the halo exchanged after every step, the critical
+//! step found by every rank together, the self-weight stage's equilibrium check summed in the one
+//! process's order (handed from rank to rank), the blow-up check and the decision to stop agreed
+//! by every rank, and rank 0 recording, each step, the stations and drivers other ranks hold.
+//! Rank 0's [`RunOutput`] is then the one process's, bit for bit.
 //!
-//! Not yet: the energy ledger (sums over every node and bar, whose order would depend on the
-//! split), the self-weight stage (its equilibrium check is such a sum), the skip-ahead, and
-//! drivers or a loading plate held by more than one rank; each is refused before the run starts.
+//! Not yet: the energy ledger (sums over every node and bar each step), the static self-weight
+//! (conjugate gradients), the skip-ahead, and drivers or a loading plate held by more than one
+//! rank; each is refused before the run starts.
 
 use std::ops::ControlFlow;
 
@@ -17,7 +18,7 @@ use crate::error::SolverError;
 use crate::model::{Model, canonical_of_internal};
 use crate::observe::Observed;
 use crate::scene::ControlChannel;
-use crate::split::{Halo, Neighbours, Partition, Window};
+use crate::split::{Halo, Neighbours, Partition, Window, handed_sum};
 use crate::statics::CriticalStep;
 use crate::statics::critical::critical_step_split;
 use crate::step::{LaneSetup, LaneView, Params, State};
@@ -127,9 +128,10 @@ fn splittable(scene: &crate::Scene) -> Result<(), String> {
     if scene.record.energy {
         return Err("the energy ledger of a split scene is not built yet: set record.energy = false".into());
     }
-    if scene.self_weight.gravity_m_s2 != 0.0 {
+    if scene.self_weight.gravity_m_s2 != 0.0 && scene.self_weight.method == crate::scene::SettleMethod::Static {
         return Err(
-            "the self-weight stage of a split scene is not built yet (its equilibrium check sums every node): set self_weight.gravity_m_s2 = 0"
+            "the static self-weight (conjugate gradients over the whole block) of a split scene is not built yet: set \
+             self_weight.method = \"dynamic\""
                 .into(),
         );
     }
@@ -251,6 +253,18 @@ impl Hooks<1> for Split<'_> {
         }
         let id = canonical_of_internal(view.params.model.scene().dims, found[0] as usize);
         Some((id, view.blowup_what(found[1] as usize, found[2], found[3])))
+    }
+
+    fn out_of_balance(&mut self, view: &LaneView<'_, '_, 1>) -> f64 {
+        let mut terms = Vec::with_capacity(3 * self.window.owned.len());
+        view.out_of_balance_terms(self.window.owned.clone(), |t| terms.push(t));
+        handed_sum(self.ranks, 0.0, &terms, 3).sqrt()
+    }
+
+    fn weight_norm(&mut self, model: &Model, gravity: f64) -> f64 {
+        let mass = &model.mass()[self.window.owned.clone()];
+        let terms: Vec<f64> = mass.iter().map(|m| m * m).collect();
+        handed_sum(self.ranks, std::iter::empty::<f64>().sum(), &terms, 1).sqrt() * gravity
     }
 
     fn place(&self) -> (usize, usize) {

@@ -256,3 +256,28 @@ fn unpack<const L: usize>(data: &[f64], r: Range<usize>, u: &mut Field<L>) {
         u.c[c][r.clone()].as_flattened_mut().copy_from_slice(&data[c * n..(c + 1) * n]);
     }
 }
+
+/// One sum in the flat order of every rank's `terms` (`parts` equal parts one after another, e.g.
+/// the three components, each over the rank's owned nodes in order), from `start`: each rank adds
+/// its terms of a part on to the sum so far, handed from rank to rank, part by part. The same bits
+/// as one process's single sum over the whole block's terms; every rank gets it.
+pub(crate) fn handed_sum(ranks: &mut dyn Neighbours, start: f64, terms: &[f64], parts: usize) -> f64 {
+    let m = terms.len() / parts;
+    let mut sum = [start];
+    for part in 0..parts {
+        for r in 0..ranks.size() {
+            ranks.broadcast(&mut sum);
+            let mine: Vec<f64> = if ranks.rank() == r {
+                vec![terms[part * m..(part + 1) * m].iter().fold(sum[0], |s, t| s + t)]
+            } else {
+                Vec::new()
+            };
+            let all = ranks.gather(&mine);
+            if ranks.rank() == 0 {
+                sum[0] = all[r][0];
+            }
+        }
+    }
+    ranks.broadcast(&mut sum);
+    sum[0]
+}

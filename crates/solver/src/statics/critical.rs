@@ -19,7 +19,7 @@ use crate::field::Field;
 use crate::geometry::Direction;
 use crate::layout::Bars;
 use crate::model::Model;
-use crate::split::{Halo, Neighbours, Window};
+use crate::split::{Halo, Neighbours, Window, handed_sum};
 use crate::step::bars::bar_forces;
 use crate::step::{LaneStiffness, StiffnessRef};
 
@@ -333,7 +333,8 @@ fn lanczos_split(
             *v = u - 0.5;
         }
     }
-    let norm = handed_sum(ranks, &q, m).sqrt();
+    let squares: Vec<f64> = q.iter().map(|v| v * v).collect();
+    let norm = handed_sum(ranks, std::iter::empty::<f64>().sum(), &squares, 3).sqrt();
     q.iter_mut().for_each(|v| *v /= norm);
     for c in 0..3 {
         for j in 0..m {
@@ -414,29 +415,6 @@ fn lanczos_split(
     Err(SolverError::Numerical(format!(
         "critical step: Lanczos did not converge (θ = {theta:e}, residual {residual:e})"
     )))
-}
-
-/// `Σ_d t_d` in the flat order as one sum (`Iterator::sum`'s), each rank's `terms` (`m` per
-/// component, starting at the flat index of its first owned node) added on to the sum so far,
-/// handed from rank to rank: component by component, rank by rank.
-fn handed_sum(ranks: &mut dyn Neighbours, terms: &[f64], m: usize) -> f64 {
-    let mut sum = [std::iter::empty::<f64>().sum::<f64>()];
-    for c in 0..3 {
-        for r in 0..ranks.size() {
-            ranks.broadcast(&mut sum);
-            let mine: Vec<f64> = if ranks.rank() == r {
-                vec![terms[c * m..(c + 1) * m].iter().map(|t| t * t).fold(sum[0], |s, t| s + t)]
-            } else {
-                Vec::new()
-            };
-            let all = ranks.gather(&mine);
-            if ranks.rank() == 0 {
-                sum[0] = all[r][0];
-            }
-        }
-    }
-    ranks.broadcast(&mut sum);
-    sum[0]
 }
 
 /// The one process's blocked sum ([`sum_blocks`] of blocks of [`STENCIL_BLOCK`] degrees of

@@ -177,19 +177,25 @@ impl<const L: usize> LaneView<'_, '_, L> {
     /// Out-of-balance force `‖m·a + c·v‖₂` over all nodes and components (N): zero at static
     /// equilibrium.
     pub fn out_of_balance(&self) -> f64 {
+        let mut sum = 0.0;
+        self.out_of_balance_terms(0..self.params.model.node_count(), |t| sum += t);
+        sum.sqrt()
+    }
+
+    /// The squared terms of [`LaneView::out_of_balance`] of `nodes`, component by component,
+    /// each node in order, handed to `add`.
+    pub(crate) fn out_of_balance_terms(&self, nodes: std::ops::Range<usize>, mut add: impl FnMut(f64)) {
         let (l, u) = (self.lane, &self.state.u);
         let mass = self.params.model.mass();
         let (dt, d) = (self.params.dt(l), self.params.damping(l));
         let (ha, hv) = (1.0 / (dt * dt), d * 0.5 / dt);
-        let mut sum = 0.0;
         for c in 0..3 {
             let (a, b, o) = (&u.np1.c[c], &u.n.c[c], &u.nm1.c[c]);
-            for i in 0..mass.len() {
+            for i in nodes.clone() {
                 let r = mass[i] * ((a[i][l] - 2.0 * b[i][l] + o[i][l]) * ha + (a[i][l] - o[i][l]) * hv);
-                sum += r * r;
+                add(r * r);
             }
         }
-        sum.sqrt()
     }
 
     /// A blow-up in the last step: a non-finite displacement, or a node that moved more than
