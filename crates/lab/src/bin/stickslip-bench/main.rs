@@ -2,6 +2,7 @@
 //! `reports/bench/`). A developers' tool beside the product's `stickslip` binary, which does not
 //! link the lab: `cargo run --release -p stickslip-lab --bin stickslip-bench -- <command>`.
 
+mod large;
 mod medium;
 mod part_a;
 
@@ -15,7 +16,6 @@ use stickslip_lab::convergence::{Cell, Loading, QUANTITIES, compare, convergence
 use stickslip_lab::peer::peer;
 use stickslip_lab::recording_cost::recording_cost;
 use stickslip_lab::scec::{self, Reference, read_run};
-use stickslip_lab::setup_cost::setup_cost;
 use stickslip_lab::skip::{JumpCheck, SkipBench, compare_skip, jumps_frame, runs_frame};
 use stickslip_store::io::write_parquet_atomic;
 
@@ -143,35 +143,11 @@ enum Command {
     },
     /// What a run does before its first step against a step: the pipeline's scene at the given
     /// size (e.g. `large-block.toml 500 150 48`), its first seed, on one thread and on all of them.
-    Setup {
-        /// Pipeline file (TOML).
-        pipeline: PathBuf,
-        /// Modules along x [default: the pipeline's].
-        nx: Option<usize>,
-        /// Modules along y.
-        ny: Option<usize>,
-        /// Modules along z.
-        nz: Option<usize>,
-        /// Steps timed.
-        #[arg(long, default_value_t = 20)]
-        steps: usize,
-    },
+    Setup(large::SetupArgs),
     /// A step against what memory allows, measured in one run: the step of the pipeline's scene
     /// at the given size (e.g. `large-block.toml 500 150 48`, 50.5 M bars) on every thread, a
     /// triad over the same bytes on the same threads, and their ratio.
-    Bandwidth {
-        /// Pipeline file (TOML).
-        pipeline: PathBuf,
-        /// Modules along x [default: the pipeline's].
-        nx: Option<usize>,
-        /// Modules along y.
-        ny: Option<usize>,
-        /// Modules along z.
-        nz: Option<usize>,
-        /// Steps timed in each of three rounds.
-        #[arg(long, default_value_t = 20)]
-        steps: usize,
-    },
+    Bandwidth(large::SizeArgs),
     /// What the medium costs a step (docs/model.md §18, BENCHMARKS.md §11).
     Medium(medium::MediumArgs),
     /// Sweeps assumed values of a pipeline's scene over seeds and prints the main shocks of each
@@ -314,70 +290,8 @@ fn run(c: Command) -> Result<()> {
             Ok(())
         }
         Command::Medium(a) => medium::run(a),
-        Command::Bandwidth { pipeline, nx, ny, nz, steps } => {
-            let p = Pipeline::load(&pipeline)?;
-            let mut scene = p.scene.clone();
-            let d = scene.dims;
-            scene.dims = stickslip_solver::Dims::new(nx.unwrap_or(d.nx), ny.unwrap_or(d.ny), nz.unwrap_or(d.nz));
-            let b = stickslip_lab::setup_cost::bandwidth(scene, p.seeds[0], steps)?;
-            println!(
-                "{} bars, {} nodes, {} threads: a step touches {:.1} MB and takes {:.2} ms; a triad over the same bytes \
-                 streams {:.1} GB/s (STREAM's count), so a step takes at least {:.2} ms: the step runs at {:.0}% of what \
-                 memory allows",
-                b.bars,
-                b.nodes,
-                rayon::current_num_threads(),
-                b.bytes as f64 / 1e6,
-                1e3 * b.step_s,
-                b.triad_b_s / 1e9,
-                1e3 * b.bound_s(),
-                100.0 * b.ratio()
-            );
-            Ok(())
-        }
-        Command::Setup { pipeline, nx, ny, nz, steps } => {
-            let p = Pipeline::load(&pipeline)?;
-            let mut scene = p.scene.clone();
-            let d = scene.dims;
-            scene.dims = stickslip_solver::Dims::new(nx.unwrap_or(d.nx), ny.unwrap_or(d.ny), nz.unwrap_or(d.nz));
-            let seed = p.seeds[0];
-            println!(
-                "{:>8} {:>11} {:>8} {:>8} {:>8} {:>4} {:>8} {:>8} {:>9} {:>9} {:>11}",
-                "threads",
-                "bars",
-                "model_s",
-                "stiff_s",
-                "crit_s",
-                "its",
-                "state_s",
-                "setup_s",
-                "step_s",
-                "setup/step",
-                "updates/s"
-            );
-            let all = std::thread::available_parallelism().map_or(1, |n| n.get());
-            for threads in [1, all] {
-                let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build()?;
-                let c = pool.install(|| setup_cost(scene.clone(), seed, steps, threads > 1))?;
-                println!(
-                    "{threads:>8} {:>11} {:>8.3} {:>8.3} {:>8.3} {:>4} {:>8.3} {:>8.3} {:>9.4} {:>9.1} {:>11.3e}",
-                    c.bars,
-                    c.model_s,
-                    c.stiffness_s,
-                    c.critical_s,
-                    c.iterations,
-                    c.state_s,
-                    c.setup_s(),
-                    c.step_s,
-                    c.setup_s() / c.step_s,
-                    c.bars as f64 / c.step_s
-                );
-                if all == 1 {
-                    break;
-                }
-            }
-            Ok(())
-        }
+        Command::Setup(a) => large::setup(a),
+        Command::Bandwidth(a) => large::bandwidth(a),
         Command::Calibrate { pipeline, values, seeds } => {
             let p = Pipeline::load(&pipeline)?;
             let mut grid = Vec::new();
