@@ -117,6 +117,31 @@ pub(super) struct Header {
     pub body: u64,
 }
 
+impl Header {
+    /// The header of a run of `model` with `seeds` and their steps `dts` on `rank` of `ranks`,
+    /// at `steps` (the body's length is filled in as it is written).
+    pub(super) fn of(
+        key: &str,
+        seeds: &[u64],
+        model: &crate::Model,
+        dts: &[f64],
+        (rank, ranks): (usize, usize),
+        steps: u64,
+    ) -> Header {
+        Header {
+            key: key.to_string(),
+            seeds: seeds.to_vec(),
+            nodes: model.node_count() as u64,
+            bars: model.bar_count() as u64,
+            dt: dts.iter().map(|d| d.to_bits()).collect(),
+            rank: rank as u64,
+            ranks: ranks as u64,
+            steps,
+            body: 0,
+        }
+    }
+}
+
 /// Where a lane was.
 #[derive(Debug, Clone, Copy, Encode, Decode)]
 pub(super) enum StageAt {

@@ -220,18 +220,7 @@ pub(crate) fn run_lanes_with<const L: usize, H: Hooks<L>>(
     let mut state = State::<L>::for_params(&params);
     // The checkpoint this run resumes from, if every rank has one of the same step.
     let resumed = checkpoint.and_then(|c| {
-        let (rank, ranks) = hooks.place();
-        let expected = Header {
-            key: c.key.clone(),
-            seeds: seeds.to_vec(),
-            nodes: model.node_count() as u64,
-            bars: model.bar_count() as u64,
-            dt: dts.iter().map(|d| d.to_bits()).collect(),
-            rank: rank as u64,
-            ranks: ranks as u64,
-            steps: 0,
-            body: 0,
-        };
+        let expected = Header::of(&c.key, &seeds, model, &dts, hooks.place(), 0);
         let found = if prepared.iter().all(Result::is_ok) {
             checkpoint::read::<L>(&c.path, &expected)
                 .map_err(|why| c.note_failure(format!("{} was not resumed: {why}", c.path.display())))
@@ -528,24 +517,14 @@ pub(crate) fn run_lanes_with<const L: usize, H: Hooks<L>>(
 /// Writes the checkpoint of the lanes at the state's step.
 fn save_checkpoint<const L: usize>(
     c: &Checkpoint,
-    (rank, ranks): (usize, usize),
+    place: (usize, usize),
     model: &Model,
     seeds: &[u64; L],
     dts: &[f64],
     state: &State<L>,
     lanes: &[Lane; L],
 ) -> Result<(), String> {
-    let header = Header {
-        key: c.key.clone(),
-        seeds: seeds.to_vec(),
-        nodes: model.node_count() as u64,
-        bars: model.bar_count() as u64,
-        dt: dts.iter().map(|d| d.to_bits()).collect(),
-        rank: rank as u64,
-        ranks: ranks as u64,
-        steps: state.steps,
-        body: 0,
-    };
+    let header = Header::of(&c.key, seeds, model, dts, place, state.steps);
     let lanes: Vec<LaneRef<'_>> = lanes
         .iter()
         .map(|lane| LaneRef {

@@ -156,9 +156,8 @@ fn lanczos_with(model: &Model, k: StiffnessRef<'_, 1>, how: Lanczos, cap: f64) -
         }
     }
     let mut q_prev = vec![0.0; dof];
-    let (mut alphas, mut betas) = (Vec::new(), Vec::new());
+    let mut t = Tridiagonal::default();
     let max_iter = dof.min(max_iter);
-    let mut best: Option<(f64, f64)> = None;
     // A listed lattice's sums run over every degree of freedom in one block (in order); a
     // stencil's in blocks of `STENCIL_BLOCK`, the blocks' sums then added in order.
     let block = if matches!(model.layout(), Bars::Stencil(_)) { STENCIL_BLOCK } else { usize::MAX };
@@ -170,7 +169,7 @@ fn lanczos_with(model: &Model, k: StiffnessRef<'_, 1>, how: Lanczos, cap: f64) -
             _ => bar_forces(model.layout(), k1, &x, &mut f),
         }
         // w = −M^{-1/2}f − β_prev·q_prev (into x, f cleared), α = w·q.
-        let beta_prev = betas.last().copied().unwrap_or(0.0);
+        let beta_prev = t.betas.last().copied().unwrap_or(0.0);
         let (q_r, qp_r, ism) = (&q, &q_prev, &inv_sqrt_m);
         let alpha = sum_blocks(blocks(&mut x, Some(&mut f), block), par, |b| {
             let mut s = -0.0;
@@ -202,27 +201,8 @@ fn lanczos_with(model: &Model, k: StiffnessRef<'_, 1>, how: Lanczos, cap: f64) -
             s
         });
         let beta: f64 = beta2.sqrt();
-        alphas.push(alpha);
-        betas.push(beta);
-        let invariant = beta <= 1e-12 * alpha.abs().max(1e-300);
-        if it % check_every == 0 || it == max_iter || invariant {
-            let (theta, residual) = top_ritz(&alphas, &betas);
-            best = Some((theta, residual));
-            if residual <= LANCZOS_TOLERANCE * theta || invariant || it == max_iter {
-                let bound = (theta + residual).min(gershgorin) + plate;
-                if !(bound > 0.0 && bound.is_finite()) {
-                    return Err(SolverError::Numerical(format!(
-                        "largest stiffness eigenvalue is {bound:e}: the lattice has no positive stiffness"
-                    )));
-                }
-                let omega = bound.sqrt();
-                return Ok(CriticalStep {
-                    omega_max: omega,
-                    dt_s: 2.0 / omega,
-                    iterations: it,
-                    relative_residual: residual / theta,
-                });
-            }
+        if let Some(done) = t.push(alpha, beta, it, (max_iter, check_every), (gershgorin, plate)) {
+            return done;
         }
         // q_prev ← q, q ← w/β, x ← M^{-1/2}q.
         std::mem::swap(&mut q_prev, &mut q);
@@ -244,10 +224,7 @@ fn lanczos_with(model: &Model, k: StiffnessRef<'_, 1>, how: Lanczos, cap: f64) -
             bl.into_iter().zip(q.chunks_mut(block)).for_each(next);
         }
     }
-    let (theta, residual) = best.unwrap_or((gershgorin, 0.0));
-    Err(SolverError::Numerical(format!(
-        "critical step: Lanczos did not converge (θ = {theta:e}, residual {residual:e})"
-    )))
+    Err(t.not_converged(gershgorin))
 }
 
 /// The seed of Lanczos's starting vector.
@@ -344,9 +321,8 @@ fn lanczos_split(
     halo.exchange(w, &mut x, ranks);
     let mut q_prev = vec![0.0; 3 * m];
     let mut terms = vec![0.0; 3 * m];
-    let (mut alphas, mut betas) = (Vec::new(), Vec::new());
+    let mut t = Tridiagonal::default();
     let max_iter = dof.min(max_iter);
-    let mut best: Option<(f64, f64)> = None;
     let Bars::Stencil(layout) = model.layout() else { unreachable!("a window is a stencil") };
     for it in 1..=max_iter {
         if parallel {
@@ -355,7 +331,7 @@ fn lanczos_split(
             crate::step::stencil::forces(layout, k, &x, &mut f);
         }
         // w = −M^{-1/2}f − β_prev·q_prev, α = w·q.
-        let beta_prev = betas.last().copied().unwrap_or(0.0);
+        let beta_prev = t.betas.last().copied().unwrap_or(0.0);
         for c in 0..3 {
             for j in 0..m {
                 let i = owned.start + j;
@@ -377,27 +353,8 @@ fn lanczos_split(
         }
         let beta2 = block_sum(ranks, &terms, m, starts);
         let beta: f64 = beta2.sqrt();
-        alphas.push(alpha);
-        betas.push(beta);
-        let invariant = beta <= 1e-12 * alpha.abs().max(1e-300);
-        if it % check_every == 0 || it == max_iter || invariant {
-            let (theta, residual) = top_ritz(&alphas, &betas);
-            best = Some((theta, residual));
-            if residual <= LANCZOS_TOLERANCE * theta || invariant || it == max_iter {
-                let bound = (theta + residual).min(gershgorin) + plate;
-                if !(bound > 0.0 && bound.is_finite()) {
-                    return Err(SolverError::Numerical(format!(
-                        "largest stiffness eigenvalue is {bound:e}: the lattice has no positive stiffness"
-                    )));
-                }
-                let omega = bound.sqrt();
-                return Ok(CriticalStep {
-                    omega_max: omega,
-                    dt_s: 2.0 / omega,
-                    iterations: it,
-                    relative_residual: residual / theta,
-                });
-            }
+        if let Some(done) = t.push(alpha, beta, it, (max_iter, check_every), (gershgorin, plate)) {
+            return done;
         }
         // q_prev ← q, q ← w/β, x ← M^{-1/2}q, the halo's x from the neighbours.
         std::mem::swap(&mut q_prev, &mut q);
@@ -411,10 +368,7 @@ fn lanczos_split(
         }
         halo.exchange(w, &mut x, ranks);
     }
-    let (theta, residual) = best.unwrap_or((gershgorin, 0.0));
-    Err(SolverError::Numerical(format!(
-        "critical step: Lanczos did not converge (θ = {theta:e}, residual {residual:e})"
-    )))
+    Err(t.not_converged(gershgorin))
 }
 
 /// The one process's blocked sum ([`sum_blocks`] of blocks of [`STENCIL_BLOCK`] degrees of
@@ -463,6 +417,62 @@ fn block_sum(ranks: &mut dyn Neighbours, terms: &[f64], m: usize, starts: [usize
     }
     ranks.broadcast(&mut total);
     total[0]
+}
+
+/// Lanczos's tridiagonal as it grows, and its top Ritz pair when last looked at.
+#[derive(Default)]
+struct Tridiagonal {
+    alphas: Vec<f64>,
+    betas: Vec<f64>,
+    best: Option<(f64, f64)>,
+}
+
+impl Tridiagonal {
+    /// Adds iteration `it`'s `α` and `β`; looks at the top Ritz pair every `check_every`
+    /// iterations (and at `max_iter`, or when the space is invariant) and ends the iteration when
+    /// it has converged: `θ + residual` capped by the node bound `cap`, plus the plate's
+    /// stiffening.
+    fn push(
+        &mut self,
+        alpha: f64,
+        beta: f64,
+        it: usize,
+        (max_iter, check_every): (usize, usize),
+        (cap, plate): (f64, f64),
+    ) -> Option<Result<CriticalStep, SolverError>> {
+        self.alphas.push(alpha);
+        self.betas.push(beta);
+        let invariant = beta <= 1e-12 * alpha.abs().max(1e-300);
+        if !(it.is_multiple_of(check_every) || it == max_iter || invariant) {
+            return None;
+        }
+        let (theta, residual) = top_ritz(&self.alphas, &self.betas);
+        self.best = Some((theta, residual));
+        if !(residual <= LANCZOS_TOLERANCE * theta || invariant || it == max_iter) {
+            return None;
+        }
+        let bound = (theta + residual).min(cap) + plate;
+        if !(bound > 0.0 && bound.is_finite()) {
+            return Some(Err(SolverError::Numerical(format!(
+                "largest stiffness eigenvalue is {bound:e}: the lattice has no positive stiffness"
+            ))));
+        }
+        let omega = bound.sqrt();
+        Some(Ok(CriticalStep {
+            omega_max: omega,
+            dt_s: 2.0 / omega,
+            iterations: it,
+            relative_residual: residual / theta,
+        }))
+    }
+
+    /// The error of an iteration that ended unconverged.
+    fn not_converged(&self, cap: f64) -> SolverError {
+        let (theta, residual) = self.best.unwrap_or((cap, 0.0));
+        SolverError::Numerical(format!(
+            "critical step: Lanczos did not converge (θ = {theta:e}, residual {residual:e})"
+        ))
+    }
 }
 
 /// Degrees of freedom per block of Lanczos's vector passes on a stencil lattice: each block's
