@@ -79,9 +79,11 @@ fn default_threads() -> usize {
 /// The ranks on this node: Open MPI's `OMPI_COMM_WORLD_LOCAL_SIZE`, MPICH's `MPI_LOCALNRANKS` or
 /// Slurm's `SLURM_NTASKS_PER_NODE`, else 1.
 fn local_ranks() -> usize {
+    // Slurm writes e.g. `2(x3)` for three nodes of two tasks each.
+    let leading = |s: String| s.chars().take_while(char::is_ascii_digit).collect::<String>().parse::<usize>().ok();
     ["OMPI_COMM_WORLD_LOCAL_SIZE", "MPI_LOCALNRANKS", "SLURM_NTASKS_PER_NODE"]
         .iter()
-        .find_map(|v| std::env::var(v).ok().and_then(|s| s.parse::<usize>().ok()).filter(|&n| n > 0))
+        .find_map(|v| std::env::var(v).ok().and_then(leading).filter(|&n| n > 0))
         .unwrap_or(1)
 }
 
@@ -250,7 +252,8 @@ impl SplitSeeds for RootRunner {
         };
         // The output folder: `<out>/checkpoints/<file>`.
         let out = checkpoint.and_then(|c| c.path.parent()?.parent().map(|p| p.as_os_str().as_encoded_bytes().to_vec()));
-        let every = checkpoint.and_then(|c| c.every_s).zip(out.as_ref().map(Vec::len));
+        // Infinite: written only when stopped.
+        let every = checkpoint.map(|c| c.every_s.unwrap_or(f64::INFINITY)).zip(out.as_ref().map(Vec::len));
         let mut order = order(index, seed, &options, every);
         comm.0.process_at_rank(0).broadcast_into(&mut order[..]);
         if let Some(mut out) = out {
@@ -300,15 +303,9 @@ fn follow(world: &SimpleCommunicator, pipelines: &[Pipeline]) {
             // Rank 0 says it was stopped.
             Some(Err(SolverError::Cancelled)) => {}
             Some(Err(e)) => eprintln!("MPI rank {rank}, seed {seed}: {e}"),
-            // Run through: rank 0 keeps its checkpoint until the seed is written, the others
-            // have no more use for theirs.
-            _ => {
-                if let Some(c) = &checkpoint
-                    && let Err(e) = c.remove()
-                {
-                    eprintln!("MPI rank {rank}, seed {seed}: removing {}: {e}", c.path.display());
-                }
-            }
+            // Run through: rank 0 removes every rank's checkpoint once the seed is written (a
+            // stop before that resumes from them).
+            _ => {}
         }
         if let Some(why) = checkpoint.as_ref().and_then(Checkpoint::failure) {
             eprintln!("warning: MPI rank {rank}, seed {seed}'s checkpoint: {why}");

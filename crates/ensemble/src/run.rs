@@ -345,16 +345,18 @@ pub fn run_ensemble(
             };
             let written = written.and(kept);
             profile.writing_s += thread_cpu_s() - writing;
-            // Written: its checkpoint has served (rank 0's; the other ranks removed theirs).
+            // Written: its checkpoints have served (every rank's, on a folder every rank sees).
             let ranks = crate::split::installed().map_or(1, |s| s.ranks());
             let written = written.and_then(|()| {
-                let file = out.checkpoint(r.seed, 0, ranks);
-                match std::fs::remove_file(&file) {
-                    Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
-                        Err(stickslip_store::StoreError::io(&file, e))
+                (0..ranks).try_for_each(|rank| {
+                    let file = out.checkpoint(r.seed, rank, ranks);
+                    match std::fs::remove_file(&file) {
+                        Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+                            Err(stickslip_store::StoreError::io(&file, e))
+                        }
+                        _ => Ok(()),
                     }
-                    _ => Ok(()),
-                }
+                })
             });
             match written {
                 Ok(()) => {

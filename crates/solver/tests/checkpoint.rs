@@ -93,7 +93,11 @@ fn a_checkpoint_of_another_run_or_a_truncated_one_is_not_resumed() {
     assert_eq!(first, 0.0, "started over");
     assert!(format!("{out:?}") == format!("{one:?}"));
     let why = other.failure().expect("says why the file was not resumed");
-    assert!(why.contains("seed-3.ckpt was not resumed: it was written for another run"), "{why}");
+    assert!(
+        why.contains("seed-3.ckpt was not resumed (kept as ") && why.contains("it was written for another run"),
+        "{why}"
+    );
+    assert!(file.with_extension("ckpt.unread").exists(), "the file not resumed is kept aside, not overwritten");
     // Truncated: not resumed either.
     stopped(&model, &c, |f| f > 0.3);
     let bytes = std::fs::read(&file).unwrap();

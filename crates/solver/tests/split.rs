@@ -315,10 +315,15 @@ fn the_critical_step_found_by_the_ranks_together_is_the_one_process_s() {
 /// 3 ranks; a static self-weight is refused, saying why.
 #[test]
 fn a_split_run_with_a_self_weight_stage_gives_the_one_process_output() {
+    use stickslip_solver::scene::{Component, ControlChannel, Kinematic};
     let mut scene = Scene::paper();
     scene.dims = stickslip_solver::Dims::new(60, 6, 20);
     scene.shear.duration_s = 0.01;
     assert!(scene.self_weight.gravity_m_s2 > 0.0 && scene.dims.bar_count() >= 100_000);
+    // The settling recorded too, with a station near the top (another rank's).
+    scene.record.settling = true;
+    let top = scene.lattice().node_at([3.0, 0.3, 1.9]).unwrap();
+    scene.record.control.push(ControlChannel { node: top, quantity: Kinematic::Acceleration, component: Component::Z });
     let one =
         run_seed(&Model::new(scene.clone()), 2, RunOptions::default(), &mut |_| ControlFlow::Continue(())).unwrap();
     assert!(one.settle_steps > 0, "a self-weight stage");

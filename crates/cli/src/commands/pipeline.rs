@@ -50,8 +50,8 @@ pub struct Args {
     pub allow_long: bool,
     /// Keep each running seed's checkpoint in <out>/checkpoints/, written every MINUTES of wall
     /// clock and when the run is stopped (Ctrl-C, SIGTERM): the same command run again resumes
-    /// each seed where it stopped, with the numbers of a run never stopped. Seeds then run one at
-    /// a time, each step over the threads.
+    /// each seed where it stopped, with the numbers of a run never stopped. Each seed then runs
+    /// alone, not in batches of four side by side.
     #[arg(long, value_name = "MINUTES", allow_negative_numbers = true, value_parser = parse_minutes)]
     pub checkpoint_every: Option<f64>,
 }
@@ -274,6 +274,15 @@ pub fn run(a: Args) -> Result<()> {
         }
         outln!(
             "each seed split over {ranks} MPI ranks (slabs of module layers along z; docs/guide/ensembles.md, One scene over MPI ranks)"
+        );
+    }
+    if a.checkpoint_every.is_some()
+        && let Some(p) = pipelines.iter().find(|p| p.target.is_some())
+    {
+        bail!(
+            "--checkpoint-every: {} runs to a precision target ([target]), whose batches of seeds keep no checkpoints \
+             yet; leave out --checkpoint-every (its finished seeds are kept all the same)",
+            p.name
         );
     }
     if a.checkpoint_every.is_some()

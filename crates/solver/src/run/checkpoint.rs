@@ -191,13 +191,21 @@ fn config() -> impl bincode::config::Config {
 }
 
 /// Writes `body` under `header` to `path`, through a temporary file renamed over it.
-pub(super) fn write<const L: usize>(path: &Path, mut header: Header, body: &BodyRef<'_, L>) -> Result<(), String> {
+pub(super) fn write<const L: usize>(path: &Path, header: Header, body: &BodyRef<'_, L>) -> Result<(), String> {
     let tmp = path.with_extension("ckpt.tmp");
+    let written = write_to(path, &tmp, header, body);
+    if written.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    written
+}
+
+fn write_to<const L: usize>(path: &Path, tmp: &Path, mut header: Header, body: &BodyRef<'_, L>) -> Result<(), String> {
     let fail = |what: &str, e: &dyn std::fmt::Display| format!("{what} {}: {e}", tmp.display());
     if let Some(dir) = path.parent() {
         std::fs::create_dir_all(dir).map_err(|e| fail("creating the folder of", &e))?;
     }
-    let file = std::fs::File::create(&tmp).map_err(|e| fail("creating", &e))?;
+    let file = std::fs::File::create(tmp).map_err(|e| fail("creating", &e))?;
     let mut out = BufWriter::with_capacity(1 << 22, file);
     header.body = 0;
     let head = bincode::encode_to_vec(&header, config()).map_err(|e| fail("encoding", &e))?;
@@ -213,7 +221,7 @@ pub(super) fn write<const L: usize>(path: &Path, mut header: Header, body: &Body
     file.write_all(&counted.bytes.to_le_bytes()).map_err(|e| fail("writing", &e))?;
     file.sync_all().map_err(|e| fail("syncing", &e))?;
     drop(file);
-    std::fs::rename(&tmp, path).map_err(|e| format!("renaming {} to {}: {e}", tmp.display(), path.display()))
+    std::fs::rename(tmp, path).map_err(|e| format!("renaming {} to {}: {e}", tmp.display(), path.display()))
 }
 
 /// The header of a checkpoint file.

@@ -223,7 +223,15 @@ pub(crate) fn run_lanes_with<const L: usize, H: Hooks<L>>(
         let expected = Header::of(&c.key, &seeds, model, &dts, hooks.place(), 0);
         let found = if prepared.iter().all(Result::is_ok) {
             checkpoint::read::<L>(&c.path, &expected)
-                .map_err(|why| c.note_failure(format!("{} was not resumed: {why}", c.path.display())))
+                .map_err(|why| {
+                    // Kept aside, not overwritten by this run's first checkpoint.
+                    let aside = c.path.with_extension("ckpt.unread");
+                    let kept = match std::fs::rename(&c.path, &aside) {
+                        Ok(()) => format!("kept as {}", aside.display()),
+                        Err(e) => format!("could not be kept aside: {e}"),
+                    };
+                    c.note_failure(format!("{} was not resumed ({kept}): {why}", c.path.display()))
+                })
                 .ok()
                 .flatten()
         } else {
@@ -388,9 +396,14 @@ pub(crate) fn run_lanes_with<const L: usize, H: Hooks<L>>(
             match lane.stage {
                 Stage::Settling { max_steps } => {
                     if scene.record.settling
+                        && hooks.records()
                         && let Some(r) = lane.recorder.as_mut()
                     {
-                        r.sample_view(&LaneView { params: &params, state: &state, lane: l }, view);
+                        let shown = Shown {
+                            view: LaneView { params: &params, state: &state, lane: l },
+                            remote: hooks.remote(),
+                        };
+                        r.sample_view(&shown, view);
                     }
                     if view.is_multiple_of(SETTLE_CHECK_EVERY) && view > 0 {
                         let ratio =
@@ -477,7 +490,11 @@ pub(crate) fn run_lanes_with<const L: usize, H: Hooks<L>>(
             {
                 match save_checkpoint(c, hooks.place(), model, &seeds, &dts, &state, &lanes) {
                     Ok(()) => taken.taken(state.steps),
-                    Err(why) => c.note_failure(why),
+                    // Tried again a period later, not at every report.
+                    Err(why) => {
+                        taken.taken(state.steps);
+                        c.note_failure(why)
+                    }
                 }
             }
             if stop {

@@ -312,6 +312,7 @@ fn lanczos_split(
     }
     let squares: Vec<f64> = q.iter().map(|v| v * v).collect();
     let norm = handed_sum(ranks, std::iter::empty::<f64>().sum(), &squares, 3).sqrt();
+    drop(squares);
     q.iter_mut().for_each(|v| *v /= norm);
     for c in 0..3 {
         for j in 0..m {
