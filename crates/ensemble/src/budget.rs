@@ -256,13 +256,10 @@ pub fn check_before_build_split(
     what: &str,
 ) -> Result<(), EnsembleError> {
     use stickslip_solver::split::Partition;
-    use stickslip_solver::stencil::StencilLayout;
     let e = estimate(scene, Batches::ONE, 2).map_err(|e| refused(format!("{what}: {e}")))?;
     check_count(scene, e.bars, dt_estimate(scene), what)?;
     let partition = Partition::new(scene.dims, ranks).map_err(|e| refused(format!("{what}: {e}")))?;
-    let w = partition.window(0);
-    let bars = StencilLayout::window(scene.dims, w.lo, w.hi).bars() as u64;
-    let root = estimate_rank(scene, 0, w.nodes as u64, bars, samples(scene, dt_estimate(scene)))
+    let root = estimate_rank(scene, &partition, 0, samples(scene, dt_estimate(scene)))
         .map_err(|e| refused(format!("{what}: {e}")))?;
     if let Some((limit, source)) = available_memory()? {
         let share = limit / local.max(1) as u64;

@@ -264,7 +264,6 @@ fn split_over(
 ) -> Result<(), EnsembleError> {
     use stickslip_solver::memory::{estimate_rank, human, samples};
     use stickslip_solver::split::Partition;
-    use stickslip_solver::stencil::StencilLayout;
     let scene = &pipeline.scene;
     let line = |text: String| CheckLine { section: "ranks", label: "ranks", text };
     if scene.rupture.is_some() {
@@ -285,8 +284,7 @@ fn split_over(
     let mut per: Vec<String> = Vec::new();
     for r in 0..ranks {
         let w = partition.window(r);
-        let bars = StencilLayout::window(dims, w.lo, w.hi).bars() as u64;
-        let m = estimate_rank(scene, r, w.nodes as u64, bars, samples)
+        let m = estimate_rank(scene, &partition, r, samples)
             .map_err(|e| EnsembleError::Refused(format!("--ranks = {ranks}: {e}")))?;
         if m.total > largest.1 {
             largest = (r, m.total);
@@ -300,7 +298,7 @@ fn split_over(
             if r == 0 { ", the base" } else { "" },
             w.nodes,
             w.owned.len(),
-            bars,
+            m.bars,
             human(m.total),
             if r == 0 { " (with the whole block's model, which the analyses read, and the recording)" } else { "" }
         ));

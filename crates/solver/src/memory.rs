@@ -120,18 +120,20 @@ pub fn estimate(scene: &Scene, batches: Batches, samples: u64) -> Result<MemoryE
     estimate_counts(scene, (n, b, contact), stencil, batches, samples)
 }
 
-/// Bytes of rank `rank` of `scene` split over ranks ([`crate::split`]): the window's `nodes` and
-/// `bars` (a stencil), one seed, with the seed's critical step found by the ranks together (its
+/// Bytes of rank `rank` of `scene` split by `partition` ([`crate::split`]): its window's nodes and
+/// bars (a stencil), one seed, with the seed's critical step found by the ranks together (its
 /// Lanczos vectors over the window, and one more for the terms of the sums). Rank 0 also holds
 /// the base's contact nodes, the recording (about `samples` samples) and the whole block's model,
 /// which the analyses of each seed read.
 pub fn estimate_rank(
     scene: &Scene,
+    partition: &crate::split::Partition,
     rank: usize,
-    nodes: u64,
-    bars: u64,
     samples: u64,
 ) -> Result<MemoryEstimate, Overflow> {
+    let w = partition.window(rank);
+    let nodes = w.nodes as u64;
+    let bars = crate::stencil::StencilLayout::window(scene.dims, w.lo, w.hi).bars() as u64;
     let over = || Overflow(format!("the memory of rank {rank} of a {nodes}-node, {bars}-bar window"));
     let root = rank == 0;
     let contact = if root { (scene.dims.nx as u64 + 1) * (scene.dims.ny as u64 + 1) } else { 0 };

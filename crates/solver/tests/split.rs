@@ -157,6 +157,31 @@ fn partitions_cover_the_block_and_refuse_thin_slabs() {
     assert!(Partition::new(dims, 0).is_err());
 }
 
+/// `each(rank, model, partition, link)` on `ranks` threads as ranks of `scene` split over them
+/// (each with its window's model): every rank's result, in rank order.
+fn on_thread_ranks<T: Send>(
+    scene: &Scene,
+    ranks: usize,
+    each: impl Fn(usize, &Model, &Partition, &mut stickslip_solver::split::ThreadRanks) -> T + Sync,
+) -> Vec<T> {
+    let partition = Partition::new(scene.dims, ranks).unwrap();
+    let links = thread_ranks(ranks);
+    std::thread::scope(|s| {
+        let handles: Vec<_> = links
+            .into_iter()
+            .enumerate()
+            .map(|(r, mut link)| {
+                let (scene, partition, each) = (scene.clone(), partition.clone(), &each);
+                s.spawn(move || {
+                    let model = Model::window(scene, partition.window(r));
+                    each(r, &model, &partition, &mut link)
+                })
+            })
+            .collect();
+        handles.into_iter().map(|h| h.join().unwrap()).collect()
+    })
+}
+
 /// A seed run on `ranks` threads as ranks of a split scene: rank 0's output.
 fn run_split_threads(scene: &Scene, seed: u64, ranks: usize) -> Result<RunOutput, SolverError> {
     run_split_checkpointed(scene, seed, ranks, None, None)
@@ -171,37 +196,22 @@ fn run_split_checkpointed(
     folder: Option<&std::path::Path>,
     stop_at: Option<usize>,
 ) -> Result<RunOutput, SolverError> {
-    let partition = Partition::new(scene.dims, ranks).unwrap();
-    let links = thread_ranks(ranks);
-    std::thread::scope(|s| {
-        let handles: Vec<_> = links
-            .into_iter()
-            .enumerate()
-            .map(|(r, mut link)| {
-                let (scene, partition) = (scene.clone(), partition.clone());
-                s.spawn(move || {
-                    let model = Model::window(scene, partition.window(r));
-                    let options = RunOptions::default();
-                    let checkpoint = folder.map(|f| {
-                        Checkpoint::new(f.join(format!("rank-{r}-of-{ranks}.ckpt")), None, Some(1 << 30), "test".into())
-                    });
-                    let mut reports = 0;
-                    let mut progress = |_| {
-                        reports += 1;
-                        if Some(reports) == stop_at { ControlFlow::Break(()) } else { ControlFlow::Continue(()) }
-                    };
-                    let part = RankPart { model: &model, partition: &partition };
-                    run_split(part, seed, options, &mut progress, &mut link, checkpoint.as_ref())
-                })
-            })
-            .collect();
-        let mut outs: Vec<_> = handles.into_iter().map(|h| h.join().unwrap()).collect();
-        assert!(
-            outs[1..].iter().all(|o| o.as_ref().is_none_or(Result::is_err)),
-            "only rank 0 has the output; the others have nothing, or their error"
-        );
-        outs.swap_remove(0).expect("rank 0's output")
-    })
+    let mut outs = on_thread_ranks(scene, ranks, |r, model, partition, link| {
+        let checkpoint = folder
+            .map(|f| Checkpoint::new(f.join(format!("rank-{r}-of-{ranks}.ckpt")), None, Some(1 << 30), "test".into()));
+        let mut reports = 0;
+        let mut progress = |_| {
+            reports += 1;
+            if Some(reports) == stop_at { ControlFlow::Break(()) } else { ControlFlow::Continue(()) }
+        };
+        let part = RankPart { model, partition };
+        run_split(part, seed, RunOptions::default(), &mut progress, link, checkpoint.as_ref())
+    });
+    assert!(
+        outs[1..].iter().all(|o| o.as_ref().is_none_or(Result::is_err)),
+        "only rank 0 has the output; the others have nothing, or their error"
+    );
+    outs.swap_remove(0).expect("rank 0's output")
 }
 
 /// TPV5 at 500 m for 3 s of its rupture: rank 0's output (the recording of the fault, the interface
@@ -286,22 +296,9 @@ fn the_critical_step_found_by_the_ranks_together_is_the_one_process_s() {
     let want = critical_step_on(&one, &k, false).unwrap();
     assert!(want.iterations > 0, "converged Lanczos, not the node bound: {want:?}");
     for ranks in [2, 7, 20] {
-        let partition = Partition::new(scene.dims, ranks).unwrap();
-        let links = thread_ranks(ranks);
-        let got: Vec<_> = std::thread::scope(|s| {
-            let handles: Vec<_> = links
-                .into_iter()
-                .enumerate()
-                .map(|(r, mut link)| {
-                    let (scene, partition) = (scene.clone(), partition.clone());
-                    s.spawn(move || {
-                        let model = Model::window(scene, partition.window(r));
-                        let k = model.lane_stiffness(7).unwrap();
-                        critical_step_split(&model, &k, r % 2 == 1, &mut link).unwrap()
-                    })
-                })
-                .collect();
-            handles.into_iter().map(|h| h.join().unwrap()).collect()
+        let got = on_thread_ranks(&scene, ranks, |r, model, _, link| {
+            let k = model.lane_stiffness(7).unwrap();
+            critical_step_split(model, &k, r % 2 == 1, link).unwrap()
         });
         for (r, c) in got.iter().enumerate() {
             assert!(format!("{c:?}") == format!("{want:?}"), "{ranks} ranks, rank {r}: {c:?} against {want:?}");

@@ -18,17 +18,14 @@ pub struct SizeArgs {
     ny: Option<usize>,
     /// Modules along z.
     nz: Option<usize>,
-    /// Steps timed (in each of three rounds for `bandwidth`).
+    /// Steps timed (in each round, where there are rounds).
     #[arg(long, default_value_t = 20)]
-    steps: usize,
+    pub steps: usize,
 }
-
-/// The arguments of `setup`.
-pub type SetupArgs = SizeArgs;
 
 impl SizeArgs {
     /// The pipeline's scene at the size asked for, and its first seed.
-    fn scene(&self) -> Result<(stickslip_solver::Scene, u64)> {
+    pub fn scene(&self) -> Result<(stickslip_solver::Scene, u64)> {
         let p = Pipeline::load(&self.pipeline)?;
         let mut scene = p.scene.clone();
         let d = scene.dims;
@@ -39,7 +36,7 @@ impl SizeArgs {
 }
 
 /// `stickslip-bench setup`: the set-up and a step, on one thread and on all of them.
-pub fn setup(a: SetupArgs) -> Result<()> {
+pub fn setup(a: SizeArgs) -> Result<()> {
     let (scene, seed) = a.scene()?;
     println!(
         "{:>8} {:>11} {:>8} {:>8} {:>8} {:>4} {:>8} {:>8} {:>9} {:>9} {:>11}",

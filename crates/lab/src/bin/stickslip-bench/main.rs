@@ -143,7 +143,7 @@ enum Command {
     },
     /// What a run does before its first step against a step: the pipeline's scene at the given
     /// size (e.g. `large-block.toml 500 150 48`), its first seed, on one thread and on all of them.
-    Setup(large::SetupArgs),
+    Setup(large::SizeArgs),
     /// A step against what memory allows, measured in one run: the step of the pipeline's scene
     /// at the given size (e.g. `large-block.toml 500 150 48`, 50.5 M bars) on every thread, a
     /// triad over the same bytes on the same threads, and their ratio.

@@ -1,26 +1,17 @@
 //! `stickslip-bench medium`: what the medium costs a step ([`stickslip_lab::medium_cost`]).
 
-use std::path::PathBuf;
-
 use anyhow::Result;
-use stickslip_config::Pipeline;
+
+use crate::large::SizeArgs;
 
 /// The pipeline's scene at the given size (e.g. `large-block.toml 200 50 20` for 2.8 M bars,
 /// `500 150 48` for 50 M) elastic, with Q = 50 over 0.05–5 Hz, and with Q and Kelvin–Voigt
 /// dashpots, taken in turn, best of the rounds.
 #[derive(clap::Args, Debug)]
 pub struct MediumArgs {
-    /// Pipeline file (TOML).
-    pipeline: PathBuf,
-    /// Modules along x [default: the pipeline's].
-    nx: Option<usize>,
-    /// Modules along y.
-    ny: Option<usize>,
-    /// Modules along z.
-    nz: Option<usize>,
-    /// Steps timed per variant and round.
-    #[arg(long, default_value_t = 20)]
-    steps: usize,
+    /// The scene and the steps timed per variant and round.
+    #[command(flatten)]
+    size: SizeArgs,
     /// Rounds of the three variants.
     #[arg(long, default_value_t = 2)]
     rounds: usize,
@@ -31,12 +22,10 @@ pub struct MediumArgs {
 
 /// Runs the benchmark and prints its table.
 pub fn run(a: MediumArgs) -> Result<()> {
-    let p = Pipeline::load(&a.pipeline)?;
-    let mut scene = p.scene.clone();
-    let d = scene.dims;
-    scene.dims = stickslip_solver::Dims::new(a.nx.unwrap_or(d.nx), a.ny.unwrap_or(d.ny), a.nz.unwrap_or(d.nz));
+    let (scene, _) = a.size.scene()?;
+    let steps = a.size.steps;
     let pool = rayon::ThreadPoolBuilder::new().num_threads(a.threads).build()?;
-    let timings = pool.install(|| stickslip_lab::medium_cost::medium_cost(&scene, a.steps, a.rounds, a.threads > 1))?;
+    let timings = pool.install(|| stickslip_lab::medium_cost::medium_cost(&scene, steps, a.rounds, a.threads > 1))?;
     let elastic = timings[0].step_s;
     println!("{:<32} {:>11} {:>10} {:>9} {:>14}", "medium", "bars", "step_ms", "ratio", "bytes/bar +");
     for t in &timings {
