@@ -4,6 +4,8 @@
 #[macro_use]
 mod text;
 mod commands;
+#[cfg(feature = "mpi")]
+mod mpi_ranks;
 mod progress;
 #[cfg(feature = "mpi")]
 mod split;

@@ -9,6 +9,7 @@ use std::ops::ControlFlow;
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
 
+use crate::mpi_ranks::MpiRanks;
 use anyhow::{Context, Result, bail};
 use mpi::Threading;
 use mpi::environment::Universe;
@@ -19,7 +20,6 @@ use stickslip_ensemble::checkpoints::Checkpoints;
 use stickslip_ensemble::split::{SplitSeeds, install};
 use stickslip_solver::run::RankPart;
 use stickslip_solver::split::Partition;
-use stickslip_solver::split::mpi::MpiRanks;
 use stickslip_solver::{Checkpoint, Model, Perturbation, RunOptions, RunOutput, SolverError};
 
 /// The world communicator, used by one thread at a time (MPI is initialised for serialized

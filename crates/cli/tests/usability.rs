@@ -343,12 +343,24 @@ fn check_ranks_says_each_ranks_part_and_refuses_a_rank_that_cannot_hold_it() {
     let (code, _, err) = check(&["m6-100.toml", "--memory-per-rank", "2"]);
     assert_eq!(code, Some(2), "{err}");
     assert!(err.contains("--ranks <RANKS>"), "{err}");
-    // A scene the split run does not take (the paper's: a block too small for the stencil),
-    // refused saying so.
+    // The paper's small block (its bars listed) splits into slabs of one module layer: up to 5.
     let paper = repo().join("pipelines/paper.toml");
-    let (code, stdout, err) = check(&[paper.to_str().unwrap(), "--ranks", "2"]);
+    let (code, stdout, err) = check(&[paper.to_str().unwrap(), "--ranks", "4"]);
+    assert_eq!(code, Some(0), "{stdout}{err}");
+    assert!(stdout.contains("ranks: 4 slabs") && stdout.contains("run: `mpirun -n 4"), "{stdout}");
+    let (code, stdout, err) = check(&[paper.to_str().unwrap(), "--ranks", "6"]);
     assert_eq!(code, Some(1), "{stdout}{err}");
-    assert!(err.contains("would refuse to split") && err.contains("this block has 781 bars: below 100000"), "{err}");
+    assert!(
+        err.contains("at least one module layer (its bars are listed)") && err.contains("takes 1 to 5 ranks"),
+        "{err}"
+    );
+    // A scene the split run does not take (a static self-weight), refused saying so.
+    let stat = dir.join("static.toml");
+    let text = std::fs::read_to_string(&paper).unwrap().replace("[self_weight]", "[self_weight]\nmethod = \"static\"");
+    std::fs::write(&stat, text).unwrap();
+    let (code, stdout, err) = check(&[stat.to_str().unwrap(), "--ranks", "2"]);
+    assert_eq!(code, Some(1), "{stdout}{err}");
+    assert!(err.contains("would refuse to split") && err.contains("self_weight.method = \"dynamic\""), "{err}");
 }
 
 #[test]

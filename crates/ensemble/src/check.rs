@@ -274,9 +274,11 @@ fn split_over(
     let dims = scene.dims;
     let partition = Partition::new(dims, ranks).map_err(|e| {
         EnsembleError::Refused(format!(
-            "--ranks = {ranks} is not allowed: a block splits into slabs of at least two module layers along z, so \
-             this one (block.nz = {}) takes 1 to {} ranks",
-            dims.nz, e.most
+            "--ranks = {ranks} is not allowed: a block splits into slabs of at least {} along z, so this one \
+             (block.nz = {}) takes 1 to {} ranks",
+            if e.least_layers == 1 { "one module layer (its bars are listed)" } else { "two module layers" },
+            dims.nz,
+            e.most
         ))
     })?;
     let samples = samples(scene, dt_estimate(scene));

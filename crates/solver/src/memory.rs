@@ -133,11 +133,17 @@ pub fn estimate_rank(
 ) -> Result<MemoryEstimate, Overflow> {
     let w = partition.window(rank);
     let nodes = w.nodes as u64;
-    let bars = crate::stencil::StencilLayout::window(scene.dims, w.lo, w.hi).bars() as u64;
+    // A block below STENCIL_MIN_BARS is small: its window's listed bars are counted.
+    let stencil = scene.dims.bar_count() >= STENCIL_MIN_BARS;
+    let bars = if stencil {
+        crate::stencil::StencilLayout::window(scene.dims, w.lo, w.hi).bars() as u64
+    } else {
+        crate::model::window_bar_count(&scene.lattice(), &w) as u64
+    };
     let over = || Overflow(format!("the memory of rank {rank} of a {nodes}-node, {bars}-bar window"));
     let root = rank == 0;
     let contact = if root { (scene.dims.nx as u64 + 1) * (scene.dims.ny as u64 + 1) } else { 0 };
-    let part = estimate_counts(scene, (nodes, bars, contact), true, Batches::ONE, if root { samples } else { 0 })?;
+    let part = estimate_counts(scene, (nodes, bars, contact), stencil, Batches::ONE, if root { samples } else { 0 })?;
     let setup = nodes.checked_mul(24).and_then(|t| part.setup.checked_add(t)).ok_or_else(over)?;
     let whole = if root { estimate(scene, Batches::ONE, 0)?.model } else { 0 };
     let model = part.model.checked_add(whole).ok_or_else(over)?;

@@ -54,9 +54,7 @@ impl GroupKey {
     }
 }
 
-/// Elastic lattices with at least this many bars run as a stencil ([`StencilLayout`]): their
-/// bars' ends follow from the runs, and each run is one vector loop.
-pub const STENCIL_MIN_BARS: usize = 100_000;
+pub use crate::slabs::STENCIL_MIN_BARS;
 /// Lattices with at least this many bars are cut into z-slabs (see [`BarLayout`]).
 pub const SLAB_MIN_BARS: usize = 100_000;
 /// Number of z-slabs of a large lattice (at most one per module layer).
@@ -164,7 +162,8 @@ impl Model {
     }
 
     /// The part `window` of the scene's block, for one rank of a split scene ([`crate::split`]):
-    /// its nodes numbered from the window's first, its bars the stencil's window, the same masses,
+    /// its nodes numbered from the window's first, its bars the stencil's window (or, below
+    /// [`STENCIL_MIN_BARS`] bars, the listed bars with an owned end, in the block's order), the same masses,
     /// nominal stiffness and canonical indices as the whole block's; boundary conditions on the
     /// nodes it owns only, the base's contact on rank 0 only. A scene whose bars crack is listed
     /// and is not split.
@@ -177,7 +176,14 @@ impl Model {
         let zones = scene.medium.zones(scene.young_pa, scene.density_kg_m3, scene.poisson);
         let mass = masses(&scene, &lattice, &zones, &to_canonical);
         let inv_mass = mass.iter().map(|m| 1.0 / m).collect();
-        let layout = Bars::Stencil(StencilLayout::window(dims, window.lo, window.hi));
+        // A block below STENCIL_MIN_BARS lists its bars on one process: its window lists the bars
+        // with an owned end, in the block's order.
+        let (layout, bar_canonical) = if dims.bar_count() < STENCIL_MIN_BARS {
+            let (listed, canonical) = listed_window(&lattice, &window);
+            (Bars::Listed(listed), canonical)
+        } else {
+            (Bars::Stencil(StencilLayout::window(dims, window.lo, window.hi)), Vec::new())
+        };
         // The base is rank 0's (a rank above can hold layer 0 as its halo, never the contact).
         let contact = if window.rank == 0 {
             lattice.contact_nodes().iter().map(|&id| internal_of_canonical(dims, id) as u32).collect()
@@ -196,7 +202,7 @@ impl Model {
             mass,
             inv_mass,
             layout,
-            bar_canonical: Vec::new(),
+            bar_canonical,
             run_stiffness: Vec::new(),
             contact,
             boundaries,
@@ -207,6 +213,19 @@ impl Model {
         };
         model.finish();
         model
+    }
+
+    /// The module layers whose energy terms this model sums: all, or a window's owned ones.
+    pub fn energy_layers(&self) -> crate::ledger::EnergyLayers {
+        let dims = self.lattice.dims();
+        let layer_nodes = (dims.nx + 1) * (dims.ny + 1) + dims.nx * dims.ny;
+        let (first_node, nodes) = match &self.window {
+            None => (0, 0..self.node_count()),
+            Some(w) => (w.first_node, w.owned.clone()),
+        };
+        let first = (first_node + nodes.start) / layer_nodes;
+        let last = (first_node + nodes.end - 1) / layer_nodes;
+        crate::ledger::EnergyLayers { first_node, layer_nodes, first, count: last + 1 - first, nodes }
     }
 
     /// The part of the block this model holds, when split over ranks.
@@ -465,7 +484,7 @@ impl Model {
             };
             return Ok(k.lane(&self.layout, 0));
         }
-        let phi = weibull_factors(self.scene.young_cv, seed, STREAM_YOUNG, self.bar_count())?;
+        let phi = weibull_factors(self.scene.young_cv, seed, STREAM_YOUNG, self.lattice.bar_count())?;
         let k = |c: u32| {
             let k = self.nominal_of_canonical(c as usize);
             phi.as_ref().map_or(k, |phi| k * phi[c as usize])
@@ -633,6 +652,49 @@ fn internal_order(dims: crate::geometry::Dims) -> Vec<NodeId> {
 }
 
 /// The bars of `lattice` listed in kernel order (see [`Model`]), with the canonical index of each.
+/// The number of bars of `lattice` with an end `window` owns: a listed window's
+/// ([`Model::window`]).
+pub fn window_bar_count(lattice: &Lattice, window: &crate::split::Window) -> usize {
+    let dims = lattice.dims();
+    (0..lattice.bar_count())
+        .filter(|&b| lattice.bar(b).ends.iter().any(|&id| window.owns(internal_of_canonical(dims, id))))
+        .count()
+}
+
+/// The block's listed bars ([`listed_bars`]) that have an end `window` owns, in the block's kernel
+/// order (the same segments and groups, those left empty dropped), their ends as window indices,
+/// with their canonical indices: each owned node receives its bars in the one process's order.
+fn listed_window(lattice: &Lattice, window: &crate::split::Window) -> (BarLayout, Vec<u32>) {
+    let block: Vec<NodeId> = internal_order(lattice.dims());
+    let mut to_internal = vec![0u32; block.len()];
+    for (i, id) in block.iter().enumerate() {
+        to_internal[id.index()] = i as u32;
+    }
+    let (whole, canonical) = listed_bars(lattice, &to_internal);
+    let local = |g: u32| window.local(g as usize).expect("a bar with an owned end lies in the window") as u32;
+    let (mut segments, mut ends, mut bar_canonical) = (Vec::new(), Vec::new(), Vec::new());
+    for s in whole.segments() {
+        let mut groups = Vec::new();
+        for g in &s.groups {
+            let start = ends.len();
+            for b in g.start..g.end {
+                let [i, j] = whole.ends()[b];
+                if window.owns(i as usize) || window.owns(j as usize) {
+                    ends.push([local(i), local(j)]);
+                    bar_canonical.push(canonical[b]);
+                }
+            }
+            if ends.len() > start {
+                groups.push(BarGroup { direction: g.direction, start, end: ends.len() });
+            }
+        }
+        if !groups.is_empty() {
+            segments.push(Segment { phase: s.phase, groups });
+        }
+    }
+    (BarLayout::new(segments, ends, window.nodes), bar_canonical)
+}
+
 fn listed_bars(lattice: &Lattice, to_internal: &[u32]) -> (BarLayout, Vec<u32>) {
     let n = lattice.node_count();
     // Bars: internal ends, by segment, then direction, then ends.

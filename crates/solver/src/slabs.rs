@@ -1,5 +1,11 @@
-//! Where the z-slabs of a stencil lattice start (see [`crate::stencil`]'s doc): the step's
-//! threads and the ranks of a split scene ([`crate::split`]) both cut the layers by this rule.
+//! Whether a lattice is a stencil, and where its z-slabs start (see [`crate::stencil`]'s doc): the
+//! step's threads and the ranks of a split scene ([`crate::split`]) both cut the layers by this
+//! rule.
+
+/// Elastic lattices with at least this many bars run as a stencil ([`crate::stencil::StencilLayout`]):
+/// their bars' ends follow from the runs, and each run is one vector loop. Smaller ones list
+/// their bars, and so does each rank of one split ([`crate::split::Partition`]).
+pub const STENCIL_MIN_BARS: usize = 100_000;
 
 /// Most slabs of a lattice (the parallelism of one step), not counting a top layer alone.
 pub const MAX_SLABS: usize = 16;

@@ -44,7 +44,7 @@ fn prepare(batch: &mut Batch<'_, 1>, gravity: f64) {
 
 /// The three levels of every node after `steps` steps on one process (internal order).
 fn single(scene: &Scene, seed: u64, steps: usize, gravity: f64) -> (f64, [Field<1>; 3]) {
-    let model = Model::with_stencil(scene.clone());
+    let model = Model::new(scene.clone());
     let lane = setup(&model, seed, 1.0);
     let dt = 0.5 * critical_step(&model, &lane.stiffness).unwrap().dt_s;
     let mut batch = Batch::new(&model, &[LaneSetup { dt_s: dt, ..lane }]);
@@ -133,25 +133,29 @@ fn tpv5_split_over_ranks_gives_the_same_bits() {
 
 #[test]
 fn partitions_cover_the_block_and_refuse_thin_slabs() {
-    for nz in [4, 5, 13, 40, 41, 97] {
-        let dims = stickslip_solver::Dims::new(4, 4, nz);
-        let most = (1..=nz).take_while(|&r| Partition::new(dims, r).is_ok()).last().unwrap();
-        assert_eq!(most, (nz / 2).max(1), "{nz} layers split over {most} ranks at most");
-        for ranks in 1..=most {
-            let p = Partition::new(dims, ranks).unwrap();
-            let mut next = 0;
-            for r in 0..ranks {
-                let owned = p.owned_layers(r);
-                assert_eq!(owned.start, next);
-                assert!(owned.len() >= 2 || ranks == 1, "{ranks} ranks: rank {r} owns {owned:?}");
-                next = owned.end;
-                let w = p.window(r);
-                assert_eq!(w.nodes, w.halo_below().len() + w.owned.len() + w.halo_above().len());
+    // A block whose bars are listed (a rank owns one layer or more) and a stencil (two or more).
+    for (nxy, least) in [(4, 1), (50, 2)] {
+        for nz in [4, 5, 13, 40, 41, 97] {
+            let dims = stickslip_solver::Dims::new(nxy, nxy, nz);
+            assert_eq!(dims.bar_count() < stickslip_solver::model::STENCIL_MIN_BARS, least == 1);
+            let most = (1..=nz).take_while(|&r| Partition::new(dims, r).is_ok()).last().unwrap();
+            assert_eq!(most, (nz / least).max(1), "{nz} layers split over {most} ranks at most");
+            for ranks in 1..=most {
+                let p = Partition::new(dims, ranks).unwrap();
+                let mut next = 0;
+                for r in 0..ranks {
+                    let owned = p.owned_layers(r);
+                    assert_eq!(owned.start, next);
+                    assert!(owned.len() >= least || ranks == 1, "{ranks} ranks: rank {r} owns {owned:?}");
+                    next = owned.end;
+                    let w = p.window(r);
+                    assert_eq!(w.nodes, w.halo_below().len() + w.owned.len() + w.halo_above().len());
+                }
+                assert_eq!(next, nz);
             }
-            assert_eq!(next, nz);
+            let e = Partition::new(dims, most + 1).unwrap_err();
+            assert!(e.to_string().contains(&format!("1 to {most} ranks")), "{e}");
         }
-        let e = Partition::new(dims, most + 1).unwrap_err();
-        assert!(e.to_string().contains(&format!("1 to {most} ranks")), "{e}");
     }
     let dims = stickslip_solver::Dims::new(4, 4, 40);
     assert!(Partition::new(dims, 0).is_err());
@@ -214,14 +218,15 @@ fn run_split_checkpointed(
     outs.swap_remove(0).expect("rank 0's output")
 }
 
-/// TPV5 at 500 m for 3 s of its rupture: rank 0's output (the recording of the fault, the interface
-/// series, the stations spread over every rank, the critical step, the steps) is the one
-/// process's, printed with every digit, on 2, 3 and 4 ranks.
+/// TPV5 at 500 m for 3 s of its rupture, with its energy ledger: rank 0's output (the recording of
+/// the fault, the interface and energy series, the stations spread over every rank, the critical
+/// step, the steps) is the one process's, printed with every digit, on 2, 3 and 4 ranks.
 #[test]
 fn a_split_run_of_tpv5_gives_the_one_process_output() {
     let mut scene = common::pipeline("pipelines/tpv5-500m.toml").scene;
     scene.shear.duration_s = 3.0;
-    assert!(!scene.record.control.is_empty() && !scene.record.energy);
+    scene.record.energy = true;
+    assert!(!scene.record.control.is_empty());
     let one =
         run_seed(&Model::new(scene.clone()), 1, RunOptions::default(), &mut |_| ControlFlow::Continue(())).unwrap();
     assert!(one.recording.len() > 100 && one.recording.control.iter().any(|(_, v)| v.iter().any(|&x| x != 0.0)));
@@ -232,8 +237,8 @@ fn a_split_run_of_tpv5_gives_the_one_process_output() {
     }
 }
 
-/// The 2.8 M-bar block (its loading plate on the top rank, stations added on three ranks), energy
-/// off: the same output on 2 ranks; with the energy on, refused on every rank before it runs.
+/// The 2.8 M-bar block (its loading plate on the top rank, stations added on three ranks), with
+/// and without its energy ledger: the same output on 2 ranks.
 #[test]
 fn a_split_run_of_the_large_block_gives_the_one_process_output() {
     use stickslip_solver::scene::{Component, ControlChannel, Kinematic};
@@ -252,8 +257,28 @@ fn a_split_run_of_the_large_block_gives_the_one_process_output() {
     let split = run_split_threads(&scene, 1, 2).unwrap();
     assert!(format!("{split:?}") == format!("{one:?}"), "the output differs from one process's");
     scene.record.energy = true;
-    let e = run_split_threads(&scene, 1, 2).unwrap_err();
-    assert!(e.to_string().contains("record.energy = false"), "{e}");
+    let one =
+        run_seed(&Model::new(scene.clone()), 1, RunOptions::default(), &mut |_| ControlFlow::Continue(())).unwrap();
+    let split = run_split_threads(&scene, 1, 2).unwrap();
+    assert!(format!("{split:?}") == format!("{one:?}"), "with the energy: the output differs from one process's");
+}
+
+/// The paper's scene (`pipelines/paper.toml`, its first seed, 50 modules: its bars listed, its
+/// energy ledger, settling and driver): rank 0's output is the one process's on 2, 3 and 4 ranks
+/// (the most its five layers take is five).
+#[test]
+fn a_split_run_of_the_paper_scene_gives_the_one_process_output() {
+    let mut scene = common::pipeline("pipelines/paper.toml").scene;
+    scene.shear.duration_s = 0.1;
+    assert!(scene.record.energy && scene.self_weight.gravity_m_s2 > 0.0 && scene.young_cv > 0.0);
+    assert!(scene.dims.bar_count() < stickslip_solver::model::STENCIL_MIN_BARS, "its bars are listed");
+    let one =
+        run_seed(&Model::new(scene.clone()), 123, RunOptions::default(), &mut |_| ControlFlow::Continue(())).unwrap();
+    assert!(one.settle_steps > 0 && !one.recording.onsets.is_empty(), "it settled, then slid");
+    for ranks in [2, 3, 4] {
+        let split = run_split_threads(&scene, 123, ranks).unwrap();
+        assert!(format!("{split:?}") == format!("{one:?}"), "{ranks} ranks: the output differs from one process's");
+    }
 }
 
 /// TPV5 at 500 m split over 2 ranks, stopped part way (each rank writes its checkpoint as it
@@ -317,8 +342,9 @@ fn a_split_run_with_a_self_weight_stage_gives_the_one_process_output() {
     scene.dims = stickslip_solver::Dims::new(60, 6, 20);
     scene.shear.duration_s = 0.01;
     assert!(scene.self_weight.gravity_m_s2 > 0.0 && scene.dims.bar_count() >= 100_000);
-    // The settling recorded too, with a station near the top (another rank's).
+    // The settling recorded too, with its energy ledger and a station near the top (another rank's).
     scene.record.settling = true;
+    scene.record.energy = true;
     let top = scene.lattice().node_at([3.0, 0.3, 1.9]).unwrap();
     scene.record.control.push(ControlChannel { node: top, quantity: Kinematic::Acceleration, component: Component::Z });
     let one =

@@ -114,7 +114,7 @@ impl Boundary for Absorbing {
                     let d = w.new.c[k][i][l] - w.old.c[k][i][l];
                     sum += c[k] * d * d;
                 }
-                w.energy[l].absorbed += sum / (4.0 * w.dt[l]);
+                w.at(i, l).absorbed += sum / (4.0 * w.dt[l]);
             }
         }
     }

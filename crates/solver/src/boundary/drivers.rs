@@ -56,7 +56,7 @@ impl Boundary for Drivers {
         for (d, &node) in self.nodes.iter().enumerate() {
             let i = node as usize;
             for l in 0..L {
-                w.energy[l].driver_work += 0.5 * w.loading.reaction[d][l] * (w.new.c[0][i][l] - w.old.c[0][i][l]);
+                w.at(i, l).driver_work += 0.5 * w.loading.reaction[d][l] * (w.new.c[0][i][l] - w.old.c[0][i][l]);
             }
         }
     }

@@ -30,7 +30,7 @@ pub mod traction;
 use crate::fault::FaultLanes;
 use crate::field::{Field, Lanes};
 use crate::geometry::NodeId;
-use crate::ledger::Energy;
+use crate::ledger::{Energy, EnergyLayers};
 use crate::scene::Scene;
 
 /// A prescribed displacement component of a static solve (a held roller component, a held base
@@ -98,8 +98,19 @@ pub struct Work<'a, const L: usize> {
     pub dt: &'a Lanes<L>,
     /// Each lane's fault loads, when the base is a fault.
     pub fault: Option<&'a FaultLanes<L>>,
-    /// The energy terms of each lane.
-    pub energy: &'a mut [Energy; L],
+    /// The module layers the model sums (docs/model.md §2).
+    pub layers: &'a EnergyLayers,
+    /// This step's energy terms of each layer and lane, which each boundary adds to.
+    pub parts: &'a mut [[Energy; L]],
+}
+
+impl<const L: usize> Work<'_, L> {
+    /// The terms of node `i`'s layer, lane `l` (a boundary acts on nodes the model sums).
+    #[inline]
+    pub fn at(&mut self, i: usize, l: usize) -> &mut Energy {
+        let k = self.layers.of(i).expect("a boundary node is one the model sums");
+        &mut self.parts[k][l]
+    }
 }
 
 /// When a boundary acts within a step: forces first, then dashpots (which need every force in

@@ -59,7 +59,7 @@ impl Boundary for Plate {
         for (j, &(node, _)) in self.springs.iter().enumerate() {
             let i = node as usize;
             for l in 0..L {
-                w.energy[l].driver_work += 0.5 * w.loading.plate_force[j][l] * (w.new.c[0][i][l] - w.old.c[0][i][l]);
+                w.at(i, l).driver_work += 0.5 * w.loading.plate_force[j][l] * (w.new.c[0][i][l] - w.old.c[0][i][l]);
             }
         }
     }

@@ -51,7 +51,7 @@ impl Boundary for Pressure {
         for &(node, f) in &self.loads {
             let i = node as usize;
             for l in 0..L {
-                w.energy[l].body_work += 0.5 * f * (w.new.c[2][i][l] - w.old.c[2][i][l]);
+                w.at(i, l).body_work += 0.5 * f * (w.new.c[2][i][l] - w.old.c[2][i][l]);
             }
         }
     }

@@ -54,7 +54,7 @@ impl Boundary for Traction {
                 for axis in 0..2 {
                     sum += f.shear_n[axis][ci][l] * (w.new.c[axis][i][l] - w.old.c[axis][i][l]);
                 }
-                w.energy[l].traction_work += 0.5 * sum;
+                w.at(i, l).traction_work += 0.5 * sum;
             }
         }
     }

@@ -121,6 +121,10 @@ pub(crate) trait Hooks<const L: usize> {
     fn weight_norm(&mut self, model: &Model, gravity: f64) -> f64 {
         model.mass().iter().map(|m| m * m).sum::<f64>().sqrt() * gravity
     }
+    /// Before a sample that records the energy: on the ranks of a split scene, every rank's
+    /// kinetic and elastic energy summed for rank 0 ([`Remote::energy`]); nothing on one process,
+    /// whose view has them.
+    fn state_energy(&mut self, _view: &LaneView<'_, '_, L>) {}
     /// Whether this process records (rank 0 of a split scene, or the only one).
     fn records(&self) -> bool {
         true
@@ -143,6 +147,8 @@ pub(crate) struct Remote {
     pub control: Vec<(ControlChannel, f64)>,
     /// The driver reaction, when another rank holds the drivers.
     pub driver_force: Option<f64>,
+    /// The whole block's kinetic and elastic energy (J), summed for this sample.
+    pub energy: Option<(f64, f64)>,
 }
 
 /// A lane as rank 0 shows it to the recorder: its own nodes, and the values other ranks sent.
@@ -165,7 +171,12 @@ impl<const L: usize> Observed for Shown<'_, '_, '_, L> {
         Observed::driver_target(&self.view)
     }
     fn energy(&self) -> crate::step::Energy {
-        Observed::energy(&self.view)
+        match self.remote.and_then(|r| r.energy) {
+            Some((kinetic, elastic)) => {
+                crate::step::Energy { kinetic, elastic, ..self.view.state.energy[self.view.lane] }
+            }
+            None => Observed::energy(&self.view),
+        }
     }
     fn kinematic(&self, node: usize, q: crate::scene::Kinematic) -> [f64; 3] {
         Observed::kinematic(&self.view, node, q)
@@ -395,6 +406,9 @@ pub(crate) fn run_lanes_with<const L: usize, H: Hooks<L>>(
             }
             match lane.stage {
                 Stage::Settling { max_steps } => {
+                    if scene.record.settling && scene.record.energy {
+                        hooks.state_energy(&LaneView { params: &params, state: &state, lane: l });
+                    }
                     if scene.record.settling
                         && hooks.records()
                         && let Some(r) = lane.recorder.as_mut()
@@ -429,6 +443,9 @@ pub(crate) fn run_lanes_with<const L: usize, H: Hooks<L>>(
                         state.scale_lane(l, 1.0 + p.relative);
                     }
                     let recorder = lane.recorder.as_mut().expect("recorder of a running lane");
+                    if j.is_multiple_of(stride) && scene.record.energy {
+                        hooks.state_energy(&LaneView { params: &params, state: &state, lane: l });
+                    }
                     if hooks.records() {
                         let shown = Shown {
                             view: LaneView { params: &params, state: &state, lane: l },

@@ -5,9 +5,12 @@
 //! by every rank, and rank 0 recording, each step, the stations and drivers other ranks hold.
 //! Rank 0's [`RunOutput`] is then the one process's, bit for bit.
 //!
-//! Not yet: the energy ledger (sums over every node and bar each step), the static self-weight
-//! (conjugate gradients), the skip-ahead, and drivers or a loading plate held by more than one
-//! rank; each is refused before the run starts.
+//! The energy ledger is summed layer by layer on one process too ([`Model::energy_layers`]): each
+//! rank sends rank 0 its layers' terms of every step, and its layers' kinetic and elastic energy
+//! when a sample records them, and rank 0 adds the layers bottom up.
+//!
+//! Not yet: the static self-weight (conjugate gradients), the skip-ahead, and drivers or a loading
+//! plate held by more than one rank; each is refused before the run starts.
 
 use std::ops::ControlFlow;
 
@@ -15,12 +18,15 @@ use super::lanes::{Hooks, Remote, run_lanes_with};
 use super::{Checkpoint, RunOptions, RunOutput, time_step};
 use crate::NodeId;
 use crate::error::SolverError;
+use crate::layout::Bars;
+use crate::ledger::{Energy, fold_layers, total};
 use crate::model::{Model, canonical_of_internal};
 use crate::observe::Observed;
 use crate::scene::ControlChannel;
 use crate::split::{Halo, Neighbours, Partition, Window, handed_sum};
 use crate::statics::CriticalStep;
 use crate::statics::critical::critical_step_split;
+use crate::step::energy::{kinetic_energy_layers, strain_energy_layers};
 use crate::step::{LaneSetup, LaneView, Params, State};
 
 /// What one rank of a split scene holds: its part of the model and where the cuts are.
@@ -117,17 +123,6 @@ pub fn split_refusal(scene: &crate::Scene, ranks: usize) -> Option<String> {
 
 /// Why a scene's run cannot be split yet, if it cannot.
 fn splittable(scene: &crate::Scene) -> Result<(), String> {
-    let bars = scene.dims.bar_count();
-    if bars < crate::model::STENCIL_MIN_BARS {
-        return Err(format!(
-            "this block has {bars} bars: below {} one process steps its bars from a list, whose force sums run in \
-             another order than the stencil's a split run uses, so the numbers would differ: run it on one process",
-            crate::model::STENCIL_MIN_BARS
-        ));
-    }
-    if scene.record.energy {
-        return Err("the energy ledger of a split scene is not built yet: set record.energy = false".into());
-    }
     if scene.self_weight.gravity_m_s2 != 0.0 && scene.self_weight.method == crate::scene::SettleMethod::Static {
         return Err(
             "the static self-weight (conjugate gradients over the whole block) of a split scene is not built yet: set \
@@ -196,14 +191,23 @@ impl Hooks<1> for Split<'_> {
             Ok(setup) => setup,
         };
         // The same numbers on every rank: any error is every rank's.
-        let critical = critical_step_split(model, &setup.stiffness, options.parallel_step, self.ranks)?;
+        let critical = if let Bars::Listed(_) = model.layout() {
+            // A block whose bars are listed is small (below STENCIL_MIN_BARS): every rank finds the
+            // whole block's critical step as one process does.
+            let whole = Model::new(model.scene().clone());
+            let k = whole.lane_stiffness_on(seed, options.parallel_step)?;
+            crate::statics::critical_step_on(&whole, &k, options.parallel_step)?
+        } else {
+            critical_step_split(model, &setup.stiffness, options.parallel_step, self.ranks)?
+        };
         let dt_s = time_step(model, seed, &critical, options)?;
         Ok((LaneSetup { dt_s, ..setup }, critical))
     }
 
     fn after_step(&mut self, params: &Params<'_, 1>, state: &mut State<1>) {
         self.halo.exchange(&self.window, &mut state.u.np1, self.ranks);
-        if self.remote.is_empty() && self.driver_rank.is_none() {
+        let ledger = params.model.scene().record.energy;
+        if self.remote.is_empty() && self.driver_rank.is_none() && !ledger {
             return;
         }
         let view = LaneView { params, state, lane: 0 };
@@ -212,6 +216,8 @@ impl Hooks<1> for Split<'_> {
         if self.driver_rank == Some(self.ranks.rank()) {
             mine.push(view.driver_force());
         }
+        // The step's work terms of each layer this rank owns, after what it sends for stations.
+        mine.extend(state.energy_parts.iter().flat_map(|p| p[0].work_terms()));
         let all = self.ranks.gather(&mine);
         if self.ranks.rank() == 0 {
             let mut next = vec![0usize; all.len()];
@@ -220,7 +226,39 @@ impl Hooks<1> for Split<'_> {
                 self.values.control.push((c, all[r][next[r]]));
                 next[r] += 1;
             }
-            self.values.driver_force = self.driver_rank.map(|r| all[r][next[r]]);
+            if let Some(r) = self.driver_rank {
+                self.values.driver_force = Some(all[r][next[r]]);
+                next[r] += 1;
+            }
+            if ledger {
+                // Every layer's terms, bottom up: the one process's sum.
+                let parts: Vec<Energy> = all
+                    .iter()
+                    .zip(&next)
+                    .flat_map(|(v, &from)| v[from..].chunks_exact(9).map(Energy::from_work_terms))
+                    .collect();
+                state.energy[0].add_work(&fold_layers(parts.iter()));
+            }
+        }
+    }
+
+    fn state_energy(&mut self, view: &LaneView<'_, '_, 1>) {
+        let (model, u) = (view.params.model, &view.state.u);
+        let kinetic = kinetic_energy_layers(model, &u.np1, &u.n, 0);
+        let elastic = strain_energy_layers(model, view.params.stiffness(), &u.n, &u.np1, 0);
+        let mut mine = kinetic;
+        mine.extend(elastic);
+        let all = self.ranks.gather(&mine);
+        if self.ranks.rank() == 0 {
+            // Each rank's layers: its kinetic sums, then its elastic ones.
+            let (mut kinetic, mut elastic) = (Vec::new(), Vec::new());
+            for v in &all {
+                let (k, e) = v.split_at(v.len() / 2);
+                kinetic.extend_from_slice(k);
+                elastic.extend_from_slice(e);
+            }
+            let dt = view.params.dt(0);
+            self.values.energy = Some((0.5 * total(&kinetic) / (dt * dt), 0.5 * total(&elastic)));
         }
     }
 

@@ -24,8 +24,6 @@
 //! halo layers ([`Neighbours`]). The older levels of a halo node are the newest of earlier
 //! exchanges, so one level per step is enough.
 
-#[cfg(feature = "mpi")]
-pub mod mpi;
 mod threads;
 
 use std::ops::Range;
@@ -51,14 +49,18 @@ pub struct PartitionError {
     pub ranks: usize,
     /// The most the block takes.
     pub most: usize,
+    /// The fewest module layers a rank owns.
+    pub least_layers: usize,
 }
 
 impl std::fmt::Display for PartitionError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "{} ranks: a block is split into slabs of at least two module layers along z, so this one takes 1 to {} ranks",
-            self.ranks, self.most
+            "{} ranks: a block is split into slabs of at least {} along z, so this one takes 1 to {} ranks",
+            self.ranks,
+            if self.least_layers == 1 { "one module layer" } else { "two module layers" },
+            self.most
         )
     }
 }
@@ -66,34 +68,50 @@ impl std::fmt::Display for PartitionError {
 impl std::error::Error for PartitionError {}
 
 impl Partition {
-    /// Splits the block's `nz` module layers evenly, every rank at least two layers.
+    /// Splits the block's `nz` module layers evenly, every rank at least two layers (one for a
+    /// block whose bars are listed, below [`crate::slabs::STENCIL_MIN_BARS`]).
     pub fn new(dims: Dims, ranks: usize) -> Result<Partition, PartitionError> {
-        match Self::cuts(dims.nz, ranks) {
+        match Self::cuts(dims, ranks) {
             Some(starts) => Ok(Partition { dims, starts }),
-            None => Err(PartitionError { ranks, most: Self::most(dims) }),
+            None => Err(PartitionError { ranks, most: Self::most(dims), least_layers: Self::least_layers(dims) }),
         }
     }
 
     /// The most ranks `dims` can be split over.
     pub fn most(dims: Dims) -> usize {
-        (1..=(dims.nz / 2).max(1)).rev().find(|&r| Self::cuts(dims.nz, r).is_some()).unwrap_or(1)
+        let least = Self::least_layers(dims);
+        (1..=(dims.nz / least).max(1)).rev().find(|&r| Self::cuts(dims, r).is_some()).unwrap_or(1)
     }
 
-    fn cuts(nz: usize, ranks: usize) -> Option<Vec<usize>> {
-        if ranks == 0 || (ranks > 1 && ranks > nz / 2) {
+    /// Whether the block's bars are listed (not a stencil) on one process, so on each rank.
+    fn listed(dims: Dims) -> bool {
+        dims.bar_count() < crate::slabs::STENCIL_MIN_BARS
+    }
+
+    /// The fewest module layers a rank owns: two on a stencil, whose halo below can be two layers
+    /// deep and is sent by the rank below; one when the bars are listed (a halo of one layer).
+    fn least_layers(dims: Dims) -> usize {
+        if Self::listed(dims) { 1 } else { 2 }
+    }
+
+    fn cuts(dims: Dims, ranks: usize) -> Option<Vec<usize>> {
+        let (nz, least) = (dims.nz, Self::least_layers(dims));
+        if ranks == 0 || (ranks > 1 && ranks > nz / least) {
             return None;
         }
         let mut starts: Vec<usize> = (0..ranks).map(|r| (r * nz + ranks / 2) / ranks).collect();
         starts.push(nz);
-        starts.windows(2).all(|w| w[1] >= w[0] + 2 || ranks == 1).then_some(starts)
+        starts.windows(2).all(|w| w[1] >= w[0] + least || ranks == 1).then_some(starts)
     }
 
     /// Module layers of the halo below rank `r`: one, or two where its first layer starts a slab
     /// of the block's stencil (the layer below is then a slab's top, which runs after the slab's
     /// other layers: with the layer under it the window runs it in the same phase as the block).
+    /// Listed bars have no slabs: one.
     fn halo_layers(&self, r: usize) -> usize {
         match r {
             0 => 0,
+            _ if Self::listed(self.dims) => 1,
             _ if crate::slabs::bounds(self.dims.nz + 1).contains(&self.starts[r]) => 2,
             _ => 1,
         }

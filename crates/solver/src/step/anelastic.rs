@@ -292,18 +292,22 @@ pub fn forces<const L: usize>(
     }
 }
 
-/// The work `Σ T·(eₙ₊₁ − eₙ₋₁)/2` of the extra tensions over one step, per lane (J): `new` is
-/// `uₙ₊₁`, `now` is `uₙ`, `old` is `uₙ₋₁` and `zeta` the memory variables of step n. Bars in
-/// kernel order: the same sum on any thread count.
+/// The work `Σ T·(eₙ₊₁ − eₙ₋₁)/2` of the extra tensions over one step, per layer of `layers` (a
+/// bar in its lower end's) and lane (J): `new` is `uₙ₊₁`, `now` is `uₙ`, `old` is `uₙ₋₁` and
+/// `zeta` the memory variables of step n. Bars in kernel order: the same sums on any thread and
+/// rank count.
 pub fn work<const L: usize>(
     model: &Model,
+    layers: &crate::ledger::EnergyLayers,
     a: &AnelasticParams<L>,
     k: StiffnessRef<'_, L>,
     [new, now, old]: [&Field<L>; 3],
     zeta: &[Memory<L>],
-) -> Lanes<L> {
-    let mut sum = [0.0; L];
+) -> Vec<Lanes<L>> {
+    let mut sums = vec![[0.0; L]; layers.count];
     let mut add = |bar: usize, kb: &Lanes<L>, direction: Direction, i: usize, j: usize| {
+        let Some(k) = layers.of(i.min(j)) else { return };
+        let sum = &mut sums[k];
         for l in 0..L {
             let e = |u: &Field<L>| elongation(direction, u, i, j, l);
             let (en1, en, ep) = (e(new), e(now), e(old));
@@ -331,7 +335,7 @@ pub fn work<const L: usize>(
         }
         (Bars::Listed(_), _) => panic!("a listed lattice has per-bar stiffness"),
     }
-    sum
+    sums
 }
 
 /// The stable step of `model` with its Kelvin–Voigt damping over the undamped one `dt_critical`.

@@ -6,8 +6,6 @@
 //! exactly. Bars that crack keep that pairing with the stiffness each bar has at step n, and the
 //! rupture kernel books what they dissipate ([`crate::step::rupture`]).
 
-use std::ops::Range;
-
 use rayon::prelude::*;
 
 use crate::boundary;
@@ -15,42 +13,54 @@ use crate::field::Field;
 use crate::geometry::Direction;
 use crate::layout::Bars;
 use crate::model::Model;
-use crate::stencil::{Run, StencilLayout};
+use crate::stencil::Run;
 use crate::step::params::Params;
 use crate::step::primitives::{signs, strain_energy_with};
 use crate::step::state::State;
 use crate::stiffness::StiffnessRef;
 
-pub use crate::ledger::Energy;
+pub use crate::ledger::{Energy, total};
 
 /// `½ Σ_b k_b·e_b(a)·e_b(b)` for lane `l`: the strain energy `½aᵀKb` (J). With `a = b` it is the
 /// strain energy of one state; with `a = uₙ`, `b = uₙ₊₁` it is the energy the central-difference
-/// scheme conserves exactly.
+/// scheme conserves exactly. Summed layer by layer ([`strain_energy_layers`]).
 pub fn strain_energy<'k, const L: usize>(
-    bars: &Bars,
+    model: &Model,
     k: impl Into<StiffnessRef<'k, L>>,
     a: &Field<L>,
     b: &Field<L>,
     l: usize,
 ) -> f64 {
-    let k = k.into();
-    match bars {
+    0.5 * total(&strain_energy_layers(model, k, a, b, l))
+}
+
+/// `Σ_b k_b·e_b(a)·e_b(b)` of the bars whose lower end is in each layer the model sums
+/// ([`Model::energy_layers`]), bottom up.
+pub fn strain_energy_layers<'k, const L: usize>(
+    model: &Model,
+    k: impl Into<StiffnessRef<'k, L>>,
+    a: &Field<L>,
+    b: &Field<L>,
+    l: usize,
+) -> Vec<f64> {
+    let (k, layers) = (k.into(), model.energy_layers());
+    match model.layout() {
         Bars::Listed(layout) => {
             let StiffnessRef::PerBar(k) = k else { panic!("a listed lattice has per-bar stiffness") };
-            strain_energy_with(layout, a, b, l, |bar, _| k[bar][l])
+            strain_energy_with(layout, &layers, a, b, l, |bar, _| k[bar][l])
         }
         Bars::Stencil(layout) => {
-            let slab_sums = per_slab(layout, false, |layers| {
+            // The stencil's layers are the window's: layer 0 is the block's `first_node / layer_nodes`.
+            let lo = layers.first_node / layers.layer_nodes;
+            let sum = |g: usize| {
                 let mut sum = 0.0;
-                for layer in layers {
-                    let range = layout.layer_run_range(layer);
-                    for (index, r) in range.clone().zip(&layout.runs()[range]) {
-                        sum += run_strain_energy(index, r, k, a, b, l);
-                    }
+                let range = layout.layer_run_range(g - lo);
+                for (index, r) in range.clone().zip(&layout.runs()[range]) {
+                    sum += run_strain_energy(index, r, k, a, b, l);
                 }
                 sum
-            });
-            0.5 * slab_sums.into_iter().sum::<f64>()
+            };
+            (layers.first..layers.first + layers.count).map(sum).collect()
         }
     }
 }
@@ -100,102 +110,78 @@ fn sum8(n: usize, term: impl Fn(usize) -> f64) -> f64 {
     ((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7]))
 }
 
-/// `sum(layers)` for each slab of a stencil lattice, in slab order; with `parallel`, the slabs on
-/// the current rayon pool (the same partial sums whatever the thread count).
-fn per_slab<T: Send>(layout: &StencilLayout, parallel: bool, sum: impl Fn(Range<usize>) -> T + Sync) -> Vec<T> {
-    let slabs: Vec<Range<usize>> = layout.slabs().collect();
-    if parallel { slabs.into_par_iter().map(&sum).collect() } else { slabs.into_iter().map(&sum).collect() }
+/// `½ Σ m|a − b|²/Δt²` for lane `l` (J), summed layer by layer ([`kinetic_energy_layers`]).
+pub fn kinetic_energy<const L: usize>(model: &Model, a: &Field<L>, b: &Field<L>, l: usize, dt: f64) -> f64 {
+    0.5 * total(&kinetic_energy_layers(model, a, b, l)) / (dt * dt)
 }
 
-/// `½ Σ m|a − b|²/Δt²` for lane `l` (J).
-pub fn kinetic_energy<const L: usize>(model: &Model, a: &Field<L>, b: &Field<L>, l: usize, dt: f64) -> f64 {
-    let mass = model.mass();
-    if let Bars::Stencil(layout) = model.layout() {
-        let sums = per_slab(layout, false, |layers| {
-            let nodes = layout.layer_nodes(layers.start).start..layout.layer_nodes(layers.end - 1).end;
+/// `Σ m|a − b|²` of lane `l` over the nodes of each layer the model sums, bottom up: per layer
+/// and component, eight partial sums.
+pub fn kinetic_energy_layers<const L: usize>(model: &Model, a: &Field<L>, b: &Field<L>, l: usize) -> Vec<f64> {
+    let (mass, layers) = (model.mass(), model.energy_layers());
+    (0..layers.count)
+        .map(|k| {
+            let nodes = layers.nodes_of(k);
+            let m = &mass[nodes.clone()];
             let mut ke = 0.0;
             for c in 0..3 {
-                let (a, b, m) = (&a.c[c][nodes.clone()], &b.c[c][nodes.clone()], &mass[nodes.clone()]);
+                let (a, b) = (&a.c[c][nodes.clone()], &b.c[c][nodes.clone()]);
                 ke += sum8(m.len(), |i| {
                     let v = a[i][l] - b[i][l];
                     m[i] * v * v
                 });
             }
             ke
-        });
-        return 0.5 * sums.into_iter().sum::<f64>() / (dt * dt);
-    }
-    let mut ke = 0.0;
-    for c in 0..3 {
-        let (a, b) = (&a.c[c], &b.c[c]);
-        for i in 0..mass.len() {
-            let v = a[i][l] - b[i][l];
-            ke += mass[i] * v * v;
-        }
-    }
-    0.5 * ke / (dt * dt)
+        })
+        .collect()
 }
 
 /// Adds the work and dissipation of step n, `F·(uₙ₊₁ − uₙ₋₁)/2` for every force, to the
 /// accumulators. Called before the commit, when `state.u.nm1` holds the new uₙ₊₁ and `state.u.n`
-/// holds uₙ₋₁.
+/// holds uₙ₋₁. Each term is summed layer by layer ([`Model::energy_layers`]); on one process the
+/// layers' increments are added to the ledger here, on a rank of a split scene they are left in
+/// [`State::energy_parts`] for rank 0 to add ([`crate::run::run_split`]).
 pub(crate) fn accumulate<const L: usize>(p: &Params<'_, L>, state: &mut State<L>, parallel: bool) {
-    let State { u, contact, loading, energy, anelastic: state_anelastic, .. } = state;
+    let State { u, contact, loading, energy, anelastic: state_anelastic, energy_parts, .. } = state;
     let (new, old) = (&u.nm1, &u.n);
     let model = p.model;
-    let mass = model.mass();
-    let mut damp = [0.0; L];
-    let mut body = [0.0; L];
-    if let Bars::Stencil(layout) = model.layout() {
-        // Slab by slab, each in eight partial sums per lane: the same sums on any thread count.
-        let sums = per_slab(layout, parallel, |layers| {
-            let nodes = layout.layer_nodes(layers.start).start..layout.layer_nodes(layers.end - 1).end;
-            let m = &mass[nodes.clone()];
-            let mut out = [[0.0; L]; 2];
-            for c in 0..3 {
-                let (new, old, bc) = (&new.c[c][nodes.clone()], &old.c[c][nodes.clone()], p.body()[c]);
-                for l in 0..L {
-                    out[0][l] += sum8(m.len(), |i| {
-                        let d2 = new[i][l] - old[i][l];
-                        m[i] * d2 * d2
-                    });
-                    out[1][l] += sum8(m.len(), |i| m[i] * bc[l] * (new[i][l] - old[i][l]));
-                }
-            }
-            out
-        });
-        for [d, b] in sums {
-            for l in 0..L {
-                damp[l] += d[l];
-                body[l] += b[l];
-            }
-        }
-    } else {
+    let (mass, layers) = (model.mass(), model.energy_layers());
+    // Damping and body forces: per layer, per component, eight partial sums per lane.
+    let layer = |k: usize| {
+        let nodes = layers.nodes_of(k);
+        let m = &mass[nodes.clone()];
+        let mut out = [Energy::default(); L];
+        let (mut damp, mut body) = ([0.0; L], [0.0; L]);
         for c in 0..3 {
-            let (new, old) = (&new.c[c], &old.c[c]);
-            let bc = p.body()[c];
-            for i in 0..mass.len() {
-                for l in 0..L {
+            let (new, old, bc) = (&new.c[c][nodes.clone()], &old.c[c][nodes.clone()], p.body()[c]);
+            for l in 0..L {
+                damp[l] += sum8(m.len(), |i| {
                     let d2 = new[i][l] - old[i][l];
-                    damp[l] += mass[i] * d2 * d2;
-                    body[l] += mass[i] * bc[l] * d2;
-                }
+                    m[i] * d2 * d2
+                });
+                body[l] += sum8(m.len(), |i| m[i] * bc[l] * (new[i][l] - old[i][l]));
             }
         }
-    }
-    for l in 0..L {
-        let e = &mut energy[l];
-        e.damping += damp[l] * p.damping(l) / (4.0 * p.dt(l));
-        e.body_work += 0.5 * body[l];
-    }
+        for l in 0..L {
+            out[l].damping = damp[l] * p.damping(l) / (4.0 * p.dt(l));
+            out[l].body_work = 0.5 * body[l];
+        }
+        out
+    };
+    let mut parts: Vec<[Energy; L]> = if parallel {
+        (0..layers.count).into_par_iter().map(layer).collect()
+    } else {
+        (0..layers.count).map(layer).collect()
+    };
     let reaction = &contact.reaction;
     // On a fault the normal force is the friction's only: it does no work (docs/model.md §15).
     let normal_work = !model.scene().is_fault();
     for (ci, &node) in model.contact().iter().enumerate() {
         let i = node as usize;
+        let Some(k) = layers.of(i) else { continue };
         for l in 0..L {
             let d2 = |c: usize| new.c[c][i][l] - old.c[c][i][l];
-            let e = &mut energy[l];
+            let e = &mut parts[k][l];
             e.friction -= 0.5 * (reaction[0][ci][l] * d2(0) + reaction[1][ci][l] * d2(1));
             if normal_work {
                 e.impact -= 0.5 * reaction[2][ci][l] * d2(2);
@@ -203,10 +189,27 @@ pub(crate) fn accumulate<const L: usize>(p: &Params<'_, L>, state: &mut State<L>
         }
     }
     if let Some(a) = &p.anelastic {
-        let w = crate::step::anelastic::work(model, a, p.stiffness(), [new, &u.np1, old], state_anelastic);
-        for l in 0..L {
-            energy[l].anelastic += w[l];
+        let w = crate::step::anelastic::work(model, &layers, a, p.stiffness(), [new, &u.np1, old], state_anelastic);
+        for (part, w) in parts.iter_mut().zip(w) {
+            for l in 0..L {
+                part[l].anelastic += w[l];
+            }
         }
     }
-    model.boundaries().work(&mut boundary::Work { new, old, loading, dt: p.dts(), fault: p.fault.as_ref(), energy });
+    model.boundaries().work(&mut boundary::Work {
+        new,
+        old,
+        loading,
+        dt: p.dts(),
+        fault: p.fault.as_ref(),
+        layers: &layers,
+        parts: &mut parts,
+    });
+    if model.split_window().is_some() {
+        *energy_parts = parts;
+    } else {
+        for l in 0..L {
+            energy[l].add_work(&crate::ledger::fold_layers(parts.iter().map(|p| &p[l])));
+        }
+    }
 }

@@ -6,6 +6,7 @@
 use crate::field::{Field, Lanes};
 use crate::geometry::Direction;
 use crate::layout::BarLayout;
+use crate::ledger::EnergyLayers;
 
 /// Checks that `k`, `u` and `f` fit `layout` (the kernels index them without bounds checks).
 pub(crate) fn check<const L: usize>(layout: &BarLayout, k: &[Lanes<L>], u: &Field<L>, f: &Field<L>) {
@@ -98,67 +99,26 @@ pub(crate) unsafe fn scatter_diagonal<const L: usize>(
     }
 }
 
-/// `½ Σ_b k_b·e_b(a)·e_b(b)` for lane `l` with `k_b = stiffness(bar, e_b(a))`, summed group by
-/// group in kernel order (so every caller gets the same bits for the same stiffness).
+/// `Σ_b k_b·e_b(a)·e_b(b)` for lane `l` with `k_b = stiffness(bar, e_b(a))`, per layer of
+/// `layers` (a bar in its lower end's layer; bars of other layers skipped), each layer's bars in
+/// kernel order (so every caller gets the same bits for the same stiffness).
 pub(crate) fn strain_energy_with<const L: usize>(
     layout: &BarLayout,
+    layers: &EnergyLayers,
     a: &Field<L>,
     b: &Field<L>,
     l: usize,
     stiffness: impl Fn(usize, f64) -> f64,
-) -> f64 {
+) -> Vec<f64> {
     let ends = layout.ends();
-    let mut total = 0.0;
+    let mut sums = vec![0.0; layers.count];
     for g in layout.groups() {
-        // The direction is matched once per group, so each group's loop is specialised.
-        let sum = match g.direction {
-            Direction::Axis(axis) => group_sum(
-                ends,
-                g.start..g.end,
-                &stiffness,
-                |u, i, j| {
-                    let c = &u.c[axis as usize];
-                    c[j][l] - c[i][l]
-                },
-                a,
-                b,
-            ),
-            Direction::Diagonal { neg_x, neg_y } => {
-                let (sx, sy) = signs(neg_x, neg_y);
-                group_sum(
-                    ends,
-                    g.start..g.end,
-                    &stiffness,
-                    |u, i, j| {
-                        sx * (u.c[0][j][l] - u.c[0][i][l])
-                            + sy * (u.c[1][j][l] - u.c[1][i][l])
-                            + (u.c[2][j][l] - u.c[2][i][l])
-                    },
-                    a,
-                    b,
-                )
-            }
-        };
-        total += sum;
+        for bar in g.start..g.end {
+            let (i, j) = (ends[bar][0] as usize, ends[bar][1] as usize);
+            let Some(k) = layers.of(i.min(j)) else { continue };
+            let pa = elongation(g.direction, a, i, j, l);
+            sums[k] += stiffness(bar, pa) * pa * elongation(g.direction, b, i, j, l);
+        }
     }
-    0.5 * total
-}
-
-/// `Σ k·e(a)·e(b)` over the bars of one group, `e` the group's elongation.
-#[inline(always)]
-fn group_sum<const L: usize>(
-    ends: &[[u32; 2]],
-    bars: std::ops::Range<usize>,
-    stiffness: &impl Fn(usize, f64) -> f64,
-    elongation: impl Fn(&Field<L>, usize, usize) -> f64,
-    a: &Field<L>,
-    b: &Field<L>,
-) -> f64 {
-    let mut sum = 0.0;
-    for bar in bars {
-        let (i, j) = (ends[bar][0] as usize, ends[bar][1] as usize);
-        let pa = elongation(a, i, j);
-        sum += stiffness(bar, pa) * pa * elongation(b, i, j);
-    }
-    sum
+    sums
 }

@@ -490,13 +490,16 @@ unsafe fn exact<const L: usize>(
 /// nothing is damaged.
 pub fn strain_energy<const L: usize>(
     layout: &BarLayout,
+    layers: &crate::ledger::EnergyLayers,
     k0: &[Lanes<L>],
     secant: &[Lanes<L>],
     a: &Field<L>,
     b: &Field<L>,
     l: usize,
 ) -> f64 {
-    strain_energy_with(layout, a, b, l, |bar, pa| if pa > 0.0 { secant[bar][l] } else { k0[bar][l] })
+    let sums =
+        strain_energy_with(layout, layers, a, b, l, |bar, pa| if pa > 0.0 { secant[bar][l] } else { k0[bar][l] });
+    0.5 * crate::ledger::total(&sums)
 }
 
 /// Elongation of every bar in kernel units for lane `l` (axial: `e·Δu`; diagonal: `s·Δu`, √3
@@ -745,8 +748,8 @@ mod tests {
             assert_eq!(f, want);
             for l in 0..8 {
                 assert_eq!(
-                    strain_energy(m.layout().listed(), &k0, &state.secant, &u, &older, l).to_bits(),
-                    crate::step::energy::strain_energy(m.layout(), &k0, &u, &older, l).to_bits()
+                    strain_energy(m.layout().listed(), &m.energy_layers(), &k0, &state.secant, &u, &older, l).to_bits(),
+                    crate::step::energy::strain_energy(&m, &k0, &u, &older, l).to_bits()
                 );
             }
             assert!(outs.iter().all(|o| o.cracks.is_empty() && o.dissipated.iter().all(|&d| d == 0.0)));

@@ -86,6 +86,9 @@ pub struct State<const L: usize> {
     /// Work and dissipation accumulated from the start of each lane's run (J); kinetic and
     /// elastic energy are functions of the time levels.
     pub energy: [Energy; L],
+    /// On a rank of a split scene, the work terms of the last step, per layer it owns, which
+    /// rank 0 adds to its ledger (docs/model.md §19); empty on one process.
+    pub energy_parts: Vec<[Energy; L]>,
     /// Slip history.
     pub log: SlipLog<L>,
     /// Damage of the bars, when they crack (docs/model.md §11).
@@ -122,6 +125,7 @@ impl<const L: usize> State<L> {
                 plate_force: vec![[0.0; L]; plate],
             },
             energy: [Energy::default(); L],
+            energy_parts: Vec::new(),
             log: SlipLog {
                 run: vec![[0; L]; contacts],
                 onsets: std::array::from_fn(|_| Vec::new()),

@@ -159,11 +159,12 @@ impl<const L: usize> LaneView<'_, '_, L> {
         let u = &self.state.u;
         let mut e = self.state.energy[self.lane];
         e.kinetic = self.kinetic_energy();
-        let layout = self.params.model.layout();
+        let model = self.params.model;
         e.elastic = match &self.state.rupture {
-            None => strain_energy(layout, self.params.stiffness(), &u.n, &u.np1, self.lane),
+            None => strain_energy(model, self.params.stiffness(), &u.n, &u.np1, self.lane),
             Some(r) => crate::step::rupture::strain_energy(
-                layout.listed(),
+                model.layout().listed(),
+                &model.energy_layers(),
                 self.params.k.per_bar(),
                 &r.secant,
                 &u.n,

@@ -15,7 +15,10 @@ use std::time::{Duration, Instant};
 use mpi::traits::{Communicator, CommunicatorCollectives, Destination, Root, Source};
 use stickslip_config::Pipeline;
 use stickslip_solver::field::Field;
-use stickslip_solver::split::mpi::MpiRanks;
+// The command line's MPI ranks (the package has no library to import them from).
+#[path = "../src/mpi_ranks.rs"]
+mod mpi_ranks;
+use mpi_ranks::MpiRanks;
 use stickslip_solver::split::{Halo, Partition};
 use stickslip_solver::statics::critical_step;
 use stickslip_solver::step::{Batch, LaneSetup, start_drivers};
@@ -72,7 +75,7 @@ fn prepare(batch: &mut Batch<'_, 1>) {
 
 /// The whole block's time step, from its critical step (rank 0 builds the whole model for it).
 fn time_step(scene: &Scene) -> f64 {
-    let model = Model::with_stencil(scene.clone());
+    let model = Model::new(scene.clone());
     let lane = setup(&model, 1.0);
     0.5 * critical_step(&model, &lane.stiffness).expect("critical step").dt_s
 }
@@ -168,7 +171,7 @@ fn main() {
     if !args.check {
         return;
     }
-    let whole = Model::with_stencil(scene);
+    let whole = Model::new(scene);
     let mut single = Batch::new(&whole, &[setup(&whole, dt)]);
     prepare(&mut single);
     let t = Instant::now();

@@ -5,7 +5,7 @@
 use mpi::topology::SimpleCommunicator;
 use mpi::traits::{Communicator, Destination, Root, Source};
 
-use super::Neighbours;
+use stickslip_solver::split::Neighbours;
 
 /// Message tags: a layer sent up, a layer sent down.
 const UP: i32 = 1;
