@@ -138,9 +138,9 @@ pub fn kinetic_energy_layers<const L: usize>(model: &Model, a: &Field<L>, b: &Fi
 
 /// Adds the work and dissipation of step n, `F·(uₙ₊₁ − uₙ₋₁)/2` for every force, to the
 /// accumulators. Called before the commit, when `state.u.nm1` holds the new uₙ₊₁ and `state.u.n`
-/// holds uₙ₋₁. Each term is summed layer by layer ([`Model::energy_layers`]); on one process the
-/// layers' increments are added to the ledger here, on a rank of a split scene they are left in
-/// [`State::energy_parts`] for rank 0 to add ([`crate::run::run_split`]).
+/// holds uₙ₋₁. Each term is summed layer by layer ([`Model::energy_layers`]) into
+/// [`State::energy_parts`]; on one process the layers' increments are added to the ledger here, on
+/// a rank of a split scene rank 0 adds every rank's ([`crate::run::run_split`]).
 pub(crate) fn accumulate<const L: usize>(p: &Params<'_, L>, state: &mut State<L>, parallel: bool) {
     let State { u, contact, loading, energy, anelastic: state_anelastic, energy_parts, .. } = state;
     let (new, old) = (&u.nm1, &u.n);
@@ -168,11 +168,14 @@ pub(crate) fn accumulate<const L: usize>(p: &Params<'_, L>, state: &mut State<L>
         }
         out
     };
-    let mut parts: Vec<[Energy; L]> = if parallel {
-        (0..layers.count).into_par_iter().map(layer).collect()
+    // The layers' terms, in the state's buffer (kept from step to step: no allocation per step).
+    let mut parts = std::mem::take(energy_parts);
+    parts.clear();
+    if parallel {
+        (0..layers.count).into_par_iter().map(layer).collect_into_vec(&mut parts);
     } else {
-        (0..layers.count).map(layer).collect()
-    };
+        parts.extend((0..layers.count).map(layer));
+    }
     let reaction = &contact.reaction;
     // On a fault the normal force is the friction's only: it does no work (docs/model.md §15).
     let normal_work = !model.scene().is_fault();
@@ -205,11 +208,10 @@ pub(crate) fn accumulate<const L: usize>(p: &Params<'_, L>, state: &mut State<L>
         layers: &layers,
         parts: &mut parts,
     });
-    if model.split_window().is_some() {
-        *energy_parts = parts;
-    } else {
+    if model.split_window().is_none() {
         for l in 0..L {
             energy[l].add_work(&crate::ledger::fold_layers(parts.iter().map(|p| &p[l])));
         }
     }
+    *energy_parts = parts;
 }

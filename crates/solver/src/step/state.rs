@@ -86,8 +86,8 @@ pub struct State<const L: usize> {
     /// Work and dissipation accumulated from the start of each lane's run (J); kinetic and
     /// elastic energy are functions of the time levels.
     pub energy: [Energy; L],
-    /// On a rank of a split scene, the work terms of the last step, per layer it owns, which
-    /// rank 0 adds to its ledger (docs/model.md §19); empty on one process.
+    /// The work terms of the last step per layer the model sums, when the energy is tracked: on
+    /// a rank of a split scene, those rank 0 adds to its ledger (docs/model.md §19).
     pub energy_parts: Vec<[Energy; L]>,
     /// Slip history.
     pub log: SlipLog<L>,
