@@ -158,7 +158,7 @@ fn contains(p: &Shape<'_>, x: f64, y: f64, width: f64, eps: f64) -> bool {
 pub(crate) fn tile_shares(p: &Shape<'_>, lattice: &Lattice) -> Vec<(usize, f64)> {
     let e = lattice.extent();
     let overlap = |lo: f64, hi: f64, a: f64, b: f64| (hi.min(b) - lo.max(a)).max(0.0);
-    (0..lattice.contact_nodes().len())
+    (0..lattice.contact_count())
         .filter_map(|c| {
             let [[x0, x1], [y0, y1]] = tile(lattice, c);
             let area = (x1 - x0) * (y1 - y0);
@@ -188,7 +188,7 @@ pub(crate) fn tile_shares(p: &Shape<'_>, lattice: &Lattice) -> Vec<(usize, f64)>
 /// face (`c` indexes [`Lattice::contact_nodes`]).
 pub(crate) fn tile(lattice: &Lattice, c: usize) -> [[f64; 2]; 2] {
     let (e, h) = (lattice.extent(), 0.5 * lattice.lc());
-    let q = lattice.position(lattice.contact_nodes()[c]);
+    let q = lattice.position(lattice.contact_node(c));
     [[(q[0] - h).max(0.0), (q[0] + h).min(e[0])], [(q[1] - h).max(0.0), (q[1] + h).min(e[1])]]
 }
 
@@ -347,9 +347,15 @@ pub(crate) fn build(
         members.push((held, co));
     }
     // Overlaps need a precedence.
+    let mut held_by_i = vec![false; contact.len()];
     for i in 0..patches.len() {
+        // A mask of patch i's nodes, so each overlap is counted in one pass (not one search per node).
+        held_by_i.iter_mut().for_each(|h| *h = false);
+        for &c in &members[i].0 {
+            held_by_i[c] = true;
+        }
         for j in i + 1..patches.len() {
-            let shared = members[i].0.iter().filter(|c| members[j].0.contains(c)).count();
+            let shared = members[j].0.iter().filter(|&&c| held_by_i[c]).count();
             if shared > 0 && patches[i].priority == patches[j].priority {
                 ck.push(
                     format!("friction.patches[{j}].priority"),

@@ -242,7 +242,7 @@ pub(super) fn fault(ck: &mut Checker, file: SceneSections<'_>, lattice: &Lattice
     ck.positive("fault.normal_stress_pa", f.normal_stress_pa);
     ck.range("fault.shear_stress_pa", f.shear_stress_pa, f64::NEG_INFINITY, true, f64::INFINITY, true);
     ck.range("fault.shear_stress_y_pa", f.shear_stress_y_pa, f64::NEG_INFINITY, true, f64::INFINITY, true);
-    let n = lattice.contact_nodes().len();
+    let n = lattice.contact_count();
     let mut shear = vec![[f.shear_stress_pa, f.shear_stress_y_pa]; n];
     let mut normal = vec![f.normal_stress_pa; n];
     if let Some(g) = f.grid.as_ref().filter(|g| !g.refused) {

@@ -420,8 +420,18 @@ impl Lattice {
 
     /// The contact nodes: corner-lattice nodes of the bottom face `z = 0`, in canonical order.
     pub fn contact_nodes(&self) -> Vec<NodeId> {
-        let count = (self.dims.nx + 1) * (self.dims.ny + 1);
-        (0..count as u32).map(NodeId).collect()
+        (0..self.contact_count() as u32).map(NodeId).collect()
+    }
+
+    /// The number of contact nodes, `(nx + 1)(ny + 1)`.
+    pub fn contact_count(&self) -> usize {
+        (self.dims.nx + 1) * (self.dims.ny + 1)
+    }
+
+    /// Contact node `c` (`contact_nodes()[c]`, without building the list).
+    pub fn contact_node(&self, c: usize) -> NodeId {
+        assert!(c < self.contact_count(), "contact node {c} of {}", self.contact_count());
+        NodeId(c as u32)
     }
 
     /// Whether a node lies on the outer surface of the block.
