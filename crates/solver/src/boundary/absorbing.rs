@@ -108,13 +108,14 @@ impl Boundary for Absorbing {
     fn work<const L: usize>(&self, w: &mut Work<'_, L>) {
         for &(node, c) in &self.dashpots {
             let i = node as usize;
+            let part = w.layer(i);
             for l in 0..L {
                 let mut sum = 0.0;
                 for k in 0..3 {
                     let d = w.new.c[k][i][l] - w.old.c[k][i][l];
                     sum += c[k] * d * d;
                 }
-                w.at(i, l).absorbed += sum / (4.0 * w.dt[l]);
+                w.parts[part][l].absorbed += sum / (4.0 * w.dt[l]);
             }
         }
     }

@@ -55,8 +55,9 @@ impl Boundary for Drivers {
     fn work<const L: usize>(&self, w: &mut Work<'_, L>) {
         for (d, &node) in self.nodes.iter().enumerate() {
             let i = node as usize;
+            let part = w.layer(i);
             for l in 0..L {
-                w.at(i, l).driver_work += 0.5 * w.loading.reaction[d][l] * (w.new.c[0][i][l] - w.old.c[0][i][l]);
+                w.parts[part][l].driver_work += 0.5 * w.loading.reaction[d][l] * (w.new.c[0][i][l] - w.old.c[0][i][l]);
             }
         }
     }

@@ -105,11 +105,11 @@ pub struct Work<'a, const L: usize> {
 }
 
 impl<const L: usize> Work<'_, L> {
-    /// The terms of node `i`'s layer, lane `l` (a boundary acts on nodes the model sums).
+    /// The index in [`Work::parts`] of node `i`'s layer (a boundary acts on nodes the model sums),
+    /// found once per node, before its lanes.
     #[inline]
-    pub fn at(&mut self, i: usize, l: usize) -> &mut Energy {
-        let k = self.layers.of(i).expect("a boundary node is one the model sums");
-        &mut self.parts[k][l]
+    pub fn layer(&self, i: usize) -> usize {
+        self.layers.of(i).expect("a boundary node is one the model sums")
     }
 }
 

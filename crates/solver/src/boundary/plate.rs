@@ -58,8 +58,10 @@ impl Boundary for Plate {
     fn work<const L: usize>(&self, w: &mut Work<'_, L>) {
         for (j, &(node, _)) in self.springs.iter().enumerate() {
             let i = node as usize;
+            let part = w.layer(i);
             for l in 0..L {
-                w.at(i, l).driver_work += 0.5 * w.loading.plate_force[j][l] * (w.new.c[0][i][l] - w.old.c[0][i][l]);
+                w.parts[part][l].driver_work +=
+                    0.5 * w.loading.plate_force[j][l] * (w.new.c[0][i][l] - w.old.c[0][i][l]);
             }
         }
     }

@@ -50,8 +50,9 @@ impl Boundary for Pressure {
     fn work<const L: usize>(&self, w: &mut Work<'_, L>) {
         for &(node, f) in &self.loads {
             let i = node as usize;
+            let part = w.layer(i);
             for l in 0..L {
-                w.at(i, l).body_work += 0.5 * f * (w.new.c[2][i][l] - w.old.c[2][i][l]);
+                w.parts[part][l].body_work += 0.5 * f * (w.new.c[2][i][l] - w.old.c[2][i][l]);
             }
         }
     }

@@ -49,12 +49,13 @@ impl Boundary for Traction {
         let Some(f) = w.fault else { return };
         for (ci, &node) in self.nodes.iter().enumerate() {
             let i = node as usize;
+            let part = w.layer(i);
             for l in 0..L {
                 let mut sum = 0.0;
                 for axis in 0..2 {
                     sum += f.shear_n[axis][ci][l] * (w.new.c[axis][i][l] - w.old.c[axis][i][l]);
                 }
-                w.at(i, l).traction_work += 0.5 * sum;
+                w.parts[part][l].traction_work += 0.5 * sum;
             }
         }
     }
