@@ -4,6 +4,7 @@
 
 use stickslip_solver::SolverError;
 use stickslip_solver::inspect::{Regime, Slider};
+use stickslip_solver::laws::{Law, RateState};
 
 /// The keys that set what `e` asks to change; `None` when it asks nothing of the file.
 pub fn for_error(e: &SolverError) -> Option<&'static str> {
@@ -38,7 +39,17 @@ pub fn describe(e: &SolverError) -> String {
 
 /// The spring-slider verdict followed by the keys to change, as the command line prints it.
 pub fn verdict(slider: &Slider) -> String {
-    with_keys(slider.verdict(), for_regime(slider.regime()))
+    let keys = for_regime(slider.regime());
+    if slider.critical_formula == <RateState as Law>::CRITICAL {
+        // Under rate and state, μs and μd are f(V₀, θ₀) and the steady state at 1 m/s: its
+        // keys are f₀, a and b.
+        let keys = keys.map(|k| {
+            k.replace("friction.mu_static", "friction.rate_state.f0")
+                .replace("friction.mu_dynamic", "friction.rate_state.b, friction.rate_state.a")
+        });
+        return with_keys(slider.verdict(), keys.as_deref());
+    }
+    with_keys(slider.verdict(), keys)
 }
 
 fn with_keys(message: String, keys: Option<&str>) -> String {
@@ -71,6 +82,8 @@ mod tests {
             plate_n_m: f64::INFINITY,
             k_n_m: 1e6,
             critical_n_m,
+            critical_formula: "(μs − μd)·N/Dc",
+            steady_reason: "μ does not weaken with slip",
             damping_ratio,
             slip_speed_m_s: 1.0,
             loading_speed_m_s: 1e-4,

@@ -67,9 +67,13 @@ pub struct Slider {
     pub plate_n_m: f64,
     /// The loading stiffness `k`: block and springs in series (N/m).
     pub k_n_m: f64,
-    /// Critical stiffness `(μs − μd)·N/Dc` (N/m): infinite when μ drops at once, 0 without
-    /// weakening.
+    /// Critical stiffness `(μs − μd)·N/Dc` (N/m; `(b − a)·N/L` under rate and state): infinite
+    /// when μ drops at once, 0 without weakening.
     pub critical_n_m: f64,
+    /// How the law computes the critical stiffness, as printed ([`crate::laws::Law::CRITICAL`]).
+    pub critical_formula: &'static str,
+    /// Why the law slides steadily without a critical stiffness ([`crate::laws::Law::STEADY`]).
+    pub steady_reason: &'static str,
     /// Damping ratio of the slider's swing, `D/(2ω)`, `ω = √(k/M)` (mass-proportional damping
     /// drags the moving block as a whole).
     pub damping_ratio: f64,
@@ -161,13 +165,11 @@ impl Slider {
                  μs)",
                 self.tipping_n, self.strength_n
             ),
-            Regime::NoWeakening => "stable sliding expected: μ does not weaken with slip (μd = μs), so a seated block \
-                                    slides steadily (make the dynamic friction coefficient lower than the static one)"
-                .into(),
+            Regime::NoWeakening => format!("stable sliding expected: {}", self.steady_reason),
             Regime::StiffLoading => format!(
                 "stable sliding expected: the loading stiffness k = {:.4e} N/m is above the critical stiffness \
-                 (μs − μd)·N/Dc = {:.4e} N/m (softer loading, a larger μs − μd or a shorter Dc make it unstable)",
-                self.k_n_m, self.critical_n_m
+                 {} = {:.4e} N/m (softer loading, a larger drop or a shorter weakening distance make it unstable)",
+                self.k_n_m, self.critical_formula, self.critical_n_m
             ),
             Regime::Overdamped => format!(
                 "stable sliding expected despite k < k_c: the damping ratio of the block's swing D/(2ω) = {} lets a slip \
@@ -198,8 +200,9 @@ impl Slider {
             }
             Regime::Undetermined => format!(
                 "not assessed: the reading needs the block's stiffness under its load, a static solve of the whole \
-                 lattice, {} (the critical stiffness (μs − μd)·N/Dc = {:.4e} N/m)",
+                 lattice, {} (the critical stiffness {} = {:.4e} N/m)",
                 self.block_note.as_deref().unwrap_or("left out for a block this large"),
+                self.critical_formula,
                 self.critical_n_m
             ),
             Regime::StickSlip => format!(
@@ -430,6 +433,8 @@ fn slider(model: &Model, k: Option<&[f64]>, weight: f64) -> Result<Slider, Solve
         plate_n_m: plate,
         k_n_m: k_load,
         critical_n_m: critical,
+        critical_formula: nodes[0].critical_formula(),
+        steady_reason: nodes[0].steady_reason(),
         damping_ratio: scene.shear.damping_per_s / (2.0 * omega),
         slip_speed_m_s: (mu_s - mu_d) * normal / k_load * omega,
         loading_speed_m_s: scene.shear.velocity_m_s,

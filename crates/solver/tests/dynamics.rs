@@ -207,3 +207,37 @@ fn energy_balance_closes_over_a_stencil_lattice() {
     let serial = run_seed(&model, 5, RunOptions::default(), &mut go).unwrap();
     assert_eq!(serial, out, "one and two threads give the same run bit for bit");
 }
+
+#[test]
+fn energy_balance_closes_with_rate_and_state_friction() {
+    // pipelines/paper-rate-state.toml: the paper block on a velocity-weakening rate-and-state base
+    // sticks and slips; every node creeps at the rate its step balances (docs/model.md §4), and
+    // the ledger's friction term is the base's reaction times that creep.
+    let mut scene = stickslip_config::Pipeline::load(&repo_path("pipelines/paper-rate-state.toml")).unwrap().scene;
+    scene.record.energy = true;
+    let model = Model::new(scene);
+    let out = run_seed(&model, 123, RunOptions::default(), &mut go).unwrap();
+    let r = &out.recording;
+    let ext = r.get(Channel::ExternalWork).unwrap();
+    let res = r.get(Channel::EnergyResidual).unwrap();
+    let fric = r.get(Channel::FrictionDissipated).unwrap();
+    let worst = res.iter().zip(ext).map(|(r, e)| (r / e).abs()).fold(0.0, f64::max);
+    let last = r.len() - 1;
+    // Slips: the mean slip rate rising above ten times the loading speed after falling below it.
+    let loading = model.scene().shear.velocity_m_s;
+    let (mut slips, mut armed) = (0, true);
+    for &v in r.get(Channel::MeanSlipRate).unwrap() {
+        if armed && v > 10.0 * loading {
+            (slips, armed) = (slips + 1, false);
+        } else if v < loading {
+            armed = true;
+        }
+    }
+    println!(
+        "external work {:.4e} J; friction {:.3e} J; worst |residual|/work {worst:.2e}; {slips} slips",
+        ext[last], fric[last]
+    );
+    assert!(fric[last] > 0.5 * ext[last], "friction takes most of the work: {} of {}", fric[last], ext[last]);
+    assert!(worst < 1e-9, "energy balance off by {worst}");
+    assert!(slips >= 5, "the block sticks and slips: {slips} slips");
+}

@@ -209,3 +209,54 @@ fn exponential_weakening_slips_as_its_closed_form() {
     assert!(lag_lo > 0.0 && lag_hi < 1.0, "slip lags the closed form by {lag_lo}–{lag_hi} steps");
     assert!(lag_hi - lag_lo < 0.2, "the lag drifts: {lag_lo}–{lag_hi} steps");
 }
+
+#[test]
+fn rate_and_state_friction_slides_at_the_rate_that_balances_the_radiated_wave() {
+    // A uniform overstress on the column with rate-and-state friction: the face radiates a plane
+    // S wave, so the traction is τ0 − (ρCs/2)·V, and once θ has relaxed over a few L of slip the
+    // fault slides at the steady rate where τ0 − (ρCs/2)·V = σn·f_ss(V),
+    // f_ss = f₀ + (a − b)·ln(V/V₀) (solved here by bisection), velocity weakening (aging law)
+    // or strengthening (slip law) alike: the radiation damping ρCs/2 outweighs σn·(a − b)/V.
+    use stickslip_solver::laws::rate_state::steady_friction;
+    use stickslip_solver::laws::{Evolution, RateStateFriction, RateStateStart};
+    for (evolution, a, b, dc_m) in [(Evolution::Aging, 0.010, 0.015, 0.05), (Evolution::Slip, 0.020, 0.010, 0.005)] {
+        let law =
+            RateStateFriction { a, b, dc_m, v0_m_s: 1e-6, f0: 0.5, evolution, start: RateStateStart::SteadyAt(1e-6) };
+        let mut scene = column(60, TAU0);
+        scene.friction.law = law.into();
+        let (_, _, c44) = lattice_elastic_constants(scene.young_pa, scene.poisson);
+        let rho = scene.density_kg_m3;
+        let eta = 0.5 * rho * (c44 / rho).sqrt();
+        let node = law.node();
+        let excess = |v: f64| TAU0 - eta * v - SIGMA_N * steady_friction(&node, v);
+        let (mut lo, mut hi) = (1e-3f64, 10.0f64);
+        for _ in 0..200 {
+            let mid = (lo * hi).sqrt();
+            if excess(mid) > 0.0 { lo = mid } else { hi = mid }
+        }
+        let rate = lo;
+        let model = Model::new(scene);
+        let mut bt = batch(&model);
+        let steps = 400;
+        let (mut sum, mut n) = (0.0, 0);
+        for step in 1..=steps {
+            bt.step();
+            if step > steps / 2 {
+                let v = bt.view(0);
+                for ci in 0..model.contact().len() {
+                    sum += v.node_contact(ci).slip_rate;
+                    n += 1;
+                }
+            }
+        }
+        let mean = sum / n as f64;
+        let slip = bt.view(0).node_contact(0).slip;
+        println!(
+            "{evolution:?} (a = {a}, b = {b}): slip rate {mean:.5} m/s over the second half, steady closed form \
+             {rate:.5} m/s; slip {slip:.3} m = {:.0} L",
+            slip / dc_m
+        );
+        assert!(slip > 20.0 * dc_m, "θ has relaxed: {slip} m");
+        assert!((mean / rate - 1.0).abs() < 0.005, "{evolution:?}: slip rate {mean} vs {rate}");
+    }
+}

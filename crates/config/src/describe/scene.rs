@@ -48,7 +48,7 @@ pub fn describe_friction(model: &Model) -> Section {
         format!(
             "friction: {} ({}), CV of μ {}",
             law.name(),
-            describe(&law.node(1.0).coefficients(), |_, c| N(c.value).to_string()),
+            describe(&law.node(1.0).coefficients(), |_, c| round(c.value).to_string()),
             N(scene.friction.mu_cv)
         ),
     );
@@ -386,8 +386,8 @@ pub fn spring_slider(scene: &Scene, facts: &Inspection) -> Section {
             "slider",
             format!(
                 "as a spring-slider: N = {:.4e} N, strength μs·N = {:.4e} N, tips at {:.4e} N; k not solved ({why}), \
-                 plate springs {:.4e} N/m, k_c = (μs − μd)·N/Dc = {:.4e} N/m",
-                sl.normal_n, sl.strength_n, sl.tipping_n, sl.plate_n_m, sl.critical_n_m
+                 plate springs {:.4e} N/m, k_c = {} = {:.4e} N/m",
+                sl.normal_n, sl.strength_n, sl.tipping_n, sl.plate_n_m, sl.critical_formula, sl.critical_n_m
             ),
         );
     } else {
@@ -395,7 +395,7 @@ pub fn spring_slider(scene: &Scene, facts: &Inspection) -> Section {
             "slider",
             format!(
                 "as a spring-slider: N = {:.4e} N, strength μs·N = {:.4e} N, tips at {:.4e} N; k = {:.4e} N/m (block \
-                 under the load {:.4e}, plate springs {:.4e}), k_c = (μs − μd)·N/Dc = {:.4e} N/m, swing damping \
+                 under the load {:.4e}, plate springs {:.4e}), k_c = {} = {:.4e} N/m, swing damping \
                  D/(2ω) = {:.3}",
                 sl.normal_n,
                 sl.strength_n,
@@ -403,6 +403,7 @@ pub fn spring_slider(scene: &Scene, facts: &Inspection) -> Section {
                 sl.k_n_m,
                 sl.block_n_m,
                 sl.plate_n_m,
+                sl.critical_formula,
                 sl.critical_n_m,
                 N(sl.damping_ratio)
             ),

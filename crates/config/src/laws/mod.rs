@@ -1,12 +1,16 @@
 //! Friction laws as the configuration knows them: each law's keys in `[friction]`, its patches
-//! and grid rows, and its refusals, one file per law ([`slip_weakening`], [`exponential`]); the
+//! and grid rows, and its refusals, one file per law ([`slip_weakening`], [`exponential`],
+//! [`rate_state`]); the
 //! table [`LAWS`] maps `[friction] law` to the file. `scene::friction` and the friction map ask
 //! the law chosen here for the background and for each region's coefficients, and never name a
 //! law. A new law is its file here and its line in [`LAWS`] (beside its file in the solver's
 //! `laws`; ARCHITECTURE.md lists the files).
 
 mod exponential;
+mod rate_state;
 mod slip_weakening;
+
+pub use rate_state::RateStateSection;
 
 use stickslip_solver::laws::{FrictionLaw, NodeFriction};
 
@@ -21,6 +25,10 @@ pub(crate) struct FrictionKeys {
     pub mu_dynamic: Option<f64>,
     /// `slip_weakening_m`.
     pub slip_weakening_m: f64,
+    /// `heals`.
+    pub heals: bool,
+    /// `[friction.rate_state]`.
+    pub rate_state: Option<RateStateSection>,
 }
 
 /// The coefficients a region of the base gives (a patch, a grid row): the keys shared by every
@@ -51,7 +59,7 @@ pub(crate) struct LawKeys {
 }
 
 /// Every law, the first the default of `[friction] law`.
-pub(crate) const LAWS: [LawKeys; 2] = [slip_weakening::KEYS, exponential::KEYS];
+pub(crate) const LAWS: [LawKeys; 4] = [slip_weakening::KEYS, exponential::KEYS, rate_state::AGING, rate_state::SLIP];
 
 /// The law `[friction] law` names (refused with every allowed name when it names none).
 pub(crate) fn chosen(ck: &mut Checker, law: Option<&str>) -> &'static LawKeys {
@@ -65,8 +73,10 @@ pub(crate) fn chosen(ck: &mut Checker, law: Option<&str>) -> &'static LawKeys {
 
 /// The entry of [`LAWS`] whose law built the background `law`.
 pub(crate) fn of(law: &FrictionLaw) -> &'static LawKeys {
-    let name = law.background.law_name();
-    LAWS.iter().find(|l| l.solver_law == name).expect("every law's background comes from LAWS")
+    LAWS.iter().find(|l| l.name == law.name()).unwrap_or_else(|| {
+        let name = law.background.law_name();
+        LAWS.iter().find(|l| l.solver_law == name).expect("every law's background comes from LAWS")
+    })
 }
 
 /// A region's μs (checked non-negative) and μd (its μs when omitted; checked within 0…μs).

@@ -24,6 +24,25 @@ pub(super) fn friction(ck: &mut Checker, f: &FrictionSection, law: FrictionLaw, 
 
 /// The friction law the section describes: the law `[friction] law` names, from its keys.
 fn friction_law(ck: &mut Checker, f: &FrictionSection) -> FrictionLaw {
-    let keys = FrictionKeys { mu_static: f.mu_static, mu_dynamic: f.mu_dynamic, slip_weakening_m: f.slip_weakening_m };
-    (laws::chosen(ck, f.law.as_deref()).law)(ck, &keys)
+    let keys = FrictionKeys {
+        mu_static: f.mu_static,
+        mu_dynamic: f.mu_dynamic,
+        slip_weakening_m: f.slip_weakening_m,
+        heals: f.heals,
+        rate_state: f.rate_state,
+    };
+    let chosen = laws::chosen(ck, f.law.as_deref());
+    if f.rate_state.is_some()
+        && chosen.solver_law != <stickslip_solver::laws::RateState as stickslip_solver::laws::Law>::NAME
+    {
+        ck.push(
+            "friction.rate_state",
+            "a section",
+            format!(
+                "left out with law = {:?} (it is read by \"rate_state_aging\" and \"rate_state_slip\")",
+                chosen.name
+            ),
+        );
+    }
+    (chosen.law)(ck, &keys)
 }

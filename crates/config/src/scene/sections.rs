@@ -51,7 +51,8 @@ impl Default for MaterialSection {
 #[serde(deny_unknown_fields, default)]
 pub struct FrictionSection {
     /// The law: `"slip_weakening"` (the default: Coulomb, static/dynamic or linear slip
-    /// weakening by the keys given) or `"exponential_weakening"`.
+    /// weakening by the keys given), `"exponential_weakening"`, or `"rate_state_aging"` /
+    /// `"rate_state_slip"` (coefficients in `[friction.rate_state]`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub law: Option<String>,
     /// Static coefficient μs. Default 5.0.
@@ -74,6 +75,9 @@ pub struct FrictionSection {
     /// slip it has (slip weakening over the whole run, the SCEC benchmarks' law). Default true.
     #[serde(skip_serializing_if = "is_true")]
     pub heals: bool,
+    /// `[friction.rate_state]`: the coefficients of a rate-and-state law.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rate_state: Option<crate::laws::RateStateSection>,
 }
 
 fn is_true(v: &bool) -> bool {
@@ -91,6 +95,7 @@ impl Default for FrictionSection {
             patches: Vec::new(),
             grid: None,
             heals: true,
+            rate_state: None,
         }
     }
 }

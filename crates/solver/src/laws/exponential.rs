@@ -29,6 +29,9 @@ fn kinetic(node: &WeakeningNode, path: f64) -> f64 {
 impl Law for Exponential {
     const NAME: &'static str = "exponential slip weakening";
     const COHESIVE_ZONE: &'static str = "(9π/16)·μ·Dc/(τs − τd)";
+    const CRITICAL: &'static str = "(μs − μd)·N/Dc";
+    const STEADY: &'static str = "μ does not weaken with slip (μd = μs), so a seated block slides steadily (make the \
+                                  dynamic friction coefficient lower than the static one)";
     type Node = WeakeningNode;
     type Lanes<const L: usize> = WeakeningLanes<L>;
 
@@ -57,8 +60,8 @@ impl Law for Exponential {
     }
 
     #[inline(always)]
-    fn stuck(node: &WeakeningNode, state: f64) -> f64 {
-        Weakening::stuck(node, state)
+    fn stuck(node: &WeakeningNode, state: f64, dt_s: f64) -> f64 {
+        Weakening::stuck(node, state, dt_s)
     }
 
     #[inline(always)]
@@ -140,8 +143,8 @@ mod tests {
         // μd at once without Dc; healing as the slip-weakening family.
         assert_eq!(kinetic(&ExponentialNode::new(0.6, 0.4, 0.0), 0.0), 0.4);
         let kept = Exponential::with_healing(&n, false);
-        assert_eq!(Exponential::stuck(&kept, 0.1), 0.1);
-        assert_eq!(Exponential::stuck(&n, 0.1), 0.0);
+        assert_eq!(Exponential::stuck(&kept, 0.1, 1e-3), 0.1);
+        assert_eq!(Exponential::stuck(&n, 0.1, 1e-3), 0.0);
         assert_eq!(Exponential::holding(&kept, false, kinetic(&kept, 0.1), 0.1), kinetic(&kept, 0.1));
         assert_eq!(Exponential::holding(&n, false, kinetic(&n, 0.1), 0.1), 0.6);
     }

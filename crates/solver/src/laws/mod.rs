@@ -19,8 +19,9 @@
 //! one vector loop (`cargo bench -p stickslip-lab --bench step`).
 //!
 //! The laws: the slip-weakening family [`Weakening`] ([`slip_weakening`]), of which the plain
-//! Coulomb law, static/dynamic friction and linear slip weakening are the cases, and exponential
-//! slip weakening [`Exponential`] ([`exponential`]). Each law's builders convert into a
+//! Coulomb law, static/dynamic friction and linear slip weakening are the cases, exponential
+//! slip weakening [`Exponential`] ([`exponential`]) and rate-and-state friction [`RateState`]
+//! ([`rate_state`], the aging and slip laws). Each law's builders convert into a
 //! [`FrictionLaw`], the scene's choice; a friction map ([`map`]) gives regions of the base their
 //! own coefficients under the same law. A new law is a file beside [`slip_weakening`]
 //! implementing [`Law`] and its line in the `laws!` list below, which derives [`NodeFriction`],
@@ -29,12 +30,14 @@
 
 pub mod exponential;
 pub mod map;
+pub mod rate_state;
 pub mod slip_weakening;
 
 use std::fmt::Debug;
 
 pub use exponential::{Exponential, ExponentialNode, ExponentialWeakening};
 pub use map::{FrictionMap, Region, RegionKind};
+pub use rate_state::{Evolution, RateState, RateStateFriction, RateStateNode, RateStateStart};
 pub use slip_weakening::{Coulomb, SlipWeakening, StaticDynamic, Weakening, WeakeningLanes, WeakeningNode};
 
 /// A friction law of the base: its coefficients at one contact node, its one state variable
@@ -44,6 +47,11 @@ pub trait Law: Copy + Debug + Default + Send + Sync + 'static {
     const NAME: &'static str;
     /// How [`Law::cohesive_zone_m`] is computed, as `check` prints it.
     const COHESIVE_ZONE: &'static str;
+    /// How [`Law::critical_stiffness`] is computed, as `check` prints it.
+    const CRITICAL: &'static str;
+    /// Why a block slides steadily when [`Law::critical_stiffness`] is 0, and what would change
+    /// it, as `check`'s verdict says it.
+    const STEADY: &'static str;
     /// Its coefficients at one contact node of one seed.
     type Node: Copy + Debug + PartialEq + Send + Sync;
     /// Its coefficients at one contact node for `L` seeds: one array per coefficient.
@@ -64,12 +72,18 @@ pub trait Law: Copy + Debug + Default + Send + Sync + 'static {
     /// sliding; if it was sticking, the static one, or, for a law that does not heal and a node
     /// that has slipped, `kinetic`.
     fn holding(node: &Self::Node, sliding: bool, kinetic: f64, state: f64) -> f64;
-    /// The state variable of a node that sticks this step, from `state`: 0 for a law that heals,
-    /// `state` for one that keeps its slip.
-    fn stuck(node: &Self::Node, state: f64) -> f64;
+    /// The state variable of a node that sticks (or is lifted) over a step of `dt_s` seconds,
+    /// from `state`: 0 for a law that heals, `state` for one that keeps its slip, θ aged by
+    /// `dt_s` for a rate-and-state law.
+    fn stuck(node: &Self::Node, state: f64, dt_s: f64) -> f64;
     /// The state variable of a sliding node after it moved `slid_m` metres in a step of `dt_s`
     /// seconds.
     fn advance(node: &Self::Node, state: f64, slid_m: f64, dt_s: f64) -> f64;
+    /// The state variable at the start of a run (0, no slip yet, unless the law says otherwise:
+    /// θ₀ for a rate-and-state law).
+    fn initial_state(_node: &Self::Node) -> f64 {
+        0.0
+    }
     /// The coefficients times a random-field factor (the Weibull field on μ).
     fn scaled(node: &Self::Node, factor: f64) -> Self::Node;
     /// The same coefficients, a node that sticks healing (`true`) or keeping its state.
@@ -100,6 +114,9 @@ pub struct Trial {
     pub g_n_m: f64,
     /// The time step (s).
     pub dt_s: f64,
+    /// The slip per distance the node slides: 1 on the base, 2 on a fault (the other side
+    /// moves the opposite way).
+    pub slip_per_slide: f64,
 }
 
 /// One named coefficient of a law.
@@ -178,6 +195,16 @@ macro_rules! laws {
                 match self { $(NodeFriction::$variant(n) => NodeFriction::$variant(<$law>::with_healing(n, heals)),)+ }
             }
 
+            /// How the law's critical stiffness is computed ([`Law::CRITICAL`]).
+            pub fn critical_formula(&self) -> &'static str {
+                match self { $(NodeFriction::$variant(_) => <$law>::CRITICAL,)+ }
+            }
+
+            /// Why the law slides steadily without a critical stiffness ([`Law::STEADY`]).
+            pub fn steady_reason(&self) -> &'static str {
+                match self { $(NodeFriction::$variant(_) => <$law>::STEADY,)+ }
+            }
+
             /// How the law's cohesive zone is computed ([`Law::COHESIVE_ZONE`]).
             pub fn cohesive_zone_formula(&self) -> &'static str {
                 match self { $(NodeFriction::$variant(_) => <$law>::COHESIVE_ZONE,)+ }
@@ -220,6 +247,17 @@ macro_rules! laws {
                 }
             }
 
+            /// Every contact node's state variable at the start of a run, lane by lane
+            /// ([`Law::initial_state`]).
+            pub fn initial_states(&self) -> Vec<[f64; L]> {
+                match self {
+                    $(FrictionLaws::$variant(v) => v
+                        .iter()
+                        .map(|c| std::array::from_fn(|l| <$law>::initial_state(&<$law>::lane(c, l))))
+                        .collect(),)+
+                }
+            }
+
             /// Runs `f` with the law's coefficients (the one branch on the law, outside every loop).
             #[inline]
             pub fn dispatch<F: WithLaw<L>>(&self, f: F) -> F::Out {
@@ -234,6 +272,8 @@ laws! {
     Weakening(Weakening),
     /// Exponential slip weakening.
     Exponential(Exponential),
+    /// Rate-and-state friction (aging or slip law).
+    RateState(RateState),
 }
 
 /// What runs with one law's coefficients: the contact kernel, generic over the law.

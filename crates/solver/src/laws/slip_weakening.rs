@@ -79,6 +79,9 @@ fn kinetic(node: &WeakeningNode, path: f64) -> f64 {
 impl Law for Weakening {
     const NAME: &'static str = "slip weakening";
     const COHESIVE_ZONE: &'static str = "(9π/32)·μ·Dc/(τs − τd)";
+    const CRITICAL: &'static str = "(μs − μd)·N/Dc";
+    const STEADY: &'static str = "μ does not weaken with slip (μd = μs), so a seated block slides steadily (make the \
+                                  dynamic friction coefficient lower than the static one)";
     type Node = WeakeningNode;
     type Lanes<const L: usize> = WeakeningLanes<L>;
 
@@ -119,7 +122,7 @@ impl Law for Weakening {
 
     /// 0 (healed) or the slip so far, as the node's coefficients say.
     #[inline(always)]
-    fn stuck(node: &WeakeningNode, state: f64) -> f64 {
+    fn stuck(node: &WeakeningNode, state: f64, _: f64) -> f64 {
         node.keeps * state
     }
 
@@ -243,11 +246,11 @@ mod tests {
         assert_eq!(sw.kinetic(2e-3), 0.4);
         // Sticking nodes hold at μs whatever the law.
         assert_eq!(Weakening::holding(&sw, false, sw.kinetic(0.5e-3), 0.5e-3), 0.6);
-        assert_eq!(Weakening::stuck(&sw, 0.5e-3), 0.0);
+        assert_eq!(Weakening::stuck(&sw, 0.5e-3, 1e-3), 0.0);
         // Without healing a stuck node keeps its slip and holds at its weakened coefficient; one
         // that never slipped holds at μs.
         let kept = sw.with_healing(false);
-        assert_eq!(Weakening::stuck(&kept, 0.5e-3), 0.5e-3);
+        assert_eq!(Weakening::stuck(&kept, 0.5e-3, 1e-3), 0.5e-3);
         assert!((Weakening::holding(&kept, false, kept.kinetic(0.5e-3), 0.5e-3) - 0.5).abs() < 1e-15);
         assert_eq!(Weakening::holding(&kept, false, kept.kinetic(0.0), 0.0), 0.6);
         let sd_kept = sd.with_healing(false);

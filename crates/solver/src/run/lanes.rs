@@ -659,6 +659,10 @@ fn start_at_rest<const L: usize>(
         |_| 0.0,
         0.0,
     );
+    // The law's state at the start of the run (θ₀ of a rate-and-state law; 0, no slip, else).
+    for (state, initial) in state.contact.state.iter_mut().zip(params.friction.initial_states()) {
+        state[l] = initial[l];
+    }
     let b = params.body_acceleration(l);
     let mass = model.mass();
     let work: f64 = (0..model.node_count()).map(|i| (0..3).map(|c| mass[i] * b[c] * u.c[c][i][0]).sum::<f64>()).sum();

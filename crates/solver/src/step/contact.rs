@@ -66,18 +66,19 @@ pub fn resolve<W: Law>(
     state: f64,
 ) -> Resolved {
     if !(trial[2] < 0.0) {
-        return Resolved { position: trial, reaction: [0.0; 3], sliding: false, state: W::stuck(node, state) };
+        return Resolved { position: trial, reaction: [0.0; 3], sliding: false, state: W::stuck(node, state, dt) };
     }
     let normal = -trial[2] * g;
     let (rx, ry) = ((now[0] - trial[0]) * g, (now[1] - trial[1]) * g);
     let need = (rx * rx + ry * ry).sqrt();
-    let mu_k = W::kinetic(node, state, &Trial { need_n: need, normal_n: normal, g_n_m: g, dt_s: dt });
+    let mu_k =
+        W::kinetic(node, state, &Trial { need_n: need, normal_n: normal, g_n_m: g, dt_s: dt, slip_per_slide: 1.0 });
     if need <= W::holding(node, sliding, mu_k, state) * normal {
         return Resolved {
             position: [now[0], now[1], 0.0],
             reaction: [rx, ry, normal],
             sliding: false,
-            state: W::stuck(node, state),
+            state: W::stuck(node, state, dt),
         };
     }
     let scale = mu_k * normal / need;
@@ -106,13 +107,14 @@ pub fn resolve_fault<W: Law>(
 ) -> Resolved {
     let (rx, ry) = ((now[0] - trial[0]) * g, (now[1] - trial[1]) * g);
     let need = (rx * rx + ry * ry).sqrt();
-    let mu_k = W::kinetic(node, state, &Trial { need_n: need, normal_n: normal, g_n_m: g, dt_s: dt });
+    let mu_k =
+        W::kinetic(node, state, &Trial { need_n: need, normal_n: normal, g_n_m: g, dt_s: dt, slip_per_slide: 2.0 });
     if need <= W::holding(node, sliding, mu_k, state) * normal {
         return Resolved {
             position: [now[0], now[1], trial[2]],
             reaction: [rx, ry, normal],
             sliding: false,
-            state: W::stuck(node, state),
+            state: W::stuck(node, state, dt),
         };
     }
     let scale = mu_k * normal / need;
@@ -233,7 +235,11 @@ fn contact<const L: usize, W: Law>(c: &mut ContactArrays<'_, L>, law: &[W::Lanes
             let (rx, ry) = ((xn[l] - xt[l]) * g, (yn[l] - yt[l]) * g);
             let need = (rx * rx + ry * ry).sqrt();
             let node = W::lane(&coefficients, l);
-            let mu_k = W::kinetic(&node, state[l], &Trial { need_n: need, normal_n: normal, g_n_m: g, dt_s: c.dt[l] });
+            let mu_k = W::kinetic(
+                &node,
+                state[l],
+                &Trial { need_n: need, normal_n: normal, g_n_m: g, dt_s: c.dt[l], slip_per_slide: 1.0 },
+            );
             let limit = W::holding(&node, slipping[l], mu_k, state[l]) * normal;
             let stick = need <= limit;
             // Sliding: friction μ_k·N against the trial motion (unused when sticking).
@@ -276,7 +282,7 @@ fn contact<const L: usize, W: Law>(c: &mut ContactArrays<'_, L>, law: &[W::Lanes
             state_o[l] = if slides {
                 W::advance(&node, state[l], (sx * sx + sy * sy).sqrt(), c.dt[l])
             } else {
-                W::stuck(&node, state[l])
+                W::stuck(&node, state[l], c.dt[l])
             };
         }
         (c.trial[0][p], c.trial[1][p], c.trial[2][p]) = (ox, oy, oz);
@@ -309,8 +315,11 @@ fn fault<const L: usize, W: Law>(c: &mut ContactArrays<'_, L>, law: &[W::Lanes<L
             let (rx, ry) = ((xn[l] - xt[l]) * g, (yn[l] - yt[l]) * g);
             let need = (rx * rx + ry * ry).sqrt();
             let node = W::lane(&coefficients, l);
-            let mu_k =
-                W::kinetic(&node, state[l], &Trial { need_n: need, normal_n: normal[l], g_n_m: g, dt_s: c.dt[l] });
+            let mu_k = W::kinetic(
+                &node,
+                state[l],
+                &Trial { need_n: need, normal_n: normal[l], g_n_m: g, dt_s: c.dt[l], slip_per_slide: 2.0 },
+            );
             let stick = need <= W::holding(&node, slipping[l], mu_k, state[l]) * normal[l];
             let scale = mu_k * normal[l] / need;
             let (fx, fy) = (rx * scale, ry * scale);
@@ -322,7 +331,7 @@ fn fault<const L: usize, W: Law>(c: &mut ContactArrays<'_, L>, law: &[W::Lanes<L
             ryo[l] = if stick { ry } else { fy };
             slip_o[l] = !stick;
             state_o[l] = if stick {
-                W::stuck(&node, state[l])
+                W::stuck(&node, state[l], c.dt[l])
             } else {
                 W::advance(&node, state[l], 2.0 * (sx * sx + sy * sy).sqrt(), c.dt[l])
             };
@@ -339,14 +348,32 @@ mod tests {
 
     use super::*;
     use crate::laws::{
-        Coulomb, Exponential, ExponentialNode, ExponentialWeakening, FrictionLaw, NodeFriction, SlipWeakening,
-        StaticDynamic, Weakening, WeakeningNode,
+        Coulomb, Evolution, Exponential, ExponentialNode, ExponentialWeakening, FrictionLaw, NodeFriction, RateState,
+        RateStateFriction, RateStateNode, RateStateStart, SlipWeakening, StaticDynamic, Weakening, WeakeningNode,
     };
 
     /// A law the kernels are tested under: its coefficients with a friction map's own Dc (the
     /// law's times `dc_scale`) and healing or not, and its node out of a [`NodeFriction`].
     trait Tested: Law {
+        /// Whether a node in contact can stick (a rate-and-state node slides at the rate its step
+        /// balances).
+        const STICKS: bool = true;
         fn node(n: NodeFriction, dc_scale: f64, heals: bool) -> Self::Node;
+    }
+
+    impl Tested for RateState {
+        const STICKS: bool = false;
+        fn node(n: NodeFriction, dc_scale: f64, _: bool) -> RateStateNode {
+            let NodeFriction::RateState(n) = n else { panic!("{n:?}") };
+            RateStateNode { dc_m: n.dc_m * dc_scale, ..n }
+        }
+    }
+
+    /// Rate-and-state friction whose state, drawn from the cases' slip paths (0–4 µs), spans
+    /// both sides of steady state at the cases' slip rates.
+    fn rate_state(evolution: Evolution) -> FrictionLaw {
+        let start = RateStateStart::State(1e-6);
+        RateStateFriction { a: 0.01, b: 0.015, dc_m: 3e-6, v0_m_s: 1e-6, f0: 0.6, evolution, start }.into()
     }
 
     impl Tested for Weakening {
@@ -461,7 +488,8 @@ mod tests {
                 }] += 1;
             }
         }
-        assert!(outcomes.iter().all(|&n| n > 0), "every outcome (lift, stick, slide) is exercised: {outcomes:?}");
+        let exercised = outcomes[0] > 0 && outcomes[2] > 0 && (outcomes[1] > 0 || !W::STICKS);
+        assert!(exercised, "every outcome (lift, stick, slide) is exercised: {outcomes:?}");
     }
 
     /// The fault kernel in build `isa` against [`resolve_fault`], bit for bit, with normal forces
@@ -519,7 +547,10 @@ mod tests {
                 outcomes[usize::from(want.sliding)] += 1;
             }
         }
-        assert!(outcomes.iter().all(|&n| n > 0), "both outcomes (stick, slide) are exercised: {outcomes:?}");
+        assert!(
+            outcomes[1] > 0 && (outcomes[0] > 0 || !W::STICKS),
+            "both outcomes (stick, slide) are exercised: {outcomes:?}"
+        );
     }
 
     #[test]
@@ -537,6 +568,10 @@ mod tests {
                 agree_fault::<Exponential, 1>(exponential, isa, seed);
                 agree_fault::<Exponential, 4>(exponential, isa, seed);
                 agree_fault::<Exponential, 8>(exponential, isa, seed);
+                for evolution in [Evolution::Aging, Evolution::Slip] {
+                    agree_fault::<RateState, 1>(rate_state(evolution), isa, seed);
+                    agree_fault::<RateState, 4>(rate_state(evolution), isa, seed);
+                }
             }
         }
     }
@@ -569,6 +604,10 @@ mod tests {
                 agree::<Exponential, 1>(exponential, isa, seed);
                 agree::<Exponential, 4>(exponential, isa, seed);
                 agree::<Exponential, 8>(exponential, isa, seed);
+                for evolution in [Evolution::Aging, Evolution::Slip] {
+                    agree::<RateState, 1>(rate_state(evolution), isa, seed);
+                    agree::<RateState, 4>(rate_state(evolution), isa, seed);
+                }
                 for law in [plain, sd, sw] {
                     agree::<Weakening, 1>(law, isa, seed);
                     agree::<Weakening, 4>(law, isa, seed);

@@ -137,10 +137,12 @@ impl<const L: usize> State<L> {
         }
     }
 
-    /// A state at rest for the parameters `p`: every bar intact when the scene's bars crack.
+    /// A state at rest for the parameters `p`: every contact node at its law's initial state
+    /// ([`crate::laws::Law::initial_state`]), every bar intact when the scene's bars crack.
     pub fn for_params(p: &Params<'_, L>) -> Self {
         let m = p.model;
         let mut s = State::at_rest_with_plate(m.node_count(), m.contact().len(), m.drivers().len(), m.plate().len());
+        s.contact.state = p.friction.initial_states();
         s.rupture = p.rupture.as_ref().map(|r| RuptureState::intact(p.k.per_bar(), r));
         if p.anelastic.as_ref().is_some_and(|a| a.memory()) {
             s.anelastic = vec![[[0.0; crate::medium::MECHANISMS]; L]; m.bar_count()];

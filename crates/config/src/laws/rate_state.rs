@@ -1,0 +1,144 @@
+//! Rate-and-state friction in `[friction]` (`law = "rate_state_aging"` or `"rate_state_slip"`):
+//! its coefficients in `[friction.rate_state]` (`a`, `b`, `dc_m`, `v0_m_s`, `f0` and one start,
+//! `initial_slip_rate_m_s` for steady state at that rate or `initial_state_s`), refused outside
+//! `a > 0`, `b ≥ 0`, `L > 0`, `V₀ > 0`, `0 ≤ f₀ ≤ 10`; the slip-weakening keys, `heals = false`,
+//! patches and grid rows are refused with it (regions of a, b and L are not read yet).
+
+use serde::{Deserialize, Serialize};
+use stickslip_solver::laws::{Evolution, FrictionLaw, Law, NodeFriction, RateState, RateStateFriction, RateStateStart};
+
+use super::{FrictionKeys, LawKeys, RegionKeys};
+use crate::check::{Checker, num};
+
+/// `[friction.rate_state]`: the coefficients of rate-and-state friction.
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct RateStateSection {
+    /// The direct effect a > 0.
+    pub a: f64,
+    /// The evolution effect b ≥ 0 (velocity weakening where b > a).
+    pub b: f64,
+    /// The characteristic slip L (m), > 0.
+    pub dc_m: f64,
+    /// The reference slip rate V₀ (m/s), > 0.
+    pub v0_m_s: f64,
+    /// The steady-state friction at V₀, f₀ (0–10).
+    pub f0: f64,
+    /// Start at steady state at this slip rate (m/s, > 0): θ₀ = L/Vᵢ. Exclusive with
+    /// `initial_state_s`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub initial_slip_rate_m_s: Option<f64>,
+    /// Start from this state θ₀ (s, > 0). Exclusive with `initial_slip_rate_m_s`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub initial_state_s: Option<f64>,
+}
+
+/// The aging law's entry of the table of laws.
+pub(super) const AGING: LawKeys = LawKeys {
+    name: "rate_state_aging",
+    about: "rate-and-state friction, aging law, coefficients in [friction.rate_state]",
+    solver_law: RateState::NAME,
+    law: aging,
+    region,
+};
+
+/// The slip law's entry of the table of laws.
+pub(super) const SLIP: LawKeys = LawKeys {
+    name: "rate_state_slip",
+    about: "rate-and-state friction, slip law, coefficients in [friction.rate_state]",
+    solver_law: RateState::NAME,
+    law: slip,
+    region,
+};
+
+fn aging(ck: &mut Checker, f: &FrictionKeys) -> FrictionLaw {
+    law(ck, f, Evolution::Aging, AGING.name)
+}
+
+fn slip(ck: &mut Checker, f: &FrictionKeys) -> FrictionLaw {
+    law(ck, f, Evolution::Slip, SLIP.name)
+}
+
+fn law(ck: &mut Checker, f: &FrictionKeys, evolution: Evolution, name: &str) -> FrictionLaw {
+    if let Some(mu_dynamic) = f.mu_dynamic {
+        ck.push(
+            "friction.mu_dynamic",
+            mu_dynamic,
+            format!("left out with law = {name:?} (its friction comes from [friction.rate_state])"),
+        );
+    }
+    if f.slip_weakening_m != 0.0 {
+        ck.push(
+            "friction.slip_weakening_m",
+            f.slip_weakening_m,
+            format!("left out with law = {name:?} (its characteristic slip is friction.rate_state.dc_m)"),
+        );
+    }
+    if !f.heals {
+        ck.push(
+            "friction.heals",
+            "false",
+            format!("left out with law = {name:?} (the state variable heals by its own evolution law)"),
+        );
+    }
+    let Some(r) = f.rate_state else {
+        ck.push(
+            "friction.rate_state",
+            "none",
+            format!("a section [friction.rate_state] with a, b, dc_m, v0_m_s, f0 and a start with law = {name:?}"),
+        );
+        let start = RateStateStart::SteadyAt(1e-6);
+        return RateStateFriction { a: 0.01, b: 0.0, dc_m: 1.0, v0_m_s: 1e-6, f0: 0.6, evolution, start }.into();
+    };
+    ck.range("friction.rate_state.a", r.a, 0.0, true, 1.0, false);
+    ck.range("friction.rate_state.b", r.b, 0.0, false, 1.0, false);
+    ck.positive("friction.rate_state.dc_m", r.dc_m);
+    ck.positive("friction.rate_state.v0_m_s", r.v0_m_s);
+    ck.range("friction.rate_state.f0", r.f0, 0.0, false, 10.0, false);
+    let start = match (r.initial_slip_rate_m_s, r.initial_state_s) {
+        (Some(v), None) => {
+            ck.positive("friction.rate_state.initial_slip_rate_m_s", v);
+            RateStateStart::SteadyAt(v)
+        }
+        (None, Some(theta)) => {
+            ck.positive("friction.rate_state.initial_state_s", theta);
+            RateStateStart::State(theta)
+        }
+        (Some(_), Some(theta)) => {
+            ck.push(
+                "friction.rate_state.initial_state_s",
+                num(theta),
+                "left out with initial_slip_rate_m_s: one start, steady state at a slip rate or θ₀",
+            );
+            RateStateStart::State(theta)
+        }
+        (None, None) => {
+            ck.push(
+                "friction.rate_state.initial_slip_rate_m_s",
+                "none",
+                "a start: initial_slip_rate_m_s (steady state at that rate, m/s) or initial_state_s (θ₀, s)",
+            );
+            RateStateStart::SteadyAt(1e-6)
+        }
+    };
+    let law: FrictionLaw =
+        RateStateFriction { a: r.a, b: r.b, dc_m: r.dc_m, v0_m_s: r.v0_m_s, f0: r.f0, evolution, start }.into();
+    let theta0 = law.node(1.0).coefficients().iter().find(|c| c.symbol == "θ₀").map_or(1.0, |c| c.value);
+    if !(theta0.is_finite() && theta0 > 0.0) && ck.is_clean() {
+        ck.push("friction.rate_state.initial_slip_rate_m_s", theta0, "a start whose state θ₀ = L/Vᵢ is finite and > 0");
+    }
+    law
+}
+
+/// Regions are not read under rate-and-state friction yet: refused.
+fn region(ck: &mut Checker, field: &str, _: &RegionKeys, law: &FrictionLaw) -> NodeFriction {
+    ck.push(
+        field.to_string(),
+        "a region",
+        format!(
+            "no patches or grid rows with law = {:?}: its coefficients are uniform (with friction.mu_cv's field) for now",
+            law.name
+        ),
+    );
+    law.node(1.0)
+}
