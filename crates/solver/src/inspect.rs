@@ -464,6 +464,9 @@ pub struct FaultReading {
     /// `Λ0 = (9π/32)·μ·Dc/(τs − τd)` (Day et al. 2005), `μ` the lattice's shear modulus (m); `None`
     /// when no such node weakens over a distance.
     pub cohesive_zone_m: Option<f64>,
+    /// Smallest nucleation size over the fault's nodes (a rate-and-state law's `h*`, m); `None`
+    /// when the law has none.
+    pub nucleation_m: Option<f64>,
 }
 
 impl FaultReading {
@@ -482,9 +485,13 @@ impl FaultReading {
         let mut can_slip = 0;
         let mut s_values = Vec::new();
         let mut zone: Option<f64> = None;
+        let mut nucleation: Option<f64> = None;
         for c in 0..fault.normal_pa.len() {
             let friction = scene.friction.base(c);
             let (sn, tau) = (fault.normal_pa[c], fault.shear_pa[c][0].hypot(fault.shear_pa[c][1]));
+            if let Some(h) = friction.nucleation_m(c44, sn) {
+                nucleation = Some(nucleation.map_or(h, |n: f64| n.min(h)));
+            }
             let (ts, td) = (friction.static_coefficient() * sn, friction.residual_coefficient() * sn);
             if tau > ts {
                 overstressed.0 += 1;
@@ -508,6 +515,7 @@ impl FaultReading {
             can_slip,
             median_s: s_values.get(s_values.len() / 2).copied(),
             cohesive_zone_m: zone,
+            nucleation_m: nucleation,
         })
     }
 }

@@ -210,6 +210,15 @@ pub fn fault(model: &Model, first_seed: u64) -> Section {
             ),
         );
     }
+    if let Some(h) = r.nucleation_m {
+        s.push(
+            "fault",
+            format!(
+                "nucleation size h* = (π/2)·μ·b·L/((b − a)²·σn) ≥ {h:.4e} m = {:.1} × Lc (Rubin & Ampuero 2005)",
+                N(h / scene.lc_m)
+            ),
+        );
+    }
     let (zp, zs) = impedances(scene);
     let rho = scene.density_kg_m3;
     let band = scene

@@ -617,3 +617,46 @@ pub(super) fn stations(
     }
     (stations, control)
 }
+
+/// The fewest nodes across a rate-and-state fault's process zone `Λ₀` accepted: below it the
+/// lattice does not resolve the rupture front (Day et al. 2005's criterion for slip weakening;
+/// Lapusta & Liu 2009 ask 3–5 for rate and state).
+pub const LEAST_ZONE_NODES: f64 = 3.0;
+
+/// Refuses a fault under a rate-and-state law whose node spacing `Lc` does not resolve the law's
+/// process zone `Λ₀ = (9π/32)·μ·L/(b·σn)` at the fault's largest normal stress
+/// ([`LEAST_ZONE_NODES`] nodes), naming both sizes and the nucleation size `h*`.
+pub(super) fn refuse_unresolved_rate_state(
+    ck: &mut Checker,
+    fault: Option<&Fault>,
+    friction: &stickslip_solver::scene::Friction,
+    material: &super::MaterialSection,
+    lc_m: f64,
+) {
+    let Some(fault) = fault else { return };
+    let node = friction.law.node(1.0);
+    if node.law_name() != <stickslip_solver::laws::RateState as stickslip_solver::laws::Law>::NAME {
+        return;
+    }
+    let (_, _, c44) = stickslip_solver::material::lattice_elastic_constants(material.young_pa, material.poisson);
+    let sigma = fault.normal_pa.iter().copied().fold(0.0, f64::max);
+    let Some(zone) = node.cohesive_zone_m(c44, sigma) else { return };
+    if zone < LEAST_ZONE_NODES * lc_m {
+        let nucleation = node
+            .nucleation_m(c44, sigma)
+            .map(|h| format!(", nucleation size h* = {} m", approx(h)))
+            .unwrap_or_default();
+        ck.push(
+            "block.lc_m",
+            num(lc_m),
+            format!(
+                "at most Λ₀/{LEAST_ZONE_NODES} = {} m under rate-and-state friction: the process zone \
+                 Λ₀ = (9π/32)·μ·L/(b·σn) = {} m at σn = {} Pa{nucleation} (a longer friction.rate_state.dc_m or \
+                 smaller modules resolve it)",
+                approx(zone / LEAST_ZONE_NODES),
+                approx(zone),
+                approx(sigma)
+            ),
+        );
+    }
+}

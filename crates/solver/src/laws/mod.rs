@@ -100,6 +100,12 @@ pub trait Law: Copy + Debug + Default + Send + Sync + 'static {
     fn cohesive_zone_m(node: &Self::Node, shear_modulus_pa: f64, normal_pa: f64) -> Option<f64>;
     /// Its coefficients with their symbols and units, as `check` and the report print them.
     fn coefficients(node: &Self::Node) -> Vec<Coefficient>;
+    /// The nucleation size of a rupture on this node's friction under normal stress `normal_pa`
+    /// in a medium of shear modulus `shear_modulus_pa` (m), `None` when the law has none (a
+    /// rate-and-state law's `h*`, where it weakens with slip rate).
+    fn nucleation_m(_node: &Self::Node, _shear_modulus_pa: f64, _normal_pa: f64) -> Option<f64> {
+        None
+    }
 }
 
 /// A contact node's step without friction: what a rate-dependent law needs to find its slip rate
@@ -178,6 +184,11 @@ macro_rules! laws {
             /// modulus `shear_modulus_pa` ([`Law::cohesive_zone_m`]).
             pub fn cohesive_zone_m(&self, shear_modulus_pa: f64, normal_pa: f64) -> Option<f64> {
                 match self { $(NodeFriction::$variant(n) => <$law>::cohesive_zone_m(n, shear_modulus_pa, normal_pa),)+ }
+            }
+
+            /// The nucleation size ([`Law::nucleation_m`]).
+            pub fn nucleation_m(&self, shear_modulus_pa: f64, normal_pa: f64) -> Option<f64> {
+                match self { $(NodeFriction::$variant(n) => <$law>::nucleation_m(n, shear_modulus_pa, normal_pa),)+ }
             }
 
             /// The named coefficients ([`Law::coefficients`]).

@@ -179,7 +179,7 @@ pub const COSEISMIC_RATE_M_S: f64 = 1.0;
 
 impl Law for RateState {
     const NAME: &'static str = "rate-and-state friction";
-    const COHESIVE_ZONE: &'static str = "Λ₀ = (9π/32)·μ·L/(b·σ)";
+    const COHESIVE_ZONE: &'static str = "(9π/32)·μ·L/(b·σ)";
     const CRITICAL: &'static str = "(b − a)·N/L";
     const STEADY: &'static str = "the friction is velocity strengthening (b ≤ a), so a seated block slides steadily \
                                   (make b larger than a)";
@@ -261,6 +261,15 @@ impl Law for RateState {
     fn cohesive_zone_m(node: &RateStateNode, shear_modulus_pa: f64, normal_pa: f64) -> Option<f64> {
         (node.b > 0.0 && normal_pa > 0.0)
             .then(|| 9.0 * std::f64::consts::PI / 32.0 * shear_modulus_pa * node.dc_m / (node.b * normal_pa))
+    }
+
+    /// `h* = (π/2)·μ·b·L/((b − a)²·σ)` (Rubin & Ampuero 2005, the SEAS benchmarks' nucleation
+    /// size), `None` where `b ≤ a`.
+    fn nucleation_m(node: &RateStateNode, shear_modulus_pa: f64, normal_pa: f64) -> Option<f64> {
+        (node.b > node.a && normal_pa > 0.0).then(|| {
+            std::f64::consts::FRAC_PI_2 * shear_modulus_pa * node.b * node.dc_m
+                / ((node.b - node.a).powi(2) * normal_pa)
+        })
     }
 
     fn coefficients(node: &RateStateNode) -> Vec<Coefficient> {
@@ -447,6 +456,11 @@ mod tests {
         let zone = RateState::cohesive_zone_m(&aging, 32.04e9, 50e6).unwrap();
         assert!((zone - 9.0 * std::f64::consts::PI / 32.0 * 32.04e9 * 0.008 / (0.015 * 50e6)).abs() < 1e-9);
         assert!((zone - 301.9).abs() < 0.5, "{zone}");
+        // h* = (π/2)·μ·b·L/((b − a)²σ) in BP1's velocity-weakening zone (a = 0.010): 4.83 km.
+        let h = RateState::nucleation_m(&aging, 32.04e9, 50e6).unwrap();
+        assert!((h - std::f64::consts::FRAC_PI_2 * 32.04e9 * 0.015 * 0.008 / (0.005f64.powi(2) * 50e6)).abs() < 1e-6);
+        assert!((h - 4831.2).abs() < 1.0, "{h}");
+        assert_eq!(RateState::nucleation_m(&strengthening, 32.04e9, 50e6), None);
     }
 
     #[test]
