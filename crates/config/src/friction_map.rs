@@ -38,8 +38,9 @@ pub struct PatchSection {
     /// Ellipse: semi-axes `[a_x, a_y]` in metres.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub semi_axes_m: Option<[f64; 2]>,
-    /// μs of the patch.
-    pub mu_static: f64,
+    /// μs of the patch (required under the slip-weakening laws; left out under rate and state).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mu_static: Option<f64>,
     /// μd ≤ μs of the patch. Default: μs (no weakening).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub mu_dynamic: Option<f64>,
@@ -48,6 +49,10 @@ pub struct PatchSection {
     pub slip_weakening_m: Option<f64>,
     /// Which patch holds where two overlap: the higher. Default 0.
     pub priority: i64,
+    /// `[friction.patches.rate_state]`: the patch's rate-and-state coefficients (under a
+    /// rate-and-state law).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rate_state: Option<crate::laws::RateStatePatch>,
 }
 
 /// `[friction.grid]`: coefficients per base node from a CSV file with the header
@@ -94,15 +99,8 @@ fn describe_base(lattice: &Lattice) -> String {
 
 /// Coefficients of one region under the background `law`'s law, checked; `field` is its
 /// section's name.
-fn coefficients(
-    ck: &mut Checker,
-    field: &str,
-    mu_static: f64,
-    mu_dynamic: Option<f64>,
-    slip_weakening_m: Option<f64>,
-    law: &FrictionLaw,
-) -> NodeFriction {
-    (crate::laws::of(law).region)(ck, field, &crate::laws::RegionKeys { mu_static, mu_dynamic, slip_weakening_m }, law)
+fn coefficients(ck: &mut Checker, field: &str, keys: crate::laws::RegionKeys, law: &FrictionLaw) -> NodeFriction {
+    (crate::laws::of(law).region)(ck, field, &keys, law)
 }
 
 /// The shape of a patch of the base (friction patches, fault traction patches).
@@ -327,7 +325,13 @@ pub(crate) fn build(
                         "each base node once",
                     );
                 }
-                let co = coefficients(ck, &format!("{field} row {}", i + 1), row[2], Some(row[3]), Some(row[4]), law);
+                let keys = crate::laws::RegionKeys {
+                    mu_static: Some(row[2]),
+                    mu_dynamic: Some(row[3]),
+                    slip_weakening_m: Some(row[4]),
+                    rate_state: None,
+                };
+                let co = coefficients(ck, &format!("{field} row {}", i + 1), keys, law);
                 nodes[c] = co;
                 region[c] = Some(0);
             }
@@ -341,7 +345,13 @@ pub(crate) fn build(
     for (i, p) in patches.iter().enumerate() {
         let field = format!("friction.patches[{i}]");
         let held = patch_nodes(ck, &field, &p.shape(), lattice);
-        let co = coefficients(ck, &field, p.mu_static, p.mu_dynamic, p.slip_weakening_m, law);
+        let keys = crate::laws::RegionKeys {
+            mu_static: p.mu_static,
+            mu_dynamic: p.mu_dynamic,
+            slip_weakening_m: p.slip_weakening_m,
+            rate_state: p.rate_state,
+        };
+        let co = coefficients(ck, &field, keys, law);
         let name = p.name.clone().unwrap_or_else(|| format!("patch[{i}]"));
         regions.push(Region { name, kind: kind(&co) });
         members.push((held, co));

@@ -133,3 +133,47 @@ fn an_asce7_set_of_fewer_than_eleven_records_is_warned_of_with_the_rule() {
     assert!(!shipped.warnings.iter().any(|w| w.field == "set.count"), "{:?}", shipped.warnings);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_rate_and_state_patch_gives_its_nodes_its_own_coefficients_and_steady_start() {
+    // A velocity-strengthening patch (b < a) with its own L in a velocity-weakening background,
+    // both starting at steady state at 1 nm/s: the patch's θ₀ follows its own L.
+    use stickslip_solver::laws::{Law, NodeFriction, RateState};
+    let text = r#"
+version = 1
+[friction]
+law = "rate_state_slip"
+[friction.rate_state]
+a = 0.010
+b = 0.015
+dc_m = 0.008
+v0_m_s = 1e-6
+f0 = 0.6
+initial_slip_rate_m_s = 1e-9
+[[friction.patches]]
+shape = "rectangle"
+x_m = [0.0, 0.45]
+[friction.patches.rate_state]
+b = 0.005
+dc_m = 0.02
+"#;
+    let p = Pipeline::from_toml(text, "patch").unwrap();
+    let scene = &p.scene;
+    let lattice = scene.lattice();
+    let (mut inside, mut outside) = (0, 0);
+    for (c, &id) in lattice.contact_nodes().iter().enumerate() {
+        let NodeFriction::RateState(n) = scene.friction.base(c) else { panic!("node {c} is not under rate and state") };
+        let theta0 = RateState::initial_state(&n);
+        if lattice.position(id)[0] <= 0.45 {
+            inside += 1;
+            assert_eq!((n.a, n.b, n.dc_m, n.f0), (0.010, 0.005, 0.02, 0.6));
+            assert!((theta0 - 0.02 / 1e-9).abs() < 1e-3, "{theta0}");
+            assert_eq!(RateState::critical_stiffness(&n, 1.0), 0.0, "velocity strengthening");
+        } else {
+            outside += 1;
+            assert_eq!((n.a, n.b, n.dc_m), (0.010, 0.015, 0.008));
+            assert!((theta0 - 0.008 / 1e-9).abs() < 1e-3, "{theta0}");
+        }
+    }
+    assert!(inside > 0 && outside > 0, "{inside} {outside}");
+}

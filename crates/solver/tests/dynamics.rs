@@ -209,7 +209,7 @@ fn energy_balance_closes_over_a_stencil_lattice() {
 }
 
 #[test]
-fn energy_balance_closes_with_rate_and_state_friction() {
+fn energy_balance_closes_with_rate_state_friction() {
     // pipelines/paper-rate-state.toml: the paper block on a velocity-weakening rate-and-state base
     // sticks and slips; every node creeps at the rate its step balances (docs/model.md §4), and
     // the ledger's friction term is the base's reaction times that creep.

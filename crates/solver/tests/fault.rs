@@ -211,7 +211,7 @@ fn exponential_weakening_slips_as_its_closed_form() {
 }
 
 #[test]
-fn rate_and_state_friction_slides_at_the_rate_that_balances_the_radiated_wave() {
+fn rate_state_friction_slides_at_the_rate_that_balances_the_radiated_wave() {
     // A uniform overstress on the column with rate-and-state friction: the face radiates a plane
     // S wave, so the traction is τ0 − (ρCs/2)·V, and once θ has relaxed over a few L of slip the
     // fault slides at the steady rate where τ0 − (ρCs/2)·V = σn·f_ss(V),

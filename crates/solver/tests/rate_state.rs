@@ -38,7 +38,7 @@ fn slide(n: &RateStateNode, k: f64, theta_factor: f64, duration_s: f64) -> Vec<f
     // The spring's stretch at steady sliding holds the steady friction.
     let stretch = steady_friction(n, LOAD_RATE) * NORMAL / k;
     let (mut x_prev, mut x) = (-LOAD_RATE * DT, 0.0);
-    let (mut sliding, mut theta) = (true, n.theta0_s * theta_factor);
+    let (mut sliding, mut theta) = (true, n.theta0_s() * theta_factor);
     let steps = (duration_s / DT).round() as usize;
     let mut rates = Vec::with_capacity(steps);
     for i in 0..steps {
@@ -61,7 +61,7 @@ fn swing(rates: &[f64], from: usize, window: usize) -> f64 {
 }
 
 #[test]
-fn steady_sliding_holds_its_rate_and_friction() {
+fn rate_state_steady_sliding_holds_its_rate_and_friction() {
     for evolution in [Evolution::Aging, Evolution::Slip] {
         let n = law(evolution);
         let rates = slide(&n, 50.0, 1.0, 20.0);
@@ -70,12 +70,12 @@ fn steady_sliding_holds_its_rate_and_friction() {
         }
         // Its friction is the closed form f₀ + (a − b)·ln(V/V₀).
         let closed = n.f0 + (n.a - n.b) * (LOAD_RATE / n.v0_m_s).ln();
-        assert!((friction(&n, LOAD_RATE, n.theta0_s) - closed).abs() < 1e-12);
+        assert!((friction(&n, LOAD_RATE, n.theta0_s()) - closed).abs() < 1e-12);
     }
 }
 
 #[test]
-fn a_spring_slider_is_stable_above_the_critical_stiffness_and_unstable_below() {
+fn rate_state_spring_slider_is_stable_above_the_critical_stiffness_and_unstable_below() {
     let n = law(Evolution::Aging);
     let inertia = MASS * LOAD_RATE * LOAD_RATE / (NORMAL * n.a * n.dc_m);
     let k_c = (n.b - n.a) * NORMAL / n.dc_m * (1.0 + inertia);

@@ -10,7 +10,7 @@ mod exponential;
 mod rate_state;
 mod slip_weakening;
 
-pub use rate_state::RateStateSection;
+pub use rate_state::{RateStatePatch, RateStateSection};
 
 use stickslip_solver::laws::{FrictionLaw, NodeFriction};
 
@@ -35,12 +35,14 @@ pub(crate) struct FrictionKeys {
 /// region, `None` where the region leaves one to the background's.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct RegionKeys {
-    /// `mu_static`.
-    pub mu_static: f64,
+    /// `mu_static` (required by the slip-weakening laws).
+    pub mu_static: Option<f64>,
     /// `mu_dynamic`; `None` = the region's μs.
     pub mu_dynamic: Option<f64>,
     /// `slip_weakening_m`; `None` = the background's.
     pub slip_weakening_m: Option<f64>,
+    /// `[…rate_state]`: a rate-and-state region's coefficients.
+    pub rate_state: Option<RateStatePatch>,
 }
 
 /// A friction law of `[friction]`: its name, what it is, and how its keys become coefficients.
@@ -81,10 +83,17 @@ pub(crate) fn of(law: &FrictionLaw) -> &'static LawKeys {
 
 /// A region's μs (checked non-negative) and μd (its μs when omitted; checked within 0…μs).
 fn region_coefficients(ck: &mut Checker, field: &str, keys: &RegionKeys) -> (f64, f64) {
-    ck.non_negative(&format!("{field}.mu_static"), keys.mu_static);
-    let mu_dynamic = keys.mu_dynamic.unwrap_or(keys.mu_static);
-    if keys.mu_static.is_finite() {
-        ck.range(&format!("{field}.mu_dynamic"), mu_dynamic, 0.0, false, keys.mu_static.max(0.0), false);
+    if keys.rate_state.is_some() {
+        ck.push(format!("{field}.rate_state"), "a section", "left out under a slip-weakening law (give mu_static)");
     }
-    (keys.mu_static, mu_dynamic)
+    let Some(mu_static) = keys.mu_static else {
+        ck.push(format!("{field}.mu_static"), "none", "the region's μs ≥ 0 (required under a slip-weakening law)");
+        return (0.0, 0.0);
+    };
+    ck.non_negative(&format!("{field}.mu_static"), mu_static);
+    let mu_dynamic = keys.mu_dynamic.unwrap_or(mu_static);
+    if mu_static.is_finite() {
+        ck.range(&format!("{field}.mu_dynamic"), mu_dynamic, 0.0, false, mu_static.max(0.0), false);
+    }
+    (mu_static, mu_dynamic)
 }

@@ -1,8 +1,10 @@
 //! Rate-and-state friction in `[friction]` (`law = "rate_state_aging"` or `"rate_state_slip"`):
 //! its coefficients in `[friction.rate_state]` (`a`, `b`, `dc_m`, `v0_m_s`, `f0` and one start,
 //! `initial_slip_rate_m_s` for steady state at that rate or `initial_state_s`), refused outside
-//! `a > 0`, `b ≥ 0`, `L > 0`, `V₀ > 0`, `0 ≤ f₀ ≤ 10`; the slip-weakening keys, `heals = false`,
-//! patches and grid rows are refused with it (regions of a, b and L are not read yet).
+//! `a > 0`, `b ≥ 0`, `L > 0`, `V₀ > 0`, `0 ≤ f₀ ≤ 10`; the slip-weakening keys, `heals = false`
+//! and grid rows are refused with it. A patch gives its own a, b, L or f₀ in
+//! `[friction.patches.rate_state]` (the background's where left out); a start at steady state
+//! at a slip rate follows the patch's L.
 
 use serde::{Deserialize, Serialize};
 use stickslip_solver::laws::{Evolution, FrictionLaw, Law, NodeFriction, RateState, RateStateFriction, RateStateStart};
@@ -31,6 +33,25 @@ pub struct RateStateSection {
     /// Start from this state θ₀ (s, > 0). Exclusive with `initial_slip_rate_m_s`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub initial_state_s: Option<f64>,
+}
+
+/// `[friction.patches.rate_state]`: a patch's own rate-and-state coefficients, each the
+/// background's when left out.
+#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct RateStatePatch {
+    /// a > 0.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub a: Option<f64>,
+    /// b ≥ 0.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub b: Option<f64>,
+    /// L (m) > 0.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dc_m: Option<f64>,
+    /// f₀ (0–10).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub f0: Option<f64>,
 }
 
 /// The aging law's entry of the table of laws.
@@ -130,15 +151,39 @@ fn law(ck: &mut Checker, f: &FrictionKeys, evolution: Evolution, name: &str) -> 
     law
 }
 
-/// Regions are not read under rate-and-state friction yet: refused.
-fn region(ck: &mut Checker, field: &str, _: &RegionKeys, law: &FrictionLaw) -> NodeFriction {
-    ck.push(
-        field.to_string(),
-        "a region",
-        format!(
-            "no patches or grid rows with law = {:?}: its coefficients are uniform (with friction.mu_cv's field) for now",
-            law.name
-        ),
-    );
-    law.node(1.0)
+/// A patch's coefficients: the background's, with those of its `rate_state` table; the
+/// slip-weakening keys are refused.
+fn region(ck: &mut Checker, field: &str, keys: &RegionKeys, law: &FrictionLaw) -> NodeFriction {
+    let NodeFriction::RateState(background) = law.node(1.0) else { unreachable!("the law's own background") };
+    for (key, given) in
+        [("mu_static", keys.mu_static), ("mu_dynamic", keys.mu_dynamic), ("slip_weakening_m", keys.slip_weakening_m)]
+    {
+        if let Some(v) = given {
+            ck.push(
+                format!("{field}.{key}"),
+                num(v),
+                format!("left out with law = {:?} (a patch gives a, b, dc_m or f0 in its rate_state table)", law.name),
+            );
+        }
+    }
+    let Some(r) = keys.rate_state else {
+        ck.push(
+            format!("{field}.rate_state"),
+            "none",
+            format!("a table [friction.patches.rate_state] with a, b, dc_m or f0 with law = {:?}", law.name),
+        );
+        return NodeFriction::RateState(background);
+    };
+    let node = stickslip_solver::laws::RateStateNode {
+        a: r.a.unwrap_or(background.a),
+        b: r.b.unwrap_or(background.b),
+        dc_m: r.dc_m.unwrap_or(background.dc_m),
+        f0: r.f0.unwrap_or(background.f0),
+        ..background
+    };
+    ck.range(&format!("{field}.rate_state.a"), node.a, 0.0, true, 1.0, false);
+    ck.range(&format!("{field}.rate_state.b"), node.b, 0.0, false, 1.0, false);
+    ck.positive(&format!("{field}.rate_state.dc_m"), node.dc_m);
+    ck.range(&format!("{field}.rate_state.f0"), node.f0, 0.0, false, 10.0, false);
+    NodeFriction::RateState(node)
 }

@@ -1,7 +1,7 @@
 //! `[friction]` checked into the friction law of the base and its map of patches and grid.
 
 use stickslip_solver::geometry::Lattice;
-use stickslip_solver::laws::FrictionLaw;
+use stickslip_solver::laws::{FrictionLaw, Law, RateState};
 use stickslip_solver::scene::Friction;
 
 use super::FrictionSection;
@@ -18,7 +18,19 @@ pub(super) fn law(ck: &mut Checker, f: &FrictionSection) -> FrictionLaw {
 /// The friction of the base: the background `law` and the map of `[friction]`'s patches and grid
 /// on `lattice` (every refused value recorded in `ck`).
 pub(super) fn friction(ck: &mut Checker, f: &FrictionSection, law: FrictionLaw, lattice: &Lattice) -> Friction {
-    let map = crate::friction_map::build(ck, lattice, &law, &f.patches, f.grid.as_ref());
+    let mut grid = f.grid.as_ref();
+    if grid.is_some() && law.background.law_name() == <RateState as Law>::NAME {
+        ck.push(
+            "friction.grid",
+            "a grid",
+            format!(
+                "left out with law = {:?}: its rows give μs, μd and Dc (patches with a rate_state table give a, b, L and f₀)",
+                law.name()
+            ),
+        );
+        grid = None;
+    }
+    let map = crate::friction_map::build(ck, lattice, &law, &f.patches, grid);
     Friction { law, mu_cv: f.mu_cv, map, heals: f.heals }
 }
 
@@ -32,9 +44,7 @@ fn friction_law(ck: &mut Checker, f: &FrictionSection) -> FrictionLaw {
         rate_state: f.rate_state,
     };
     let chosen = laws::chosen(ck, f.law.as_deref());
-    if f.rate_state.is_some()
-        && chosen.solver_law != <stickslip_solver::laws::RateState as stickslip_solver::laws::Law>::NAME
-    {
+    if f.rate_state.is_some() && chosen.solver_law != <RateState as Law>::NAME {
         ck.push(
             "friction.rate_state",
             "a section",

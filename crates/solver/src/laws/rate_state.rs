@@ -52,11 +52,26 @@ pub struct RateStateNode {
     pub f0: f64,
     /// The state's evolution law.
     pub evolution: Evolution,
-    /// The state at the start of the run θ₀ (s), > 0.
-    pub theta0_s: f64,
+    /// How the run starts: steady state at a slip rate (θ₀ = L/Vᵢ, following this node's L) or a
+    /// given θ₀.
+    pub start: RateStateStart,
+}
+
+impl Default for RateStateStart {
+    fn default() -> Self {
+        RateStateStart::State(1.0)
+    }
 }
 
 impl RateStateNode {
+    /// The state at the start of the run θ₀ (s).
+    pub fn theta0_s(&self) -> f64 {
+        match self.start {
+            RateStateStart::SteadyAt(v) => self.dc_m / v,
+            RateStateStart::State(theta) => theta,
+        }
+    }
+
     /// `ψ/a − ln(2V₀)`: `f = a·asinh(exp(ln V + this))`.
     #[inline(always)]
     fn log_scale(&self, theta: f64) -> f64 {
@@ -198,7 +213,7 @@ impl Law for RateState {
     /// The strength at V₀ from the starting state, `f(V₀, θ₀)`: what the static self-weight
     /// solve and `check` take as the node's static coefficient.
     fn static_coefficient(node: &RateStateNode) -> f64 {
-        friction(node, node.v0_m_s, node.theta0_s)
+        friction(node, node.v0_m_s, node.theta0_s())
     }
 
     /// `f(V₂, θ*)` of the two-pass step (`need/N`, holding it, when `V₂` underflows to 0); 0 for
@@ -232,7 +247,7 @@ impl Law for RateState {
     }
 
     fn initial_state(node: &RateStateNode) -> f64 {
-        node.theta0_s
+        node.theta0_s()
     }
 
     /// a, b and f₀ times the factor: the steady-state friction `f₀ + (a − b)·ln(V/V₀)` scales
@@ -279,7 +294,7 @@ impl Law for RateState {
             Coefficient { symbol: "L", value: node.dc_m, unit: "m" },
             Coefficient { symbol: "V₀", value: node.v0_m_s, unit: "m/s" },
             Coefficient { symbol: "f₀", value: node.f0, unit: "" },
-            Coefficient { symbol: "θ₀", value: node.theta0_s, unit: "s" },
+            Coefficient { symbol: "θ₀", value: node.theta0_s(), unit: "s" },
         ]
     }
 }
@@ -315,10 +330,6 @@ pub struct RateStateFriction {
 impl RateStateFriction {
     /// The coefficients of a node.
     pub fn node(&self) -> RateStateNode {
-        let theta0_s = match self.start {
-            RateStateStart::SteadyAt(v) => self.dc_m / v,
-            RateStateStart::State(theta) => theta,
-        };
         RateStateNode {
             a: self.a,
             b: self.b,
@@ -326,7 +337,7 @@ impl RateStateFriction {
             v0_m_s: self.v0_m_s,
             f0: self.f0,
             evolution: self.evolution,
-            theta0_s,
+            start: self.start,
         }
     }
 }
@@ -381,19 +392,19 @@ mod tests {
     fn a_velocity_step_jumps_by_a_ln_v2_v1_then_relaxes_over_l() {
         let (v1, v2) = (1e-6, 1e-4);
         for evolution in [Evolution::Aging, Evolution::Slip] {
-            let n = RateStateNode { theta0_s: 0.008 / v1, ..node(evolution) };
-            let before = friction(&n, v1, n.theta0_s);
-            let jump = friction(&n, v2, n.theta0_s) - before;
+            let n = RateStateNode { start: RateStateStart::SteadyAt(v1), ..node(evolution) };
+            let before = friction(&n, v1, n.theta0_s());
+            let jump = friction(&n, v2, n.theta0_s()) - before;
             assert!((jump - n.a * (v2 / v1).ln()).abs() < 1e-12, "{evolution:?}: jump {jump}");
             // 1000 steps over 20 L of slip: the aging law's exact solution of θ(δ), and friction
             // back to the new steady state.
             let dt = 20.0 * n.dc_m / v2 / 1000.0;
-            let mut theta = n.theta0_s;
+            let mut theta = n.theta0_s();
             for i in 1..=1000 {
                 theta = evolve(&n, theta, v2, dt);
                 if evolution == Evolution::Aging {
                     let delta = v2 * dt * f64::from(i);
-                    let exact = n.dc_m / v2 + (n.theta0_s - n.dc_m / v2) * (-delta / n.dc_m).exp();
+                    let exact = n.dc_m / v2 + (n.theta0_s() - n.dc_m / v2) * (-delta / n.dc_m).exp();
                     assert!((theta / exact - 1.0).abs() < 1e-12, "step {i}: {theta} vs {exact}");
                 }
             }
@@ -466,7 +477,7 @@ mod tests {
     #[test]
     fn the_two_pass_step_slides_at_the_rate_its_friction_balances() {
         let n = node(Evolution::Aging);
-        let theta = n.theta0_s;
+        let theta = n.theta0_s();
         let (g, dt) = (1e9, 1e-4);
         let trial = Trial { need_n: 0.75, normal_n: 1.0, g_n_m: g, dt_s: dt, slip_per_slide: 2.0 };
         let mu = RateState::kinetic(&n, theta, &trial);
