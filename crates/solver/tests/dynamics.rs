@@ -157,6 +157,15 @@ fn paper_scene() -> Scene {
     stickslip_config::Pipeline::load(&repo_path("pipelines/paper.toml")).unwrap().scene
 }
 
+/// The ledger's external work and friction over a run, and its worst balance residual relative
+/// to the work done so far.
+fn ledger(r: &stickslip_solver::Recording) -> (&[f64], &[f64], f64) {
+    let ext = r.get(Channel::ExternalWork).unwrap();
+    let res = r.get(Channel::EnergyResidual).unwrap();
+    let worst = res.iter().zip(ext).map(|(r, e)| (r / e).abs()).fold(0.0, f64::max);
+    (ext, r.get(Channel::FrictionDissipated).unwrap(), worst)
+}
+
 #[test]
 fn energy_balance_closes_over_the_paper_scene() {
     let mut scene = paper_scene();
@@ -164,11 +173,8 @@ fn energy_balance_closes_over_the_paper_scene() {
     let model = Model::new(scene);
     let out = run_seed(&model, 123, RunOptions::default(), &mut go).unwrap();
     let r = &out.recording;
-    let ext = r.get(Channel::ExternalWork).unwrap();
-    let res = r.get(Channel::EnergyResidual).unwrap();
-    let fric = r.get(Channel::FrictionDissipated).unwrap();
+    let (ext, fric, worst) = ledger(r);
     let damp = r.get(Channel::DampingDissipated).unwrap();
-    let worst = res.iter().zip(ext).map(|(r, e)| (r / e).abs()).fold(0.0, f64::max);
     let last = r.len() - 1;
     println!(
         "external work {:.4e} J; friction {:.3e} J, damping {:.3e} J, kinetic {:.3e} J, elastic {:.3e} J; worst |residual|/work {worst:.2e}",
@@ -218,10 +224,7 @@ fn energy_balance_closes_with_rate_state_friction() {
     let model = Model::new(scene);
     let out = run_seed(&model, 123, RunOptions::default(), &mut go).unwrap();
     let r = &out.recording;
-    let ext = r.get(Channel::ExternalWork).unwrap();
-    let res = r.get(Channel::EnergyResidual).unwrap();
-    let fric = r.get(Channel::FrictionDissipated).unwrap();
-    let worst = res.iter().zip(ext).map(|(r, e)| (r / e).abs()).fold(0.0, f64::max);
+    let (ext, fric, worst) = ledger(r);
     let last = r.len() - 1;
     // Slips: the mean slip rate rising above ten times the loading speed after falling below it.
     let loading = model.scene().shear.velocity_m_s;

@@ -218,16 +218,15 @@ fn rate_state_friction_slides_at_the_rate_that_balances_the_radiated_wave() {
     // f_ss = f₀ + (a − b)·ln(V/V₀) (solved here by bisection), velocity weakening (aging law)
     // or strengthening (slip law) alike: the radiation damping ρCs/2 outweighs σn·(a − b)/V.
     use stickslip_solver::laws::rate_state::steady_friction;
-    use stickslip_solver::laws::{Evolution, RateStateFriction, RateStateStart};
+    use stickslip_solver::laws::{Evolution, RateStateNode, RateStateStart};
     for (evolution, a, b, dc_m) in [(Evolution::Aging, 0.010, 0.015, 0.05), (Evolution::Slip, 0.020, 0.010, 0.005)] {
-        let law =
-            RateStateFriction { a, b, dc_m, v0_m_s: 1e-6, f0: 0.5, evolution, start: RateStateStart::SteadyAt(1e-6) };
+        let law = RateStateNode { a, b, dc_m, v0_m_s: 1e-6, f0: 0.5, evolution, start: RateStateStart::SteadyAt(1e-6) };
         let mut scene = column(60, TAU0);
         scene.friction.law = law.into();
         let (_, _, c44) = lattice_elastic_constants(scene.young_pa, scene.poisson);
         let rho = scene.density_kg_m3;
         let eta = 0.5 * rho * (c44 / rho).sqrt();
-        let node = law.node();
+        let node = law;
         let excess = |v: f64| TAU0 - eta * v - SIGMA_N * steady_friction(&node, v);
         let (mut lo, mut hi) = (1e-3f64, 10.0f64);
         for _ in 0..200 {

@@ -10,7 +10,7 @@
 
 use stickslip_solver::laws::RateState;
 use stickslip_solver::laws::rate_state::{friction, steady_friction};
-use stickslip_solver::laws::{Evolution, RateStateFriction, RateStateNode, RateStateStart};
+use stickslip_solver::laws::{Evolution, RateStateNode, RateStateStart};
 use stickslip_solver::step::contact::resolve;
 
 const MASS: f64 = 0.01;
@@ -19,7 +19,7 @@ const LOAD_RATE: f64 = 1e-3;
 const DT: f64 = 1e-3;
 
 fn law(evolution: Evolution) -> RateStateNode {
-    RateStateFriction {
+    RateStateNode {
         a: 0.010,
         b: 0.015,
         dc_m: 1e-3,
@@ -28,7 +28,6 @@ fn law(evolution: Evolution) -> RateStateNode {
         evolution,
         start: RateStateStart::SteadyAt(LOAD_RATE),
     }
-    .node()
 }
 
 /// Slides the block for `duration_s` on a spring `k` from steady sliding at the load rate with

@@ -7,7 +7,7 @@
 //! at a slip rate follows the patch's L.
 
 use serde::{Deserialize, Serialize};
-use stickslip_solver::laws::{Evolution, FrictionLaw, Law, NodeFriction, RateState, RateStateFriction, RateStateStart};
+use stickslip_solver::laws::{Evolution, FrictionLaw, Law, NodeFriction, RateState, RateStateNode, RateStateStart};
 
 use super::{FrictionKeys, LawKeys, RegionKeys};
 use crate::check::{Checker, num};
@@ -109,7 +109,7 @@ fn law(ck: &mut Checker, f: &FrictionKeys, evolution: Evolution, name: &str) -> 
             format!("a section [friction.rate_state] with a, b, dc_m, v0_m_s, f0 and a start with law = {name:?}"),
         );
         let start = RateStateStart::SteadyAt(1e-6);
-        return RateStateFriction { a: 0.01, b: 0.0, dc_m: 1.0, v0_m_s: 1e-6, f0: 0.6, evolution, start }.into();
+        return RateStateNode { a: 0.01, b: 0.0, dc_m: 1.0, v0_m_s: 1e-6, f0: 0.6, evolution, start }.into();
     };
     ck.range("friction.rate_state.a", r.a, 0.0, true, 1.0, false);
     ck.range("friction.rate_state.b", r.b, 0.0, false, 1.0, false);
@@ -143,7 +143,7 @@ fn law(ck: &mut Checker, f: &FrictionKeys, evolution: Evolution, name: &str) -> 
         }
     };
     let law: FrictionLaw =
-        RateStateFriction { a: r.a, b: r.b, dc_m: r.dc_m, v0_m_s: r.v0_m_s, f0: r.f0, evolution, start }.into();
+        RateStateNode { a: r.a, b: r.b, dc_m: r.dc_m, v0_m_s: r.v0_m_s, f0: r.f0, evolution, start }.into();
     let theta0 = law.node(1.0).coefficients().iter().find(|c| c.symbol == "θ₀").map_or(1.0, |c| c.value);
     if !(theta0.is_finite() && theta0 > 0.0) && ck.is_clean() {
         ck.push("friction.rate_state.initial_slip_rate_m_s", theta0, "a start whose state θ₀ = L/Vᵢ is finite and > 0");
@@ -174,7 +174,7 @@ fn region(ck: &mut Checker, field: &str, keys: &RegionKeys, law: &FrictionLaw) -
         );
         return NodeFriction::RateState(background);
     };
-    let node = stickslip_solver::laws::RateStateNode {
+    let node = RateStateNode {
         a: r.a.unwrap_or(background.a),
         b: r.b.unwrap_or(background.b),
         dc_m: r.dc_m.unwrap_or(background.dc_m),

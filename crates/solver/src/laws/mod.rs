@@ -37,7 +37,7 @@ use std::fmt::Debug;
 
 pub use exponential::{Exponential, ExponentialNode, ExponentialWeakening};
 pub use map::{FrictionMap, Region, RegionKind};
-pub use rate_state::{Evolution, RateState, RateStateFriction, RateStateNode, RateStateStart};
+pub use rate_state::{Evolution, RateState, RateStateNode, RateStateStart};
 pub use slip_weakening::{Coulomb, SlipWeakening, StaticDynamic, Weakening, WeakeningLanes, WeakeningNode};
 
 /// A friction law of the base: its coefficients at one contact node, its one state variable

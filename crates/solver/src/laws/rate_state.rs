@@ -37,7 +37,8 @@ pub enum Evolution {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct RateState;
 
-/// The coefficients of one contact node under rate-and-state friction.
+/// The coefficients of one contact node under rate-and-state friction; converted into a
+/// [`FrictionLaw`], the scene's background.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct RateStateNode {
     /// The direct effect a > 0.
@@ -308,47 +309,14 @@ pub enum RateStateStart {
     State(f64),
 }
 
-/// Rate-and-state friction: the builder of a scene's [`FrictionLaw`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct RateStateFriction {
-    /// a > 0.
-    pub a: f64,
-    /// b ≥ 0.
-    pub b: f64,
-    /// L (m) > 0.
-    pub dc_m: f64,
-    /// V₀ (m/s) > 0.
-    pub v0_m_s: f64,
-    /// f₀.
-    pub f0: f64,
-    /// The evolution law.
-    pub evolution: Evolution,
-    /// The starting state.
-    pub start: RateStateStart,
-}
-
-impl RateStateFriction {
-    /// The coefficients of a node.
-    pub fn node(&self) -> RateStateNode {
-        RateStateNode {
-            a: self.a,
-            b: self.b,
-            dc_m: self.dc_m,
-            v0_m_s: self.v0_m_s,
-            f0: self.f0,
-            evolution: self.evolution,
-            start: self.start,
-        }
-    }
-}
-
-impl From<RateStateFriction> for FrictionLaw {
-    fn from(r: RateStateFriction) -> FrictionLaw {
-        let name = match r.evolution {
+/// A scene's law from the background's coefficients.
+impl From<RateStateNode> for FrictionLaw {
+    fn from(n: RateStateNode) -> FrictionLaw {
+        let name = match n.evolution {
             Evolution::Aging => "rate_state_aging",
             Evolution::Slip => "rate_state_slip",
         };
-        FrictionLaw { name, background: NodeFriction::RateState(r.node()) }
+        FrictionLaw { name, background: NodeFriction::RateState(n) }
     }
 }
 
@@ -357,7 +325,7 @@ mod tests {
     use super::*;
 
     fn node(evolution: Evolution) -> RateStateNode {
-        RateStateFriction {
+        RateStateNode {
             a: 0.010,
             b: 0.015,
             dc_m: 0.008,
@@ -366,7 +334,6 @@ mod tests {
             evolution,
             start: RateStateStart::SteadyAt(1e-9),
         }
-        .node()
     }
 
     #[test]

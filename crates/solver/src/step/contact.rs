@@ -349,7 +349,7 @@ mod tests {
     use super::*;
     use crate::laws::{
         Coulomb, Evolution, Exponential, ExponentialNode, ExponentialWeakening, FrictionLaw, NodeFriction, RateState,
-        RateStateFriction, RateStateNode, RateStateStart, SlipWeakening, StaticDynamic, Weakening, WeakeningNode,
+        RateStateNode, RateStateStart, SlipWeakening, StaticDynamic, Weakening, WeakeningNode,
     };
 
     /// A law the kernels are tested under: its coefficients with a friction map's own Dc (the
@@ -373,7 +373,7 @@ mod tests {
     /// both sides of steady state at the cases' slip rates.
     fn rate_state(evolution: Evolution) -> FrictionLaw {
         let start = RateStateStart::State(1e-6);
-        RateStateFriction { a: 0.01, b: 0.015, dc_m: 3e-6, v0_m_s: 1e-6, f0: 0.6, evolution, start }.into()
+        RateStateNode { a: 0.01, b: 0.015, dc_m: 3e-6, v0_m_s: 1e-6, f0: 0.6, evolution, start }.into()
     }
 
     impl Tested for Weakening {
