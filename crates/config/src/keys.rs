@@ -4,7 +4,7 @@
 
 use stickslip_solver::SolverError;
 use stickslip_solver::inspect::{Regime, Slider};
-use stickslip_solver::laws::{Law, RateState};
+use stickslip_solver::laws::FrictionLaw;
 
 /// The keys that set what `e` asks to change; `None` when it asks nothing of the file.
 pub fn for_error(e: &SolverError) -> Option<&'static str> {
@@ -38,18 +38,13 @@ pub fn describe(e: &SolverError) -> String {
 }
 
 /// The spring-slider verdict followed by the keys to change, as the command line prints it.
-pub fn verdict(slider: &Slider) -> String {
-    let keys = for_regime(slider.regime());
-    if slider.critical_formula == <RateState as Law>::CRITICAL {
-        // Under rate and state, μs and μd are f(V₀, θ₀) and the steady state at 1 m/s: its
-        // keys are f₀, a and b.
-        let keys = keys.map(|k| {
-            k.replace("friction.mu_static", "friction.rate_state.f0")
-                .replace("friction.mu_dynamic", "friction.rate_state.b, friction.rate_state.a")
-        });
-        return with_keys(slider.verdict(), keys.as_deref());
-    }
-    with_keys(slider.verdict(), keys)
+/// The strength keys are those of the scene's `law` (under rate and state, μs and μd are
+/// f(V₀, θ₀) and the steady state at 1 m/s: f₀, a and b set them).
+pub fn verdict(slider: &Slider, law: &FrictionLaw) -> String {
+    let [strength, drop] = crate::laws::of(law).strength_keys;
+    let keys = for_regime(slider.regime())
+        .map(|k| k.replace("friction.mu_static", strength).replace("friction.mu_dynamic", drop));
+    with_keys(slider.verdict(), keys.as_deref())
 }
 
 fn with_keys(message: String, keys: Option<&str>) -> String {
@@ -132,8 +127,9 @@ mod tests {
             assert_eq!(s.regime(), regime);
             let text = s.verdict();
             assert!(!names_a_key(&text), "{text}");
-            assert_eq!(verdict(&s).contains("(pipeline keys: "), keyed, "{}", verdict(&s));
-            assert!(verdict(&s).starts_with(&text));
+            let law = stickslip_solver::laws::Coulomb { mu: 1.0 }.into();
+            assert_eq!(verdict(&s, &law).contains("(pipeline keys: "), keyed, "{}", verdict(&s, &law));
+            assert!(verdict(&s, &law).starts_with(&text));
         }
     }
 }

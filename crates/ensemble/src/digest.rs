@@ -125,7 +125,7 @@ impl NoEvents {
 fn slider_verdict(pipeline: &Pipeline, model: &Model) -> String {
     let statics = Statics::for_model(model);
     match spring_slider(model, pipeline.seeds[0], statics) {
-        Ok(slider) => stickslip_config::keys::verdict(&slider),
+        Ok(slider) => stickslip_config::keys::verdict(&slider, &pipeline.scene.friction.law),
         Err(e) => format!("not assessed ({e})"),
     }
 }

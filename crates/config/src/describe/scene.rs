@@ -422,7 +422,7 @@ pub fn spring_slider(scene: &Scene, facts: &Inspection) -> Section {
         "slider",
         format!(
             "  → {} (the rigid slider's reading; docs/model.md §12 says where a lattice block differs)",
-            crate::keys::verdict(sl)
+            crate::keys::verdict(sl, &scene.friction.law)
         ),
     );
     s

@@ -15,6 +15,10 @@ pub(super) const KEYS: LawKeys = LawKeys {
     solver_law: Exponential::NAME,
     law,
     region,
+    strength_keys: super::MU_KEYS,
+    grid_refused: None,
+    skip_ahead_refused: None,
+    zone_refused: false,
 };
 
 fn law(ck: &mut Checker, f: &FrictionKeys) -> FrictionLaw {

@@ -58,7 +58,20 @@ pub(crate) struct LawKeys {
     /// A region's coefficients under this law over the background `law`, checked into `ck`
     /// under the region's `field`.
     pub region: fn(&mut Checker, &str, &RegionKeys, &FrictionLaw) -> NodeFriction,
+    /// The keys that set the static strength and the drop from it, as `check`'s verdicts name
+    /// them in place of `friction.mu_static` and `friction.mu_dynamic`.
+    pub strength_keys: [&'static str; 2],
+    /// Why `[friction.grid]` is refused under this law; `None` when its rows are read.
+    pub grid_refused: Option<&'static str>,
+    /// Why the skip-ahead is refused under this law; `None` when it runs.
+    pub skip_ahead_refused: Option<&'static str>,
+    /// Whether a fault whose modules do not resolve the law's process zone is refused (rather
+    /// than warned of by `check`).
+    pub zone_refused: bool,
 }
+
+/// The slip-weakening laws' [`LawKeys::strength_keys`]: μs and μd.
+const MU_KEYS: [&str; 2] = ["friction.mu_static", "friction.mu_dynamic"];
 
 /// Every law, the first the default of `[friction] law`.
 pub(crate) const LAWS: [LawKeys; 4] = [slip_weakening::KEYS, exponential::KEYS, rate_state::AGING, rate_state::SLIP];

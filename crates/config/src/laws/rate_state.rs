@@ -54,6 +54,13 @@ pub struct RateStatePatch {
     pub f0: Option<f64>,
 }
 
+/// Why grid rows are refused: they hold the slip-weakening coefficients.
+const GRID_REFUSED: &str = "its rows give μs, μd and Dc (patches with a rate_state table give a, b, L and f₀)";
+
+/// Why the skip-ahead is refused.
+const SKIP_AHEAD_REFUSED: &str = "false with a rate-and-state law (the skip-ahead predicts the next slide from a static \
+     strength; under rate and state every node creeps and its state evolves between slides)";
+
 /// The aging law's entry of the table of laws.
 pub(super) const AGING: LawKeys = LawKeys {
     name: "rate_state_aging",
@@ -61,6 +68,10 @@ pub(super) const AGING: LawKeys = LawKeys {
     solver_law: RateState::NAME,
     law: aging,
     region,
+    strength_keys: ["friction.rate_state.f0", "friction.rate_state.b, friction.rate_state.a"],
+    grid_refused: Some(GRID_REFUSED),
+    skip_ahead_refused: Some(SKIP_AHEAD_REFUSED),
+    zone_refused: true,
 };
 
 /// The slip law's entry of the table of laws.
@@ -70,6 +81,10 @@ pub(super) const SLIP: LawKeys = LawKeys {
     solver_law: RateState::NAME,
     law: slip,
     region,
+    strength_keys: ["friction.rate_state.f0", "friction.rate_state.b, friction.rate_state.a"],
+    grid_refused: Some(GRID_REFUSED),
+    skip_ahead_refused: Some(SKIP_AHEAD_REFUSED),
+    zone_refused: true,
 };
 
 fn aging(ck: &mut Checker, f: &FrictionKeys) -> FrictionLaw {

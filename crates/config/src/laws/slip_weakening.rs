@@ -16,6 +16,10 @@ pub(super) const KEYS: LawKeys = LawKeys {
     solver_law: Weakening::NAME,
     law,
     region,
+    strength_keys: super::MU_KEYS,
+    grid_refused: None,
+    skip_ahead_refused: None,
+    zone_refused: false,
 };
 
 /// The case the section's keys describe.

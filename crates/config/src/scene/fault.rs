@@ -634,10 +634,10 @@ pub(super) fn refuse_unresolved_rate_state(
     lc_m: f64,
 ) {
     let Some(fault) = fault else { return };
-    let node = friction.law.node(1.0);
-    if node.law_name() != <stickslip_solver::laws::RateState as stickslip_solver::laws::Law>::NAME {
+    if !crate::laws::of(&friction.law).zone_refused {
         return;
     }
+    let node = friction.law.node(1.0);
     let (_, _, c44) = stickslip_solver::material::lattice_elastic_constants(material.young_pa, material.poisson);
     let sigma = fault.normal_pa.iter().copied().fold(0.0, f64::max);
     let Some(zone) = node.cohesive_zone_m(c44, sigma) else { return };

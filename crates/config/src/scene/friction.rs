@@ -19,15 +19,8 @@ pub(super) fn law(ck: &mut Checker, f: &FrictionSection) -> FrictionLaw {
 /// on `lattice` (every refused value recorded in `ck`).
 pub(super) fn friction(ck: &mut Checker, f: &FrictionSection, law: FrictionLaw, lattice: &Lattice) -> Friction {
     let mut grid = f.grid.as_ref();
-    if grid.is_some() && law.background.law_name() == <RateState as Law>::NAME {
-        ck.push(
-            "friction.grid",
-            "a grid",
-            format!(
-                "left out with law = {:?}: its rows give μs, μd and Dc (patches with a rate_state table give a, b, L and f₀)",
-                law.name()
-            ),
-        );
+    if let (Some(_), Some(why)) = (grid, laws::of(&law).grid_refused) {
+        ck.push("friction.grid", "a grid", format!("left out with law = {:?}: {why}", law.name()));
         grid = None;
     }
     let map = crate::friction_map::build(ck, lattice, &law, &f.patches, grid);

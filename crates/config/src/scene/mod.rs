@@ -113,9 +113,9 @@ pub(crate) fn build(file: SceneSections<'_>, ck: &mut Checker) -> Option<Scene> 
     let rupture = file.rupture.as_ref().map(|r| rupture::rupture(ck, r, file.material, file.block.lc_m));
     time::refuse_skip_ahead_with(ck, file.skip_ahead, rupture.is_some(), time::WITH_RUPTURE);
     time::refuse_skip_ahead_with(ck, file.skip_ahead, !file.friction.heals, time::WITH_KEPT_SLIP);
-    let rate_state =
-        law.background.law_name() == <stickslip_solver::laws::RateState as stickslip_solver::laws::Law>::NAME;
-    time::refuse_skip_ahead_with(ck, file.skip_ahead, rate_state, time::WITH_RATE_STATE);
+    if let Some(why) = crate::laws::of(&law).skip_ahead_refused {
+        time::refuse_skip_ahead_with(ck, file.skip_ahead, true, why);
+    }
     let interface = record::interface(ck, file.record);
     // Everything below needs the lattice.
     let lattice = block::lattice(ck, file.block, counts)?;

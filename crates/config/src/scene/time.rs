@@ -96,10 +96,6 @@ pub(super) const WITH_RUPTURE: &str =
 pub(super) const WITH_KEPT_SLIP: &str = "false with friction.heals = false (the skip-ahead predicts the next slide from μs; a node that keeps its slip holds \
      less)";
 
-/// What [`refuse_skip_ahead_with`] says of a rate-and-state law.
-pub(super) const WITH_RATE_STATE: &str = "false with a rate-and-state law (the skip-ahead predicts the next slide from a static \
-     strength; under rate and state every node creeps and its state evolves between slides)";
-
 /// What [`refuse_skip_ahead_with`] says of `[loading_plate]`.
 pub(super) const WITH_PLATE: &str =
     "false with [loading_plate] (the skip-ahead's quasi-static motion does not include the plate's springs yet)";
