@@ -23,6 +23,7 @@
 #![deny(missing_docs)]
 
 pub mod boundary;
+pub mod cycles;
 pub mod dispersion;
 pub mod error;
 pub mod fault;

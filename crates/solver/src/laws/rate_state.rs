@@ -138,6 +138,12 @@ pub fn evolve(n: &RateStateNode, theta_s: f64, v_m_s: f64, dt_s: f64) -> f64 {
 /// inside that bracket, which each iterate narrows, and a step that would leave it is replaced
 /// by the bracket's geometric midpoint. It stops when an iterate moves `ln V` by less than 1e-13.
 pub fn balance(n: &RateStateNode, theta_s: f64, need: f64, normal_n: f64, z: f64) -> f64 {
+    balance_from(n, theta_s, need, normal_n, z, None)
+}
+
+/// [`balance`] with Newton started from `guess` (m/s) when it lies inside the bracket: a node's
+/// previous slip rate saves most iterations when its traction and state changed little.
+pub fn balance_from(n: &RateStateNode, theta_s: f64, need: f64, normal_n: f64, z: f64, guess: Option<f64>) -> f64 {
     if !(need > 0.0 && normal_n > 0.0) {
         return 0.0;
     }
@@ -160,7 +166,10 @@ pub fn balance(n: &RateStateNode, theta_s: f64, need: f64, normal_n: f64, z: f64
         let (f, df) = asinh_exp(u + scale);
         (an * f + z * v - need, an * df + z * v)
     };
-    let mut u = lo;
+    let mut u = match guess.map(f64::ln) {
+        Some(g) if g > lo && g < hi => g,
+        _ => lo,
+    };
     for _ in 0..200 {
         let (r, dr) = residual(u);
         if r == 0.0 {

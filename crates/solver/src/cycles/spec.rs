@@ -1,0 +1,129 @@
+//! A cycle run of a scene: what `[cycles]` asks for, and the fault it builds (docs/model.md §20.4).
+
+use crate::error::SolverError;
+use crate::geometry::Dims;
+use crate::laws::{NodeFriction, RateStateNode, RateStateStart};
+use crate::model::Model;
+use crate::scene::Scene;
+
+use super::antiplane::{AntiplaneStencil, FaultStiffness};
+use super::quasi_dynamic::{QuasiDynamicFault, Tolerances};
+
+/// A cycle run: the plate's loading of a scene's fault over a duration.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CycleSpec {
+    /// How long (s).
+    pub duration_s: f64,
+    /// The plate rate V_p (m/s).
+    pub plate_m_s: f64,
+    /// The frictional part of the fault reaches from the free surface down to this depth (m);
+    /// below it the fault creeps at the plate rate.
+    pub frictional_depth_m: f64,
+    /// The direct effect `a` along depth on the background (patches keep their own): points
+    /// `(depth m, a)`, linear between them and constant beyond; empty = the background's a.
+    pub a_by_depth: Vec<(f64, f64)>,
+    /// The step control.
+    pub tolerances: Tolerances,
+    /// The slip rate above which the fault is in an event (m/s).
+    pub event_slip_rate_m_s: f64,
+    /// On-fault stations: their depths (m).
+    pub stations_m: Vec<f64>,
+    /// The most steps a run may take.
+    pub max_steps: u64,
+}
+
+impl CycleSpec {
+    /// `a` at `depth_m` from [`CycleSpec::a_by_depth`], `None` when it is empty.
+    pub fn a_at(&self, depth_m: f64) -> Option<f64> {
+        let p = &self.a_by_depth;
+        let (first, last) = (p.first()?, p.last()?);
+        if depth_m <= first.0 {
+            return Some(first.1);
+        }
+        if depth_m >= last.0 {
+            return Some(last.1);
+        }
+        let i = p.windows(2).position(|w| depth_m >= w[0].0 && depth_m <= w[1].0)?;
+        let (d0, a0, d1, a1) = (p[i].0, p[i].1, p[i + 1].0, p[i + 1].1);
+        Some(if d1 > d0 { a0 + (a1 - a0) * (depth_m - d0) / (d1 - d0) } else { a1 })
+    }
+}
+
+/// `θ₀` with which a node slides at `v` under `tau` (SEAS BP1–BP3's start):
+/// `(L/V₀)·exp{(a/b)·ln[(2V₀/V)·sinh((τ − ηV)/(aσ))] − f₀/b}`; steady state `L/V` when b = 0.
+pub fn balanced_state(n: &RateStateNode, v: f64, tau: f64, sigma: f64, eta: f64) -> f64 {
+    if n.b == 0.0 {
+        return n.dc_m / v;
+    }
+    let x = (tau - eta * v) / (n.a * sigma);
+    let ln_sinh = if x > 20.0 { x - std::f64::consts::LN_2 } else { x.sinh().ln() };
+    (n.dc_m / n.v0_m_s) * ((n.a / n.b) * ((2.0 * n.v0_m_s / v).ln() + ln_sinh) - n.f0 / n.b).exp()
+}
+
+/// The antiplane stencil of the scene's lattice: read from a slab of 1 × 4 × 3 modules of the
+/// scene's material and module side, built as the solver builds any block.
+pub fn scene_stencil(scene: &Scene) -> Result<AntiplaneStencil, SolverError> {
+    let mut slab = Scene::paper();
+    slab.dims = Dims::new(1, 4, 3);
+    slab.lc_m = scene.lc_m;
+    slab.young_pa = scene.young_pa;
+    slab.poisson = scene.poisson;
+    slab.density_kg_m3 = scene.density_kg_m3;
+    slab.young_cv = 0.0;
+    slab.boundaries.clear();
+    slab.record.interface.clear();
+    slab.stations.clear();
+    let model = Model::new(slab);
+    AntiplaneStencil::from_model(&model, &model.nominal_stiffness())
+}
+
+impl QuasiDynamicFault {
+    /// The fault of `scene` (a slab one module thick, its base a rate-and-state fault) under
+    /// `spec`: the nodes of the slab's side x = 0 from the free surface down to the frictional
+    /// depth, each with its friction (`a` from [`CycleSpec::a_by_depth`] on the background), the
+    /// fault's tractions, θ₀ balancing the shear traction at the start's slip rate, and
+    /// radiation damping `μ/(2c_s)`.
+    pub fn from_scene(scene: &Scene, spec: &CycleSpec) -> Result<Self, SolverError> {
+        let Some(fault) = &scene.fault else {
+            return Err(SolverError::Unsupported("a cycle run needs a [fault]".into()));
+        };
+        let Dims { nx, ny, nz } = scene.dims;
+        if nx != 1 {
+            return Err(SolverError::Unsupported(format!("a cycle run is a slab one module thick (nx = 1), not {nx}")));
+        }
+        let lc = scene.lc_m;
+        let nodes = ((spec.frictional_depth_m / lc).ceil() as usize).min(ny + 1);
+        let stencil = scene_stencil(scene)?;
+        let stiffness = FaultStiffness::antiplane(&stencil, nodes, ny, nz)?;
+        let mu = stencil.shear_modulus_pa();
+        let eta = mu / (2.0 * scene.s_wave_speed());
+        let mut friction = Vec::with_capacity(nodes);
+        let (mut normal, mut shear) = (Vec::with_capacity(nodes), Vec::with_capacity(nodes));
+        for j in 0..nodes {
+            // Contact node of corner (0, j, 0): i fastest over nx + 1 = 2.
+            let c = 2 * j;
+            let NodeFriction::RateState(mut node) = scene.friction.base(c) else {
+                return Err(SolverError::Unsupported("a cycle run needs rate-and-state friction".into()));
+            };
+            let background = scene.friction.map.as_ref().is_none_or(|m| m.region[c].is_none());
+            if background && let Some(a) = spec.a_at(j as f64 * lc) {
+                node.a = a;
+            }
+            let (sigma, tau) = (fault.normal_pa[c], fault.shear_pa[c][0]);
+            if let RateStateStart::SteadyAt(v) = node.start {
+                node.start = RateStateStart::State(balanced_state(&node, v, tau, sigma, eta));
+            }
+            friction.push(node);
+            normal.push(sigma);
+            shear.push(tau);
+        }
+        Ok(QuasiDynamicFault {
+            stiffness,
+            friction,
+            normal_pa: normal,
+            shear0_pa: shear,
+            eta_pa_s_m: eta,
+            plate_m_s: spec.plate_m_s,
+        })
+    }
+}
