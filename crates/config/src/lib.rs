@@ -14,6 +14,7 @@
 pub mod accelerograms;
 pub mod broadband;
 pub mod check;
+pub mod cycles;
 pub mod describe;
 pub mod error;
 pub mod friction_map;

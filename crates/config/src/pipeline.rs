@@ -152,6 +152,10 @@ pub struct PipelineFile {
     /// of the hash: they are written from the tables at each gathering); absent = 0° N 0° E.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub exchange: Option<ExchangeSection>,
+    /// `[cycles]`: earthquake cycles on the fault, loaded by the plate over years; absent = the
+    /// explicit run of each seed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cycles: Option<crate::cycles::CyclesSection>,
 }
 
 impl Default for PipelineFile {
@@ -185,6 +189,7 @@ impl Default for PipelineFile {
             set: None,
             report: ReportSection::default(),
             exchange: None,
+            cycles: None,
         }
     }
 }
@@ -318,6 +323,8 @@ pub struct Pipeline {
     pub warnings: Vec<Warning>,
     /// The file as read, defaults filled in.
     pub file: PipelineFile,
+    /// `[cycles]`: a cycle run in place of the seeds' explicit runs.
+    pub cycles: Option<stickslip_solver::cycles::CycleSpec>,
 }
 
 impl Pipeline {
@@ -480,6 +487,10 @@ impl Pipeline {
             }),
             _ => None,
         };
+        let cycles = match (&file.cycles, &scene) {
+            (Some(c), Some(scene)) => Some(c.build(scene, &mut ck)),
+            _ => None,
+        };
         let warnings = ck.take_warnings();
         ck.finish()?;
         inputs.extend(set.as_ref().and_then(|s| s.input.clone()));
@@ -495,6 +506,7 @@ impl Pipeline {
                 scene
             },
             analysis: Settings { events, similarity, accelerograms, spectra, emission, broadband },
+            cycles,
             set,
             report,
             hash: file.hash(),

@@ -20,6 +20,7 @@
 pub mod charts;
 pub mod clip;
 pub mod contour;
+pub mod cycles;
 mod error;
 mod fault_page;
 pub mod figures;

@@ -40,6 +40,12 @@ pub struct Args {
 pub fn run(a: Args) -> Result<()> {
     let pipeline = Pipeline::load(&a.pipeline)?;
     outln!("pipeline {} ({}), hash {}", pipeline.name, a.pipeline.display(), pipeline.hash);
+    if pipeline.cycles.is_some() {
+        for line in stickslip_ensemble::cycles::describe(&pipeline) {
+            outln!("  {line}");
+        }
+        return Ok(());
+    }
     let memory_per_rank = match a.memory_per_rank {
         Some(gb) if !(gb > 0.0 && gb.is_finite()) => {
             anyhow::bail!("--memory-per-rank = {gb} is not allowed: a positive number of GB (e.g. 4 or 0.5)")

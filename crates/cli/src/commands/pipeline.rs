@@ -299,6 +299,10 @@ pub fn run(a: Args) -> Result<()> {
     let mut unfinished = Vec::new();
     for (pipeline, seeds) in pipelines.iter().zip(runs) {
         let out = a.out.clone().unwrap_or_else(|| PathBuf::from("reports").join(&pipeline.name));
+        if pipeline.cycles.is_some() {
+            cycles(pipeline, &out)?;
+            continue;
+        }
         if let Some((k, n)) = a.shard {
             stickslip_ensemble::merge::mark_shard(&out, pipeline, k, n, &seeds)?;
         }
@@ -374,6 +378,46 @@ pub fn run(a: Args) -> Result<()> {
         }
     }
     finished(unfinished)
+}
+
+/// A `[cycles]` pipeline: one run of the fault over the years asked, its files and events.
+fn cycles(pipeline: &Pipeline, out: &std::path::Path) -> Result<()> {
+    outln!("{}: earthquake cycles over the plate's loading (docs/guide/faults.md, Earthquake cycles)", pipeline.name);
+    let r = stickslip_ensemble::cycles::run_cycles(pipeline, out)?;
+    outln!(
+        "{}: {} fault nodes, stiffness in {:.1} s; {} steps ({} rejected, {:.2e} s to {:.3} years) in {:.1} s; {} events → {}",
+        pipeline.name,
+        r.nodes,
+        r.stiffness_s,
+        r.stats.accepted,
+        r.stats.rejected,
+        r.stats.min_step_s,
+        r.stats.max_step_s / stickslip_solver::cycles::YEAR_S,
+        r.run_s,
+        r.events.len(),
+        r.out.join("seas").display()
+    );
+    let figure = stickslip_report::cycles::draw_cycles(out)?;
+    outln!("  figure: {}", figure.display());
+    for (i, e) in r.events.iter().enumerate() {
+        let recurrence = if i > 0 {
+            format!(
+                ", {:.3} years after the last",
+                (e.onset_s - r.events[i - 1].onset_s) / stickslip_solver::cycles::YEAR_S
+            )
+        } else {
+            String::new()
+        };
+        outln!(
+            "  event {i} at {:.3} years{recurrence}: hypocentre {:.2} km, surface slip {:.4} m, peak slip rate {:.4} m/s, {:.1} s",
+            e.onset_s / stickslip_solver::cycles::YEAR_S,
+            e.hypocentre_depth_m / 1e3,
+            e.surface_slip_m,
+            e.peak_slip_rate_m_s,
+            e.duration_s
+        );
+    }
+    Ok(())
 }
 
 /// `Ok` when every pipeline gave what it asked for, else an error listing what did not (the

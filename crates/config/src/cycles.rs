@@ -1,0 +1,154 @@
+//! `[cycles]`: earthquake cycles on a rate-and-state fault, quasi-dynamically (docs/model.md §20;
+//! the guide's faults chapter, Earthquake cycles). The scene is the fault's one side as a slab
+//! one module thick (`nx = 1`; the antiplane mode), its base a `[fault]` under
+//! `rate_state_aging` or `rate_state_slip`; the run loads it by the plate for `years`.
+
+use serde::{Deserialize, Serialize};
+use stickslip_solver::Scene;
+use stickslip_solver::cycles::{CycleSpec, Tolerances, YEAR_S};
+use stickslip_solver::laws::NodeFriction;
+
+use crate::check::{Checker, num};
+
+/// `[cycles]` as written.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct CyclesSection {
+    /// `"quasi_dynamic"` (radiation damping η = μ/2c_s in place of inertia); the fully dynamic
+    /// mode is not built yet.
+    #[serde(default = "quasi_dynamic")]
+    pub mode: String,
+    /// How long the plate loads the fault (years of 365.25 days), > 0.
+    pub years: f64,
+    /// The plate rate V_p (m/s), > 0: the slip rate below the frictional part and of the far face.
+    pub plate_rate_m_s: f64,
+    /// The frictional part reaches from the free surface to this depth (m); below it the fault
+    /// creeps at the plate rate. Within the block, at least 3 modules.
+    pub frictional_depth_m: f64,
+    /// The direct effect `a` along depth on the friction's background: `[[depth_m, a], …]` with
+    /// depths increasing, linear between points and constant beyond; patches keep their own a.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub a_by_depth: Vec<[f64; 2]>,
+    /// Relative tolerance of the adaptive step (1e-12–1e-3).
+    #[serde(default = "relative_tolerance")]
+    pub relative_tolerance: f64,
+    /// The longest step (years), > 0.
+    #[serde(default = "max_step_years")]
+    pub max_step_years: f64,
+    /// The fault is in an event while its largest slip rate exceeds this (m/s), > 0.
+    #[serde(default = "event_slip_rate")]
+    pub event_slip_rate_m_s: f64,
+    /// On-fault stations: depths (m) within the frictional part.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub stations_depth_m: Vec<f64>,
+    /// The most steps the run may take (1–10⁹).
+    #[serde(default = "max_steps")]
+    pub max_steps: i64,
+}
+
+fn quasi_dynamic() -> String {
+    "quasi_dynamic".into()
+}
+fn relative_tolerance() -> f64 {
+    1e-7
+}
+fn max_step_years() -> f64 {
+    0.1
+}
+fn event_slip_rate() -> f64 {
+    1e-3
+}
+fn max_steps() -> i64 {
+    10_000_000
+}
+
+impl CyclesSection {
+    /// The run it asks for on `scene`, checked; refusals go to `ck`.
+    pub fn build(&self, scene: &Scene, ck: &mut Checker) -> CycleSpec {
+        if self.mode != "quasi_dynamic" {
+            ck.push(
+                "cycles.mode",
+                format!("{:?}", self.mode),
+                "\"quasi_dynamic\" (the fully dynamic cycle, explicit steps inside events, is not built yet)",
+            );
+        }
+        ck.range("cycles.years", self.years, 0.0, true, 1e7, false);
+        ck.range("cycles.plate_rate_m_s", self.plate_rate_m_s, 0.0, true, 1.0, false);
+        ck.range("cycles.relative_tolerance", self.relative_tolerance, 1e-12, false, 1e-3, false);
+        ck.positive("cycles.max_step_years", self.max_step_years);
+        ck.positive("cycles.event_slip_rate_m_s", self.event_slip_rate_m_s);
+        let steps = ck.count("cycles.max_steps", self.max_steps, 1, 1_000_000_000, "a step budget");
+        let lc = scene.lc_m;
+        let depth = scene.dims.ny as f64 * lc;
+        if scene.dims.nx != 1 {
+            ck.push(
+                "block.nx",
+                scene.dims.nx,
+                "1 with [cycles] (the antiplane mode: a slab one module thick along strike)",
+            );
+        }
+        if scene.dims.nz < 2 {
+            ck.push("block.nz", scene.dims.nz, "at least 2 with [cycles] (the block away from the fault)");
+        }
+        ck.range("cycles.frictional_depth_m", self.frictional_depth_m, 3.0 * lc, false, depth, true);
+        if scene.fault.is_none() {
+            ck.push("fault", "none", "a [fault] with [cycles] (its base is the fault the plate loads)");
+        }
+        if !matches!(scene.friction.base(0), NodeFriction::RateState(_)) {
+            ck.push(
+                "friction.law",
+                format!("{:?}", scene.friction.law.name),
+                "\"rate_state_aging\" or \"rate_state_slip\" with [cycles]",
+            );
+        }
+        if scene.young_cv != 0.0 {
+            ck.push(
+                "material.young_cv",
+                num(scene.young_cv),
+                "0 with [cycles] (the fault's stiffness is computed for a homogeneous block)",
+            );
+        }
+        if !scene.medium.is_default() {
+            ck.push(
+                "medium",
+                "(present)",
+                "left out with [cycles] (the fault's stiffness is computed for one material)",
+            );
+        }
+        if scene.friction.mu_cv != 0.0 {
+            ck.push("friction.mu_cv", num(scene.friction.mu_cv), "0 with [cycles] (one run, no random field yet)");
+        }
+        let mut last = f64::NEG_INFINITY;
+        for (i, [d, a]) in self.a_by_depth.iter().copied().enumerate() {
+            if !(d >= 0.0 && d > last && d.is_finite()) {
+                ck.push(format!("cycles.a_by_depth[{i}][0]"), num(d), "a depth ≥ 0 (m) beyond the previous point's");
+            }
+            ck.range(&format!("cycles.a_by_depth[{i}][1]"), a, 0.0, true, 1.0, false);
+            last = d;
+        }
+        for (i, &d) in self.stations_depth_m.iter().enumerate() {
+            if !(d >= 0.0 && d < self.frictional_depth_m) {
+                ck.push(
+                    format!("cycles.stations_depth_m[{i}]"),
+                    num(d),
+                    format!("a depth in [0, {}) m (the frictional part)", num(self.frictional_depth_m)),
+                );
+            }
+        }
+        CycleSpec {
+            duration_s: self.years * YEAR_S,
+            plate_m_s: self.plate_rate_m_s,
+            frictional_depth_m: self.frictional_depth_m,
+            a_by_depth: self.a_by_depth.iter().map(|&[d, a]| (d, a)).collect(),
+            tolerances: Tolerances {
+                relative: self.relative_tolerance,
+                slip_m: self.relative_tolerance,
+                log_state: self.relative_tolerance,
+                max_step_s: self.max_step_years * YEAR_S,
+            },
+            event_slip_rate_m_s: self.event_slip_rate_m_s,
+            stations_m: self.stations_depth_m.clone(),
+            max_steps: steps.unwrap_or(1) as u64,
+        }
+    }
+}

@@ -1,0 +1,343 @@
+//! A pipeline's `[cycles]` run (docs/model.md §20; the guide's faults chapter, Earthquake
+//! cycles): the fault built from the scene, integrated over the years asked, its files written
+//! under `<out>/seas/` in the layout of the SCEC SEAS benchmarks and its events in
+//! `<out>/tables/cycle_events.parquet`.
+//!
+//! - `seas/fltst_dpXXX` (XXX the depth in hectometres): one per station,
+//!   `t slip slip_rate shear_stress state` (s, m, log10 m/s, MPa, log10 s), every accepted step
+//!   while the fault is in an event, at most one per `max_step_years` between events;
+//! - `seas/global.dat`: `t max_slip_rate moment_rate` (s, log10 m/s, N·m/s per metre along
+//!   strike) at the same times;
+//! - `seas/devol.dat`: the slip along depth (the first row the depths, then `t` and the slip
+//!   of every fault node), every 5 years between events and every second inside one.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use polars::prelude::*;
+use stickslip_config::Pipeline;
+use stickslip_solver::cycles::{CycleSpec, CycleState, CycleStats, Flow, QuasiDynamicFault, YEAR_S};
+use stickslip_store::io::{write_parquet_atomic, write_text_atomic};
+
+use crate::error::EnsembleError;
+
+/// One event of a cycle run: from the first step the largest slip rate exceeds the threshold
+/// to the first it falls below it again.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CycleEvent {
+    /// Onset (s).
+    pub onset_s: f64,
+    /// Duration (s).
+    pub duration_s: f64,
+    /// Depth of the node that first exceeded the threshold (m).
+    pub hypocentre_depth_m: f64,
+    /// The largest slip rate over the fault and the event (m/s).
+    pub peak_slip_rate_m_s: f64,
+    /// Slip at the free surface over the event (m).
+    pub surface_slip_m: f64,
+    /// The largest slip of a node over the event (m).
+    pub max_slip_m: f64,
+    /// Depth range of the nodes that exceeded the threshold (m).
+    pub ruptured_m: [f64; 2],
+    /// Moment per metre along strike, `μ·Σ Δδ_j·ℓ_j` (N·m/m).
+    pub moment_per_m: f64,
+}
+
+/// What a cycle run gave.
+#[derive(Clone, Debug)]
+pub struct CycleReport {
+    /// The events, in order.
+    pub events: Vec<CycleEvent>,
+    /// The step counts.
+    pub stats: CycleStats,
+    /// Fault nodes.
+    pub nodes: usize,
+    /// Seconds spent on the fault's stiffness.
+    pub stiffness_s: f64,
+    /// Seconds spent integrating.
+    pub run_s: f64,
+    /// Where the files are.
+    pub out: PathBuf,
+}
+
+struct Recorder<'a> {
+    spec: &'a CycleSpec,
+    fault: &'a QuasiDynamicFault,
+    mu: f64,
+    stations: Vec<(usize, f64, String)>,
+    global: String,
+    devol: String,
+    last_row: f64,
+    last_profile: f64,
+    in_event: Option<(CycleEvent, Vec<f64>)>,
+    events: Vec<CycleEvent>,
+}
+
+/// `value` of node `j` and `j + 1` weighted for a station at depth `d` between them.
+fn at(values: &[f64], j: usize, w: f64) -> f64 {
+    if w == 0.0 || j + 1 >= values.len() { values[j] } else { (1.0 - w) * values[j] + w * values[j + 1] }
+}
+
+impl Recorder<'_> {
+    fn row(&mut self, s: &CycleState) {
+        let vmax = s.slip_rate_m_s.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        let rate: f64 = (0..s.slip_rate_m_s.len())
+            .map(|j| self.mu * s.slip_rate_m_s[j] * self.fault.stiffness.node_length_m(j))
+            .sum();
+        let _ = writeln!(self.global, "{:.15e} {:.15e} {:.15e}", s.t_s, vmax.log10(), rate);
+        for (j, w, text) in &mut self.stations {
+            let v = at(&s.slip_rate_m_s, *j, *w).abs();
+            let _ = writeln!(
+                text,
+                "{:.15e} {:.15e} {:.15e} {:.15e} {:.15e}",
+                s.t_s,
+                at(&s.slip_m, *j, *w),
+                v.log10(),
+                at(&s.shear_pa, *j, *w) / 1e6,
+                at(&s.log_state, *j, *w) / std::f64::consts::LN_10
+            );
+        }
+    }
+
+    fn observe(&mut self, s: &CycleState) {
+        let vmax = s.slip_rate_m_s.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        let threshold = self.spec.event_slip_rate_m_s;
+        let quiet_gap = self.spec.tolerances.max_step_s;
+        let seismic = vmax > threshold;
+        if seismic || s.t_s - self.last_row >= quiet_gap || s.t_s == 0.0 {
+            self.row(s);
+            self.last_row = s.t_s;
+        }
+        let profile_gap = if seismic { 1.0 } else { 5.0 * YEAR_S };
+        if s.t_s == 0.0 || s.t_s - self.last_profile >= profile_gap {
+            let _ = write!(self.devol, "{:.15e}", s.t_s);
+            for d in &s.slip_m {
+                let _ = write!(self.devol, " {d:.15e}");
+            }
+            self.devol.push('\n');
+            self.last_profile = s.t_s;
+        }
+        let lc = self.fault.stiffness.lc_m;
+        match (&mut self.in_event, seismic) {
+            (None, true) => {
+                let hypo = (0..s.slip_rate_m_s.len())
+                    .max_by(|&a, &b| s.slip_rate_m_s[a].abs().total_cmp(&s.slip_rate_m_s[b].abs()))
+                    .unwrap_or(0);
+                let event = CycleEvent {
+                    onset_s: s.t_s,
+                    duration_s: 0.0,
+                    hypocentre_depth_m: hypo as f64 * lc,
+                    peak_slip_rate_m_s: vmax,
+                    surface_slip_m: 0.0,
+                    max_slip_m: 0.0,
+                    ruptured_m: [hypo as f64 * lc; 2],
+                    moment_per_m: 0.0,
+                };
+                self.in_event = Some((event, s.slip_m.clone()));
+            }
+            (Some((event, _)), true) => {
+                event.peak_slip_rate_m_s = event.peak_slip_rate_m_s.max(vmax);
+                for (j, v) in s.slip_rate_m_s.iter().enumerate() {
+                    if v.abs() > threshold {
+                        let d = j as f64 * lc;
+                        event.ruptured_m = [event.ruptured_m[0].min(d), event.ruptured_m[1].max(d)];
+                    }
+                }
+            }
+            (Some(_), false) => {
+                let (mut event, before) = self.in_event.take().expect("an event");
+                event.duration_s = s.t_s - event.onset_s;
+                let slip: Vec<f64> = s.slip_m.iter().zip(&before).map(|(a, b)| a - b).collect();
+                event.surface_slip_m = slip[0];
+                event.max_slip_m = slip.iter().fold(0.0f64, |a, &d| a.max(d));
+                event.moment_per_m =
+                    (0..slip.len()).map(|j| self.mu * slip[j] * self.fault.stiffness.node_length_m(j)).sum();
+                self.events.push(event);
+            }
+            (None, false) => {}
+        }
+    }
+}
+
+/// The header of a SEAS file.
+fn header(
+    pipeline: &Pipeline,
+    fault: &QuasiDynamicFault,
+    stats: &CycleStats,
+    location: &str,
+    columns: &[&str],
+) -> String {
+    let mut h = String::new();
+    let _ = writeln!(h, "# This is the file header:");
+    let _ = writeln!(h, "# problem={}", pipeline.name);
+    let _ = writeln!(h, "# code=stickslip {} (lattice antiplane mode, quasi-dynamic)", env!("CARGO_PKG_VERSION"));
+    let _ = writeln!(h, "# element_size={} m", fault.stiffness.lc_m);
+    let _ = writeln!(h, "# location={location}");
+    let _ = writeln!(h, "# minimum_time_step={:e}", stats.min_step_s);
+    let _ = writeln!(h, "# maximum_time_step={:e}", stats.max_step_s);
+    let _ = writeln!(h, "# num_time_steps={}", stats.accepted);
+    for (i, c) in columns.iter().enumerate() {
+        let _ = writeln!(h, "# Column #{} = {c}", i + 1);
+    }
+    let _ = writeln!(h, "# The line below lists the names of the data fields:");
+    h
+}
+
+/// Runs the pipeline's `[cycles]` and writes its files under `out`.
+pub fn run_cycles(pipeline: &Pipeline, out: &Path) -> Result<CycleReport, EnsembleError> {
+    let spec = pipeline.cycles.as_ref().expect("a [cycles] pipeline");
+    let t0 = std::time::Instant::now();
+    let fault = QuasiDynamicFault::from_scene(&pipeline.scene, spec).map_err(|e| EnsembleError::Solver(Box::new(e)))?;
+    let stiffness_s = t0.elapsed().as_secs_f64();
+    let lc = fault.stiffness.lc_m;
+    let mu = pipeline.scene.density_kg_m3 * pipeline.scene.s_wave_speed().powi(2);
+    let stations = spec
+        .stations_m
+        .iter()
+        .map(|&d| {
+            let j = ((d / lc).floor() as usize).min(fault.nodes() - 1);
+            (j, d / lc - j as f64, String::new())
+        })
+        .collect();
+    let mut rec = Recorder {
+        spec,
+        fault: &fault,
+        mu,
+        stations,
+        global: String::new(),
+        devol: String::new(),
+        last_row: f64::NEG_INFINITY,
+        last_profile: f64::NEG_INFINITY,
+        in_event: None,
+        events: Vec::new(),
+    };
+    let t1 = std::time::Instant::now();
+    let (_, stats) = fault
+        .run(fault.start(), spec.duration_s, &spec.tolerances, spec.max_steps, |s| {
+            rec.observe(s);
+            Flow::Continue
+        })
+        .map_err(|e| EnsembleError::Solver(Box::new(e)))?;
+    let run_s = t1.elapsed().as_secs_f64();
+    let seas = out.join("seas");
+    let station_columns = ["Time (s)", "Slip (m)", "Slip rate (log10 m/s)", "Shear stress (MPa)", "State (log10 s)"];
+    for (k, &d) in spec.stations_m.iter().enumerate() {
+        let name = format!("fltst_dp{:03}", (d / 100.0).round() as i64);
+        let mut text = header(pipeline, &fault, &stats, &format!("on fault, {} km depth", d / 1e3), &station_columns);
+        text.push_str("t slip slip_rate shear_stress state\n# Here is the time-series:\n");
+        text.push_str(&rec.stations[k].2);
+        write_text_atomic(&seas.join(name), &text)?;
+    }
+    let mut g = header(
+        pipeline,
+        &fault,
+        &stats,
+        "the whole fault",
+        &["Time (s)", "Max slip rate (log10 m/s)", "Moment rate (N·m/s per m along strike)"],
+    );
+    g.push_str("t max_slip_rate moment_rate\n# Here is the time-series:\n");
+    g.push_str(&rec.global);
+    write_text_atomic(&seas.join("global.dat"), &g)?;
+    let mut d = header(pipeline, &fault, &stats, "slip along depth", &["Time (s)", "Slip of each node (m)"]);
+    d.push_str("t slip\n# The first row: 0 then the nodes' depths (m)\n0");
+    for j in 0..fault.nodes() {
+        let _ = write!(d, " {:.6e}", j as f64 * lc);
+    }
+    d.push('\n');
+    d.push_str(&rec.devol);
+    write_text_atomic(&seas.join("devol.dat"), &d)?;
+    let events = rec.events;
+    let mut df = events_frame(&events)
+        .map_err(|e| EnsembleError::Store(stickslip_store::StoreError::table("cycle_events", e)))?;
+    write_parquet_atomic(&mut df, &out.join("tables").join("cycle_events.parquet"))?;
+    Ok(CycleReport { events, stats, nodes: fault.nodes(), stiffness_s, run_s, out: out.to_path_buf() })
+}
+
+/// The events as the `cycle_events` table.
+fn events_frame(events: &[CycleEvent]) -> PolarsResult<DataFrame> {
+    let col = |name: &str, f: &dyn Fn(&CycleEvent) -> f64| {
+        Column::new(name.into(), events.iter().map(f).collect::<Vec<f64>>())
+    };
+    let recurrence: Vec<Option<f64>> =
+        (0..events.len()).map(|i| (i > 0).then(|| (events[i].onset_s - events[i - 1].onset_s) / YEAR_S)).collect();
+    DataFrame::new(
+        events.len(),
+        vec![
+            Column::new("event".into(), (0..events.len() as u32).collect::<Vec<u32>>()),
+            col("onset_s", &|e| e.onset_s),
+            col("onset_years", &|e| e.onset_s / YEAR_S),
+            Column::new("recurrence_years".into(), recurrence),
+            col("duration_s", &|e| e.duration_s),
+            col("hypocentre_depth_m", &|e| e.hypocentre_depth_m),
+            col("peak_slip_rate_m_s", &|e| e.peak_slip_rate_m_s),
+            col("surface_slip_m", &|e| e.surface_slip_m),
+            col("max_slip_m", &|e| e.max_slip_m),
+            col("ruptured_top_m", &|e| e.ruptured_m[0]),
+            col("ruptured_bottom_m", &|e| e.ruptured_m[1]),
+            col("moment_per_m_n", &|e| e.moment_per_m),
+        ],
+    )
+}
+
+/// What `stickslip check` prints of a `[cycles]` pipeline, without building the block: the
+/// slab, the fault's nodes, the friction along depth with its process zone and nucleation
+/// size, the damping and the step control.
+pub fn describe(pipeline: &Pipeline) -> Vec<String> {
+    let (scene, spec) = (&pipeline.scene, pipeline.cycles.as_ref().expect("a [cycles] pipeline"));
+    let lc = scene.lc_m;
+    let mu = scene.density_kg_m3 * scene.s_wave_speed().powi(2);
+    let nodes = ((spec.frictional_depth_m / lc).ceil() as usize).min(scene.dims.ny + 1);
+    let mut lines = vec![format!(
+        "cycles: quasi-dynamic, {} years at the plate rate {:e} m/s; the antiplane mode of a slab of 1×{}×{} modules of {} m \
+         ({} km down dip, {} km away from the fault), the fault's stiffness from its stencil by cosines along depth",
+        spec.duration_s / YEAR_S,
+        spec.plate_m_s,
+        scene.dims.ny,
+        scene.dims.nz,
+        lc,
+        scene.dims.ny as f64 * lc / 1e3,
+        scene.dims.nz as f64 * lc / 1e3,
+    )];
+    lines.push(format!(
+        "fault: {nodes} rate-and-state nodes from the free surface to {} km, creep at the plate rate below; radiation \
+         damping η = μ/(2c_s) = {:.4e} Pa·s/m",
+        spec.frictional_depth_m / 1e3,
+        mu / (2.0 * scene.s_wave_speed())
+    ));
+    if let (Some(fault), stickslip_solver::laws::NodeFriction::RateState(node)) = (&scene.fault, scene.friction.base(0))
+    {
+        let sigma = fault.normal_pa.iter().fold(0.0f64, |a, &b| a.max(b));
+        let a_of = |j: usize| spec.a_at(j as f64 * lc).unwrap_or(node.a);
+        let (a_min, a_max) = (0..nodes).fold((f64::INFINITY, 0.0f64), |(lo, hi), j| (lo.min(a_of(j)), hi.max(a_of(j))));
+        let lambda0 = 9.0 * std::f64::consts::PI / 32.0 * mu * node.dc_m / (node.b * sigma);
+        lines.push(format!(
+            "friction along depth: a {a_min} … {a_max}, b = {}, L = {} m; cohesive zone Λ0 = (9π/32)·μ·L/(b·σn) = {:.1} m \
+             = {:.1} × Lc",
+            node.b,
+            node.dc_m,
+            lambda0,
+            lambda0 / lc
+        ));
+        if node.b > a_min {
+            let h = std::f64::consts::PI / 2.0 * mu * node.b * node.dc_m / ((node.b - a_min).powi(2) * sigma);
+            lines.push(format!(
+                "nucleation size h* = (π/2)·μ·b·L/((b − a)²·σn) = {:.0} m = {:.1} × Lc (Rubin & Ampuero 2005)",
+                h,
+                h / lc
+            ));
+        }
+    }
+    lines.push(format!(
+        "steps: Dormand–Prince 5(4), relative tolerance {:e}, at most {} years a step, at most {} steps; an event while \
+         the largest slip rate exceeds {:e} m/s",
+        spec.tolerances.relative,
+        spec.tolerances.max_step_s / YEAR_S,
+        spec.max_steps,
+        spec.event_slip_rate_m_s
+    ));
+    lines.push(format!(
+        "writes: seas/fltst_dpXXX at {} km, seas/global.dat, seas/devol.dat, tables/cycle_events.parquet",
+        spec.stations_m.iter().map(|d| format!("{}", d / 1e3)).collect::<Vec<_>>().join(", ")
+    ));
+    lines
+}

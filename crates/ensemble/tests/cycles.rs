@@ -1,0 +1,70 @@
+//! A `[cycles]` run end to end (docs/model.md §20): SEAS BP1-QD as shipped, cut to its first 400
+//! years, against the benchmark's published solutions; its files read back.
+//!
+//! `cargo test --release -p stickslip-ensemble --test cycles -- --nocapture` prints the figures.
+
+use stickslip_config::Pipeline;
+use stickslip_ensemble::cycles::run_cycles;
+use stickslip_support::{read_table, repo_path, scratch_dir};
+
+/// Seconds in the SEAS year.
+const YEAR: f64 = 365.25 * 86400.0;
+
+#[test]
+fn bp1_qd_recurs_and_slips_as_the_published_solutions() {
+    let text = std::fs::read_to_string(repo_path("pipelines/seas-bp1-qd.toml")).unwrap();
+    let mut doc: toml::Table = toml::from_str(&text).unwrap();
+    doc["cycles"].as_table_mut().unwrap().insert("years".into(), 400.0.into());
+    let dir = scratch_dir("cycles-bp1");
+    let path = dir.join("bp1-400.toml");
+    std::fs::write(&path, toml::to_string(&doc).unwrap()).unwrap();
+    let pipeline = Pipeline::load(&path).unwrap();
+    let out = dir.join("out");
+    let r = run_cycles(&pipeline, &out).unwrap();
+    println!(
+        "{} nodes: stiffness {:.1} s, {} steps ({} rejected) in {:.1} s",
+        r.nodes, r.stiffness_s, r.stats.accepted, r.stats.rejected, r.run_s
+    );
+    let events = read_table(&out.join("tables/cycle_events.parquet"));
+    let onsets: Vec<f64> = events.column("onset_years").unwrap().f64().unwrap().into_no_null_iter().collect();
+    let surface: Vec<f64> = events.column("surface_slip_m").unwrap().f64().unwrap().into_no_null_iter().collect();
+    let recurrence: Vec<f64> = events.column("recurrence_years").unwrap().f64().unwrap().iter().flatten().collect();
+    for i in 0..onsets.len() {
+        println!("event {i} at {:.3} years, surface slip {:.4} m", onsets[i], surface[i]);
+    }
+    assert_eq!(onsets.len(), 3, "{onsets:?}");
+    // tectosaur2's boundary-integral BP1-QD (about 20 m): 75.6 and 77.9 years between the first
+    // three events, read off its figure to ±0.5 year.
+    for (got, reference) in recurrence.iter().zip([75.6, 77.9]) {
+        println!("recurrence {got:.3} years against {reference} (tectosaur2)");
+        assert!((got - reference).abs() < 0.01 * reference, "{got} against {reference}");
+    }
+    // Jiang's station at 7.5 km (the benchmark's fltst_dp075): the first event's peak slip rate
+    // 0.489 m/s and coseismic slip 2.785 m (while the rate exceeds 1 mm/s).
+    let station = std::fs::read_to_string(out.join("seas/fltst_dp075")).unwrap();
+    let rows: Vec<[f64; 5]> = station
+        .lines()
+        .filter(|l| !l.starts_with('#') && !l.starts_with('t'))
+        .map(|l| {
+            let v: Vec<f64> = l.split_whitespace().map(|x| x.parse().unwrap()).collect();
+            [v[0], v[1], v[2], v[3], v[4]]
+        })
+        .collect();
+    let first: Vec<&[f64; 5]> = rows.iter().filter(|r| r[0] < (onsets[0] + 10.0) * YEAR && r[2] > -3.0).collect();
+    let peak = first.iter().map(|r| 10f64.powf(r[2])).fold(0.0, f64::max);
+    let slip = first.last().unwrap()[1] - first[0][1];
+    println!("7.5 km, first event: peak slip rate {peak:.4} m/s against 0.489, slip {slip:.4} m against 2.785 (Jiang)");
+    assert!((peak / 0.489 - 1.0).abs() < 0.03, "{peak}");
+    assert!((slip / 2.785 - 1.0).abs() < 0.02, "{slip}");
+    // The files: a header the benchmarks' readers skip, then t, slip, log10 V, τ (MPa), log10 θ.
+    assert!(station.contains("# location=on fault, 7.5 km depth"));
+    assert!(station.contains("\nt slip slip_rate shear_stress state\n"));
+    let tau_start = rows[0][3];
+    println!("shear stress at the start {tau_start:.4} MPa (BP1's τ0 = 26.546 MPa)");
+    assert!((tau_start - 26.546).abs() < 1e-3);
+    let global = std::fs::read_to_string(out.join("seas/global.dat")).unwrap();
+    assert!(global.lines().filter(|l| !l.starts_with('#')).count() > 100);
+    let devol = std::fs::read_to_string(out.join("seas/devol.dat")).unwrap();
+    let depths = devol.lines().find(|l| l.starts_with("0 ")).unwrap().split_whitespace().count();
+    assert_eq!(depths, 1 + r.nodes);
+}
