@@ -38,6 +38,9 @@ pub struct CyclesSection {
     /// The fault is in an event while its largest slip rate exceeds this (m/s), > 0.
     #[serde(default = "event_slip_rate")]
     pub event_slip_rate_m_s: f64,
+    /// The files' sampling inside events (s), > 0; between events it is `max_step_years`.
+    #[serde(default = "sample_s")]
+    pub sample_s: f64,
     /// On-fault stations: depths (m) within the frictional part.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub stations_depth_m: Vec<f64>,
@@ -58,6 +61,9 @@ fn max_step_years() -> f64 {
 fn event_slip_rate() -> f64 {
     1e-3
 }
+fn sample_s() -> f64 {
+    0.1
+}
 fn max_steps() -> i64 {
     10_000_000
 }
@@ -77,6 +83,7 @@ impl CyclesSection {
         ck.range("cycles.relative_tolerance", self.relative_tolerance, 1e-12, false, 1e-3, false);
         ck.positive("cycles.max_step_years", self.max_step_years);
         ck.positive("cycles.event_slip_rate_m_s", self.event_slip_rate_m_s);
+        ck.positive("cycles.sample_s", self.sample_s);
         let steps = ck.count("cycles.max_steps", self.max_steps, 1, 1_000_000_000, "a step budget");
         let lc = scene.lc_m;
         let depth = scene.dims.ny as f64 * lc;
@@ -147,6 +154,7 @@ impl CyclesSection {
                 max_step_s: self.max_step_years * YEAR_S,
             },
             event_slip_rate_m_s: self.event_slip_rate_m_s,
+            sample_s: self.sample_s,
             stations_m: self.stations_depth_m.clone(),
             max_steps: steps.unwrap_or(1) as u64,
         }

@@ -3,13 +3,18 @@
 //! under `<out>/seas/` in the layout of the SCEC SEAS benchmarks and its events in
 //! `<out>/tables/cycle_events.parquet`.
 //!
-//! - `seas/fltst_dpXXX` (XXX the depth in hectometres): one per station,
-//!   `t slip slip_rate shear_stress state` (s, m, log10 m/s, MPa, log10 s), every accepted step
-//!   while the fault is in an event, at most one per `max_step_years` between events;
-//! - `seas/global.dat`: `t max_slip_rate moment_rate` (s, log10 m/s, N·m/s per metre along
-//!   strike) at the same times;
-//! - `seas/devol.dat`: the slip along depth (the first row the depths, then `t` and the slip
-//!   of every fault node), every 5 years between events and every second inside one.
+//! The layout is BP1's description (Erickson et al., the SEAS BP1/BP2 problem description,
+//! sections on output):
+//! - `seas/fltst_dpXXX` (XXX the depth in hectometres): one per station, `#` header lines, the
+//!   field list `t slip slip_rate shear_stress state` (s, m, log10 m/s, MPa, log10 s), a row every
+//!   `sample_s` while the fault is in an event (the largest slip rate above the event threshold)
+//!   and every `max_step_years` between events;
+//! - `seas/devol.dat`: the field lists `z` and `t max_slip_rate slip`, then a first row
+//!   `0 0 z₁ z₂ …` (depths about every 500 m down to the frictional depth) and one row per
+//!   profile, `t`, log10 of the largest slip rate and the slip at each depth, every 5 years
+//!   between events and every second inside one;
+//! - `seas/global.dat` (not a BP1 file; the later benchmarks' global series): `t max_slip_rate
+//!   moment_rate` (s, log10 m/s, N·m/s per metre along strike) at the stations' times.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -69,6 +74,7 @@ struct Recorder<'a> {
     devol: String,
     last_row: f64,
     last_profile: f64,
+    profile_nodes: Vec<usize>,
     in_event: Option<(CycleEvent, Vec<f64>)>,
     events: Vec<CycleEvent>,
 }
@@ -104,15 +110,18 @@ impl Recorder<'_> {
         let threshold = self.spec.event_slip_rate_m_s;
         let quiet_gap = self.spec.tolerances.max_step_s;
         let seismic = vmax > threshold;
-        if seismic || s.t_s - self.last_row >= quiet_gap || s.t_s == 0.0 {
+        let gap = if seismic { self.spec.sample_s } else { quiet_gap };
+        // The first step of an event is always written, so an onset is never skipped over.
+        let onset = seismic && self.in_event.is_none();
+        if onset || s.t_s - self.last_row >= gap || s.t_s == 0.0 {
             self.row(s);
             self.last_row = s.t_s;
         }
         let profile_gap = if seismic { 1.0 } else { 5.0 * YEAR_S };
-        if s.t_s == 0.0 || s.t_s - self.last_profile >= profile_gap {
-            let _ = write!(self.devol, "{:.15e}", s.t_s);
-            for d in &s.slip_m {
-                let _ = write!(self.devol, " {d:.15e}");
+        if onset || s.t_s == 0.0 || s.t_s - self.last_profile >= profile_gap {
+            let _ = write!(self.devol, "{:.15e} {:.15e}", s.t_s, vmax.log10());
+            for &j in &self.profile_nodes {
+                let _ = write!(self.devol, " {:.15e}", s.slip_m[j]);
             }
             self.devol.push('\n');
             self.last_profile = s.t_s;
@@ -159,6 +168,16 @@ impl Recorder<'_> {
     }
 }
 
+/// The fault nodes of `devol.dat`: about every 500 m from the surface, and the deepest node.
+fn profile_nodes(nodes: usize, lc: f64) -> Vec<usize> {
+    let every = ((500.0 / lc).round() as usize).max(1);
+    let mut js: Vec<usize> = (0..nodes).step_by(every).collect();
+    if js.last() != Some(&(nodes - 1)) {
+        js.push(nodes - 1);
+    }
+    js
+}
+
 /// The header of a SEAS file.
 fn header(
     pipeline: &Pipeline,
@@ -169,7 +188,8 @@ fn header(
 ) -> String {
     let mut h = String::new();
     let _ = writeln!(h, "# This is the file header:");
-    let _ = writeln!(h, "# problem={}", pipeline.name);
+    let _ = writeln!(h, "# problem={}", pipeline.description);
+    let _ = writeln!(h, "# pipeline={}", pipeline.name);
     let _ = writeln!(h, "# code=stickslip {} (lattice antiplane mode, quasi-dynamic)", env!("CARGO_PKG_VERSION"));
     let _ = writeln!(h, "# element_size={} m", fault.stiffness.lc_m);
     let _ = writeln!(h, "# location={location}");
@@ -208,6 +228,7 @@ pub fn run_cycles(pipeline: &Pipeline, out: &Path) -> Result<CycleReport, Ensemb
         devol: String::new(),
         last_row: f64::NEG_INFINITY,
         last_profile: f64::NEG_INFINITY,
+        profile_nodes: profile_nodes(fault.nodes(), lc),
         in_event: None,
         events: Vec::new(),
     };
@@ -224,7 +245,7 @@ pub fn run_cycles(pipeline: &Pipeline, out: &Path) -> Result<CycleReport, Ensemb
     for (k, &d) in spec.stations_m.iter().enumerate() {
         let name = format!("fltst_dp{:03}", (d / 100.0).round() as i64);
         let mut text = header(pipeline, &fault, &stats, &format!("on fault, {} km depth", d / 1e3), &station_columns);
-        text.push_str("t slip slip_rate shear_stress state\n# Here is the time-series:\n");
+        text.push_str("t slip slip_rate shear_stress state\n# Here is the time-series data.\n");
         text.push_str(&rec.stations[k].2);
         write_text_atomic(&seas.join(name), &text)?;
     }
@@ -235,12 +256,18 @@ pub fn run_cycles(pipeline: &Pipeline, out: &Path) -> Result<CycleReport, Ensemb
         "the whole fault",
         &["Time (s)", "Max slip rate (log10 m/s)", "Moment rate (N·m/s per m along strike)"],
     );
-    g.push_str("t max_slip_rate moment_rate\n# Here is the time-series:\n");
+    g.push_str("t max_slip_rate moment_rate\n# Here is the time-series data.\n");
     g.push_str(&rec.global);
     write_text_atomic(&seas.join("global.dat"), &g)?;
-    let mut d = header(pipeline, &fault, &stats, "slip along depth", &["Time (s)", "Slip of each node (m)"]);
-    d.push_str("t slip\n# The first row: 0 then the nodes' depths (m)\n0");
-    for j in 0..fault.nodes() {
+    let mut d = header(
+        pipeline,
+        &fault,
+        &stats,
+        "slip along depth",
+        &["Time (s)", "Max slip rate (log10 m/s)", "Slip (m), one column per depth of the first row"],
+    );
+    d.push_str("# Row #1 = Depth (m) with two zeros first\nz\nt max_slip_rate slip\n# Here are the data\n0 0");
+    for &j in &rec.profile_nodes {
         let _ = write!(d, " {:.6e}", j as f64 * lc);
     }
     d.push('\n');

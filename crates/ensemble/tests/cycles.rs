@@ -64,7 +64,20 @@ fn bp1_qd_recurs_and_slips_as_the_published_solutions() {
     assert!((tau_start - 26.546).abs() < 1e-3);
     let global = std::fs::read_to_string(out.join("seas/global.dat")).unwrap();
     assert!(global.lines().filter(|l| !l.starts_with('#')).count() > 100);
+    // devol.dat: `0 0` and the depths every 500 m to 39.9 km (BP1 asks for about 81 columns), then
+    // t, log10 max V and the slip at each.
     let devol = std::fs::read_to_string(out.join("seas/devol.dat")).unwrap();
-    let depths = devol.lines().find(|l| l.starts_with("0 ")).unwrap().split_whitespace().count();
-    assert_eq!(depths, 1 + r.nodes);
+    assert!(devol.contains("\nz\nt max_slip_rate slip\n"));
+    let depths: Vec<f64> =
+        devol.lines().find(|l| l.starts_with("0 0 ")).unwrap().split_whitespace().map(|x| x.parse().unwrap()).collect();
+    assert_eq!(depths.len(), 2 + 81, "{}", depths.len());
+    assert_eq!((depths[3], *depths.last().unwrap()), (500.0, 39900.0));
+    let rows = devol.lines().filter(|l| !l.starts_with(['#', 'z', 't', '0'])).count();
+    assert!(
+        rows > 100
+            && devol
+                .lines()
+                .filter(|l| l.starts_with(['1', '2', '3', '4', '5', '6', '7', '8', '9']))
+                .all(|l| l.split_whitespace().count() == depths.len())
+    );
 }

@@ -152,8 +152,9 @@ fn uniform_slip_on_a_patch_stresses_the_fault_as_in_a_half_space() {
     assert!(worst < 0.01, "{worst}");
 }
 
-/// One node on a spring of stiffness k (Pa/m): the spring-slider in the quasi-dynamic form.
-fn spring_slider(k: f64, a: f64, b: f64, perturbation: f64) -> (QuasiDynamicFault, CycleState) {
+/// One node on a spring of stiffness k (Pa/m): the spring-slider in the quasi-dynamic form,
+/// started `perturbation` off steady state at the plate rate.
+fn spring_slider(k: f64, a: f64, b: f64, perturbation: f64, evolution: Evolution) -> (QuasiDynamicFault, CycleState) {
     let (sigma, l, vp) = (50e6, 0.008, 1e-9);
     let node = RateStateNode {
         a,
@@ -161,7 +162,7 @@ fn spring_slider(k: f64, a: f64, b: f64, perturbation: f64) -> (QuasiDynamicFaul
         dc_m: l,
         v0_m_s: 1e-6,
         f0: 0.6,
-        evolution: Evolution::Aging,
+        evolution,
         start: RateStateStart::State(l / vp * (1.0 + perturbation)),
     };
     let steady = stickslip_solver::laws::rate_state::steady_friction(&node, vp);
@@ -179,14 +180,14 @@ fn spring_slider(k: f64, a: f64, b: f64, perturbation: f64) -> (QuasiDynamicFaul
 }
 
 #[test]
-fn a_spring_slider_oscillates_at_its_critical_stiffness_with_the_linear_period() {
+fn a_spring_slider_oscillates_at_its_critical_stiffness_with_the_linear_period_under_both_laws() {
     let (a, b, sigma, l, vp) = (0.010, 0.015, 50e6, 0.008, 1e-9);
     let kc = (b - a) * sigma / l;
     let period = 2.0 * std::f64::consts::PI * l / vp * (a / (b - a)).sqrt();
     let tol = Tolerances { relative: 1e-10, slip_m: 1e-12, log_state: 1e-10, max_step_s: period / 200.0 };
     // Growth or decay of ln V's swing over 10 periods, and the period from its up-crossings.
-    let swing = |ratio: f64| {
-        let (fault, start) = spring_slider(ratio * kc, a, b, 1e-3);
+    let swing = |ratio: f64, evolution: Evolution| {
+        let (fault, start) = spring_slider(ratio * kc, a, b, 1e-3, evolution);
         let mut crossings = Vec::new();
         let (mut first, mut last) = (0.0f64, 0.0f64);
         let mut prev: Option<(f64, f64)> = None;
@@ -212,7 +213,7 @@ fn a_spring_slider_oscillates_at_its_critical_stiffness_with_the_linear_period()
         let measured = (crossings.last().unwrap() - crossings[0]) / (crossings.len() - 1) as f64;
         (first, last, measured)
     };
-    let (f, l_, t) = swing(1.0);
+    let (f, l_, t) = swing(1.0, Evolution::Aging);
     println!(
         "k = k_c: |ln V/Vp| {f:.3e} in the first period, {l_:.3e} in the tenth; period {:.5} years against 2π(L/Vp)√(a/(b−a)) = {:.5} years",
         t / stickslip_solver::cycles::YEAR_S,
@@ -220,10 +221,15 @@ fn a_spring_slider_oscillates_at_its_critical_stiffness_with_the_linear_period()
     );
     assert!((t / period - 1.0).abs() < 2e-3, "{t} against {period}");
     assert!((l_ / f - 1.0).abs() < 0.05, "neutral: {f} → {l_}");
-    let (f, l_, _) = swing(1.1);
+    let (f, l_, _) = swing(1.1, Evolution::Aging);
     println!("k = 1.1 k_c: {f:.3e} → {l_:.3e}");
     assert!(l_ < 0.5 * f);
-    let (f, l_, _) = swing(0.9);
+    let (f, l_, _) = swing(0.9, Evolution::Aging);
     println!("k = 0.9 k_c: {f:.3e} → {l_:.3e}");
     assert!(l_ > 2.0 * f);
+    // The slip law linearises to the same system (θ̇/θ ≈ −(V/L)·(v + φ) for both laws).
+    let (f, l_, t) = swing(1.0, Evolution::Slip);
+    println!("slip law, k = k_c: {f:.3e} → {l_:.3e}; period {:.5} years", t / stickslip_solver::cycles::YEAR_S);
+    assert!((t / period - 1.0).abs() < 2e-3, "{t} against {period}");
+    assert!((l_ / f - 1.0).abs() < 0.05, "neutral: {f} → {l_}");
 }

@@ -231,6 +231,14 @@ fn seeds_to_run(a: &Args, pipelines: &[Pipeline], given: Option<&[u64]>) -> Resu
     let threads = a.threads.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
     let mut runs = Vec::new();
     for pipeline in pipelines {
+        if pipeline.cycles.is_some() {
+            // One run of the fault alone: its stiffness is nodes² numbers, the block is never built.
+            if a.shard.is_some() || stickslip_ensemble::split::installed().is_some() {
+                bail!("{}: a [cycles] pipeline is one run on one process; leave out --shard and mpirun", pipeline.name);
+            }
+            runs.push(Vec::new());
+            continue;
+        }
         let mut seeds = given.map(<[u64]>::to_vec).unwrap_or_else(|| pipeline.seeds.clone());
         if let Some((k, n)) = a.shard {
             seeds = shard(&seeds, k, n);
@@ -267,7 +275,7 @@ pub fn run(a: Args) -> Result<()> {
     let (pipelines, given) = load(&a)?;
     if let Some(split) = stickslip_ensemble::split::installed() {
         let ranks = split.ranks();
-        for p in &pipelines {
+        for p in pipelines.iter().filter(|p| p.cycles.is_none()) {
             if let Some(why) = stickslip_solver::run::split_refusal(&p.scene, ranks) {
                 bail!("{}: its seeds cannot be split over {ranks} MPI ranks: {why}", p.name);
             }

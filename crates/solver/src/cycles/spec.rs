@@ -26,6 +26,8 @@ pub struct CycleSpec {
     pub tolerances: Tolerances,
     /// The slip rate above which the fault is in an event (m/s).
     pub event_slip_rate_m_s: f64,
+    /// The files' sampling inside events (s).
+    pub sample_s: f64,
     /// On-fault stations: their depths (m).
     pub stations_m: Vec<f64>,
     /// The most steps a run may take.
