@@ -18,6 +18,7 @@
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use polars::prelude::*;
 use stickslip_config::Pipeline;
@@ -63,6 +64,9 @@ pub struct CycleReport {
     pub run_s: f64,
     /// Where the files are.
     pub out: PathBuf,
+    /// The time the run was interrupted at (s), its files written up to there; `None`: it ran
+    /// to the end.
+    pub interrupted_s: Option<f64>,
 }
 
 struct Recorder<'a> {
@@ -203,8 +207,10 @@ fn header(
     h
 }
 
-/// Runs the pipeline's `[cycles]` and writes its files under `out`.
-pub fn run_cycles(pipeline: &Pipeline, out: &Path) -> Result<CycleReport, EnsembleError> {
+/// Runs the pipeline's `[cycles]` and writes its files under `out`. When `cancel` is set the
+/// run stops at its next step and the files are written up to there
+/// ([`CycleReport::interrupted_s`]).
+pub fn run_cycles(pipeline: &Pipeline, out: &Path, cancel: &AtomicBool) -> Result<CycleReport, EnsembleError> {
     let spec = pipeline.cycles.as_ref().expect("a [cycles] pipeline");
     let t0 = std::time::Instant::now();
     let fault = QuasiDynamicFault::from_scene(&pipeline.scene, spec).map_err(|e| EnsembleError::Solver(Box::new(e)))?;
@@ -233,12 +239,13 @@ pub fn run_cycles(pipeline: &Pipeline, out: &Path) -> Result<CycleReport, Ensemb
         events: Vec::new(),
     };
     let t1 = std::time::Instant::now();
-    let (_, stats) = fault
+    let (last, stats) = fault
         .run(fault.start(), spec.duration_s, &spec.tolerances, spec.max_steps, |s| {
             rec.observe(s);
-            Flow::Continue
+            if cancel.load(Ordering::Relaxed) { Flow::Stop } else { Flow::Continue }
         })
         .map_err(|e| EnsembleError::Solver(Box::new(e)))?;
+    let interrupted_s = (last.t_s < spec.duration_s).then_some(last.t_s);
     let run_s = t1.elapsed().as_secs_f64();
     let seas = out.join("seas");
     let station_columns = ["Time (s)", "Slip (m)", "Slip rate (log10 m/s)", "Shear stress (MPa)", "State (log10 s)"];
@@ -277,7 +284,7 @@ pub fn run_cycles(pipeline: &Pipeline, out: &Path) -> Result<CycleReport, Ensemb
     let mut df = events_frame(&events)
         .map_err(|e| EnsembleError::Store(stickslip_store::StoreError::table("cycle_events", e)))?;
     write_parquet_atomic(&mut df, &out.join("tables").join("cycle_events.parquet"))?;
-    Ok(CycleReport { events, stats, nodes: fault.nodes(), stiffness_s, run_s, out: out.to_path_buf() })
+    Ok(CycleReport { events, stats, nodes: fault.nodes(), stiffness_s, run_s, interrupted_s, out: out.to_path_buf() })
 }
 
 /// The events as the `cycle_events` table.

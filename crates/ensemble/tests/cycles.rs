@@ -3,6 +3,8 @@
 //!
 //! `cargo test --release -p stickslip-ensemble --test cycles -- --nocapture` prints the figures.
 
+use std::sync::atomic::AtomicBool;
+
 use stickslip_config::Pipeline;
 use stickslip_ensemble::cycles::run_cycles;
 use stickslip_support::{read_table, repo_path, scratch_dir};
@@ -20,7 +22,8 @@ fn bp1_qd_recurs_and_slips_as_the_published_solutions() {
     std::fs::write(&path, toml::to_string(&doc).unwrap()).unwrap();
     let pipeline = Pipeline::load(&path).unwrap();
     let out = dir.join("out");
-    let r = run_cycles(&pipeline, &out).unwrap();
+    let r = run_cycles(&pipeline, &out, &AtomicBool::new(false)).unwrap();
+    assert_eq!(r.interrupted_s, None);
     println!(
         "{} nodes: stiffness {:.1} s, {} steps ({} rejected) in {:.1} s",
         r.nodes, r.stiffness_s, r.stats.accepted, r.stats.rejected, r.run_s

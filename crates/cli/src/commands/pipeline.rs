@@ -308,7 +308,7 @@ pub fn run(a: Args) -> Result<()> {
     for (pipeline, seeds) in pipelines.iter().zip(runs) {
         let out = a.out.clone().unwrap_or_else(|| PathBuf::from("reports").join(&pipeline.name));
         if pipeline.cycles.is_some() {
-            cycles(pipeline, &out)?;
+            cycles(pipeline, &out, &cancel)?;
             continue;
         }
         if let Some((k, n)) = a.shard {
@@ -389,9 +389,9 @@ pub fn run(a: Args) -> Result<()> {
 }
 
 /// A `[cycles]` pipeline: one run of the fault over the years asked, its files and events.
-fn cycles(pipeline: &Pipeline, out: &std::path::Path) -> Result<()> {
+fn cycles(pipeline: &Pipeline, out: &std::path::Path, cancel: &AtomicBool) -> Result<()> {
     outln!("{}: earthquake cycles over the plate's loading (docs/guide/faults.md, Earthquake cycles)", pipeline.name);
-    let r = stickslip_ensemble::cycles::run_cycles(pipeline, out)?;
+    let r = stickslip_ensemble::cycles::run_cycles(pipeline, out, cancel)?;
     outln!(
         "{}: {} fault nodes, stiffness in {:.1} s; {} steps ({} rejected, {:.2e} s to {:.3} years) in {:.1} s; {} events → {}",
         pipeline.name,
@@ -423,6 +423,28 @@ fn cycles(pipeline: &Pipeline, out: &std::path::Path) -> Result<()> {
             e.surface_slip_m,
             e.peak_slip_rate_m_s,
             e.duration_s
+        );
+    }
+    let intervals: Vec<f64> =
+        r.events.windows(2).map(|w| (w[1].onset_s - w[0].onset_s) / stickslip_solver::cycles::YEAR_S).collect();
+    if intervals.len() >= 2 {
+        let n = intervals.len() as f64;
+        let mean = intervals.iter().sum::<f64>() / n;
+        let sd = (intervals.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt();
+        outln!(
+            "  recurrence: {mean:.3} ± {sd:.3} years (mean ± sd of {} intervals, the start's transient included), \
+             coefficient of variation {:.4}",
+            intervals.len(),
+            sd / mean
+        );
+    }
+    if let Some(t) = r.interrupted_s {
+        bail!(
+            "{}: interrupted at {:.3} years of {:.3}; its files hold the run up to there (a cycle run starts again from \
+             the beginning: it keeps no checkpoint)",
+            pipeline.name,
+            t / stickslip_solver::cycles::YEAR_S,
+            pipeline.cycles.as_ref().map_or(0.0, |c| c.duration_s) / stickslip_solver::cycles::YEAR_S
         );
     }
     Ok(())
