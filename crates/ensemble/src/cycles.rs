@@ -22,6 +22,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use polars::prelude::*;
 use stickslip_config::Pipeline;
+use stickslip_config::numbers::num;
 use stickslip_solver::cycles::{CycleSpec, CycleState, CycleStats, Flow, QuasiDynamicFault, YEAR_S};
 use stickslip_store::io::{write_parquet_atomic, write_text_atomic};
 
@@ -322,20 +323,20 @@ pub fn describe(pipeline: &Pipeline) -> Vec<String> {
     let mu = scene.density_kg_m3 * scene.s_wave_speed().powi(2);
     let nodes = ((spec.frictional_depth_m / lc).ceil() as usize).min(scene.dims.ny + 1);
     let mut lines = vec![format!(
-        "cycles: quasi-dynamic, {} years at the plate rate {:e} m/s; the antiplane mode of a slab of 1×{}×{} modules of {} m \
+        "cycles: quasi-dynamic, {} years at the plate rate {} m/s; the antiplane mode of a slab of 1×{}×{} modules of {} m \
          ({} km down dip, {} km away from the fault), the fault's stiffness from its stencil by cosines along depth",
-        spec.duration_s / YEAR_S,
-        spec.plate_m_s,
+        num(spec.duration_s / YEAR_S),
+        num(spec.plate_m_s),
         scene.dims.ny,
         scene.dims.nz,
-        lc,
-        scene.dims.ny as f64 * lc / 1e3,
-        scene.dims.nz as f64 * lc / 1e3,
+        num(lc),
+        num(scene.dims.ny as f64 * lc / 1e3),
+        num(scene.dims.nz as f64 * lc / 1e3),
     )];
     lines.push(format!(
         "fault: {nodes} rate-and-state nodes from the free surface to {} km, creep at the plate rate below; radiation \
          damping η = μ/(2c_s) = {:.4e} Pa·s/m",
-        spec.frictional_depth_m / 1e3,
+        num(spec.frictional_depth_m / 1e3),
         mu / (2.0 * scene.s_wave_speed())
     ));
     if let (Some(fault), stickslip_solver::laws::NodeFriction::RateState(node)) = (&scene.fault, scene.friction.base(0))
@@ -345,10 +346,12 @@ pub fn describe(pipeline: &Pipeline) -> Vec<String> {
         let (a_min, a_max) = (0..nodes).fold((f64::INFINITY, 0.0f64), |(lo, hi), j| (lo.min(a_of(j)), hi.max(a_of(j))));
         let lambda0 = 9.0 * std::f64::consts::PI / 32.0 * mu * node.dc_m / (node.b * sigma);
         lines.push(format!(
-            "friction along depth: a {a_min} … {a_max}, b = {}, L = {} m; cohesive zone Λ0 = (9π/32)·μ·L/(b·σn) = {:.1} m \
+            "friction along depth: a {} … {}, b = {}, L = {} m; cohesive zone Λ0 = (9π/32)·μ·L/(b·σn) = {:.1} m \
              = {:.1} × Lc",
-            node.b,
-            node.dc_m,
+            num(a_min),
+            num(a_max),
+            num(node.b),
+            num(node.dc_m),
             lambda0,
             lambda0 / lc
         ));
@@ -362,16 +365,16 @@ pub fn describe(pipeline: &Pipeline) -> Vec<String> {
         }
     }
     lines.push(format!(
-        "steps: Dormand–Prince 5(4), relative tolerance {:e}, at most {} years a step, at most {} steps; an event while \
-         the largest slip rate exceeds {:e} m/s",
-        spec.tolerances.relative,
-        spec.tolerances.max_step_s / YEAR_S,
+        "steps: Dormand–Prince 5(4), relative tolerance {}, at most {} years a step, at most {} steps; an event while \
+         the largest slip rate exceeds {} m/s",
+        num(spec.tolerances.relative),
+        num(spec.tolerances.max_step_s / YEAR_S),
         spec.max_steps,
-        spec.event_slip_rate_m_s
+        num(spec.event_slip_rate_m_s)
     ));
     lines.push(format!(
         "writes: seas/fltst_dpXXX at {} km, seas/global.dat, seas/devol.dat, tables/cycle_events.parquet",
-        spec.stations_m.iter().map(|d| format!("{}", d / 1e3)).collect::<Vec<_>>().join(", ")
+        spec.stations_m.iter().map(|d| num(d / 1e3)).collect::<Vec<_>>().join(", ")
     ));
     lines
 }

@@ -53,6 +53,13 @@ pub fn parse_seed(s: &str) -> Result<u64, String> {
 pub fn run(a: Args) -> Result<()> {
     anyhow::ensure!(a.threads != Some(0), "--threads 0: give at least 1 (or leave it out for one per core)");
     let pipeline = Pipeline::load(&a.pipeline)?;
+    anyhow::ensure!(
+        pipeline.cycles.is_none(),
+        "{}: a [cycles] pipeline is one run of its fault over the years, not a seed's explicit run: \
+         stickslip pipeline {}",
+        pipeline.name,
+        a.pipeline.display()
+    );
     crate::commands::pipeline::print_warnings(&pipeline);
     stickslip_ensemble::budget::check_before_build(
         &pipeline.scene,
