@@ -809,3 +809,30 @@ fn scenes_too_large_or_too_long_are_refused_before_anything_is_built() {
     assert!(out.status.success(), "a skip-ahead pipeline refused as long: {err}{stdout}");
     assert!(stdout.contains("at most") && !stdout.contains("accepted with --allow-long"), "{stdout}");
 }
+
+/// `stickslip pipeline` on SEAS BP1-QD cut to 230 years (its first event, at 195 years): the
+/// command's account, its files, and its figure read back where the files put the profiles.
+#[test]
+fn a_cycle_pipeline_writes_its_files_and_figure() {
+    let dir = scratch("cycles");
+    let text_in = std::fs::read_to_string(repo().join("pipelines/seas-bp1-qd.toml")).unwrap();
+    let mut doc: toml::Table = toml::from_str(&text_in).unwrap();
+    doc["cycles"].as_table_mut().unwrap().insert("years".into(), 230.0.into());
+    std::fs::write(dir.join("bp1.toml"), toml::to_string(&doc).unwrap()).unwrap();
+    let o = stickslip(&["pipeline", "bp1.toml", "--out", "out"], &dir);
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "{out}\n{err}");
+    assert!(out.contains("1 events") && out.contains("event 0 at 195.1"), "{out}");
+    for file in
+        ["seas/fltst_dp000", "seas/fltst_dp350", "seas/devol.dat", "seas/global.dat", "tables/cycle_events.parquet"]
+    {
+        assert!(dir.join("out").join(file).is_file(), "{file}");
+    }
+    let figure = stickslip_report::cycles::draw_cycles(&dir.join("out")).unwrap();
+    assert_eq!(figure.depths_km.len(), 81);
+    assert_eq!((figure.depths_km[0], figure.depths_km[80]), (0.0, 39.9));
+    // Slip is never negative, and none exceeds the plate's V_p·230 years = 7.26 m (the deepest
+    // node creeps at nearly that rate).
+    assert!(figure.slip_m[0] >= 0.0 && figure.slip_m[1] > 5.0 && figure.slip_m[1] < 7.26, "{:?}", figure.slip_m);
+    assert!(figure.profiles[0] >= 40 && figure.profiles[1] >= 10, "{:?}", figure.profiles);
+}

@@ -1,6 +1,7 @@
 //! The figure of a `[cycles]` run (docs/model.md §20), from its SEAS files: the slip along depth
-//! over the cycles (every 5 years between events in blue, every 5 s inside them in red, the
-//! benchmarks' usual picture) and the fault's largest slip rate against time.
+//! over the cycles (every 5 years between events in blue, every 5 s inside them in red: a row of
+//! `devol.dat` whose largest slip rate exceeds 1 mm/s, the benchmarks' usual picture) and the
+//! fault's largest slip rate against time.
 //!
 //! Written to `<out>/figures/cycles.png`.
 
@@ -25,8 +26,21 @@ fn rows(path: &Path) -> Result<Vec<Vec<f64>>, ReportError> {
         .collect())
 }
 
-/// Draws `figures/cycles.png` of the cycle run written under `out`; returns its path.
-pub fn draw_cycles(out: &Path) -> Result<PathBuf, ReportError> {
+/// What [`draw_cycles`] drew.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CyclesFigure {
+    /// The file.
+    pub path: PathBuf,
+    /// Profiles drawn between events and inside them.
+    pub profiles: [usize; 2],
+    /// The range of the slip drawn (m).
+    pub slip_m: [f64; 2],
+    /// The depths of the profiles (km).
+    pub depths_km: Vec<f64>,
+}
+
+/// Draws `figures/cycles.png` of the cycle run written under `out`.
+pub fn draw_cycles(out: &Path) -> Result<CyclesFigure, ReportError> {
     register_fonts();
     let seas = out.join("seas");
     let devol = rows(&seas.join("devol.dat"))?;
@@ -34,12 +48,9 @@ pub fn draw_cycles(out: &Path) -> Result<PathBuf, ReportError> {
     let Some((depths, profiles)) = devol.split_first() else {
         return Err(ReportError::Plot { figure: "cycles.png".into(), what: "seas/devol.dat has no rows".into() });
     };
-    let depth_km: Vec<f64> = depths.iter().skip(1).map(|d| d / 1e3).collect();
-    // A profile is coseismic when the largest slip rate at its time exceeded 1 mm/s.
-    let seismic_at = |t: f64| {
-        let i = global.partition_point(|r| r[0] < t).min(global.len().saturating_sub(1));
-        global.get(i).is_some_and(|r| r[1] > -3.0)
-    };
+    // The first row is `0 0` and the depths; a profile's row is t, log10 of the largest slip
+    // rate and the slip at each depth.
+    let depth_km: Vec<f64> = depths.iter().skip(2).map(|d| d / 1e3).collect();
     let mut slip = Panel {
         title: "Slip along depth: every 5 years between events (blue), every 5 s inside them (red)".into(),
         x_desc: "slip (m)".into(),
@@ -48,16 +59,20 @@ pub fn draw_cycles(out: &Path) -> Result<PathBuf, ReportError> {
         ..Panel::default()
     };
     let mut last_seismic = f64::NEG_INFINITY;
+    let (mut profiles_drawn, mut slip_range) = ([0usize; 2], [f64::INFINITY, f64::NEG_INFINITY]);
     for p in profiles {
-        let t = p[0];
-        let seismic = seismic_at(t);
+        let (t, seismic) = (p[0], p[1] > -3.0);
         if seismic && t - last_seismic < 5.0 {
             continue;
         }
         if seismic {
             last_seismic = t;
         }
-        let points: Vec<(f64, f64)> = p.iter().skip(1).zip(&depth_km).map(|(s, d)| (*s, -d)).collect();
+        let points: Vec<(f64, f64)> = p.iter().skip(2).zip(&depth_km).map(|(s, d)| (*s, -d)).collect();
+        profiles_drawn[usize::from(seismic)] += 1;
+        for &(s, _) in &points {
+            slip_range = [slip_range[0].min(s), slip_range[1].max(s)];
+        }
         let mut line = Line::new("", points, 0);
         if seismic {
             line.colour = RGBColor(200, 30, 30);
@@ -82,5 +97,5 @@ pub fn draw_cycles(out: &Path) -> Result<PathBuf, ReportError> {
     let figures = out.join("figures");
     std::fs::create_dir_all(&figures).map_err(|source| ReportError::Io { path: figures.clone(), source })?;
     charts::draw(&path, &Sheet::new("Earthquake cycles", 1, vec![slip, rate]).with_height(1400))?;
-    Ok(path)
+    Ok(CyclesFigure { path, profiles: profiles_drawn, slip_m: slip_range, depths_km: depth_km })
 }

@@ -406,7 +406,7 @@ fn cycles(pipeline: &Pipeline, out: &std::path::Path, cancel: &AtomicBool) -> Re
         r.out.join("seas").display()
     );
     let figure = stickslip_report::cycles::draw_cycles(out)?;
-    outln!("  figure: {}", figure.display());
+    outln!("  figure: {}", figure.path.display());
     for (i, e) in r.events.iter().enumerate() {
         let recurrence = if i > 0 {
             format!(
