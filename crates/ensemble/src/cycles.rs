@@ -22,7 +22,6 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use polars::prelude::*;
 use stickslip_config::Pipeline;
-use stickslip_config::numbers::num;
 use stickslip_solver::cycles::{CycleSpec, CycleState, CycleStats, Flow, QuasiDynamicFault, YEAR_S};
 use stickslip_store::io::{write_parquet_atomic, write_text_atomic};
 
@@ -90,8 +89,8 @@ fn at(values: &[f64], j: usize, w: f64) -> f64 {
 }
 
 impl Recorder<'_> {
-    fn row(&mut self, s: &CycleState) {
-        let vmax = s.slip_rate_m_s.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    /// A row of the stations and of `global.dat` at `s`, whose largest slip rate is `vmax`.
+    fn row(&mut self, s: &CycleState, vmax: f64) {
         let rate: f64 = (0..s.slip_rate_m_s.len())
             .map(|j| self.mu * s.slip_rate_m_s[j] * self.fault.stiffness.node_length_m(j))
             .sum();
@@ -119,7 +118,7 @@ impl Recorder<'_> {
         // The first step of an event is always written, so an onset is never skipped over.
         let onset = seismic && self.in_event.is_none();
         if onset || s.t_s - self.last_row >= gap || s.t_s == 0.0 {
-            self.row(s);
+            self.row(s, vmax);
             self.last_row = s.t_s;
         }
         let profile_gap = if seismic { 1.0 } else { 5.0 * YEAR_S };
@@ -312,69 +311,4 @@ fn events_frame(events: &[CycleEvent]) -> PolarsResult<DataFrame> {
             col("moment_per_m_n", &|e| e.moment_per_m),
         ],
     )
-}
-
-/// What `stickslip check` prints of a `[cycles]` pipeline, without building the block: the
-/// slab, the fault's nodes, the friction along depth with its process zone and nucleation
-/// size, the damping and the step control.
-pub fn describe(pipeline: &Pipeline) -> Vec<String> {
-    let (scene, spec) = (&pipeline.scene, pipeline.cycles.as_ref().expect("a [cycles] pipeline"));
-    let lc = scene.lc_m;
-    let mu = scene.density_kg_m3 * scene.s_wave_speed().powi(2);
-    let nodes = ((spec.frictional_depth_m / lc).ceil() as usize).min(scene.dims.ny + 1);
-    let mut lines = vec![format!(
-        "cycles: quasi-dynamic, {} years at the plate rate {} m/s; the antiplane mode of a slab of 1×{}×{} modules of {} m \
-         ({} km down dip, {} km away from the fault), the fault's stiffness from its stencil by cosines along depth",
-        num(spec.duration_s / YEAR_S),
-        num(spec.plate_m_s),
-        scene.dims.ny,
-        scene.dims.nz,
-        num(lc),
-        num(scene.dims.ny as f64 * lc / 1e3),
-        num(scene.dims.nz as f64 * lc / 1e3),
-    )];
-    lines.push(format!(
-        "fault: {nodes} rate-and-state nodes from the free surface to {} km, creep at the plate rate below; radiation \
-         damping η = μ/(2c_s) = {:.4e} Pa·s/m",
-        num(spec.frictional_depth_m / 1e3),
-        mu / (2.0 * scene.s_wave_speed())
-    ));
-    if let (Some(fault), stickslip_solver::laws::NodeFriction::RateState(node)) = (&scene.fault, scene.friction.base(0))
-    {
-        let sigma = fault.normal_pa.iter().fold(0.0f64, |a, &b| a.max(b));
-        let a_of = |j: usize| spec.a_at(j as f64 * lc).unwrap_or(node.a);
-        let (a_min, a_max) = (0..nodes).fold((f64::INFINITY, 0.0f64), |(lo, hi), j| (lo.min(a_of(j)), hi.max(a_of(j))));
-        let lambda0 = 9.0 * std::f64::consts::PI / 32.0 * mu * node.dc_m / (node.b * sigma);
-        lines.push(format!(
-            "friction along depth: a {} … {}, b = {}, L = {} m; cohesive zone Λ0 = (9π/32)·μ·L/(b·σn) = {:.1} m \
-             = {:.1} × Lc",
-            num(a_min),
-            num(a_max),
-            num(node.b),
-            num(node.dc_m),
-            lambda0,
-            lambda0 / lc
-        ));
-        if node.b > a_min {
-            let h = std::f64::consts::PI / 2.0 * mu * node.b * node.dc_m / ((node.b - a_min).powi(2) * sigma);
-            lines.push(format!(
-                "nucleation size h* = (π/2)·μ·b·L/((b − a)²·σn) = {:.0} m = {:.1} × Lc (Rubin & Ampuero 2005)",
-                h,
-                h / lc
-            ));
-        }
-    }
-    lines.push(format!(
-        "steps: Dormand–Prince 5(4), relative tolerance {}, at most {} years a step, at most {} steps; an event while \
-         the largest slip rate exceeds {} m/s",
-        num(spec.tolerances.relative),
-        num(spec.tolerances.max_step_s / YEAR_S),
-        spec.max_steps,
-        num(spec.event_slip_rate_m_s)
-    ));
-    lines.push(format!(
-        "writes: seas/fltst_dpXXX at {} km, seas/global.dat, seas/devol.dat, tables/cycle_events.parquet",
-        spec.stations_m.iter().map(|d| num(d / 1e3)).collect::<Vec<_>>().join(", ")
-    ));
-    lines
 }

@@ -41,7 +41,7 @@ pub fn run(a: Args) -> Result<()> {
     let pipeline = Pipeline::load(&a.pipeline)?;
     outln!("pipeline {} ({}), hash {}", pipeline.name, a.pipeline.display(), pipeline.hash);
     if pipeline.cycles.is_some() {
-        for line in stickslip_ensemble::cycles::describe(&pipeline) {
+        for line in stickslip_config::describe::cycles(&pipeline).texts() {
             outln!("  {line}");
         }
         return Ok(());

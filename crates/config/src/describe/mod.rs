@@ -5,11 +5,13 @@
 //! prints (and times its probe, and refuses what does not fit).
 
 mod analysis;
+mod cycles;
 mod scene;
 
 pub use analysis::{
     accelerograms, broadband, cost_before_building, events, report, scale, seeds, set, skip_ahead, spectra,
 };
+pub use cycles::cycles;
 pub use scene::{
     Probe, block, critical_step, describe_boundaries, describe_friction, fault, medium, record, run_cost,
     spring_slider, stages, stiffness,

@@ -183,11 +183,6 @@ impl FaultStiffness {
         Ok(FaultStiffness { nodes, k, lc_m: lc, domain: [ny, nz] })
     }
 
-    /// The node's depth (m).
-    pub fn depth_m(&self, j: usize) -> f64 {
-        j as f64 * self.lc_m
-    }
-
     /// `Δτ = −K·δ` at every node (Pa) for slip `delta` (m).
     pub fn traction_change(&self, delta: &[f64], out: &mut [f64]) {
         for (j, t) in out.iter_mut().enumerate() {

@@ -112,16 +112,22 @@ impl QuasiDynamicFault {
         let log_state: Vec<f64> = self.friction.iter().map(|f| f.theta0_s().ln()).collect();
         let mut s =
             CycleState { t_s: 0.0, slip_m: slip, log_state, slip_rate_m_s: vec![0.0; n], shear_pa: vec![0.0; n] };
-        let mut scratch = Scratch { stress: vec![0.0; n], behind: vec![0.0; n] };
+        let mut scratch = Scratch::new(n);
         self.rates(0.0, &s.slip_m, &s.log_state, None, &mut s.slip_rate_m_s, &mut scratch);
-        for j in 0..n {
-            s.shear_pa[j] = scratch.stress[j] - self.eta_pa_s_m * s.slip_rate_m_s[j];
-        }
+        self.damped(&scratch.stress, &s.slip_rate_m_s, &mut s.shear_pa);
         s
     }
 
-    /// The slip rates at time `t` for slip and ln θ (`guess`: the previous rates), and the
-    /// tractions without radiation damping in `scratch.stress`.
+    /// The shear traction with radiation damping, `τ − η·V` (= `σ·f(V, θ)` at the balance), from
+    /// the tractions `stress` and slip rates `v` of one evaluation.
+    fn damped(&self, stress: &[f64], v: &[f64], out: &mut [f64]) {
+        for ((o, tau), v) in out.iter_mut().zip(stress).zip(v) {
+            *o = tau - self.eta_pa_s_m * v;
+        }
+    }
+
+    /// The slip rates at time `t` for slip and ln θ (`guess`: the previous rates), the
+    /// tractions without radiation damping in `scratch.stress` and θ in `scratch.theta`.
     fn rates(
         &self,
         t: f64,
@@ -131,29 +137,30 @@ impl QuasiDynamicFault {
         v: &mut [f64],
         scratch: &mut Scratch,
     ) {
-        let Scratch { stress, behind } = scratch;
+        let Scratch { stress, behind, theta } = scratch;
         for (b, d) in behind.iter_mut().zip(slip) {
             *b = d - self.plate_m_s * t;
         }
         let behind = &*behind;
         // Each node's traction and slip rate on its own: one parallel pass, the same numbers on
         // any thread count.
-        let node = |j: usize, v: &mut f64, stress: &mut f64| {
+        let node = |j: usize, ((v, stress), theta): ((&mut f64, &mut f64), &mut f64)| {
             let tau = self.shear0_pa[j] + self.stiffness.traction_change_at(j, behind);
             *stress = tau;
-            let theta = log_state[j].exp();
+            *theta = log_state[j].exp();
             let g = guess.map(|g| g[j].abs()).filter(|g| *g > 0.0);
-            let speed = balance_from(&self.friction[j], theta, tau.abs(), self.normal_pa[j], self.eta_pa_s_m, g);
+            let speed = balance_from(&self.friction[j], *theta, tau.abs(), self.normal_pa[j], self.eta_pa_s_m, g);
             *v = speed.copysign(tau);
         };
         if self.nodes() >= PARALLEL_NODES {
             v.par_iter_mut()
                 .zip(stress.par_iter_mut())
+                .zip(theta.par_iter_mut())
                 .enumerate()
                 .with_min_len(PARALLEL_NODES / 2)
-                .for_each(|(j, (v, s))| node(j, v, s));
+                .for_each(|(j, node_out)| node(j, node_out));
         } else {
-            v.iter_mut().zip(stress.iter_mut()).enumerate().for_each(|(j, (v, s))| node(j, v, s));
+            v.iter_mut().zip(stress.iter_mut()).zip(theta.iter_mut()).enumerate().for_each(|(j, o)| node(j, o));
         }
     }
 
@@ -175,7 +182,7 @@ impl QuasiDynamicFault {
             let speed = v[j].abs();
             dy[j] = v[j];
             dy[n + j] = match f.evolution {
-                Evolution::Aging => (-log_state[j]).exp() - speed / f.dc_m,
+                Evolution::Aging => 1.0 / scratch.theta[j] - speed / f.dc_m,
                 Evolution::Slip => {
                     if speed == 0.0 {
                         0.0
@@ -204,8 +211,7 @@ impl QuasiDynamicFault {
         let mut k: [Vec<f64>; 7] = std::array::from_fn(|_| vec![0.0; m]);
         let mut vs = vec![0.0; n];
         let mut stage = vec![0.0; m];
-        let mut y5 = vec![0.0; m];
-        let mut scratch = Scratch { stress: vec![0.0; n], behind: vec![0.0; n] };
+        let mut scratch = Scratch::new(n);
         self.derivative(state.t_s, &y, Some(&v), &mut vs, &mut k[0], &mut scratch);
         let mut stats = CycleStats { min_step_s: f64::INFINITY, ..CycleStats::default() };
         // A first step the state's own time scale allows.
@@ -236,13 +242,13 @@ impl QuasiDynamicFault {
                 }
                 self.derivative(t + C[s] * h_now, &stage, Some(&v), &mut vs, &mut k[s], &mut scratch);
             }
-            // Stage 7 is at the fifth-order solution (FSAL): `stage` holds it.
-            y5.copy_from_slice(&stage);
+            // Stage 7 is at the fifth-order solution (FSAL): `stage` holds it, `scratch` and
+            // `vs` its tractions and rates.
             let mut err: f64 = 0.0;
             for i in 0..m {
                 let e: f64 = h_now * (0..7).map(|r| E[r] * k[r][i]).sum::<f64>();
                 let atol = if i < n { tol.slip_m } else { tol.log_state };
-                let scale = atol + tol.relative * y[i].abs().max(y5[i].abs());
+                let scale = atol + tol.relative * y[i].abs().max(stage[i].abs());
                 err = err.max((e / scale).abs());
             }
             if !err.is_finite() {
@@ -258,7 +264,7 @@ impl QuasiDynamicFault {
             let factor = (0.9 * err.powf(-0.2)).clamp(0.2, 5.0);
             if err <= 1.0 {
                 t += h_now;
-                y.copy_from_slice(&y5);
+                y.copy_from_slice(&stage);
                 let (first, rest) = k.split_at_mut(1);
                 first[0].copy_from_slice(&rest[5]);
                 v.copy_from_slice(&vs);
@@ -269,12 +275,7 @@ impl QuasiDynamicFault {
                 state.slip_m.copy_from_slice(&y[..n]);
                 state.log_state.copy_from_slice(&y[n..]);
                 state.slip_rate_m_s.copy_from_slice(&v);
-                for j in 0..n {
-                    let theta = state.log_state[j].exp();
-                    state.shear_pa[j] = self.normal_pa[j]
-                        * crate::laws::rate_state::friction(&self.friction[j], v[j].abs(), theta)
-                        * v[j].signum();
-                }
+                self.damped(&scratch.stress, &v, &mut state.shear_pa);
                 h = (h_now * factor).min(tol.max_step_s);
                 if observe(&state) == Flow::Stop {
                     break;
@@ -296,6 +297,13 @@ const PARALLEL_NODES: usize = 512;
 struct Scratch {
     stress: Vec<f64>,
     behind: Vec<f64>,
+    theta: Vec<f64>,
+}
+
+impl Scratch {
+    fn new(n: usize) -> Self {
+        Scratch { stress: vec![0.0; n], behind: vec![0.0; n], theta: vec![0.0; n] }
+    }
 }
 
 /// Dormand–Prince nodes.

@@ -35,6 +35,12 @@ pub struct CycleSpec {
 }
 
 impl CycleSpec {
+    /// The frictional nodes of a block of `ny` modules of `lc_m` down dip: those above the
+    /// frictional depth, at most the face's `ny + 1`.
+    pub fn frictional_nodes(&self, lc_m: f64, ny: usize) -> usize {
+        ((self.frictional_depth_m / lc_m).ceil() as usize).min(ny + 1)
+    }
+
     /// `a` at `depth_m` from [`CycleSpec::a_by_depth`], `None` when it is empty.
     pub fn a_at(&self, depth_m: f64) -> Option<f64> {
         let p = &self.a_by_depth;
@@ -94,7 +100,7 @@ impl QuasiDynamicFault {
             return Err(SolverError::Unsupported(format!("a cycle run is a slab one module thick (nx = 1), not {nx}")));
         }
         let lc = scene.lc_m;
-        let nodes = ((spec.frictional_depth_m / lc).ceil() as usize).min(ny + 1);
+        let nodes = spec.frictional_nodes(lc, ny);
         let stencil = scene_stencil(scene)?;
         let stiffness = FaultStiffness::antiplane(&stencil, nodes, ny, nz)?;
         let mu = stencil.shear_modulus_pa();
