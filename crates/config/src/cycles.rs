@@ -5,7 +5,7 @@
 
 use serde::{Deserialize, Serialize};
 use stickslip_solver::Scene;
-use stickslip_solver::cycles::{CycleSpec, Tolerances, YEAR_S};
+use stickslip_solver::cycles::{CycleSpec, DynamicSpec, Tolerances, YEAR_S};
 use stickslip_solver::laws::NodeFriction;
 
 use crate::check::{Checker, num};
@@ -14,10 +14,21 @@ use crate::check::{Checker, num};
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct CyclesSection {
-    /// `"quasi_dynamic"` (radiation damping η = μ/2c_s in place of inertia); the fully dynamic
-    /// mode is not built yet.
+    /// `"quasi_dynamic"` (radiation damping η = μ/2c_s in place of inertia) or `"fully_dynamic"`
+    /// (the lattice's explicit antiplane grid inside events, quasi-dynamic between them).
     #[serde(default = "quasi_dynamic")]
     pub mode: String,
+    /// Fully dynamic: the explicit grid takes over when the largest slip rate exceeds this (m/s).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dynamic_above_m_s: Option<f64>,
+    /// Fully dynamic: the quasi-dynamic integration resumes when the largest slip rate falls
+    /// below this (m/s), at most `dynamic_above_m_s`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub static_below_m_s: Option<f64>,
+    /// Fully dynamic: the explicit grid's extent `[down dip, away from the fault]` (m), within the
+    /// block; its far face and bottom absorb. Down dip it reaches at least the frictional depth.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dynamic_block_m: Option<[f64; 2]>,
     /// How long the plate loads the fault (years of 365.25 days), > 0.
     pub years: f64,
     /// The plate rate V_p (m/s), > 0: the slip rate below the frictional part and of the far face.
@@ -71,12 +82,21 @@ fn max_steps() -> i64 {
 impl CyclesSection {
     /// The run it asks for on `scene`, checked; refusals go to `ck`.
     pub fn build(&self, scene: &Scene, ck: &mut Checker) -> CycleSpec {
-        if self.mode != "quasi_dynamic" {
-            ck.push(
-                "cycles.mode",
-                format!("{:?}", self.mode),
-                "\"quasi_dynamic\" (the fully dynamic cycle, explicit steps inside events, is not built yet)",
-            );
+        let dynamic = self.mode == "fully_dynamic";
+        if !dynamic && self.mode != "quasi_dynamic" {
+            ck.push("cycles.mode", format!("{:?}", self.mode), "\"quasi_dynamic\" or \"fully_dynamic\"");
+        }
+        if !dynamic {
+            let keys = [
+                ("cycles.dynamic_above_m_s", self.dynamic_above_m_s.is_some()),
+                ("cycles.static_below_m_s", self.static_below_m_s.is_some()),
+                ("cycles.dynamic_block_m", self.dynamic_block_m.is_some()),
+            ];
+            for (key, given) in keys {
+                if given {
+                    ck.push(key, "(given)", "left out unless cycles.mode = \"fully_dynamic\"");
+                }
+            }
         }
         ck.range("cycles.years", self.years, 0.0, true, 1e7, false);
         ck.range("cycles.plate_rate_m_s", self.plate_rate_m_s, 0.0, true, 1.0, false);
@@ -142,7 +162,9 @@ impl CyclesSection {
                 );
             }
         }
+        let dynamic = dynamic.then(|| self.dynamic(scene, ck));
         CycleSpec {
+            dynamic,
             duration_s: self.years * YEAR_S,
             plate_m_s: self.plate_rate_m_s,
             frictional_depth_m: self.frictional_depth_m,
@@ -158,5 +180,21 @@ impl CyclesSection {
             stations_m: self.stations_depth_m.clone(),
             max_steps: steps.unwrap_or(1) as u64,
         }
+    }
+
+    /// The explicit phases of a fully dynamic run, checked.
+    fn dynamic(&self, scene: &Scene, ck: &mut Checker) -> DynamicSpec {
+        let above = self.dynamic_above_m_s.unwrap_or(DynamicSpec::ABOVE_M_S);
+        let below = self.static_below_m_s.unwrap_or(DynamicSpec::BELOW_M_S.min(above));
+        ck.positive("cycles.dynamic_above_m_s", above);
+        ck.range("cycles.static_below_m_s", below, 0.0, true, above, false);
+        let lc = scene.lc_m;
+        let extent = [scene.dims.ny as f64 * lc, scene.dims.nz as f64 * lc];
+        let default_block =
+            [(1.5 * self.frictional_depth_m).min(extent[0]), (1.5 * self.frictional_depth_m).min(extent[1])];
+        let block = self.dynamic_block_m.unwrap_or(default_block);
+        ck.range("cycles.dynamic_block_m[0]", block[0], self.frictional_depth_m, false, extent[0], false);
+        ck.range("cycles.dynamic_block_m[1]", block[1], 4.0 * lc, false, extent[1], false);
+        DynamicSpec { above_m_s: above, below_m_s: below, block_m: block }
     }
 }

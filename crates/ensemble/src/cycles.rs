@@ -22,7 +22,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use polars::prelude::*;
 use stickslip_config::Pipeline;
-use stickslip_solver::cycles::{CycleSpec, CycleState, CycleStats, Flow, QuasiDynamicFault, YEAR_S};
+use stickslip_solver::cycles::{CycleSpec, CycleState, CycleStats, Flow, FullyDynamicFault, QuasiDynamicFault, YEAR_S};
 use stickslip_store::io::{write_parquet_atomic, write_text_atomic};
 
 use crate::error::EnsembleError;
@@ -194,7 +194,12 @@ fn header(
     let _ = writeln!(h, "# This is the file header:");
     let _ = writeln!(h, "# problem={}", pipeline.description);
     let _ = writeln!(h, "# pipeline={}", pipeline.name);
-    let _ = writeln!(h, "# code=stickslip {} (lattice antiplane mode, quasi-dynamic)", env!("CARGO_PKG_VERSION"));
+    let mode = if stats.dynamic_phases > 0 || pipeline.cycles.as_ref().is_some_and(|c| c.dynamic.is_some()) {
+        "fully dynamic: explicit steps inside events, quasi-dynamic between them"
+    } else {
+        "quasi-dynamic"
+    };
+    let _ = writeln!(h, "# code=stickslip {} (lattice antiplane mode, {mode})", env!("CARGO_PKG_VERSION"));
     let _ = writeln!(h, "# element_size={} m", fault.stiffness.lc_m);
     let _ = writeln!(h, "# location={location}");
     let _ = writeln!(h, "# minimum_time_step={:e}", stats.min_step_s);
@@ -213,7 +218,15 @@ fn header(
 pub fn run_cycles(pipeline: &Pipeline, out: &Path, cancel: &AtomicBool) -> Result<CycleReport, EnsembleError> {
     let spec = pipeline.cycles.as_ref().expect("a [cycles] pipeline");
     let t0 = std::time::Instant::now();
-    let fault = QuasiDynamicFault::from_scene(&pipeline.scene, spec).map_err(|e| EnsembleError::Solver(Box::new(e)))?;
+    let solver = |e| EnsembleError::Solver(Box::new(e));
+    let full = match spec.dynamic {
+        Some(_) => Some(FullyDynamicFault::from_scene(&pipeline.scene, spec).map_err(solver)?),
+        None => None,
+    };
+    let fault = match &full {
+        Some(f) => f.quasi.clone(),
+        None => QuasiDynamicFault::from_scene(&pipeline.scene, spec).map_err(solver)?,
+    };
     let stiffness_s = t0.elapsed().as_secs_f64();
     let lc = fault.stiffness.lc_m;
     let mu = pipeline.scene.density_kg_m3 * pipeline.scene.s_wave_speed().powi(2);
@@ -239,12 +252,15 @@ pub fn run_cycles(pipeline: &Pipeline, out: &Path, cancel: &AtomicBool) -> Resul
         events: Vec::new(),
     };
     let t1 = std::time::Instant::now();
-    let (last, stats) = fault
-        .run(fault.start(), spec.duration_s, &spec.tolerances, spec.max_steps, |s| {
-            rec.observe(s);
-            if cancel.load(Ordering::Relaxed) { Flow::Stop } else { Flow::Continue }
-        })
-        .map_err(|e| EnsembleError::Solver(Box::new(e)))?;
+    let observe = |s: &CycleState| {
+        rec.observe(s);
+        if cancel.load(Ordering::Relaxed) { Flow::Stop } else { Flow::Continue }
+    };
+    let (last, stats) = match &full {
+        Some(f) => f.run(fault.start(), spec.duration_s, &spec.tolerances, spec.max_steps, observe),
+        None => fault.run(fault.start(), spec.duration_s, &spec.tolerances, spec.max_steps, observe),
+    }
+    .map_err(solver)?;
     let interrupted_s = (last.t_s < spec.duration_s).then_some(last.t_s);
     let run_s = t1.elapsed().as_secs_f64();
     let seas = out.join("seas");

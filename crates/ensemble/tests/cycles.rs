@@ -84,3 +84,62 @@ fn bp1_qd_recurs_and_slips_as_the_published_solutions() {
                 .all(|l| l.split_whitespace().count() == depths.len())
     );
 }
+
+/// The rows of a station file: t, slip, log10 V, τ (MPa), log10 θ.
+fn station_rows(text: &str) -> Vec<[f64; 5]> {
+    text.lines()
+        .filter(|l| !l.starts_with('#') && !l.starts_with('t'))
+        .map(|l| {
+            let v: Vec<f64> = l.split_whitespace().map(|x| x.parse().unwrap()).collect();
+            [v[0], v[1], v[2], v[3], v[4]]
+        })
+        .collect()
+}
+
+#[test]
+fn bp1_fd_first_event_is_the_resolutions_converged_one_and_slips_more_than_without_inertia() {
+    let text = std::fs::read_to_string(repo_path("pipelines/seas-bp1-fd.toml")).unwrap();
+    let mut doc: toml::Table = toml::from_str(&text).unwrap();
+    doc["cycles"].as_table_mut().unwrap().insert("years".into(), 260.0.into());
+    let dir = scratch_dir("cycles-bp1-fd");
+    let path = dir.join("bp1-fd-260.toml");
+    std::fs::write(&path, toml::to_string(&doc).unwrap()).unwrap();
+    let pipeline = Pipeline::load(&path).unwrap();
+    let out = dir.join("out");
+    let r = run_cycles(&pipeline, &out, &AtomicBool::new(false)).unwrap();
+    let s = r.stats;
+    println!(
+        "{} quasi-dynamic steps, {} explicit steps over {:.1} s in {} phase(s); wall {:.1} s quasi-dynamic, {:.1} s explicit; \
+         hand-back jump {:.3} MPa",
+        s.accepted,
+        s.dynamic_steps,
+        s.dynamic_time_s,
+        s.dynamic_phases,
+        s.quasi_wall_s,
+        s.dynamic_wall_s,
+        s.handover_jump_pa / 1e6
+    );
+    assert_eq!((r.events.len(), s.dynamic_phases), (1, 1), "{:?}", r.events);
+    let e = &r.events[0];
+    // The event begins (V > 1 mm/s) before the switch (5 mm/s): its onset is BP1-QD's at 100 m.
+    println!("onset {:.3} years (BP1-QD at 100 m: 195.18)", e.onset_s / YEAR);
+    assert!((e.onset_s / YEAR - 195.18).abs() < 0.01);
+    // The 60 km explicit grid ends the event within 0.3 MPa of the 400 km block's static traction.
+    assert!(s.handover_jump_pa < 0.3e6, "{}", s.handover_jump_pa);
+    let station = std::fs::read_to_string(out.join("seas/fltst_dp075")).unwrap();
+    assert!(station.contains("fully dynamic"));
+    let rows = station_rows(&station);
+    let inside: Vec<&[f64; 5]> =
+        rows.iter().filter(|r| r[0] >= e.onset_s && r[0] <= e.onset_s + e.duration_s).collect();
+    let slip = inside.last().unwrap()[1] - inside[0][1];
+    // The same pipeline at 50 m (block.ny = nz = 8000, lc_m = 50; docs/guide/faults.md): surface
+    // slip 4.1119 m, 4.0134 m at 7.5 km.
+    println!(
+        "surface slip {:.4} m (50 m: 4.1119), at 7.5 km {slip:.4} m (50 m: 4.0134; BP1-QD at 100 m: 2.773)",
+        e.surface_slip_m
+    );
+    assert!((e.surface_slip_m / 4.1119 - 1.0).abs() < 0.01, "{}", e.surface_slip_m);
+    assert!((slip / 4.0134 - 1.0).abs() < 0.01, "{slip}");
+    // Inertia carries the rupture past where radiation damping stops it.
+    assert!(slip > 1.3 * 2.773, "{slip}");
+}

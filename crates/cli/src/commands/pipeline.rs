@@ -405,6 +405,22 @@ fn cycles(pipeline: &Pipeline, out: &std::path::Path, cancel: &AtomicBool) -> Re
         r.events.len(),
         r.out.join("seas").display()
     );
+    if r.stats.dynamic_phases > 0 {
+        let wall = r.stats.quasi_wall_s + r.stats.dynamic_wall_s;
+        outln!(
+            "  fully dynamic: {} explicit phases, {} steps over {:.1} s of events, {:.1} s of the run ({:.0}%); the \
+             quasi-dynamic phases {:.1} s ({:.0}%); at the hand-backs the explicit grid's friction differs from the \
+             full block's static traction by at most {:.3} MPa",
+            r.stats.dynamic_phases,
+            r.stats.dynamic_steps,
+            r.stats.dynamic_time_s,
+            r.stats.dynamic_wall_s,
+            100.0 * r.stats.dynamic_wall_s / wall.max(1e-9),
+            r.stats.quasi_wall_s,
+            100.0 * r.stats.quasi_wall_s / wall.max(1e-9),
+            r.stats.handover_jump_pa / 1e6,
+        );
+    }
     let figure = stickslip_report::cycles::draw_cycles(out)?;
     outln!("  figure: {}", figure.path.display());
     for (i, e) in r.events.iter().enumerate() {

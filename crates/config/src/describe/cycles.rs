@@ -2,7 +2,7 @@
 //! its friction along depth and the step control, from the validated pipeline alone (a cycle
 //! run never builds its block).
 
-use stickslip_solver::cycles::YEAR_S;
+use stickslip_solver::cycles::{DynamicSpec, YEAR_S};
 use stickslip_solver::laws::NodeFriction;
 
 use super::Section;
@@ -21,16 +21,17 @@ pub fn cycles(pipeline: &Pipeline) -> Section {
     s.push(
         "run",
         format!(
-        "cycles: quasi-dynamic, {} years at the plate rate {} m/s; the antiplane mode of a slab of 1×{}×{} modules of {} m \
+            "cycles: {}, {} years at the plate rate {} m/s; the antiplane mode of a slab of 1×{}×{} modules of {} m \
          ({} km down dip, {} km away from the fault), the fault's stiffness from its stencil by cosines along depth",
-        num(spec.duration_s / YEAR_S),
-        num(spec.plate_m_s),
-        scene.dims.ny,
-        scene.dims.nz,
-        num(lc),
-        num(scene.dims.ny as f64 * lc / 1e3),
-        num(scene.dims.nz as f64 * lc / 1e3),
-    ),
+            if spec.dynamic.is_some() { "fully dynamic" } else { "quasi-dynamic" },
+            num(spec.duration_s / YEAR_S),
+            num(spec.plate_m_s),
+            scene.dims.ny,
+            scene.dims.nz,
+            num(lc),
+            num(scene.dims.ny as f64 * lc / 1e3),
+            num(scene.dims.nz as f64 * lc / 1e3),
+        ),
     );
     s.push(
         "fault",
@@ -82,6 +83,27 @@ pub fn cycles(pipeline: &Pipeline) -> Section {
         num(spec.event_slip_rate_m_s)
     ),
     );
+    if let Some(d) = &spec.dynamic {
+        let cs = scene.s_wave_speed();
+        let step = DynamicSpec::STEP_FRACTION * lc / (2.0 * cs);
+        s.push(
+            "dynamic",
+            format!(
+                "events: the lattice's explicit antiplane grid of {}×{} modules ({} km down dip, {} km from the fault; its \
+                 bottom and far face absorbing) above a largest slip rate of {} m/s, quasi-dynamic again below {} m/s; \
+                 step {:.4e} s ({} of the limit Lc/(2c_s)); SH waves of 10 modules per wavelength up to {:.2} Hz",
+                (d.block_m[0] / lc).round(),
+                (d.block_m[1] / lc).round(),
+                num(d.block_m[0] / 1e3),
+                num(d.block_m[1] / 1e3),
+                num(d.above_m_s),
+                num(d.below_m_s),
+                step,
+                num(DynamicSpec::STEP_FRACTION),
+                cs / (10.0 * lc)
+            ),
+        );
+    }
     s.push(
         "files",
         format!(

@@ -88,6 +88,20 @@ pub struct CycleStats {
     pub min_step_s: f64,
     /// Longest accepted step (s).
     pub max_step_s: f64,
+    /// Explicit steps inside events (fully dynamic runs).
+    pub dynamic_steps: u64,
+    /// Explicit phases (fully dynamic runs).
+    pub dynamic_phases: u64,
+    /// Simulated time in explicit phases (s).
+    pub dynamic_time_s: f64,
+    /// Wall-clock time in explicit phases (s).
+    pub dynamic_wall_s: f64,
+    /// Wall-clock time in quasi-dynamic phases (s; fully dynamic runs).
+    pub quasi_wall_s: f64,
+    /// The largest difference, over the fault and the explicit phases' ends, between the
+    /// friction the explicit grid ends with and what the full block's static stiffness gives
+    /// for the same slip, `τ0 − K·(δ − V_p·t) − η·V` (Pa): the truncated grid's share.
+    pub handover_jump_pa: f64,
 }
 
 /// What the observer asks of the run after a step.

@@ -7,6 +7,7 @@ use crate::model::Model;
 use crate::scene::Scene;
 
 use super::antiplane::{AntiplaneStencil, FaultStiffness};
+use super::dynamic::{AntiplaneGrid, FullyDynamicFault};
 use super::quasi_dynamic::{QuasiDynamicFault, Tolerances};
 
 /// A cycle run: the plate's loading of a scene's fault over a duration.
@@ -32,6 +33,30 @@ pub struct CycleSpec {
     pub stations_m: Vec<f64>,
     /// The most steps a run may take.
     pub max_steps: u64,
+    /// Fully dynamic: the explicit grid inside events; `None`: quasi-dynamic throughout.
+    pub dynamic: Option<DynamicSpec>,
+}
+
+/// The explicit phases of a fully dynamic cycle run (docs/model.md §20.5).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DynamicSpec {
+    /// The explicit grid takes over above this largest slip rate (m/s).
+    pub above_m_s: f64,
+    /// The quasi-dynamic integration resumes below it (m/s).
+    pub below_m_s: f64,
+    /// The explicit grid's extent down dip and away from the fault (m).
+    pub block_m: [f64; 2],
+}
+
+impl DynamicSpec {
+    /// The default switch to the explicit grid: 5 mm/s, and back below 2 mm/s, the thresholds
+    /// of Kaneko, Ampuero & Lapusta (2011)'s spectral-element cycles as Thakur, Huang & Kaneko
+    /// (2020)'s code has them.
+    pub const ABOVE_M_S: f64 = 5e-3;
+    /// The default switch back to the quasi-dynamic integration (m/s).
+    pub const BELOW_M_S: f64 = 2e-3;
+    /// The explicit step as a fraction of the grid's stability limit.
+    pub const STEP_FRACTION: f64 = 0.9;
 }
 
 impl CycleSpec {
@@ -132,6 +157,40 @@ impl QuasiDynamicFault {
             shear0_pa: shear,
             eta_pa_s_m: eta,
             plate_m_s: spec.plate_m_s,
+        })
+    }
+}
+
+impl FullyDynamicFault {
+    /// The fault of `scene` under `spec` (which asks for the fully dynamic mode): the
+    /// quasi-dynamic fault of [`QuasiDynamicFault::from_scene`] and the explicit grid of the
+    /// scene's stencil over [`DynamicSpec::block_m`], its far face and bottom absorbing.
+    pub fn from_scene(scene: &Scene, spec: &CycleSpec) -> Result<Self, SolverError> {
+        let Some(dynamic) = spec.dynamic else {
+            return Err(SolverError::Unsupported(
+                "a fully dynamic cycle run needs cycles.mode = \"fully_dynamic\"".into(),
+            ));
+        };
+        let quasi = QuasiDynamicFault::from_scene(scene, spec)?;
+        let stencil = scene_stencil(scene)?;
+        let lc = scene.lc_m;
+        let ny = ((dynamic.block_m[0] / lc).round() as usize).max(quasi.nodes());
+        let nz = ((dynamic.block_m[1] / lc).round() as usize).max(4);
+        let grid = AntiplaneGrid {
+            ny,
+            nz,
+            stencil,
+            density_kg_m3: scene.density_kg_m3,
+            absorbing_far: true,
+            absorbing_bottom: true,
+        };
+        let step_s = DynamicSpec::STEP_FRACTION * grid.critical_step_s();
+        Ok(FullyDynamicFault {
+            quasi,
+            grid,
+            dynamic_above_m_s: dynamic.above_m_s,
+            static_below_m_s: dynamic.below_m_s,
+            step_s,
         })
     }
 }
