@@ -810,6 +810,36 @@ fn scenes_too_large_or_too_long_are_refused_before_anything_is_built() {
     assert!(stdout.contains("at most") && !stdout.contains("accepted with --allow-long"), "{stdout}");
 }
 
+/// A fully dynamic cycle run whose explicit grid would not fit is refused before anything is
+/// computed, naming its size and the keys that shrink it; `check` says what a run holds.
+#[test]
+fn a_cycle_run_too_large_for_memory_is_refused_before_it_starts() {
+    let dir = scratch("cycles-memory");
+    let text_in = std::fs::read_to_string(repo().join("pipelines/seas-bp1-fd.toml")).unwrap();
+    let mut doc: toml::Table = toml::from_str(&text_in).unwrap();
+    // A 400 km explicit grid at 100 m: 32 M nodes.
+    let block = toml::Value::Array(vec![400000.0.into(), 400000.0.into()]);
+    doc["cycles"].as_table_mut().unwrap().insert("dynamic_block_m".into(), block);
+    std::fs::write(dir.join("bp1-fd.toml"), toml::to_string(&doc).unwrap()).unwrap();
+    let check = stickslip(&["check", "bp1-fd.toml"], &dir);
+    let (out, err) = text(&check);
+    assert!(check.status.success(), "{out}\n{err}");
+    assert!(out.contains("memory: about") && out.contains("the explicit grid"), "{out}");
+    let o = Command::new(env!("CARGO_BIN_EXE_stickslip"))
+        .args(["pipeline", "bp1-fd.toml", "--out", "out"])
+        .current_dir(&dir)
+        .env("STICKSLIP_MEMORY_LIMIT", "500M")
+        .output()
+        .unwrap();
+    let (out, err) = text(&o);
+    assert!(!o.status.success(), "{out}");
+    assert!(
+        err.contains("the cycle run needs about") && err.contains("cycles.dynamic_block_m") && err.contains("500M"),
+        "{err}"
+    );
+    assert!(!dir.join("out/seas").exists(), "nothing is written");
+}
+
 /// `stickslip pipeline` on SEAS BP1-QD cut to 230 years (its first event, at 195 years): the
 /// command's account, its files, and its figure read back where the files put the profiles.
 #[test]

@@ -290,3 +290,27 @@ mod tests {
         assert_eq!(parse_bytes("99999999999T"), None);
     }
 }
+
+/// A `[cycles]` run's memory ([`stickslip_solver::cycles::CycleSpec::memory_bytes`]) against
+/// what is available, before anything is built.
+pub fn check_cycles(
+    scene: &Scene,
+    spec: &stickslip_solver::cycles::CycleSpec,
+    what: &str,
+) -> Result<u64, EnsembleError> {
+    let need = spec.memory_bytes(scene);
+    let Some((limit, source)) = available_memory()? else { return Ok(need) };
+    if need <= limit {
+        return Ok(need);
+    }
+    let grid = if spec.dynamic.is_some() { ", a smaller cycles.dynamic_block_m" } else { "" };
+    Err(refused(format!(
+        "{what}: the cycle run needs about {:.0} MB (the fault's stiffness over its {} frictional nodes, the explicit \
+         grid, the files) and {:.0} MB is available ({source}): use larger modules or a shallower frictional part{grid} \
+         (pipeline keys: block.lc_m, cycles.frictional_depth_m{})",
+        need as f64 / 1e6,
+        spec.frictional_nodes(scene.lc_m, scene.dims.ny),
+        limit as f64 / 1e6,
+        if spec.dynamic.is_some() { ", cycles.dynamic_block_m" } else { "" }
+    )))
+}

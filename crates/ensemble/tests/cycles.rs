@@ -143,3 +143,22 @@ fn bp1_fd_first_event_is_the_resolutions_converged_one_and_slips_more_than_witho
     // Inertia carries the rupture past where radiation damping stops it.
     assert!(slip > 1.3 * 2.773, "{slip}");
 }
+
+/// The README's and the guide's BP1-FD figures: the shipped pipeline over its 3000 years (3.4
+/// minutes on 2 threads, so left out of the default run).
+#[test]
+#[ignore = "3000 years of BP1-FD: 3.4 minutes; run with --ignored"]
+fn bp1_fd_over_3000_years_gives_the_documented_cycle() {
+    let pipeline = Pipeline::load(&repo_path("pipelines/seas-bp1-fd.toml")).unwrap();
+    let out = scratch_dir("cycles-bp1-fd-3000").join("out");
+    let r = run_cycles(&pipeline, &out, &AtomicBool::new(false)).unwrap();
+    let e = &r.events;
+    // The cycle from event 3 on (the start's transient left out).
+    let intervals: Vec<f64> = (4..e.len()).map(|i| (e[i].onset_s - e[i - 1].onset_s) / YEAR).collect();
+    let mean = intervals.iter().sum::<f64>() / intervals.len() as f64;
+    let slip = e[3..].iter().map(|e| e.surface_slip_m).sum::<f64>() / (e.len() - 3) as f64;
+    println!("{} events, recurrence {mean:.3} years, surface slip {slip:.4} m (docs: 25, 115.48, 3.644)", e.len());
+    assert_eq!(e.len(), 25);
+    assert!((mean - 115.48).abs() < 0.5, "{mean}");
+    assert!((slip - 3.644).abs() < 0.03, "{slip}");
+}

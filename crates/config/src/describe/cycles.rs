@@ -105,6 +105,14 @@ pub fn cycles(pipeline: &Pipeline) -> Section {
         );
     }
     s.push(
+        "memory",
+        format!(
+            "memory: about {} (the fault's stiffness, {}the files' rows)",
+            stickslip_solver::memory::human(spec.memory_bytes(scene)),
+            if spec.dynamic.is_some() { "the explicit grid, " } else { "" }
+        ),
+    );
+    s.push(
         "files",
         format!(
             "writes: seas/fltst_dpXXX at {} km, seas/global.dat, seas/devol.dat, tables/cycle_events.parquet",
