@@ -277,20 +277,6 @@ pub fn check_before_build_split(
     Ok(())
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn byte_counts_with_suffixes() {
-        assert_eq!(parse_bytes("1024"), Some(1024));
-        assert_eq!(parse_bytes("16G"), Some(16 << 30));
-        assert_eq!(parse_bytes("512m"), Some(512 << 20));
-        assert_eq!(parse_bytes("lots"), None);
-        assert_eq!(parse_bytes("99999999999T"), None);
-    }
-}
-
 /// A `[cycles]` run's memory ([`stickslip_solver::cycles::CycleSpec::memory_bytes`]) against
 /// what is available, before anything is built.
 pub fn check_cycles(
@@ -313,4 +299,18 @@ pub fn check_cycles(
         limit as f64 / 1e6,
         if spec.dynamic.is_some() { ", cycles.dynamic_block_m" } else { "" }
     )))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn byte_counts_with_suffixes() {
+        assert_eq!(parse_bytes("1024"), Some(1024));
+        assert_eq!(parse_bytes("16G"), Some(16 << 30));
+        assert_eq!(parse_bytes("512m"), Some(512 << 20));
+        assert_eq!(parse_bytes("lots"), None);
+        assert_eq!(parse_bytes("99999999999T"), None);
+    }
 }
