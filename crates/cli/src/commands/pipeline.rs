@@ -231,13 +231,12 @@ fn seeds_to_run(a: &Args, pipelines: &[Pipeline], given: Option<&[u64]>) -> Resu
     let threads = a.threads.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
     let mut runs = Vec::new();
     for pipeline in pipelines {
-        if pipeline.cycles.is_some() {
+        if let Some(spec) = &pipeline.cycles {
             // One run of the fault alone: its stiffness is nodes² numbers, the block is never built;
             // what it holds is checked against the memory available.
             if a.shard.is_some() || stickslip_ensemble::split::installed().is_some() {
                 bail!("{}: a [cycles] pipeline is one run on one process; leave out --shard and mpirun", pipeline.name);
             }
-            let spec = pipeline.cycles.as_ref().expect("a [cycles] pipeline");
             stickslip_ensemble::budget::check_cycles(&pipeline.scene, spec, &pipeline.name)?;
             runs.push(Vec::new());
             continue;
