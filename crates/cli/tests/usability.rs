@@ -810,6 +810,28 @@ fn scenes_too_large_or_too_long_are_refused_before_anything_is_built() {
     assert!(stdout.contains("at most") && !stdout.contains("accepted with --allow-long"), "{stdout}");
 }
 
+/// A fixed time step above the lattice's critical one is refused by `check`, as the run would
+/// refuse it once built: with the step, the critical step, the seed and the keys.
+#[test]
+fn check_refuses_a_fixed_step_above_the_critical_one() {
+    let dir = scratch("fixed-step");
+    let text_in = std::fs::read_to_string(repo().join("pipelines/paper.toml")).unwrap();
+    let mut doc: toml::Table = toml::from_str(&text_in).unwrap();
+    let time = doc["time"].as_table_mut().unwrap();
+    time.remove("dt_fraction");
+    time.insert("dt_s".into(), 1e-3.into());
+    std::fs::write(dir.join("fixed.toml"), toml::to_string(&doc).unwrap()).unwrap();
+    let o = stickslip(&["check", "fixed.toml"], &dir);
+    let (out, err) = text(&o);
+    assert_eq!(o.status.code(), Some(1), "{out}\n{err}");
+    assert!(err.contains("time step 1.000000e-3 s is above the critical step") && err.contains("time.dt_s"), "{err}");
+    // Below it the same file passes.
+    doc["time"].as_table_mut().unwrap().insert("dt_s".into(), 1e-5.into());
+    std::fs::write(dir.join("fixed.toml"), toml::to_string(&doc).unwrap()).unwrap();
+    let o = stickslip(&["check", "fixed.toml"], &dir);
+    assert!(o.status.success(), "{}", text(&o).1);
+}
+
 /// A fully dynamic cycle run whose explicit grid would not fit is refused before anything is
 /// computed, naming its size and the keys that shrink it; `check` says what a run holds.
 #[test]

@@ -198,6 +198,18 @@ fn probe(
     let (lo, hi) = facts.critical_range_s();
     let dt = step_at(scene, lo);
     let keys = |e| EnsembleError::Refused(stickslip_config::keys::describe(&e));
+    // A fixed step above a seed's critical step is refused by the run once it is built; say so
+    // now, with the seed whose lattice refuses it.
+    if let stickslip_solver::scene::TimeStep::Fixed(fixed) = scene.time_step
+        && let Some((seed, c)) =
+            facts.critical.iter().filter(|(_, c)| fixed > c.dt_s).min_by(|a, b| a.1.dt_s.total_cmp(&b.1.dt_s))
+    {
+        return Err(keys(stickslip_solver::SolverError::TimeStepAboveCritical {
+            dt_s: fixed,
+            critical_s: c.dt_s,
+            seed: *seed,
+        }));
+    }
     stickslip_solver::run::check_step_count(model, dt).map_err(keys)?;
     stickslip_solver::run::check_record_interval(model, step_at(scene, hi)).map_err(keys)?;
     let parallel = pipeline.seeds.len() < threads && model.layout().splits();
