@@ -29,6 +29,10 @@ pub struct CyclesSection {
     /// block; its far face and bottom absorb. Down dip it reaches at least the frictional depth.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub dynamic_block_m: Option<[f64; 2]>,
+    /// Fully dynamic: the explicit grid's Kelvin–Voigt damping as a fraction γ of its step
+    /// (`β = γ·Δt`), 0–1; the step shrinks by `√(1 + 2γ)`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dynamic_damping: Option<f64>,
     /// How long the plate loads the fault (years of 365.25 days), > 0.
     pub years: f64,
     /// The plate rate V_p (m/s), > 0: the slip rate below the frictional part and of the far face.
@@ -91,6 +95,7 @@ impl CyclesSection {
                 ("cycles.dynamic_above_m_s", self.dynamic_above_m_s.is_some()),
                 ("cycles.static_below_m_s", self.static_below_m_s.is_some()),
                 ("cycles.dynamic_block_m", self.dynamic_block_m.is_some()),
+                ("cycles.dynamic_damping", self.dynamic_damping.is_some()),
             ];
             for (key, given) in keys {
                 if given {
@@ -195,6 +200,8 @@ impl CyclesSection {
         let block = self.dynamic_block_m.unwrap_or(default_block);
         ck.range("cycles.dynamic_block_m[0]", block[0], self.frictional_depth_m, false, extent[0], false);
         ck.range("cycles.dynamic_block_m[1]", block[1], 4.0 * lc, false, extent[1], false);
-        DynamicSpec { above_m_s: above, below_m_s: below, block_m: block }
+        let damping = self.dynamic_damping.unwrap_or(DynamicSpec::DAMPING);
+        ck.range("cycles.dynamic_damping", damping, 0.0, false, 1.0, false);
+        DynamicSpec { above_m_s: above, below_m_s: below, block_m: block, damping }
     }
 }

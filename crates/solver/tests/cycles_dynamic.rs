@@ -40,7 +40,15 @@ fn slab(ny: usize, nz: usize, lc: f64) -> Scene {
 fn grid(ny: usize, nz: usize, lc: f64, absorbing: bool) -> AntiplaneGrid {
     let model = Model::new(slab(4, 3, lc));
     let stencil = AntiplaneStencil::from_model(&model, &model.nominal_stiffness()).unwrap();
-    AntiplaneGrid { ny, nz, stencil, density_kg_m3: RHO, absorbing_far: absorbing, absorbing_bottom: false }
+    AntiplaneGrid {
+        ny,
+        nz,
+        stencil,
+        density_kg_m3: RHO,
+        absorbing_far: absorbing,
+        absorbing_bottom: false,
+        damping_s: 0.0,
+    }
 }
 
 #[test]
@@ -132,35 +140,73 @@ fn a_plane_sh_wave_travels_at_the_rocks_shear_speed() {
     assert!((speed / CS - 1.0).abs() < 2e-3, "{speed}");
 }
 
+/// The growth of the largest displacement of a rough field over 4000 steps of `ratio` times the
+/// grid's limit with damping `β = γ·Δt`.
+fn growth(gamma: f64, ratio: f64) -> f64 {
+    let mut g = grid(20, 20, 10.0, false);
+    let dt = ratio * g.critical_step_damped_s(gamma);
+    g.damping_s = gamma * dt;
+    let mut f = g.at_rest();
+    // A deterministic rough field holds the highest mode.
+    let mut x = 0.3f64;
+    for u in f.corner_u.iter_mut().chain(f.centre_u.iter_mut()) {
+        x = (x * 3.9 * (1.0 - x)).clamp(1e-6, 1.0 - 1e-6);
+        *u = x - 0.5;
+    }
+    let largest = |f: &GridField| {
+        f.corner_u
+            .iter()
+            .chain(&f.centre_u)
+            .fold(0.0f64, |a, u| if u.is_finite() { a.max(u.abs()) } else { f64::INFINITY })
+    };
+    let u0 = largest(&f);
+    steps(&g, &mut f, dt, 4000);
+    largest(&f) / u0
+}
+
+#[test]
+fn the_grids_damping_spreads_a_pulse_as_kelvin_voigt_viscosity_does() {
+    // A Gaussian exp(−(z/w)²) under u_tt = c²u_zz + βc²u_zzt keeps its shape's Gaussian spectrum,
+    // each wavenumber decaying as exp(−βc²k²t/2): at time t it is a Gaussian of w'² = w² + 2βc²t,
+    // its peak w/w' of the start's.
+    let (lc, width) = (10.0, 30.0);
+    let peak_after = |gamma: f64| {
+        let mut g = grid(2, 1200, lc, false);
+        let dt = 0.9 * g.critical_step_damped_s(gamma);
+        g.damping_s = gamma * dt;
+        let mut f = pulse(&g, 300.0, width);
+        let n = (1.95 / dt) as usize;
+        steps(&g, &mut f, dt, n);
+        let row = &f.corner_u[(g.nz + 1)..2 * (g.nz + 1)];
+        (row.iter().fold(0.0f64, |a, &u| a.max(u)), g.damping_s, n as f64 * dt)
+    };
+    let (undamped, _, _) = peak_after(0.0);
+    let (damped, beta, t) = peak_after(0.3);
+    let w = width * lc;
+    let want = w / (w * w + 2.0 * beta * CS * CS * t).sqrt();
+    let got = damped / undamped;
+    println!(
+        "γ = 0.3 (β = {beta:.3e} s) over {t:.3} s: peak {got:.4} of the undamped grid's against w/√(w² + 2βc²t) = {want:.4} \
+         (undamped: {undamped:.4} of the start's)"
+    );
+    assert!((got / want - 1.0).abs() < 0.01, "{got} against {want}");
+}
+
 #[test]
 fn the_step_is_stable_just_below_its_closed_form_limit_and_not_above() {
-    let g = grid(20, 20, 10.0, false);
-    let growth = |ratio: f64| {
-        let mut f = g.at_rest();
-        // A deterministic rough field holds the highest mode.
-        let mut x = 0.3f64;
-        for u in f.corner_u.iter_mut().chain(f.centre_u.iter_mut()) {
-            x = (x * 3.9 * (1.0 - x)).clamp(1e-6, 1.0 - 1e-6);
-            *u = x - 0.5;
-        }
-        let largest = |f: &GridField| {
-            f.corner_u
-                .iter()
-                .chain(&f.centre_u)
-                .fold(0.0f64, |a, u| if u.is_finite() { a.max(u.abs()) } else { f64::INFINITY })
-        };
-        let u0 = largest(&f);
-        steps(&g, &mut f, ratio * g.critical_step_s(), 4000);
-        largest(&f) / u0
-    };
-    let (below, above) = (growth(0.99), growth(1.01));
-    println!(
-        "largest displacement after 4000 steps: ×{below:.3} at 0.99 of Lc·√(ρLc/c)/2 = {:.4e} s, ×{above:.3e} at 1.01",
-        g.critical_step_s()
-    );
-    // Below the limit the highest mode only swings (its amplitude bounded by 1/√(1 − (ωΔt/2)²)).
-    assert!(below < 20.0, "{below}");
-    assert!(above > 1e6, "{above}");
+    for gamma in [0.0, 0.1, 0.3] {
+        let (below, above) = (growth(gamma, 0.99), growth(gamma, 1.01));
+        let g = grid(20, 20, 10.0, false);
+        println!(
+            "γ = {gamma}: largest displacement after 4000 steps ×{below:.3} at 0.99 of Lc·√(ρLc/c)/(2√(1 + 2γ)) = {:.4e} s, \
+             ×{above:.3e} at 1.01",
+            g.critical_step_damped_s(gamma)
+        );
+        // Below the limit the highest mode only swings (undamped, its amplitude bounded by
+        // 1/√(1 − (ωΔt/2)²)) or decays.
+        assert!(below < 20.0, "γ = {gamma}: {below}");
+        assert!(above > 1e6, "γ = {gamma}: {above}");
+    }
 }
 
 #[test]
@@ -196,10 +242,19 @@ fn node(l: f64, v_start: f64) -> RateStateNode {
 
 #[test]
 fn a_uniformly_slipping_fault_radiates_as_radiation_damping_says() {
+    for gamma in [0.0, 0.1] {
+        radiates(gamma);
+    }
+}
+
+/// The plane-wave fault with the grid's damping `β = γ·Δt`.
+fn radiates(gamma: f64) {
     // A face of 3 nodes slipping alike sends a plane SH wave into the block; its traction is
     // then exactly τ_s − (ρc_s/2)·V, the quasi-dynamic equation with K = 0.
     let (ny, nz, lc) = (2, 2000, 10.0);
-    let g = grid(ny, nz, lc, true);
+    let mut g = grid(ny, nz, lc, true);
+    let step_s = 0.9 * g.critical_step_damped_s(gamma);
+    g.damping_s = gamma * step_s;
     let (sigma, l, v_start) = (50e6, 0.05, 1e-3);
     let friction = node(l, v_start);
     let eta = RHO * g.shear_wave_m_s() / 2.0;
@@ -228,7 +283,7 @@ fn a_uniformly_slipping_fault_radiates_as_radiation_damping_says() {
         grid: g.clone(),
         dynamic_above_m_s: 0.0,
         static_below_m_s: 0.0,
-        step_s: 0.9 * g.critical_step_s(),
+        step_s,
     };
     dynamic
         .run(quasi.start(), duration, &tol, 10_000_000, |s| {
@@ -245,7 +300,7 @@ fn a_uniformly_slipping_fault_radiates_as_radiation_damping_says() {
     for t in [0.5, 1.0, 2.0, 3.0, 4.0, 5.0] {
         let (want, got) = (at(&reference, t), at(&explicit, t));
         println!(
-            "t = {t:.1} s: V {got:.6e} m/s explicit, {want:.6e} m/s by τ_s − ηV = σf(V, θ) ({:+.3}%)",
+            "γ = {gamma}, t = {t:.1} s: V {got:.6e} m/s explicit, {want:.6e} m/s by τ_s − ηV = σf(V, θ) ({:+.3}%)",
             100.0 * (got / want - 1.0)
         );
         worst = worst.max((got / want - 1.0).abs());

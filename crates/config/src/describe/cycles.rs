@@ -85,13 +85,14 @@ pub fn cycles(pipeline: &Pipeline) -> Section {
     );
     if let Some(d) = &spec.dynamic {
         let cs = scene.s_wave_speed();
-        let step = DynamicSpec::STEP_FRACTION * lc / (2.0 * cs);
+        let step = DynamicSpec::STEP_FRACTION * lc / (2.0 * cs) / (1.0 + 2.0 * d.damping).sqrt();
         s.push(
             "dynamic",
             format!(
                 "events: the lattice's explicit antiplane grid of {}×{} modules ({} km down dip, {} km from the fault; its \
                  bottom and far face absorbing) above a largest slip rate of {} m/s, quasi-dynamic again below {} m/s; \
-                 step {:.4e} s ({} of the limit Lc/(2c_s)); SH waves of 10 modules per wavelength up to {:.2} Hz",
+                 step {:.4e} s ({} of the limit Lc/(2c_s·√(1 + 2γ))), Kelvin–Voigt damping γ = {} of the step; SH \
+                 waves of 10 modules per wavelength up to {:.2} Hz",
                 (d.block_m[0] / lc).round(),
                 (d.block_m[1] / lc).round(),
                 num(d.block_m[0] / 1e3),
@@ -100,6 +101,7 @@ pub fn cycles(pipeline: &Pipeline) -> Section {
                 num(d.below_m_s),
                 step,
                 num(DynamicSpec::STEP_FRACTION),
+                num(d.damping),
                 cs / (10.0 * lc)
             ),
         );

@@ -56,6 +56,9 @@ pub struct AntiplaneGrid {
     pub absorbing_far: bool,
     /// Whether the bottom (y = ny) absorbs; otherwise it is free.
     pub absorbing_bottom: bool,
+    /// Stiffness-proportional (Kelvin–Voigt) damping β (s): each link also carries `β·c` times
+    /// its ends' relative velocity. 0: none.
+    pub damping_s: f64,
 }
 
 /// The grid's displacements and velocities along strike (m, m/s), and the last forces (N).
@@ -96,9 +99,17 @@ impl AntiplaneGrid {
         (self.stencil.shear_modulus_pa() / self.density_kg_m3).sqrt()
     }
 
-    /// The central-difference step's stability limit `2/ω_max = Lc·√(ρLc/c)/2` (s).
+    /// The central-difference step's stability limit without damping, `2/ω_max = Lc·√(ρLc/c)/2`
+    /// (s).
     pub fn critical_step_s(&self) -> f64 {
         0.5 * (self.module_mass() / self.stencil.link_n_per_m).sqrt()
+    }
+
+    /// The stability limit with damping `β = γ·Δt`: the highest mode's recurrence
+    /// `λ² − (2 − (1 + γ)x²)λ + 1 − γx² = 0`, `x = ω_max·Δt`, keeps `|λ| ≤ 1` while
+    /// `x ≤ 2/√(1 + 2γ)`, so `Δt ≤ (2/ω_max)/√(1 + 2γ)`.
+    pub fn critical_step_damped_s(&self, gamma: f64) -> f64 {
+        self.critical_step_s() / (1.0 + 2.0 * gamma).sqrt()
     }
 
     /// The fault face's area per node `j` (m²): `Lc` along strike times its length down dip.
@@ -131,42 +142,68 @@ impl AntiplaneGrid {
         z * (far + bottom)
     }
 
-    /// The elastic forces of the field's displacements, into `corner_f` and `centre_f`.
+    /// The elastic forces of the field's displacements, into `corner_f` and `centre_f`, with the
+    /// links' damping `β·c·Δv` from the velocities (the step's last, half a step behind): the
+    /// forces of `u + β·v`.
     pub fn forces(&self, f: &mut GridField) {
-        let (ny, nz, c) = (self.ny, self.nz, self.stencil.link_n_per_m);
+        let (ny, nz, c, beta) = (self.ny, self.nz, self.stencil.link_n_per_m, self.damping_s);
         let w = nz + 1;
-        let GridField { corner_u, centre_u, corner_f, centre_f, .. } = f;
-        let (cu, mu) = (&*corner_u, &*centre_u);
-        corner_f.par_chunks_mut(w).enumerate().with_min_len(8).for_each(|(j, row)| {
-            let u = &cu[j * w..(j + 1) * w];
-            // The centre rows above and below corner row j (one of them on the block's faces).
-            let above = (j > 0).then(|| &mu[(j - 1) * nz..j * nz]);
-            let below = (j < ny).then(|| &mu[j * nz..(j + 1) * nz]);
-            match (above, below) {
-                (Some(a), Some(b)) => {
-                    for k in 1..nz {
-                        row[k] = c * ((a[k - 1] + a[k]) + (b[k - 1] + b[k]) - 4.0 * u[k]);
-                    }
-                    row[0] = c * (a[0] + b[0] - 2.0 * u[0]);
-                    row[nz] = c * (a[nz - 1] + b[nz - 1] - 2.0 * u[nz]);
-                }
-                (Some(r), None) | (None, Some(r)) => {
-                    for k in 1..nz {
-                        row[k] = c * (r[k - 1] + r[k] - 2.0 * u[k]);
-                    }
-                    row[0] = c * (r[0] - u[0]);
-                    row[nz] = c * (r[nz - 1] - u[nz]);
-                }
-                (None, None) => row.fill(0.0),
+        let GridField { corner_u, corner_v, centre_u, centre_v, corner_f, centre_f } = f;
+        let (cu, cv, mu, mv) = (&*corner_u, &*corner_v, &*centre_u, &*centre_v);
+        // The displacement a link sees: `u + β·v` (β = 0: `u` itself, the same numbers).
+        let eff = |u: &[f64], v: &[f64], out: &mut Vec<f64>| {
+            out.clear();
+            if beta == 0.0 {
+                out.extend_from_slice(u);
+            } else {
+                out.extend(u.iter().zip(v).map(|(u, v)| u + beta * v));
             }
-        });
-        centre_f.par_chunks_mut(nz).enumerate().with_min_len(8).for_each(|(j, row)| {
-            let (top, below) = (&cu[j * w..(j + 1) * w], &cu[(j + 1) * w..(j + 2) * w]);
-            let u = &mu[j * nz..(j + 1) * nz];
-            for k in 0..nz {
-                row[k] = c * ((top[k] + top[k + 1]) + (below[k] + below[k + 1]) - 4.0 * u[k]);
-            }
-        });
+        };
+        corner_f.par_chunks_mut(w).enumerate().with_min_len(8).for_each_init(
+            || (Vec::new(), Vec::new(), Vec::new()),
+            |(own, up, down), (j, row)| {
+                eff(&cu[j * w..(j + 1) * w], &cv[j * w..(j + 1) * w], own);
+                // The centre rows above and below corner row j (one of them on the block's faces).
+                let above = (j > 0).then(|| {
+                    eff(&mu[(j - 1) * nz..j * nz], &mv[(j - 1) * nz..j * nz], up);
+                    &up[..]
+                });
+                let below = (j < ny).then(|| {
+                    eff(&mu[j * nz..(j + 1) * nz], &mv[j * nz..(j + 1) * nz], down);
+                    &down[..]
+                });
+                let u = &own[..];
+                match (above, below) {
+                    (Some(a), Some(b)) => {
+                        for k in 1..nz {
+                            row[k] = c * ((a[k - 1] + a[k]) + (b[k - 1] + b[k]) - 4.0 * u[k]);
+                        }
+                        row[0] = c * (a[0] + b[0] - 2.0 * u[0]);
+                        row[nz] = c * (a[nz - 1] + b[nz - 1] - 2.0 * u[nz]);
+                    }
+                    (Some(r), None) | (None, Some(r)) => {
+                        for k in 1..nz {
+                            row[k] = c * (r[k - 1] + r[k] - 2.0 * u[k]);
+                        }
+                        row[0] = c * (r[0] - u[0]);
+                        row[nz] = c * (r[nz - 1] - u[nz]);
+                    }
+                    (None, None) => row.fill(0.0),
+                }
+            },
+        );
+        centre_f.par_chunks_mut(nz).enumerate().with_min_len(8).for_each_init(
+            || (Vec::new(), Vec::new(), Vec::new()),
+            |(own, top, below), (j, row)| {
+                eff(&cu[j * w..(j + 1) * w], &cv[j * w..(j + 1) * w], top);
+                eff(&cu[(j + 1) * w..(j + 2) * w], &cv[(j + 1) * w..(j + 2) * w], below);
+                eff(&mu[j * nz..(j + 1) * nz], &mv[j * nz..(j + 1) * nz], own);
+                let u = &own[..];
+                for k in 0..nz {
+                    row[k] = c * ((top[k] + top[k + 1]) + (below[k] + below[k + 1]) - 4.0 * u[k]);
+                }
+            },
+        );
     }
 
     /// The velocity update `v⁺ = a·v⁻ + b·F` of corner `(j, k)` with its dashpot taken

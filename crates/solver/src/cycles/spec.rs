@@ -46,6 +46,8 @@ pub struct DynamicSpec {
     pub below_m_s: f64,
     /// The explicit grid's extent down dip and away from the fault (m).
     pub block_m: [f64; 2],
+    /// Kelvin–Voigt damping of the grid's links as a fraction γ of the step (`β = γ·Δt`).
+    pub damping: f64,
 }
 
 impl DynamicSpec {
@@ -55,8 +57,13 @@ impl DynamicSpec {
     pub const ABOVE_M_S: f64 = 5e-3;
     /// The default switch back to the quasi-dynamic integration (m/s).
     pub const BELOW_M_S: f64 = 2e-3;
-    /// The explicit step as a fraction of the grid's stability limit.
+    /// The explicit step as a fraction of the grid's stability limit (with its damping).
     pub const STEP_FRACTION: f64 = 0.9;
+    /// The default damping γ: `β = 0.3·Δt`, against the grid's own ringing at its shortest
+    /// wavelengths, which a rupture front excites (at γ = 0.1 the slip rate behind the front still
+    /// swings by ±40% every five steps at 100 m, at 0.3 by ±10%; the slip changes by 0.15%). It
+    /// attenuates a wave of frequency f by `Q⁻¹ = 2πf·β`: Q ≈ 50 at 1 Hz at 100 m.
+    pub const DAMPING: f64 = 0.3;
 }
 
 impl CycleSpec {
@@ -204,8 +211,10 @@ impl FullyDynamicFault {
             density_kg_m3: scene.density_kg_m3,
             absorbing_far: true,
             absorbing_bottom: true,
+            damping_s: 0.0,
         };
-        let step_s = DynamicSpec::STEP_FRACTION * grid.critical_step_s();
+        let step_s = DynamicSpec::STEP_FRACTION * grid.critical_step_damped_s(dynamic.damping);
+        let grid = AntiplaneGrid { damping_s: dynamic.damping * step_s, ..grid };
         Ok(FullyDynamicFault {
             quasi,
             grid,
