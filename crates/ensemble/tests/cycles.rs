@@ -12,16 +12,22 @@ use stickslip_support::{read_table, repo_path, scratch_dir};
 /// Seconds in the SEAS year.
 const YEAR: f64 = 365.25 * 86400.0;
 
+/// The shipped pipeline `name` cut to its first `years`, written into a scratch folder: the
+/// pipeline and where its run writes.
+fn cut(name: &str, years: f64) -> (Pipeline, stickslip_support::Scratch, std::path::PathBuf) {
+    let text = std::fs::read_to_string(repo_path(&format!("pipelines/{name}.toml"))).unwrap();
+    let mut doc: toml::Table = toml::from_str(&text).unwrap();
+    doc["cycles"].as_table_mut().unwrap().insert("years".into(), years.into());
+    let dir = scratch_dir(&format!("cycles-{name}"));
+    let path = dir.join(format!("{name}-{years}.toml"));
+    std::fs::write(&path, toml::to_string(&doc).unwrap()).unwrap();
+    let out = dir.join("out");
+    (Pipeline::load(&path).unwrap(), dir, out)
+}
+
 #[test]
 fn bp1_qd_recurs_and_slips_as_the_published_solutions() {
-    let text = std::fs::read_to_string(repo_path("pipelines/seas-bp1-qd.toml")).unwrap();
-    let mut doc: toml::Table = toml::from_str(&text).unwrap();
-    doc["cycles"].as_table_mut().unwrap().insert("years".into(), 400.0.into());
-    let dir = scratch_dir("cycles-bp1");
-    let path = dir.join("bp1-400.toml");
-    std::fs::write(&path, toml::to_string(&doc).unwrap()).unwrap();
-    let pipeline = Pipeline::load(&path).unwrap();
-    let out = dir.join("out");
+    let (pipeline, _dir, out) = cut("seas-bp1-qd", 400.0);
     let r = run_cycles(&pipeline, &out, &AtomicBool::new(false)).unwrap();
     assert_eq!(r.interrupted_s, None);
     println!(
@@ -98,14 +104,7 @@ fn station_rows(text: &str) -> Vec<[f64; 5]> {
 
 #[test]
 fn bp1_fd_first_event_is_the_resolutions_converged_one_and_slips_more_than_without_inertia() {
-    let text = std::fs::read_to_string(repo_path("pipelines/seas-bp1-fd.toml")).unwrap();
-    let mut doc: toml::Table = toml::from_str(&text).unwrap();
-    doc["cycles"].as_table_mut().unwrap().insert("years".into(), 260.0.into());
-    let dir = scratch_dir("cycles-bp1-fd");
-    let path = dir.join("bp1-fd-260.toml");
-    std::fs::write(&path, toml::to_string(&doc).unwrap()).unwrap();
-    let pipeline = Pipeline::load(&path).unwrap();
-    let out = dir.join("out");
+    let (pipeline, _dir, out) = cut("seas-bp1-fd", 260.0);
     let r = run_cycles(&pipeline, &out, &AtomicBool::new(false)).unwrap();
     let s = r.stats;
     println!(

@@ -11,29 +11,13 @@ use stickslip_solver::cycles::{
     AntiplaneStencil, CycleState, FaultStiffness, Flow, QuasiDynamicFault, Tolerances, antiplane_links,
 };
 use stickslip_solver::laws::{Evolution, RateStateNode, RateStateStart};
-use stickslip_solver::scene::BoundarySpec;
-use stickslip_solver::{Dims, Model, Scene};
+use stickslip_solver::{Model, Scene};
 
 const RHO: f64 = 2670.0;
 const CS: f64 = 3464.0;
 
-/// A slab of rock one module thick (ρ 2670 kg/m³, Cs 3464 m/s, ν 0.25) of `ny × nz` modules.
 fn slab(ny: usize, nz: usize, lc: f64) -> Scene {
-    let mut s = common::scene_with(|f| {
-        f.block.nx = 1;
-        f.block.ny = ny as i64;
-        f.block.nz = nz as i64;
-        f.block.lc_m = lc;
-        f.material.young_pa = 2.5 * RHO * CS * CS;
-        f.material.density_kg_m3 = RHO;
-        f.material.poisson = 0.25;
-        f.material.young_cv = 0.0;
-        f.self_weight.gravity_m_s2 = 0.0;
-    });
-    s.dims = Dims::new(1, ny, nz);
-    s.boundaries.retain(|b| !matches!(b, BoundarySpec::Drivers(_)));
-    s.record.interface.clear();
-    s
+    common::antiplane_slab(ny, nz, lc)
 }
 
 fn stencil_of(ny: usize, nz: usize, lc: f64) -> (Model, AntiplaneStencil) {

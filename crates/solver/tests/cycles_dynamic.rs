@@ -13,28 +13,13 @@ use stickslip_solver::cycles::{
 use stickslip_solver::geometry::NodeKind;
 use stickslip_solver::laws::rate_state::steady_friction;
 use stickslip_solver::laws::{Evolution, RateStateNode, RateStateStart};
-use stickslip_solver::scene::BoundarySpec;
-use stickslip_solver::{Dims, Model, Scene};
+use stickslip_solver::{Model, Scene};
 
 const RHO: f64 = 2670.0;
 const CS: f64 = 3464.0;
 
 fn slab(ny: usize, nz: usize, lc: f64) -> Scene {
-    let mut s = common::scene_with(|f| {
-        f.block.nx = 1;
-        f.block.ny = ny as i64;
-        f.block.nz = nz as i64;
-        f.block.lc_m = lc;
-        f.material.young_pa = 2.5 * RHO * CS * CS;
-        f.material.density_kg_m3 = RHO;
-        f.material.poisson = 0.25;
-        f.material.young_cv = 0.0;
-        f.self_weight.gravity_m_s2 = 0.0;
-    });
-    s.dims = Dims::new(1, ny, nz);
-    s.boundaries.retain(|b| !matches!(b, BoundarySpec::Drivers(_)));
-    s.record.interface.clear();
-    s
+    common::antiplane_slab(ny, nz, lc)
 }
 
 fn grid(ny: usize, nz: usize, lc: f64, absorbing: bool) -> AntiplaneGrid {

@@ -67,3 +67,24 @@ pub fn column(nz: usize, axis: usize) -> Scene {
     s.set_boundary(BoundarySpec::Rollers(fixed.into_iter().collect()));
     s
 }
+
+/// A slab of rock one module thick for the antiplane mode (ρ 2670 kg/m³, Cs 3464 m/s, ν 0.25)
+/// of `ny × nz` modules of `lc` (docs/model.md §20), without drivers or recorded interface.
+pub fn antiplane_slab(ny: usize, nz: usize, lc: f64) -> Scene {
+    let (rho, cs) = (2670.0, 3464.0);
+    let mut s = scene_with(|f| {
+        f.block.nx = 1;
+        f.block.ny = ny as i64;
+        f.block.nz = nz as i64;
+        f.block.lc_m = lc;
+        f.material.young_pa = 2.5 * rho * cs * cs;
+        f.material.density_kg_m3 = rho;
+        f.material.poisson = 0.25;
+        f.material.young_cv = 0.0;
+        f.self_weight.gravity_m_s2 = 0.0;
+    });
+    s.dims = stickslip_solver::Dims::new(1, ny, nz);
+    s.boundaries.retain(|b| !matches!(b, stickslip_solver::scene::BoundarySpec::Drivers(_)));
+    s.record.interface.clear();
+    s
+}
