@@ -9,7 +9,10 @@
 //! long-wave SH speed is `√(c/(ρ·Lc))`, its highest frequency `ω = 4·√(c/(ρLc³))` (corners and
 //! centres in opposition), so the central-difference step is stable below `Lc·√(ρLc/c)/2`.
 //! The far face and the bottom absorb: each of their corners carries a dashpot `ρ·c_s` over its
-//! share of the face (Lysmer & Kuhlemeyer 1969), taken implicitly.
+//! share of the face (Lysmer & Kuhlemeyer 1969), taken implicitly. Each link also carries
+//! Kelvin–Voigt damping `β·c` times its ends' relative velocity ([`AntiplaneGrid::damping_s`]),
+//! against the grid's ringing at its shortest wavelengths that a rupture front excites; with
+//! `β = γ·Δt` the step is stable below `Lc·√(ρLc/c)/(2√(1 + 2γ))`.
 //!
 //! **The fault.** The face corners down to the frictional depth are the fault's nodes (slip
 //! `δ = 2u`, the other side the mirror); below they creep with the plate, which over an event's
