@@ -145,10 +145,10 @@ fn bp1_fd_first_event_is_the_resolutions_converged_one_and_slips_more_than_witho
     assert!(slip > 1.3 * 2.773, "{slip}");
 }
 
-/// The README's and the guide's BP1-FD figures: the shipped pipeline over its 3000 years (6.5
+/// The README's and the guide's BP1-FD figures: the shipped pipeline over its 3000 years (5.4
 /// minutes on 2 threads, so left out of the default run).
 #[test]
-#[ignore = "3000 years of BP1-FD: 6.5 minutes; run with --ignored"]
+#[ignore = "3000 years of BP1-FD: 5.4 minutes; run with --ignored"]
 fn bp1_fd_over_3000_years_gives_the_documented_cycle() {
     let pipeline = Pipeline::load(&repo_path("pipelines/seas-bp1-fd.toml")).unwrap();
     let out = scratch_dir("cycles-bp1-fd-3000").join("out");
