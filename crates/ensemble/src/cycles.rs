@@ -219,13 +219,16 @@ pub fn run_cycles(pipeline: &Pipeline, out: &Path, cancel: &AtomicBool) -> Resul
     let spec = pipeline.cycles.as_ref().expect("a [cycles] pipeline");
     let t0 = std::time::Instant::now();
     let solver = |e| EnsembleError::Solver(Box::new(e));
-    let full = match spec.dynamic {
-        Some(_) => Some(FullyDynamicFault::from_scene(&pipeline.scene, spec).map_err(solver)?),
-        None => None,
-    };
+    // A fully dynamic run's quasi-dynamic phases are its own fault's: one stiffness, not two.
+    let full =
+        spec.dynamic.map(|_| FullyDynamicFault::from_scene(&pipeline.scene, spec)).transpose().map_err(solver)?;
+    let own;
     let fault = match &full {
-        Some(f) => f.quasi.clone(),
-        None => QuasiDynamicFault::from_scene(&pipeline.scene, spec).map_err(solver)?,
+        Some(f) => &f.quasi,
+        None => {
+            own = QuasiDynamicFault::from_scene(&pipeline.scene, spec).map_err(solver)?;
+            &own
+        }
     };
     let stiffness_s = t0.elapsed().as_secs_f64();
     let lc = fault.stiffness.lc_m;
@@ -240,7 +243,7 @@ pub fn run_cycles(pipeline: &Pipeline, out: &Path, cancel: &AtomicBool) -> Resul
         .collect();
     let mut rec = Recorder {
         spec,
-        fault: &fault,
+        fault,
         mu,
         stations,
         global: String::new(),
@@ -267,14 +270,14 @@ pub fn run_cycles(pipeline: &Pipeline, out: &Path, cancel: &AtomicBool) -> Resul
     let station_columns = ["Time (s)", "Slip (m)", "Slip rate (log10 m/s)", "Shear stress (MPa)", "State (log10 s)"];
     for (k, &d) in spec.stations_m.iter().enumerate() {
         let name = format!("fltst_dp{:03}", (d / 100.0).round() as i64);
-        let mut text = header(pipeline, &fault, &stats, &format!("on fault, {} km depth", d / 1e3), &station_columns);
+        let mut text = header(pipeline, fault, &stats, &format!("on fault, {} km depth", d / 1e3), &station_columns);
         text.push_str("t slip slip_rate shear_stress state\n# Here is the time-series data.\n");
         text.push_str(&rec.stations[k].2);
         write_text_atomic(&seas.join(name), &text)?;
     }
     let mut g = header(
         pipeline,
-        &fault,
+        fault,
         &stats,
         "the whole fault",
         &["Time (s)", "Max slip rate (log10 m/s)", "Moment rate (N·m/s per m along strike)"],
@@ -284,7 +287,7 @@ pub fn run_cycles(pipeline: &Pipeline, out: &Path, cancel: &AtomicBool) -> Resul
     write_text_atomic(&seas.join("global.dat"), &g)?;
     let mut d = header(
         pipeline,
-        &fault,
+        fault,
         &stats,
         "slip along depth",
         &["Time (s)", "Max slip rate (log10 m/s)", "Slip (m), one column per depth of the first row"],

@@ -38,7 +38,7 @@ use std::time::Instant;
 use rayon::prelude::*;
 
 use crate::error::SolverError;
-use crate::laws::rate_state::{RateStateNode, balance, evolve, friction};
+use crate::laws::rate_state::{RateStateNode, balance, evolve};
 
 use super::antiplane::AntiplaneStencil;
 use super::quasi_dynamic::{CycleState, CycleStats, Flow, QuasiDynamicFault, Tolerances, YEAR_S};
@@ -297,7 +297,8 @@ fn face_step(
     let v1 = solve(evolve(node, s.theta, old, dt));
     let theta = evolve(node, s.theta, 0.5 * (old + v1.abs()), dt);
     let v = solve(theta);
-    let tau = if v == 0.0 { need } else { sigma * friction(node, v.abs(), theta).copysign(v) };
+    // The balance's own friction, `need − Z·V` (`need` itself when V underflows to 0).
+    let tau = need - z * v;
     FaceNode { theta, v, tau }
 }
 

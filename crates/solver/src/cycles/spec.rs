@@ -67,15 +67,13 @@ impl DynamicSpec {
 }
 
 impl CycleSpec {
-    /// What a run of `scene` holds at most (bytes): the fault's stiffness (`n²`, twice for a
-    /// fully dynamic run, whose explicit phases keep their own copy) and the cosines it is built
-    /// from, the explicit grid's displacements, velocities and forces, and the files' rows.
+    /// What a run of `scene` holds at most (bytes): the fault's stiffness (`n²`) and the cosines
+    /// it is built from, the explicit grid's displacements, velocities and forces, and the files' rows.
     pub fn memory_bytes(&self, scene: &Scene) -> u64 {
         let lc = scene.lc_m;
         let ny = scene.dims.ny as u64;
         let n = self.frictional_nodes(lc, scene.dims.ny) as u64;
-        let copies = if self.dynamic.is_some() { 2 } else { 1 };
-        let stiffness = 8 * n * n * copies + 8 * 3 * n * (ny + 1).max(n);
+        let stiffness = 8 * n * n + 8 * 3 * n * (ny + 1).max(n);
         let grid = self.dynamic.map_or(0, |d| {
             let (gy, gz) = ((d.block_m[0] / lc).round() as u64, (d.block_m[1] / lc).round() as u64);
             8 * 3 * ((gy + 1) * (gz + 1) + gy * gz)
