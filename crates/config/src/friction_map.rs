@@ -53,6 +53,56 @@ pub struct PatchSection {
     /// rate-and-state law).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub rate_state: Option<crate::laws::RateStatePatch>,
+    /// A rectangle's smooth edge (m): over this width outside each side inside the base, its
+    /// rate-and-state coefficients blend into what lies below by SCEC TPV101–104's boxcar
+    /// ([`boxcar`]). Default: a sharp edge.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub transition_m: Option<f64>,
+}
+
+/// SCEC TPV101–104's smooth boxcar at `d` metres outside an interval with a transition of `w`:
+/// 1 inside (`d ≤ 0`), `½·[1 + tanh(w/(d − w) + w/d)]` for `0 < d < w`, 0 from `w` on. Every
+/// derivative is continuous.
+pub fn boxcar(d: f64, w: f64) -> f64 {
+    if d <= 0.0 {
+        1.0
+    } else if d >= w {
+        0.0
+    } else {
+        0.5 * (1.0 + (w / (d - w) + w / d).tanh())
+    }
+}
+
+/// Each base node's weight of a rectangle patch `x_m × y_m` with a smooth edge `w`:
+/// `B(dx; w)·B(dy; w)` ([`boxcar`]), `dx`, `dy` its distances outside the rectangle, for the
+/// nodes where it is not 0 (indices into [`Lattice::contact_nodes`]).
+fn smooth_weights(lattice: &Lattice, x_m: [f64; 2], y_m: [f64; 2], w: f64) -> Vec<(usize, f64)> {
+    let eps = 1e-9 * lattice.lc();
+    let outside = |v: f64, [lo, hi]: [f64; 2]| {
+        let d = (lo - v).max(v - hi);
+        if d <= eps { 0.0 } else { d }
+    };
+    (0..lattice.contact_count())
+        .filter_map(|c| {
+            let q = lattice.position(lattice.contact_node(c));
+            let weight = boxcar(outside(q[0], x_m), w) * boxcar(outside(q[1], y_m), w);
+            (weight > 0.0).then_some((c, weight))
+        })
+        .collect()
+}
+
+/// `below`'s coefficients moved a share `w` of the way to `patch`'s: a, b, L and f₀ of two
+/// rate-and-state nodes (the rest is the patch's); `None` under other laws.
+fn blend(below: &NodeFriction, patch: &NodeFriction, w: f64) -> Option<NodeFriction> {
+    let (NodeFriction::RateState(lo), NodeFriction::RateState(hi)) = (below, patch) else { return None };
+    let mix = |a: f64, b: f64| if w >= 1.0 { b } else { a + w * (b - a) };
+    Some(NodeFriction::RateState(stickslip_solver::laws::RateStateNode {
+        a: mix(lo.a, hi.a),
+        b: mix(lo.b, hi.b),
+        dc_m: mix(lo.dc_m, hi.dc_m),
+        f0: mix(lo.f0, hi.f0),
+        ..*hi
+    }))
 }
 
 /// `[friction.grid]`: coefficients per base node from a CSV file with the header
@@ -340,11 +390,37 @@ pub(crate) fn build(
     }
     // Patch i is region `first + i` (after the grid's, when there is one).
     let first = regions.len();
-    // Each patch's base nodes and coefficients.
+    // Each patch's base nodes and coefficients, and the weights of a smooth edge's nodes.
     let mut members: Vec<(Vec<usize>, NodeFriction)> = Vec::new();
+    let mut smooth: Vec<Option<Vec<(usize, f64)>>> = Vec::new();
     for (i, p) in patches.iter().enumerate() {
         let field = format!("friction.patches[{i}]");
-        let held = patch_nodes(ck, &field, &p.shape(), lattice);
+        let mut held = patch_nodes(ck, &field, &p.shape(), lattice);
+        smooth.push(p.transition_m.and_then(|w| {
+            let key = format!("{field}.transition_m");
+            if !ck.positive(&key, w) {
+                return None;
+            }
+            if !matches!(law.node(1.0), NodeFriction::RateState(_)) || p.shape != "rectangle" {
+                ck.push(
+                    key,
+                    num(w),
+                    "left out except on a rectangle under a rate-and-state law (it blends a, b, L and f₀)",
+                );
+                return None;
+            }
+            if w < 2.0 * lattice.lc() {
+                ck.push(
+                    key,
+                    num(w),
+                    format!("at least 2·Lc = {} m, or left out (a sharp edge)", approx(2.0 * lattice.lc())),
+                );
+                return None;
+            }
+            let weights = smooth_weights(lattice, p.x_m?, p.y_m.unwrap_or([0.0, lattice.extent()[1]]), w);
+            held = weights.iter().map(|&(c, _)| c).collect();
+            Some(weights)
+        }));
         let keys = crate::laws::RegionKeys {
             mu_static: p.mu_static,
             mu_dynamic: p.mu_dynamic,
@@ -383,9 +459,21 @@ pub(crate) fn build(
     order.sort_by_key(|&i| patches[i].priority);
     for i in order {
         let (held, co) = &members[i];
-        for &c in held {
-            nodes[c] = *co;
-            region[c] = Some((first + i) as u16);
+        match &smooth[i] {
+            None => {
+                for &c in held {
+                    nodes[c] = *co;
+                    region[c] = Some((first + i) as u16);
+                }
+            }
+            Some(weights) => {
+                for &(c, w) in weights {
+                    nodes[c] = blend(&nodes[c], co, w).unwrap_or(*co);
+                    if w >= 0.5 {
+                        region[c] = Some((first + i) as u16);
+                    }
+                }
+            }
         }
     }
     Some(FrictionMap { nodes, region, regions })
@@ -443,5 +531,55 @@ mod tests {
         let area = loaded_area(&ellipse, &lattice);
         let exact = std::f64::consts::PI * 1_230.0 * 770.0;
         assert!((area / exact - 1.0).abs() < 0.01, "{area} against {exact}");
+    }
+
+    #[test]
+    fn a_smooth_edge_blends_a_as_tpv101_defines_it() {
+        // TPV101's a = 0.008 + 0.008·[1 − B(x)·B(y)] with w = 3 km: 0.008 inside, 0.016 from 3 km
+        // outside on, and halfway (B(w/2) = ½(1 + tanh(−2 + 2)) = ½) 1.5 km outside: 0.012, or
+        // 0.016 − 0.008/4 = 0.014 1.5 km outside both sides at a corner. The side on the face's
+        // edge (y = 0) is not tapered: the patch continues beyond it.
+        use stickslip_solver::laws::{Evolution, RateStateNode, RateStateStart};
+        let lattice = Lattice::new(Dims::new(100, 50, 2), 100.0);
+        let background = RateStateNode {
+            a: 0.016,
+            b: 0.012,
+            dc_m: 0.02,
+            v0_m_s: 1e-6,
+            f0: 0.6,
+            evolution: Evolution::Aging,
+            start: RateStateStart::Balanced(1e-12),
+        };
+        let law: FrictionLaw = background.into();
+        let patch = PatchSection {
+            shape: "rectangle".into(),
+            x_m: Some([3_000.0, 7_000.0]),
+            y_m: Some([0.0, 1_000.0]),
+            rate_state: Some(crate::laws::RateStatePatch { a: Some(0.008), ..Default::default() }),
+            transition_m: Some(3_000.0),
+            ..PatchSection::default()
+        };
+        let mut ck = Checker::default();
+        let map = build(&mut ck, &lattice, &law, &[patch], None).expect("a map");
+        assert!(ck.is_clean());
+        let a_at = |x: f64, y: f64| {
+            let id = lattice.node_at([x, y, 0.0]).expect("a base node");
+            let NodeFriction::RateState(n) = map.nodes[id.index()] else { panic!() };
+            n.a
+        };
+        for (x, y, want) in [
+            (5_000.0, 0.0, 0.008),
+            (5_000.0, 1_000.0, 0.008),
+            (1_500.0, 500.0, 0.012),
+            (8_500.0, 0.0, 0.012),
+            (5_000.0, 2_500.0, 0.012),
+            (8_500.0, 2_500.0, 0.014),
+            (10_000.0, 0.0, 0.016),
+            (5_000.0, 4_000.0, 0.016),
+        ] {
+            assert!((a_at(x, y) - want).abs() < 1e-15, "a({x}, {y}) = {} not {want}", a_at(x, y));
+        }
+        assert_eq!(boxcar(-1.0, 3.0), 1.0);
+        assert_eq!(boxcar(3.0, 3.0), 0.0);
     }
 }

@@ -163,7 +163,7 @@ dc_m = 0.02
     let (mut inside, mut outside) = (0, 0);
     for (c, &id) in lattice.contact_nodes().iter().enumerate() {
         let NodeFriction::RateState(n) = scene.friction.base(c) else { panic!("node {c} is not under rate and state") };
-        let theta0 = RateState::initial_state(&n);
+        let theta0 = RateState::initial_state(&n, 0.0, 0.0);
         if lattice.position(id)[0] <= 0.45 {
             inside += 1;
             assert_eq!((n.a, n.b, n.dc_m, n.f0), (0.010, 0.005, 0.02, 0.6));

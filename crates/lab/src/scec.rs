@@ -61,6 +61,8 @@ pub struct Reference {
     pub rupture_times: Vec<FieldPoint>,
     /// Each station's horizontal slip rate: times (s) and values (m/s).
     pub slip_rates: BTreeMap<String, (Vec<f64>, Vec<f64>)>,
+    /// The benchmark's name, from the folder's (`TPV5`).
+    pub problem: String,
 }
 
 fn read_csv(path: &Path) -> Result<Vec<Vec<String>>, CompareError> {
@@ -101,7 +103,8 @@ impl Reference {
             e.0.push(number(&c, 1));
             e.1.push(number(&c, 3));
         }
-        Ok(Reference { stations, rupture_times, slip_rates })
+        let problem = dir.file_name().and_then(|n| n.to_str()).unwrap_or("reference").to_uppercase();
+        Ok(Reference { stations, rupture_times, slip_rates, problem })
     }
 }
 
@@ -314,7 +317,18 @@ pub fn figure(
     let (xs, ys, values) = grid(field);
     let key = |v: f64| (v * 1e6).round() as i64;
     let neg: Vec<f64> = ys.iter().map(|y| -y).collect();
-    let (rx, ry, rv) = grid(&reference.rupture_times);
+    // A reference read at scattered points (lines and a coarse grid, TPV101's) is contoured on its
+    // 1.5 km grid only: the lines' points would leave most cells of the full grid empty.
+    let (rx, ry, _) = grid(&reference.rupture_times);
+    let thinned: Vec<FieldPoint>;
+    let points = if reference.rupture_times.len() * 2 < rx.len() * ry.len() {
+        let on = |v: f64| ((v / 1.5).round() * 1.5 - v).abs() < 1e-6;
+        thinned = reference.rupture_times.iter().copied().filter(|(p, _)| on(p[0]) && on(p[1])).collect();
+        &thinned
+    } else {
+        &reference.rupture_times
+    };
+    let (rx, ry, rv) = grid(points);
     let rneg: Vec<f64> = ry.iter().map(|y| -y).collect();
     for s in 1..=9 {
         let level = s as f64;
@@ -336,8 +350,15 @@ pub fn figure(
         });
     }
     let mut panels = vec![map];
-    for name in ["faultst000dp075", "faultst-075dp075", "faultst075dp075", "faultst000dp000"] {
-        let Some(r) = reference.stations.iter().find(|s| s.name == name) else { continue };
+    // TPV5's four stations, or the reference's first four.
+    let tpv5 = ["faultst000dp075", "faultst-075dp075", "faultst075dp075", "faultst000dp000"];
+    let chosen: Vec<&ReferenceStation> = if reference.stations.iter().any(|s| tpv5.contains(&s.name.as_str())) {
+        tpv5.iter().filter_map(|n| reference.stations.iter().find(|s| s.name == *n)).collect()
+    } else {
+        reference.stations.iter().take(4).collect()
+    };
+    for r in chosen {
+        let name = r.name.as_str();
         let Some(s) = stations.iter().min_by(|a, b| {
             let d = |s: &RunStation| (s.at_km[0] - r.at_km[0]).hypot(s.at_km[1] - r.at_km[1]);
             d(a).total_cmp(&d(b))
@@ -365,10 +386,11 @@ pub fn figure(
         });
         panels.push(p);
     }
-    let mut sheet = Sheet::new(format!("TPV5: {label} against the reference"), 1, vec![panels.remove(0)]);
+    let problem = reference.problem.as_str();
+    let mut sheet = Sheet::new(format!("{problem}: {label} against the reference"), 1, vec![panels.remove(0)]);
     sheet = sheet.with_height(560);
     draw(path, &sheet).map_err(|e| CompareError::Figure(e.to_string()))?;
-    let series = Sheet::new(format!("TPV5 slip rates: {label} against the reference"), 2, panels).with_height(800);
+    let series = Sheet::new(format!("{problem} slip rates: {label} against the reference"), 2, panels).with_height(800);
     let series_path =
         path.with_file_name(format!("{}_slip_rates.png", path.file_stem().and_then(|s| s.to_str()).unwrap_or("tpv5")));
     draw(&series_path, &series).map_err(|e| CompareError::Figure(e.to_string()))?;

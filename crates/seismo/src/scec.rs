@@ -10,7 +10,9 @@
 //!
 //! - **On the fault** ([`on_fault_text`]): `t h-slip h-slip-rate h-shear-stress v-slip
 //!   v-slip-rate v-shear-stress`; horizontal = along strike, positive right-lateral; vertical =
-//!   along dip, positive downward (the far side down relative to the near side).
+//!   along dip, positive downward (the far side down relative to the near side); under
+//!   rate-and-state friction also `n-stress log-theta` (MPa, compression positive; log₁₀ θ in
+//!   seconds), as TPV101–104 ask.
 //! - **Off the fault** ([`off_fault_text`]): `t h-disp h-vel v-disp v-vel n-disp n-vel`;
 //!   horizontal along strike (positive to the right seen from the near side), vertical positive
 //!   downward, normal positive from the near side toward the far side.
@@ -112,28 +114,38 @@ pub struct OnFault<'a> {
     pub slip_rate_m_s: [&'a [f64]; 2],
     /// Shear stress (Pa).
     pub shear_stress_pa: [&'a [f64]; 2],
+    /// Under rate-and-state friction (TPV101–104's layout): the normal stress (Pa, compression
+    /// positive) and the state θ (s), written `n-stress` (MPa) and `log-theta` (log₁₀ θ).
+    pub rate_state: Option<[&'a [f64]; 2]>,
 }
 
 /// The text of an on-fault station file.
 pub fn on_fault_text(h: &Header<'_>, s: &OnFault<'_>) -> String {
-    let mut out = header_text(
-        h,
-        s.time_s,
-        &[
-            "Time (s)",
-            "horizontal slip (m)",
-            "horizontal slip rate (m/s)",
-            "horizontal shear stress (MPa)",
-            "vertical slip (m)",
-            "vertical slip rate (m/s)",
-            "vertical shear stress (MPa)",
-        ],
-    );
-    out.push_str("t h-slip h-slip-rate h-shear-stress v-slip v-slip-rate v-shear-stress\n");
+    let mut columns = vec![
+        "Time (s)",
+        "horizontal slip (m)",
+        "horizontal slip rate (m/s)",
+        "horizontal shear stress (MPa)",
+        "vertical slip (m)",
+        "vertical slip rate (m/s)",
+        "vertical shear stress (MPa)",
+    ];
+    if s.rate_state.is_some() {
+        columns.extend(["normal stress (MPa)", "log10 of state variable (log10 s)"]);
+    }
+    let mut out = header_text(h, s.time_s, &columns);
+    out.push_str("t h-slip h-slip-rate h-shear-stress v-slip v-slip-rate v-shear-stress");
+    out.push_str(if s.rate_state.is_some() { " n-stress log-theta\n" } else { "\n" });
     out.push_str("#\n# Here is the time-series data.\n");
     let mpa = |v: &[f64]| v.iter().map(|x| x * 1e-6).collect::<Vec<f64>>();
     let (th, tv) = (mpa(s.shear_stress_pa[0]), mpa(s.shear_stress_pa[1]));
-    rows(&mut out, s.time_s, &[s.slip_m[0], s.slip_rate_m_s[0], &th, s.slip_m[1], s.slip_rate_m_s[1], &tv]);
+    let mut series: Vec<&[f64]> = vec![s.slip_m[0], s.slip_rate_m_s[0], &th, s.slip_m[1], s.slip_rate_m_s[1], &tv];
+    let extra =
+        s.rate_state.map(|[normal, theta]| (mpa(normal), theta.iter().map(|t| t.log10()).collect::<Vec<f64>>()));
+    if let Some((normal, log_theta)) = &extra {
+        series.extend([&normal[..], &log_theta[..]]);
+    }
+    rows(&mut out, s.time_s, &series);
     out
 }
 
@@ -235,7 +247,13 @@ mod tests {
             Header { problem: "TPV5", code: "stickslip 0", date: "2026/11/26", element_size_m: 100.0, location: "x" };
         let text = on_fault_text(
             &h,
-            &OnFault { time_s: &t, slip_m: [&s, &z], slip_rate_m_s: [&r, &z], shear_stress_pa: [&tau, &z] },
+            &OnFault {
+                time_s: &t,
+                slip_m: [&s, &z],
+                slip_rate_m_s: [&r, &z],
+                shear_stress_pa: [&tau, &z],
+                rate_state: None,
+            },
         );
         assert!(text.contains("# num_time_steps=3\n") && text.contains("# time_step=1.000000000000E-02\n"));
         let (names, rows) = read_table(&text);
@@ -246,5 +264,22 @@ mod tests {
         let (names, rows) = read_table(&cplot);
         assert_eq!(names, ["j", "k", "t"]);
         assert_eq!(rows, vec![vec![-100.0, 7500.0, 0.25], vec![15000.0, 0.0, 1.0e9]]);
+        // Under rate and state, TPV101's two more columns: n-stress (MPa) and log-theta (log₁₀ s).
+        let (normal, theta) = ([120e6; 3], [1.606238999213454e9, 1e3, 0.5]);
+        let text = on_fault_text(
+            &h,
+            &OnFault {
+                time_s: &t,
+                slip_m: [&s, &z],
+                slip_rate_m_s: [&r, &z],
+                shear_stress_pa: [&tau, &z],
+                rate_state: Some([&normal, &theta]),
+            },
+        );
+        let (names, rows) = read_table(&text);
+        assert_eq!(&names[7..], ["n-stress", "log-theta"]);
+        assert_eq!(rows[0][7..], [120.0, 9.20581]);
+        assert_eq!(rows[1][7..], [120.0, 3.0]);
+        assert!(text.contains("# Column #9 = log10 of state variable"));
     }
 }

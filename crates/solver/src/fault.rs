@@ -44,6 +44,8 @@ pub struct Fault {
     pub stochastic: Option<StochasticStress>,
     /// An overstressed square placed per seed, where the rupture starts.
     pub nucleation: Option<Nucleation>,
+    /// A smooth overstress growing in time (SCEC TPV101–104's nucleation).
+    pub overstress: Option<Overstress>,
     /// The point of the fault `(x, y)` that benchmark files measure along strike and down dip
     /// from (m).
     pub origin_m: [f64; 2],
@@ -100,6 +102,44 @@ impl Nucleation {
     }
 }
 
+/// A smooth overstress added to the shear traction along x, `Δτ(x, y, t) = Δτ₀·F(r)·G(t)` (SCEC
+/// TPV101–104's nucleation, Kaneko et al. 2008): `r` the distance from the centre,
+/// `F(r) = exp(r²/(r² − R²))` for `r < R` and 0 beyond, `G(t) = exp((t − T)²/(t(t − 2T)))` for
+/// `0 < t < T`, 0 at `t = 0` and 1 from `T` on. Both are smooth (every derivative continuous), so
+/// the rupture starts without the waves a sudden load sends out.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Overstress {
+    /// The centre `(x, y)` (m).
+    pub centre_m: [f64; 2],
+    /// The radius R (m), > 0.
+    pub radius_m: f64,
+    /// The peak overstress Δτ₀ at the centre (Pa).
+    pub overstress_pa: f64,
+    /// The rise time T (s), ≥ 0 (0: all of it at once).
+    pub rise_s: f64,
+}
+
+impl Overstress {
+    /// `F(r)` at the point `(x, y)`.
+    pub fn shape(&self, x: f64, y: f64) -> f64 {
+        let r2 = (x - self.centre_m[0]).powi(2) + (y - self.centre_m[1]).powi(2);
+        let big = self.radius_m * self.radius_m;
+        if r2 < big { (r2 / (r2 - big)).exp() } else { 0.0 }
+    }
+
+    /// `G(t)` at `t` seconds of the shear stage.
+    pub fn ramp(&self, t_s: f64) -> f64 {
+        let rise = self.rise_s;
+        if t_s >= rise {
+            1.0
+        } else if t_s <= 0.0 {
+            0.0
+        } else {
+            ((t_s - rise).powi(2) / (t_s * (t_s - 2.0 * rise))).exp()
+        }
+    }
+}
+
 /// The fault loads of one seed on every contact node (order of [`crate::Model::contact`]): the
 /// shear force `τ0·A_i` along x and y and the normal force `σn·A_i` (N).
 #[derive(Clone, Debug, PartialEq)]
@@ -108,6 +148,9 @@ pub struct FaultLoads {
     pub shear_n: Vec<[f64; 2]>,
     /// Normal force, compression positive (N).
     pub normal_n: Vec<f64>,
+    /// The smooth overstress's force along x at its peak, `Δτ₀·F(r)·A_i` (N), which
+    /// [`Overstress::ramp`] scales in time; empty without one.
+    pub overstress_n: Vec<f64>,
 }
 
 /// [`FaultLoads`] of `L` seeds side by side.
@@ -117,6 +160,8 @@ pub struct FaultLanes<const L: usize> {
     pub shear_n: [Vec<Lanes<L>>; 2],
     /// Normal force of each contact node (N).
     pub normal_n: Vec<Lanes<L>>,
+    /// The smooth overstress's peak force along x of each contact node (N); empty without one.
+    pub overstress_n: Vec<Lanes<L>>,
 }
 
 impl<const L: usize> FaultLanes<L> {
@@ -129,6 +174,7 @@ impl<const L: usize> FaultLanes<L> {
         FaultLanes {
             shear_n: [lanes(&|s, c| s.shear_n[c][0]), lanes(&|s, c| s.shear_n[c][1])],
             normal_n: lanes(&|s, c| s.normal_n[c]),
+            overstress_n: if loads[0].overstress_n.is_empty() { Vec::new() } else { lanes(&|s, c| s.overstress_n[c]) },
         }
     }
 }
@@ -270,5 +316,22 @@ mod tests {
         }
         assert!(near > 0.8, "correlation at 0.125 a: {near}");
         assert!(far.abs() < 0.25, "correlation at 4 a: {far}");
+    }
+
+    #[test]
+    fn the_smooth_overstress_has_tpv101s_shape_and_ramp() {
+        // F(R/2) = exp((1/4)/(1/4 − 1)) = exp(−1/3), G(T/2) = exp((1/4)/(−3/4)) = exp(−1/3); both 1
+        // at the centre and from T on, 0 at R and at t = 0.
+        let o = super::Overstress { centre_m: [1_000.0, 2_000.0], radius_m: 3_000.0, overstress_pa: 25e6, rise_s: 1.0 };
+        let third = (-1.0f64 / 3.0).exp();
+        assert_eq!(o.shape(1_000.0, 2_000.0), 1.0);
+        assert!((o.shape(2_500.0, 2_000.0) - third).abs() < 1e-15);
+        assert!((o.shape(1_000.0, 500.0) - third).abs() < 1e-15);
+        assert_eq!(o.shape(4_000.0, 2_000.0), 0.0);
+        assert_eq!(o.ramp(0.0), 0.0);
+        assert!((o.ramp(0.5) - third).abs() < 1e-15);
+        assert_eq!(o.ramp(1.0), 1.0);
+        assert_eq!(o.ramp(7.0), 1.0);
+        assert!(o.ramp(1e-3) < 1e-200 && o.ramp(0.999) > 0.999);
     }
 }

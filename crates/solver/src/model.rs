@@ -552,7 +552,8 @@ impl Model {
     /// The fault's loads on every contact node for `seed` (docs/model.md §15): `τ0·A_i` along x
     /// and y, with the seed's von Kármán field added to x when the scene has one and the seed's
     /// nucleation square's traction set inside it, and
-    /// `σn·A_i`, `A_i` the node's share of the base. `None` on the rigid base.
+    /// `σn·A_i`, `A_i` the node's share of the base, with the smooth overstress's peak force
+    /// `Δτ₀·F(r)·A_i` when the scene has one. `None` on the rigid base.
     pub fn fault_loads(&self, seed: u64) -> Result<Option<FaultLoads>, SolverError> {
         let Some(fault) = &self.scene.fault else { return Ok(None) };
         if self.contact.is_empty() {
@@ -593,7 +594,16 @@ impl Model {
             })
             .collect();
         let normal_n = (0..nodes.len()).map(|c| fault.normal_pa[c] * area[c]).collect();
-        Ok(Some(FaultLoads { shear_n, normal_n }))
+        let overstress_n = match &fault.overstress {
+            Some(o) => (0..nodes.len())
+                .map(|c| {
+                    let p = lattice.position(nodes[c]);
+                    o.overstress_pa * o.shape(p[0], p[1]) * area[c]
+                })
+                .collect(),
+            None => Vec::new(),
+        };
+        Ok(Some(FaultLoads { shear_n, normal_n, overstress_n }))
     }
 
     /// Coefficients of contact node `c` (order of [`Model::contact`]) whose field factor is

@@ -65,6 +65,8 @@ pub struct StationTrace {
     pub shear_stress_pa: [Vec<f64>; 2],
     /// Normal stress `N/A_i` (Pa).
     pub normal_stress_pa: Vec<f64>,
+    /// The friction law's state variable (θ in s under rate and state).
+    pub state: Vec<f64>,
 }
 
 /// Every contact node of a fault over the whole shear stage (docs/model.md §15), canonical
@@ -346,6 +348,7 @@ impl Tracer {
                 c.friction_x,
                 c.friction_y,
                 c.normal,
+                c.state,
             ]);
         }
         self.contacts = contacts;
@@ -400,6 +403,7 @@ impl Tracer {
                     slip_rate_m_s: [column(at + 2), column(at + 3)],
                     shear_stress_pa: [stress(column(at + 4), -1.0), stress(column(at + 5), -1.0)],
                     normal_stress_pa: stress(column(at + 6), 1.0),
+                    state: column(at + 7),
                 }
             })
             .collect();
@@ -442,7 +446,7 @@ impl Tracer {
 }
 
 /// Values per station and instant: slip x, y, slip rate x, y, friction x, y, normal force.
-const STATION_WIDTH: usize = 7;
+const STATION_WIDTH: usize = 8;
 
 /// Builds a [`FaultSummary`] from every step of the shear stage.
 #[derive(bincode::Encode, bincode::Decode)]

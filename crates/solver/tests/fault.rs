@@ -32,6 +32,7 @@ fn column(nz: usize, tau0: f64) -> Scene {
         normal_pa: vec![SIGMA_N; contacts],
         stochastic: None,
         nucleation: None,
+        overstress: None,
         origin_m: [0.0; 2],
     });
     s.set_boundary(BoundarySpec::Absorbing(vec![Face::ZMax]));
@@ -135,6 +136,7 @@ fn a_nucleation_square_lands_where_its_seed_draws_it_and_nowhere_else() {
         normal_pa: vec![SIGMA_N; contacts],
         stochastic: None,
         nucleation: Some(n),
+        overstress: None,
         origin_m: [0.0; 2],
     });
     s.boundaries.retain(|b| !matches!(b, BoundarySpec::Rollers(_)));
@@ -258,4 +260,81 @@ fn rate_state_friction_slides_at_the_rate_that_balances_the_radiated_wave() {
         assert!(slip > 20.0 * dc_m, "θ has relaxed: {slip} m");
         assert!((mean / rate - 1.0).abs() < 0.005, "{evolution:?}: slip rate {mean} vs {rate}");
     }
+}
+
+#[test]
+fn a_balanced_rate_state_start_slides_at_its_initial_rate_from_the_benchmarks_state() {
+    // TPV101's velocity-weakening friction under its tractions (τ0 = 75 MPa, σn = 120 MPa), each
+    // node starting in balance at Vᵢ = 1e-12 m/s: θ₀ is the benchmark description's
+    // 1.606238999213454e9 s, and with no overstress the fault creeps on at Vᵢ (the aging over a
+    // second changes θ by 1e-9 of itself).
+    use stickslip_solver::laws::{Evolution, RateStateNode, RateStateStart};
+    let vi = 1e-12;
+    let law = RateStateNode {
+        a: 0.008,
+        b: 0.012,
+        dc_m: 0.02,
+        v0_m_s: 1e-6,
+        f0: 0.6,
+        evolution: Evolution::Aging,
+        start: RateStateStart::Balanced(vi),
+    };
+    let mut scene = column(10, 75e6);
+    scene.friction.law = law.into();
+    let model = Model::new(scene);
+    let mut b = batch(&model);
+    for ci in 0..model.contact().len() {
+        let theta0 = b.view(0).node_contact(ci).state;
+        assert!((theta0 / 1.606238999213454e9 - 1.0).abs() < 1e-12, "node {ci}: θ₀ = {theta0} s");
+    }
+    let (mut slip0, mut t0) = (0.0, 0.0);
+    let steps = 400;
+    for step in 1..=steps {
+        b.step();
+        if step == steps / 2 {
+            slip0 = b.view(0).node_contact(0).slip;
+            t0 = step as f64;
+        }
+    }
+    let dt = 0.5 * critical_time_step(&model, &model.nominal_stiffness()).unwrap().dt_s;
+    let rate = (b.view(0).node_contact(0).slip - slip0) / ((steps as f64 - t0) * dt);
+    println!("balanced start: slip rate {rate:e} m/s over the second half (Vᵢ = {vi:e})");
+    assert!((rate / vi - 1.0).abs() < 1e-3, "slip rate {rate:e} m/s, not Vᵢ");
+}
+
+#[test]
+fn a_smooth_overstress_loads_a_held_fault_as_its_ramp() {
+    // A held fault (75 MPa < μs·σn = 81.24 MPa) under TPV101's overstress shape, 5 MPa over
+    // T = 0.05 s on a radius far larger than the column: each step's friction holds the traction
+    // τ0 + Δτ₀·F(r)·G(t) exactly, G within the step's own bounds; once grown, exactly 75 MPa.
+    use std::ops::ControlFlow;
+    use stickslip_solver::fault::Overstress;
+    use stickslip_solver::{RunOptions, run_seed};
+    let mut scene = column(10, 70e6);
+    let o = Overstress { centre_m: [0.0, 0.0], radius_m: 1e6, overstress_pa: 5e6, rise_s: 0.05 };
+    scene.fault.as_mut().unwrap().overstress = Some(o);
+    scene.shear.duration_s = 0.08;
+    scene.record.interval_s = None;
+    scene.record.fault_stations = vec![model_node(&scene)];
+    let model = Model::new(scene);
+    let out = run_seed(&model, 7, RunOptions::default(), &mut |_| ControlFlow::Continue(())).unwrap();
+    let st = &out.recording.trace.stations[0];
+    let t = &out.recording.trace.time_s;
+    let dt = t[1] - t[0];
+    let f = o.shape(0.0, 0.0);
+    let mut worst: f64 = 0.0;
+    for (k, tau) in st.shear_stress_pa[0].iter().enumerate() {
+        let (lo, hi) = (70e6 + 5e6 * f * o.ramp(t[k] - dt), 70e6 + 5e6 * f * o.ramp(t[k] + dt));
+        assert!(*tau >= lo - 1.0 && *tau <= hi + 1.0, "t = {} s: τ = {tau} Pa outside {lo}…{hi}", t[k]);
+        worst = worst.max((tau - 70e6 - 5e6 * f * o.ramp(t[k])).abs());
+    }
+    let last = *st.shear_stress_pa[0].last().unwrap();
+    println!("held fault under the ramp: largest difference from τ0 + Δτ₀·G(t) {worst:.3e} Pa; at the end {last} Pa");
+    assert!((last - 70e6 - 5e6 * f).abs() < 1e-3, "at the end τ = {last} Pa");
+    assert!(st.slip_rate_m_s[0].iter().all(|v| *v == 0.0), "a held node slid");
+}
+
+/// The base node at the origin, where the overstress is centred.
+fn model_node(scene: &Scene) -> stickslip_solver::NodeId {
+    scene.lattice().contact_nodes()[0]
 }

@@ -37,7 +37,7 @@ fn slide(n: &RateStateNode, k: f64, theta_factor: f64, duration_s: f64) -> Vec<f
     // The spring's stretch at steady sliding holds the steady friction.
     let stretch = steady_friction(n, LOAD_RATE) * NORMAL / k;
     let (mut x_prev, mut x) = (-LOAD_RATE * DT, 0.0);
-    let (mut sliding, mut theta) = (true, n.theta0_s() * theta_factor);
+    let (mut sliding, mut theta) = (true, n.theta0_s(0.0, 0.0) * theta_factor);
     let steps = (duration_s / DT).round() as usize;
     let mut rates = Vec::with_capacity(steps);
     for i in 0..steps {
@@ -69,7 +69,7 @@ fn rate_state_steady_sliding_holds_its_rate_and_friction() {
         }
         // Its friction is the closed form f₀ + (a − b)·ln(V/V₀).
         let closed = n.f0 + (n.a - n.b) * (LOAD_RATE / n.v0_m_s).ln();
-        assert!((friction(&n, LOAD_RATE, n.theta0_s()) - closed).abs() < 1e-12);
+        assert!((friction(&n, LOAD_RATE, n.theta0_s(0.0, 0.0)) - closed).abs() < 1e-12);
     }
 }
 

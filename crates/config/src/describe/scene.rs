@@ -4,7 +4,7 @@
 use stickslip_solver::boundary::absorbing::impedances;
 use stickslip_solver::inspect::FaultReading;
 use stickslip_solver::inspect::{Inspection, PROBE_WARM_UP_STEPS};
-use stickslip_solver::laws::describe;
+use stickslip_solver::laws::{NodeFriction, RateStateStart, describe};
 use stickslip_solver::memory::LONG_RUN_BAR_UPDATES;
 use stickslip_solver::scene::{SettleMethod, TimeStep};
 use stickslip_solver::{Model, NodeId, Scene};
@@ -175,25 +175,55 @@ pub fn fault(model: &Model, first_seed: u64) -> Section {
             ),
         );
     }
-    let per_seed = scene.fault.as_ref().is_some_and(|f| f.nucleation.is_some());
-    let excess =
-        r.median_s.map_or(String::new(), |s| format!(", median strength excess S = (τs − τ0)/(τ0 − τd) = {:.2}", N(s)));
-    s.push(
-        "fault",
-        if r.overstressed.0 == 0 && per_seed {
-            format!("before the seed's square: {} nodes can slip (above μd·σn){excess}", r.can_slip)
-        } else if r.overstressed.0 == 0 {
-            "⚠ no node starts above its static strength μs·σn: nothing nucleates unless a random field or a patch \
-             overstresses some ([[fault.patches]] with shear_stress_pa above μs·normal_stress_pa)"
-                .to_string()
-        } else {
+    if let Some(o) = scene.fault.as_ref().and_then(|f| f.overstress) {
+        s.push(
+            "fault",
             format!(
-                "nucleation: {} nodes ({:.4e} m²) start above their static strength μs·σn and slide from the first \
-                 step; {} nodes can slip (above μd·σn){excess}",
-                r.overstressed.0, r.overstressed.1, r.can_slip
-            )
-        },
-    );
+                "smooth overstress: Δτ₀ = {:.2} MPa along x at ({:.0}, {:.0}) m, Δτ₀·F(r)·G(t) with F(r) = \
+                 exp(r²/(r² − R²)) within R = {} m and G(t) = exp((t − T)²/(t(t − 2T))) over T = {} s",
+                N(o.overstress_pa / 1e6),
+                N(o.centre_m[0]),
+                N(o.centre_m[1]),
+                N(o.radius_m),
+                N(o.rise_s)
+            ),
+        );
+    }
+    if let NodeFriction::RateState(n) = scene.friction.law.background {
+        // Under rate and state no node holds: each slides from the first step.
+        s.push(
+            "fault",
+            match n.start {
+                RateStateStart::Balanced(v) => format!(
+                    "rate and state: every node slides from the first step at Vᵢ = {v:e} m/s, its θ₀ balancing its \
+                     initial traction (σ·f(Vᵢ, θ₀) = τ0)"
+                ),
+                _ => "rate and state: every node slides from the first step at the rate its traction and θ₀ give"
+                    .to_string(),
+            },
+        );
+    } else {
+        let per_seed = scene.fault.as_ref().is_some_and(|f| f.nucleation.is_some());
+        let excess = r
+            .median_s
+            .map_or(String::new(), |s| format!(", median strength excess S = (τs − τ0)/(τ0 − τd) = {:.2}", N(s)));
+        s.push(
+            "fault",
+            if r.overstressed.0 == 0 && per_seed {
+                format!("before the seed's square: {} nodes can slip (above μd·σn){excess}", r.can_slip)
+            } else if r.overstressed.0 == 0 {
+                "⚠ no node starts above its static strength μs·σn: nothing nucleates unless a random field or a patch \
+                 overstresses some ([[fault.patches]] with shear_stress_pa above μs·normal_stress_pa)"
+                    .to_string()
+            } else {
+                format!(
+                    "nucleation: {} nodes ({:.4e} m²) start above their static strength μs·σn and slide from the first \
+                     step; {} nodes can slip (above μd·σn){excess}",
+                    r.overstressed.0, r.overstressed.1, r.can_slip
+                )
+            },
+        );
+    }
     if let Some(l) = r.cohesive_zone_m {
         let per = l / scene.lc_m;
         s.push(

@@ -1,6 +1,7 @@
 //! Rate-and-state friction in `[friction]` (`law = "rate_state_aging"` or `"rate_state_slip"`):
-//! its coefficients in `[friction.rate_state]` (`a`, `b`, `dc_m`, `v0_m_s`, `f0` and one start,
-//! `initial_slip_rate_m_s` for steady state at that rate or `initial_state_s`), refused outside
+//! its coefficients in `[friction.rate_state]` (`a`, `b`, `dc_m`, `v0_m_s`, `f0` and one start:
+//! `initial_slip_rate_m_s` for steady state at that rate, `initial_state_s`, or
+//! `balanced_slip_rate_m_s` for sliding at that rate under a fault's initial traction), refused outside
 //! `a > 0`, `b ≥ 0`, `L > 0`, `V₀ > 0`, `0 ≤ f₀ ≤ 10`; the slip-weakening keys, `heals = false`
 //! and grid rows are refused with it. A patch gives its own a, b, L or f₀ in
 //! `[friction.patches.rate_state]` (the background's where left out); a start at steady state
@@ -30,9 +31,14 @@ pub struct RateStateSection {
     /// `initial_state_s`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub initial_slip_rate_m_s: Option<f64>,
-    /// Start from this state θ₀ (s, > 0). Exclusive with `initial_slip_rate_m_s`.
+    /// Start from this state θ₀ (s, > 0). Exclusive with the other starts.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub initial_state_s: Option<f64>,
+    /// Start each fault node sliding at this slip rate (m/s, > 0) in balance with its initial
+    /// tractions: θ₀ from `σ·f(Vᵢ, θ₀) = τ` (SCEC TPV101–104's start; on a fault only).
+    /// Exclusive with the other starts.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub balanced_slip_rate_m_s: Option<f64>,
 }
 
 /// `[friction.patches.rate_state]`: a patch's own rate-and-state coefficients, each the
@@ -131,28 +137,36 @@ fn law(ck: &mut Checker, f: &FrictionKeys, evolution: Evolution, name: &str) -> 
     ck.positive("friction.rate_state.dc_m", r.dc_m);
     ck.positive("friction.rate_state.v0_m_s", r.v0_m_s);
     ck.range("friction.rate_state.f0", r.f0, 0.0, false, 10.0, false);
-    let start = match (r.initial_slip_rate_m_s, r.initial_state_s) {
-        (Some(v), None) => {
+    let given = [r.initial_slip_rate_m_s, r.initial_state_s, r.balanced_slip_rate_m_s];
+    let keys = ["initial_slip_rate_m_s", "initial_state_s", "balanced_slip_rate_m_s"];
+    if given.iter().flatten().count() > 1 {
+        let (k, v) = (1..3).find_map(|k| given[k].map(|v| (k, v))).expect("a second start");
+        ck.push(
+            format!("friction.rate_state.{}", keys[k]),
+            num(v),
+            "left out with another start: one of initial_slip_rate_m_s (steady state at that rate), \
+             initial_state_s (θ₀) or balanced_slip_rate_m_s (sliding at that rate under the initial traction)",
+        );
+    }
+    let start = match given {
+        [Some(v), ..] => {
             ck.positive("friction.rate_state.initial_slip_rate_m_s", v);
             RateStateStart::SteadyAt(v)
         }
-        (None, Some(theta)) => {
+        [None, Some(theta), _] => {
             ck.positive("friction.rate_state.initial_state_s", theta);
             RateStateStart::State(theta)
         }
-        (Some(_), Some(theta)) => {
-            ck.push(
-                "friction.rate_state.initial_state_s",
-                num(theta),
-                "left out with initial_slip_rate_m_s: one start, steady state at a slip rate or θ₀",
-            );
-            RateStateStart::State(theta)
+        [None, None, Some(v)] => {
+            ck.positive("friction.rate_state.balanced_slip_rate_m_s", v);
+            RateStateStart::Balanced(v)
         }
-        (None, None) => {
+        [None, None, None] => {
             ck.push(
                 "friction.rate_state.initial_slip_rate_m_s",
                 "none",
-                "a start: initial_slip_rate_m_s (steady state at that rate, m/s) or initial_state_s (θ₀, s)",
+                "a start: initial_slip_rate_m_s (steady state at that rate, m/s), initial_state_s (θ₀, s) or \
+                 balanced_slip_rate_m_s (sliding at that rate under the initial traction, m/s)",
             );
             RateStateStart::SteadyAt(1e-6)
         }

@@ -4,8 +4,9 @@
 use std::path::Path;
 
 use serde::{Deserialize, Serialize};
-use stickslip_solver::fault::{Fault, Nucleation, StochasticStress};
+use stickslip_solver::fault::{Fault, Nucleation, Overstress, StochasticStress};
 use stickslip_solver::geometry::{Lattice, NodeId, NodeKind};
+use stickslip_solver::laws::{NodeFriction, RateStateStart};
 use stickslip_solver::scene::{Component, ControlChannel, Kinematic, Station};
 
 use super::SceneSections;
@@ -40,8 +41,12 @@ pub struct FaultSection {
     /// An overstressed square placed at random per seed: each seed's rupture starts elsewhere.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub nucleation: Option<NucleationSection>,
-    /// The point `[x, y]` of the fault that benchmark files measure along strike and down dip
-    /// from (m), e.g. mid-strike at the surface for TPV5. Default `[0, 0]`.
+    /// A smooth overstress that grows over a rise time (SCEC TPV101–104's nucleation).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub overstress: Option<OverstressSection>,
+    /// The point `[x, y]` of the fault's plane that benchmark files measure along strike and down
+    /// dip from (m), e.g. mid-strike at the surface for TPV5; within one face's width of the face
+    /// (a half modelled by symmetry measures from beyond its edge). Default `[0, 0]`.
     #[serde(default, skip_serializing_if = "is_origin")]
     pub origin_m: [f64; 2],
 }
@@ -164,6 +169,23 @@ pub struct NucleationSection {
     pub x_m: [f64; 2],
     /// Range `[min, max]` of the centre along y, down dip (m).
     pub y_m: [f64; 2],
+}
+
+/// `[fault.overstress]`: a shear traction along x added to the initial one,
+/// `Δτ₀·F(r)·G(t)` with `F(r) = exp(r²/(r² − R²))` inside the radius R and
+/// `G(t) = exp((t − T)²/(t(t − 2T)))` over the rise time T, 1 after (SCEC TPV101–104's
+/// nucleation; docs/model.md §15).
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct OverstressSection {
+    /// Centre `[x, y]` (m), on the fault.
+    pub centre_m: [f64; 2],
+    /// Radius R (m), at least 2·Lc.
+    pub radius_m: f64,
+    /// Δτ₀, the overstress at the centre once grown (Pa).
+    pub shear_stress_pa: f64,
+    /// Rise time T (s), ≥ 0 (0: all at once).
+    pub rise_time_s: f64,
 }
 
 /// `[[stations]]`: named points whose displacement, velocity and acceleration (x, y, z) are
@@ -356,15 +378,82 @@ pub(super) fn fault(ck: &mut Checker, file: SceneSections<'_>, lattice: &Lattice
     });
     let e = lattice.extent();
     let nucleation = f.nucleation.map(|n| nucleation(ck, &n, lattice));
-    let on_fault = (0..2).all(|a| f.origin_m[a].is_finite() && f.origin_m[a] >= 0.0 && f.origin_m[a] <= e[a]);
-    if !on_fault {
+    let overstress = f.overstress.map(|o| overstress(ck, &o, lattice));
+    // Within a face's width of it: a half modelled by symmetry measures from the whole fault's
+    // origin, which may lie beyond its edge (TPV101 from its hypocentre's plane).
+    let near = (0..2).all(|a| f.origin_m[a].is_finite() && f.origin_m[a] >= -e[a] && f.origin_m[a] <= 2.0 * e[a]);
+    if !near {
         ck.push(
             "fault.origin_m",
             format!("{:?} m", f.origin_m),
+            format!(
+                "a point in the fault's plane within one face's width of it, −{0} ≤ x ≤ {1} m and −{2} ≤ y ≤ {3} m",
+                num(e[0]),
+                num(2.0 * e[0]),
+                num(e[1]),
+                num(2.0 * e[1])
+            ),
+        );
+    }
+    Some(Fault { shear_pa: shear, normal_pa: normal, stochastic, nucleation, overstress, origin_m: f.origin_m })
+}
+
+/// `[fault.overstress]` checked: its centre on the fault, a radius the lattice resolves, a finite
+/// overstress and rise time.
+fn overstress(ck: &mut Checker, o: &OverstressSection, lattice: &Lattice) -> Overstress {
+    let field = "fault.overstress";
+    let e = lattice.extent();
+    let [x, y] = o.centre_m;
+    if !(x.is_finite() && y.is_finite() && (0.0..=e[0]).contains(&x) && (0.0..=e[1]).contains(&y)) {
+        ck.push(
+            format!("{field}.centre_m"),
+            format!("[{}, {}]", num(x), num(y)),
             format!("a point of the fault, 0 ≤ x ≤ {} m and 0 ≤ y ≤ {} m", num(e[0]), num(e[1])),
         );
     }
-    Some(Fault { shear_pa: shear, normal_pa: normal, stochastic, nucleation, origin_m: f.origin_m })
+    if ck.positive(&format!("{field}.radius_m"), o.radius_m) && o.radius_m < 2.0 * lattice.lc() {
+        ck.push(
+            format!("{field}.radius_m"),
+            num(o.radius_m),
+            format!("at least 2·Lc = {} m: a bump the lattice cannot resolve is one node", approx(2.0 * lattice.lc())),
+        );
+    }
+    ck.range(&format!("{field}.shear_stress_pa"), o.shear_stress_pa, f64::NEG_INFINITY, true, f64::INFINITY, true);
+    if o.shear_stress_pa == 0.0 {
+        ck.push(format!("{field}.shear_stress_pa"), 0, "an overstress other than 0 (leave the section out)");
+    }
+    ck.range(&format!("{field}.rise_time_s"), o.rise_time_s, 0.0, false, f64::INFINITY, true);
+    Overstress { centre_m: o.centre_m, radius_m: o.radius_m, overstress_pa: o.shear_stress_pa, rise_s: o.rise_time_s }
+}
+
+/// Refuses a rate-and-state start balanced against the initial traction
+/// (`friction.rate_state.balanced_slip_rate_m_s`) without a fault, or on a fault with a node
+/// whose shear traction is not positive (it cannot slide forward at any state).
+pub(super) fn refuse_unbalanced_start(
+    ck: &mut Checker,
+    fault: Option<&Fault>,
+    friction: &stickslip_solver::scene::Friction,
+) {
+    let NodeFriction::RateState(node) = friction.law.node(1.0) else { return };
+    let RateStateStart::Balanced(v) = node.start else { return };
+    let field = "friction.rate_state.balanced_slip_rate_m_s";
+    match fault {
+        None => ck.push(
+            field,
+            num(v),
+            "a [fault] section: the start is balanced against a fault's initial shear and normal tractions \
+             (on a rigid base use initial_slip_rate_m_s or initial_state_s)",
+        ),
+        Some(f) => {
+            if let Some(c) = f.shear_pa.iter().position(|s| s[0].hypot(s[1]) <= 0.0) {
+                ck.push(
+                    "fault.shear_stress_pa",
+                    format!("0 on base node {c}"),
+                    format!("a shear traction > 0 on every node with {field}: a node slides at Vᵢ only under shear"),
+                );
+            }
+        }
+    }
 }
 
 /// On a fault, two fault stations (`record.fault_stations_m`, on different nodes) whose

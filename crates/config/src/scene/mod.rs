@@ -132,6 +132,7 @@ pub(crate) fn build(file: SceneSections<'_>, ck: &mut Checker) -> Option<Scene> 
     let medium = medium::medium(ck, file);
     let friction = friction::friction(ck, file.friction, law, &lattice);
     fault::refuse_unresolved_rate_state(ck, fault.as_ref(), &friction, file.material, file.block.lc_m);
+    fault::refuse_unbalanced_start(ck, fault.as_ref(), &friction);
     let (plate, normal_load) = match file.loading_plate {
         Some(lp) => boundaries::loading_plate(ck, lp, &lattice, &fixed),
         None => (None, None),

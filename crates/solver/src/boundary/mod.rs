@@ -62,6 +62,9 @@ pub struct LoadingState<const L: usize> {
     pub plate_base: Vec<Lanes<L>>,
     /// Force of each plate spring on its node in x at the viewed time (N).
     pub plate_force: Vec<Lanes<L>>,
+    /// The fault's smooth overstress's share of its peak, `G(t)`, for the step about to be taken
+    /// (0 before the shear stage and without one; [`crate::fault::Overstress::ramp`]).
+    pub overstress: Lanes<L>,
 }
 
 /// What a boundary acts on in a step of `L` seeds.

@@ -2,7 +2,8 @@
 //! and y on every node of the base face, from the start of the run, in each seed's own values
 //! ([`crate::fault::FaultLanes`], carried by the step's parameters). Measured from the prestressed
 //! equilibrium, the force is what the prestressed body pulls on the fault with; the friction of
-//! the other side balances it while the node sticks. Its work is the ledger's `traction_work`; it
+//! the other side balances it while the node sticks. A smooth overstress
+//! ([`crate::fault::Overstress`]) adds its peak force along x times its ramp `G(t)`. Its work is the ledger's `traction_work`; it
 //! adds no stiffness. The skip-ahead's motion does not include it.
 
 use super::{Boundary, Phase, Step, Work};
@@ -43,6 +44,13 @@ impl Boundary for Traction {
                 }
             }
         }
+        let g = &s.loading.overstress;
+        for (peak, &node) in f.overstress_n.iter().zip(&self.nodes) {
+            let i = node as usize;
+            for l in 0..L {
+                s.trial.c[0][i][l] += peak[l] * g[l] * s.cf[l] / s.mass[i];
+            }
+        }
     }
 
     fn work<const L: usize>(&self, w: &mut Work<'_, L>) {
@@ -54,6 +62,9 @@ impl Boundary for Traction {
                 let mut sum = 0.0;
                 for axis in 0..2 {
                     sum += f.shear_n[axis][ci][l] * (w.new.c[axis][i][l] - w.old.c[axis][i][l]);
+                }
+                if let Some(peak) = f.overstress_n.get(ci) {
+                    sum += peak[l] * w.loading.overstress[l] * (w.new.c[0][i][l] - w.old.c[0][i][l]);
                 }
                 w.parts[part][l].traction_work += 0.5 * sum;
             }

@@ -19,7 +19,7 @@ use rayon::prelude::*;
 
 use crate::error::SolverError;
 use crate::laws::Evolution;
-use crate::laws::rate_state::{RateStateNode, balance_from};
+use crate::laws::rate_state::{RateStateNode, RateStateStart, balance_from, balanced_state};
 
 use super::antiplane::FaultStiffness;
 
@@ -123,7 +123,15 @@ impl QuasiDynamicFault {
     pub fn start(&self) -> CycleState {
         let n = self.nodes();
         let slip = vec![0.0; n];
-        let log_state: Vec<f64> = self.friction.iter().map(|f| f.theta0_s().ln()).collect();
+        let log_state: Vec<f64> = (self.friction.iter().enumerate())
+            .map(|(i, f)| match f.start {
+                // Balanced with the radiation damping's share of the traction.
+                RateStateStart::Balanced(v) => {
+                    balanced_state(f, v, self.shear0_pa[i], self.normal_pa[i], self.eta_pa_s_m).ln()
+                }
+                _ => f.theta0_s(self.shear0_pa[i], self.normal_pa[i]).ln(),
+            })
+            .collect();
         let mut s =
             CycleState { t_s: 0.0, slip_m: slip, log_state, slip_rate_m_s: vec![0.0; n], shear_pa: vec![0.0; n] };
         let mut scratch = Scratch::new(n);

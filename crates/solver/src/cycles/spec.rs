@@ -2,7 +2,7 @@
 
 use crate::error::SolverError;
 use crate::geometry::Dims;
-use crate::laws::{NodeFriction, RateStateNode, RateStateStart};
+use crate::laws::{NodeFriction, RateStateStart, balanced_state};
 use crate::model::Model;
 use crate::scene::Scene;
 
@@ -108,17 +108,6 @@ impl CycleSpec {
     }
 }
 
-/// `θ₀` with which a node slides at `v` under `tau` (SEAS BP1–BP3's start):
-/// `(L/V₀)·exp{(a/b)·ln[(2V₀/V)·sinh((τ − ηV)/(aσ))] − f₀/b}`; steady state `L/V` when b = 0.
-pub fn balanced_state(n: &RateStateNode, v: f64, tau: f64, sigma: f64, eta: f64) -> f64 {
-    if n.b == 0.0 {
-        return n.dc_m / v;
-    }
-    let x = (tau - eta * v) / (n.a * sigma);
-    let ln_sinh = if x > 20.0 { x - std::f64::consts::LN_2 } else { x.sinh().ln() };
-    (n.dc_m / n.v0_m_s) * ((n.a / n.b) * ((2.0 * n.v0_m_s / v).ln() + ln_sinh) - n.f0 / n.b).exp()
-}
-
 /// The antiplane stencil of the scene's lattice: read from a slab of 1 × 4 × 3 modules of the
 /// scene's material and module side, built as the solver builds any block.
 pub fn scene_stencil(scene: &Scene) -> Result<AntiplaneStencil, SolverError> {
@@ -169,7 +158,7 @@ impl QuasiDynamicFault {
                 node.a = a;
             }
             let (sigma, tau) = (fault.normal_pa[c], fault.shear_pa[c][0]);
-            if let RateStateStart::SteadyAt(v) = node.start {
+            if let RateStateStart::SteadyAt(v) | RateStateStart::Balanced(v) = node.start {
                 node.start = RateStateStart::State(balanced_state(&node, v, tau, sigma, eta));
             }
             friction.push(node);

@@ -37,7 +37,7 @@ use std::fmt::Debug;
 
 pub use exponential::{Exponential, ExponentialNode, ExponentialWeakening};
 pub use map::{FrictionMap, Region, RegionKind};
-pub use rate_state::{Evolution, RateState, RateStateNode, RateStateStart};
+pub use rate_state::{Evolution, RateState, RateStateNode, RateStateStart, balanced_state};
 pub use slip_weakening::{Coulomb, SlipWeakening, StaticDynamic, Weakening, WeakeningLanes, WeakeningNode};
 
 /// A friction law of the base: its coefficients at one contact node, its one state variable
@@ -79,9 +79,10 @@ pub trait Law: Copy + Debug + Default + Send + Sync + 'static {
     /// The state variable of a sliding node after it moved `slid_m` metres in a step of `dt_s`
     /// seconds.
     fn advance(node: &Self::Node, state: f64, slid_m: f64, dt_s: f64) -> f64;
-    /// The state variable at the start of a run (0, no slip yet, unless the law says otherwise:
-    /// θ₀ for a rate-and-state law).
-    fn initial_state(_node: &Self::Node) -> f64 {
+    /// The state variable at the start of a run of a node whose initial shear and normal
+    /// tractions are `tau_pa` and `sigma_pa` (0 off a fault): 0, no slip yet, unless the law says
+    /// otherwise (θ₀ for a rate-and-state law).
+    fn initial_state(_node: &Self::Node, _tau_pa: f64, _sigma_pa: f64) -> f64 {
         0.0
     }
     /// The coefficients times a random-field factor (the Weibull field on μ).
@@ -259,12 +260,18 @@ macro_rules! laws {
             }
 
             /// Every contact node's state variable at the start of a run, lane by lane
-            /// ([`Law::initial_state`]).
-            pub fn initial_states(&self) -> Vec<[f64; L]> {
+            /// ([`Law::initial_state`]), `traction(c, l)` giving node `c`'s initial shear and
+            /// normal traction in lane `l` (Pa, or forces on the node's area: a balanced start
+            /// reads their ratio; zeros off a fault).
+            pub fn initial_states(&self, traction: impl Fn(usize, usize) -> (f64, f64)) -> Vec<[f64; L]> {
                 match self {
                     $(FrictionLaws::$variant(v) => v
                         .iter()
-                        .map(|c| std::array::from_fn(|l| <$law>::initial_state(&<$law>::lane(c, l))))
+                        .enumerate()
+                        .map(|(ci, c)| std::array::from_fn(|l| {
+                            let (tau, sigma) = traction(ci, l);
+                            <$law>::initial_state(&<$law>::lane(c, l), tau, sigma)
+                        }))
                         .collect(),)+
                 }
             }

@@ -65,11 +65,13 @@ impl Default for RateStateStart {
 }
 
 impl RateStateNode {
-    /// The state at the start of the run θ₀ (s).
-    pub fn theta0_s(&self) -> f64 {
+    /// The state at the start of the run θ₀ (s) of a node whose initial shear and normal
+    /// tractions are `tau_pa` and `sigma_pa` (a balanced start needs them; the others do not).
+    pub fn theta0_s(&self, tau_pa: f64, sigma_pa: f64) -> f64 {
         match self.start {
             RateStateStart::SteadyAt(v) => self.dc_m / v,
             RateStateStart::State(theta) => theta,
+            RateStateStart::Balanced(v) => balanced_state(self, v, tau_pa, sigma_pa, 0.0),
         }
     }
 
@@ -221,9 +223,13 @@ impl Law for RateState {
     }
 
     /// The strength at V₀ from the starting state, `f(V₀, θ₀)`: what the static self-weight
-    /// solve and `check` take as the node's static coefficient.
+    /// solve and `check` take as the node's static coefficient; f₀ for a balanced start (its θ₀
+    /// depends on the node's traction).
     fn static_coefficient(node: &RateStateNode) -> f64 {
-        friction(node, node.v0_m_s, node.theta0_s())
+        match node.start {
+            RateStateStart::Balanced(_) => node.f0,
+            _ => friction(node, node.v0_m_s, node.theta0_s(0.0, 0.0)),
+        }
     }
 
     /// `f(V₂, θ*)` of the two-pass step (`need/N`, holding it, when `V₂` underflows to 0); 0 for
@@ -256,8 +262,8 @@ impl Law for RateState {
         evolve(node, theta, slid_m / dt_s, dt_s)
     }
 
-    fn initial_state(node: &RateStateNode) -> f64 {
-        node.theta0_s()
+    fn initial_state(node: &RateStateNode, tau_pa: f64, sigma_pa: f64) -> f64 {
+        node.theta0_s(tau_pa, sigma_pa)
     }
 
     /// a, b and f₀ times the factor: the steady-state friction `f₀ + (a − b)·ln(V/V₀)` scales
@@ -304,18 +310,38 @@ impl Law for RateState {
             Coefficient { symbol: "L", value: node.dc_m, unit: "m" },
             Coefficient { symbol: "V₀", value: node.v0_m_s, unit: "m/s" },
             Coefficient { symbol: "f₀", value: node.f0, unit: "" },
-            Coefficient { symbol: "θ₀", value: node.theta0_s(), unit: "s" },
+            match node.start {
+                RateStateStart::Balanced(v) => Coefficient { symbol: "Vᵢ (θ₀ balanced)", value: v, unit: "m/s" },
+                _ => Coefficient { symbol: "θ₀", value: node.theta0_s(0.0, 0.0), unit: "s" },
+            },
         ]
     }
 }
 
-/// How a rate-and-state law starts: at steady state at a slip rate, or from a given state.
+/// How a rate-and-state law starts: at steady state at a slip rate, from a given state, or from
+/// the state with which the node's initial traction slides it at a slip rate.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum RateStateStart {
     /// θ₀ = L/Vᵢ: steady state at slip rate Vᵢ (m/s).
     SteadyAt(f64),
     /// θ₀ (s).
     State(f64),
+    /// θ₀ such that `σ·f(Vᵢ, θ₀) = τ` on each node, from its initial tractions
+    /// ([`balanced_state`]): the node starts sliding at Vᵢ (m/s) in balance, as SCEC TPV101–104
+    /// start.
+    Balanced(f64),
+}
+
+/// `θ₀` with which a node slides at `v` under shear `tau` and normal stress `sigma` with
+/// radiation damping `eta` (SEAS BP1–BP3's start; TPV101's with `eta = 0`):
+/// `(L/V₀)·exp{(a/b)·ln[(2V₀/V)·sinh((τ − ηV)/(aσ))] − f₀/b}`; steady state `L/V` when b = 0.
+pub fn balanced_state(n: &RateStateNode, v: f64, tau: f64, sigma: f64, eta: f64) -> f64 {
+    if n.b == 0.0 {
+        return n.dc_m / v;
+    }
+    let x = (tau - eta * v) / (n.a * sigma);
+    let ln_sinh = if x > 20.0 { x - std::f64::consts::LN_2 } else { x.sinh().ln() };
+    (n.dc_m / n.v0_m_s) * ((n.a / n.b) * ((2.0 * n.v0_m_s / v).ln() + ln_sinh) - n.f0 / n.b).exp()
 }
 
 /// A scene's law from the background's coefficients.
@@ -369,18 +395,18 @@ mod tests {
         let (v1, v2) = (1e-6, 1e-4);
         for evolution in [Evolution::Aging, Evolution::Slip] {
             let n = RateStateNode { start: RateStateStart::SteadyAt(v1), ..node(evolution) };
-            let before = friction(&n, v1, n.theta0_s());
-            let jump = friction(&n, v2, n.theta0_s()) - before;
+            let before = friction(&n, v1, n.theta0_s(0.0, 0.0));
+            let jump = friction(&n, v2, n.theta0_s(0.0, 0.0)) - before;
             assert!((jump - n.a * (v2 / v1).ln()).abs() < 1e-12, "{evolution:?}: jump {jump}");
             // 1000 steps over 20 L of slip: the aging law's exact solution of θ(δ), and friction
             // back to the new steady state.
             let dt = 20.0 * n.dc_m / v2 / 1000.0;
-            let mut theta = n.theta0_s();
+            let mut theta = n.theta0_s(0.0, 0.0);
             for i in 1..=1000 {
                 theta = evolve(&n, theta, v2, dt);
                 if evolution == Evolution::Aging {
                     let delta = v2 * dt * f64::from(i);
-                    let exact = n.dc_m / v2 + (n.theta0_s() - n.dc_m / v2) * (-delta / n.dc_m).exp();
+                    let exact = n.dc_m / v2 + (n.theta0_s(0.0, 0.0) - n.dc_m / v2) * (-delta / n.dc_m).exp();
                     assert!((theta / exact - 1.0).abs() < 1e-12, "step {i}: {theta} vs {exact}");
                 }
             }
@@ -431,7 +457,7 @@ mod tests {
         let aging = node(Evolution::Aging);
         assert_eq!(RateState::stuck(&aging, 5.0, 0.5), 5.5);
         assert_eq!(RateState::stuck(&node(Evolution::Slip), 5.0, 0.5), 5.0);
-        assert_eq!(RateState::initial_state(&aging), 0.008 / 1e-9);
+        assert_eq!(RateState::initial_state(&aging, 0.0, 0.0), 0.008 / 1e-9);
         let doubled = RateState::scaled(&aging, 2.0);
         let v = 1e-3;
         assert!((steady_friction(&doubled, v) - 2.0 * steady_friction(&aging, v)).abs() < 1e-12);
@@ -453,7 +479,7 @@ mod tests {
     #[test]
     fn the_two_pass_step_slides_at_the_rate_its_friction_balances() {
         let n = node(Evolution::Aging);
-        let theta = n.theta0_s();
+        let theta = n.theta0_s(0.0, 0.0);
         let (g, dt) = (1e9, 1e-4);
         let trial = Trial { need_n: 0.75, normal_n: 1.0, g_n_m: g, dt_s: dt, slip_per_slide: 2.0 };
         let mu = RateState::kinetic(&n, theta, &trial);

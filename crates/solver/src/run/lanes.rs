@@ -349,6 +349,9 @@ pub(crate) fn run_lanes_with<const L: usize, H: Hooks<L>>(
             if let Stage::Shearing { origin, .. } = lane.stage {
                 let t = (next - origin) as f64 * params.dt(l);
                 state.loading.target[l] = scene.shear.driver_displacement(t);
+                // The step's forces act at the newest level, one step before `next`.
+                state.loading.overstress[l] =
+                    scene.fault.as_ref().and_then(|f| f.overstress).map_or(0.0, |o| o.ramp(t - params.dt(l)));
             }
         }
         stepper.step(&params, &mut state);
@@ -660,7 +663,7 @@ fn start_at_rest<const L: usize>(
         0.0,
     );
     // The law's state at the start of the run (θ₀ of a rate-and-state law; 0, no slip, else).
-    for (state, initial) in state.contact.state.iter_mut().zip(params.friction.initial_states()) {
+    for (state, initial) in state.contact.state.iter_mut().zip(params.initial_states()) {
         state[l] = initial[l];
     }
     let b = params.body_acceleration(l);

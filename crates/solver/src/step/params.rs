@@ -49,6 +49,15 @@ pub struct Params<'m, const L: usize> {
 }
 
 impl<'m, const L: usize> Params<'m, L> {
+    /// Every contact node's state variable at the start of a run, lane by lane
+    /// ([`crate::laws::Law::initial_state`]), from its initial shear and normal loads on a fault.
+    pub fn initial_states(&self) -> Vec<[f64; L]> {
+        self.friction.initial_states(|ci, l| match &self.fault {
+            Some(f) => (f.shear_n[0][ci][l].hypot(f.shear_n[1][ci][l]), f.normal_n[ci][l]),
+            None => (0.0, 0.0),
+        })
+    }
+
     /// Parameters of `L` seeds with no damping and no body force.
     pub fn new(model: &'m Model, lanes: &[LaneSetup; L]) -> Self {
         let nb = model.bar_count();

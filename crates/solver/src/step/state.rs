@@ -123,6 +123,7 @@ impl<const L: usize> State<L> {
                 reaction: vec![[0.0; L]; drivers],
                 plate_base: vec![[0.0; L]; plate],
                 plate_force: vec![[0.0; L]; plate],
+                overstress: [0.0; L],
             },
             energy: [Energy::default(); L],
             energy_parts: Vec::new(),
@@ -142,7 +143,7 @@ impl<const L: usize> State<L> {
     pub fn for_params(p: &Params<'_, L>) -> Self {
         let m = p.model;
         let mut s = State::at_rest_with_plate(m.node_count(), m.contact().len(), m.drivers().len(), m.plate().len());
-        s.contact.state = p.friction.initial_states();
+        s.contact.state = p.initial_states();
         s.rupture = p.rupture.as_ref().map(|r| RuptureState::intact(p.k.per_bar(), r));
         if p.anelastic.as_ref().is_some_and(|a| a.memory()) {
             s.anelastic = vec![[[0.0; crate::medium::MECHANISMS]; L]; m.bar_count()];

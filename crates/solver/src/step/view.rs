@@ -47,6 +47,8 @@ pub struct NodeContact {
     pub slipping: bool,
     /// Off the base.
     pub lifted: bool,
+    /// The friction law's state variable ([`crate::laws::Law`]: θ (s) under rate and state).
+    pub state: f64,
 }
 
 impl Interface {
@@ -135,6 +137,7 @@ impl<const L: usize> LaneView<'_, '_, L> {
             slip_rate_y: (u.np1.c[1][p][l] - u.nm1.c[1][p][l]) * h,
             slipping: self.state.contact.sliding[ci][l],
             lifted: r[2][ci][l] == 0.0,
+            state: self.state.contact.state[ci][l],
         }
     }
 

@@ -11,6 +11,7 @@
 use std::time::{SystemTime, UNIX_EPOCH};
 
 use stickslip_seismo::scec::{Header, OffFault, OnFault, cplot_text, off_fault_text, on_fault_text};
+use stickslip_solver::laws::NodeFriction;
 use stickslip_solver::scene::{Component, Kinematic};
 
 use crate::error::StoreError;
@@ -36,6 +37,7 @@ pub fn write(out: &Folder, view: &SeedView<'_>, stamp: &Stamp<'_>) -> Result<(),
     let keep = trace.thinned(model.scene().record.fault_interval_s);
     let pick = |v: &[f64]| keep.iter().map(|&k| v[k]).collect::<Vec<f64>>();
     let t = pick(&trace.time_s);
+    let rate_state = matches!(model.scene().friction.law.background, NodeFriction::RateState(_));
     for st in &trace.stations {
         let p = lattice.position(st.node);
         let (strike, depth) = (p[0] - x0, p[1] - y0);
@@ -49,7 +51,15 @@ pub fn write(out: &Folder, view: &SeedView<'_>, stamp: &Stamp<'_>) -> Result<(),
         let (sh, sv) = (pick(&st.slip_m[0]), pick(&st.slip_m[1]));
         let (rh, rv) = (pick(&st.slip_rate_m_s[0]), pick(&st.slip_rate_m_s[1]));
         let (th, tv) = (pick(&st.shear_stress_pa[0]), pick(&st.shear_stress_pa[1]));
-        let series = OnFault { time_s: &t, slip_m: [&sh, &sv], slip_rate_m_s: [&rh, &rv], shear_stress_pa: [&th, &tv] };
+        let (normal, state) = (pick(&st.normal_stress_pa), pick(&st.state));
+        let rate_state = rate_state.then_some([&normal[..], &state[..]]);
+        let series = OnFault {
+            time_s: &t,
+            slip_m: [&sh, &sv],
+            slip_rate_m_s: [&rh, &rv],
+            shear_stress_pa: [&th, &tv],
+            rate_state,
+        };
         write_text_atomic(
             &dir.join(format!("{}.dat", super::fault_station_file(p, Some(fault.origin_m)))),
             &on_fault_text(&header, &series),
