@@ -160,3 +160,105 @@ fn broadband_records_are_the_same_on_any_thread_count() {
     assert!(!rock.is_empty());
     assert!(rock.iter().all(|&i| det.get(i) == det.get(i + half)));
 }
+
+/// TPV101's nucleation through the whole product (pipeline file → run → benchmark files): the
+/// hypocentre's history up to its peak slip rate is local (the same to four digits on a 16 × 7.6 ×
+/// 2 km block of velocity-weakening friction as on the benchmark's 56 × 20.5 × 20 km, 9 s on two
+/// threads against 30 min), so a cut of `pipelines/tpv101.toml` to that block and 1.6 s meets the
+/// reference (`pipelines/reference/tpv101/`, Tatva at 100 m) there: rupture at 0.5713 s against
+/// 0.5693 s (+0.3%), peak slip rate 4.565 m/s at 1.358 s against 4.522 m/s at 1.405 s (+1.0%). The
+/// whole benchmark at 100 m against the reference is in docs/guide/faults.md.
+#[test]
+fn tpv101_nucleates_at_its_hypocentre_as_the_reference() {
+    let dir = stickslip_support::scratch_dir("tpv101-hypocentre");
+    let text = std::fs::read_to_string(stickslip_support::repo_path("pipelines/tpv101.toml")).unwrap();
+    let (patch, fault) = (text.find("\n[[friction.patches]]").unwrap(), text.find("\n[fault]\n").unwrap());
+    let (stations, events) = (text.find("fault_stations_m = [").unwrap(), text.find("]\n\n[events]").unwrap());
+    let cut =
+        format!("{}{}fault_stations_m = [[8000.0, 0.0]{}", &text[..patch], &text[fault..stations], &text[events..])
+            .replace("nx = 560", "nx = 160")
+            .replace("ny = 205", "ny = 76")
+            .replace("nz = 200", "nz = 20")
+            .replace("duration_s = 12.0", "duration_s = 1.6")
+            .replace("a = 0.016 ", "a = 0.008 ")
+            .replace("28000.0", "8000.0");
+    let file = dir.join("tpv101-hypocentre.toml");
+    std::fs::write(&file, cut).unwrap();
+    let p = Pipeline::load(&file).unwrap();
+    let out = dir.join("out");
+    let options = EnsembleOptions {
+        checkpoint_every_s: None,
+        out: out.clone(),
+        threads: 2,
+        seeds: vec![1],
+        fresh: false,
+        finish: true,
+    };
+    let report = run_ensemble(&p, &options, &|_, _| {}, &AtomicBool::new(false)).unwrap();
+    assert!(report.failed.is_empty(), "{:?}", report.failed);
+
+    let (stations, _) = read_run(&out.join("scec").join("seed1")).unwrap();
+    let reference = Reference::load(&stickslip_support::repo_path("pipelines/reference/tpv101")).unwrap();
+    let c = compare(&stations, &[], &reference);
+    let s = c.stations.iter().find(|s| s.reference.name == "faultst000dp075").unwrap();
+    assert!(s.offset_m < 1.0, "the run's station is not at the hypocentre");
+    let (t, r) = (s.rupture_time_s / s.reference.rupture_time_s, s.peak_slip_rate_m_s / s.reference.peak_slip_rate_m_s);
+    println!(
+        "hypocentre: rupture {:.4} s ({:+.2}%), peak slip rate {:.3} m/s ({:+.2}%)",
+        s.rupture_time_s,
+        100.0 * (t - 1.0),
+        s.peak_slip_rate_m_s,
+        100.0 * (r - 1.0)
+    );
+    assert!((t - 1.0).abs() < 0.03, "rupture at {} s against {} s", s.rupture_time_s, s.reference.rupture_time_s);
+    assert!(
+        (r - 1.0).abs() < 0.05,
+        "peak slip rate {} against {} m/s",
+        s.peak_slip_rate_m_s,
+        s.reference.peak_slip_rate_m_s
+    );
+
+    // The station file in TPV101's layout: nine columns, log θ from the benchmark's 9.20581.
+    let text = std::fs::read_to_string(out.join("scec/seed1/faultst000dp075.dat")).unwrap();
+    let (names, rows) = read_table(&text);
+    assert_eq!(&names[7..], ["n-stress", "log-theta"]);
+    assert_eq!(rows[0][7..], [120.0, 9.20581]);
+}
+
+/// TPV101 at 100 m, the benchmark as posed (`pipelines/tpv101.toml`, about 30 min on two threads),
+/// against the reference, held to what it does (docs/guide/faults.md): slips at 12 s within 2.5%
+/// (measured +0.5 … +1.6%; goal 5%), rupture times within 6% and the field within 6% RMS (measured
+/// −4.6 … −5.5% and 4.9%: the front runs early, the goal of 3% is not met), the peak slip rate
+/// within 5% at the hypocentre and at (0, 12 km) (measured +1.0% and −0.7%) and within 40% farther
+/// out (+19% and +36%: the lattice's ringing behind the front).
+#[test]
+#[ignore = "30 min on two threads: TPV101 at 100 m, 320 M bars"]
+fn tpv101_at_100_m_follows_the_reference() {
+    let dir = stickslip_support::scratch_dir("tpv101-100m");
+    let p = Pipeline::load(&stickslip_support::repo_path("pipelines/tpv101.toml")).unwrap();
+    let out = dir.join("tpv101");
+    let options = EnsembleOptions {
+        checkpoint_every_s: None,
+        out: out.clone(),
+        threads: 2,
+        seeds: vec![1],
+        fresh: false,
+        finish: true,
+    };
+    let report = run_ensemble(&p, &options, &|_, _| {}, &AtomicBool::new(false)).unwrap();
+    assert!(report.failed.is_empty(), "{:?}", report.failed);
+    let reference = Reference::load(&stickslip_support::repo_path("pipelines/reference/tpv101")).unwrap();
+    let (stations, field) = read_run(&out.join("scec").join("seed1")).unwrap();
+    let c = compare(&stations, &field, &reference);
+    println!("{}", stickslip_lab::scec::table(&c));
+    assert!(c.field_points > 300 && c.field_rms < 0.06, "field: RMS {} at {} points", c.field_rms, c.field_points);
+    for s in &c.stations {
+        let r = &s.reference;
+        assert!(s.offset_m < 1.0, "{}: no run station there", r.name);
+        assert!((s.rupture_time_s / r.rupture_time_s - 1.0).abs() < 0.06, "{}: rupture {}", r.name, s.rupture_time_s);
+        assert!((s.final_slip_m / r.final_slip_m - 1.0).abs() < 0.025, "{}: slip {}", r.name, s.final_slip_m);
+        let peak = s.peak_slip_rate_m_s / r.peak_slip_rate_m_s;
+        let within = if r.at_km[0] == 0.0 { 0.05 } else { 0.4 };
+        assert!((peak - 1.0).abs() < within, "{}: peak slip rate {}", r.name, s.peak_slip_rate_m_s);
+    }
+}

@@ -352,7 +352,7 @@ pub fn figure(
     let mut panels = vec![map];
     // TPV5's four stations, or the reference's first four.
     let tpv5 = ["faultst000dp075", "faultst-075dp075", "faultst075dp075", "faultst000dp000"];
-    let chosen: Vec<&ReferenceStation> = if reference.stations.iter().any(|s| tpv5.contains(&s.name.as_str())) {
+    let chosen: Vec<&ReferenceStation> = if tpv5.iter().all(|n| reference.stations.iter().any(|s| s.name == *n)) {
         tpv5.iter().filter_map(|n| reference.stations.iter().find(|s| s.name == *n)).collect()
     } else {
         reference.stations.iter().take(4).collect()
