@@ -223,6 +223,16 @@ fn tpv101_nucleates_at_its_hypocentre_as_the_reference() {
     let (names, rows) = read_table(&text);
     assert_eq!(&names[7..], ["n-stress", "log-theta"]);
     assert_eq!(rows[0][7..], [120.0, 9.20581]);
+
+    // The block is the half below the mirror plane: the source counts both halves.
+    let nodes = stickslip_support::read_table(&out.join("tables").join("fault_nodes.parquet"));
+    let (area, time) =
+        (nodes.column("area_m2").unwrap().f64().unwrap(), nodes.column("rupture_time_s").unwrap().f64().unwrap());
+    let half: f64 =
+        (0..nodes.height()).filter(|&i| time.get(i).is_some_and(f64::is_finite)).map(|i| area.get(i).unwrap()).sum();
+    let source = stickslip_support::read_table(&out.join("tables").join("source.parquet"));
+    let whole = source.column("ruptured_area_m2").unwrap().f64().unwrap().get(0).unwrap();
+    assert!(half > 0.0 && (whole / half - 2.0).abs() < 1e-12, "source area {whole} m² for a half of {half} m²");
 }
 
 /// TPV101 at 100 m, the benchmark as posed (`pipelines/tpv101.toml`, about 30 min on two threads),

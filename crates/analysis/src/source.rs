@@ -29,9 +29,9 @@ use crate::motions::Motion;
 pub struct Source {
     /// Contact nodes that ruptured (slip rate reached the threshold).
     pub ruptured_nodes: usize,
-    /// Their fault area (m²).
+    /// Their fault area (m²), the mirror image's included ([`stickslip_solver::Scene::fault_copies`]).
     pub area_m2: f64,
-    /// Seismic moment `μ·Σ A_i·|D_i|` (N·m).
+    /// Seismic moment `μ·Σ A_i·|D_i|` (N·m), the mirror image's included.
     pub m0_n_m: f64,
     /// Moment magnitude `(2/3)(log10 M0 − 9.1)`.
     pub mw: f64,
@@ -103,6 +103,11 @@ pub fn source(rec: &Recording, model: &Model) -> Option<Source> {
         (c44 * potency, s_speed * potency)
     };
     let (c44, s_speed) = if layered && potency > 0.0 { (m0 / potency, vs_sum / potency) } else { (c44, s_speed) };
+    // A block that is one half of a fault mirrored across a face (its base nodes there held in
+    // y) stands for the whole: the mirror image ruptures alike, so area and moment double; means
+    // are the half's.
+    let copies = scene.fault_copies();
+    let (area_whole, m0) = (copies * area, copies * m0);
     // The mean slip direction, along which the drop is measured.
     let (sx, sy) = ruptured.iter().fold((0.0, 0.0), |(a, b), &i| {
         (a + f.area_m2[i] * f.final_slip_m[i][0], b + f.area_m2[i] * f.final_slip_m[i][1])
@@ -137,7 +142,7 @@ pub fn source(rec: &Recording, model: &Model) -> Option<Source> {
     };
     Some(Source {
         ruptured_nodes: ruptured.len(),
-        area_m2: area,
+        area_m2: area_whole,
         m0_n_m: m0,
         mw: moment_magnitude(m0),
         mean_slip_m: potency / area,

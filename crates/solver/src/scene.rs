@@ -564,6 +564,30 @@ impl Scene {
         if self.is_fault() { 2.0 } else { 1.0 }
     }
 
+    /// How many copies of the modelled fault the whole fault is: 2 for each face across the
+    /// fault (`y = 0`, `y = max`) whose every base node is held in y on a fault scene — a rigid
+    /// frictionless wall, which is a mirror plane of the displacement field, so the block is one
+    /// half of a scene symmetric about it (TPV101's below its hypocentre). 1 otherwise.
+    pub fn fault_copies(&self) -> f64 {
+        if !self.is_fault() {
+            return 1.0;
+        }
+        let lattice = self.lattice();
+        let held: std::collections::HashSet<NodeId> =
+            self.fixed().iter().filter(|(_, mask)| mask[1]).map(|(id, _)| *id).collect();
+        let held_y = |id: NodeId| held.contains(&id);
+        let top = 2 * self.dims.ny;
+        let mut copies = 1.0;
+        for row in [0, top] {
+            let nodes: Vec<NodeId> =
+                lattice.contact_nodes().into_iter().filter(|&id| lattice.half_units(id)[1] == row).collect();
+            if !nodes.is_empty() && nodes.iter().all(|&id| held_y(id)) {
+                copies *= 2.0;
+            }
+        }
+        copies
+    }
+
     /// The lattice of this scene.
     pub fn lattice(&self) -> Lattice {
         Lattice::new(self.dims, self.lc_m)

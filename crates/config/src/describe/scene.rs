@@ -189,6 +189,16 @@ pub fn fault(model: &Model, first_seed: u64) -> Section {
             ),
         );
     }
+    let copies = scene.fault_copies();
+    if copies > 1.0 {
+        s.push(
+            "fault",
+            format!(
+                "mirror: the base's nodes on a face across the fault are held in y, a mirror plane: the block is 1/{copies} \
+                 of the fault, and the source table counts the mirror image too (ruptured area and M0 ×{copies})"
+            ),
+        );
+    }
     if let NodeFriction::RateState(n) = scene.friction.law.background {
         // Under rate and state no node holds: each slides from the first step.
         s.push(
