@@ -231,7 +231,7 @@ fn tpv101_nucleates_at_its_hypocentre_as_the_reference() {
 /// (measured +0.5 … +1.6%; goal 5%), rupture times within 6% and the field within 6% RMS (measured
 /// −4.6 … −5.5% and 4.9%: the front runs early, the goal of 3% is not met), the peak slip rate
 /// within 5% at the hypocentre and at (0, 12 km) (measured +1.0% and −0.7%) and within 40% farther
-/// out (+19% and +36%: the lattice's ringing behind the front).
+/// out (+19% and +36%: a sharper spike at the front than the reference's).
 #[test]
 #[ignore = "30 min on two threads: TPV101 at 100 m, 320 M bars"]
 fn tpv101_at_100_m_follows_the_reference() {
