@@ -481,7 +481,8 @@ impl Tally {
 /// The shipped pipelines, by name, with their text and block (nx, ny, lc). A pipeline whose block
 /// has more than [`MAX_MODULES`] modules is fuzzed coarsened: Lc × k and nx, ny, nz ÷ k (the same
 /// extent, so its patches and stations stay where they are), k the smallest whole factor that
-/// divides them all and brings the block under the limit; the name says so (`tpv5/2`).
+/// divides them all and brings the block under the limit (or, when none divides them all, the
+/// smallest that does with the sides rounded up); the name says so (`tpv5/2`).
 fn shipped() -> Vec<(String, String, (i64, i64, f64))> {
     let mut out = Vec::new();
     for e in std::fs::read_dir(repo_path("pipelines")).unwrap().flatten() {
@@ -499,13 +500,14 @@ fn shipped() -> Vec<(String, String, (i64, i64, f64))> {
             // A [cycles] pipeline never builds its block (its fault's stiffness is computed by
             // cosines): fuzzed at size.
             if modules(&text) > MAX_MODULES && !doc.contains_key("cycles") {
+                // A block whose sides share no such factor (TPV101's 560 × 205 × 200) is rounded up
+                // to whole coarse modules: its extent grows by less than one of them.
+                let fits = |k: i64| n.iter().map(|&x| ((x + k - 1) / k) as f64).product::<f64>() <= MAX_MODULES;
                 let k = (2..=64)
-                    .find(|&k| {
-                        n.iter().all(|&x| x % k == 0)
-                            && n.iter().map(|&x| (x / k) as f64).product::<f64>() <= MAX_MODULES
-                    })
+                    .find(|&k| n.iter().all(|&x| x % k == 0) && fits(k))
+                    .or_else(|| (2..=64).find(|&k| fits(k)))
                     .unwrap_or_else(|| panic!("{name}: no whole factor brings its block under {MAX_MODULES} modules"));
-                n = n.map(|x| x / k);
+                n = n.map(|x| (x + k - 1) / k);
                 lc *= k as f64;
                 let block = doc.entry("block").or_insert(toml::Value::Table(toml::Table::new()));
                 let block = block.as_table_mut().unwrap();
