@@ -245,16 +245,17 @@ mod tests {
         let tau = [70e6, 68e6, 63e6];
         let h =
             Header { problem: "TPV5", code: "stickslip 0", date: "2026/11/26", element_size_m: 100.0, location: "x" };
-        let text = on_fault_text(
-            &h,
-            &OnFault {
+        let text_with = |rate_state| {
+            let s = OnFault {
                 time_s: &t,
                 slip_m: [&s, &z],
                 slip_rate_m_s: [&r, &z],
                 shear_stress_pa: [&tau, &z],
-                rate_state: None,
-            },
-        );
+                rate_state,
+            };
+            on_fault_text(&h, &s)
+        };
+        let text = text_with(None);
         assert!(text.contains("# num_time_steps=3\n") && text.contains("# time_step=1.000000000000E-02\n"));
         let (names, rows) = read_table(&text);
         assert_eq!(names, ["t", "h-slip", "h-slip-rate", "h-shear-stress", "v-slip", "v-slip-rate", "v-shear-stress"]);
@@ -266,16 +267,7 @@ mod tests {
         assert_eq!(rows, vec![vec![-100.0, 7500.0, 0.25], vec![15000.0, 0.0, 1.0e9]]);
         // Under rate and state, TPV101's two more columns: n-stress (MPa) and log-theta (log₁₀ s).
         let (normal, theta) = ([120e6; 3], [1.606238999213454e9, 1e3, 0.5]);
-        let text = on_fault_text(
-            &h,
-            &OnFault {
-                time_s: &t,
-                slip_m: [&s, &z],
-                slip_rate_m_s: [&r, &z],
-                shear_stress_pa: [&tau, &z],
-                rate_state: Some([&normal, &theta]),
-            },
-        );
+        let text = text_with(Some([&normal, &theta]));
         let (names, rows) = read_table(&text);
         assert_eq!(&names[7..], ["n-stress", "log-theta"]);
         assert_eq!(rows[0][7..], [120.0, 9.20581]);

@@ -575,13 +575,14 @@ impl Scene {
         let lattice = self.lattice();
         let held: std::collections::HashSet<NodeId> =
             self.fixed().iter().filter(|(_, mask)| mask[1]).map(|(id, _)| *id).collect();
-        let held_y = |id: NodeId| held.contains(&id);
-        let top = 2 * self.dims.ny;
+        let contact = lattice.contact_nodes();
+        let mirror = |row: usize| {
+            let mut on = contact.iter().filter(|&&id| lattice.half_units(id)[1] == row).peekable();
+            on.peek().is_some() && on.all(|id| held.contains(id))
+        };
         let mut copies = 1.0;
-        for row in [0, top] {
-            let nodes: Vec<NodeId> =
-                lattice.contact_nodes().into_iter().filter(|&id| lattice.half_units(id)[1] == row).collect();
-            if !nodes.is_empty() && nodes.iter().all(|&id| held_y(id)) {
+        for row in [0, 2 * self.dims.ny] {
+            if mirror(row) {
                 copies *= 2.0;
             }
         }

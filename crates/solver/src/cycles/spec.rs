@@ -158,7 +158,8 @@ impl QuasiDynamicFault {
                 node.a = a;
             }
             let (sigma, tau) = (fault.normal_pa[c], fault.shear_pa[c][0]);
-            if let RateStateStart::SteadyAt(v) | RateStateStart::Balanced(v) = node.start {
+            // SEAS's start; a balanced one is balanced by the fault's own start().
+            if let RateStateStart::SteadyAt(v) = node.start {
                 node.start = RateStateStart::State(balanced_state(&node, v, tau, sigma, eta));
             }
             friction.push(node);
