@@ -5,10 +5,11 @@
 
 use serde::{Deserialize, Serialize};
 use stickslip_solver::Scene;
-use stickslip_solver::cycles::{CycleSpec, DynamicSpec, Tolerances, YEAR_S};
+use stickslip_solver::cycles::{CycleSpec, DynamicSpec, Heterogeneity, Tolerances, YEAR_S};
 use stickslip_solver::laws::NodeFriction;
 
 use crate::check::{Checker, num};
+use crate::scene::LEAST_ZONE_NODES;
 
 /// `[cycles]` as written.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
@@ -62,6 +63,35 @@ pub struct CyclesSection {
     /// The most steps the run may take (1–10⁹).
     #[serde(default = "max_steps")]
     pub max_steps: i64,
+    /// Random fields of a, b and L along the fault, one draw per seed (the catalogue scene's
+    /// heterogeneity); absent: the friction as given, one run.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub heterogeneity: Option<HeterogeneitySection>,
+}
+
+/// `[cycles.heterogeneity]`: log-normal random fields of a, b and L along the fault, each
+/// coefficient multiplied by `exp(s·g)`, `g` a unit von Kármán field along depth drawn per seed.
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct HeterogeneitySection {
+    /// Standard deviation of ln a (0–2; 0: a as given).
+    #[serde(default)]
+    pub log_a_std: f64,
+    /// Standard deviation of ln b (0–2; 0: b as given).
+    #[serde(default)]
+    pub log_b_std: f64,
+    /// Standard deviation of ln L (0–2; 0: L as given).
+    #[serde(default)]
+    pub log_dc_std: f64,
+    /// Correlation length (m), at least 2 modules and at most the frictional depth.
+    pub correlation_length_m: f64,
+    /// Hurst exponent (0 < H ≤ 1).
+    #[serde(default = "hurst")]
+    pub hurst: f64,
+}
+
+fn hurst() -> f64 {
+    0.8
 }
 
 fn quasi_dynamic() -> String {
@@ -148,7 +178,7 @@ impl CyclesSection {
             );
         }
         if scene.friction.mu_cv != 0.0 {
-            ck.push("friction.mu_cv", num(scene.friction.mu_cv), "0 with [cycles] (one run, no random field yet)");
+            ck.push("friction.mu_cv", num(scene.friction.mu_cv), "0 with [cycles] (its friction is rate and state; [cycles.heterogeneity] gives random fields of a, b and L)");
         }
         let mut last = f64::NEG_INFINITY;
         for (i, [d, a]) in self.a_by_depth.iter().copied().enumerate() {
@@ -168,7 +198,9 @@ impl CyclesSection {
             }
         }
         let dynamic = dynamic.then(|| self.dynamic(scene, ck));
+        let heterogeneity = self.heterogeneity.map(|h| h.build(scene, self.frictional_depth_m, ck));
         CycleSpec {
+            heterogeneity,
             dynamic,
             duration_s: self.years * YEAR_S,
             plate_m_s: self.plate_rate_m_s,
@@ -203,5 +235,70 @@ impl CyclesSection {
         let damping = self.dynamic_damping.unwrap_or(DynamicSpec::DAMPING);
         ck.range("cycles.dynamic_damping", damping, 0.0, false, 1.0, false);
         DynamicSpec { above_m_s: above, below_m_s: below, block_m: block, damping }
+    }
+}
+
+impl HeterogeneitySection {
+    /// The fields it asks for, checked: each spread within 0–2 and one of them > 0, a
+    /// correlation length the nodes resolve, and the process zone resolved where L is
+    /// smallest and b largest at three standard deviations (`Λ₀ ≥ 3·Lc` there).
+    fn build(&self, scene: &Scene, frictional_depth_m: f64, ck: &mut Checker) -> Heterogeneity {
+        let keys = [
+            ("cycles.heterogeneity.log_a_std", self.log_a_std),
+            ("cycles.heterogeneity.log_b_std", self.log_b_std),
+            ("cycles.heterogeneity.log_dc_std", self.log_dc_std),
+        ];
+        for (key, v) in keys {
+            ck.range(key, v, 0.0, false, 2.0, false);
+        }
+        if keys.iter().all(|(_, v)| *v == 0.0) {
+            ck.push(
+                "cycles.heterogeneity",
+                "(all spreads 0)",
+                "at least one of log_a_std, log_b_std, log_dc_std > 0 (or leave the section out)",
+            );
+        }
+        let lc = scene.lc_m;
+        ck.range(
+            "cycles.heterogeneity.correlation_length_m",
+            self.correlation_length_m,
+            2.0 * lc,
+            false,
+            frictional_depth_m,
+            false,
+        );
+        ck.range("cycles.heterogeneity.hurst", self.hurst, 0.0, true, 1.0, false);
+        if let (Some(fault), NodeFriction::RateState(node)) = (&scene.fault, scene.friction.base(0))
+            && self.log_dc_std >= 0.0
+            && self.log_b_std >= 0.0
+        {
+            let (_, _, c44) = stickslip_solver::material::lattice_elastic_constants(scene.young_pa, scene.poisson);
+            let sigma = fault.normal_pa.iter().copied().fold(0.0, f64::max);
+            let dc = node.dc_m * Heterogeneity::span(self.log_dc_std)[0];
+            let b = node.b * Heterogeneity::span(self.log_b_std)[1];
+            let zone = 9.0 * std::f64::consts::PI / 32.0 * c44 * dc / (b * sigma);
+            if b > 0.0 && sigma > 0.0 && zone < LEAST_ZONE_NODES * lc {
+                ck.push(
+                    "block.lc_m",
+                    num(lc),
+                    format!(
+                        "at most Λ₀/{LEAST_ZONE_NODES} = {:.4e} m where the fields make the process zone smallest (L = \
+                         {:.4e} m and b = {:.4e} at three standard deviations): Λ₀ = (9π/32)·μ·L/(b·σn) = {:.4e} m \
+                         (smaller spreads, a longer dc_m or smaller modules resolve it)",
+                        zone / LEAST_ZONE_NODES,
+                        dc,
+                        b,
+                        zone
+                    ),
+                );
+            }
+        }
+        Heterogeneity {
+            log_a_std: self.log_a_std,
+            log_b_std: self.log_b_std,
+            log_dc_std: self.log_dc_std,
+            correlation_length_m: self.correlation_length_m,
+            hurst: self.hurst,
+        }
     }
 }

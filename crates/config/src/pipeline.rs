@@ -206,6 +206,8 @@ struct Hashed<'a> {
     spectra: &'a Option<SpectraSection>,
     #[serde(skip_serializing_if = "Option::is_none")]
     broadband: &'a Option<BroadbandSection>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    cycles: &'a Option<crate::cycles::CyclesSection>,
 }
 
 /// Top-level keys of a pipeline file that are not part of the hash.
@@ -232,6 +234,7 @@ impl PipelineFile {
             accelerograms: &self.accelerograms,
             spectra: &self.spectra,
             broadband: &self.broadband,
+            cycles: &self.cycles,
         };
         let canonical = toml::to_string(&hashed).expect("pipeline sections serialise");
         let mut h: u64 = 0xcbf2_9ce4_8422_2325;
@@ -446,7 +449,8 @@ impl Pipeline {
                 file.material.young_cv,
                 format!(
                     "every one of the {} seeds gives the same run (material.young_cv = 0, friction.mu_cv = 0, no \
-                     rupture.fracture_energy_cv, fault.stochastic or fault.nucleation): the spread across seeds is 0 by construction",
+                     rupture.fracture_energy_cv, fault.stochastic, fault.nucleation or cycles.heterogeneity): the spread \
+                     across seeds is 0 by construction",
                     seeds.len()
                 ),
             );
@@ -542,6 +546,14 @@ fn random_fields(file: &PipelineFile) -> Vec<&'static str> {
         .is_some_and(|n| n.x_m[0] < n.x_m[1] || n.y_m[0] < n.y_m[1])
     {
         out.push("fault.nucleation");
+    }
+    if file
+        .cycles
+        .as_ref()
+        .and_then(|c| c.heterogeneity.as_ref())
+        .is_some_and(|h| h.log_a_std > 0.0 || h.log_b_std > 0.0 || h.log_dc_std > 0.0)
+    {
+        out.push("cycles.heterogeneity");
     }
     out
 }

@@ -2,7 +2,7 @@
 //! its friction along depth and the step control, from the validated pipeline alone (a cycle
 //! run never builds its block).
 
-use stickslip_solver::cycles::{DynamicSpec, YEAR_S};
+use stickslip_solver::cycles::{DynamicSpec, Heterogeneity, YEAR_S};
 use stickslip_solver::laws::NodeFriction;
 
 use super::Section;
@@ -72,6 +72,45 @@ pub fn cycles(pipeline: &Pipeline) -> Section {
             );
         }
     }
+    if let (Some(h), Some(fault), NodeFriction::RateState(node)) =
+        (&spec.heterogeneity, &scene.fault, scene.friction.base(0))
+    {
+        let sigma = fault.normal_pa.iter().fold(0.0f64, |a, &b| a.max(b));
+        let [a_lo, a_hi] = Heterogeneity::span(h.log_a_std).map(|f| f * node.a);
+        let [b_lo, b_hi] = Heterogeneity::span(h.log_b_std).map(|f| f * node.b);
+        let [l_lo, l_hi] = Heterogeneity::span(h.log_dc_std).map(|f| f * node.dc_m);
+        let lambda0 = 9.0 * std::f64::consts::PI / 32.0 * mu * l_lo / (b_hi * sigma);
+        let weakening = b_hi > a_lo;
+        let h_min = std::f64::consts::PI / 2.0 * mu * b_hi * l_lo / ((b_hi - a_lo).powi(2) * sigma);
+        s.push(
+            "heterogeneity",
+            format!(
+                "random fields per seed ({} seed{}: {}): {}, g unit von Kármán fields along depth, correlation length {} \
+                 m, Hurst exponent {}; at three standard deviations a {:.4} … {:.4}, b {:.4} … {:.4}, L {:.4e} … {:.4e} \
+                 m; there Λ0 = {:.1} m = {:.1} × Lc{}",
+                pipeline.seeds.len(),
+                if pipeline.seeds.len() == 1 { "" } else { "s" },
+                pipeline.seeds.iter().take(8).map(|s| s.to_string()).collect::<Vec<_>>().join(", "),
+                [("a", h.log_a_std), ("b", h.log_b_std), ("L", h.log_dc_std)]
+                    .iter()
+                    .filter(|(_, s)| *s > 0.0)
+                    .map(|(c, s)| format!("{c}·exp({}·g)", num(*s)))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                num(h.correlation_length_m),
+                num(h.hurst),
+                a_lo,
+                a_hi,
+                b_lo,
+                b_hi,
+                l_lo,
+                l_hi,
+                lambda0,
+                lambda0 / lc,
+                if weakening { format!(" and the smallest nucleation size h* = {h_min:.0} m = {:.1} × Lc", h_min / lc) } else { String::new() }
+            ),
+        );
+    }
     s.push(
         "steps",
         format!(
@@ -117,8 +156,15 @@ pub fn cycles(pipeline: &Pipeline) -> Section {
     s.push(
         "files",
         format!(
-            "writes: seas/fltst_dpXXX at {} km, seas/global.dat, seas/devol.dat, tables/cycle_events.parquet",
-            spec.stations_m.iter().map(|d| num(d / 1e3)).collect::<Vec<_>>().join(", ")
+            "writes: {}seas/fltst_dpXXX at {} km, seas/global.dat, seas/devol.dat, tables/cycle_events.parquet{}",
+            if spec.heterogeneity.is_some() { "per seed under seeds/seed-N/: " } else { "" },
+            spec.stations_m.iter().map(|d| num(d / 1e3)).collect::<Vec<_>>().join(", "),
+            if spec.heterogeneity.is_some() {
+                "; over the seeds: tables/cycle_events.parquet, the catalogue tables (magnitude_frequency, b_values, \
+                 recurrence_stats, aftershocks, omori, scaling) and figures/cycle_catalogue.png"
+            } else {
+                ""
+            }
         ),
     );
     s

@@ -29,8 +29,8 @@ pub use crate::friction_map::{GridSection, PatchSection};
 pub use block::MAX_NODES;
 pub use boundaries::AbsorbingSection;
 pub use fault::{
-    FaultSection, StationSection, StochasticSection, TRACTION_GRID_HEADER, TractionGridSection, TractionPatchSection,
-    Vs30,
+    FaultSection, LEAST_ZONE_NODES, StationSection, StochasticSection, TRACTION_GRID_HEADER, TractionGridSection,
+    TractionPatchSection, Vs30,
 };
 pub use medium::{AttenuationSection, LayerSection, MAX_LAYERS, MediumSection, lowest_q, parse_velocity_file};
 pub use sections::*;

@@ -12,11 +12,13 @@
 
 pub mod antiplane;
 pub mod dynamic;
+pub mod heterogeneity;
 pub mod quasi_dynamic;
 pub mod spec;
 
 pub use crate::laws::balanced_state;
 pub use antiplane::{AntiplaneStencil, FaultStiffness, antiplane_links};
 pub use dynamic::{AntiplaneGrid, FullyDynamicFault, GridField};
+pub use heterogeneity::Heterogeneity;
 pub use quasi_dynamic::{CycleState, CycleStats, Flow, QuasiDynamicFault, Tolerances, YEAR_S};
 pub use spec::{CycleSpec, DynamicSpec, scene_stencil};

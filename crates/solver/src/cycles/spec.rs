@@ -8,6 +8,7 @@ use crate::scene::Scene;
 
 use super::antiplane::{AntiplaneStencil, FaultStiffness};
 use super::dynamic::{AntiplaneGrid, FullyDynamicFault};
+use super::heterogeneity::Heterogeneity;
 use super::quasi_dynamic::{QuasiDynamicFault, Tolerances};
 
 /// A cycle run: the plate's loading of a scene's fault over a duration.
@@ -35,6 +36,9 @@ pub struct CycleSpec {
     pub max_steps: u64,
     /// Fully dynamic: the explicit grid inside events; `None`: quasi-dynamic throughout.
     pub dynamic: Option<DynamicSpec>,
+    /// Random fields of a, b and L along the fault, one draw per seed; `None`: the scene's
+    /// friction as given (one run, whatever the seeds).
+    pub heterogeneity: Option<Heterogeneity>,
 }
 
 /// The explicit phases of a fully dynamic cycle run (docs/model.md §20.5).
@@ -130,8 +134,9 @@ impl QuasiDynamicFault {
     /// `spec`: the nodes of the slab's side x = 0 from the free surface down to the frictional
     /// depth, each with its friction (`a` from [`CycleSpec::a_by_depth`] on the background), the
     /// fault's tractions, θ₀ balancing the shear traction at the start's slip rate, and
-    /// radiation damping `μ/(2c_s)`.
-    pub fn from_scene(scene: &Scene, spec: &CycleSpec) -> Result<Self, SolverError> {
+    /// radiation damping `μ/(2c_s)`; the coefficients multiplied by
+    /// [`CycleSpec::heterogeneity`]'s fields of `seed` first, when it asks for them.
+    pub fn from_scene(scene: &Scene, spec: &CycleSpec, seed: u64) -> Result<Self, SolverError> {
         let Some(fault) = &scene.fault else {
             return Err(SolverError::Unsupported("a cycle run needs a [fault]".into()));
         };
@@ -157,14 +162,18 @@ impl QuasiDynamicFault {
             if background && let Some(a) = spec.a_at(j as f64 * lc) {
                 node.a = a;
             }
-            let (sigma, tau) = (fault.normal_pa[c], fault.shear_pa[c][0]);
+            friction.push(node);
+            normal.push(fault.normal_pa[c]);
+            shear.push(fault.shear_pa[c][0]);
+        }
+        if let Some(h) = &spec.heterogeneity {
+            h.apply(&mut friction, lc, seed)?;
+        }
+        for ((node, &sigma), &tau) in friction.iter_mut().zip(&normal).zip(&shear) {
             // SEAS's start; a balanced one is balanced by the fault's own start().
             if let RateStateStart::SteadyAt(v) = node.start {
-                node.start = RateStateStart::State(balanced_state(&node, v, tau, sigma, eta));
+                node.start = RateStateStart::State(balanced_state(node, v, tau, sigma, eta));
             }
-            friction.push(node);
-            normal.push(sigma);
-            shear.push(tau);
         }
         Ok(QuasiDynamicFault {
             stiffness,
@@ -181,13 +190,13 @@ impl FullyDynamicFault {
     /// The fault of `scene` under `spec` (which asks for the fully dynamic mode): the
     /// quasi-dynamic fault of [`QuasiDynamicFault::from_scene`] and the explicit grid of the
     /// scene's stencil over [`DynamicSpec::block_m`], its far face and bottom absorbing.
-    pub fn from_scene(scene: &Scene, spec: &CycleSpec) -> Result<Self, SolverError> {
+    pub fn from_scene(scene: &Scene, spec: &CycleSpec, seed: u64) -> Result<Self, SolverError> {
         let Some(dynamic) = spec.dynamic else {
             return Err(SolverError::Unsupported(
                 "a fully dynamic cycle run needs cycles.mode = \"fully_dynamic\"".into(),
             ));
         };
-        let quasi = QuasiDynamicFault::from_scene(scene, spec)?;
+        let quasi = QuasiDynamicFault::from_scene(scene, spec, seed)?;
         let stencil = scene_stencil(scene)?;
         let lc = scene.lc_m;
         let ny = ((dynamic.block_m[0] / lc).round() as usize).max(quasi.nodes());
