@@ -134,17 +134,7 @@ pub fn write_catalogue(
     similarity: &DataFrame,
 ) -> Result<CatalogueStats, StoreError> {
     let stats = catalogue_stats(runs, events, similarity)?;
-    let frames = [
-        (MAGNITUDE_FREQUENCY, magnitude_frequency_frame(&stats.frequency)?),
-        (B_VALUES, b_values_frame(&stats.b_values)?),
-        (RECURRENCE_STATS, recurrence_stats_frame(&stats.recurrence)?),
-        (AFTERSHOCKS_TABLE, aftershocks_frame(&stats.aftershocks)?),
-        (OMORI, omori_frame(&stats.omori)?),
-        (SCALING, scaling_frame(&stats.scaling)?),
-    ];
-    for (table, mut df) in frames {
-        write_parquet_atomic(&mut df, &out.gathered(&table))?;
-    }
+    write_catalogue_tables(out, &stats)?;
     Ok(stats)
 }
 
@@ -196,29 +186,42 @@ pub fn catalogue_stats(
             c.columns.entry(k).or_default().push(v[i]);
         }
     }
+    let per_seed =
+        per_seed.into_iter().map(|(k, c)| (k, (c, run_end.get(&k).copied().unwrap_or(f64::INFINITY)))).collect();
+    Ok(statistics(&per_seed, &MAGNITUDES, true))
+}
+
+/// Per seed (when there are several) and pooled: the distributions and b-values of
+/// `magnitudes`, the recurrence of main shocks and of all events, the stacked aftershocks with
+/// their Omori–Utsu fit and the scaling relations (stress drop against magnitude only when
+/// `stress_drop`). Each seed's catalogue comes with its run's end (s).
+fn statistics(
+    per_seed: &BTreeMap<u64, (Catalogue, f64)>,
+    magnitudes: &[&'static str],
+    stress_drop: bool,
+) -> CatalogueStats {
     let mut out = CatalogueStats::default();
     let mut pooled = Catalogue::default();
     let mut pooled_main = Vec::new();
     let mut pooled_all = Vec::new();
     let mut stacks = Vec::new();
-    for (&seed, c) in &per_seed {
+    for (&seed, (c, end)) in per_seed {
         pooled.extend(c);
         let main = inter_event_times(&c.main_times());
         let all = inter_event_times(&c.start_s);
-        let end = run_end.get(&seed).copied().unwrap_or(f64::INFINITY);
-        let stack = stack(c, end);
+        let stack = stack(c, *end);
         if per_seed.len() > 1 {
-            distributions(Some(seed), c, &mut out);
+            distributions(Some(seed), c, magnitudes, &mut out);
             out.recurrence.push(recurrence(Some(seed), "main", &main));
             out.recurrence.push(recurrence(Some(seed), "all", &all));
             aftershocks(Some(seed), c.main_times().len(), &stack, &mut out);
-            scalings(Some(seed), c, &mut out);
+            scalings(Some(seed), c, stress_drop, &mut out);
         }
         pooled_main.extend(main);
         pooled_all.extend(all);
         stacks.push(stack);
     }
-    distributions(None, &pooled, &mut out);
+    distributions(None, &pooled, magnitudes, &mut out);
     out.recurrence.push(recurrence(None, "main", &pooled_main));
     out.recurrence.push(recurrence(None, "all", &pooled_all));
     let mut stacked = StackedAftershocks { times: Vec::new(), windows: Vec::new(), counts: Vec::new() };
@@ -229,12 +232,69 @@ pub fn catalogue_stats(
     }
     stacked.times.sort_by(f64::total_cmp);
     aftershocks(None, pooled.main_times().len(), &Ok(stacked), &mut out);
-    scalings(None, &pooled, &mut out);
-    Ok(out)
+    scalings(None, &pooled, stress_drop, &mut out);
+    out
 }
 
-fn distributions(seed: Option<u64>, c: &Catalogue, out: &mut CatalogueStats) {
-    for quantity in MAGNITUDES {
+/// One seed's events of a cycle run, for [`cycle_catalogue_stats`].
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct CycleCatalogue {
+    /// The seed.
+    pub seed: u64,
+    /// The run's end (s).
+    pub end_s: f64,
+    /// Each event's onset (s).
+    pub onset_s: Vec<f64>,
+    /// Its moment magnitude.
+    pub magnitude: Vec<f64>,
+    /// Its seismic moment (N·m).
+    pub moment_n_m: Vec<f64>,
+    /// Its rupture area (m²).
+    pub area_m2: Vec<f64>,
+    /// Its duration (s).
+    pub duration_s: Vec<f64>,
+    /// Whether it is a main shock.
+    pub main: Vec<bool>,
+}
+
+/// The magnitude column of a cycle run's catalogue.
+pub const CYCLE_MAGNITUDE: &str = "magnitude";
+
+/// The catalogue statistics of a cycle run's seeds, as [`catalogue_stats`] computes them for an
+/// ensemble's events (no stress drop: a cycle event has none of its own).
+pub fn cycle_catalogue_stats(seeds: &[CycleCatalogue]) -> CatalogueStats {
+    let per_seed = seeds
+        .iter()
+        .map(|c| {
+            let mut columns = BTreeMap::new();
+            columns.insert(CYCLE_MAGNITUDE, c.magnitude.clone());
+            columns.insert(col::M0_CONSISTENT_DYNE_CM, c.moment_n_m.iter().map(|m| m / DYNE_CM).collect());
+            columns.insert(col::PROTOTYPE_AREA_M2, c.area_m2.clone());
+            columns.insert(col::PROTOTYPE_DURATION_S, c.duration_s.clone());
+            (c.seed, (Catalogue { start_s: c.onset_s.clone(), main: c.main.clone(), columns }, c.end_s))
+        })
+        .collect();
+    statistics(&per_seed, &[CYCLE_MAGNITUDE], false)
+}
+
+/// Writes the six catalogue tables of `stats` under `out`'s tables.
+pub fn write_catalogue_tables(out: &Folder, stats: &CatalogueStats) -> Result<(), StoreError> {
+    let frames = [
+        (MAGNITUDE_FREQUENCY, magnitude_frequency_frame(&stats.frequency)?),
+        (B_VALUES, b_values_frame(&stats.b_values)?),
+        (RECURRENCE_STATS, recurrence_stats_frame(&stats.recurrence)?),
+        (AFTERSHOCKS_TABLE, aftershocks_frame(&stats.aftershocks)?),
+        (OMORI, omori_frame(&stats.omori)?),
+        (SCALING, scaling_frame(&stats.scaling)?),
+    ];
+    for (table, mut df) in frames {
+        write_parquet_atomic(&mut df, &out.gathered(&table))?;
+    }
+    Ok(())
+}
+
+fn distributions(seed: Option<u64>, c: &Catalogue, magnitudes: &[&'static str], out: &mut CatalogueStats) {
+    for &quantity in magnitudes {
         let m = c.column(quantity);
         let events = m.iter().filter(|v| v.is_finite()).count() as u64;
         let dist = magnitude_distribution(m, MAGNITUDE_BIN);
@@ -343,7 +403,7 @@ fn aftershocks(
     out.omori.push(OmoriRow { seed, main_shocks: main_shocks as u64, aftershocks, fit });
 }
 
-fn scalings(seed: Option<u64>, c: &Catalogue, out: &mut CatalogueStats) {
+fn scalings(seed: Option<u64>, c: &Catalogue, stress_drop: bool, out: &mut CatalogueStats) {
     let moment: Vec<f64> = c.column(col::M0_CONSISTENT_DYNE_CM).iter().map(|m| m * DYNE_CM).collect();
     let relations = [
         ("moment_area", SELF_SIMILAR_MOMENT_AREA, scaling::moment_area(c.column(col::PROTOTYPE_AREA_M2), &moment)),
@@ -359,6 +419,9 @@ fn scalings(seed: Option<u64>, c: &Catalogue, out: &mut CatalogueStats) {
         ),
     ];
     for (relation, self_similar, fit) in relations {
+        if relation == "stress_drop_magnitude" && !stress_drop {
+            continue;
+        }
         out.scaling.push(ScalingRow { seed, relation, self_similar, fit: reason(fit) });
     }
 }

@@ -49,6 +49,25 @@ pub struct CycleEvent {
     pub moment_per_m: f64,
 }
 
+impl CycleEvent {
+    /// The ruptured length down dip (m): from the shallowest to the deepest node that exceeded
+    /// the event threshold, each node standing for one module `lc_m`.
+    pub fn length_m(&self, lc_m: f64) -> f64 {
+        self.ruptured_m[1] - self.ruptured_m[0] + lc_m
+    }
+
+    /// The seismic moment (N·m) of the event taken as long along strike as it is down dip (the
+    /// two-dimensional run's convention, docs/model.md §20.6): `moment_per_m × length`.
+    pub fn moment_n_m(&self, lc_m: f64) -> f64 {
+        self.moment_per_m * self.length_m(lc_m)
+    }
+
+    /// The moment magnitude of [`CycleEvent::moment_n_m`], `(2/3)·(log10 M0 − 9.1)`.
+    pub fn magnitude(&self, lc_m: f64) -> f64 {
+        2.0 / 3.0 * (self.moment_n_m(lc_m).log10() - 9.1)
+    }
+}
+
 /// What a cycle run gave.
 #[derive(Clone, Debug)]
 pub struct CycleReport {
@@ -58,6 +77,8 @@ pub struct CycleReport {
     pub stats: CycleStats,
     /// Fault nodes.
     pub nodes: usize,
+    /// Their spacing (m).
+    pub lc_m: f64,
     /// Seconds spent on the fault's stiffness.
     pub stiffness_s: f64,
     /// Seconds spent integrating.
@@ -212,21 +233,26 @@ fn header(
     h
 }
 
-/// Runs the pipeline's `[cycles]` and writes its files under `out`. When `cancel` is set the
-/// run stops at its next step and the files are written up to there
-/// ([`CycleReport::interrupted_s`]).
-pub fn run_cycles(pipeline: &Pipeline, out: &Path, cancel: &AtomicBool) -> Result<CycleReport, EnsembleError> {
+/// Runs the pipeline's `[cycles]` for `seed` (which draws [`CycleSpec::heterogeneity`]'s fields,
+/// if any) and writes its files under `out`. When `cancel` is set the run stops at its next step
+/// and the files are written up to there ([`CycleReport::interrupted_s`]).
+pub fn run_cycles(
+    pipeline: &Pipeline,
+    seed: u64,
+    out: &Path,
+    cancel: &AtomicBool,
+) -> Result<CycleReport, EnsembleError> {
     let spec = pipeline.cycles.as_ref().expect("a [cycles] pipeline");
     let t0 = std::time::Instant::now();
     let solver = |e| EnsembleError::Solver(Box::new(e));
     // A fully dynamic run's quasi-dynamic phases are its own fault's: one stiffness, not two.
     let full =
-        spec.dynamic.map(|_| FullyDynamicFault::from_scene(&pipeline.scene, spec)).transpose().map_err(solver)?;
+        spec.dynamic.map(|_| FullyDynamicFault::from_scene(&pipeline.scene, spec, seed)).transpose().map_err(solver)?;
     let own;
     let fault = match &full {
         Some(f) => &f.quasi,
         None => {
-            own = QuasiDynamicFault::from_scene(&pipeline.scene, spec).map_err(solver)?;
+            own = QuasiDynamicFault::from_scene(&pipeline.scene, spec, seed).map_err(solver)?;
             &own
         }
     };
@@ -300,23 +326,49 @@ pub fn run_cycles(pipeline: &Pipeline, out: &Path, cancel: &AtomicBool) -> Resul
     d.push_str(&rec.devol);
     write_text_atomic(&seas.join("devol.dat"), &d)?;
     let events = rec.events;
-    let mut df = events_frame(&events)
-        .map_err(|e| EnsembleError::Store(stickslip_store::StoreError::table("cycle_events", e)))?;
-    write_parquet_atomic(&mut df, &out.join("tables").join("cycle_events.parquet"))?;
-    Ok(CycleReport { events, stats, nodes: fault.nodes(), stiffness_s, run_s, interrupted_s, out: out.to_path_buf() })
+    write_events(&[(seed, events.as_slice())], lc, &out.join("tables").join("cycle_events.parquet"))?;
+    Ok(CycleReport {
+        events,
+        stats,
+        nodes: fault.nodes(),
+        lc_m: lc,
+        stiffness_s,
+        run_s,
+        interrupted_s,
+        out: out.to_path_buf(),
+    })
 }
 
-/// The events as the `cycle_events` table.
-fn events_frame(events: &[CycleEvent]) -> PolarsResult<DataFrame> {
+/// Writes the events of each seed as the `cycle_events` table at `path`.
+pub(crate) fn write_events(seeds: &[(u64, &[CycleEvent])], lc_m: f64, path: &Path) -> Result<(), EnsembleError> {
+    let mut df = events_frame(seeds, lc_m)
+        .map_err(|e| EnsembleError::Store(stickslip_store::StoreError::table("cycle_events", e)))?;
+    write_parquet_atomic(&mut df, path)?;
+    Ok(())
+}
+
+/// The events of each seed as the `cycle_events` table: their seed, their number within it and
+/// the recurrence from the seed's previous event.
+fn events_frame(seeds: &[(u64, &[CycleEvent])], lc: f64) -> PolarsResult<DataFrame> {
+    let events: Vec<&CycleEvent> = seeds.iter().flat_map(|(_, e)| e.iter()).collect();
     let col = |name: &str, f: &dyn Fn(&CycleEvent) -> f64| {
-        Column::new(name.into(), events.iter().map(f).collect::<Vec<f64>>())
+        Column::new(name.into(), events.iter().map(|e| f(e)).collect::<Vec<f64>>())
     };
-    let recurrence: Vec<Option<f64>> =
-        (0..events.len()).map(|i| (i > 0).then(|| (events[i].onset_s - events[i - 1].onset_s) / YEAR_S)).collect();
+    let mut seed = Vec::with_capacity(events.len());
+    let mut number = Vec::with_capacity(events.len());
+    let mut recurrence: Vec<Option<f64>> = Vec::with_capacity(events.len());
+    for (s, list) in seeds {
+        for (i, e) in list.iter().enumerate() {
+            seed.push(*s);
+            number.push(i as u32);
+            recurrence.push((i > 0).then(|| (e.onset_s - list[i - 1].onset_s) / YEAR_S));
+        }
+    }
     DataFrame::new(
         events.len(),
         vec![
-            Column::new("event".into(), (0..events.len() as u32).collect::<Vec<u32>>()),
+            Column::new("seed".into(), seed),
+            Column::new("event".into(), number),
             col("onset_s", &|e| e.onset_s),
             col("onset_years", &|e| e.onset_s / YEAR_S),
             Column::new("recurrence_years".into(), recurrence),
@@ -328,6 +380,9 @@ fn events_frame(events: &[CycleEvent]) -> PolarsResult<DataFrame> {
             col("ruptured_top_m", &|e| e.ruptured_m[0]),
             col("ruptured_bottom_m", &|e| e.ruptured_m[1]),
             col("moment_per_m_n", &|e| e.moment_per_m),
+            col("length_m", &|e| e.length_m(lc)),
+            col("moment_n_m", &|e| e.moment_n_m(lc)),
+            col("magnitude", &|e| e.magnitude(lc)),
         ],
     )
 }

@@ -16,6 +16,7 @@ pub mod budget;
 pub mod catalogue;
 pub mod check;
 pub mod checkpoints;
+pub mod cycle_catalogue;
 pub mod cycles;
 pub mod digest;
 pub mod error;

@@ -28,7 +28,7 @@ fn cut(name: &str, years: f64) -> (Pipeline, stickslip_support::Scratch, std::pa
 #[test]
 fn bp1_qd_recurs_and_slips_as_the_published_solutions() {
     let (pipeline, _dir, out) = cut("seas-bp1-qd", 400.0);
-    let r = run_cycles(&pipeline, &out, &AtomicBool::new(false)).unwrap();
+    let r = run_cycles(&pipeline, 0, &out, &AtomicBool::new(false)).unwrap();
     assert_eq!(r.interrupted_s, None);
     println!(
         "{} nodes: stiffness {:.1} s, {} steps ({} rejected) in {:.1} s",
@@ -105,7 +105,7 @@ fn station_rows(text: &str) -> Vec<[f64; 5]> {
 #[test]
 fn bp1_fd_first_event_is_the_resolutions_converged_one_and_slips_more_than_without_inertia() {
     let (pipeline, _dir, out) = cut("seas-bp1-fd", 260.0);
-    let r = run_cycles(&pipeline, &out, &AtomicBool::new(false)).unwrap();
+    let r = run_cycles(&pipeline, 0, &out, &AtomicBool::new(false)).unwrap();
     let s = r.stats;
     println!(
         "{} quasi-dynamic steps, {} explicit steps over {:.1} s in {} phase(s); wall {:.1} s quasi-dynamic, {:.1} s explicit; \
@@ -152,7 +152,7 @@ fn bp1_fd_first_event_is_the_resolutions_converged_one_and_slips_more_than_witho
 fn bp1_fd_over_3000_years_gives_the_documented_cycle() {
     let pipeline = Pipeline::load(&repo_path("pipelines/seas-bp1-fd.toml")).unwrap();
     let out = scratch_dir("cycles-bp1-fd-3000").join("out");
-    let r = run_cycles(&pipeline, &out, &AtomicBool::new(false)).unwrap();
+    let r = run_cycles(&pipeline, 0, &out, &AtomicBool::new(false)).unwrap();
     let e = &r.events;
     // The cycle from event 3 on (the start's transient left out).
     let intervals: Vec<f64> = (4..e.len()).map(|i| (e[i].onset_s - e[i - 1].onset_s) / YEAR).collect();

@@ -20,6 +20,7 @@
 pub mod charts;
 pub mod clip;
 pub mod contour;
+pub mod cycle_catalogue;
 pub mod cycles;
 mod error;
 mod fault_page;

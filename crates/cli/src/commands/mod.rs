@@ -3,6 +3,7 @@
 pub mod catalogue;
 pub mod check;
 pub mod compare;
+pub mod cycles;
 pub mod gmm;
 pub mod merge;
 pub mod per_seed;

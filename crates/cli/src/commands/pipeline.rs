@@ -310,7 +310,7 @@ pub fn run(a: Args) -> Result<()> {
     for (pipeline, seeds) in pipelines.iter().zip(runs) {
         let out = a.out.clone().unwrap_or_else(|| PathBuf::from("reports").join(&pipeline.name));
         if pipeline.cycles.is_some() {
-            cycles(pipeline, &out, &cancel)?;
+            super::cycles::run(pipeline, &out, &cancel, given.as_deref())?;
             continue;
         }
         if let Some((k, n)) = a.shard {
@@ -388,84 +388,6 @@ pub fn run(a: Args) -> Result<()> {
         }
     }
     finished(unfinished)
-}
-
-/// A `[cycles]` pipeline: one run of the fault over the years asked, its files and events.
-fn cycles(pipeline: &Pipeline, out: &std::path::Path, cancel: &AtomicBool) -> Result<()> {
-    outln!("{}: earthquake cycles over the plate's loading (docs/guide/faults.md, Earthquake cycles)", pipeline.name);
-    let r = stickslip_ensemble::cycles::run_cycles(pipeline, out, cancel)?;
-    outln!(
-        "{}: {} fault nodes, stiffness in {:.1} s; {} steps ({} rejected, {:.2e} s to {:.3} years) in {:.1} s; {} events → {}",
-        pipeline.name,
-        r.nodes,
-        r.stiffness_s,
-        r.stats.accepted,
-        r.stats.rejected,
-        r.stats.min_step_s,
-        r.stats.max_step_s / stickslip_solver::cycles::YEAR_S,
-        r.run_s,
-        r.events.len(),
-        r.out.join("seas").display()
-    );
-    if r.stats.dynamic_phases > 0 {
-        let wall = r.stats.quasi_wall_s + r.stats.dynamic_wall_s;
-        outln!(
-            "  fully dynamic: {} explicit phases, {} steps over {:.1} s of events, {:.1} s of the run ({:.0}%); the \
-             quasi-dynamic phases {:.1} s ({:.0}%); at the hand-backs the explicit grid's friction differs from the \
-             full block's static traction by at most {:.3} MPa",
-            r.stats.dynamic_phases,
-            r.stats.dynamic_steps,
-            r.stats.dynamic_time_s,
-            r.stats.dynamic_wall_s,
-            100.0 * r.stats.dynamic_wall_s / wall.max(1e-9),
-            r.stats.quasi_wall_s,
-            100.0 * r.stats.quasi_wall_s / wall.max(1e-9),
-            r.stats.handover_jump_pa / 1e6,
-        );
-    }
-    let figure = stickslip_report::cycles::draw_cycles(out)?;
-    outln!("  figure: {}", figure.path.display());
-    for (i, e) in r.events.iter().enumerate() {
-        let recurrence = if i > 0 {
-            format!(
-                ", {:.3} years after the last",
-                (e.onset_s - r.events[i - 1].onset_s) / stickslip_solver::cycles::YEAR_S
-            )
-        } else {
-            String::new()
-        };
-        outln!(
-            "  event {i} at {:.3} years{recurrence}: hypocentre {:.2} km, surface slip {:.4} m, peak slip rate {:.4} m/s, {:.1} s",
-            e.onset_s / stickslip_solver::cycles::YEAR_S,
-            e.hypocentre_depth_m / 1e3,
-            e.surface_slip_m,
-            e.peak_slip_rate_m_s,
-            e.duration_s
-        );
-    }
-    let intervals: Vec<f64> =
-        r.events.windows(2).map(|w| (w[1].onset_s - w[0].onset_s) / stickslip_solver::cycles::YEAR_S).collect();
-    if intervals.len() >= 2 {
-        let n = intervals.len() as f64;
-        let mean = intervals.iter().sum::<f64>() / n;
-        let sd = (intervals.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt();
-        outln!(
-            "  recurrence: {mean:.3} ± {sd:.3} years (mean ± sd of {} intervals, the start's transient included), \
-             coefficient of variation {:.4}",
-            intervals.len(),
-            sd / mean
-        );
-    }
-    if let Some(t) = r.interrupted_s {
-        bail!(
-            "{}: interrupted at {:.3} years of {:.3}; its files hold the run up to there (a cycle run starts again from \
-             the beginning: it keeps no checkpoint)",
-            pipeline.name,
-            t / stickslip_solver::cycles::YEAR_S,
-            pipeline.cycles.as_ref().map_or(0.0, |c| c.duration_s) / stickslip_solver::cycles::YEAR_S
-        );
-    }
-    Ok(())
 }
 
 /// `Ok` when every pipeline gave what it asked for, else an error listing what did not (the
