@@ -91,7 +91,7 @@ pub struct HeterogeneitySection {
 }
 
 fn hurst() -> f64 {
-    0.8
+    0.75
 }
 
 fn quasi_dynamic() -> String {

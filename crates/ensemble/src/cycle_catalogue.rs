@@ -7,8 +7,9 @@
 //! magnitude–frequency distribution and b-value above Mc, recurrence, stacked aftershocks with
 //! an Omori–Utsu fit, and the scaling of moment with area and duration.
 //!
-//! A run interrupted, or stopped by a failure, resumes at its first unfinished seed: a seed whose
-//! `complete` file names the pipeline's hash is read back, not run again.
+//! A run interrupted resumes at its first unfinished seed: a seed whose `complete` file names the
+//! pipeline's hash is read back, not run again. A seed whose run fails (its step budget spent, a
+//! solver error) is left unfinished and reported; the others run on.
 
 use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
@@ -51,6 +52,8 @@ pub struct CycleCatalogueReport {
     pub stats: CatalogueStats,
     /// The seed interrupted (its files written up to there, not counted), if any.
     pub interrupted: Option<u64>,
+    /// The seeds whose run failed, with why (not counted; the next run tries them again).
+    pub failed: Vec<(u64, String)>,
 }
 
 /// The folder of `seed`'s run under `out`.
@@ -71,6 +74,7 @@ pub fn run_cycle_catalogue(
     let lc = pipeline.scene.lc_m;
     let mut seeds = Vec::new();
     let mut interrupted = None;
+    let mut failed = Vec::new();
     for &seed in &pipeline.seeds {
         let dir = seed_folder(out, seed);
         let marker = dir.join("complete");
@@ -79,7 +83,22 @@ pub fn run_cycle_catalogue(
         let s = if done {
             SeedCycles { seed, events: read_events(&events_path)?, run: None, out: dir }
         } else {
-            let r = run_cycles(pipeline, seed, &dir, cancel)?;
+            // A seed run again is unfinished until it ends: an earlier marker must not vouch for
+            // what this run leaves behind if it stops.
+            match std::fs::remove_file(&marker) {
+                Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+                    return Err(EnsembleError::Store(StoreError::Io { path: marker, source: e }));
+                }
+                _ => {}
+            }
+            let r = match run_cycles(pipeline, seed, &dir, cancel) {
+                Ok(r) => r,
+                Err(EnsembleError::Solver(e)) => {
+                    failed.push((seed, e.to_string()));
+                    continue;
+                }
+                Err(e) => return Err(e),
+            };
             if r.interrupted_s.is_some() {
                 interrupted = Some(seed);
                 break;
@@ -105,7 +124,7 @@ pub fn run_cycle_catalogue(
     let catalogues: Vec<CycleCatalogue> = seeds.iter().map(|s| catalogue(s, lc, spec.duration_s)).collect();
     let stats = cycle_catalogue_stats(&catalogues);
     write_catalogue_tables(&Folder::new(out), &stats)?;
-    Ok(CycleCatalogueReport { seeds, lc_m: lc, duration_s: spec.duration_s, stats, interrupted })
+    Ok(CycleCatalogueReport { seeds, lc_m: lc, duration_s: spec.duration_s, stats, interrupted, failed })
 }
 
 /// A seed's events as the catalogue statistics take them: rupture area `length²` (the

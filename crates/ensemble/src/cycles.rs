@@ -51,9 +51,11 @@ pub struct CycleEvent {
 
 impl CycleEvent {
     /// The ruptured length down dip (m): from the shallowest to the deepest node that exceeded
-    /// the event threshold, each node standing for one module `lc_m`.
+    /// the event threshold, each node standing for the length it carries in the moment (one
+    /// module `lc_m`, half of one at the free surface).
     pub fn length_m(&self, lc_m: f64) -> f64 {
-        self.ruptured_m[1] - self.ruptured_m[0] + lc_m
+        let surface = if self.ruptured_m[0] == 0.0 { 0.5 * lc_m } else { 0.0 };
+        self.ruptured_m[1] - self.ruptured_m[0] + lc_m - surface
     }
 
     /// The seismic moment (N·m) of the event taken as long along strike as it is down dip (the
@@ -64,7 +66,7 @@ impl CycleEvent {
 
     /// The moment magnitude of [`CycleEvent::moment_n_m`], `(2/3)·(log10 M0 − 9.1)`.
     pub fn magnitude(&self, lc_m: f64) -> f64 {
-        2.0 / 3.0 * (self.moment_n_m(lc_m).log10() - 9.1)
+        stickslip_analysis::source::moment_magnitude(self.moment_n_m(lc_m))
     }
 }
 

@@ -136,12 +136,34 @@ fn catalogue(pipeline: &Pipeline, out: &Path, cancel: &AtomicBool) -> Result<()>
     })?;
     print_catalogue(&r.stats, r.seeds.len());
     outln!("  tables: {}", out.join("tables").display());
-    if !r.seeds.is_empty() {
+    let figure_path = out.join("figures").join("cycle_catalogue.png");
+    if r.seeds.is_empty() {
+        // The tables were rewritten empty: an earlier figure would contradict them.
+        match std::fs::remove_file(&figure_path) {
+            Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+                bail!("{}: cannot remove the earlier {}: {e}", pipeline.name, figure_path.display())
+            }
+            _ => {}
+        }
+    } else {
         let figure = stickslip_report::cycle_catalogue::draw_cycle_catalogue(
             out,
             stickslip_ensemble::catalogue::CYCLE_MAGNITUDE,
         )?;
         outln!("  figure: {}", figure.path.display());
+    }
+    for (seed, why) in &r.failed {
+        errln!("  seed {seed} failed: {why}");
+    }
+    if !r.failed.is_empty() {
+        bail!(
+            "{}: {} seed(s) failed ({}); the statistics cover the {} that finished, and the same command runs the \
+             failed ones again",
+            pipeline.name,
+            r.failed.len(),
+            r.failed.iter().map(|(s, _)| s.to_string()).collect::<Vec<_>>().join(", "),
+            r.seeds.len()
+        );
     }
     if let Some(seed) = r.interrupted {
         bail!(

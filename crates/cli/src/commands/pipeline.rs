@@ -235,7 +235,11 @@ fn seeds_to_run(a: &Args, pipelines: &[Pipeline], given: Option<&[u64]>) -> Resu
             // One run of the fault alone: its stiffness is nodes² numbers, the block is never built;
             // what it holds is checked against the memory available.
             if a.shard.is_some() || stickslip_ensemble::split::installed().is_some() {
-                bail!("{}: a [cycles] pipeline is one run on one process; leave out --shard and mpirun", pipeline.name);
+                bail!(
+                    "{}: a [cycles] pipeline runs on one process (its seeds one after another); leave out --shard and \
+                     mpirun",
+                    pipeline.name
+                );
             }
             stickslip_ensemble::budget::check_cycles(&pipeline.scene, spec, &pipeline.name)?;
             runs.push(Vec::new());

@@ -76,7 +76,9 @@ pub fn cycles(pipeline: &Pipeline) -> Section {
         (&spec.heterogeneity, &scene.fault, scene.friction.base(0))
     {
         let sigma = fault.normal_pa.iter().fold(0.0f64, |a, &b| a.max(b));
-        let [a_lo, a_hi] = Heterogeneity::span(h.log_a_std).map(|f| f * node.a);
+        let a_of = |j: usize| spec.a_at(j as f64 * lc).unwrap_or(node.a);
+        let (a_min, a_max) = (0..nodes).fold((f64::INFINITY, 0.0f64), |(lo, hi), j| (lo.min(a_of(j)), hi.max(a_of(j))));
+        let [a_lo, a_hi] = [Heterogeneity::span(h.log_a_std)[0] * a_min, Heterogeneity::span(h.log_a_std)[1] * a_max];
         let [b_lo, b_hi] = Heterogeneity::span(h.log_b_std).map(|f| f * node.b);
         let [l_lo, l_hi] = Heterogeneity::span(h.log_dc_std).map(|f| f * node.dc_m);
         let lambda0 = 9.0 * std::f64::consts::PI / 32.0 * mu * l_lo / (b_hi * sigma);

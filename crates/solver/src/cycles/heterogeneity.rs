@@ -70,8 +70,8 @@ impl Heterogeneity {
 
 /// A unit Gaussian field on `n` points spaced `spacing_m`, zero mean and unit standard deviation
 /// over the points, with the one-dimensional von Kármán spectrum `(1 + k²a²)^−(H + 1/2)`, `a` the
-/// correlation length. Spectral synthesis on `2n` points (so the periodic wrap-around does not tie
-/// the ends together), complex Gaussian coefficients by Box–Muller on ChaCha8 draws of `seed`'s
+/// correlation length. Spectral synthesis on `max(2n, n + 4a/spacing)` points (so the periodic
+/// wrap-around does not tie the ends together), complex Gaussian coefficients by Box–Muller on ChaCha8 draws of `seed`'s
 /// `stream`, a plain DFT with `libm` twiddles: bit-identical on every platform.
 pub fn von_karman_line(
     n: usize,
@@ -84,7 +84,9 @@ pub fn von_karman_line(
     if n == 0 {
         return Ok(Vec::new());
     }
-    let p = 2 * n;
+    // At least twice the line, and four correlation lengths beyond it: the transform's period
+    // then ties the line's ends together by less than exp(−4) at H = 1/2.
+    let p = (2 * n).max(n + (4.0 * correlation_length_m / spacing_m).ceil() as usize);
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     rng.set_stream(stream);
     let mut uniform = || -> f64 { ((rng.next_u64() >> 11) as f64 + 1.0) * (1.0 / (1u64 << 53) as f64) };
