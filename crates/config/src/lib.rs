@@ -26,6 +26,7 @@ pub mod pipeline;
 pub mod precision;
 pub mod scene;
 pub mod sections;
+mod seed_fields;
 pub mod seeds;
 pub mod set;
 mod station_band;

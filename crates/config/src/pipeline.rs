@@ -434,7 +434,7 @@ impl Pipeline {
         if let Some(scene) = scene.as_ref() {
             warn_gmm_band(scene, &mut ck);
         }
-        let random = crate::seeds::random_fields(&file);
+        let random = file.random_fields();
         if file.seeds.target.is_some() && random.is_empty() {
             ck.push(
                 "seeds.target",

@@ -1,5 +1,4 @@
-//! Seed lists and shards as written on a command line (`--seeds 1,5,10-20`, `--shard 3/8`), and what
-//! makes a pipeline's seeds differ.
+//! Seed lists and shards as written on a command line (`--seeds 1,5,10-20`, `--shard 3/8`).
 
 /// The most seeds a list may hold, as in a pipeline file's `[seeds]`.
 pub const MAX_SEEDS: u64 = 10_000_000;
@@ -69,41 +68,6 @@ pub fn parse_shard(text: &str) -> Result<(usize, usize), String> {
         return Err(format!("{text}: need 1 ≤ K ≤ N"));
     }
     Ok((k, n))
-}
-
-/// The random fields of `file` that make its seeds differ, by their fields (empty: every seed
-/// gives the same run).
-pub(crate) fn random_fields(file: &crate::pipeline::PipelineFile) -> Vec<&'static str> {
-    let mut out = Vec::new();
-    if file.material.young_cv > 0.0 {
-        out.push("material.young_cv");
-    }
-    if file.friction.mu_cv > 0.0 {
-        out.push("friction.mu_cv");
-    }
-    if file.rupture.as_ref().is_some_and(|r| r.fracture_energy_cv > 0.0) {
-        out.push("rupture.fracture_energy_cv");
-    }
-    if file.fault.as_ref().and_then(|f| f.stochastic.as_ref()).is_some_and(|s| s.std_pa > 0.0) {
-        out.push("fault.stochastic.std_pa");
-    }
-    if file
-        .fault
-        .as_ref()
-        .and_then(|f| f.nucleation.as_ref())
-        .is_some_and(|n| n.x_m[0] < n.x_m[1] || n.y_m[0] < n.y_m[1])
-    {
-        out.push("fault.nucleation");
-    }
-    if file
-        .cycles
-        .as_ref()
-        .and_then(|c| c.heterogeneity.as_ref())
-        .is_some_and(|h| h.log_a_std > 0.0 || h.log_b_std > 0.0 || h.log_dc_std > 0.0)
-    {
-        out.push("cycles.heterogeneity");
-    }
-    out
 }
 
 #[cfg(test)]
