@@ -6,7 +6,7 @@
 use serde::{Deserialize, Serialize};
 use stickslip_solver::Scene;
 use stickslip_solver::cycles::{CycleSpec, DynamicSpec, Heterogeneity, Tolerances, YEAR_S};
-use stickslip_solver::laws::NodeFriction;
+use stickslip_solver::laws::{NodeFriction, RateStateNode};
 
 use crate::check::{Checker, num};
 use crate::scene::LEAST_ZONE_NODES;
@@ -276,8 +276,9 @@ impl HeterogeneitySection {
             let sigma = fault.normal_pa.iter().copied().fold(0.0, f64::max);
             let dc = node.dc_m * Heterogeneity::span(self.log_dc_std)[0];
             let b = node.b * Heterogeneity::span(self.log_b_std)[1];
-            let zone = 9.0 * std::f64::consts::PI / 32.0 * c44 * dc / (b * sigma);
-            if b > 0.0 && sigma > 0.0 && zone < LEAST_ZONE_NODES * lc {
+            let extreme = NodeFriction::RateState(RateStateNode { dc_m: dc, b, ..node });
+            let zone = extreme.cohesive_zone_m(c44, sigma).unwrap_or(f64::INFINITY);
+            if zone < LEAST_ZONE_NODES * lc {
                 ck.push(
                     "block.lc_m",
                     num(lc),

@@ -203,10 +203,6 @@ pub fn von_karman_field(
     let (px, py) = (2 * nx, 2 * ny);
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     rng.set_stream(STREAM_PRESTRESS);
-    let mut uniform = || -> f64 {
-        // In (0, 1]: 53 random bits.
-        ((rng.next_u64() >> 11) as f64 + 1.0) * (1.0 / (1u64 << 53) as f64)
-    };
     let a = correlation_length_m;
     let wavenumber = |i: usize, n: usize| {
         let j = if i <= n / 2 { i as f64 } else { i as f64 - n as f64 };
@@ -221,16 +217,10 @@ pub fn von_karman_field(
             let kx = wavenumber(i, px);
             let k2 = kx * kx + ky * ky;
             let amp = if i == 0 && j == 0 { 0.0 } else { libm::pow(1.0 + k2 * a * a, -0.5 * (hurst + 1.0)) };
-            let (u1, u2) = (uniform(), uniform());
-            let r = libm::sqrt(-2.0 * libm::log(u1));
-            re[j * px + i] = amp * r * libm::cos(2.0 * PI * u2);
-            im[j * px + i] = amp * r * libm::sin(2.0 * PI * u2);
+            (re[j * px + i], im[j * px + i]) = complex_gaussian(&mut rng, amp);
         }
     }
     // Inverse DFT along x for every row, then along y for the face's columns only.
-    let twiddles = |n: usize| -> (Vec<f64>, Vec<f64>) {
-        (0..n).map(|k| (libm::cos(2.0 * PI * k as f64 / n as f64), libm::sin(2.0 * PI * k as f64 / n as f64))).unzip()
-    };
     let (cx, sx) = twiddles(px);
     let (cy, sy) = twiddles(py);
     // rows[j][x] for x < nx.
@@ -261,16 +251,38 @@ pub fn von_karman_field(
             field[y * nx + x] = sr;
         }
     }
+    standardise(field).ok_or_else(|| {
+        SolverError::Unsupported(format!(
+            "a von Kármán field on {nx} × {ny} points has no variance (correlation length {a} m, spacing {spacing_m} m)"
+        ))
+    })
+}
+
+/// A complex Gaussian coefficient of standard deviation `amp` (Box–Muller on two uniform draws
+/// in (0, 1] of 53 random bits each, with `libm`: the same on every platform).
+pub(crate) fn complex_gaussian(rng: &mut ChaCha8Rng, amp: f64) -> (f64, f64) {
+    let mut uniform = || ((rng.next_u64() >> 11) as f64 + 1.0) * (1.0 / (1u64 << 53) as f64);
+    let (u1, u2) = (uniform(), uniform());
+    let r = libm::sqrt(-2.0 * libm::log(u1));
+    (amp * r * libm::cos(2.0 * PI * u2), amp * r * libm::sin(2.0 * PI * u2))
+}
+
+/// `cos` and `sin` of `2πk/n` for k < n, with `libm`.
+pub(crate) fn twiddles(n: usize) -> (Vec<f64>, Vec<f64>) {
+    (0..n).map(|k| (libm::cos(2.0 * PI * k as f64 / n as f64), libm::sin(2.0 * PI * k as f64 / n as f64))).unzip()
+}
+
+/// `field` centred and scaled to unit standard deviation over its points; `None` when it has no
+/// variance.
+pub(crate) fn standardise(field: Vec<f64>) -> Option<Vec<f64>> {
     let n = field.len() as f64;
     let mean = field.iter().sum::<f64>() / n;
     let var = field.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / n;
     if !(var > 0.0) {
-        return Err(SolverError::Unsupported(format!(
-            "a von Kármán field on {nx} × {ny} points has no variance (correlation length {a} m, spacing {spacing_m} m)"
-        )));
+        return None;
     }
     let sd = var.sqrt();
-    Ok(field.into_iter().map(|v| (v - mean) / sd).collect())
+    Some(field.into_iter().map(|v| (v - mean) / sd).collect())
 }
 
 #[cfg(test)]

@@ -3,7 +3,7 @@
 //! run never builds its block).
 
 use stickslip_solver::cycles::{DynamicSpec, Heterogeneity, YEAR_S};
-use stickslip_solver::laws::NodeFriction;
+use stickslip_solver::laws::{NodeFriction, RateStateNode};
 
 use super::Section;
 use crate::Pipeline;
@@ -71,47 +71,9 @@ pub fn cycles(pipeline: &Pipeline) -> Section {
                 ),
             );
         }
-    }
-    if let (Some(h), Some(fault), NodeFriction::RateState(node)) =
-        (&spec.heterogeneity, &scene.fault, scene.friction.base(0))
-    {
-        let sigma = fault.normal_pa.iter().fold(0.0f64, |a, &b| a.max(b));
-        let a_of = |j: usize| spec.a_at(j as f64 * lc).unwrap_or(node.a);
-        let (a_min, a_max) = (0..nodes).fold((f64::INFINITY, 0.0f64), |(lo, hi), j| (lo.min(a_of(j)), hi.max(a_of(j))));
-        let [a_lo, a_hi] = [Heterogeneity::span(h.log_a_std)[0] * a_min, Heterogeneity::span(h.log_a_std)[1] * a_max];
-        let [b_lo, b_hi] = Heterogeneity::span(h.log_b_std).map(|f| f * node.b);
-        let [l_lo, l_hi] = Heterogeneity::span(h.log_dc_std).map(|f| f * node.dc_m);
-        let lambda0 = 9.0 * std::f64::consts::PI / 32.0 * mu * l_lo / (b_hi * sigma);
-        let weakening = b_hi > a_lo;
-        let h_min = std::f64::consts::PI / 2.0 * mu * b_hi * l_lo / ((b_hi - a_lo).powi(2) * sigma);
-        s.push(
-            "heterogeneity",
-            format!(
-                "random fields per seed ({} seed{}: {}): {}, g unit von Kármán fields along depth, correlation length {} \
-                 m, Hurst exponent {}; at three standard deviations a {:.4} … {:.4}, b {:.4} … {:.4}, L {:.4e} … {:.4e} \
-                 m; there Λ0 = {:.1} m = {:.1} × Lc{}",
-                pipeline.seeds.len(),
-                if pipeline.seeds.len() == 1 { "" } else { "s" },
-                pipeline.seeds.iter().take(8).map(|s| s.to_string()).collect::<Vec<_>>().join(", "),
-                [("a", h.log_a_std), ("b", h.log_b_std), ("L", h.log_dc_std)]
-                    .iter()
-                    .filter(|(_, s)| *s > 0.0)
-                    .map(|(c, s)| format!("{c}·exp({}·g)", num(*s)))
-                    .collect::<Vec<_>>()
-                    .join(", "),
-                num(h.correlation_length_m),
-                num(h.hurst),
-                a_lo,
-                a_hi,
-                b_lo,
-                b_hi,
-                l_lo,
-                l_hi,
-                lambda0,
-                lambda0 / lc,
-                if weakening { format!(" and the smallest nucleation size h* = {h_min:.0} m = {:.1} × Lc", h_min / lc) } else { String::new() }
-            ),
-        );
+        if let Some(h) = &spec.heterogeneity {
+            s.push("heterogeneity", heterogeneity(h, pipeline, node, [a_min, a_max], mu, sigma, lc));
+        }
     }
     s.push(
         "steps",
@@ -170,4 +132,44 @@ pub fn cycles(pipeline: &Pipeline) -> Section {
         ),
     );
     s
+}
+
+/// The line of `stickslip check` on a fault's random fields: their range at three standard
+/// deviations (a around the profile `a_range` along depth), and there the law's process zone
+/// and nucleation size (`mu` the shear modulus, `sigma` the largest normal stress).
+fn heterogeneity(
+    h: &Heterogeneity,
+    pipeline: &Pipeline,
+    node: RateStateNode,
+    [a_min, a_max]: [f64; 2],
+    mu: f64,
+    sigma: f64,
+    lc: f64,
+) -> String {
+    let [a_lo, a_hi] = [Heterogeneity::span(h.log_a_std)[0] * a_min, Heterogeneity::span(h.log_a_std)[1] * a_max];
+    let [b_lo, b_hi] = Heterogeneity::span(h.log_b_std).map(|f| f * node.b);
+    let [l_lo, l_hi] = Heterogeneity::span(h.log_dc_std).map(|f| f * node.dc_m);
+    let extreme = NodeFriction::RateState(RateStateNode { a: a_lo, b: b_hi, dc_m: l_lo, ..node });
+    let lambda0 = extreme.cohesive_zone_m(mu, sigma).unwrap_or(f64::NAN);
+    let nucleation = extreme
+        .nucleation_m(mu, sigma)
+        .map(|h| format!(" and the smallest nucleation size h* = {h:.0} m = {:.1} × Lc", h / lc))
+        .unwrap_or_default();
+    format!(
+        "random fields per seed ({} seed{}: {}): {}, g unit von Kármán fields along depth, correlation length {} m, \
+         Hurst exponent {}; at three standard deviations a {a_lo:.4} … {a_hi:.4}, b {b_lo:.4} … {b_hi:.4}, L \
+         {l_lo:.4e} … {l_hi:.4e} m; there Λ0 = {lambda0:.1} m = {:.1} × Lc{nucleation}",
+        pipeline.seeds.len(),
+        if pipeline.seeds.len() == 1 { "" } else { "s" },
+        pipeline.seeds.iter().take(8).map(|s| s.to_string()).collect::<Vec<_>>().join(", "),
+        [("a", h.log_a_std), ("b", h.log_b_std), ("L", h.log_dc_std)]
+            .iter()
+            .filter(|(_, s)| *s > 0.0)
+            .map(|(c, s)| format!("{c}·exp({}·g)", num(*s)))
+            .collect::<Vec<_>>()
+            .join(", "),
+        num(h.correlation_length_m),
+        num(h.hurst),
+        lambda0 / lc,
+    )
 }

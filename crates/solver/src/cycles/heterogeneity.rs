@@ -8,11 +8,12 @@
 //! its mean is `exp(s²/2)` times the background's. The three fields come from their own streams
 //! of the seed, so a field of L is the same whether or not a field of a is asked for too.
 
+use rand::SeedableRng;
 use rand::rngs::ChaCha8Rng;
-use rand::{Rng, SeedableRng};
 use std::f64::consts::PI;
 
 use crate::error::SolverError;
+use crate::fault::{complex_gaussian, standardise, twiddles};
 use crate::laws::RateStateNode;
 
 /// The random stream of the field of ln a.
@@ -89,20 +90,15 @@ pub fn von_karman_line(
     let p = (2 * n).max(n + (4.0 * correlation_length_m / spacing_m).ceil() as usize);
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     rng.set_stream(stream);
-    let mut uniform = || -> f64 { ((rng.next_u64() >> 11) as f64 + 1.0) * (1.0 / (1u64 << 53) as f64) };
     let a = correlation_length_m;
     let (mut re, mut im) = (vec![0.0; p], vec![0.0; p]);
     for i in 0..p {
         let j = if i <= p / 2 { i as f64 } else { i as f64 - p as f64 };
         let k = 2.0 * PI * j / (p as f64 * spacing_m);
         let amp = if i == 0 { 0.0 } else { libm::pow(1.0 + k * k * a * a, -0.5 * (hurst + 0.5)) };
-        let (u1, u2) = (uniform(), uniform());
-        let r = libm::sqrt(-2.0 * libm::log(u1));
-        re[i] = amp * r * libm::cos(2.0 * PI * u2);
-        im[i] = amp * r * libm::sin(2.0 * PI * u2);
+        (re[i], im[i]) = complex_gaussian(&mut rng, amp);
     }
-    let (cos, sin): (Vec<f64>, Vec<f64>) =
-        (0..p).map(|t| (libm::cos(2.0 * PI * t as f64 / p as f64), libm::sin(2.0 * PI * t as f64 / p as f64))).unzip();
+    let (cos, sin) = twiddles(p);
     let field: Vec<f64> = (0..n)
         .map(|x| {
             (0..p)
@@ -113,16 +109,11 @@ pub fn von_karman_line(
                 .sum()
         })
         .collect();
-    let len = n as f64;
-    let mean = field.iter().sum::<f64>() / len;
-    let var = field.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / len;
-    if !(var > 0.0) {
-        return Err(SolverError::Unsupported(format!(
+    standardise(field).ok_or_else(|| {
+        SolverError::Unsupported(format!(
             "a von Kármán field on {n} points has no variance (correlation length {a} m, spacing {spacing_m} m)"
-        )));
-    }
-    let sd = var.sqrt();
-    Ok(field.into_iter().map(|v| (v - mean) / sd).collect())
+        ))
+    })
 }
 
 #[cfg(test)]
