@@ -156,6 +156,13 @@ impl CyclesSection {
         if scene.fault.is_none() {
             ck.push("fault", "none", "a [fault] with [cycles] (its base is the fault the plate loads)");
         }
+        if scene.fault.as_ref().is_some_and(|f| !f.depth_scale.is_empty()) {
+            ck.push(
+                "fault.overburden_gradient_pa_m",
+                "(given)",
+                "left out with [cycles] (not built: its checks of h* and Λ₀ take the fault's largest normal stress)",
+            );
+        }
         if !matches!(scene.friction.base(0), NodeFriction::RateState(_)) {
             ck.push(
                 "friction.law",

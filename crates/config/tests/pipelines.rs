@@ -116,6 +116,57 @@ fn abutting_traction_patches_share_the_nodes_on_their_seam() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// `[fault] overburden_gradient_pa_m`: every traction of a node, the seed's random field and
+/// nucleation square included, is the one without it times the mean over the node's tile of
+/// `min(1, g·d/σn)` (docs/model.md §15.3), computed here by a midpoint sum.
+#[test]
+fn an_overburden_scales_every_traction_by_its_depths_share() {
+    // scenario-m6 (uniform σn, a random field, a nucleation square) on 1 km modules.
+    // Without its broadband records and set, which 1 km modules cannot carry.
+    let text = std::fs::read_to_string(repo_path("pipelines/scenario-m6.toml")).unwrap();
+    let base = text[..text.find("\n[broadband]").unwrap()]
+        .replace("nx = 160\nny = 40\nnz = 104\nlc_m = 500.0", "nx = 80\nny = 20\nnz = 52\nlc_m = 1000.0");
+    assert!(base.contains("lc_m = 1000.0"), "the block was not coarsened");
+    let with =
+        base.replace("shear_stress_pa = 66.5e6\n", "shear_stress_pa = 66.5e6\noverburden_gradient_pa_m = 16380.0\n");
+    assert_ne!(with, base);
+    let dir = std::env::temp_dir().join(format!("stickslip-overburden-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let load = |name: &str, text: &str| {
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap();
+        Pipeline::load(&path).unwrap()
+    };
+    let (plain, deep) = (load("plain.toml", &base), load("overburden.toml", &with));
+    let (g, sigma, lc) = (16_380.0, 120e6, 1000.0);
+    let share = |y: f64| {
+        let (lo, hi) = ((y - 0.5 * lc).max(0.0), (y + 0.5 * lc).min(20_000.0));
+        let n = 10_000;
+        (0..n).map(|i| (g * (lo + (i as f64 + 0.5) * (hi - lo) / n as f64) / sigma).min(1.0)).sum::<f64>() / n as f64
+    };
+    let (fp, fd) = (plain.scene.fault.as_ref().unwrap(), deep.scene.fault.as_ref().unwrap());
+    let (mp, md) =
+        (stickslip_solver::Model::new(plain.scene.clone()), stickslip_solver::Model::new(deep.scene.clone()));
+    let lattice = md.lattice();
+    let nodes = lattice.contact_nodes();
+    for seed in [1, 2] {
+        let (lp, ld) = (mp.fault_loads(seed).unwrap().unwrap(), md.fault_loads(seed).unwrap().unwrap());
+        for (c, &id) in nodes.iter().enumerate() {
+            let s = share(lattice.position(id)[1]);
+            assert!((fd.depth_scale[c] - s).abs() < 1e-7, "node {c}: share {} against {s}", fd.depth_scale[c]);
+            assert!((fd.normal_pa[c] - s * fp.normal_pa[c]).abs() < 1e-7 * sigma, "node {c}: normal");
+            assert!((ld.normal_n[c] - s * lp.normal_n[c]).abs() <= 1e-7 * lp.normal_n[c], "node {c}: normal force");
+            // The random field and the nucleation square scale with the node's share too.
+            let (a, b) = (ld.shear_n[c][0], lp.shear_n[c][0]);
+            assert!((a - s * b).abs() <= 1e-7 * b.abs(), "seed {seed} node {c}: shear {a} against {s}·{b}");
+        }
+    }
+    // The surface row carries the tractions of depth Lc/4; below d* = 7326 m, all of them.
+    assert!((fd.normal_pa[0] - g * 250.0).abs() < 1e-6);
+    assert_eq!(fd.normal_pa[nodes.len() - 1], sigma);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// A set for an ASCE 7-16 target of fewer than the 11 ground motions its §16.2.2 asks for runs,
 /// with a warning that quotes the rule; 11 gives none.
 #[test]

@@ -49,6 +49,41 @@ pub struct Fault {
     /// The point of the fault `(x, y)` that benchmark files measure along strike and down dip
     /// from (m).
     pub origin_m: [f64; 2],
+    /// Each contact node's share of the tractions at its depth under an overburden
+    /// ([`overburden_share`]); empty when the tractions do not vary with depth. `shear_pa` and
+    /// `normal_pa` hold it already; the random field, the nucleation's traction and the smooth
+    /// overstress of a seed are scaled by it ([`Fault::depth_scale`]).
+    pub depth_scale: Vec<f64>,
+    /// The overburden's gradient (Pa/m) when the tractions follow one.
+    pub overburden_gradient_pa_m: Option<f64>,
+}
+
+impl Fault {
+    /// Contact node `c`'s share of the tractions at its depth (1 without an overburden).
+    pub fn depth_scale(&self, c: usize) -> f64 {
+        self.depth_scale.get(c).copied().unwrap_or(1.0)
+    }
+}
+
+/// The mean of `min(1, s/d*)` over the depths `s` of `[lo, hi]` (m), `d*` the depth where an
+/// effective normal stress growing from the surface at `gradient_pa_m` reaches `normal_pa`: the
+/// share of a node's tractions kept at its depth when they all scale with the overburden above
+/// `d*` (docs/model.md §15.3). The mean over the node's tile is exact (the share is piecewise
+/// linear in depth), so the surface node, whose tile spans `[0, Lc/2]`, carries the tractions of
+/// depth `Lc/4`, not zero.
+pub fn overburden_share(gradient_pa_m: f64, normal_pa: f64, lo: f64, hi: f64) -> f64 {
+    let d = normal_pa / gradient_pa_m;
+    let share = |s: f64| (s / d).min(1.0);
+    if hi <= lo {
+        return share(lo);
+    }
+    if lo >= d {
+        1.0
+    } else if hi <= d {
+        0.5 * (lo + hi) / d
+    } else {
+        (0.5 * (d * d - lo * lo) / d + (hi - d)) / (hi - lo)
+    }
 }
 
 /// A random field on the initial shear traction with a von Kármán spectrum (docs/model.md §15):
@@ -288,6 +323,25 @@ pub(crate) fn standardise(field: Vec<f64>) -> Option<Vec<f64>> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_overburden_share_is_the_mean_of_its_factor_over_the_tile() {
+        // Against a midpoint sum of min(1, g·s/σ) over [lo, hi] (error ~1e-8 at 20 000 points),
+        // for tiles above, across and below d* = σ/g = 7326 m.
+        let (g, sigma) = (16_380.0, 120e6);
+        let numeric = |lo: f64, hi: f64| {
+            let n = 20_000;
+            (0..n).map(|i| (g * (lo + (i as f64 + 0.5) * (hi - lo) / n as f64) / sigma).min(1.0)).sum::<f64>()
+                / n as f64
+        };
+        for (lo, hi) in [(0.0, 250.0), (750.0, 1250.0), (7000.0, 7500.0), (7200.0, 7400.0), (8000.0, 8500.0)] {
+            let (exact, sum) = (overburden_share(g, sigma, lo, hi), numeric(lo, hi));
+            assert!((exact - sum).abs() < 1e-7, "[{lo}, {hi}]: {exact} against {sum}");
+        }
+        // The surface row of 500 m modules: the tractions of depth Lc/4.
+        assert!((overburden_share(g, sigma, 0.0, 250.0) - g * 125.0 / sigma).abs() < 1e-15);
+        assert_eq!(overburden_share(g, sigma, 8000.0, 8500.0), 1.0);
+    }
 
     /// Correlation of a field with itself shifted by `lag` points along x, averaged over the grid.
     fn correlation_x(f: &[f64], nx: usize, ny: usize, lag: usize) -> f64 {

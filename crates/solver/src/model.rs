@@ -551,7 +551,8 @@ impl Model {
 
     /// The fault's loads on every contact node for `seed` (docs/model.md §15): `τ0·A_i` along x
     /// and y, with the seed's von Kármán field added to x when the scene has one and the seed's
-    /// nucleation square's traction set inside it, and
+    /// nucleation square's traction set inside it (both scaled by the node's share under an
+    /// overburden, [`Fault::depth_scale`]), and
     /// `σn·A_i`, `A_i` the node's share of the base, with the smooth overstress's peak force
     /// `Δτ₀·F(r)·A_i` when the scene has one. `None` on the rigid base.
     pub fn fault_loads(&self, seed: u64) -> Result<Option<FaultLoads>, SolverError> {
@@ -579,15 +580,17 @@ impl Model {
         // Contact nodes come in canonical order: x fastest, then y, the grid of the field.
         let shear_n = (0..nodes.len())
             .map(|c| {
+                // An overburden scales the seed's parts as it scales the scene's tractions.
+                let scale = fault.depth_scale(c);
                 let extra = match (&field, &fault.stochastic) {
-                    (Some(f), Some(st)) => st.std_pa * f[c],
+                    (Some(f), Some(st)) => st.std_pa * f[c] * scale,
                     _ => 0.0,
                 };
                 let mut tau_x = fault.shear_pa[c][0] + extra;
                 if let Some((n, centre)) = nucleation {
                     let p = lattice.position(nodes[c]);
                     if n.contains(centre, p[0], p[1]) {
-                        tau_x = n.shear_pa;
+                        tau_x = n.shear_pa * scale;
                     }
                 }
                 [tau_x * area[c], fault.shear_pa[c][1] * area[c]]
@@ -598,7 +601,7 @@ impl Model {
             Some(o) => (0..nodes.len())
                 .map(|c| {
                     let p = lattice.position(nodes[c]);
-                    o.overstress_pa * o.shape(p[0], p[1]) * area[c]
+                    o.overstress_pa * o.shape(p[0], p[1]) * area[c] * fault.depth_scale(c)
                 })
                 .collect(),
             None => Vec::new(),

@@ -34,6 +34,8 @@ fn column(nz: usize, tau0: f64) -> Scene {
         nucleation: None,
         overstress: None,
         origin_m: [0.0; 2],
+        depth_scale: Vec::new(),
+        overburden_gradient_pa_m: None,
     });
     s.set_boundary(BoundarySpec::Absorbing(vec![Face::ZMax]));
     s
@@ -138,6 +140,8 @@ fn a_nucleation_square_lands_where_its_seed_draws_it_and_nowhere_else() {
         nucleation: Some(n),
         overstress: None,
         origin_m: [0.0; 2],
+        depth_scale: Vec::new(),
+        overburden_gradient_pa_m: None,
     });
     s.boundaries.retain(|b| !matches!(b, BoundarySpec::Rollers(_)));
     let model = Model::new(s);

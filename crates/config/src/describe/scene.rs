@@ -157,6 +157,25 @@ pub fn fault(model: &Model, first_seed: u64) -> Section {
             mpa(r.shear_pa)
         ),
     );
+    if let Some(f) = scene.fault.as_ref()
+        && let Some(g) = f.overburden_gradient_pa_m
+    {
+        // The largest normal stress before the overburden's share (the uniform one, or the deepest of a grid).
+        let sigma = f.normal_pa.iter().zip(&f.depth_scale).map(|(n, s)| n / s).fold(0.0, f64::max);
+        let top = f.depth_scale.iter().copied().fold(f64::INFINITY, f64::min);
+        s.push(
+            "fault",
+            format!(
+                "overburden: the effective normal stress grows from the surface (y = 0) at {} Pa/m and reaches {:.2} MPa \
+                 at {:.0} m depth; above, every traction (the seed's random field, nucleation and overstress too) \
+                 scales with it, to {:.3} of its value on the surface row (its tile's mean depth)",
+                N(g),
+                N(sigma / 1e6),
+                N(sigma / g),
+                N(top)
+            ),
+        );
+    }
     if let Some(n) = scene.fault.as_ref().and_then(|f| f.nucleation) {
         s.push(
             "fault",

@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use serde::{Deserialize, Serialize};
-use stickslip_solver::fault::{Fault, Nucleation, Overstress, StochasticStress};
+use stickslip_solver::fault::{Fault, Nucleation, Overstress, StochasticStress, overburden_share};
 use stickslip_solver::geometry::{Lattice, NodeId, NodeKind};
 use stickslip_solver::laws::{NodeFriction, RateStateStart};
 use stickslip_solver::scene::{Component, ControlChannel, Kinematic, Station};
@@ -28,6 +28,12 @@ pub struct FaultSection {
     /// Initial shear traction along +y (Pa). Default 0.
     #[serde(default, skip_serializing_if = "is_zero")]
     pub shear_stress_y_pa: f64,
+    /// The effective normal stress grows with depth from the surface (y = 0) at this gradient,
+    /// `(ρ − ρ_water)·g` (Pa/m), until it reaches the normal stress; above that depth every
+    /// traction scales down with it (docs/model.md §15.3). Absent: tractions do not vary with
+    /// depth.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub overburden_gradient_pa_m: Option<f64>,
     /// Regions with their own tractions, laid over the uniform values (and the grid) in order of
     /// priority.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -359,6 +365,10 @@ pub(super) fn fault(ck: &mut Checker, file: SceneSections<'_>, lattice: &Lattice
             set(c, k, total / TILE_POINTS as f64);
         }
     }
+    let depth_scale = match f.overburden_gradient_pa_m {
+        Some(g) => overburden(ck, file, g, lattice, &mut shear, &mut normal),
+        None => Vec::new(),
+    };
     let stochastic = f.stochastic.map(|s| {
         ck.non_negative("fault.stochastic.std_pa", s.std_pa);
         if ck.positive("fault.stochastic.correlation_length_m", s.correlation_length_m)
@@ -395,7 +405,61 @@ pub(super) fn fault(ck: &mut Checker, file: SceneSections<'_>, lattice: &Lattice
             ),
         );
     }
-    Some(Fault { shear_pa: shear, normal_pa: normal, stochastic, nucleation, overstress, origin_m: f.origin_m })
+    let overburden_gradient_pa_m = f.overburden_gradient_pa_m.filter(|_| !depth_scale.is_empty());
+    Some(Fault {
+        shear_pa: shear,
+        normal_pa: normal,
+        stochastic,
+        nucleation,
+        overstress,
+        origin_m: f.origin_m,
+        depth_scale,
+        overburden_gradient_pa_m,
+    })
+}
+
+/// `fault.overburden_gradient_pa_m` checked and applied: each node's tractions scaled by its
+/// share at its depth (the mean over its tile of `min(1, g·d/σn)`, depth `d = y`), returned per
+/// node for the seed's parts. The surface must be the free face y_min.
+fn overburden(
+    ck: &mut Checker,
+    file: SceneSections<'_>,
+    gradient: f64,
+    lattice: &Lattice,
+    shear: &mut [[f64; 2]],
+    normal: &mut [f64],
+) -> Vec<f64> {
+    let field = "fault.overburden_gradient_pa_m";
+    if !ck.range(field, gradient, 0.0, true, f64::INFINITY, true) {
+        return Vec::new();
+    }
+    let absorbs_surface = file.absorbing.as_ref().is_some_and(|a| a.faces.iter().any(|f| f == "y_min"));
+    let surface = file.medium.as_ref().and_then(|m| m.surface.as_deref());
+    if absorbs_surface || surface.is_some_and(|s| s != "y_min") {
+        ck.push(
+            field,
+            num(gradient),
+            format!(
+                "a scene whose Earth's surface is the free face y_min (depth is y on the fault), not {}",
+                if absorbs_surface {
+                    "an absorbing y_min".to_string()
+                } else {
+                    format!("medium.surface = {:?}", surface.unwrap_or(""))
+                }
+            ),
+        );
+        return Vec::new();
+    }
+    let (half, width) = (0.5 * lattice.lc(), lattice.extent()[1]);
+    (0..normal.len())
+        .map(|c| {
+            let y = lattice.position(lattice.contact_node(c))[1];
+            let share = overburden_share(gradient, normal[c], (y - half).max(0.0), (y + half).min(width));
+            normal[c] *= share;
+            shear[c] = shear[c].map(|t| t * share);
+            share
+        })
+        .collect()
 }
 
 /// `[fault.overstress]` checked: its centre on the fault, a radius the lattice resolves, a finite
