@@ -244,14 +244,21 @@ impl Default for SpectraSection {
     }
 }
 
+/// The longest period a spectrum may ask for (s).
+const LONGEST_PERIOD_S: f64 = 1e6;
+
 impl SpectraSection {
     /// The settings for `scene`, every refused value recorded in `ck`; `shortest` is the
     /// shortest period accepted (s) with why (see [`shortest_period`]).
     pub fn build(&self, scene: &Scene, shortest: Option<(f64, String)>, ck: &mut Checker) -> SpectraSettings {
         let (floor, why) = shortest.unwrap_or((0.0, String::new()));
-        let above_floor = |ck: &mut Checker, field: &str, t: f64| {
+        let within_bounds = |ck: &mut Checker, field: &str, t: f64| {
             if t > 0.0 && t.is_finite() && t < floor {
                 ck.push(field, t, format!("a period ≥ {} s: {why}", approx(floor)));
+            }
+            // A period so long that its frequency underflows comes back from 1/f as infinity.
+            if t.is_finite() && t > LONGEST_PERIOD_S {
+                ck.push(field, t, format!("a period ≤ {LONGEST_PERIOD_S:e} s (11.6 days)"));
             }
         };
         if self.dampings.is_empty() {
@@ -263,13 +270,14 @@ impl SpectraSection {
         for (i, &t) in self.periods_s.iter().enumerate() {
             let field = format!("spectra.periods_s[{i}]");
             ck.positive(&field, t);
-            above_floor(ck, &field, t);
+            within_bounds(ck, &field, t);
         }
         if self.periods_s.len() > 10_000 {
             ck.push("spectra.periods_s", format!("{} periods", self.periods_s.len()), "at most 10000 periods");
         }
         if self.periods_s.is_empty() {
-            above_floor(ck, "spectra.period_min_s", self.period_min_s);
+            within_bounds(ck, "spectra.period_min_s", self.period_min_s);
+            within_bounds(ck, "spectra.period_max_s", self.period_max_s);
             if ck.positive("spectra.period_min_s", self.period_min_s)
                 && !(self.period_max_s > self.period_min_s && self.period_max_s.is_finite())
             {
