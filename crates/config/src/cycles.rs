@@ -159,8 +159,9 @@ impl CyclesSection {
         if scene.fault.as_ref().is_some_and(|f| !f.depth_scale.is_empty()) {
             ck.push(
                 "fault.overburden_gradient_pa_m",
-                "(given)",
-                "left out with [cycles] (not built: its checks of h* and Λ₀ take the fault's largest normal stress)",
+                "(present)",
+                "left out with [cycles]: a cycle run checks its nucleation size h* and process zone Λ₀ against one \
+                 normal stress, and does not yet take one that grows with depth",
             );
         }
         if !matches!(scene.friction.base(0), NodeFriction::RateState(_)) {

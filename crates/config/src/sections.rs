@@ -252,14 +252,17 @@ impl SpectraSection {
     /// shortest period accepted (s) with why (see [`shortest_period`]).
     pub fn build(&self, scene: &Scene, shortest: Option<(f64, String)>, ck: &mut Checker) -> SpectraSettings {
         let (floor, why) = shortest.unwrap_or((0.0, String::new()));
+        // A period so long that its frequency underflows comes back from 1/f as infinity.
+        let below_ceiling = |ck: &mut Checker, field: &str, t: f64| {
+            if t.is_finite() && t > LONGEST_PERIOD_S {
+                ck.push(field, t, format!("a period ≤ {LONGEST_PERIOD_S:e} s (11.6 days)"));
+            }
+        };
         let within_bounds = |ck: &mut Checker, field: &str, t: f64| {
             if t > 0.0 && t.is_finite() && t < floor {
                 ck.push(field, t, format!("a period ≥ {} s: {why}", approx(floor)));
             }
-            // A period so long that its frequency underflows comes back from 1/f as infinity.
-            if t.is_finite() && t > LONGEST_PERIOD_S {
-                ck.push(field, t, format!("a period ≤ {LONGEST_PERIOD_S:e} s (11.6 days)"));
-            }
+            below_ceiling(ck, field, t);
         };
         if self.dampings.is_empty() {
             ck.push("spectra.dampings", "[]", "at least one damping ratio");
@@ -277,7 +280,7 @@ impl SpectraSection {
         }
         if self.periods_s.is_empty() {
             within_bounds(ck, "spectra.period_min_s", self.period_min_s);
-            within_bounds(ck, "spectra.period_max_s", self.period_max_s);
+            below_ceiling(ck, "spectra.period_max_s", self.period_max_s);
             if ck.positive("spectra.period_min_s", self.period_min_s)
                 && !(self.period_max_s > self.period_min_s && self.period_max_s.is_finite())
             {

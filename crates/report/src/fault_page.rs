@@ -220,6 +220,14 @@ pub(crate) fn parameters(d: &ReportInput, common: Vec<(&'static str, String)>) -
             mpa(normal),
             mpa(shear)
         );
+        if let Some(g) = f.overburden_gradient_pa_m {
+            let _ = write!(
+                text,
+                "; growing with depth as an overburden of {} Pa/m (every traction here, the random field and the \
+                 nucleation too, scaled by its node's share at its depth, docs/model.md §15.3)",
+                compact(g)
+            );
+        }
         if let Some(r) = &f.stochastic {
             let _ = write!(
                 text,

@@ -77,7 +77,10 @@ pub fn clusters(breaks: &[Break], p: &ClusterParams) -> Vec<Cluster> {
     // cell apart along each axis. A burst of breaks costs their neighbours, not their square
     // (all of a block's bars breaking at once took minutes as a scan of every pair in time).
     let d2 = p.link_distance_m * p.link_distance_m;
-    let side = if p.link_distance_m > 0.0 && p.link_distance_m.is_finite() { p.link_distance_m } else { 1.0 };
+    // A side a little over the distance: two breaks exactly the distance apart stay within one
+    // cell of each other whatever the rounding of v/side (the distance test below decides).
+    let side =
+        if p.link_distance_m > 0.0 && p.link_distance_m.is_finite() { p.link_distance_m * (1.0 + 1e-9) } else { 1.0 };
     let cell = |q: &[f64; 3]| q.map(|v| (v / side).floor() as i64);
     let mut recent: std::collections::HashMap<[i64; 3], std::collections::VecDeque<usize>> =
         std::collections::HashMap::new();
@@ -87,7 +90,8 @@ pub fn clusters(breaks: &[Break], p: &ClusterParams) -> Vec<Cluster> {
         for dx in -1..=1 {
             for dy in -1..=1 {
                 for dz in -1..=1 {
-                    let Some(earlier) = recent.get_mut(&[cx + dx, cy + dy, cz + dz]) else { continue };
+                    let key = [cx.saturating_add(dx), cy.saturating_add(dy), cz.saturating_add(dz)];
+                    let Some(earlier) = recent.get_mut(&key) else { continue };
                     while earlier.front().is_some_and(|&a| bb.time_s - breaks[order[a]].time_s > p.link_time_s) {
                         earlier.pop_front();
                     }

@@ -157,22 +157,24 @@ pub fn fault(model: &Model, first_seed: u64) -> Section {
             mpa(r.shear_pa)
         ),
     );
+    let overburden = scene.fault.as_ref().and_then(|f| f.overburden_gradient_pa_m);
     if let Some(f) = scene.fault.as_ref()
         && let Some(g) = f.overburden_gradient_pa_m
     {
-        // The largest normal stress before the overburden's share (the uniform one, or the deepest of a grid).
+        // The largest normal stress before the overburden's share (the uniform one, or the
+        // deepest of a grid's), and the share of the surface row (contact node 0 is at y = 0).
         let sigma = f.normal_pa.iter().zip(&f.depth_scale).map(|(n, s)| n / s).fold(0.0, f64::max);
-        let top = f.depth_scale.iter().copied().fold(f64::INFINITY, f64::min);
         s.push(
             "fault",
             format!(
                 "overburden: the effective normal stress grows from the surface (y = 0) at {} Pa/m and reaches {:.2} MPa \
-                 at {:.0} m depth; above, every traction (the seed's random field, nucleation and overstress too) \
-                 scales with it, to {:.3} of its value on the surface row (its tile's mean depth)",
+                 at d* = {:.0} m; shallower than d* every traction (the seed's random field, nucleation and overstress \
+                 too) is scaled by g·d/σn, and the surface row (mean depth Lc/4 = {} m) keeps {:.3} of it",
                 N(g),
                 N(sigma / 1e6),
                 N(sigma / g),
-                N(top)
+                N(0.25 * scene.lc_m),
+                N(f.depth_scale[0])
             ),
         );
     }
@@ -180,10 +182,11 @@ pub fn fault(model: &Model, first_seed: u64) -> Section {
         s.push(
             "fault",
             format!(
-                "nucleation per seed: a {} m square at {:.2} MPa along x, its centre drawn uniformly in x {}…{} m, \
+                "nucleation per seed: a {} m square at {:.2} MPa along x{}, its centre drawn uniformly in x {}…{} m, \
                  y {}…{} m (seed {}: at ({:.0}, {:.0}) m)",
                 N(n.size_m),
                 N(n.shear_pa / 1e6),
+                if overburden.is_some() { " (× the overburden's share at its depth)" } else { "" },
                 N(n.x_m[0]),
                 N(n.x_m[1]),
                 N(n.y_m[0]),
@@ -198,9 +201,10 @@ pub fn fault(model: &Model, first_seed: u64) -> Section {
         s.push(
             "fault",
             format!(
-                "smooth overstress: Δτ₀ = {:.2} MPa along x at ({:.0}, {:.0}) m, Δτ₀·F(r)·G(t) with F(r) = \
+                "smooth overstress: Δτ₀ = {:.2} MPa along x{} at ({:.0}, {:.0}) m, Δτ₀·F(r)·G(t) with F(r) = \
                  exp(r²/(r² − R²)) within R = {} m and G(t) = exp((t − T)²/(t(t − 2T))) over T = {} s",
                 N(o.overstress_pa / 1e6),
+                if overburden.is_some() { " (× the overburden's share)" } else { "" },
                 N(o.centre_m[0]),
                 N(o.centre_m[1]),
                 N(o.radius_m),

@@ -434,19 +434,20 @@ fn overburden(
         return Vec::new();
     }
     let absorbs_surface = file.absorbing.as_ref().is_some_and(|a| a.faces.iter().any(|f| f == "y_min"));
+    let holds_surface = file.boundary.iter().any(|b| b.face == "y_min");
     let surface = file.medium.as_ref().and_then(|m| m.surface.as_deref());
-    if absorbs_surface || surface.is_some_and(|s| s != "y_min") {
+    let not_free = if absorbs_surface {
+        Some("an absorbing y_min".to_string())
+    } else if holds_surface {
+        Some("a y_min held by a [[boundary]] (a mirror plane is not the surface)".to_string())
+    } else {
+        surface.filter(|s| *s != "y_min").map(|s| format!("medium.surface = {s:?}"))
+    };
+    if let Some(not_free) = not_free {
         ck.push(
             field,
             num(gradient),
-            format!(
-                "a scene whose Earth's surface is the free face y_min (depth is y on the fault), not {}",
-                if absorbs_surface {
-                    "an absorbing y_min".to_string()
-                } else {
-                    format!("medium.surface = {:?}", surface.unwrap_or(""))
-                }
-            ),
+            format!("a scene whose Earth's surface is the free face y_min (depth is y on the fault), not {not_free}"),
         );
         return Vec::new();
     }
