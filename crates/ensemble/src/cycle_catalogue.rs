@@ -16,7 +16,7 @@ use std::sync::atomic::AtomicBool;
 
 use stickslip_config::Pipeline;
 use stickslip_store::frame::Columns;
-use stickslip_store::io::{read_parquet_if_present, write_text_atomic};
+use stickslip_store::io::{read_parquet_if_present, remove_file_if_present, write_text_atomic};
 use stickslip_store::{Folder, StoreError};
 
 use crate::catalogue::{CatalogueStats, CycleCatalogue, cycle_catalogue_stats, write_catalogue_tables};
@@ -85,12 +85,7 @@ pub fn run_cycle_catalogue(
         } else {
             // A seed run again is unfinished until it ends: an earlier marker must not vouch for
             // what this run leaves behind if it stops.
-            match std::fs::remove_file(&marker) {
-                Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
-                    return Err(EnsembleError::Store(StoreError::Io { path: marker, source: e }));
-                }
-                _ => {}
-            }
+            remove_file_if_present(&marker)?;
             let r = match run_cycles(pipeline, seed, &dir, cancel) {
                 Ok(r) => r,
                 Err(EnsembleError::Solver(e)) => {

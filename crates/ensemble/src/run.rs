@@ -349,13 +349,7 @@ pub fn run_ensemble(
             let ranks = crate::split::installed().map_or(1, |s| s.ranks());
             let written = written.and_then(|()| {
                 (0..ranks).try_for_each(|rank| {
-                    let file = out.checkpoint(r.seed, rank, ranks);
-                    match std::fs::remove_file(&file) {
-                        Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
-                            Err(stickslip_store::StoreError::io(&file, e))
-                        }
-                        _ => Ok(()),
-                    }
+                    stickslip_store::io::remove_file_if_present(&out.checkpoint(r.seed, rank, ranks))
                 })
             });
             match written {

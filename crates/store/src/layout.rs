@@ -130,11 +130,7 @@ impl Folder {
             }
         }
         for file in [self.index(), self.root.join("stations.xml"), self.root.join("catalogue.xml")] {
-            match std::fs::remove_file(&file) {
-                Ok(()) => {}
-                Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
-                Err(e) => return Err(StoreError::io(&file, e)),
-            }
+            crate::io::remove_file_if_present(&file)?;
         }
         Ok(())
     }

@@ -4,7 +4,7 @@
 use std::path::Path;
 use std::sync::atomic::AtomicBool;
 
-use anyhow::{Result, bail};
+use anyhow::{Context, Result, bail};
 use stickslip_config::Pipeline;
 use stickslip_ensemble::catalogue::CatalogueStats;
 use stickslip_ensemble::cycle_catalogue::run_cycle_catalogue;
@@ -139,12 +139,8 @@ fn catalogue(pipeline: &Pipeline, out: &Path, cancel: &AtomicBool) -> Result<()>
     let figure_path = out.join("figures").join("cycle_catalogue.png");
     if r.seeds.is_empty() {
         // The tables were rewritten empty: an earlier figure would contradict them.
-        match std::fs::remove_file(&figure_path) {
-            Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
-                bail!("{}: cannot remove the earlier {}: {e}", pipeline.name, figure_path.display())
-            }
-            _ => {}
-        }
+        stickslip_store::io::remove_file_if_present(&figure_path)
+            .with_context(|| format!("{}: cannot remove the earlier figure", pipeline.name))?;
     } else {
         let figure = stickslip_report::cycle_catalogue::draw_cycle_catalogue(
             out,
