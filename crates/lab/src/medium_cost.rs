@@ -77,7 +77,7 @@ pub fn medium_cost(scene: &Scene, steps: usize, rounds: usize, parallel: bool) -
                 b.step();
             }
             best[v] = best[v].min(start.elapsed().as_secs_f64() / steps as f64);
-            let state = std::mem::size_of_val(b.state.anelastic.as_slice()) + model.bar_zones().len();
+            let state = b.state.anelastic.bytes() + model.bar_zones().len();
             extra[v] = state as f64 / bars as f64;
         }
     }

@@ -23,7 +23,7 @@ use crate::statics::CriticalStep;
 use crate::step::State;
 
 /// The format's version: a file of another is not read.
-const FORMAT: u32 = 2;
+const FORMAT: u32 = 3;
 /// What a checkpoint file starts with.
 const MAGIC: &[u8; 16] = b"stickslip-ckpt\0\0";
 

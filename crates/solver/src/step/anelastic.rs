@@ -1,15 +1,19 @@
-//! The medium's forces beyond the elastic bars (docs/model.md §18): each bar's memory variable
-//! (a constant Q by the coarse-grained relaxation of [`crate::medium::relaxation`]) and its
+//! The medium's forces beyond the elastic bars (docs/model.md §18): each bar's memory variables
+//! (a constant Q by the relaxation mechanisms of [`crate::medium::relaxation`]) and its
 //! Kelvin–Voigt dashpot, added to the elastic forces before the trial update.
 //!
 //! A bar of kernel stiffness `k` (the unrelaxed one) and kernel elongation `e` carries the extra
 //! tension `T = −k·Σ_j ζ_j + k·(β/Δt)·(eₙ − eₙ₋₁)`, each memory variable following
 //! `τ_j·dζ_j/dt + ζ_j = λ_j·e`, integrated exactly over the step for `e` at the mean of `eₙ₋₁`
 //! and `eₙ`: `ζ_j ← a_j·ζ_j + (1 − a_j)·λ_j·(eₙ + eₙ₋₁)/2`, `a_j = exp(−Δt/τ_j)`. The memory
-//! variables are stored as `f32` (the force uses the stored value, so the ledger sees the same). The pass runs in the order of the elastic kernels' phases (segments of one
-//! phase, or slabs of one phase, write disjoint nodes), serially or on the rayon pool, so every
-//! node receives its terms in the same order: the same bits on any thread count. Its work,
-//! `T·(eₙ₊₁ − eₙ₋₁)/2` per bar and step, is the ledger's `anelastic` term.
+//! variables are stored as `f32` (the force uses the stored value, so the ledger sees the same).
+//!
+//! On a stencil lattice the kernel adds `T` to each run's elastic tensions before it scatters
+//! them ([`RunMedium`]): one sweep over the bars, in the kernel's slab and phase order. On a
+//! listed lattice a second pass runs in the order of the elastic kernel's phases (segments of one
+//! phase write disjoint nodes). Either way every node receives its terms in one order: the same
+//! bits on any thread count. The work `T·(eₙ₊₁ − eₙ₋₁)/2` per bar and step is the ledger's
+//! `anelastic` term.
 
 use rayon::prelude::*;
 
@@ -63,6 +67,17 @@ impl<const L: usize> AnelasticParams<L> {
         })
     }
 
+    /// Coefficients given directly (tests): per zone and mechanism `decay` = `exp(−Δt/τ)` and
+    /// `gain` = `(1 − exp(−Δt/τ))·λ/2`, `viscous` = `β/Δt`.
+    #[cfg(test)]
+    pub(crate) fn from_parts(decay: Vec<Lanes<L>>, gain: Vec<Lanes<L>>, viscous: Lanes<L>, memory: bool) -> Self {
+        assert!(
+            decay.len() == gain.len() && decay.len().is_multiple_of(MECHANISMS),
+            "coefficients per zone and mechanism"
+        );
+        AnelasticParams { decay, gain, viscous, memory }
+    }
+
     /// Whether the bars carry memory variables.
     pub fn memory(&self) -> bool {
         self.memory
@@ -72,7 +87,15 @@ impl<const L: usize> AnelasticParams<L> {
     /// (`zone·MECHANISMS`) from its elongations `en` (now) and `ep` (a step before), advancing its
     /// memory variables `z` (none when the bars carry no Q).
     #[inline(always)]
-    fn advance(&self, at: usize, l: usize, k: f64, en: f64, ep: f64, z: Option<&mut [f32; MECHANISMS]>) -> f64 {
+    pub(crate) fn advance(
+        &self,
+        at: usize,
+        l: usize,
+        k: f64,
+        en: f64,
+        ep: f64,
+        z: Option<&mut [f32; MECHANISMS]>,
+    ) -> f64 {
         let mut tension = k * self.viscous[l] * (en - ep);
         if let Some(z) = z {
             let (decay, gain) = (&self.decay[at..at + MECHANISMS], &self.gain[at..at + MECHANISMS]);
@@ -102,16 +125,53 @@ impl<const L: usize> AnelasticParams<L> {
     }
 }
 
+/// The memory variables of every bar and lane, mechanism-major: mechanism `j` of bar `b` in lane
+/// `l` at `(j·bars + b)·L + l` (so that a run's bars are consecutive for each mechanism, and the
+/// stencil kernel's loops over them vectorise).
+#[derive(Clone, Debug, Default, PartialEq, bincode::Encode, bincode::Decode)]
+pub struct Memory {
+    /// Bars times lanes: the distance between two mechanisms.
+    stride: usize,
+    z: Vec<f32>,
+}
+
+impl Memory {
+    /// Memory variables at rest for `bars` bars of `lanes` lanes.
+    pub fn at_rest(bars: usize, lanes: usize) -> Memory {
+        Memory { stride: bars * lanes, z: vec![0.0; MECHANISMS * bars * lanes] }
+    }
+
+    /// Whether the bars carry none (a medium without a Q, or none).
+    pub fn is_empty(&self) -> bool {
+        self.z.is_empty()
+    }
+
+    /// The bytes they take.
+    pub fn bytes(&self) -> usize {
+        std::mem::size_of_val(self.z.as_slice())
+    }
+
+    /// The memory variables of bar-lane `q` (`bar·L + lane`).
+    pub(crate) fn get(&self, q: usize) -> [f32; MECHANISMS] {
+        std::array::from_fn(|j| self.z[j * self.stride + q])
+    }
+
+    /// Sets those of bar-lane `q`.
+    pub(crate) fn set(&mut self, q: usize, z: [f32; MECHANISMS]) {
+        for (j, z) in z.into_iter().enumerate() {
+            self.z[j * self.stride + q] = z;
+        }
+    }
+}
+
 /// Memory variables and their pointer, shared by the threads of one phase (each bar is in
 /// exactly one segment or run).
 #[derive(Clone, Copy)]
-struct MemoryPtr<const L: usize>(*mut Memory<L>);
+struct MemoryPtr(*mut f32, usize);
 
-/// The memory variables of one bar: per lane, one per mechanism.
-pub type Memory<const L: usize> = [[f32; MECHANISMS]; L];
 // SAFETY: writes go to disjoint bars (see the module docs).
-unsafe impl<const L: usize> Send for MemoryPtr<L> {}
-unsafe impl<const L: usize> Sync for MemoryPtr<L> {}
+unsafe impl Send for MemoryPtr {}
+unsafe impl Sync for MemoryPtr {}
 
 /// The levels, coefficients and outputs of one pass.
 #[derive(Clone, Copy)]
@@ -120,7 +180,7 @@ struct Pass<'a, const L: usize> {
     k: StiffnessRef<'a, L>,
     now: &'a Field<L>,
     before: &'a Field<L>,
-    zeta: MemoryPtr<L>,
+    zeta: MemoryPtr,
     f: ForcePtr<L>,
 }
 
@@ -135,9 +195,20 @@ impl<const L: usize> Pass<'_, L> {
         let mut t = [0.0; L];
         for l in 0..L {
             let (en, ep) = (elongation(direction, self.now, i, j, l), elongation(direction, self.before, i, j, l));
-            // SAFETY: forwarded contract.
-            let z = self.a.memory.then(|| unsafe { &mut (*self.zeta.0.add(bar))[l] });
-            t[l] = self.a.advance(zone * MECHANISMS, l, k[l], en, ep, z);
+            let q = bar * L + l;
+            let at = |j: usize| q + j * self.zeta.1;
+            let mut z = [0.0; MECHANISMS];
+            if self.a.memory {
+                // SAFETY: forwarded contract.
+                z = std::array::from_fn(|j| unsafe { *self.zeta.0.add(at(j)) });
+            }
+            t[l] = self.a.advance(zone * MECHANISMS, l, k[l], en, ep, self.a.memory.then_some(&mut z));
+            if self.a.memory {
+                for (j, z) in z.into_iter().enumerate() {
+                    // SAFETY: forwarded contract.
+                    unsafe { *self.zeta.0.add(at(j)) = z };
+                }
+            }
         }
         // SAFETY: forwarded contract.
         unsafe { scatter(self.f, direction, i, j, &t) };
@@ -155,66 +226,6 @@ impl<const L: usize> Pass<'_, L> {
                 // SAFETY: forwarded contract.
                 unsafe { self.bar(b, zones[b] as usize, &k[b], g.direction, i as usize, j as usize) };
             }
-        }
-    }
-
-    /// The bars of the stencil layers `layers`.
-    ///
-    /// # Safety
-    /// As [`Pass::bar`] for every bar of those layers.
-    unsafe fn layers(&self, layout: &StencilLayout, layers: std::ops::Range<usize>, zones: &[u8]) {
-        for layer in layers {
-            let range = layout.layer_run_range(layer);
-            for (index, r) in range.clone().zip(&layout.runs()[range]) {
-                // SAFETY: forwarded contract.
-                unsafe { self.run(index, r, zones[index] as usize) };
-            }
-        }
-    }
-
-    /// # Safety
-    /// As [`Pass::bar`] for every bar of the run.
-    unsafe fn run(&self, index: usize, r: &Run, zone: usize) {
-        let (lo, hi) = (r.start as usize, (r.start + r.offset) as usize);
-        let StiffnessRef::Factored { runs, factors } = self.k else {
-            // Per-bar stiffness on a stencil (a test's): the general path.
-            for m in 0..r.len as usize {
-                let k: Lanes<L> = std::array::from_fn(|l| self.k.of_run_bar(index, r, m, l));
-                // SAFETY: forwarded contract.
-                unsafe { self.bar(r.first_bar as usize + m, zone, &k, r.direction, lo + m, hi + m) };
-            }
-            return;
-        };
-        // The direction, the run's stiffness and the zone's coefficients hoisted out of the loop.
-        let (n, nominal) = (r.len as usize, &runs[index]);
-        let at = zone * MECHANISMS;
-        let (sx, sy, axis) = match r.direction {
-            Direction::Axis(a) => (0.0, 0.0, Some(a as usize)),
-            Direction::Diagonal { neg_x, neg_y } => {
-                let (sx, sy) = signs(neg_x, neg_y);
-                (sx, sy, None)
-            }
-        };
-        let (u, v) = (&self.now.c, &self.before.c);
-        for m in 0..n {
-            let (i, j, bar) = (lo + m, hi + m, r.first_bar as usize + m);
-            let base = nominal.at(m, n);
-            let mut t = [0.0; L];
-            for l in 0..L {
-                let k = factors.map_or(base, |f| base * f64::from(f[bar][l]));
-                let (en, ep) = match axis {
-                    Some(a) => (u[a][j][l] - u[a][i][l], v[a][j][l] - v[a][i][l]),
-                    None => (
-                        sx * (u[0][j][l] - u[0][i][l]) + sy * (u[1][j][l] - u[1][i][l]) + (u[2][j][l] - u[2][i][l]),
-                        sx * (v[0][j][l] - v[0][i][l]) + sy * (v[1][j][l] - v[1][i][l]) + (v[2][j][l] - v[2][i][l]),
-                    ),
-                };
-                // SAFETY: forwarded contract (the run's bars are below the memory's length).
-                let z = self.a.memory.then(|| unsafe { &mut (*self.zeta.0.add(bar))[l] });
-                t[l] = self.a.advance(at, l, k, en, ep, z);
-            }
-            // SAFETY: forwarded contract.
-            unsafe { scatter(self.f, r.direction, i, j, &t) };
         }
     }
 }
@@ -242,9 +253,10 @@ unsafe fn scatter<const L: usize>(f: ForcePtr<L>, direction: Direction, i: usize
     }
 }
 
-/// Adds the medium's extra bar forces at level `now` (with `before` one step earlier) to `f` and
-/// advances the memory variables `zeta` (one per bar and lane when the bars carry a Q, else
-/// empty); with `parallel`, the units of each phase on the current rayon pool (the same bits).
+/// Adds the medium's extra bar forces of a listed lattice at level `now` (with `before` one step
+/// earlier) to `f` and advances the memory variables `zeta` (one per bar and lane when the bars
+/// carry a Q, else empty); with `parallel`, the segments of each phase on the current rayon pool
+/// (the same bits). A stencil lattice adds them inside its kernel ([`RunMedium`]).
 #[allow(clippy::too_many_arguments)]
 pub fn forces<const L: usize>(
     model: &Model,
@@ -252,41 +264,178 @@ pub fn forces<const L: usize>(
     k: StiffnessRef<'_, L>,
     now: &Field<L>,
     before: &Field<L>,
-    zeta: &mut [Memory<L>],
+    zeta: &mut Memory,
     f: &mut Field<L>,
     parallel: bool,
 ) {
     let n = model.node_count();
     assert!(now.len() == n && before.len() == n && f.len() == n, "one displacement and force per node");
-    assert_eq!(zeta.len(), if a.memory { model.bar_count() } else { 0 }, "one memory variable per bar");
+    check_memory::<L>(model.bar_count(), a, zeta);
+    let layout = model.layout().listed();
     let pass = Pass {
         a,
         k,
         now,
         before,
-        zeta: MemoryPtr(zeta.as_mut_ptr()),
+        zeta: MemoryPtr(zeta.z.as_mut_ptr(), zeta.stride),
         f: ForcePtr(f.c.each_mut().map(|c| c.as_mut_ptr())),
     };
-    match model.layout() {
-        Bars::Listed(layout) => {
-            let zones = model.bar_zones();
-            assert_eq!(zones.len(), layout.ends().len(), "one zone per bar");
-            for phase in 0..3u8 {
-                let segs: Vec<&Segment> = layout.segments().iter().filter(|s| s.phase == phase).collect();
-                // SAFETY: a checked layout; segments of one phase touch disjoint nodes and bars.
-                let each = |s: &&Segment| unsafe { pass.segment(s, layout, zones) };
-                if parallel { segs.par_iter().for_each(each) } else { segs.iter().for_each(each) }
-            }
+    let zones = model.bar_zones();
+    assert_eq!(zones.len(), layout.ends().len(), "one zone per bar");
+    for phase in 0..3u8 {
+        let segs: Vec<&Segment> = layout.segments().iter().filter(|s| s.phase == phase).collect();
+        // SAFETY: a checked layout; segments of one phase touch disjoint nodes and bars.
+        let each = |s: &&Segment| unsafe { pass.segment(s, layout, zones) };
+        if parallel { segs.par_iter().for_each(each) } else { segs.iter().for_each(each) }
+    }
+}
+
+/// The scratch arrays of one run, each `L` per bar of the run.
+pub(crate) struct Scratch<'a> {
+    /// Stiffness, as the kernel takes it.
+    pub k: &'a [f64],
+    /// `eₙ + eₙ₋₁`.
+    pub sum: &'a mut [f64],
+    /// `eₙ − eₙ₋₁`.
+    pub diff: &'a mut [f64],
+}
+
+/// Checks that `zeta` holds one memory variable per mechanism, bar and lane of `model` when the
+/// bars carry a Q, and none otherwise.
+fn check_memory<const L: usize>(bars: usize, a: &AnelasticParams<L>, zeta: &Memory) {
+    let bars = if a.memory { bars } else { 0 };
+    assert!(zeta.z.len() == MECHANISMS * bars * L && zeta.stride == bars * L, "one memory variable per bar");
+}
+
+/// What the stencil kernel reads to add the medium's tensions to a run's elastic ones before it
+/// scatters them (one sweep over the bars: [`crate::step::stencil`]).
+#[derive(Clone, Copy)]
+pub struct RunMedium<const L: usize> {
+    a: *const AnelasticParams<L>,
+    /// The zone of each run.
+    zones: *const u8,
+    /// `uₙ₋₁`, per component, `L` per node.
+    before: [*const f64; 3],
+    /// The memory variables and the distance between two mechanisms.
+    zeta: MemoryPtr,
+}
+
+// SAFETY: the tasks of one phase write disjoint runs' bars (see the stencil kernel's doc).
+unsafe impl<const L: usize> Send for RunMedium<L> {}
+unsafe impl<const L: usize> Sync for RunMedium<L> {}
+
+impl<const L: usize> RunMedium<L> {
+    /// The scratch arrays [`RunMedium::add`] takes (as [`Scratch`]).
+    pub(crate) const SCRATCH: usize = 3;
+
+    /// The medium of the stencil lattice `layout` with coefficients `a`, the zone of each run
+    /// `zones`, the level `before` one step before the kernel's and the memory variables `zeta`.
+    /// The pointers stay valid while `a`, `zones`, `before` and `zeta` are neither moved nor
+    /// dropped.
+    pub fn new(
+        layout: &StencilLayout,
+        zones: &[u8],
+        a: &AnelasticParams<L>,
+        before: &Field<L>,
+        zeta: &mut Memory,
+    ) -> Self {
+        assert_eq!(zones.len(), layout.runs().len(), "one zone per run");
+        assert!(zones.iter().all(|&z| (z as usize + 1) * MECHANISMS <= a.decay.len()), "zones the coefficients hold");
+        assert!(before.len() == layout.nodes(), "one displacement per node");
+        check_memory::<L>(layout.bars(), a, zeta);
+        RunMedium {
+            a,
+            zones: zones.as_ptr(),
+            before: [0, 1, 2].map(|c| before.c[c].as_flattened().as_ptr()),
+            zeta: MemoryPtr(zeta.z.as_mut_ptr(), zeta.stride),
         }
-        Bars::Stencil(layout) => {
-            let zones = model.run_zones();
-            assert_eq!(zones.len(), layout.runs().len(), "one zone per run");
-            let slabs: Vec<std::ops::Range<usize>> = layout.slabs().collect();
-            for phase in 0..2 {
-                // SAFETY: the slabs of one phase write disjoint layers of nodes and their own bars.
-                let each =
-                    |s: &std::ops::Range<usize>| unsafe { pass.layers(layout, layout.phase_layers(s, phase), zones) };
-                if parallel { slabs.par_iter().for_each(each) } else { slabs.iter().for_each(each) }
+    }
+
+    /// Adds to the elastic tensions `t` of run `index` (`r`, `L` per bar) the medium's, from the
+    /// elongations of `u` (the kernel's level, flat per component) and of the level before, with
+    /// the stiffness `k` as the kernel takes it, advancing the run's memory variables:
+    /// `t ← t + T`, `T` as [`AnelasticParams::advance`] computes it (the same operations in the
+    /// same order, so the same bits), in one loop over the run's bar-lanes that vectorises.
+    ///
+    /// # Safety
+    /// The run lies inside `u` and the arrays `self` points to, `t` and `k` hold the run, and no
+    /// other thread touches its bars.
+    #[inline(always)]
+    pub(crate) unsafe fn add(&self, index: usize, r: &Run, u: [*const f64; 3], t: &mut [f64], scratch: Scratch<'_>) {
+        let n = r.len as usize * L;
+        let (sum, diff) = (&mut scratch.sum[..n], &mut scratch.diff[..n]);
+        let (lo, hi) = (r.start as usize * L, (r.start + r.offset) as usize * L);
+        // SAFETY: forwarded contract.
+        unsafe {
+            let read = |p: *const f64, at: usize| std::slice::from_raw_parts(p.add(at), n);
+            let b = self.before;
+            match r.direction {
+                Direction::Axis(c) => {
+                    let c = c as usize;
+                    let (ul, uh, bl, bh) = (read(u[c], lo), read(u[c], hi), read(b[c], lo), read(b[c], hi));
+                    for q in 0..n {
+                        let (en, ep) = (uh[q] - ul[q], bh[q] - bl[q]);
+                        (sum[q], diff[q]) = (en + ep, en - ep);
+                    }
+                }
+                Direction::Diagonal { neg_x, neg_y } => {
+                    let (sx, sy) = signs(neg_x, neg_y);
+                    let [xl, yl, zl] = [0, 1, 2].map(|c| read(u[c], lo));
+                    let [xh, yh, zh] = [0, 1, 2].map(|c| read(u[c], hi));
+                    for q in 0..n {
+                        let en = sx * (xh[q] - xl[q]) + sy * (yh[q] - yl[q]) + (zh[q] - zl[q]);
+                        (sum[q], diff[q]) = (en, en);
+                    }
+                    let [xl, yl, zl] = [0, 1, 2].map(|c| read(b[c], lo));
+                    let [xh, yh, zh] = [0, 1, 2].map(|c| read(b[c], hi));
+                    for q in 0..n {
+                        let ep = sx * (xh[q] - xl[q]) + sy * (yh[q] - yl[q]) + (zh[q] - zl[q]);
+                        (sum[q], diff[q]) = (sum[q] + ep, diff[q] - ep);
+                    }
+                }
+            }
+            self.terms(index, r, t, scratch.k, sum, diff);
+        }
+    }
+
+    /// [`RunMedium::add`] with `eₙ + eₙ₋₁` and `eₙ − eₙ₋₁` of the run's bar-lanes in `sum` and
+    /// `diff`.
+    ///
+    /// # Safety
+    /// As [`RunMedium::add`].
+    #[inline(always)]
+    unsafe fn terms(&self, index: usize, r: &Run, t: &mut [f64], k: &[f64], sum: &[f64], diff: &[f64]) {
+        let bars = r.len as usize;
+        let n = bars * L;
+        let (t, k, sum, diff) = (&mut t[..n], &k[..n], &sum[..n], &diff[..n]);
+        // SAFETY: forwarded contract.
+        let a = unsafe { &*self.a };
+        let viscous = &a.viscous;
+        if !a.memory {
+            for m in 0..bars {
+                for l in 0..L {
+                    let q = m * L + l;
+                    t[q] += k[q] * viscous[l] * diff[q];
+                }
+            }
+            return;
+        }
+        // SAFETY: forwarded contract (the zone is one the coefficients hold, checked in `new`).
+        let (at, [z0, z1, z2, z3]) = unsafe {
+            let first = r.first_bar as usize * L;
+            let z = |j: usize| std::slice::from_raw_parts_mut(self.zeta.0.add(j * self.zeta.1 + first), bars * L);
+            (*self.zones.add(index) as usize * MECHANISMS, [z(0), z(1), z(2), z(3)])
+        };
+        let (decay, gain) = (&a.decay[at..at + MECHANISMS], &a.gain[at..at + MECHANISMS]);
+        for m in 0..bars {
+            for l in 0..L {
+                let q = m * L + l;
+                let mut held = 0.0;
+                for (j, z) in [&mut z0[q], &mut z1[q], &mut z2[q], &mut z3[q]].into_iter().enumerate() {
+                    *z = (decay[j][l] * f64::from(*z) + gain[j][l] * sum[q]) as f32;
+                    held += f64::from(*z);
+                }
+                t[q] += k[q] * viscous[l] * diff[q] - k[q] * held;
             }
         }
     }
@@ -302,7 +451,7 @@ pub fn work<const L: usize>(
     a: &AnelasticParams<L>,
     k: StiffnessRef<'_, L>,
     [new, now, old]: [&Field<L>; 3],
-    zeta: &[Memory<L>],
+    zeta: &Memory,
 ) -> Vec<Lanes<L>> {
     let mut sums = vec![[0.0; L]; layers.count];
     let mut add = |bar: usize, kb: &Lanes<L>, direction: Direction, i: usize, j: usize| {
@@ -311,7 +460,8 @@ pub fn work<const L: usize>(
         for l in 0..L {
             let e = |u: &Field<L>| elongation(direction, u, i, j, l);
             let (en1, en, ep) = (e(new), e(now), e(old));
-            let t = a.held(l, kb[l], en, ep, a.memory.then(|| &zeta[bar][l]));
+            let z = a.memory.then(|| zeta.get(bar * L + l));
+            let t = a.held(l, kb[l], en, ep, z.as_ref());
             sum[l] += 0.5 * t * (en1 - ep);
         }
     };

@@ -121,19 +121,28 @@ impl<const L: usize> Stepper<L> {
         let update = Update { inv_mass: m.inv_mass(), coef: p.coefficients(), body: p.body() };
         if self.kernel == Kernel::Rupture {
             self.rupture_forces_and_trial(p, state, &update);
-        } else if let Some(a) = &p.anelastic {
-            // The medium's memory variables and dashpots read two levels of every bar: the elastic
-            // forces, then theirs, then one integration sweep.
+        } else if let (Some(a), Bars::Stencil(layout)) = (&p.anelastic, m.layout()) {
+            // The medium's memory variables and dashpots join each run's tensions in the kernel.
             let u = &mut state.u;
-            match m.layout() {
-                Bars::Stencil(layout) if self.parallel => {
-                    stencil::forces_parallel(layout, p.stiffness(), &u.np1, &mut self.force)
-                }
-                Bars::Stencil(layout) => stencil::forces(layout, p.stiffness(), &u.np1, &mut self.force),
-                Bars::Listed(layout) if self.parallel => {
-                    bar_forces_parallel(layout, p.k.per_bar(), &u.np1, &mut self.force)
-                }
-                Bars::Listed(layout) => listed_forces(layout, p.k.per_bar(), &u.np1, &mut self.force),
+            let medium = anelastic::RunMedium::new(layout, m.run_zones(), a, &u.n, &mut state.anelastic);
+            let levels = Levels { u: &u.np1, up: &u.n, out: &mut u.nm1 };
+            stencil::forces_and_trial(
+                layout,
+                p.stiffness(),
+                &update,
+                &mut self.force,
+                levels,
+                Some(medium),
+                self.parallel,
+            );
+        } else if let Some(a) = &p.anelastic {
+            // A listed lattice: the elastic forces, then the medium's (reading two levels of every
+            // bar), then one integration sweep.
+            let (u, layout) = (&mut state.u, m.layout().listed());
+            if self.parallel {
+                bar_forces_parallel(layout, p.k.per_bar(), &u.np1, &mut self.force)
+            } else {
+                listed_forces(layout, p.k.per_bar(), &u.np1, &mut self.force)
             }
             let zeta = &mut state.anelastic;
             anelastic::forces(m, a, p.stiffness(), &u.np1, &u.n, zeta, &mut self.force, self.parallel);
@@ -141,7 +150,7 @@ impl<const L: usize> Stepper<L> {
         } else if let Bars::Stencil(layout) = m.layout() {
             let u = &mut state.u;
             let levels = Levels { u: &u.np1, up: &u.n, out: &mut u.nm1 };
-            stencil::forces_and_trial(layout, p.stiffness(), &update, &mut self.force, levels, self.parallel);
+            stencil::forces_and_trial(layout, p.stiffness(), &update, &mut self.force, levels, None, self.parallel);
         } else {
             let u = &mut state.u;
             let layout = m.layout().listed();

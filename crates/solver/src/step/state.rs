@@ -93,9 +93,9 @@ pub struct State<const L: usize> {
     pub log: SlipLog<L>,
     /// Damage of the bars, when they crack (docs/model.md §11).
     pub rupture: Option<RuptureState<L>>,
-    /// Each bar's memory variable when the medium has a Q (docs/model.md §18), kernel order;
-    /// empty otherwise.
-    pub anelastic: Vec<crate::step::anelastic::Memory<L>>,
+    /// Each bar's memory variables when the medium has a Q (docs/model.md §18), mechanism-major
+    /// over the bars in kernel order; empty otherwise.
+    pub anelastic: crate::step::anelastic::Memory,
     /// Committed steps (the viewed step is `steps − 1`).
     pub steps: u64,
 }
@@ -133,7 +133,7 @@ impl<const L: usize> State<L> {
                 slid: vec![[false; L]; contacts],
             },
             rupture: None,
-            anelastic: Vec::new(),
+            anelastic: Default::default(),
             steps: 0,
         }
     }
@@ -146,7 +146,7 @@ impl<const L: usize> State<L> {
         s.contact.state = p.initial_states();
         s.rupture = p.rupture.as_ref().map(|r| RuptureState::intact(p.k.per_bar(), r));
         if p.anelastic.as_ref().is_some_and(|a| a.memory()) {
-            s.anelastic = vec![[[0.0; crate::medium::MECHANISMS]; L]; m.bar_count()];
+            s.anelastic = crate::step::anelastic::Memory::at_rest(m.bar_count(), L);
         }
         s
     }

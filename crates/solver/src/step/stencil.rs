@@ -26,7 +26,9 @@ use stickslip_isa::{Isa, widest};
 
 use crate::field::{Field, Lanes};
 use crate::geometry::Direction;
+use crate::medium::MECHANISMS;
 use crate::stencil::{Run, RunStiffness, StencilLayout};
+use crate::step::anelastic::{AnelasticParams, RunMedium, Scratch};
 use crate::step::integrate::{LevelsPtr, Update, integrate_raw};
 use crate::step::primitives::signs;
 use crate::stiffness::StiffnessRef;
@@ -41,6 +43,8 @@ pub(crate) struct Pass<const L: usize> {
     u: [*const f64; 3],
     /// Forces, per component, `L` per node.
     f: [*mut f64; 3],
+    /// The medium's memory variables and dashpots, added to each run's tensions.
+    medium: Option<RunMedium<L>>,
 }
 
 // SAFETY: the tasks of one phase write disjoint nodes (see the module doc).
@@ -67,7 +71,12 @@ fn check<const L: usize>(layout: &StencilLayout, k: StiffnessRef<'_, L>, u: &Fie
     }
 }
 
-fn pass<const L: usize>(k: StiffnessRef<'_, L>, u: &Field<L>, f: &mut Field<L>) -> Pass<L> {
+fn pass<const L: usize>(
+    k: StiffnessRef<'_, L>,
+    u: &Field<L>,
+    f: &mut Field<L>,
+    medium: Option<RunMedium<L>>,
+) -> Pass<L> {
     Pass {
         k: match k {
             StiffnessRef::PerBar(k) => KPtr::PerBar(k.as_flattened().as_ptr()),
@@ -77,6 +86,7 @@ fn pass<const L: usize>(k: StiffnessRef<'_, L>, u: &Field<L>, f: &mut Field<L>) 
         },
         u: [0, 1, 2].map(|c| u.c[c].as_flattened().as_ptr()),
         f: f.c.each_mut().map(|c| c.as_flattened_mut().as_mut_ptr()),
+        medium,
     }
 }
 
@@ -89,7 +99,7 @@ pub fn forces<'k, const L: usize>(
 ) {
     let k = k.into();
     check(layout, k, u, f);
-    let (isa, p) = (Isa::current(), pass(k, u, f));
+    let (isa, p) = (Isa::current(), pass(k, u, f, None));
     let mut t = vec![0.0; layout.longest_run() * L];
     for phase in 0..2 {
         for slab in layout.slabs() {
@@ -102,7 +112,7 @@ pub fn forces<'k, const L: usize>(
 /// As [`forces`], the slabs of each phase on the current rayon pool: the same bits.
 pub fn forces_parallel<const L: usize>(layout: &StencilLayout, k: StiffnessRef<'_, L>, u: &Field<L>, f: &mut Field<L>) {
     check(layout, k, u, f);
-    let (isa, p) = (Isa::current(), pass(k, u, f));
+    let (isa, p) = (Isa::current(), pass(k, u, f, None));
     let slabs: Vec<Range<usize>> = layout.slabs().collect();
     for phase in 0..2 {
         slabs.par_iter().for_each_init(
@@ -116,18 +126,20 @@ pub fn forces_parallel<const L: usize>(layout: &StencilLayout, k: StiffnessRef<'
 }
 
 /// As [`forces`], and each node integrated by `update` as soon as its forces are complete (the
-/// force field is cleared as it is consumed); with `parallel`, the slabs of a phase on the current
-/// rayon pool. The same bits either way.
+/// force field is cleared as it is consumed); with `medium`, each run's tensions carry the
+/// medium's terms ([`RunMedium`], built over `levels.up`); with `parallel`, the slabs of a phase
+/// on the current rayon pool. The same bits either way.
 pub fn forces_and_trial<const L: usize>(
     layout: &StencilLayout,
     k: StiffnessRef<'_, L>,
     update: &Update<'_, L>,
     f: &mut Field<L>,
     levels: crate::step::integrate::Levels<'_, L>,
+    medium: Option<RunMedium<L>>,
     parallel: bool,
 ) {
     check(layout, k, levels.u, f);
-    let (isa, p) = (Isa::current(), pass(k, levels.u, f));
+    let (isa, p) = (Isa::current(), pass(k, levels.u, f, medium));
     let lv = LevelsPtr {
         u: [0, 1, 2].map(|c| levels.u.c[c].as_ptr()),
         up: [0, 1, 2].map(|c| levels.up.c[c].as_ptr()),
@@ -165,7 +177,8 @@ pub fn forces_and_trial<const L: usize>(
             }
         }
     };
-    let scratch = || vec![0.0; layout.longest_run() * L];
+    let scratch =
+        || vec![0.0; (1 + if medium.is_some() { RunMedium::<L>::SCRATCH } else { 0 }) * layout.longest_run() * L];
     for phase in 0..2u8 {
         if parallel {
             (0..slabs.len()).into_par_iter().for_each_init(scratch, |t, s| run(s, phase, t));
@@ -227,7 +240,7 @@ unsafe fn layers<const L: usize>(layout: &StencilLayout, span: Range<usize>, p: 
 unsafe fn run<const L: usize>(index: usize, r: &Run, p: Pass<L>, t: &mut [f64]) {
     let n = r.len as usize * L;
     let (lo, hi, kb) = (r.start as usize * L, (r.start + r.offset) as usize * L, r.first_bar as usize * L);
-    let t = &mut t[..n];
+    let (t, rest) = t.split_at_mut(n);
     // SAFETY: the ranges lie inside the checked arrays; each mutable slice is dropped before the
     // next (lower and upper runs of an x run overlap) and no other thread writes them.
     unsafe {
@@ -261,6 +274,9 @@ unsafe fn run<const L: usize>(index: usize, r: &Run, p: Pass<L>, t: &mut [f64]) 
                         }
                     }
                 }
+                if let Some(md) = &p.medium {
+                    with_medium(md, index, r, p, t, rest);
+                }
                 add(std::slice::from_raw_parts_mut(p.f[a].add(lo), n), t, 1.0);
                 sub(std::slice::from_raw_parts_mut(p.f[a].add(hi), n), t, 1.0);
             }
@@ -282,6 +298,9 @@ unsafe fn run<const L: usize>(index: usize, r: &Run, p: Pass<L>, t: &mut [f64]) 
                         factored(t, (*runs.add(index)).interior, phi, e);
                     }
                 }
+                if let Some(md) = &p.medium {
+                    with_medium(md, index, r, p, t, rest);
+                }
                 // One array per loop (see the listed kernel).
                 add(std::slice::from_raw_parts_mut(p.f[0].add(lo), n), t, sx);
                 add(std::slice::from_raw_parts_mut(p.f[1].add(lo), n), t, sy);
@@ -291,6 +310,53 @@ unsafe fn run<const L: usize>(index: usize, r: &Run, p: Pass<L>, t: &mut [f64]) 
                 sub(std::slice::from_raw_parts_mut(p.f[2].add(hi), n), t, 1.0);
             }
         }
+    }
+}
+
+/// Adds the medium's tensions to the elastic ones `t` of run `index` (`r`), the stiffness of its
+/// bars as the kernel takes them written in the scratch `rest` (at least [`RunMedium::SCRATCH`]
+/// times `t`'s length).
+///
+/// # Safety
+/// As [`layers_dispatch`].
+#[inline(always)]
+unsafe fn with_medium<const L: usize>(
+    md: &RunMedium<L>,
+    index: usize,
+    r: &Run,
+    p: Pass<L>,
+    t: &mut [f64],
+    rest: &mut [f64],
+) {
+    let (n, kb) = (t.len(), r.first_bar as usize * L);
+    let (k, rest) = rest.split_at_mut(n);
+    let (sum, rest) = rest.split_at_mut(n);
+    let diff = &mut rest[..n];
+    // SAFETY: forwarded contract.
+    unsafe {
+        match p.k {
+            KPtr::PerBar(kp) => k.copy_from_slice(std::slice::from_raw_parts(kp.add(kb), n)),
+            KPtr::Factored { runs, factors } => {
+                let (rs, bars) = (*runs.add(index), r.len as usize);
+                match factors.map(|f| std::slice::from_raw_parts(f.add(kb), n)) {
+                    Some(phi) => {
+                        for (k, f) in k.iter_mut().zip(phi) {
+                            *k = rs.interior * f64::from(*f);
+                        }
+                    }
+                    None => k.fill(rs.interior),
+                }
+                // The first and last bar: their own nominal (a run on the block's x faces).
+                for m in [0, bars - 1] {
+                    let nominal = rs.at(m, bars);
+                    for l in 0..L {
+                        let q = m * L + l;
+                        k[q] = factors.map_or(nominal, |f| nominal * f64::from(*f.add(kb + q)));
+                    }
+                }
+            }
+        }
+        md.add(index, r, p.u, t, Scratch { k, sum, diff });
     }
 }
 
@@ -335,7 +401,45 @@ pub fn reference<'k, const L: usize>(
     u: &Field<L>,
     f: &mut Field<L>,
 ) {
-    let k = k.into();
+    ordered(layout, k.into(), u, f, |_, _, _, _, k, e| k * e);
+}
+
+/// The kernel's order with the medium's terms written plainly: each bar's tension `k·eₙ + T`,
+/// `T` from [`AnelasticParams`] and the bar's elongation in `before`, advancing its memory
+/// variables `zeta` (one per bar with a Q, else empty) in the same order.
+#[allow(clippy::too_many_arguments)]
+pub fn reference_with_medium<const L: usize>(
+    layout: &StencilLayout,
+    k: StiffnessRef<'_, L>,
+    u: &Field<L>,
+    f: &mut Field<L>,
+    a: &AnelasticParams<L>,
+    zones: &[u8],
+    before: &Field<L>,
+    zeta: &mut crate::step::anelastic::Memory,
+) {
+    ordered(layout, k, u, f, |index, r, m, l, k, en| {
+        let (i, j) = (r.start as usize + m, (r.start + r.offset) as usize + m);
+        let ep = crate::step::primitives::elongation(r.direction, before, i, j, l);
+        let q = (r.first_bar as usize + m) * L + l;
+        let mut z = if a.memory() { zeta.get(q) } else { [0.0; MECHANISMS] };
+        let t = k * en + a.advance(zones[index] as usize * MECHANISMS, l, k, en, ep, a.memory().then_some(&mut z));
+        if a.memory() {
+            zeta.set(q, z);
+        }
+        t
+    });
+}
+
+/// The plain order of [`reference`] with each bar-lane's tension `tension(run index, run, bar of
+/// the run, lane, stiffness, elongation)`.
+fn ordered<const L: usize>(
+    layout: &StencilLayout,
+    k: StiffnessRef<'_, L>,
+    u: &Field<L>,
+    f: &mut Field<L>,
+    mut tension: impl FnMut(usize, &Run, usize, usize, f64, f64) -> f64,
+) {
     let mut order: Vec<usize> = Vec::new();
     for phase in 0..2 {
         for slab in layout.slabs() {
@@ -358,7 +462,7 @@ pub fn reference<'k, const L: usize>(
                                 sx * d(0) + sy * d(1) + d(2)
                             }
                         };
-                        k.of_run_bar(index, r, m, l) * e
+                        tension(index, r, m, l, k.of_run_bar(index, r, m, l), e)
                     })
                 })
                 .collect();
@@ -493,6 +597,7 @@ mod tests {
                     &update,
                     &mut f,
                     Levels { u: &u, up: &up, out: &mut out },
+                    None,
                     threads > 1,
                 )
             });
@@ -509,6 +614,74 @@ mod tests {
             agrees::<1>(dims, seed);
             agrees::<4>(dims, seed);
             agrees::<8>(dims, seed);
+        }
+    }
+
+    /// The medium's terms in the kernel against [`reference_with_medium`]: every build and thread
+    /// count, per-bar and factored stiffness, with memory variables and with dashpots only.
+    fn medium_agrees<const L: usize>(dims: Dims, seed: u64) {
+        use crate::step::anelastic::Memory;
+        let layout = StencilLayout::new(dims);
+        let mut rng = rand::rngs::ChaCha8Rng::seed_from_u64(seed ^ 0x3ed1);
+        let (k, u) = random::<L>(&layout, seed);
+        let (_, before) = random::<L>(&layout, seed + 100);
+        let (runs, factors) = random_factored::<L>(&layout, seed);
+        let zones: Vec<u8> = layout.runs().iter().map(|_| rng.random_range(0..3u8)).collect();
+        let coef = |lo: f64, hi: f64, rng: &mut rand::rngs::ChaCha8Rng| -> Vec<Lanes<L>> {
+            (0..3 * MECHANISMS).map(|_| std::array::from_fn(|_| rng.random_range(lo..hi))).collect()
+        };
+        let (decay, gain) = (coef(0.9, 1.0, &mut rng), coef(0.0, 0.05, &mut rng));
+        let viscous: Lanes<L> = std::array::from_fn(|_| rng.random_range(0.0..0.1));
+        let n = layout.nodes();
+        let inv_mass: Vec<f64> = (0..n).map(|i| 1.0 / (1.0 + (i % 5) as f64)).collect();
+        let coefficients = Coefficients { cf: [1e-3; L], c2: [1.9; L], cp: [0.9; L] };
+        let body = [[0.0; L], [0.0; L], [-9.81; L]];
+        let update = Update { inv_mass: &inv_mass, coef: &coefficients, body: &body };
+        for memory in [true, false] {
+            let a = AnelasticParams::from_parts(decay.clone(), gain.clone(), viscous, memory);
+            let mut zeta0 = if memory { Memory::at_rest(layout.bars(), L) } else { Memory::default() };
+            if memory {
+                for q in 0..layout.bars() * L {
+                    zeta0.set(q, std::array::from_fn(|_| rng.random_range(-0.1f32..0.1)));
+                }
+            }
+            for kref in [
+                StiffnessRef::Factored { runs: &runs, factors: Some(&factors) },
+                StiffnessRef::Factored { runs: &runs, factors: None },
+                StiffnessRef::PerBar(&k),
+            ] {
+                let (mut want_f, mut want_out, mut want_zeta) =
+                    (Field::<L>::zeros(n), Field::<L>::zeros(n), zeta0.clone());
+                reference_with_medium(&layout, kref, &u, &mut want_f, &a, &zones, &before, &mut want_zeta);
+                integrate_all(&update, &mut want_f, Levels { u: &u, up: &before, out: &mut want_out }, false);
+                let runs_with = |parallel: bool| {
+                    let (mut f, mut out, mut zeta) = (Field::<L>::zeros(n), Field::<L>::zeros(n), zeta0.clone());
+                    let medium = RunMedium::new(&layout, &zones, &a, &before, &mut zeta);
+                    let levels = Levels { u: &u, up: &before, out: &mut out };
+                    forces_and_trial(&layout, kref, &update, &mut f, levels, Some(medium), parallel);
+                    (out, zeta)
+                };
+                for isa in Isa::available() {
+                    let (out, zeta) = Isa::pinned(isa, || runs_with(false));
+                    assert_eq!(bits(&out), bits(&want_out), "{dims:?} L = {L} {isa:?} memory {memory}: the update");
+                    assert!(zeta == want_zeta, "{dims:?} L = {L} {isa:?}: the memory variables");
+                }
+                let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
+                let (out, zeta) = pool.install(|| runs_with(true));
+                assert_eq!(bits(&out), bits(&want_out), "{dims:?} L = {L} memory {memory}: on two threads");
+                assert!(zeta == want_zeta, "{dims:?} L = {L}: the memory variables on two threads");
+            }
+        }
+    }
+
+    #[test]
+    fn the_medium_in_the_kernel_agrees_with_its_plain_order() {
+        for (dims, seed) in
+            [(Dims::new(10, 1, 5), 1), (Dims::new(7, 5, 9), 2), (Dims::new(1, 1, 1), 3), (Dims::new(3, 4, 40), 4)]
+        {
+            medium_agrees::<1>(dims, seed);
+            medium_agrees::<4>(dims, seed);
+            medium_agrees::<8>(dims, seed);
         }
     }
 
