@@ -19,9 +19,10 @@ pub struct MediumTiming {
     pub name: &'static str,
     /// Bars of the lattice.
     pub bars: usize,
-    /// Best wall time of one step (s).
+    /// Best wall time of one step of every lane (s).
     pub step_s: f64,
-    /// Bytes per bar the medium's state adds to the step's (memory variables, listed zones).
+    /// Bytes per bar and lane the medium's state adds to the step's (memory variables, listed
+    /// zones).
     pub extra_bytes_per_bar: f64,
 }
 
@@ -41,9 +42,30 @@ fn variants(scene: &Scene) -> Vec<(&'static str, Scene)> {
     vec![("elastic", elastic), ("Q (4 memory variables per bar)", with_q), ("Q and Kelvin–Voigt", with_kv)]
 }
 
-/// Times `steps` steps of each variant of `scene`, `rounds` times in turn, on the current rayon
-/// pool split over its threads when `parallel`.
-pub fn medium_cost(scene: &Scene, steps: usize, rounds: usize, parallel: bool) -> Result<Vec<MediumTiming>, LabError> {
+/// Times `steps` steps of each variant of `scene` with `lanes` seeds side by side (1, 4 or 8, as
+/// a pipeline batches them), `rounds` times in turn, on the current rayon pool split over its
+/// threads when `parallel`.
+pub fn medium_cost(
+    scene: &Scene,
+    steps: usize,
+    rounds: usize,
+    parallel: bool,
+    lanes: usize,
+) -> Result<Vec<MediumTiming>, LabError> {
+    match lanes {
+        1 => medium_cost_lanes::<1>(scene, steps, rounds, parallel),
+        4 => medium_cost_lanes::<4>(scene, steps, rounds, parallel),
+        8 => medium_cost_lanes::<8>(scene, steps, rounds, parallel),
+        _ => Err(LabError::Setup(format!("lanes = {lanes}: 1, 4 or 8 seeds side by side"))),
+    }
+}
+
+fn medium_cost_lanes<const L: usize>(
+    scene: &Scene,
+    steps: usize,
+    rounds: usize,
+    parallel: bool,
+) -> Result<Vec<MediumTiming>, LabError> {
     let variants = variants(scene);
     let mut best = vec![f64::INFINITY; variants.len()];
     let mut extra = vec![0.0; variants.len()];
@@ -61,14 +83,17 @@ pub fn medium_cost(scene: &Scene, steps: usize, rounds: usize, parallel: bool) -
                 strength: None,
                 fault: None,
             };
-            let mut b = Batch::<1>::new(&model, &[lane]);
+            let lanes: [LaneSetup; L] = std::array::from_fn(|_| lane.clone());
+            let mut b = Batch::<L>::new(&model, &lanes);
             b.stepper.set_parallel(parallel);
             // A small displacement everywhere, so that every bar has work (no branch skips it).
             let lc = s.lc_m;
-            b.initialize(0, |p| {
-                let u = 1e-6 * lc * ((p[0] * 0.37 + p[1] * 0.11 + p[2] * 0.23) / lc).sin();
-                ([u, -u, 0.5 * u], [u, -u, 0.5 * u])
-            });
+            for l in 0..L {
+                b.initialize(l, |p| {
+                    let u = 1e-6 * lc * ((p[0] * 0.37 + p[1] * 0.11 + p[2] * 0.23) / lc + l as f64).sin();
+                    ([u, -u, 0.5 * u], [u, -u, 0.5 * u])
+                });
+            }
             for _ in 0..3 {
                 b.step();
             }
@@ -78,7 +103,7 @@ pub fn medium_cost(scene: &Scene, steps: usize, rounds: usize, parallel: bool) -
             }
             best[v] = best[v].min(start.elapsed().as_secs_f64() / steps as f64);
             let state = b.state.anelastic.bytes() + model.bar_zones().len();
-            extra[v] = state as f64 / bars as f64;
+            extra[v] = state as f64 / (bars * L) as f64;
         }
     }
     Ok(variants

@@ -606,15 +606,19 @@ mod tests {
         }
     }
 
-    #[test]
-    fn every_build_and_thread_count_agrees_with_the_plain_order() {
+    /// The lattices and seeds both kernel tests run, for 1, 4 and 8 lanes: a one-module slab, a
+    /// block, one module, a tall column.
+    fn for_each_case(check: [fn(Dims, u64); 3]) {
         for (dims, seed) in
             [(Dims::new(10, 1, 5), 1), (Dims::new(7, 5, 9), 2), (Dims::new(1, 1, 1), 3), (Dims::new(3, 4, 40), 4)]
         {
-            agrees::<1>(dims, seed);
-            agrees::<4>(dims, seed);
-            agrees::<8>(dims, seed);
+            check.iter().for_each(|f| f(dims, seed));
         }
+    }
+
+    #[test]
+    fn every_build_and_thread_count_agrees_with_the_plain_order() {
+        for_each_case([agrees::<1>, agrees::<4>, agrees::<8>]);
     }
 
     /// The medium's terms in the kernel against [`reference_with_medium`]: every build and thread
@@ -676,13 +680,7 @@ mod tests {
 
     #[test]
     fn the_medium_in_the_kernel_agrees_with_its_plain_order() {
-        for (dims, seed) in
-            [(Dims::new(10, 1, 5), 1), (Dims::new(7, 5, 9), 2), (Dims::new(1, 1, 1), 3), (Dims::new(3, 4, 40), 4)]
-        {
-            medium_agrees::<1>(dims, seed);
-            medium_agrees::<4>(dims, seed);
-            medium_agrees::<8>(dims, seed);
-        }
+        for_each_case([medium_agrees::<1>, medium_agrees::<4>, medium_agrees::<8>]);
     }
 
     #[test]

@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 
 use anyhow::Result;
-use stickslip_config::Pipeline;
+use stickslip_config::{Pipeline, PipelineFile};
 use stickslip_lab::setup_cost::{bandwidth as measure_bandwidth, setup_cost};
 
 /// A pipeline's scene at a given size.
@@ -27,11 +27,20 @@ impl SizeArgs {
     /// The pipeline's scene at the size asked for, and its first seed.
     pub fn scene(&self) -> Result<(stickslip_solver::Scene, u64)> {
         let p = Pipeline::load(&self.pipeline)?;
-        let mut scene = p.scene.clone();
-        let d = scene.dims;
-        scene.dims =
-            stickslip_solver::Dims::new(self.nx.unwrap_or(d.nx), self.ny.unwrap_or(d.ny), self.nz.unwrap_or(d.nz));
-        Ok((scene, p.seeds[0]))
+        if self.nx.is_none() && self.ny.is_none() && self.nz.is_none() {
+            return Ok((p.scene, p.seeds[0]));
+        }
+        // Resized through the configuration, so that everything placed in the block (drivers,
+        // stations, patches) is checked against the new size.
+        let mut file: PipelineFile = toml::from_str(p.text.as_deref().unwrap_or_default())?;
+        let b = &mut file.block;
+        let size = |n: Option<usize>, was: i64| n.map_or(Ok(was), i64::try_from);
+        (b.nx, b.ny, b.nz) = (size(self.nx, b.nx)?, size(self.ny, b.ny)?, size(self.nz, b.nz)?);
+        let (base, size) = (self.pipeline.parent().unwrap_or(std::path::Path::new(".")), [b.nx, b.ny, b.nz]);
+        let p = Pipeline::from_file_in(file, &p.name, base).map_err(|e| {
+            anyhow::anyhow!("{} at {} × {} × {} modules: {e}", self.pipeline.display(), size[0], size[1], size[2])
+        })?;
+        Ok((p.scene, p.seeds[0]))
     }
 }
 

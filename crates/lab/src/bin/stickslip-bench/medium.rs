@@ -18,6 +18,9 @@ pub struct MediumArgs {
     /// Threads (the step split over them).
     #[arg(long, default_value_t = 1)]
     threads: usize,
+    /// Seeds stepped side by side, as a pipeline batches them: 1, 4 or 8.
+    #[arg(long, default_value_t = 1)]
+    lanes: usize,
 }
 
 /// Runs the benchmark and prints its table.
@@ -25,8 +28,10 @@ pub fn run(a: MediumArgs) -> Result<()> {
     let (scene, _) = a.size.scene()?;
     let steps = a.size.steps;
     let pool = rayon::ThreadPoolBuilder::new().num_threads(a.threads).build()?;
-    let timings = pool.install(|| stickslip_lab::medium_cost::medium_cost(&scene, steps, a.rounds, a.threads > 1))?;
+    let timings =
+        pool.install(|| stickslip_lab::medium_cost::medium_cost(&scene, steps, a.rounds, a.threads > 1, a.lanes))?;
     let elastic = timings[0].step_s;
+    println!("{} seed(s) side by side", a.lanes);
     println!("{:<32} {:>11} {:>10} {:>9} {:>14}", "medium", "bars", "step_ms", "ratio", "bytes/bar +");
     for t in &timings {
         println!(
