@@ -102,8 +102,9 @@ fn medium_cost_lanes<const L: usize>(
                 b.step();
             }
             best[v] = best[v].min(start.elapsed().as_secs_f64() / steps as f64);
-            let state = b.state.anelastic.bytes() + model.bar_zones().len();
-            extra[v] = state as f64 / (bars * L) as f64;
+            // The memory variables are per bar and lane, a listed lattice's zones per bar.
+            extra[v] =
+                b.state.anelastic.bytes() as f64 / (bars * L) as f64 + model.bar_zones().len() as f64 / bars as f64;
         }
     }
     Ok(variants

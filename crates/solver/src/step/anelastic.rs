@@ -141,14 +141,15 @@ impl Memory {
         Memory { stride: bars * lanes, z: vec![0.0; MECHANISMS * bars * lanes] }
     }
 
-    /// Whether the bars carry none (a medium without a Q, or none).
-    pub fn is_empty(&self) -> bool {
-        self.z.is_empty()
-    }
-
     /// The bytes they take.
     pub fn bytes(&self) -> usize {
         std::mem::size_of_val(self.z.as_slice())
+    }
+
+    /// Their bits, for comparisons that tell −0 from 0.
+    #[cfg(test)]
+    pub(crate) fn bits(&self) -> Vec<u32> {
+        self.z.iter().map(|z| z.to_bits()).collect()
     }
 
     /// The memory variables of bar-lane `q` (`bar·L + lane`).
@@ -310,7 +311,7 @@ fn check_memory<const L: usize>(bars: usize, a: &AnelasticParams<L>, zeta: &Memo
 /// What the stencil kernel reads to add the medium's tensions to a run's elastic ones before it
 /// scatters them (one sweep over the bars: [`crate::step::stencil`]).
 #[derive(Clone, Copy)]
-pub struct RunMedium<const L: usize> {
+pub(crate) struct RunMedium<const L: usize> {
     a: *const AnelasticParams<L>,
     /// The zone of each run.
     zones: *const u8,
@@ -318,9 +319,12 @@ pub struct RunMedium<const L: usize> {
     before: [*const f64; 3],
     /// The memory variables and the distance between two mechanisms.
     zeta: MemoryPtr,
+    /// The bars and nodes of the layout it was built for (checked by the kernel).
+    pub(crate) fits: (usize, usize),
 }
 
-// SAFETY: the tasks of one phase write disjoint runs' bars (see the stencil kernel's doc).
+// SAFETY: a run's bars (and so their memory variables) belong to one layer, and the tasks of one
+// phase run disjoint layers (see `step::stencil`'s module doc); `before` is only read.
 unsafe impl<const L: usize> Send for RunMedium<L> {}
 unsafe impl<const L: usize> Sync for RunMedium<L> {}
 
@@ -332,7 +336,7 @@ impl<const L: usize> RunMedium<L> {
     /// `zones`, the level `before` one step before the kernel's and the memory variables `zeta`.
     /// The pointers stay valid while `a`, `zones`, `before` and `zeta` are neither moved nor
     /// dropped.
-    pub fn new(
+    pub(crate) fn new(
         layout: &StencilLayout,
         zones: &[u8],
         a: &AnelasticParams<L>,
@@ -348,6 +352,7 @@ impl<const L: usize> RunMedium<L> {
             zones: zones.as_ptr(),
             before: [0, 1, 2].map(|c| before.c[c].as_flattened().as_ptr()),
             zeta: MemoryPtr(zeta.z.as_mut_ptr(), zeta.stride),
+            fits: (layout.bars(), layout.nodes()),
         }
     }
 

@@ -32,7 +32,7 @@ impl SizeArgs {
         }
         // Resized through the configuration, so that everything placed in the block (drivers,
         // stations, patches) is checked against the new size.
-        let mut file: PipelineFile = toml::from_str(p.text.as_deref().unwrap_or_default())?;
+        let mut file: PipelineFile = p.file.clone();
         let b = &mut file.block;
         let size = |n: Option<usize>, was: i64| n.map_or(Ok(was), i64::try_from);
         (b.nx, b.ny, b.nz) = (size(self.nx, b.nx)?, size(self.ny, b.ny)?, size(self.nz, b.nz)?);
