@@ -1,5 +1,6 @@
-//! Friction maps of the base (`[[friction.patches]]`, `[friction.grid]`): regions with their own
-//! μs, μd and Dc — asperities (weak or strong patches where rupture starts) and barriers (strong
+//! Friction maps of the base (`[[friction.patches]]`, `[friction.grid]`, and under a rate-and-state
+//! law `[friction.rate_state_grid]`): regions with their own μs, μd and Dc (or a, b, L and f₀) —
+//! asperities (weak or strong patches where rupture starts) and barriers (strong
 //! patches where it stops), after Aki (1979) — built into a per-node [`FrictionMap`] that the
 //! Weibull field on μ then multiplies.
 //!
@@ -139,6 +140,92 @@ impl GridSection {
         let (input, rows) = read?;
         self.rows = rows;
         Some(input)
+    }
+}
+
+/// `[friction.rate_state_grid]`: rate-and-state coefficients per base node from a CSV file with
+/// the header `x_m,y_m,a,b,dc_m,f0` and one row per base node (any order), under a rate-and-state
+/// law.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Default)]
+#[serde(deny_unknown_fields)]
+pub struct RateStateGridSection {
+    /// The CSV file, as [`GridSection::file`].
+    pub file: String,
+    /// The rows as read (filled in when the pipeline is loaded; part of the results hash).
+    #[serde(skip_deserializing, default, skip_serializing_if = "Vec::is_empty")]
+    pub rows: Vec<[f64; 6]>,
+    /// Whether the file was refused.
+    #[serde(skip)]
+    pub refused: bool,
+}
+
+/// The rate-and-state grid's CSV header.
+pub const RATE_STATE_GRID_HEADER: &str = "x_m,y_m,a,b,dc_m,f0";
+
+impl RateStateGridSection {
+    /// Reads the CSV file relative to `base` into `rows`, as [`GridSection::read`].
+    pub fn read(&mut self, base: &Path, ck: &mut Checker) -> Option<InputFile> {
+        let per_row = "six finite numbers per row, x_m, y_m, a, b, L (dc_m), f₀";
+        let columns = ["x_m", "y_m", "a", "b", "dc_m", "f0"];
+        let field = "friction.rate_state_grid.file";
+        let read = crate::input::read_grid(ck, field, &self.file, base, RATE_STATE_GRID_HEADER, &columns, per_row);
+        self.refused = read.is_none();
+        let (input, rows) = read?;
+        self.rows = rows;
+        Some(input)
+    }
+}
+
+/// The rows of a grid of either kind: each base node's position and its coefficients as a
+/// patch's keys.
+pub(crate) struct GridRows<'a> {
+    /// `friction.grid.file` or `friction.rate_state_grid.file`.
+    pub field: &'static str,
+    /// The file as given.
+    pub file: &'a str,
+    /// `(x, y, keys)` per row.
+    pub rows: Vec<(f64, f64, crate::laws::RegionKeys)>,
+}
+
+impl GridSection {
+    /// Its rows as a patch's keys.
+    pub(crate) fn rows(&self) -> GridRows<'_> {
+        let rows = self
+            .rows
+            .iter()
+            .map(|r| {
+                let keys = crate::laws::RegionKeys {
+                    mu_static: Some(r[2]),
+                    mu_dynamic: Some(r[3]),
+                    slip_weakening_m: Some(r[4]),
+                    rate_state: None,
+                };
+                (r[0], r[1], keys)
+            })
+            .collect();
+        GridRows { field: "friction.grid.file", file: &self.file, rows }
+    }
+}
+
+impl RateStateGridSection {
+    /// Its rows as a patch's keys.
+    pub(crate) fn rows(&self) -> GridRows<'_> {
+        let rows = self
+            .rows
+            .iter()
+            .map(|r| {
+                let rate_state =
+                    crate::laws::RateStatePatch { a: Some(r[2]), b: Some(r[3]), dc_m: Some(r[4]), f0: Some(r[5]) };
+                let keys = crate::laws::RegionKeys {
+                    mu_static: None,
+                    mu_dynamic: None,
+                    slip_weakening_m: None,
+                    rate_state: Some(rate_state),
+                };
+                (r[0], r[1], keys)
+            })
+            .collect();
+        GridRows { field: "friction.rate_state_grid.file", file: &self.file, rows }
     }
 }
 
@@ -323,7 +410,7 @@ pub(crate) fn build(
     lattice: &Lattice,
     law: &FrictionLaw,
     patches: &[PatchSection],
-    grid: Option<&GridSection>,
+    grid: Option<GridRows<'_>>,
 ) -> Option<FrictionMap> {
     if patches.is_empty() && grid.is_none() {
         return None;
@@ -342,8 +429,8 @@ pub(crate) fn build(
             RegionKind::Weak
         }
     };
-    if let Some(g) = grid.filter(|g| !g.refused) {
-        let field = "friction.grid.file";
+    if let Some(g) = grid {
+        let field = g.field;
         if g.rows.len() != contact.len() {
             ck.push(
                 field,
@@ -358,29 +445,19 @@ pub(crate) fn build(
             );
         } else {
             let mut seen = vec![false; contact.len()];
-            for (i, row) in g.rows.iter().enumerate() {
-                let c = lattice.node_at([row[0], row[1], 0.0]).map(|id| id.index()).filter(|&c| c < contact.len());
+            for (i, (x, y, keys)) in g.rows.into_iter().enumerate() {
+                let c = lattice.node_at([x, y, 0.0]).map(|id| id.index()).filter(|&c| c < contact.len());
                 let Some(c) = c else {
                     ck.push(
                         field,
-                        format!("row {}: x = {} m, y = {} m", i + 1, num(row[0]), num(row[1])),
+                        format!("row {}: x = {} m, y = {} m", i + 1, num(x), num(y)),
                         describe_base(lattice),
                     );
                     continue;
                 };
                 if std::mem::replace(&mut seen[c], true) {
-                    ck.push(
-                        field,
-                        format!("row {}: x = {} m, y = {} m", i + 1, num(row[0]), num(row[1])),
-                        "each base node once",
-                    );
+                    ck.push(field, format!("row {}: x = {} m, y = {} m", i + 1, num(x), num(y)), "each base node once");
                 }
-                let keys = crate::laws::RegionKeys {
-                    mu_static: Some(row[2]),
-                    mu_dynamic: Some(row[3]),
-                    slip_weakening_m: Some(row[4]),
-                    rate_state: None,
-                };
                 let co = coefficients(ck, &format!("{field} row {}", i + 1), keys, law);
                 nodes[c] = co;
                 region[c] = Some(0);

@@ -110,19 +110,19 @@ pub fn copy_path(field: &str, given: &str) -> String {
     format!("inputs/{field}/{name}")
 }
 
-/// A CSV grid of five numbers per base node read from `given` relative to `base` (see [`read`]):
+/// A CSV grid of `N` numbers per base node read from `given` relative to `base` (see [`read`]):
 /// its first line after blank lines and `#` comments must be `header` (spaces aside), each row
-/// five finite numbers (`columns` name them in a refusal, `per_row` says what a row holds).
+/// `N` finite numbers (`columns` name them in a refusal, `per_row` says what a row holds).
 /// Refusals go into `ck` under `field` and never echo the file's content; `None` when refused.
-pub fn read_grid(
+pub fn read_grid<const N: usize>(
     ck: &mut Checker,
     field: &str,
     given: &str,
     base: &Path,
     header: &str,
-    columns: &[&str; 5],
+    columns: &[&str; N],
     per_row: &str,
-) -> Option<(InputFile, Vec<[f64; 5]>)> {
+) -> Option<(InputFile, Vec<[f64; N]>)> {
     let what = format!("a CSV file with the header {header:?} and one row per base node");
     let input = read(ck, field, given, base, &what)?;
     let mut lines =
@@ -135,7 +135,7 @@ pub fn read_grid(
     let mut rows = Vec::new();
     for (i, (k, line)) in lines.enumerate() {
         let cells: Vec<&str> = line.split(',').map(str::trim).collect();
-        let bad = if cells.len() != 5 {
+        let bad = if cells.len() != N {
             Some(format!("{} cells", cells.len()))
         } else {
             cells
@@ -148,7 +148,7 @@ pub fn read_grid(
             return None;
         }
         let v: Vec<f64> = cells.iter().map(|c| c.parse::<f64>().unwrap_or(f64::NAN)).collect();
-        rows.push([v[0], v[1], v[2], v[3], v[4]]);
+        rows.push(std::array::from_fn(|j| v[j]));
     }
     Some((input, rows))
 }

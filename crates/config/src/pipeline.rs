@@ -223,6 +223,9 @@ impl PipelineFile {
         if let Some(g) = friction.grid.as_mut() {
             g.file.clear();
         }
+        if let Some(g) = friction.rate_state_grid.as_mut() {
+            g.file.clear();
+        }
         let mut fault = self.fault.clone();
         if let Some(g) = fault.as_mut().and_then(|f| f.grid.as_mut()) {
             g.file.clear();
@@ -365,6 +368,11 @@ impl Pipeline {
         let mut ck = Checker::default();
         let mut inputs = Vec::new();
         if let Some(grid) = file.friction.grid.as_mut()
+            && grid.rows.is_empty()
+        {
+            inputs.extend(grid.read(base, &mut ck));
+        }
+        if let Some(grid) = file.friction.rate_state_grid.as_mut()
             && grid.rows.is_empty()
         {
             inputs.extend(grid.read(base, &mut ck));

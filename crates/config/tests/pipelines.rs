@@ -228,3 +228,65 @@ dc_m = 0.02
     }
     assert!(inside > 0 && outside > 0, "{inside} {outside}");
 }
+
+/// `[friction.rate_state_grid]` gives each base node the a, b, L and f₀ of its row, keeps V₀ and
+/// the start of `[friction.rate_state]`, and is refused under another law, with a missing row or
+/// a ≤ 0 (naming the file's row).
+#[test]
+fn a_rate_state_grid_gives_each_base_node_its_rows_coefficients() {
+    use stickslip_solver::laws::NodeFriction;
+    let text = std::fs::read_to_string(repo_path("pipelines/paper-rate-state.toml")).unwrap();
+    let dir = std::env::temp_dir().join(format!("stickslip-rs-grid-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    // The paper block's 11 × 2 base nodes, every 0.1 m; each row's coefficients its own.
+    let coefficients = |i: usize, j: usize| {
+        let k = (i + 11 * j) as f64;
+        [0.08 + 1e-3 * k, 0.15 - 5e-4 * k, 1e-8 * (1.0 + 0.1 * k), 0.9 + 0.01 * k]
+    };
+    let rows = |skip: Option<usize>, a: Option<f64>| {
+        let mut csv = String::from("# a test grid\nx_m, y_m, a, b, dc_m, f0\n");
+        for j in (0..2).rev() {
+            for i in 0..11 {
+                if Some(i + 11 * j) == skip {
+                    continue;
+                }
+                let [ca, b, l, f0] = coefficients(i, j);
+                let ca = if i == 3 && j == 1 { a.unwrap_or(ca) } else { ca };
+                csv += &format!("{}, {}, {ca}, {b}, {l}, {f0}\n", 0.1 * i as f64, 0.1 * j as f64);
+            }
+        }
+        csv
+    };
+    let load = |name: &str, text: &str, csv: &str| {
+        std::fs::write(dir.join(format!("{name}.csv")), csv).unwrap();
+        let path = dir.join(format!("{name}.toml"));
+        let grid = format!("\n[friction.rate_state_grid]\nfile = \"{name}.csv\"\n");
+        std::fs::write(&path, text.to_string() + &grid).unwrap();
+        Pipeline::load(&path)
+    };
+    let p = load("grid", &text, &rows(None, None)).unwrap();
+    let lattice = p.scene.lattice();
+    for (c, &id) in lattice.contact_nodes().iter().enumerate() {
+        let [x, y, _] = lattice.position(id);
+        let (i, j) = ((x / 0.1).round() as usize, (y / 0.1).round() as usize);
+        let NodeFriction::RateState(n) = p.scene.friction.base(c) else { panic!("node {c}: rate and state") };
+        let [a, b, l, f0] = coefficients(i, j);
+        assert_eq!((n.a, n.b, n.dc_m, n.f0), (a, b, l, f0), "node {c} at ({x}, {y})");
+        assert_eq!(n.v0_m_s, 1e-6, "node {c}: V₀ from [friction.rate_state]");
+    }
+    // The grid's rows are hashed: another coefficient, another hash.
+    let other = load("other", &text, &rows(None, Some(0.2))).unwrap();
+    assert_ne!(p.hash, other.hash);
+    let refused = |name: &str, text: &str, csv: &str, field: &str, why: &str| {
+        let e = load(name, text, csv).unwrap_err();
+        let e = format!("{}", std::error::Error::source(&e).unwrap());
+        assert!(e.contains(field) && e.contains(why), "{name}: {e}");
+    };
+    let slip_weakening = text.replace("law = \"rate_state_aging\"", "law = \"slip_weakening\"");
+    let slip_weakening = slip_weakening[..slip_weakening.find("[friction.rate_state]").unwrap()].to_string()
+        + &slip_weakening[slip_weakening.find("[time]").unwrap()..];
+    refused("sw", &slip_weakening, &rows(None, None), "friction.rate_state_grid", "left out with law");
+    refused("missing", &text, &rows(Some(5), None), "friction.rate_state_grid.file", "one row per base node");
+    refused("negative", &text, &rows(None, Some(-0.01)), "friction.rate_state_grid.file row", "a");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -61,7 +61,8 @@ pub struct RateStatePatch {
 }
 
 /// Why grid rows are refused: they hold the slip-weakening coefficients.
-const GRID_REFUSED: &str = "its rows give μs, μd and Dc (patches with a rate_state table give a, b, L and f₀)";
+const GRID_REFUSED: &str =
+    "its rows give μs, μd and Dc ([friction.rate_state_grid] and patches with a rate_state table give a, b, L and f₀)";
 
 /// Why the skip-ahead is refused.
 const SKIP_AHEAD_REFUSED: &str = "false with a rate-and-state law (the skip-ahead predicts the next slide from a static \

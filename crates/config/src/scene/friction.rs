@@ -23,7 +23,25 @@ pub(super) fn friction(ck: &mut Checker, f: &FrictionSection, law: FrictionLaw, 
         ck.push("friction.grid", "a grid", format!("left out with law = {:?}: {why}", law.name()));
         grid = None;
     }
-    let map = crate::friction_map::build(ck, lattice, &law, &f.patches, grid);
+    let mut rate_state_grid = f.rate_state_grid.as_ref();
+    if rate_state_grid.is_some() && !matches!(law.node(1.0), stickslip_solver::laws::NodeFriction::RateState(_)) {
+        ck.push(
+            "friction.rate_state_grid",
+            "a grid",
+            format!(
+                "left out with law = {:?} (its rows give a, b, L and f₀ of \"rate_state_aging\" and \"rate_state_slip\"; \
+                 [friction.grid] gives μs, μd and Dc)",
+                law.name()
+            ),
+        );
+        rate_state_grid = None;
+    }
+    let rows = match (grid.filter(|g| !g.refused), rate_state_grid.filter(|g| !g.refused)) {
+        (Some(g), _) => Some(g.rows()),
+        (None, Some(g)) => Some(g.rows()),
+        (None, None) => None,
+    };
+    let map = crate::friction_map::build(ck, lattice, &law, &f.patches, rows);
     Friction { law, mu_cv: f.mu_cv, map, heals: f.heals }
 }
 

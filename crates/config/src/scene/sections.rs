@@ -78,6 +78,9 @@ pub struct FrictionSection {
     /// `[friction.rate_state]`: the coefficients of a rate-and-state law.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub rate_state: Option<crate::laws::RateStateSection>,
+    /// `[friction.rate_state_grid]`: rate-and-state coefficients per base node from a CSV file.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rate_state_grid: Option<crate::friction_map::RateStateGridSection>,
 }
 
 fn is_true(v: &bool) -> bool {
@@ -96,6 +99,7 @@ impl Default for FrictionSection {
             grid: None,
             heals: true,
             rate_state: None,
+            rate_state_grid: None,
         }
     }
 }
