@@ -791,10 +791,14 @@ pub(super) fn refuse_unresolved_rate_state(
     if !crate::laws::of(&friction.law).zone_refused {
         return;
     }
-    let node = friction.law.node(1.0);
     let (_, _, c44) = stickslip_solver::material::lattice_elastic_constants(material.young_pa, material.poisson);
     let sigma = fault.normal_pa.iter().copied().fold(0.0, f64::max);
-    let Some(zone) = node.cohesive_zone_m(c44, sigma) else { return };
+    // The smallest process zone over the base: the law's, or a patch's or grid row's.
+    let background = [friction.law.node(1.0)];
+    let nodes = friction.map.as_ref().map_or(&background[..], |m| &m.nodes[..]);
+    let smallest =
+        nodes.iter().filter_map(|n| n.cohesive_zone_m(c44, sigma).map(|z| (*n, z))).min_by(|a, b| a.1.total_cmp(&b.1));
+    let Some((node, zone)) = smallest else { return };
     if zone < LEAST_ZONE_NODES * lc_m {
         let nucleation = node
             .nucleation_m(c44, sigma)
@@ -805,8 +809,9 @@ pub(super) fn refuse_unresolved_rate_state(
             num(lc_m),
             format!(
                 "at most Λ₀/{LEAST_ZONE_NODES} = {} m under rate-and-state friction: the process zone \
-                 Λ₀ = (9π/32)·μ·L/(b·σn) = {} m at σn = {} Pa{nucleation} (a longer friction.rate_state.dc_m or \
-                 smaller modules resolve it)",
+                 Λ₀ = (9π/32)·μ·L/(b·σn) = {} m at σn = {} Pa{nucleation}, the smallest over the base's \
+                 nodes (a longer friction.rate_state.dc_m, in patches and grid rows too, or smaller modules \
+                 resolve it)",
                 approx(zone / LEAST_ZONE_NODES),
                 approx(zone),
                 approx(sigma)
