@@ -637,6 +637,7 @@ struct MediumPathKeys {
 #[serde(default)]
 struct FrictionPathKeys {
     grid: Option<GridPathKey>,
+    rate_state_grid: Option<GridPathKey>,
 }
 
 #[derive(Deserialize)]
@@ -661,6 +662,9 @@ impl Pipeline {
         let mut spans: Vec<(&str, std::ops::Range<usize>)> = Vec::new();
         if let Some(g) = &keys.friction.grid {
             spans.push(("friction.grid.file", g.file.span()));
+        }
+        if let Some(g) = &keys.friction.rate_state_grid {
+            spans.push(("friction.rate_state_grid.file", g.file.span()));
         }
         if let Some(g) = keys.fault.as_ref().and_then(|f| f.grid.as_ref()) {
             spans.push(("fault.grid.file", g.file.span()));

@@ -274,6 +274,11 @@ fn a_rate_state_grid_gives_each_base_node_its_rows_coefficients() {
         assert_eq!((n.a, n.b, n.dc_m, n.f0), (a, b, l, f0), "node {c} at ({x}, {y})");
         assert_eq!(n.v0_m_s, 1e-6, "node {c}: V₀ from [friction.rate_state]");
     }
+    // An output folder keeps a copy of the grid, and its pipeline reads that copy.
+    let copy = p.output_copy().unwrap();
+    let at = "inputs/friction.rate_state_grid.file/grid.csv";
+    assert_eq!(copy.inputs.iter().map(|(path, _)| path.as_str()).collect::<Vec<_>>(), [at]);
+    assert!(copy.text.contains(&format!("file = \"{at}\"")), "{}", copy.text);
     // The grid's rows are hashed: another coefficient, another hash.
     let other = load("other", &text, &rows(None, Some(0.2))).unwrap();
     assert_ne!(p.hash, other.hash);
