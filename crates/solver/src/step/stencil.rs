@@ -251,19 +251,30 @@ unsafe fn run<const L: usize>(index: usize, r: &Run, p: Pass<L>, t: &mut [f64]) 
     // SAFETY: the ranges lie inside the checked arrays; each mutable slice is dropped before the
     // next (lower and upper runs of an x run overlap) and no other thread writes them.
     unsafe {
+        // The bars' stiffness as one array where there is one (per bar), or where the medium's
+        // terms need it too (factored, written once into the scratch for both tensions).
+        let (k, rest): (Option<&[f64]>, &mut [f64]) = match (p.k, &p.medium) {
+            (KPtr::PerBar(k), _) => (Some(std::slice::from_raw_parts(k.add(kb), n)), rest),
+            (KPtr::Factored { runs, factors }, Some(_)) => {
+                let (k, rest) = rest.split_at_mut(n);
+                let phi = factors.map(|f| std::slice::from_raw_parts(f.add(kb), n));
+                run_stiffness::<L>(*runs.add(index), phi, k);
+                (Some(&*k), rest)
+            }
+            (KPtr::Factored { .. }, None) => (None, rest),
+        };
         let read = |c: usize, at: usize| std::slice::from_raw_parts(p.u[c].add(at), n);
         match r.direction {
             Direction::Axis(a) => {
                 let a = a as usize;
                 let (ul, uh) = (read(a, lo), read(a, hi));
-                match p.k {
-                    KPtr::PerBar(k) => {
-                        let k = std::slice::from_raw_parts(k.add(kb), n);
+                match (k, p.k) {
+                    (Some(k), _) => {
                         for m in 0..n {
                             t[m] = k[m] * (uh[m] - ul[m]);
                         }
                     }
-                    KPtr::Factored { runs, factors } => {
+                    (None, KPtr::Factored { runs, factors }) => {
                         let rs = *runs.add(index);
                         let phi = factors.map(|f| std::slice::from_raw_parts(f.add(kb), n));
                         factored(t, rs.interior, phi, |m| uh[m] - ul[m]);
@@ -280,9 +291,10 @@ unsafe fn run<const L: usize>(index: usize, r: &Run, p: Pass<L>, t: &mut [f64]) 
                             }
                         }
                     }
+                    (None, KPtr::PerBar(_)) => unreachable!("per-bar stiffness is an array"),
                 }
-                if let Some(md) = &p.medium {
-                    with_medium(md, index, r, p, t, rest);
+                if let (Some(md), Some(k)) = (&p.medium, k) {
+                    with_medium(md, index, r, p.u, t, k, rest);
                 }
                 add(std::slice::from_raw_parts_mut(p.f[a].add(lo), n), t, 1.0);
                 sub(std::slice::from_raw_parts_mut(p.f[a].add(hi), n), t, 1.0);
@@ -292,21 +304,21 @@ unsafe fn run<const L: usize>(index: usize, r: &Run, p: Pass<L>, t: &mut [f64]) 
                 let (xl, xh, yl, yh, zl, zh) =
                     (read(0, lo), read(0, hi), read(1, lo), read(1, hi), read(2, lo), read(2, hi));
                 let e = |m: usize| sx * (xh[m] - xl[m]) + sy * (yh[m] - yl[m]) + (zh[m] - zl[m]);
-                match p.k {
-                    KPtr::PerBar(k) => {
-                        let k = std::slice::from_raw_parts(k.add(kb), n);
+                match (k, p.k) {
+                    (Some(k), _) => {
                         for m in 0..n {
                             t[m] = k[m] * e(m);
                         }
                     }
                     // A diagonal has no surface reduction: one nominal stiffness for the run.
-                    KPtr::Factored { runs, factors } => {
+                    (None, KPtr::Factored { runs, factors }) => {
                         let phi = factors.map(|f| std::slice::from_raw_parts(f.add(kb), n));
                         factored(t, (*runs.add(index)).interior, phi, e);
                     }
+                    (None, KPtr::PerBar(_)) => unreachable!("per-bar stiffness is an array"),
                 }
-                if let Some(md) = &p.medium {
-                    with_medium(md, index, r, p, t, rest);
+                if let (Some(md), Some(k)) = (&p.medium, k) {
+                    with_medium(md, index, r, p.u, t, k, rest);
                 }
                 // One array per loop (see the listed kernel).
                 add(std::slice::from_raw_parts_mut(p.f[0].add(lo), n), t, sx);
@@ -320,9 +332,30 @@ unsafe fn run<const L: usize>(index: usize, r: &Run, p: Pass<L>, t: &mut [f64]) 
     }
 }
 
-/// Adds the medium's tensions to the elastic ones `t` of run `index` (`r`), the stiffness of its
-/// bars as the kernel takes them written in the scratch `rest` (at least [`RunMedium::SCRATCH`]
-/// times `t`'s length).
+/// `k` = the factored stiffness of a run's bar-lanes, `nominal·f64(φ)` (the first and last bar
+/// their own nominal, as [`StiffnessRef::of_run_bar`] takes it).
+#[inline(always)]
+fn run_stiffness<const L: usize>(rs: RunStiffness, phi: Option<&[f32]>, k: &mut [f64]) {
+    match phi {
+        Some(phi) => {
+            for (k, f) in k.iter_mut().zip(phi) {
+                *k = rs.interior * f64::from(*f);
+            }
+        }
+        None => k.fill(rs.interior),
+    }
+    let bars = k.len() / L;
+    for m in [0, bars - 1] {
+        let nominal = rs.at(m, bars);
+        for l in 0..L {
+            let q = m * L + l;
+            k[q] = phi.map_or(nominal, |f| nominal * f64::from(f[q]));
+        }
+    }
+}
+
+/// Adds the medium's tensions to the elastic ones `t` of run `index` (`r`) of stiffness `k`, in
+/// the scratch `rest` (at least [`RunMedium::SCRATCH`] − 1 times `t`'s length).
 ///
 /// # Safety
 /// As [`layers_dispatch`].
@@ -331,41 +364,15 @@ unsafe fn with_medium<const L: usize>(
     md: &RunMedium<L>,
     index: usize,
     r: &Run,
-    p: Pass<L>,
+    u: [*const f64; 3],
     t: &mut [f64],
+    k: &[f64],
     rest: &mut [f64],
 ) {
-    let (n, kb) = (t.len(), r.first_bar as usize * L);
-    let (k, rest) = rest.split_at_mut(n);
+    let n = t.len();
     let (sum, rest) = rest.split_at_mut(n);
-    let diff = &mut rest[..n];
     // SAFETY: forwarded contract.
-    unsafe {
-        match p.k {
-            KPtr::PerBar(kp) => k.copy_from_slice(std::slice::from_raw_parts(kp.add(kb), n)),
-            KPtr::Factored { runs, factors } => {
-                let (rs, bars) = (*runs.add(index), r.len as usize);
-                let phi = factors.map(|f| std::slice::from_raw_parts(f.add(kb), n));
-                match phi {
-                    Some(phi) => {
-                        for (k, f) in k.iter_mut().zip(phi) {
-                            *k = rs.interior * f64::from(*f);
-                        }
-                    }
-                    None => k.fill(rs.interior),
-                }
-                // The first and last bar: their own nominal (a run on the block's x faces).
-                for m in [0, bars - 1] {
-                    let nominal = rs.at(m, bars);
-                    for l in 0..L {
-                        let q = m * L + l;
-                        k[q] = phi.map_or(nominal, |f| nominal * f64::from(f[q]));
-                    }
-                }
-            }
-        }
-        md.add(index, r, p.u, t, Scratch { k, sum, diff });
-    }
+    unsafe { md.add(index, r, u, t, Scratch { k, sum, diff: &mut rest[..n] }) };
 }
 
 /// `t = (k·f64(φ))·e` over a run (`t = k·e` without factors).
